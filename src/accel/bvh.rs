@@ -1,0 +1,146 @@
+//! Pure-Rust backend: an obvhs 8-wide compressed BVH (CWBVH) with our own watertight
+//! triangle test.
+//!
+//! obvhs's node test clamps the entry distance to a hard-coded 1e-4 (in ray-parameter
+//! units), which would drop hits closer than that: every hit on a 1e-4-scale model, and the
+//! far face of a slab thinner than 1e-4 at any scale. We therefore build and traverse in a
+//! *scaled* frame: positions and ray origins are multiplied by a power of two `s` chosen so
+//! the largest coordinate magnitude is about 2^20. Multiplying by a power of two is exact
+//! in floating point, so hits are bit-identical to the unscaled test (barring
+//! over/underflow), and `t` scales by exactly `s`. The 1e-4 clamp then sits about 1e-10
+//! below the scene's coordinate magnitude, far below f32 resolution (6e-8 relative).
+
+use super::triangle::RayPrep;
+use super::RawHit;
+use glam::{Vec3, Vec3A};
+use obvhs::cwbvh::CwBvh;
+use obvhs::ray::{Ray, RayHit};
+use obvhs::triangle::Triangle;
+use obvhs::BvhBuildParams;
+use std::time::Duration;
+
+/// Target magnitude of the largest coordinate in the scaled frame.
+const TARGET_EXPONENT: i32 = 20;
+
+/// obvhs CWBVH over a scaled copy of the triangles, stored in BVH leaf order.
+pub struct BvhAccel {
+    bvh: CwBvh,
+    /// Triangles in leaf order, in the scaled frame.
+    tris: Vec<[Vec3; 3]>,
+    /// Original triangle index for each leaf-order slot.
+    prim_ids: Vec<u32>,
+    /// Power-of-two scale from world to the BVH frame.
+    scale: f32,
+}
+
+/// Power of two that brings `max_abs` to about 2^20 (1 for empty or zero scenes).
+fn pow2_scale(max_abs: f32) -> f32 {
+    if !(max_abs > 0.0) || !max_abs.is_finite() {
+        return 1.0;
+    }
+    let e = max_abs.log2().floor() as i32;
+    2f32.powi((TARGET_EXPONENT - e).clamp(-100, 100))
+}
+
+impl BvhAccel {
+    /// Builds the BVH over world-space triangles (indices must be in range).
+    pub fn build(positions: &[Vec3], indices: &[[u32; 3]]) -> Self {
+        let max_abs = positions
+            .iter()
+            .fold(0f32, |m, p| m.max(p.abs().max_element()));
+        let scale = pow2_scale(max_abs);
+        let scaled: Vec<[Vec3; 3]> = indices
+            .iter()
+            .map(|t| t.map(|k| positions[k as usize] * scale))
+            .collect();
+        let obv: Vec<Triangle> = scaled
+            .iter()
+            .map(|t| Triangle {
+                v0: t[0].into(),
+                v1: t[1].into(),
+                v2: t[2].into(),
+            })
+            .collect();
+        let mut build_time = Duration::ZERO;
+        let bvh = if obv.is_empty() {
+            CwBvh::default()
+        } else {
+            obvhs::cwbvh::builder::build_cwbvh_from_tris(
+                &obv,
+                BvhBuildParams::medium_build(),
+                &mut build_time,
+            )
+        };
+        let tris = bvh
+            .primitive_indices
+            .iter()
+            .map(|&i| scaled[i as usize])
+            .collect();
+        let prim_ids = bvh.primitive_indices.clone();
+        BvhAccel {
+            bvh,
+            tris,
+            prim_ids,
+            scale,
+        }
+    }
+
+    /// Builds the obvhs ray in the scaled frame. The inverse direction is computed
+    /// directly (obvhs's `Ray::new` clamps tiny components to 1/f32::EPSILON).
+    #[inline]
+    fn ray(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Ray {
+        let inv = Vec3A::from(dir).recip();
+        let inv = Vec3A::select(inv.is_finite_mask(), inv, Vec3A::splat(f32::MAX).copysign(Vec3A::from(dir)));
+        Ray {
+            origin: Vec3A::from(origin * self.scale),
+            direction: dir.into(),
+            inv_direction: inv,
+            tmin: 0.0,
+            tmax: t_max * self.scale,
+        }
+    }
+
+    /// Closest hit in `[0, t_max)`.
+    pub fn closest(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<RawHit> {
+        if self.tris.is_empty() {
+            return None;
+        }
+        let ray = self.ray(origin, dir, t_max);
+        let prep = RayPrep::new(origin * self.scale, dir);
+        let mut hit = RayHit::none();
+        let mut uv = (0.0, 0.0);
+        let found = self.bvh.ray_traverse(ray, &mut hit, |r, id| {
+            let [a, b, c] = self.tris[id];
+            match prep.intersect(a, b, c, r.tmax) {
+                Some((t, u, v)) => {
+                    uv = (u, v);
+                    t
+                }
+                None => f32::INFINITY,
+            }
+        });
+        if !found {
+            return None;
+        }
+        Some(RawHit {
+            t: hit.t / self.scale,
+            prim: self.prim_ids[hit.primitive_id as usize],
+            u: uv.0,
+            v: uv.1,
+        })
+    }
+
+    /// Any hit in `[0, t_max)`.
+    pub fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
+        if self.tris.is_empty() {
+            return false;
+        }
+        let ray = self.ray(origin, dir, t_max);
+        let prep = RayPrep::new(origin * self.scale, dir);
+        !self.bvh.ray_traverse_miss(ray, |r, id| {
+            let [a, b, c] = self.tris[id];
+            prep.intersect(a, b, c, r.tmax)
+                .map_or(f32::INFINITY, |h| h.0)
+        })
+    }
+}

@@ -1,0 +1,98 @@
+//! Ray–triangle acceleration backends: Embree 4 (feature `embree`) and a pure-Rust BVH
+//! (obvhs CWBVH). Backends know nothing of materials or offsets: they take a ray with
+//! `t_min = 0` and return only `t`, the triangle index and Embree-style barycentrics
+//! (`p = (1-u-v)·p0 + u·p1 + v·p2`). The intersection layer (`interaction`) builds the hit.
+
+pub mod brute;
+pub mod bvh;
+#[cfg(feature = "embree")]
+pub mod embree;
+pub mod triangle;
+
+use crate::error::{Error, Result};
+use glam::Vec3;
+
+/// A raw hit: ray parameter, triangle index, barycentrics.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RawHit {
+    /// Ray parameter (distance if the direction is unit length).
+    pub t: f32,
+    /// Triangle index into the scene's triangle array.
+    pub prim: u32,
+    /// Barycentric weight of vertex 1.
+    pub u: f32,
+    /// Barycentric weight of vertex 2.
+    pub v: f32,
+}
+
+/// Which backend to build (`--accel`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Backend {
+    /// Embree when compiled in, otherwise the BVH.
+    #[default]
+    Auto,
+    /// Embree 4 (requires the `embree` feature).
+    Embree,
+    /// obvhs CWBVH, pure Rust.
+    Bvh,
+}
+
+/// A built acceleration structure over one triangle soup.
+pub enum Accel {
+    /// Pure-Rust BVH.
+    Bvh(bvh::BvhAccel),
+    /// Embree 4.
+    #[cfg(feature = "embree")]
+    Embree(embree::EmbreeAccel),
+}
+
+impl Accel {
+    /// Builds the requested backend over world-space triangles.
+    pub fn build(backend: Backend, positions: &[Vec3], indices: &[[u32; 3]]) -> Result<Accel> {
+        match backend {
+            Backend::Bvh => Ok(Accel::Bvh(bvh::BvhAccel::build(positions, indices))),
+            #[cfg(feature = "embree")]
+            Backend::Embree | Backend::Auto => {
+                Ok(Accel::Embree(embree::EmbreeAccel::build(positions, indices)?))
+            }
+            #[cfg(not(feature = "embree"))]
+            Backend::Auto => Ok(Accel::Bvh(bvh::BvhAccel::build(positions, indices))),
+            #[cfg(not(feature = "embree"))]
+            Backend::Embree => Err(Error::Accel(
+                "this build of iris has no Embree support (built without the `embree` feature); use --accel bvh".into(),
+            )),
+        }
+    }
+
+    /// Closest hit along `origin + t·dir` for `t` in `[0, t_max)`.
+    #[inline]
+    pub fn closest(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<RawHit> {
+        match self {
+            Accel::Bvh(b) => b.closest(origin, dir, t_max),
+            #[cfg(feature = "embree")]
+            Accel::Embree(e) => e.closest(origin, dir, t_max),
+        }
+    }
+
+    /// Whether anything lies along `origin + t·dir` for `t` in `[0, t_max)`.
+    #[inline]
+    pub fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
+        match self {
+            Accel::Bvh(b) => b.occluded(origin, dir, t_max),
+            #[cfg(feature = "embree")]
+            Accel::Embree(e) => e.occluded(origin, dir, t_max),
+        }
+    }
+
+    /// Backend name for summaries.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Accel::Bvh(_) => "bvh (obvhs)",
+            #[cfg(feature = "embree")]
+            Accel::Embree(_) => "embree 4",
+        }
+    }
+}
+
+#[allow(dead_code)]
+fn _unused(_: Error) {}

@@ -1,0 +1,28 @@
+//! # Iris
+//!
+//! A spectral renderer for glass, gems and caustics.
+//!
+//! ## Conventions (enforced by [`interaction`], the one intersection layer)
+//! - World space is right-handed, +Y up, metres (glTF).
+//! - Triangles wind counter-clockwise seen from outside; the geometric normal
+//!   `(p1-p0)×(p2-p0)` points **out of the object** and is never flipped.
+//! - A ray enters an object when `dot(direction, ng) < 0` (`front_face`), and exits otherwise.
+//! - Backends ([`accel`]) take `t_min = 0` and return only `t`, triangle id and barycentrics.
+//! - Every secondary ray is offset by [`interaction::spawn_ray`] / [`interaction::spawn_ray_to`]
+//!   and nowhere else; no other module adds an epsilon.
+//!
+//! ## Pipeline
+//! file → [`scene::desc::SceneDesc`] (loaders in [`load`]) → validation →
+//! immutable [`scene::Scene`] → integrator → film → PNG/EXR ([`output`]).
+//!
+//! `unsafe` appears only in `accel/embree.rs`.
+#![warn(missing_docs)]
+#![cfg_attr(not(feature = "embree"), forbid(unsafe_code))]
+
+pub mod accel;
+pub mod error;
+pub mod load;
+pub mod output;
+pub mod scene;
+
+pub use error::{Error, LoadError, LoadErrorKind, Result};

@@ -1,0 +1,255 @@
+//! The plain scene description: what a loader (glTF, OBJ, the asset generator) produces
+//! before validation. Everything is already in **world space** (metres by glTF convention;
+//! OBJ files are taken as metres too), right-handed, +Y up.
+//!
+//! Invariants a loader must establish (validation checks them again):
+//! - triangles are wound counter-clockwise seen from outside, so the geometric normal
+//!   `(p1-p0)×(p2-p0)` points out of the object; a node with a negative-determinant
+//!   transform has had its winding flipped by the loader;
+//! - per-vertex arrays (`normals`, `uvs`) are either empty or as long as `positions`;
+//! - colours are **linear** RGB (sRGB-encoded values have been decoded);
+//! - light intensities keep their glTF units: candela (point, spot), lux (directional).
+//!
+//! Values are *not* trusted here: NaN, out-of-range indices and bad IORs are caught by
+//! `scene::validate`, which names the element.
+
+use glam::{Mat4, Vec2, Vec3, Vec4};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// A whole scene as read from a file.
+#[derive(Debug, Clone, Default)]
+pub struct SceneDesc {
+    /// The file it came from (used in error messages).
+    pub source: PathBuf,
+    /// Triangle meshes, one per glTF primitive instance / OBJ model, in world space.
+    pub meshes: Vec<MeshDesc>,
+    /// Materials referenced by `MeshDesc::material`.
+    pub materials: Vec<MaterialDesc>,
+    /// Decoded images referenced by `TextureRef::image`.
+    pub images: Vec<ImageDesc>,
+    /// Punctual lights (KHR_lights_punctual), in world space.
+    pub lights: Vec<LightDesc>,
+    /// Cameras, in world space.
+    pub cameras: Vec<CameraDesc>,
+    /// Things the loader saw and did not use (unsupported extensions, MTL keys, primitive
+    /// modes), each listed once.
+    pub warnings: Vec<String>,
+}
+
+/// One triangle mesh in world space.
+#[derive(Debug, Clone, Default)]
+pub struct MeshDesc {
+    /// Human-readable name used in errors, e.g. `node 3 "Gem" mesh 1 "Cut" primitive 0`.
+    pub name: String,
+    /// Vertex positions, world space.
+    pub positions: Vec<Vec3>,
+    /// Per-vertex shading normals, world space, or empty.
+    pub normals: Vec<Vec3>,
+    /// Per-vertex texture coordinates (TEXCOORD_0), or empty.
+    pub uvs: Vec<Vec2>,
+    /// Triangles as vertex indices, counter-clockwise seen from outside.
+    pub indices: Vec<[u32; 3]>,
+    /// Index into `SceneDesc::materials`; `None` uses the default material.
+    pub material: Option<usize>,
+}
+
+/// A reference from a material to a texture image.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TextureRef {
+    /// Index into `SceneDesc::images`.
+    pub image: usize,
+    /// Which texture-coordinate set (only 0 is read; others fall back to 0 with a warning).
+    pub texcoord: u32,
+}
+
+/// A decoded image, 8 bits per channel RGBA, **as stored in the file** (colour textures are
+/// sRGB-encoded; the material decides how to decode each channel).
+#[derive(Debug, Clone)]
+pub struct ImageDesc {
+    /// Name for messages (`image 2 "checker.png"`).
+    pub name: String,
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Row-major RGBA8 texels, top row first, `width*height*4` bytes.
+    pub rgba8: Arc<Vec<u8>>,
+}
+
+/// How the base colour's alpha is used (glTF `alphaMode`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum AlphaMode {
+    /// Alpha ignored.
+    #[default]
+    Opaque,
+    /// Alpha below the cutoff makes the surface invisible.
+    Mask(f32),
+    /// Alpha blends (treated as stochastic coverage).
+    Blend,
+}
+
+/// Chromatic dispersion model given explicitly by the scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum IorModel {
+    /// The seed paper's Cauchy form n(λ) = b + c/λ², λ in micrometres (material extras
+    /// `{"cauchy": {"b": 1.5, "c": 0.0042}}`). Overrides KHR_materials_dispersion.
+    Cauchy {
+        /// Constant term b.
+        b: f32,
+        /// Coefficient c in µm².
+        c: f32,
+    },
+}
+
+/// A material in glTF metallic-roughness terms plus the KHR extensions Iris reads.
+/// Defaults are the glTF spec defaults.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MaterialDesc {
+    /// Name for messages, e.g. `material 4 "Glass"`.
+    pub name: String,
+    /// Linear RGBA base colour factor.
+    pub base_color: Vec4,
+    /// Base colour texture (sRGB).
+    pub base_color_texture: Option<TextureRef>,
+    /// Metallic factor in [0,1].
+    pub metallic: f32,
+    /// Perceptual roughness factor in [0,1].
+    pub roughness: f32,
+    /// Metallic (B) / roughness (G) texture (linear).
+    pub metallic_roughness_texture: Option<TextureRef>,
+    /// Linear emissive colour, already multiplied by KHR_materials_emissive_strength.
+    pub emissive: Vec3,
+    /// Emissive texture (sRGB).
+    pub emissive_texture: Option<TextureRef>,
+    /// Index of refraction (KHR_materials_ior, default 1.5). The value 0 is the spec's
+    /// special mode: infinite IOR, Fresnel = 1, no dispersion.
+    pub ior: f32,
+    /// KHR_materials_transmission factor in [0,1].
+    pub transmission: f32,
+    /// Transmission texture (R channel).
+    pub transmission_texture: Option<TextureRef>,
+    /// KHR_materials_volume thicknessFactor: 0 = thin-walled, > 0 = the mesh bounds a volume.
+    pub thickness: f32,
+    /// KHR_materials_volume attenuation colour (linear RGB).
+    pub attenuation_color: Vec3,
+    /// KHR_materials_volume attenuation distance (world units), +∞ by default.
+    pub attenuation_distance: f32,
+    /// KHR_materials_specular specularFactor.
+    pub specular: f32,
+    /// KHR_materials_specular specularColorFactor (linear).
+    pub specular_color: Vec3,
+    /// KHR_materials_dispersion `dispersion` = 20/Abbe number.
+    pub dispersion: f32,
+    /// An explicit IOR model from material extras; overrides `dispersion`.
+    pub ior_model: Option<IorModel>,
+    /// glTF doubleSided.
+    pub double_sided: bool,
+    /// glTF alphaMode / alphaCutoff.
+    pub alpha_mode: AlphaMode,
+}
+
+impl Default for MaterialDesc {
+    fn default() -> Self {
+        MaterialDesc {
+            name: "default material".into(),
+            base_color: Vec4::ONE,
+            base_color_texture: None,
+            metallic: 1.0,
+            roughness: 1.0,
+            metallic_roughness_texture: None,
+            emissive: Vec3::ZERO,
+            emissive_texture: None,
+            ior: 1.5,
+            transmission: 0.0,
+            transmission_texture: None,
+            thickness: 0.0,
+            attenuation_color: Vec3::ONE,
+            attenuation_distance: f32::INFINITY,
+            specular: 1.0,
+            specular_color: Vec3::ONE,
+            dispersion: 0.0,
+            ior_model: None,
+            double_sided: false,
+            alpha_mode: AlphaMode::Opaque,
+        }
+    }
+}
+
+/// A punctual light (KHR_lights_punctual) in world space.
+#[derive(Debug, Clone, PartialEq)]
+pub enum LightDesc {
+    /// Point light: `intensity` in candela (lm/sr), linear RGB colour.
+    Point {
+        /// Name for messages.
+        name: String,
+        /// World position.
+        position: Vec3,
+        /// Linear RGB colour.
+        color: Vec3,
+        /// Luminous intensity in candela.
+        intensity: f32,
+        /// Optional range (world units).
+        range: Option<f32>,
+    },
+    /// Spot light: candela, cone around `direction`.
+    Spot {
+        /// Name for messages.
+        name: String,
+        /// World position.
+        position: Vec3,
+        /// Unit direction the light points to (node −Z).
+        direction: Vec3,
+        /// Linear RGB colour.
+        color: Vec3,
+        /// Luminous intensity in candela.
+        intensity: f32,
+        /// Optional range (world units).
+        range: Option<f32>,
+        /// Inner cone angle, radians.
+        inner_cone: f32,
+        /// Outer cone angle, radians.
+        outer_cone: f32,
+    },
+    /// Directional light: illuminance in lux.
+    Directional {
+        /// Name for messages.
+        name: String,
+        /// Unit direction the light travels in (node −Z).
+        direction: Vec3,
+        /// Linear RGB colour.
+        color: Vec3,
+        /// Illuminance in lux.
+        intensity: f32,
+    },
+}
+
+/// Camera projection.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Projection {
+    /// Perspective with vertical field of view (radians) and optional aspect ratio.
+    Perspective {
+        /// Vertical field of view, radians.
+        yfov: f32,
+        /// Aspect ratio width/height if the file fixes it.
+        aspect: Option<f32>,
+    },
+    /// Orthographic with half-extents (world units).
+    Orthographic {
+        /// Horizontal half-width.
+        xmag: f32,
+        /// Vertical half-height.
+        ymag: f32,
+    },
+}
+
+/// A camera: looks down its local −Z with +Y up (glTF convention).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CameraDesc {
+    /// Name for `--camera NAME` and messages.
+    pub name: String,
+    /// Projection.
+    pub projection: Projection,
+    /// World-from-camera rigid transform (scale is removed by the loader).
+    pub world_from_camera: Mat4,
+}
