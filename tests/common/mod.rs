@@ -1,0 +1,37 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use std::path::PathBuf;
+
+/// The third-party test scenes in `../shared/assets` (override with `IRIS_SHARED_ASSETS`).
+///
+/// Outside the project's workplace that folder is absent: the calling test then prints
+/// why it skips and returns `None`. CI sets `IRIS_REQUIRE_SHARED=1`, which turns the
+/// absence into a failure so CI never skips these tests.
+pub fn shared_assets() -> Option<PathBuf> {
+    let dir = std::env::var_os("IRIS_SHARED_ASSETS")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/assets"));
+    if dir.is_dir() {
+        return Some(dir);
+    }
+    let required = std::env::var("IRIS_REQUIRE_SHARED").is_ok_and(|v| v == "1");
+    assert!(
+        !required,
+        "IRIS_REQUIRE_SHARED=1 but the shared test assets are missing at {}",
+        dir.display()
+    );
+    eprintln!(
+        "SKIPPED: shared test assets not found at {} (set IRIS_SHARED_ASSETS, or IRIS_REQUIRE_SHARED=1 to fail)",
+        dir.display()
+    );
+    None
+}
+
+/// A scratch directory unique to one test, emptied first.
+pub fn scratch_dir(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("create scratch dir");
+    dir
+}
