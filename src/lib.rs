@@ -8,21 +8,32 @@
 //!   `(p1-p0)×(p2-p0)` points **out of the object** and is never flipped.
 //! - A ray enters an object when `dot(direction, ng) < 0` (`front_face`), and exits otherwise.
 //! - Backends ([`accel`]) take `t_min = 0` and return only `t`, triangle id and barycentrics.
-//! - Every secondary ray is offset by [`interaction::spawn_ray`] / [`interaction::spawn_ray_to`]
-//!   and nowhere else; no other module adds an epsilon.
+//! - Every secondary ray is offset by [`interaction::SurfaceHit::spawn_ray`] /
+//!   [`interaction::SurfaceHit::spawn_ray_to`] and nowhere else; no other module adds an
+//!   epsilon.
 //!
 //! ## Pipeline
 //! file → [`scene::desc::SceneDesc`] (loaders in [`load`]) → validation →
-//! immutable [`scene::Scene`] → integrator → film → PNG/EXR ([`output`]).
+//! immutable [`scene::Scene`] → [`integrator`] via [`render`] → PNG/EXR ([`output`]).
 //!
 //! `unsafe` appears only in `accel/embree.rs`.
 #![warn(missing_docs)]
 #![cfg_attr(not(feature = "embree"), forbid(unsafe_code))]
 
 pub mod accel;
+pub mod app;
+pub mod camera;
 pub mod error;
+pub mod integrator;
+pub mod interaction;
+pub mod light;
 pub mod load;
+pub mod material;
+pub mod math;
+pub mod optics;
 pub mod output;
+pub mod render;
 pub mod scene;
+pub mod texture;
 
 pub use error::{Error, LoadError, LoadErrorKind, Result};

@@ -1,1 +1,190 @@
-fn main(){}
+//! The `iris` command line: parses flags, calls [`iris::app`], prints a summary, and turns
+//! errors into a message on stderr and a non-zero exit code.
+
+use clap::{Parser, Subcommand, ValueEnum};
+use iris::accel::Backend;
+use iris::app::{self, RenderOptions};
+use iris::integrator::Method;
+use iris::output::{DisplayOptions, Exposure, ToneMap};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "iris", version, about = "Iris: a spectral renderer for glass, gems and caustics")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a glTF (.gltf/.glb) or OBJ scene to PNG or EXR.
+    Render(RenderArgs),
+    /// Describe a scene: meshes, triangles, materials with their KHR values, lights, cameras.
+    Info {
+        /// Scene file.
+        scene: PathBuf,
+    },
+    /// Regenerate the project's own scenes (the paper's figures) into a directory.
+    GenAssets {
+        /// Output directory, e.g. assets/paper.
+        dir: PathBuf,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum MethodArg {
+    /// Recursive ray tracing (seed paper §4).
+    Whitted,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum AccelArg {
+    Auto,
+    Embree,
+    Bvh,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum ToneMapArg {
+    Aces,
+    Reinhard,
+    Clamp,
+}
+
+#[derive(clap::Args)]
+struct RenderArgs {
+    /// Scene file (.gltf, .glb, .obj).
+    scene: PathBuf,
+    /// Output image (.png or .exr); default `<scene stem>.png` here.
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Image size WxH, e.g. 800x600 (default 800 wide at the camera's aspect).
+    #[arg(long, value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    /// Samples per pixel.
+    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    spp: u32,
+    /// Rendering method.
+    #[arg(long, value_enum, default_value_t = MethodArg::Whitted)]
+    method: MethodArg,
+    /// Maximum number of bounces (reflections and refractions) per path.
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    max_depth: u32,
+    /// Intersection backend.
+    #[arg(long, value_enum, default_value_t = AccelArg::Auto)]
+    accel: AccelArg,
+    /// Random seed (same seed, scene and backend → same image).
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Worker threads (0 = all cores).
+    #[arg(long, default_value_t = 0)]
+    threads: usize,
+    /// Camera name or index from the file.
+    #[arg(long)]
+    camera: Option<String>,
+    /// PNG exposure: `auto` (log-average luminance to 0.18) or stops, e.g. -1.5.
+    #[arg(long, default_value = "auto", value_parser = parse_exposure, allow_hyphen_values = true)]
+    exposure: Exposure,
+    /// PNG tone map.
+    #[arg(long, value_enum, default_value_t = ToneMapArg::Aces)]
+    tonemap: ToneMapArg,
+    /// No progress bar.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("expected WxH, e.g. 800x600, got {s:?}"))?;
+    let w: u32 = w.trim().parse().map_err(|_| format!("bad width in {s:?}"))?;
+    let h: u32 = h.trim().parse().map_err(|_| format!("bad height in {s:?}"))?;
+    app::check_size(w, h).map_err(|e| e.to_string())?;
+    Ok((w, h))
+}
+
+fn parse_exposure(s: &str) -> Result<Exposure, String> {
+    if s.eq_ignore_ascii_case("auto") {
+        return Ok(Exposure::Auto);
+    }
+    match s.parse::<f32>() {
+        Ok(v) if v.is_finite() && v.abs() <= 64.0 => Ok(Exposure::Ev(v)),
+        _ => Err(format!("expected `auto` or stops in [-64, 64], got {s:?}")),
+    }
+}
+
+fn run(cli: Cli) -> iris::Result<()> {
+    match cli.command {
+        Command::Render(a) => {
+            let opts = RenderOptions {
+                scene: a.scene,
+                output: a.output,
+                size: a.size,
+                spp: a.spp,
+                method: match a.method {
+                    MethodArg::Whitted => Method::Whitted,
+                },
+                max_depth: a.max_depth,
+                accel: match a.accel {
+                    AccelArg::Auto => Backend::Auto,
+                    AccelArg::Embree => Backend::Embree,
+                    AccelArg::Bvh => Backend::Bvh,
+                },
+                seed: a.seed,
+                threads: a.threads,
+                camera: a.camera,
+                display: DisplayOptions {
+                    exposure: a.exposure,
+                    tonemap: match a.tonemap {
+                        ToneMapArg::Aces => ToneMap::Aces,
+                        ToneMapArg::Reinhard => ToneMap::Reinhard,
+                        ToneMapArg::Clamp => ToneMap::Clamp,
+                    },
+                },
+                quiet: a.quiet,
+            };
+            let s = app::render_command(&opts)?;
+            for n in &s.notes {
+                eprintln!("note: {n}");
+            }
+            let secs = s.stats.time.as_secs_f64();
+            eprintln!(
+                "iris: {} -> {}: {}x{}, {} spp, {} triangles, {}, render {:.2} s (load {:.2} s, build {:.2} s), {:.2} Mrays/s",
+                opts.scene.display(),
+                s.output.display(),
+                s.image.width,
+                s.image.height,
+                opts.spp,
+                s.triangles,
+                s.backend,
+                secs,
+                s.load_time.as_secs_f64(),
+                s.build_time.as_secs_f64(),
+                s.stats.rays as f64 / secs.max(1e-9) / 1e6
+            );
+            Ok(())
+        }
+        Command::Info { scene } => {
+            print!("{}", app::info_command(&scene)?);
+            Ok(())
+        }
+        Command::GenAssets { dir } => {
+            for p in iris::gen::write_paper_scenes(&dir)? {
+                eprintln!("wrote {}", p.display());
+            }
+            Ok(())
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

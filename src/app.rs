@@ -1,0 +1,265 @@
+//! The commands behind the CLI (`iris render`, `iris info`), as library functions so tests
+//! can run them without a subprocess. They load, validate, build, render and write, and
+//! return a summary; `main.rs` only parses flags and prints.
+
+use crate::accel::Backend;
+use crate::camera::{frame_bounds, Camera};
+use crate::error::{Error, Result};
+use crate::integrator::{Integrator, Method};
+use crate::output::{self, DisplayOptions, ImageRgb};
+use crate::render::{render, RenderSettings, RenderStats};
+use crate::scene::desc::{CameraDesc, LightDesc, Projection};
+use crate::scene::Scene;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// Largest accepted image: 2^28 pixels (16384 × 16384), checked before allocating.
+pub const MAX_PIXELS: u64 = 1 << 28;
+
+/// Everything `iris render` needs.
+#[derive(Debug, Clone)]
+pub struct RenderOptions {
+    /// Scene file.
+    pub scene: PathBuf,
+    /// Output file (.png or .exr); default `<scene stem>.png` in the current directory.
+    pub output: Option<PathBuf>,
+    /// Image size; default 800 wide with the camera's aspect (or 4:3).
+    pub size: Option<(u32, u32)>,
+    /// Samples per pixel.
+    pub spp: u32,
+    /// Rendering method.
+    pub method: Method,
+    /// Recursion depth limit.
+    pub max_depth: u32,
+    /// Acceleration backend.
+    pub accel: Backend,
+    /// Seed.
+    pub seed: u64,
+    /// Threads (0 = all).
+    pub threads: usize,
+    /// Camera name or index.
+    pub camera: Option<String>,
+    /// PNG display options.
+    pub display: DisplayOptions,
+    /// No progress bar.
+    pub quiet: bool,
+}
+
+/// What a render did, for the one-line summary.
+#[derive(Debug, Clone)]
+pub struct RenderSummary {
+    /// Where the image went.
+    pub output: PathBuf,
+    /// The linear image.
+    pub image: ImageRgb,
+    /// Render figures.
+    pub stats: RenderStats,
+    /// Scene load + validation time.
+    pub load_time: Duration,
+    /// Acceleration build time.
+    pub build_time: Duration,
+    /// Triangles.
+    pub triangles: usize,
+    /// Backend name.
+    pub backend: &'static str,
+    /// Decisions taken for the user and loader warnings.
+    pub notes: Vec<String>,
+}
+
+/// Loads, validates and builds a scene.
+pub fn load(path: &Path, accel: Backend) -> Result<(Scene, Duration)> {
+    let start = Instant::now();
+    let desc = crate::load::load_scene(path)?;
+    let scene = Scene::build(desc, accel)?;
+    Ok((scene, start.elapsed()))
+}
+
+/// Picks the camera by name or index, or frames the scene when the file has none.
+pub fn choose_camera(scene: &Scene, choice: Option<&str>, aspect: f32) -> Result<(CameraDesc, Option<String>)> {
+    match choice {
+        Some(c) => {
+            let found = scene
+                .cameras
+                .iter()
+                .find(|cam| cam.name == c)
+                .or_else(|| c.parse::<usize>().ok().and_then(|i| scene.cameras.get(i)));
+            match found {
+                Some(cam) => Ok((cam.clone(), None)),
+                None => {
+                    let names: Vec<String> = scene
+                        .cameras
+                        .iter()
+                        .enumerate()
+                        .map(|(i, c)| format!("{i} \"{}\"", c.name))
+                        .collect();
+                    Err(Error::Usage(format!(
+                        "--camera {c}: no such camera in {} (available: {})",
+                        scene.source.display(),
+                        if names.is_empty() { "none".into() } else { names.join(", ") }
+                    )))
+                }
+            }
+        }
+        None => match scene.cameras.first() {
+            Some(cam) => Ok((cam.clone(), None)),
+            None => Ok((
+                frame_bounds(scene.bounds.0, scene.bounds.1, aspect),
+                Some("no camera in the file: framing the bounding box from the front-right-above".into()),
+            )),
+        },
+    }
+}
+
+/// The image size: the flag, else 800 wide at the first camera's aspect ratio (or 4:3).
+fn image_size(opts: &RenderOptions, scene: &Scene) -> Result<(u32, u32)> {
+    let (w, h) = match opts.size {
+        Some(s) => s,
+        None => {
+            let aspect = scene
+                .cameras
+                .first()
+                .and_then(|c| match c.projection {
+                    Projection::Perspective { aspect, .. } => aspect,
+                    Projection::Orthographic { xmag, ymag } => Some(xmag / ymag),
+                })
+                .filter(|a| a.is_finite() && *a > 0.05 && *a < 20.0)
+                .unwrap_or(4.0 / 3.0);
+            (800, ((800.0 / aspect).round() as u32).max(1))
+        }
+    };
+    check_size(w, h)?;
+    Ok((w, h))
+}
+
+/// Rejects empty or absurd image sizes before anything is allocated.
+pub fn check_size(w: u32, h: u32) -> Result<()> {
+    if w == 0 || h == 0 || w as u64 * h as u64 > MAX_PIXELS {
+        return Err(Error::Usage(format!(
+            "--size {w}x{h}: width and height must be at least 1 and the image at most {MAX_PIXELS} pixels"
+        )));
+    }
+    Ok(())
+}
+
+/// `iris render`.
+pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
+    if let Some((w, h)) = opts.size {
+        check_size(w, h)?;
+    }
+    let output = match &opts.output {
+        Some(o) => o.clone(),
+        None => {
+            let stem = opts.scene.file_stem().map(|s| s.to_string_lossy().into_owned());
+            PathBuf::from(format!("{}.png", stem.unwrap_or_else(|| "render".into())))
+        }
+    };
+    output::check_extension(&output)?;
+    let (scene, load_time) = load(&opts.scene, opts.accel)?;
+    let (w, h) = image_size(opts, &scene)?;
+    let (cam_desc, cam_note) = choose_camera(&scene, opts.camera.as_deref(), w as f32 / h as f32)?;
+    let camera = Camera::new(&cam_desc, w, h);
+    let integrator = Integrator {
+        method: opts.method,
+        max_depth: opts.max_depth,
+    };
+    let settings = RenderSettings {
+        width: w,
+        height: h,
+        spp: opts.spp,
+        seed: opts.seed,
+        threads: opts.threads,
+        quiet: opts.quiet,
+    };
+    let (image, stats) = render(&scene, &camera, &integrator, &settings)?;
+    output::write_image(&output, &image, &opts.display)?;
+    let mut notes = scene.notes.clone();
+    notes.extend(cam_note);
+    notes.extend(scene.warnings.iter().cloned());
+    Ok(RenderSummary {
+        output,
+        image,
+        stats,
+        load_time,
+        build_time: scene.accel_build_time,
+        triangles: scene.triangle_count(),
+        backend: scene.backend_name(),
+        notes,
+    })
+}
+
+/// `iris info`: a human-readable description of the scene.
+pub fn info_command(path: &Path) -> Result<String> {
+    let desc = crate::load::load_scene(path)?;
+    let mut s = String::new();
+    let tris: usize = desc.meshes.iter().map(|m| m.indices.len()).sum();
+    let _ = writeln!(s, "{}: {} meshes, {} triangles", path.display(), desc.meshes.len(), tris);
+    let _ = writeln!(s, "meshes:");
+    for m in &desc.meshes {
+        let mat = m.material.and_then(|i| desc.materials.get(i)).map_or("default material", |x| &x.name);
+        let _ = writeln!(s, "  {}: {} triangles, {}", m.name, m.indices.len(), mat);
+    }
+    let _ = writeln!(s, "materials:");
+    for m in &desc.materials {
+        let ior = if m.ior == 0.0 { "0 (infinite)".to_string() } else { format!("{}", m.ior) };
+        let _ = write!(
+            s,
+            "  {}: base [{:.3} {:.3} {:.3} {:.3}] metallic {} roughness {} ior {} transmission {}",
+            m.name, m.base_color.x, m.base_color.y, m.base_color.z, m.base_color.w, m.metallic, m.roughness, ior, m.transmission
+        );
+        if m.thickness > 0.0 || m.attenuation_distance.is_finite() {
+            let _ = write!(
+                s,
+                " volume(thickness {} attenuation [{:.3} {:.3} {:.3}] over {})",
+                m.thickness, m.attenuation_color.x, m.attenuation_color.y, m.attenuation_color.z, m.attenuation_distance
+            );
+        }
+        if m.dispersion > 0.0 {
+            let _ = write!(s, " dispersion {} (Abbe {:.1})", m.dispersion, 20.0 / m.dispersion);
+        }
+        if let Some(model) = m.ior_model {
+            let _ = write!(s, " {model:?}");
+        }
+        if m.specular != 1.0 || m.specular_color != glam::Vec3::ONE {
+            let _ = write!(s, " specular {} color {:?}", m.specular, m.specular_color.to_array());
+        }
+        if m.emissive != glam::Vec3::ZERO {
+            let _ = write!(s, " emissive {:?}", m.emissive.to_array());
+        }
+        let _ = writeln!(s);
+    }
+    let _ = writeln!(s, "lights:");
+    if desc.lights.is_empty() {
+        let _ = writeln!(s, "  none (renders use the default key and fill lights)");
+    }
+    for l in &desc.lights {
+        let line = match l {
+            LightDesc::Point { name, position, intensity, .. } => format!("point \"{name}\" {intensity} cd at {:?}", position.to_array()),
+            LightDesc::Spot { name, position, intensity, outer_cone, .. } => format!(
+                "spot \"{name}\" {intensity} cd at {:?}, outer cone {:.1}°",
+                position.to_array(),
+                outer_cone.to_degrees()
+            ),
+            LightDesc::Directional { name, direction, intensity, .. } => format!("directional \"{name}\" {intensity} lx toward {:?}", direction.to_array()),
+        };
+        let _ = writeln!(s, "  {line}");
+    }
+    let _ = writeln!(s, "cameras:");
+    if desc.cameras.is_empty() {
+        let _ = writeln!(s, "  none (renders frame the bounding box)");
+    }
+    for (i, c) in desc.cameras.iter().enumerate() {
+        let p = match c.projection {
+            Projection::Perspective { yfov, .. } => format!("perspective yfov {:.1}°", yfov.to_degrees()),
+            Projection::Orthographic { xmag, ymag } => format!("orthographic {xmag}×{ymag}"),
+        };
+        let _ = writeln!(s, "  {i} \"{}\": {p}", c.name);
+    }
+    if !desc.warnings.is_empty() {
+        let _ = writeln!(s, "warnings:");
+        for w in &desc.warnings {
+            let _ = writeln!(s, "  {w}");
+        }
+    }
+    Ok(s)
+}

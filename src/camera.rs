@@ -1,0 +1,120 @@
+//! Cameras: glTF perspective and orthographic projections, and automatic framing for files
+//! without a camera. Camera space is glTF's: looking down −Z, +Y up. Raster coordinates
+//! have (0,0) at the top-left corner of the image, x right, y down, in pixels.
+
+use crate::math::Ray;
+use crate::scene::desc::{CameraDesc, Projection};
+use glam::{Mat4, Vec2, Vec3};
+
+/// A camera ready to generate rays for one image size.
+#[derive(Debug, Clone)]
+pub struct Camera {
+    world_from_camera: Mat4,
+    projection: Projection,
+    /// tan(yfov/2) for perspective; ymag for orthographic.
+    half_height: f32,
+    /// half_height × aspect.
+    half_width: f32,
+    width: u32,
+    height: u32,
+}
+
+impl Camera {
+    /// Builds the camera for a `width × height` image. The image aspect wins over the
+    /// file's aspect ratio; the vertical extent (yfov or ymag) is kept.
+    pub fn new(desc: &CameraDesc, width: u32, height: u32) -> Self {
+        let aspect = width as f32 / height.max(1) as f32;
+        let half_height = match desc.projection {
+            Projection::Perspective { yfov, .. } => (0.5 * yfov).tan(),
+            Projection::Orthographic { ymag, .. } => ymag.abs(),
+        };
+        Camera {
+            world_from_camera: desc.world_from_camera,
+            projection: desc.projection,
+            half_height,
+            half_width: half_height * aspect,
+            width,
+            height,
+        }
+    }
+
+    /// The ray through raster position `px` (pixels, fractional).
+    pub fn generate_ray(&self, px: Vec2) -> Ray {
+        let ndc_x = (2.0 * px.x / self.width as f32 - 1.0) * self.half_width;
+        let ndc_y = (1.0 - 2.0 * px.y / self.height as f32) * self.half_height;
+        match self.projection {
+            Projection::Perspective { .. } => {
+                let d = Vec3::new(ndc_x, ndc_y, -1.0).normalize();
+                Ray::new(
+                    self.world_from_camera.transform_point3(Vec3::ZERO),
+                    self.world_from_camera.transform_vector3(d).normalize(),
+                )
+            }
+            Projection::Orthographic { .. } => Ray::new(
+                self.world_from_camera
+                    .transform_point3(Vec3::new(ndc_x, ndc_y, 0.0)),
+                self.world_from_camera
+                    .transform_vector3(Vec3::NEG_Z)
+                    .normalize(),
+            ),
+        }
+    }
+}
+
+/// World-from-camera matrix of a camera at `eye` looking at `target` (camera −Z forward).
+pub fn look_at(eye: Vec3, target: Vec3, up: Vec3) -> Mat4 {
+    let f = (target - eye).normalize_or(Vec3::NEG_Z);
+    let right = f.cross(up).try_normalize().unwrap_or_else(|| f.any_orthonormal_vector());
+    let y = right.cross(f);
+    Mat4::from_cols(right.extend(0.0), y.extend(0.0), (-f).extend(0.0), eye.extend(1.0))
+}
+
+/// A perspective camera that frames the bounding box `[lo, hi]` from the front-right-above
+/// (+Z is the glTF front), with a 40° vertical field of view, fitting the bounding sphere
+/// for the given image aspect.
+pub fn frame_bounds(lo: Vec3, hi: Vec3, aspect: f32) -> CameraDesc {
+    let center = 0.5 * (lo + hi);
+    let radius = (0.5 * (hi - lo).length()).max(f32::MIN_POSITIVE);
+    let yfov = 40f32.to_radians();
+    // Fit the sphere in the narrower of the two fields of view.
+    let half = (0.5 * yfov).tan().min((0.5 * yfov).tan() * aspect.max(1e-3));
+    let dist = radius * (1.0 + half * half).sqrt() / half * 1.05;
+    let dir = Vec3::new(0.6, 0.45, 1.0).normalize();
+    let eye = center + dir * dist;
+    CameraDesc {
+        name: "auto-framed".into(),
+        projection: Projection::Perspective {
+            yfov,
+            aspect: Some(aspect),
+        },
+        world_from_camera: look_at(eye, center, Vec3::Y),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn centre_ray_looks_at_target_and_frame_contains_box() {
+        let lo = Vec3::new(-1.0, 0.0, -2.0);
+        let hi = Vec3::new(3.0, 1.0, 0.5);
+        let desc = frame_bounds(lo, hi, 1.5);
+        let cam = Camera::new(&desc, 300, 200);
+        let r = cam.generate_ray(Vec2::new(150.0, 100.0));
+        let to_c = (0.5 * (lo + hi) - r.origin).normalize();
+        assert!(r.dir.dot(to_c) > 0.9999);
+        // Every box corner projects inside the image: its angle from the axis is within
+        // the half field of view.
+        let half_fov = 20f32.to_radians();
+        for i in 0..8 {
+            let c = Vec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            );
+            let ang = r.dir.angle_between((c - r.origin).normalize());
+            assert!(ang < half_fov, "corner {i} at {ang}");
+        }
+    }
+}

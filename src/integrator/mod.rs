@@ -1,0 +1,44 @@
+//! Integrators: how radiance along camera rays is estimated. A closed enum; each variant's
+//! maths lives in its own module, and per-hit shading shared between them lives in
+//! [`shading`].
+
+pub mod shading;
+pub mod whitted;
+
+use crate::math::{Ray, Rng};
+use crate::scene::Scene;
+use glam::Vec3;
+
+/// The rendering method (`--method`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// Recursive ray tracing after the seed paper §4: direct light from punctual lights,
+    /// Fresnel-weighted reflection and refraction branches.
+    Whitted,
+}
+
+/// Per-thread state an integrator carries along one camera sample.
+pub struct Context {
+    /// Random numbers for this pixel sample.
+    pub rng: Rng,
+    /// Rays traced so far (closest-hit and shadow).
+    pub rays: u64,
+}
+
+/// Integrator settings.
+#[derive(Debug, Clone, Copy)]
+pub struct Integrator {
+    /// Which method.
+    pub method: Method,
+    /// Maximum recursion depth (specular bounces count too).
+    pub max_depth: u32,
+}
+
+impl Integrator {
+    /// Radiance arriving along `ray` (linear RGB).
+    pub fn radiance(&self, scene: &Scene, ray: &Ray, ctx: &mut Context) -> Vec3 {
+        match self.method {
+            Method::Whitted => whitted::radiance(scene, ray, self.max_depth, ctx),
+        }
+    }
+}
