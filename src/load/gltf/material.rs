@@ -1,0 +1,174 @@
+//! Materials (glTF 2.0 §3.9 metallic-roughness) plus the KHR extensions Iris reads, into
+//! [`MaterialDesc`]. Absent properties take the spec defaults (see `MaterialDesc::default`).
+//!
+//! - Colours are linear (factors are stored linear by the spec); textures are referenced,
+//!   not decoded here, except that their images are decoded once by `source::ImageCache`.
+//! - `KHR_materials_ior.ior` is copied as written, including the special value 0
+//!   (infinite IOR) and values in (0,1) such as 0.8 for a bubble in water; `scene::validate`
+//!   judges them.
+//! - `KHR_materials_emissive_strength` multiplies `emissiveFactor`.
+//! - `KHR_materials_volume.attenuationDistance` defaults to +∞ (never 0).
+//! - `KHR_materials_dispersion.dispersion` (= 20/V_d) is read from the raw extension JSON,
+//!   which the `gltf` crate does not type.
+//! - Material `extras` `{"cauchy": {"b": B, "c": C}}` gives `IorModel::Cauchy`
+//!   (n(λ) = B + C/λ², λ in µm, C in µm²); it must have finite B ≥ 1 and C ≥ 0.
+
+use super::source::ImageCache;
+use super::{label, Ctx, Warnings};
+use crate::error::{LoadError, LoadErrorKind};
+use crate::scene::desc::{AlphaMode, ImageDesc, IorModel, MaterialDesc, TextureRef};
+use glam::{Vec3, Vec4};
+use serde_json::Value;
+
+/// Reads every material of the document (index = glTF material index) and decodes the
+/// images their base colour, metallic-roughness, emissive and transmission textures use.
+pub(super) fn read_materials(
+    ctx: &Ctx<'_>,
+    warnings: &mut Warnings,
+) -> Result<(Vec<MaterialDesc>, Vec<ImageDesc>), LoadError> {
+    let mut images = ImageCache::default();
+    let mut materials = Vec::new();
+    for (index, material) in ctx.doc.materials().enumerate() {
+        materials.push(read_material(ctx, index, &material, &mut images, warnings)?);
+    }
+    Ok((materials, images.into_images()))
+}
+
+fn read_material(
+    ctx: &Ctx<'_>,
+    index: usize,
+    m: &gltf::Material<'_>,
+    images: &mut ImageCache,
+    warnings: &mut Warnings,
+) -> Result<MaterialDesc, LoadError> {
+    let element = label("material", index, m.name());
+    let mut texture = |slot: &str,
+                       info: Option<gltf::texture::Info<'_>>|
+     -> Result<Option<TextureRef>, LoadError> {
+        let Some(info) = info else { return Ok(None) };
+        let image = images.get(ctx, info.texture().source().index())?;
+        let texcoord = info.tex_coord();
+        if texcoord != 0 {
+            warnings
+                .texcoord_sets
+                .push(format!("{element} {slot} (texCoord {texcoord})"));
+        }
+        Ok(Some(TextureRef { image, texcoord }))
+    };
+
+    let pbr = m.pbr_metallic_roughness();
+    let base_color_texture = texture("baseColorTexture", pbr.base_color_texture())?;
+    let metallic_roughness_texture =
+        texture("metallicRoughnessTexture", pbr.metallic_roughness_texture())?;
+    let emissive_texture = texture("emissiveTexture", m.emissive_texture())?;
+    let transmission = m.transmission();
+    let transmission_texture = texture(
+        "transmissionTexture",
+        transmission.as_ref().and_then(|t| t.transmission_texture()),
+    )?;
+
+    let defaults = MaterialDesc::default();
+    let volume = m.volume();
+    let specular = m.specular();
+    let alpha_mode = match m.alpha_mode() {
+        gltf::material::AlphaMode::Opaque => AlphaMode::Opaque,
+        // alphaCutoff defaults to 0.5 (§3.9.4).
+        gltf::material::AlphaMode::Mask => AlphaMode::Mask(m.alpha_cutoff().unwrap_or(0.5)),
+        gltf::material::AlphaMode::Blend => AlphaMode::Blend,
+    };
+    Ok(MaterialDesc {
+        base_color: Vec4::from(pbr.base_color_factor()),
+        base_color_texture,
+        metallic: pbr.metallic_factor(),
+        roughness: pbr.roughness_factor(),
+        metallic_roughness_texture,
+        emissive: Vec3::from(m.emissive_factor()) * m.emissive_strength().unwrap_or(1.0),
+        emissive_texture,
+        ior: m.ior().unwrap_or(defaults.ior),
+        transmission: transmission
+            .as_ref()
+            .map_or(defaults.transmission, |t| t.transmission_factor()),
+        transmission_texture,
+        thickness: volume
+            .as_ref()
+            .map_or(defaults.thickness, |v| v.thickness_factor()),
+        attenuation_color: volume.as_ref().map_or(defaults.attenuation_color, |v| {
+            Vec3::from(v.attenuation_color())
+        }),
+        attenuation_distance: volume
+            .as_ref()
+            .map_or(defaults.attenuation_distance, |v| v.attenuation_distance()),
+        specular: specular
+            .as_ref()
+            .map_or(defaults.specular, |s| s.specular_factor()),
+        specular_color: specular.as_ref().map_or(defaults.specular_color, |s| {
+            Vec3::from(s.specular_color_factor())
+        }),
+        dispersion: dispersion(ctx, m, &element)?,
+        ior_model: cauchy(ctx, m, &element)?,
+        double_sided: m.double_sided(),
+        alpha_mode,
+        name: element,
+    })
+}
+
+/// `KHR_materials_dispersion.dispersion` (default 0).
+fn dispersion(ctx: &Ctx<'_>, m: &gltf::Material<'_>, element: &str) -> Result<f32, LoadError> {
+    let Some(ext) = m.extension_value("KHR_materials_dispersion") else {
+        return Ok(0.0);
+    };
+    let invalid = |detail: &str| ctx.error(element, LoadErrorKind::InvalidValue, detail);
+    let ext = ext
+        .as_object()
+        .ok_or_else(|| invalid("KHR_materials_dispersion must be a JSON object"))?;
+    match ext.get("dispersion") {
+        None => Ok(0.0),
+        Some(v) => v
+            .as_f64()
+            .map(|d| d as f32)
+            .ok_or_else(|| invalid("KHR_materials_dispersion.dispersion is not a number")),
+    }
+}
+
+/// The Iris extras convention `{"cauchy": {"b": 1.5, "c": 0.0042}}`; other extras keys
+/// and non-object extras are ignored.
+fn cauchy(
+    ctx: &Ctx<'_>,
+    m: &gltf::Material<'_>,
+    element: &str,
+) -> Result<Option<IorModel>, LoadError> {
+    let Some(raw) = m.extras() else {
+        return Ok(None);
+    };
+    let Ok(extras) = serde_json::from_str::<Value>(raw.get()) else {
+        return Ok(None);
+    };
+    let Some(cauchy) = extras.get("cauchy") else {
+        return Ok(None);
+    };
+    let invalid = |detail: String| ctx.error(element, LoadErrorKind::InvalidValue, detail);
+    let fields = cauchy.as_object().ok_or_else(|| {
+        invalid(format!(
+            "extras.cauchy must be an object {{\"b\": …, \"c\": …}}, found {cauchy}"
+        ))
+    })?;
+    let number = |key: &str| -> Result<f32, LoadError> {
+        fields
+            .get(key)
+            .and_then(Value::as_f64)
+            .map(|v| v as f32)
+            .ok_or_else(|| invalid(format!("extras.cauchy.{key} is missing or not a number")))
+    };
+    let (b, c) = (number("b")?, number("c")?);
+    if !(b.is_finite() && b >= 1.0) {
+        return Err(invalid(format!(
+            "extras.cauchy.b = {b} must be a finite number >= 1"
+        )));
+    }
+    if !(c.is_finite() && c >= 0.0) {
+        return Err(invalid(format!(
+            "extras.cauchy.c = {c} (µm²) must be a finite number >= 0"
+        )));
+    }
+    Ok(Some(IorModel::Cauchy { b, c }))
+}

@@ -1,0 +1,260 @@
+//! Mesh primitives (glTF 2.0 §3.7.2): read once in mesh-local space, then instanced into
+//! world space per node.
+//!
+//! - Modes: TRIANGLES; TRIANGLE_STRIP and TRIANGLE_FAN are converted with the spec's
+//!   formulas (§3.7.2.1); POINTS and LINE* are skipped (reported by the caller).
+//! - Attributes read: POSITION (required to render), NORMAL, TEXCOORD_0; missing indices
+//!   mean `0..count`. Every index is checked against the vertex count here.
+//! - World transform `M`: positions `M·p`; normals by the inverse transpose of the upper
+//!   3×3, `M⁻ᵀ = cof(M)/det(M)`, computed as `sign(det)·cof(M)` and normalised so a
+//!   singular matrix cannot produce infinities. When `det(M) < 0` each triangle's last two
+//!   indices are swapped, keeping counter-clockwise winding seen from outside.
+
+use super::accessor::{read_floats, read_indices, AccessorError};
+use super::Ctx;
+use crate::error::{LoadError, LoadErrorKind};
+use crate::scene::desc::MeshDesc;
+use glam::{Mat3, Mat4, Vec2, Vec3};
+use gltf::mesh::Mode;
+use gltf::Semantic;
+
+/// A triangle primitive in mesh-local space, shared by all nodes that instance it.
+#[derive(Debug)]
+pub(super) struct LocalPrimitive {
+    positions: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    uvs: Vec<Vec2>,
+    triangles: Vec<[u32; 3]>,
+    material: Option<usize>,
+}
+
+impl LocalPrimitive {
+    /// Number of triangles.
+    pub(super) fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Number of vertices.
+    pub(super) fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+}
+
+/// What reading a primitive gave.
+#[derive(Debug)]
+pub(super) enum Primitive {
+    /// Triangles ready to instance.
+    Triangles(LocalPrimitive),
+    /// A point or line primitive, with the mode's glTF name.
+    Skipped(&'static str),
+    /// No POSITION attribute: nothing to render.
+    NoPosition,
+}
+
+/// Reads `prim`; `element` names it in errors (`node 3 "Gem" mesh 1 "Cut" primitive 0`).
+pub(super) fn read_primitive(
+    ctx: &Ctx<'_>,
+    prim: &gltf::Primitive<'_>,
+    element: &str,
+) -> Result<Primitive, LoadError> {
+    let mode = prim.mode();
+    let skipped = match mode {
+        Mode::Points => Some("POINTS"),
+        Mode::Lines => Some("LINES"),
+        Mode::LineLoop => Some("LINE_LOOP"),
+        Mode::LineStrip => Some("LINE_STRIP"),
+        Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan => None,
+    };
+    if let Some(name) = skipped {
+        return Ok(Primitive::Skipped(name));
+    }
+    let Some(position_acc) = prim.get(&Semantic::Positions) else {
+        return Ok(Primitive::NoPosition);
+    };
+    let wrap =
+        |what: &str, e: AccessorError| ctx.error(element, e.kind, format!("{what}: {}", e.detail));
+
+    let positions: Vec<Vec3> = read_floats::<3>(ctx, &position_acc)
+        .map_err(|e| wrap("POSITION", e))?
+        .into_iter()
+        .map(Vec3::from)
+        .collect();
+    let n = positions.len();
+    let vertex_count = u32::try_from(n).map_err(|_| {
+        ctx.error(
+            element,
+            LoadErrorKind::TooLarge,
+            format!("{n} vertices exceed 32-bit indices"),
+        )
+    })?;
+
+    let same_length = |what: &str, len: usize| -> Result<(), LoadError> {
+        if len == n {
+            Ok(())
+        } else {
+            Err(ctx.error(
+                element,
+                LoadErrorKind::Parse,
+                format!("{what} has {len} elements but POSITION has {n}"),
+            ))
+        }
+    };
+    let normals: Vec<Vec3> = match prim.get(&Semantic::Normals) {
+        Some(acc) => read_floats::<3>(ctx, &acc)
+            .map_err(|e| wrap("NORMAL", e))?
+            .into_iter()
+            .map(Vec3::from)
+            .collect(),
+        None => Vec::new(),
+    };
+    if !normals.is_empty() {
+        same_length("NORMAL", normals.len())?;
+    }
+    let uvs: Vec<Vec2> = match prim.get(&Semantic::TexCoords(0)) {
+        Some(acc) => read_floats::<2>(ctx, &acc)
+            .map_err(|e| wrap("TEXCOORD_0", e))?
+            .into_iter()
+            .map(Vec2::from)
+            .collect(),
+        None => Vec::new(),
+    };
+    if !uvs.is_empty() {
+        same_length("TEXCOORD_0", uvs.len())?;
+    }
+
+    let indices = match prim.indices() {
+        Some(acc) => read_indices(ctx, &acc).map_err(|e| wrap("indices", e))?,
+        None => (0..vertex_count).collect(),
+    };
+    if let Some((i, &bad)) = indices.iter().enumerate().find(|(_, &v)| v >= vertex_count) {
+        return Err(ctx.error(
+            element,
+            LoadErrorKind::IndexOutOfRange,
+            format!(
+                "index {bad} (position {i} in the index list) is not below the vertex count {n}"
+            ),
+        ));
+    }
+    Ok(Primitive::Triangles(LocalPrimitive {
+        positions,
+        normals,
+        uvs,
+        triangles: assemble(mode, &indices),
+        material: prim.material().index(),
+    }))
+}
+
+/// Triangles from an index list (§3.7.2.1). Strips/fans drop degenerate joins.
+fn assemble(mode: Mode, idx: &[u32]) -> Vec<[u32; 3]> {
+    let at = |i: usize| idx.get(i).copied().unwrap_or(0);
+    let n = idx.len();
+    match mode {
+        Mode::TriangleStrip => (0..n.saturating_sub(2))
+            // p_i = {v_i, v_{i+(1+i%2)}, v_{i+(2-i%2)}}
+            .map(|i| [at(i), at(i + 1 + i % 2), at(i + 2 - i % 2)])
+            .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+            .collect(),
+        Mode::TriangleFan => (0..n.saturating_sub(2))
+            // p_i = {v_{i+1}, v_{i+2}, v_0}
+            .map(|i| [at(i + 1), at(i + 2), at(0)])
+            .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+            .collect(),
+        // TRIANGLES: trailing indices that do not make a whole triangle are ignored.
+        _ => idx
+            .chunks_exact(3)
+            .filter_map(|c| <[u32; 3]>::try_from(c).ok())
+            .collect(),
+    }
+}
+
+/// The world-space instance of `local` under `world`.
+pub(super) fn instantiate(local: &LocalPrimitive, world: &Mat4, name: String) -> MeshDesc {
+    let linear = Mat3::from_mat4(*world);
+    let det = linear.determinant();
+    let normal_matrix = if det < 0.0 {
+        -cofactor(&linear)
+    } else {
+        cofactor(&linear)
+    };
+    let positions = local
+        .positions
+        .iter()
+        .map(|&p| world.transform_point3(p))
+        .collect();
+    let normals = local
+        .normals
+        .iter()
+        .map(|&n| {
+            let t = normal_matrix * n;
+            let len = t.length();
+            if len > 0.0 && len.is_finite() {
+                t / len
+            } else {
+                t
+            }
+        })
+        .collect();
+    let indices = if det < 0.0 {
+        local.triangles.iter().map(|&[a, b, c]| [a, c, b]).collect()
+    } else {
+        local.triangles.clone()
+    };
+    MeshDesc {
+        name,
+        positions,
+        normals,
+        uvs: local.uvs.clone(),
+        indices,
+        material: local.material,
+    }
+}
+
+/// Cofactor matrix `det(M)·M⁻ᵀ`: columns `(b×c, c×a, a×b)` for `M = [a b c]`.
+fn cofactor(m: &Mat3) -> Mat3 {
+    Mat3::from_cols(
+        m.y_axis.cross(m.z_axis),
+        m.z_axis.cross(m.x_axis),
+        m.x_axis.cross(m.y_axis),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn strip_and_fan_follow_the_spec() {
+        assert_eq!(
+            assemble(Mode::TriangleStrip, &[0, 1, 2, 3]),
+            vec![[0, 1, 2], [1, 3, 2]]
+        );
+        assert_eq!(
+            assemble(Mode::TriangleFan, &[0, 1, 2, 3]),
+            vec![[1, 2, 0], [2, 3, 0]]
+        );
+        assert_eq!(assemble(Mode::Triangles, &[0, 1, 2, 3]), vec![[0, 1, 2]]);
+        assert!(assemble(Mode::TriangleStrip, &[0, 1]).is_empty());
+    }
+
+    #[test]
+    fn cofactor_is_scaled_inverse_transpose() {
+        let m = Mat3::from_cols_array(&[2.0, 0.0, 1.0, 0.5, 3.0, 0.0, 0.0, 1.0, -1.0]);
+        let expected = m.inverse().transpose() * m.determinant();
+        assert!(cofactor(&m).abs_diff_eq(expected, 1e-5));
+    }
+
+    #[test]
+    fn mirrored_instance_flips_winding_and_normals() {
+        let local = LocalPrimitive {
+            positions: vec![Vec3::X, Vec3::Y, Vec3::Z],
+            normals: vec![Vec3::ONE; 3],
+            uvs: Vec::new(),
+            triangles: vec![[0, 1, 2]],
+            material: None,
+        };
+        let mirror = Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0));
+        let mesh = instantiate(&local, &mirror, "m".into());
+        assert_eq!(mesh.indices, vec![[0, 2, 1]]);
+        assert!(mesh.normals[0].abs_diff_eq(Vec3::new(-1.0, 1.0, 1.0).normalize(), 1e-6));
+    }
+}

@@ -1,0 +1,289 @@
+//! The node graph (glTF 2.0 §3.5): scene choice, world transforms, and what nodes carry —
+//! meshes, KHR_lights_punctual lights, cameras.
+//!
+//! - Scene: `scene` if set, else scene 0, else every node that is nobody's child.
+//! - World matrix of a node: `parent · local`, local = `matrix` or `T·R·S` (§3.5.2).
+//! - Lights (KHR_lights_punctual): position = world translation; direction = world image
+//!   of the node's −Z, normalised; intensity and colour are copied unchanged (candela for
+//!   point/spot, lux for directional; node scale does not affect intensity).
+//! - Cameras look down local −Z with +Y up (§3.10); `world_from_camera` keeps the view
+//!   direction and up vector but has scale and shear removed (Gram–Schmidt, right-handed).
+//! - The graph is walked without recursion; a cycle (depth beyond the node count) is a
+//!   `Parse` error and runaway instancing a `TooLarge` error, so hostile files end cleanly.
+
+use super::mesh::{instantiate, read_primitive, Primitive};
+use super::{label, Ctx, Warnings, MAX_TRIANGLES};
+use crate::error::{LoadError, LoadErrorKind};
+use crate::scene::desc::{CameraDesc, LightDesc, Projection, SceneDesc};
+use glam::{Mat4, Vec3};
+use gltf::json::validation::Checked;
+use gltf::khr_lights_punctual::Kind;
+use std::collections::HashMap;
+use std::rc::Rc;
+
+/// Most node instances a scene may expand to (nodes shared by several parents multiply).
+const MAX_NODE_VISITS: usize = 1 << 20;
+
+/// Flattens the chosen scene into `desc.meshes`, `desc.lights` and `desc.cameras`.
+pub(super) fn read_scene_graph(
+    ctx: &Ctx<'_>,
+    desc: &mut SceneDesc,
+    warnings: &mut Warnings,
+) -> Result<(), LoadError> {
+    let node_count = ctx.doc.nodes().len();
+    let mut stack: Vec<(gltf::Node<'_>, Mat4, usize)> = root_nodes(ctx.doc)
+        .into_iter()
+        .rev()
+        .map(|n| (n, Mat4::IDENTITY, 0))
+        .collect();
+    let mut primitives: HashMap<(usize, usize), Rc<Primitive>> = HashMap::new();
+    let (mut visits, mut triangles, mut vertices) = (0usize, 0usize, 0usize);
+
+    while let Some((node, parent, depth)) = stack.pop() {
+        let node_label = label("node", node.index(), node.name());
+        visits += 1;
+        if visits > MAX_NODE_VISITS {
+            return Err(ctx.error(
+                node_label,
+                LoadErrorKind::TooLarge,
+                "the node graph expands to over 2^20 node instances",
+            ));
+        }
+        if depth > node_count {
+            return Err(ctx.error(
+                node_label,
+                LoadErrorKind::Parse,
+                "the node hierarchy contains a cycle",
+            ));
+        }
+        let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+
+        if let Some(mesh) = node.mesh() {
+            let mesh_label = format!("{node_label} {}", label("mesh", mesh.index(), mesh.name()));
+            for prim in mesh.primitives() {
+                let element = format!("{mesh_label} primitive {}", prim.index());
+                let read = match primitives.get(&(mesh.index(), prim.index())) {
+                    Some(read) => Rc::clone(read),
+                    None => {
+                        let read = Rc::new(read_primitive(ctx, &prim, &element)?);
+                        primitives.insert((mesh.index(), prim.index()), Rc::clone(&read));
+                        read
+                    }
+                };
+                match read.as_ref() {
+                    Primitive::Triangles(local) => {
+                        triangles = triangles.saturating_add(local.triangle_count());
+                        vertices = vertices.saturating_add(local.vertex_count());
+                        if triangles > MAX_TRIANGLES || vertices > MAX_TRIANGLES {
+                            return Err(ctx.error(
+                                element,
+                                LoadErrorKind::TooLarge,
+                                format!("the scene exceeds {MAX_TRIANGLES} triangles or vertices"),
+                            ));
+                        }
+                        desc.meshes.push(instantiate(local, &world, element));
+                    }
+                    Primitive::Skipped(mode) => warnings
+                        .skipped_primitives
+                        .push(format!("{element} ({mode})")),
+                    Primitive::NoPosition => warnings.no_position.push(element),
+                }
+            }
+        }
+        if let Some(light) = node.light() {
+            desc.lights
+                .push(light_desc(ctx, &node, &node_label, &light, &world)?);
+        }
+        if let Some(camera) = node.camera() {
+            desc.cameras.push(camera_desc(
+                ctx,
+                &node,
+                &node_label,
+                camera.index(),
+                &world,
+            )?);
+        }
+        let children: Vec<_> = node.children().collect();
+        stack.extend(
+            children
+                .into_iter()
+                .rev()
+                .map(|child| (child, world, depth + 1)),
+        );
+    }
+    Ok(())
+}
+
+/// The root nodes of the scene to render.
+fn root_nodes(doc: &gltf::Document) -> Vec<gltf::Node<'_>> {
+    if let Some(scene) = doc.default_scene().or_else(|| doc.scenes().next()) {
+        return scene.nodes().collect();
+    }
+    let mut is_child = vec![false; doc.nodes().len()];
+    for node in doc.nodes() {
+        for child in node.children() {
+            if let Some(flag) = is_child.get_mut(child.index()) {
+                *flag = true;
+            }
+        }
+    }
+    doc.nodes()
+        .filter(|n| !is_child.get(n.index()).copied().unwrap_or(true))
+        .collect()
+}
+
+/// The first of the given names, else `fallback`.
+fn pick_name(names: &[Option<&str>], fallback: String) -> String {
+    names
+        .iter()
+        .flatten()
+        .next()
+        .map_or(fallback, |n| (*n).to_string())
+}
+
+fn light_desc(
+    ctx: &Ctx<'_>,
+    node: &gltf::Node<'_>,
+    node_label: &str,
+    light: &gltf::khr_lights_punctual::Light<'_>,
+    world: &Mat4,
+) -> Result<LightDesc, LoadError> {
+    let name = pick_name(
+        &[light.name(), node.name()],
+        format!("light {}", light.index()),
+    );
+    let position = world.transform_point3(Vec3::ZERO);
+    let color = Vec3::from(light.color());
+    let intensity = light.intensity();
+    let direction = || {
+        world
+            .transform_vector3(Vec3::NEG_Z)
+            .try_normalize()
+            .ok_or_else(|| {
+                ctx.error(
+                    format!(
+                        "{node_label} {}",
+                        label("light", light.index(), light.name())
+                    ),
+                    LoadErrorKind::InvalidValue,
+                    "the node transform collapses the light's direction (zero scale)",
+                )
+            })
+    };
+    Ok(match light.kind() {
+        Kind::Point => LightDesc::Point {
+            name,
+            position,
+            color,
+            intensity,
+            range: light.range(),
+        },
+        Kind::Spot {
+            inner_cone_angle,
+            outer_cone_angle,
+        } => LightDesc::Spot {
+            name,
+            position,
+            direction: direction()?,
+            color,
+            intensity,
+            range: light.range(),
+            inner_cone: inner_cone_angle,
+            outer_cone: outer_cone_angle,
+        },
+        Kind::Directional => LightDesc::Directional {
+            name,
+            direction: direction()?,
+            color,
+            intensity,
+        },
+    })
+}
+
+fn camera_desc(
+    ctx: &Ctx<'_>,
+    node: &gltf::Node<'_>,
+    node_label: &str,
+    index: usize,
+    world: &Mat4,
+) -> Result<CameraDesc, LoadError> {
+    let json = ctx.doc.as_json().cameras.get(index);
+    let camera_name = json.and_then(|c| c.name.as_deref());
+    let element = format!("{node_label} {}", label("camera", index, camera_name));
+    let json = json.ok_or_else(|| {
+        ctx.error(
+            element.as_str(),
+            LoadErrorKind::IndexOutOfRange,
+            "no such camera",
+        )
+    })?;
+    // Read from the JSON: the typed accessor unwraps a projection object that may be absent.
+    let projection = match (&json.type_, &json.perspective, &json.orthographic) {
+        (Checked::Valid(gltf::json::camera::Type::Perspective), Some(p), _) => {
+            Projection::Perspective {
+                yfov: p.yfov,
+                aspect: p.aspect_ratio,
+            }
+        }
+        (Checked::Valid(gltf::json::camera::Type::Orthographic), _, Some(o)) => {
+            Projection::Orthographic {
+                xmag: o.xmag,
+                ymag: o.ymag,
+            }
+        }
+        _ => {
+            return Err(ctx.error(
+                element,
+                LoadErrorKind::Parse,
+                "camera type has no matching perspective/orthographic object",
+            ))
+        }
+    };
+    let world_from_camera = rigid(world).ok_or_else(|| {
+        ctx.error(
+            element.as_str(),
+            LoadErrorKind::InvalidValue,
+            "the node transform is degenerate (zero scale); cannot orient the camera",
+        )
+    })?;
+    Ok(CameraDesc {
+        name: pick_name(&[camera_name, node.name()], format!("camera {index}")),
+        projection,
+        world_from_camera,
+    })
+}
+
+/// `m` without scale or shear: keeps the −Z (view) axis and the +Y (up) axis direction,
+/// makes X = Y × Z, keeps the translation. `None` if the axes are degenerate.
+fn rigid(m: &Mat4) -> Option<Mat4> {
+    let z = m.z_axis.truncate().try_normalize()?;
+    let y_in = m.y_axis.truncate();
+    let y = (y_in - z * y_in.dot(z)).try_normalize()?;
+    let x = y.cross(z);
+    Some(Mat4::from_cols(
+        x.extend(0.0),
+        y.extend(0.0),
+        z.extend(0.0),
+        m.w_axis.truncate().extend(1.0),
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Quat;
+
+    #[test]
+    fn rigid_removes_scale_and_keeps_orientation() {
+        let rot = Quat::from_rotation_y(0.7);
+        let m = Mat4::from_scale_rotation_translation(
+            Vec3::new(2.0, 3.0, 0.5),
+            rot,
+            Vec3::new(1.0, 2.0, 3.0),
+        );
+        let r = rigid(&m).unwrap_or(Mat4::ZERO);
+        let expected = Mat4::from_rotation_translation(rot, Vec3::new(1.0, 2.0, 3.0));
+        assert!(r.abs_diff_eq(expected, 1e-5));
+        assert!(rigid(&Mat4::from_scale(Vec3::ZERO)).is_none());
+    }
+}

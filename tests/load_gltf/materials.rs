@@ -1,0 +1,155 @@
+//! Materials (Cauchy extras, IOR pass-through, textures), lights and cameras.
+
+use super::fixtures::*;
+use super::{common, load, material};
+use glam::{Mat4, Vec3};
+use iris::scene::desc::{IorModel, LightDesc, Projection};
+use serde_json::json;
+
+#[test]
+fn cauchy_ior_and_texture_values_pass_through() {
+    let dir = common::scratch_dir("gltf_materials");
+    let mut doc = cube_doc();
+    doc["extensionsUsed"] = json!([
+        "KHR_materials_ior",
+        "KHR_materials_dispersion",
+        "KHR_materials_volume"
+    ]);
+    doc["images"] = json!([{"name": "checker", "uri": data_uri("image/png", &png_2x2())}]);
+    doc["textures"] = json!([{"source": 0}]);
+    doc["materials"] = json!([
+        {"name": "Glass", "extras": {"cauchy": {"b": 1.5, "c": 0.0042}, "other": 1},
+         "pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "texCoord": 1}},
+         "extensions": {"KHR_materials_dispersion": {"dispersion": 0.36}}},
+        {"name": "Bubble", "extensions": {"KHR_materials_ior": {"ior": 0.8},
+         "KHR_materials_volume": {"thicknessFactor": 1.0, "attenuationColor": [0.5, 0.6, 0.7]}}},
+        {"name": "Infinite", "extensions": {"KHR_materials_ior": {"ior": 0.0}},
+         "emissiveFactor": [1.0, 0.5, 0.25], "alphaMode": "MASK", "doubleSided": true,
+         "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}
+    ]);
+    let desc = load(&write_json(&dir, "materials.gltf", &doc));
+    let glass = material(&desc, "Glass");
+    assert_eq!(
+        glass.ior_model,
+        Some(IorModel::Cauchy { b: 1.5, c: 0.0042 })
+    );
+    assert_eq!(glass.dispersion, 0.36);
+    assert_eq!(glass.ior, 1.5);
+    let bubble = material(&desc, "Bubble");
+    assert_eq!((bubble.ior, bubble.thickness), (0.8, 1.0));
+    assert_eq!(bubble.attenuation_distance, f32::INFINITY);
+    assert_eq!(bubble.attenuation_color, Vec3::new(0.5, 0.6, 0.7));
+    let infinite = material(&desc, "Infinite");
+    assert_eq!(infinite.ior, 0.0);
+    assert_eq!(infinite.emissive, Vec3::new(1.0, 0.5, 0.25));
+    assert!(infinite.double_sided);
+    assert_eq!(infinite.alpha_mode, iris::scene::desc::AlphaMode::Mask(0.5));
+    // One decoded image shared by both slots.
+    assert_eq!(desc.images.len(), 1);
+    assert_eq!((desc.images[0].width, desc.images[0].height), (2, 2));
+    assert_eq!(desc.images[0].rgba8[12..16], [9, 9, 9, 128]);
+    assert_eq!(
+        glass.base_color_texture.map(|t| (t.image, t.texcoord)),
+        Some((0, 1))
+    );
+    assert_eq!(infinite.base_color_texture.map(|t| t.image), Some(0));
+    let texcoord: Vec<_> = desc
+        .warnings
+        .iter()
+        .filter(|w| w.contains("texCoord"))
+        .collect();
+    assert_eq!(texcoord.len(), 1, "{:?}", desc.warnings);
+    assert!(texcoord[0].contains("material 0 \"Glass\""));
+}
+
+#[test]
+fn lights_and_cameras_in_world_space() {
+    let dir = common::scratch_dir("gltf_lights");
+    let mut doc = cube_doc();
+    doc["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+    doc["extensions"] = json!({"KHR_lights_punctual": {"lights": [
+        {"name": "Bulb", "type": "point", "intensity": 100.0, "color": [1.0, 0.9, 0.8], "range": 10.0},
+        {"type": "spot", "intensity": 5.0, "spot": {"innerConeAngle": 0.1, "outerConeAngle": 0.4}},
+        {"name": "Sun", "type": "directional", "intensity": 3.0}
+    ]}});
+    doc["cameras"] = json!([
+        {"name": "Main", "type": "perspective", "perspective": {"yfov": 0.6, "aspectRatio": 1.5, "znear": 0.01}},
+        {"type": "orthographic", "orthographic": {"xmag": 2.0, "ymag": 1.0, "znear": 0.0, "zfar": 10.0}}
+    ]);
+    // Rotation of +90° about X maps local −Z to world +Y; scales must not change intensity.
+    let half = std::f32::consts::FRAC_1_SQRT_2;
+    doc["nodes"] = json!([
+        {"name": "Cube", "mesh": 0},
+        {"name": "Lamp", "translation": [1.0, 2.0, 3.0], "scale": [4.0, 4.0, 4.0],
+         "extensions": {"KHR_lights_punctual": {"light": 0}}},
+        {"name": "Spot", "rotation": [half, 0.0, 0.0, half], "scale": [2.0, 3.0, 0.5],
+         "extensions": {"KHR_lights_punctual": {"light": 1}}},
+        {"name": "SunNode", "extensions": {"KHR_lights_punctual": {"light": 2}}},
+        {"name": "CamNode", "camera": 0, "translation": [0.0, 0.0, 5.0], "scale": [2.0, 2.0, 2.0]},
+        {"camera": 1}
+    ]);
+    doc["scenes"][0]["nodes"] = json!([0, 1, 2, 3, 4, 5]);
+    let desc = load(&write_json(&dir, "lights.gltf", &doc));
+    assert_eq!(desc.lights.len(), 3);
+    match &desc.lights[0] {
+        LightDesc::Point {
+            name,
+            position,
+            color,
+            intensity,
+            range,
+        } => {
+            assert_eq!(
+                (name.as_str(), *intensity, *range),
+                ("Bulb", 100.0, Some(10.0))
+            );
+            assert_eq!(*position, Vec3::new(1.0, 2.0, 3.0));
+            assert_eq!(*color, Vec3::new(1.0, 0.9, 0.8));
+        }
+        other => panic!("expected a point light, got {other:?}"),
+    }
+    match &desc.lights[1] {
+        LightDesc::Spot {
+            direction,
+            intensity,
+            inner_cone,
+            outer_cone,
+            ..
+        } => {
+            assert!((*direction - Vec3::Y).length() < 1e-5, "{direction}");
+            assert_eq!((*intensity, *inner_cone, *outer_cone), (5.0, 0.1, 0.4));
+        }
+        other => panic!("expected a spot light, got {other:?}"),
+    }
+    match &desc.lights[2] {
+        LightDesc::Directional {
+            direction,
+            intensity,
+            ..
+        } => {
+            assert_eq!((*direction, *intensity), (Vec3::NEG_Z, 3.0));
+        }
+        other => panic!("expected a directional light, got {other:?}"),
+    }
+    assert_eq!(desc.cameras.len(), 2);
+    let main = &desc.cameras[0];
+    assert_eq!(main.name, "Main");
+    assert_eq!(
+        main.projection,
+        Projection::Perspective {
+            yfov: 0.6,
+            aspect: Some(1.5)
+        }
+    );
+    assert!(main
+        .world_from_camera
+        .abs_diff_eq(Mat4::from_translation(Vec3::new(0.0, 0.0, 5.0)), 1e-6));
+    assert_eq!(
+        desc.cameras[1].projection,
+        Projection::Orthographic {
+            xmag: 2.0,
+            ymag: 1.0
+        }
+    );
+    assert_eq!(desc.cameras[1].name, "camera 1");
+}
