@@ -1,0 +1,170 @@
+//! Material and image checks (part of [`validate`](super::validate)).
+//!
+//! Rules: texture references must name an existing image (`IndexOutOfRange`); an image
+//! holds exactly `width·height·4` bytes (`MissingBuffer`). Every scalar must be finite
+//! (`InvalidValue` naming the field; `attenuation_distance` may be +∞). The IOR may not be
+//! NaN, infinite or negative (`InvalidIor`); 0 is KHR_materials_ior's special mode; values
+//! in (0, 1) model a bubble (e.g. air in water) and only warn. A Cauchy model needs finite
+//! `b > 0`, `c ≥ 0` (`InvalidIor`). Unit-interval factors (base colour, metallic,
+//! roughness, transmission, specular, attenuation colour, alpha cutoff) outside [0, 1] are
+//! clamped with one warning per material; a negative specular colour is clamped to 0.
+//! `attenuation_distance > 0`, `thickness ≥ 0`, `dispersion ≥ 0` and `emissive ≥ 0` are
+//! errors when violated (`InvalidValue`).
+
+use super::{element, fail};
+use crate::error::{LoadError, LoadErrorKind};
+use crate::scene::desc::{AlphaMode, ImageDesc, IorModel, MaterialDesc};
+use std::path::Path;
+
+pub(super) fn check_images(src: &Path, images: &[ImageDesc]) -> Result<(), LoadError> {
+    for (i, image) in images.iter().enumerate() {
+        let expected = u64::from(image.width) * u64::from(image.height) * 4;
+        let actual = image.rgba8.len() as u64;
+        if actual != expected {
+            return Err(fail(
+                src,
+                &element(&image.name, "image", i),
+                LoadErrorKind::MissingBuffer,
+                format!(
+                    "{actual} bytes of pixel data, expected {}×{}×4 = {expected}",
+                    image.width, image.height
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+pub(super) fn check_material(
+    src: &Path,
+    index: usize,
+    m: &mut MaterialDesc,
+    image_count: usize,
+    warnings: &mut Vec<String>,
+) -> Result<(), LoadError> {
+    let name = element(&m.name, "material", index);
+    let invalid = |kind, detail: String| fail(src, &name, kind, detail);
+    let textures = [
+        ("baseColorTexture", m.base_color_texture),
+        ("metallicRoughnessTexture", m.metallic_roughness_texture),
+        ("emissiveTexture", m.emissive_texture),
+        ("transmissionTexture", m.transmission_texture),
+    ];
+    for (field, texture) in textures {
+        if let Some(t) = texture.filter(|t| t.image >= image_count) {
+            return Err(invalid(
+                LoadErrorKind::IndexOutOfRange,
+                format!("{field} refers to image {} ({image_count} images)", t.image),
+            ));
+        }
+    }
+
+    let cutoff = match m.alpha_mode {
+        AlphaMode::Mask(c) => c,
+        _ => 0.5,
+    };
+    let scalars: [(&str, &[f32]); 11] = [
+        ("baseColor", &m.base_color.to_array()),
+        ("metallic", &[m.metallic]),
+        ("roughness", &[m.roughness]),
+        ("emissive", &m.emissive.to_array()),
+        ("transmission", &[m.transmission]),
+        ("thickness", &[m.thickness]),
+        ("attenuationColor", &m.attenuation_color.to_array()),
+        ("specular", &[m.specular]),
+        ("specularColor", &m.specular_color.to_array()),
+        ("dispersion", &[m.dispersion]),
+        ("alphaCutoff", &[cutoff]),
+    ];
+    for (field, values) in scalars {
+        if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+            return Err(invalid(
+                LoadErrorKind::InvalidValue,
+                format!("{field} is {v} (must be finite)"),
+            ));
+        }
+    }
+    if m.attenuation_distance.is_nan() || m.attenuation_distance <= 0.0 {
+        return Err(invalid(
+            LoadErrorKind::InvalidValue,
+            format!(
+                "attenuationDistance is {} (must be > 0)",
+                m.attenuation_distance
+            ),
+        ));
+    }
+    for (field, value) in [
+        ("thickness", m.thickness),
+        ("dispersion", m.dispersion),
+        ("emissive", m.emissive.min_element()),
+    ] {
+        if value < 0.0 {
+            return Err(invalid(
+                LoadErrorKind::InvalidValue,
+                format!("{field} is negative ({value})"),
+            ));
+        }
+    }
+    check_ior(m, &name, warnings).map_err(|d| invalid(LoadErrorKind::InvalidIor, d))?;
+    clamp_factors(m, &name, warnings);
+    Ok(())
+}
+
+/// IOR and Cauchy rules; `Err` carries the detail of an `InvalidIor` error.
+fn check_ior(m: &MaterialDesc, name: &str, warnings: &mut Vec<String>) -> Result<(), String> {
+    let ior = m.ior;
+    if !ior.is_finite() || ior < 0.0 {
+        return Err(format!("ior is {ior} (must be finite and ≥ 0)"));
+    }
+    if ior > 0.0 && ior < 1.0 {
+        warnings.push(format!(
+            "{name}: ior {ior} < 1 is outside KHR_materials_ior's range; kept (a bubble, e.g. air in water)"
+        ));
+    }
+    if let Some(IorModel::Cauchy { b, c }) = m.ior_model {
+        if !(b.is_finite() && c.is_finite() && b > 0.0 && c >= 0.0) {
+            return Err(format!(
+                "Cauchy model b = {b}, c = {c} (needs finite b > 0 and c ≥ 0)"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Clamps unit-interval factors (and negative specular colour), noting each change.
+fn clamp_factors(m: &mut MaterialDesc, name: &str, warnings: &mut Vec<String>) {
+    let mut notes = Vec::new();
+    let mut unit = |field: &str, v: &mut f32| {
+        let c = v.clamp(0.0, 1.0);
+        if c != *v {
+            notes.push(format!("{field} {v} → {c}"));
+            *v = c;
+        }
+    };
+    for (k, ch) in ["r", "g", "b", "a"].iter().enumerate() {
+        unit(&format!("baseColor.{ch}"), &mut m.base_color[k]);
+    }
+    unit("metallic", &mut m.metallic);
+    unit("roughness", &mut m.roughness);
+    unit("transmission", &mut m.transmission);
+    unit("specular", &mut m.specular);
+    for (k, ch) in ["r", "g", "b"].iter().enumerate() {
+        unit(
+            &format!("attenuationColor.{ch}"),
+            &mut m.attenuation_color[k],
+        );
+    }
+    if let AlphaMode::Mask(c) = &mut m.alpha_mode {
+        unit("alphaCutoff", c);
+    }
+    for (k, ch) in ["r", "g", "b"].iter().enumerate() {
+        let v = &mut m.specular_color[k];
+        if *v < 0.0 {
+            notes.push(format!("specularColor.{ch} {v} → 0"));
+            *v = 0.0;
+        }
+    }
+    if !notes.is_empty() {
+        warnings.push(format!("{name}: clamped: {}", notes.join(", ")));
+    }
+}
