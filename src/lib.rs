@@ -21,6 +21,7 @@
 
 pub mod accel;
 pub mod error;
+pub mod gen;
 pub mod load;
 pub mod output;
 pub mod scene;

@@ -1,1 +1,0 @@
-//! Image output. STUB: being written.
