@@ -76,7 +76,11 @@ pub fn load(path: &Path, accel: Backend) -> Result<(Scene, Duration)> {
 }
 
 /// Picks the camera by name or index, or frames the scene when the file has none.
-pub fn choose_camera(scene: &Scene, choice: Option<&str>, aspect: f32) -> Result<(CameraDesc, Option<String>)> {
+pub fn choose_camera(
+    scene: &Scene,
+    choice: Option<&str>,
+    aspect: f32,
+) -> Result<(CameraDesc, Option<String>)> {
     match choice {
         Some(c) => {
             let found = scene
@@ -96,7 +100,11 @@ pub fn choose_camera(scene: &Scene, choice: Option<&str>, aspect: f32) -> Result
                     Err(Error::Usage(format!(
                         "--camera {c}: no such camera in {} (available: {})",
                         scene.source.display(),
-                        if names.is_empty() { "none".into() } else { names.join(", ") }
+                        if names.is_empty() {
+                            "none".into()
+                        } else {
+                            names.join(", ")
+                        }
                     )))
                 }
             }
@@ -105,7 +113,10 @@ pub fn choose_camera(scene: &Scene, choice: Option<&str>, aspect: f32) -> Result
             Some(cam) => Ok((cam.clone(), None)),
             None => Ok((
                 frame_bounds(scene.bounds.0, scene.bounds.1, aspect),
-                Some("no camera in the file: framing the bounding box from the front-right-above".into()),
+                Some(
+                    "no camera in the file: framing the bounding box from the front-right-above"
+                        .into(),
+                ),
             )),
         },
     }
@@ -150,7 +161,10 @@ pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
     let output = match &opts.output {
         Some(o) => o.clone(),
         None => {
-            let stem = opts.scene.file_stem().map(|s| s.to_string_lossy().into_owned());
+            let stem = opts
+                .scene
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned());
             PathBuf::from(format!("{}.png", stem.unwrap_or_else(|| "render".into())))
         }
     };
@@ -193,35 +207,70 @@ pub fn info_command(path: &Path) -> Result<String> {
     let desc = crate::load::load_scene(path)?;
     let mut s = String::new();
     let tris: usize = desc.meshes.iter().map(|m| m.indices.len()).sum();
-    let _ = writeln!(s, "{}: {} meshes, {} triangles", path.display(), desc.meshes.len(), tris);
+    let _ = writeln!(
+        s,
+        "{}: {} meshes, {} triangles",
+        path.display(),
+        desc.meshes.len(),
+        tris
+    );
     let _ = writeln!(s, "meshes:");
     for m in &desc.meshes {
-        let mat = m.material.and_then(|i| desc.materials.get(i)).map_or("default material", |x| &x.name);
+        let mat = m
+            .material
+            .and_then(|i| desc.materials.get(i))
+            .map_or("default material", |x| &x.name);
         let _ = writeln!(s, "  {}: {} triangles, {}", m.name, m.indices.len(), mat);
     }
     let _ = writeln!(s, "materials:");
     for m in &desc.materials {
-        let ior = if m.ior == 0.0 { "0 (infinite)".to_string() } else { format!("{}", m.ior) };
+        let ior = if m.ior == 0.0 {
+            "0 (infinite)".to_string()
+        } else {
+            format!("{}", m.ior)
+        };
         let _ = write!(
             s,
             "  {}: base [{:.3} {:.3} {:.3} {:.3}] metallic {} roughness {} ior {} transmission {}",
-            m.name, m.base_color.x, m.base_color.y, m.base_color.z, m.base_color.w, m.metallic, m.roughness, ior, m.transmission
+            m.name,
+            m.base_color.x,
+            m.base_color.y,
+            m.base_color.z,
+            m.base_color.w,
+            m.metallic,
+            m.roughness,
+            ior,
+            m.transmission
         );
         if m.thickness > 0.0 || m.attenuation_distance.is_finite() {
             let _ = write!(
                 s,
                 " volume(thickness {} attenuation [{:.3} {:.3} {:.3}] over {})",
-                m.thickness, m.attenuation_color.x, m.attenuation_color.y, m.attenuation_color.z, m.attenuation_distance
+                m.thickness,
+                m.attenuation_color.x,
+                m.attenuation_color.y,
+                m.attenuation_color.z,
+                m.attenuation_distance
             );
         }
         if m.dispersion > 0.0 {
-            let _ = write!(s, " dispersion {} (Abbe {:.1})", m.dispersion, 20.0 / m.dispersion);
+            let _ = write!(
+                s,
+                " dispersion {} (Abbe {:.1})",
+                m.dispersion,
+                20.0 / m.dispersion
+            );
         }
         if let Some(model) = m.ior_model {
             let _ = write!(s, " {model:?}");
         }
         if m.specular != 1.0 || m.specular_color != glam::Vec3::ONE {
-            let _ = write!(s, " specular {} color {:?}", m.specular, m.specular_color.to_array());
+            let _ = write!(
+                s,
+                " specular {} color {:?}",
+                m.specular,
+                m.specular_color.to_array()
+            );
         }
         if m.emissive != glam::Vec3::ZERO {
             let _ = write!(s, " emissive {:?}", m.emissive.to_array());
@@ -234,13 +283,35 @@ pub fn info_command(path: &Path) -> Result<String> {
     }
     for l in &desc.lights {
         let line = match l {
-            LightDesc::Point { name, position, intensity, .. } => format!("point \"{name}\" {intensity} cd at {:?}", position.to_array()),
-            LightDesc::Spot { name, position, intensity, outer_cone, .. } => format!(
+            LightDesc::Point {
+                name,
+                position,
+                intensity,
+                ..
+            } => format!(
+                "point \"{name}\" {intensity} cd at {:?}",
+                position.to_array()
+            ),
+            LightDesc::Spot {
+                name,
+                position,
+                intensity,
+                outer_cone,
+                ..
+            } => format!(
                 "spot \"{name}\" {intensity} cd at {:?}, outer cone {:.1}°",
                 position.to_array(),
                 outer_cone.to_degrees()
             ),
-            LightDesc::Directional { name, direction, intensity, .. } => format!("directional \"{name}\" {intensity} lx toward {:?}", direction.to_array()),
+            LightDesc::Directional {
+                name,
+                direction,
+                intensity,
+                ..
+            } => format!(
+                "directional \"{name}\" {intensity} lx toward {:?}",
+                direction.to_array()
+            ),
         };
         let _ = writeln!(s, "  {line}");
     }
@@ -250,7 +321,9 @@ pub fn info_command(path: &Path) -> Result<String> {
     }
     for (i, c) in desc.cameras.iter().enumerate() {
         let p = match c.projection {
-            Projection::Perspective { yfov, .. } => format!("perspective yfov {:.1}°", yfov.to_degrees()),
+            Projection::Perspective { yfov, .. } => {
+                format!("perspective yfov {:.1}°", yfov.to_degrees())
+            }
             Projection::Orthographic { xmag, ymag } => format!("orthographic {xmag}×{ymag}"),
         };
         let _ = writeln!(s, "  {i} \"{}\": {p}", c.name);

@@ -64,9 +64,17 @@ impl Camera {
 /// World-from-camera matrix of a camera at `eye` looking at `target` (camera −Z forward).
 pub fn look_at(eye: Vec3, target: Vec3, up: Vec3) -> Mat4 {
     let f = (target - eye).normalize_or(Vec3::NEG_Z);
-    let right = f.cross(up).try_normalize().unwrap_or_else(|| f.any_orthonormal_vector());
+    let right = f
+        .cross(up)
+        .try_normalize()
+        .unwrap_or_else(|| f.any_orthonormal_vector());
     let y = right.cross(f);
-    Mat4::from_cols(right.extend(0.0), y.extend(0.0), (-f).extend(0.0), eye.extend(1.0))
+    Mat4::from_cols(
+        right.extend(0.0),
+        y.extend(0.0),
+        (-f).extend(0.0),
+        eye.extend(1.0),
+    )
 }
 
 /// A perspective camera that frames the bounding box `[lo, hi]` from the front-right-above
@@ -77,7 +85,9 @@ pub fn frame_bounds(lo: Vec3, hi: Vec3, aspect: f32) -> CameraDesc {
     let radius = (0.5 * (hi - lo).length()).max(f32::MIN_POSITIVE);
     let yfov = 40f32.to_radians();
     // Fit the sphere in the narrower of the two fields of view.
-    let half = (0.5 * yfov).tan().min((0.5 * yfov).tan() * aspect.max(1e-3));
+    let half = (0.5 * yfov)
+        .tan()
+        .min((0.5 * yfov).tan() * aspect.max(1e-3));
     let dist = radius * (1.0 + half * half).sqrt() / half * 1.05;
     let dir = Vec3::new(0.6, 0.45, 1.0).normalize();
     let eye = center + dir * dist;

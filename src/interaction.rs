@@ -129,8 +129,7 @@ impl Scene {
 
     /// Whether the hit is an alpha cut-out to be skipped.
     fn is_cut_out(&self, hit: &SurfaceHit) -> bool {
-        self.has_cutouts
-            && self.materials[hit.material as usize].is_cut_out(hit.uv, &self.images)
+        self.has_cutouts && self.materials[hit.material as usize].is_cut_out(hit.uv, &self.images)
     }
 
     /// The closest visible surface along `ray`, skipping alpha cut-outs.

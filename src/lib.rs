@@ -24,6 +24,7 @@ pub mod accel;
 pub mod app;
 pub mod camera;
 pub mod error;
+pub mod gen;
 pub mod integrator;
 pub mod interaction;
 pub mod light;

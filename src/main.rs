@@ -10,7 +10,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "iris", version, about = "Iris: a spectral renderer for glass, gems and caustics")]
+#[command(
+    name = "iris",
+    version,
+    about = "Iris: a spectral renderer for glass, gems and caustics"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -98,8 +102,14 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("expected WxH, e.g. 800x600, got {s:?}"))?;
-    let w: u32 = w.trim().parse().map_err(|_| format!("bad width in {s:?}"))?;
-    let h: u32 = h.trim().parse().map_err(|_| format!("bad height in {s:?}"))?;
+    let w: u32 = w
+        .trim()
+        .parse()
+        .map_err(|_| format!("bad width in {s:?}"))?;
+    let h: u32 = h
+        .trim()
+        .parse()
+        .map_err(|_| format!("bad height in {s:?}"))?;
     app::check_size(w, h).map_err(|e| e.to_string())?;
     Ok((w, h))
 }

@@ -135,7 +135,10 @@ mod tests {
         let mut b = Rng::new(&[1, 2, 3]);
         let mut c = Rng::new(&[1, 2, 4]);
         let xs: Vec<f32> = (0..10_000).map(|_| a.next_f32()).collect();
-        assert!(xs.iter().zip((0..).map(|_| b.next_f32())).all(|(x, y)| *x == y));
+        assert!(xs
+            .iter()
+            .zip((0..).map(|_| b.next_f32()))
+            .all(|(x, y)| *x == y));
         assert_ne!(xs[0], c.next_f32());
         let mean = xs.iter().sum::<f32>() / xs.len() as f32;
         assert!((mean - 0.5).abs() < 0.01, "mean {mean}");
@@ -144,7 +147,12 @@ mod tests {
 
     #[test]
     fn frame_is_orthonormal() {
-        for n in [Vec3::Z, -Vec3::Z, Vec3::X, Vec3::new(0.3, -0.5, 0.8).normalize()] {
+        for n in [
+            Vec3::Z,
+            -Vec3::Z,
+            Vec3::X,
+            Vec3::new(0.3, -0.5, 0.8).normalize(),
+        ] {
             let f = Frame::from_normal(n);
             assert!(f.s.dot(f.t).abs() < 1e-6 && f.s.dot(f.n).abs() < 1e-6);
             assert!((f.s.length() - 1.0).abs() < 1e-6 && (f.t.length() - 1.0).abs() < 1e-6);

@@ -95,6 +95,8 @@ mod tests {
         assert!((b.x - 0.5029).abs() < 1e-3, "{}", b.x);
         // Repeat wrapping: u + 1 is the same.
         assert_eq!(b, sample(&img, Vec2::new(1.75, 0.5), Encoding::Srgb));
-        assert!((sample(&img, Vec2::new(0.75, 0.5), Encoding::Linear).x - 188.0 / 255.0).abs() < 1e-6);
+        assert!(
+            (sample(&img, Vec2::new(0.75, 0.5), Encoding::Linear).x - 188.0 / 255.0).abs() < 1e-6
+        );
     }
 }

@@ -54,7 +54,10 @@ fn fresnel_at_normal_incidence_matches_closed_form() {
         let expect = ((n - 1.0) / (n + 1.0)).powi(2);
         assert!((fresnel_dielectric(1.0, n) - expect).abs() < 1e-6, "n={n}");
         // Symmetric: the same from inside.
-        assert!((fresnel_dielectric(1.0, 1.0 / n) - expect).abs() < 1e-6, "1/n={n}");
+        assert!(
+            (fresnel_dielectric(1.0, 1.0 / n) - expect).abs() < 1e-6,
+            "1/n={n}"
+        );
     }
     // Known values (anchors.md §5): water 0.0204, glass 0.0400, diamond 0.1720.
     assert!((fresnel_dielectric(1.0, 1.333) - 0.0204).abs() < 1e-4);
@@ -71,7 +74,11 @@ fn reflectance_plus_transmittance_is_one() {
             let ci = (i as f32).to_radians().cos();
             let s2t = (1.0 - ci * ci) / (eta * eta);
             if s2t >= 1.0 {
-                assert_eq!(fresnel_dielectric(ci, eta), 1.0, "TIR must reflect everything");
+                assert_eq!(
+                    fresnel_dielectric(ci, eta),
+                    1.0,
+                    "TIR must reflect everything"
+                );
                 continue;
             }
             let ct = (1.0 - s2t).sqrt();
@@ -80,7 +87,10 @@ fn reflectance_plus_transmittance_is_one() {
             let flux = eta * ct / ci;
             let t = 0.5 * (ts * ts + tp * tp) * flux;
             let r = fresnel_dielectric(ci, eta);
-            assert!((r + t - 1.0).abs() < 1e-5, "eta {eta} θ {i}°: R {r} + T {t}");
+            assert!(
+                (r + t - 1.0).abs() < 1e-5,
+                "eta {eta} θ {i}°: R {r} + T {t}"
+            );
         }
     }
     // Grazing incidence reflects everything.
@@ -96,9 +106,15 @@ fn critical_angle_switches_to_total_internal_reflection() {
         assert!((tc - (1.0 / ior).asin()).abs() < 1e-7);
         let below = tc - 1e-3;
         let above = tc + 1e-3;
-        assert!(refract(dir_at(below), n, eta).is_some(), "ior {ior}: refracts below θc");
+        assert!(
+            refract(dir_at(below), n, eta).is_some(),
+            "ior {ior}: refracts below θc"
+        );
         assert!(fresnel_dielectric(below.cos(), eta) < 1.0);
-        assert!(refract(dir_at(above), n, eta).is_none(), "ior {ior}: TIR above θc");
+        assert!(
+            refract(dir_at(above), n, eta).is_none(),
+            "ior {ior}: TIR above θc"
+        );
         assert_eq!(fresnel_dielectric(above.cos(), eta), 1.0);
     }
     // Known values (anchors.md §5): water 48.61°, glass 41.81°, diamond 24.44°.

@@ -19,7 +19,9 @@ fn backends() -> Vec<Backend> {
 }
 
 fn sphere_scene(scale: f32, backend: Backend) -> (Scene, Vec3, f32) {
-    let (positions, indices) = iris::gen::shapes::icosphere_mesh(1.0, 3);
+    let iris::gen::shapes::TriMesh {
+        positions, indices, ..
+    } = iris::gen::shapes::icosphere(1.0, 3);
     let center = Vec3::new(0.3, -0.2, 0.1) * scale;
     let desc = SceneDesc {
         source: "reintersect-test".into(),
@@ -40,7 +42,8 @@ fn dir_around(n: Vec3, cos_theta: f32, rng: &mut Rng) -> Vec3 {
     let f = iris::math::Frame::from_normal(n);
     let phi = rng.next_f32() * std::f32::consts::TAU;
     let s = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
-    f.to_world(Vec3::new(s * phi.cos(), s * phi.sin(), cos_theta)).normalize()
+    f.to_world(Vec3::new(s * phi.cos(), s * phi.sin(), cos_theta))
+        .normalize()
 }
 
 fn check(scale: f32, backend: Backend) {
@@ -51,7 +54,9 @@ fn check(scale: f32, backend: Backend) {
     for i in 0..n_rays {
         // Camera-like ray from outside toward a random interior point.
         let from = center + dir_around(Vec3::Y, rng.next_f32() * 2.0 - 1.0, &mut rng) * (3.0 * r);
-        let to = center + dir_around(Vec3::Z, rng.next_f32() * 2.0 - 1.0, &mut rng) * (0.5 * r * rng.next_f32());
+        let to = center
+            + dir_around(Vec3::Z, rng.next_f32() * 2.0 - 1.0, &mut rng)
+                * (0.5 * r * rng.next_f32());
         let ray = Ray::new(from, (to - from).normalize());
         let Some(hit) = scene.intersect(&ray) else {
             failures.push(format!("ray {i}: primary ray missed"));
@@ -62,12 +67,20 @@ fn check(scale: f32, backend: Backend) {
         let cos = [1.0, 0.5, 0.1, 0.01, 0.001][i % 5];
         let out = dir_around(hit.ng, cos, &mut rng);
         if let Some(h) = scene.intersect(&hit.spawn_ray(out)) {
-            failures.push(format!("ray {i}: outward ray (cos {cos}) hit prim {} (own {}) at t={}", h.prim, hit.prim, h.t));
+            failures.push(format!(
+                "ray {i}: outward ray (cos {cos}) hit prim {} (own {}) at t={}",
+                h.prim, hit.prim, h.t
+            ));
         }
         let inward = dir_around(-hit.ng, cos, &mut rng);
         match scene.intersect(&hit.spawn_ray(inward)) {
-            None => failures.push(format!("ray {i}: inward ray (cos {cos}) escaped the closed sphere")),
-            Some(h) if h.prim == hit.prim => failures.push(format!("ray {i}: inward ray re-hit its own triangle at t={}", h.t)),
+            None => failures.push(format!(
+                "ray {i}: inward ray (cos {cos}) escaped the closed sphere"
+            )),
+            Some(h) if h.prim == hit.prim => failures.push(format!(
+                "ray {i}: inward ray re-hit its own triangle at t={}",
+                h.t
+            )),
             Some(h) => {
                 if h.front_face {
                     failures.push(format!("ray {i}: inward ray hit a face from outside"));
@@ -75,7 +88,9 @@ fn check(scale: f32, backend: Backend) {
                 // From the inside hit, go back inward again (internal reflection).
                 let back = dir_around(-h.ng, [1.0, 0.3, 0.01][i % 3], &mut rng);
                 match scene.intersect(&h.spawn_ray(back)) {
-                    Some(h2) if h2.prim == h.prim => failures.push(format!("ray {i}: internal reflection re-hit its own triangle")),
+                    Some(h2) if h2.prim == h.prim => failures.push(format!(
+                        "ray {i}: internal reflection re-hit its own triangle"
+                    )),
                     None => failures.push(format!("ray {i}: internal reflection escaped")),
                     _ => {}
                 }

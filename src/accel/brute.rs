@@ -20,7 +20,12 @@ pub fn closest(
         let [a, b, c] = tri.map(|k| positions[k as usize]);
         if let Some((t, u, v)) = prep.intersect(a, b, c, t_best) {
             t_best = t;
-            best = Some(RawHit { t, prim: i as u32, u, v });
+            best = Some(RawHit {
+                t,
+                prim: i as u32,
+                u,
+                v,
+            });
         }
     }
     best

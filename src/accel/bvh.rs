@@ -35,7 +35,7 @@ pub struct BvhAccel {
 
 /// Power of two that brings `max_abs` to about 2^20 (1 for empty or zero scenes).
 fn pow2_scale(max_abs: f32) -> f32 {
-    if !(max_abs > 0.0) || !max_abs.is_finite() {
+    if max_abs.is_nan() || max_abs <= 0.0 || !max_abs.is_finite() {
         return 1.0;
     }
     let e = max_abs.log2().floor() as i32;
@@ -90,7 +90,11 @@ impl BvhAccel {
     #[inline]
     fn ray(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Ray {
         let inv = Vec3A::from(dir).recip();
-        let inv = Vec3A::select(inv.is_finite_mask(), inv, Vec3A::splat(f32::MAX).copysign(Vec3A::from(dir)));
+        let inv = Vec3A::select(
+            inv.is_finite_mask(),
+            inv,
+            Vec3A::splat(f32::MAX).copysign(Vec3A::from(dir)),
+        );
         Ray {
             origin: Vec3A::from(origin * self.scale),
             direction: dir.into(),

@@ -94,7 +94,7 @@ impl RayPrep {
         }
         let inv = 1.0 / det;
         let t = t_scaled / det_abs;
-        if !(t < t_max) {
+        if t.is_nan() || t >= t_max {
             return None;
         }
         Some((t, e1 * inv, e2 * inv))
@@ -116,7 +116,9 @@ mod tests {
         let r = RayPrep::new(Vec3::new(0.25, 0.25, -2.0), Vec3::Z);
         assert!((r.intersect(p0, p1, p2, f32::INFINITY).unwrap().0 - 2.0).abs() < 1e-6);
         // Behind the origin or beyond t_max: miss.
-        assert!(RayPrep::new(o, Vec3::Z).intersect(p0, p1, p2, f32::INFINITY).is_none());
+        assert!(RayPrep::new(o, Vec3::Z)
+            .intersect(p0, p1, p2, f32::INFINITY)
+            .is_none());
         assert!(r.intersect(p0, p1, p2, 1.5).is_none());
     }
 

@@ -56,7 +56,15 @@ fn trace(scene: &Scene, ray: &Ray, depth: u32, max_depth: u32, w: Vec3, ctx: &mu
 }
 
 /// Follows a child branch of weight `w·k`.
-fn branch(scene: &Scene, ray: Ray, depth: u32, max_depth: u32, w: Vec3, k: Vec3, ctx: &mut Context) -> Vec3 {
+fn branch(
+    scene: &Scene,
+    ray: Ray,
+    depth: u32,
+    max_depth: u32,
+    w: Vec3,
+    k: Vec3,
+    ctx: &mut Context,
+) -> Vec3 {
     let wk = w * k;
     match survive(wk, ctx) {
         Some(s) => k * s * trace(scene, &ray, depth + 1, max_depth, wk * s, ctx),
@@ -64,7 +72,14 @@ fn branch(scene: &Scene, ray: Ray, depth: u32, max_depth: u32, w: Vec3, k: Vec3,
     }
 }
 
-fn shade(scene: &Scene, hit: &SurfaceHit, depth: u32, max_depth: u32, w: Vec3, ctx: &mut Context) -> Vec3 {
+fn shade(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    depth: u32,
+    max_depth: u32,
+    w: Vec3,
+    ctx: &mut Context,
+) -> Vec3 {
     let mat = &scene.materials[hit.material as usize];
     let sp = mat.shade(hit.uv, &scene.images);
     let mut l = sp.emissive;
@@ -77,18 +92,38 @@ fn shade(scene: &Scene, hit: &SurfaceHit, depth: u32, max_depth: u32, w: Vec3, c
         let mut o = shading::direct_light(scene, hit, mat, &sp, ctx);
         // Smooth metals reflect the scene as mirrors.
         if sp.metallic > 0.0 && sp.roughness < 0.1 {
-            let n = if hit.wo.dot(hit.ns) >= 0.0 { hit.ns } else { -hit.ns };
+            let n = if hit.wo.dot(hit.ns) >= 0.0 {
+                hit.ns
+            } else {
+                -hit.ns
+            };
             let r = reflect(hit.wo, n);
             if r.dot(hit.ng) * hit.wo.dot(hit.ng) > 0.0 {
                 let f = crate::optics::fresnel_schlick(sp.base_color, hit.wo.dot(n)) * sp.metallic;
-                o += branch(scene, hit.spawn_ray(r), depth, max_depth, w * opaque, f, ctx);
+                o += branch(
+                    scene,
+                    hit.spawn_ray(r),
+                    depth,
+                    max_depth,
+                    w * opaque,
+                    f,
+                    ctx,
+                );
             }
         }
         l += opaque * o;
     }
     // glTF BLEND: partial coverage lets the rest of the light through unchanged.
     if matches!(mat.desc.alpha_mode, crate::scene::desc::AlphaMode::Blend) && sp.alpha < 1.0 {
-        let behind = branch(scene, hit.spawn_ray(-hit.wo), depth, max_depth, w, Vec3::splat(1.0 - sp.alpha), ctx);
+        let behind = branch(
+            scene,
+            hit.spawn_ray(-hit.wo),
+            depth,
+            max_depth,
+            w,
+            Vec3::splat(1.0 - sp.alpha),
+            ctx,
+        );
         l = l * sp.alpha + behind;
     }
     l
@@ -113,7 +148,15 @@ fn dielectric(
     let f = fresnel_dielectric(cos_i, eta);
     let mut l = Vec3::ZERO;
     let r = reflect(hit.wo, n);
-    l += branch(scene, hit.spawn_ray(r), depth, max_depth, w, Vec3::splat(f), ctx);
+    l += branch(
+        scene,
+        hit.spawn_ray(r),
+        depth,
+        max_depth,
+        w,
+        Vec3::splat(f),
+        ctx,
+    );
     if f < 1.0 {
         if thin {
             // Thin wall: no bending; the base colour tints what passes.

@@ -1,0 +1,86 @@
+//! OpenEXR encoding and decoding of [`ImageRgb`] via the `exr` crate.
+//!
+//! Files hold three 32-bit float channels `R`, `G`, `B` with linear Rec.709/sRGB-primary
+//! values exactly as rendered (no exposure, no tone map), ZIP-compressed (lossless), so a
+//! write → read round trip is bit-exact, including non-finite values.
+//! Pixel (x, y) is row-major with y = 0 the top row, matching the EXR data window.
+
+use super::ImageRgb;
+use crate::error::{LoadError, LoadErrorKind};
+use exr::prelude::*;
+use std::io::Cursor;
+use std::path::Path;
+
+/// Largest image [`decode`] accepts (pixels): 2^28 ≈ 268 M, i.e. 3 GiB of f32 RGB.
+pub const MAX_PIXELS: u64 = 1 << 28;
+
+/// Encodes an image (whose `data` length was already checked) as EXR bytes.
+pub fn encode(img: &ImageRgb) -> std::result::Result<Vec<u8>, String> {
+    let w = img.width as usize;
+    let data = &img.data;
+    let channels = SpecificChannels::rgb(|pos: Vec2<usize>| {
+        let c = data.get(pos.y() * w + pos.x()).copied().unwrap_or_default();
+        (c.x, c.y, c.z)
+    });
+    let layer = Layer::new(
+        (w, img.height as usize),
+        LayerAttributes::named("rgb"),
+        Encoding::SMALL_LOSSLESS,
+        channels,
+    );
+    let mut bytes = Vec::new();
+    Image::from_layer(layer)
+        .write()
+        .to_buffered(Cursor::new(&mut bytes))
+        .map_err(|e| e.to_string())?;
+    Ok(bytes)
+}
+
+/// Reads the first RGB layer of an EXR file at its full resolution.
+pub fn decode(path: &Path) -> std::result::Result<ImageRgb, LoadError> {
+    let bytes = std::fs::read(path)
+        .map_err(|e| LoadError::new(path, "", LoadErrorKind::Io, e.to_string()))?;
+    let parse =
+        |e: exr::error::Error| LoadError::new(path, "", LoadErrorKind::Parse, e.to_string());
+
+    let meta = MetaData::read_from_buffered(Cursor::new(&bytes), false).map_err(parse)?;
+    for (i, header) in meta.headers.iter().enumerate() {
+        let size = header.layer_size;
+        let pixels = size.width() as u64 * size.height() as u64;
+        if pixels > MAX_PIXELS {
+            return Err(LoadError::new(
+                path,
+                format!("layer {i}"),
+                LoadErrorKind::TooLarge,
+                format!(
+                    "{}×{} pixels exceeds the limit of {MAX_PIXELS}",
+                    size.width(),
+                    size.height()
+                ),
+            ));
+        }
+    }
+
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .rgb_channels(
+            |res: Vec2<usize>, _: &RgbChannels| ImageRgb {
+                width: res.width() as u32,
+                height: res.height() as u32,
+                data: vec![glam::Vec3::ZERO; res.area()],
+            },
+            |img: &mut ImageRgb, pos: Vec2<usize>, (r, g, b): (f32, f32, f32)| {
+                let i = pos.y() * img.width as usize + pos.x();
+                if let Some(p) = img.data.get_mut(i) {
+                    *p = glam::Vec3::new(r, g, b);
+                }
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .non_parallel()
+        .from_buffered(Cursor::new(&bytes))
+        .map_err(parse)?;
+    Ok(image.layer_data.channel_data.pixels)
+}
