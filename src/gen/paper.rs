@@ -168,6 +168,25 @@ pub fn fig4_4_1_prism() -> GenScene {
         Mat3::IDENTITY,
         Vec3::ZERO,
     );
+    // Two checker walls behind the prism (seen from the camera) so the refracted and
+    // internally reflected views through it show structure rather than the black sky.
+    let walls = (Vec3::new(0.85, 0.8, 0.65), Vec3::new(0.03, 0.06, 0.25));
+    add_checker(
+        &mut s,
+        "Back wall",
+        checkerboard(16, 8, 0.25),
+        walls,
+        quarter_turn_x(),
+        Vec3::new(0.0, 1.0, -2.0),
+    );
+    add_checker(
+        &mut s,
+        "Side wall",
+        checkerboard(16, 8, 0.25),
+        walls,
+        Mat3::from_rotation_y(std::f32::consts::FRAC_PI_2) * quarter_turn_x(),
+        Vec3::new(-2.0, 1.0, 0.0),
+    );
     let glass = push_material(
         &mut s,
         GenMaterial::clear_glass("Prism glass IOR 1.5", 1.5, side),
