@@ -1,0 +1,320 @@
+//! Backend parity: Embree 4, the obvhs BVH and brute force must agree on hit/miss and `t`
+//! (relative 1e-4) for at least 99.99 % of random rays on real meshes from the shared
+//! assets, report the same triangle and barycentrics when they agree, and resolve a
+//! slab of two quads 1e-6 (relative) apart at scales 1e-4 and 1e4.
+//!
+//! Meshes are read with the `gltf` crate directly (node transforms applied), so this test
+//! does not depend on Iris's own loader.
+#![cfg(feature = "embree")]
+
+mod common;
+
+use glam::{Mat4, Vec3};
+use iris::accel::bvh::BvhAccel;
+use iris::accel::embree::EmbreeAccel;
+use iris::accel::{brute, RawHit};
+use std::path::Path;
+
+const RAYS: usize = 100_000;
+const REL_T: f32 = 1e-4;
+/// At most this fraction of rays may disagree (99.99 % must agree).
+const MAX_MISMATCH: f64 = 1e-4;
+
+/// Deterministic splitmix64 generator.
+struct Rng(u64);
+
+impl Rng {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// Uniform in [0, 1).
+    fn f32(&mut self) -> f32 {
+        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
+    }
+    fn in_box(&mut self, lo: Vec3, hi: Vec3) -> Vec3 {
+        lo + (hi - lo) * Vec3::new(self.f32(), self.f32(), self.f32())
+    }
+    fn unit_vector(&mut self) -> Vec3 {
+        let z = 2.0 * self.f32() - 1.0;
+        let phi = std::f32::consts::TAU * self.f32();
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    }
+}
+
+/// World-space triangles of a glTF file's default scene.
+fn load_gltf(path: &Path) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let gltf = gltf::Gltf::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let buffers = gltf::import_buffers(&gltf.document, path.parent(), gltf.blob.clone())
+        .unwrap_or_else(|e| panic!("{}: buffers: {e}", path.display()));
+    let scene = gltf
+        .default_scene()
+        .or_else(|| gltf.scenes().next())
+        .expect("a scene");
+    let (mut positions, mut indices) = (Vec::new(), Vec::new());
+    let mut stack: Vec<(gltf::Node, Mat4)> = scene.nodes().map(|n| (n, Mat4::IDENTITY)).collect();
+    while let Some((node, parent)) = stack.pop() {
+        let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+        if let Some(mesh) = node.mesh() {
+            for prim in mesh
+                .primitives()
+                .filter(|p| p.mode() == gltf::mesh::Mode::Triangles)
+            {
+                let reader = prim.reader(|b| Some(&buffers[b.index()]));
+                let base = positions.len() as u32;
+                positions.extend(
+                    reader
+                        .read_positions()
+                        .expect("positions")
+                        .map(|p| world.transform_point3(Vec3::from(p))),
+                );
+                let n = positions.len() as u32 - base;
+                let idx: Vec<u32> = match reader.read_indices() {
+                    Some(i) => i.into_u32().collect(),
+                    None => (0..n).collect(),
+                };
+                indices.extend(
+                    idx.chunks_exact(3)
+                        .map(|t| [t[0] + base, t[1] + base, t[2] + base]),
+                );
+            }
+        }
+        stack.extend(node.children().map(|c| (c, world)));
+    }
+    (positions, indices)
+}
+
+/// Half the rays start outside the bounding sphere aimed at points in the box, half start
+/// inside the box in uniformly random directions. Directions are unit length.
+fn random_rays(positions: &[Vec3], n: usize, seed: u64) -> Vec<(Vec3, Vec3)> {
+    let lo = positions
+        .iter()
+        .copied()
+        .fold(Vec3::splat(f32::INFINITY), Vec3::min);
+    let hi = positions
+        .iter()
+        .copied()
+        .fold(Vec3::splat(f32::NEG_INFINITY), Vec3::max);
+    let (centre, radius) = ((lo + hi) * 0.5, (hi - lo).length() * 0.5);
+    let mut rng = Rng(seed);
+    (0..n)
+        .map(|i| {
+            if i % 2 == 0 {
+                let o = centre + rng.unit_vector() * radius * (1.05 + rng.f32());
+                (o, (rng.in_box(lo, hi) - o).normalize())
+            } else {
+                (rng.in_box(lo, hi), rng.unit_vector())
+            }
+        })
+        .collect()
+}
+
+fn same_t(a: Option<RawHit>, b: Option<RawHit>) -> bool {
+    match (a, b) {
+        (None, None) => true,
+        (Some(a), Some(b)) => (a.t - b.t).abs() <= REL_T * a.t.abs().max(b.t.abs()),
+        _ => false,
+    }
+}
+
+fn assets_file(rel: &str) -> Option<std::path::PathBuf> {
+    let path = common::shared_assets()?.join(rel);
+    assert!(path.is_file(), "missing shared asset {}", path.display());
+    Some(path)
+}
+
+#[test]
+fn embree_bvh_and_brute_force_agree_on_suzanne() {
+    let Some(path) = assets_file("khronos/Suzanne/glTF/Suzanne.gltf") else {
+        return;
+    };
+    let (p, idx) = load_gltf(&path);
+    assert!(
+        idx.len() > 1000,
+        "expected a few thousand triangles, got {}",
+        idx.len()
+    );
+    let embree = EmbreeAccel::build(&p, &idx).unwrap();
+    let bvh = BvhAccel::build(&p, &idx);
+    let rays = random_rays(&p, RAYS, 1);
+    let (mut bad_embree, mut bad_bvh, mut hits) = (0usize, 0usize, 0usize);
+    for (i, &(o, d)) in rays.iter().enumerate() {
+        let reference = brute::closest(&p, &idx, o, d, f32::INFINITY);
+        let e = embree.closest(o, d, f32::INFINITY);
+        let b = bvh.closest(o, d, f32::INFINITY);
+        hits += reference.is_some() as usize;
+        if !same_t(e, reference) {
+            bad_embree += 1;
+            eprintln!("embree mismatch, ray {i}: o={o} d={d} embree={e:?} brute={reference:?}");
+        }
+        if !same_t(b, reference) {
+            bad_bvh += 1;
+            eprintln!("bvh mismatch, ray {i}: o={o} d={d} bvh={b:?} brute={reference:?}");
+        }
+        // Occlusion must agree with the closest hit of the same backend.
+        if i % 16 == 0 {
+            assert_eq!(
+                embree.occluded(o, d, f32::INFINITY),
+                e.is_some(),
+                "embree occluded, ray {i}"
+            );
+        }
+    }
+    eprintln!(
+        "{} triangles, {RAYS} rays, {hits} hits; mismatches vs brute force: embree {bad_embree}, bvh {bad_bvh}",
+        idx.len()
+    );
+    assert!(
+        hits > RAYS / 4 && hits < RAYS,
+        "degenerate ray set: {hits} hits"
+    );
+    let limit = (RAYS as f64 * MAX_MISMATCH) as usize;
+    assert!(
+        bad_embree <= limit,
+        "embree disagrees with brute force on {bad_embree} rays"
+    );
+    assert!(
+        bad_bvh <= limit,
+        "bvh disagrees with brute force on {bad_bvh} rays"
+    );
+}
+
+/// Embree and the BVH report the same triangle and barycentrics whenever their `t` agree.
+///
+/// Barycentrics cannot always agree to 1e-4 between two f32 algorithms: on a sliver
+/// triangle (DispersionTest has many, 3e-4 high at 0.3 m from the origin) one ulp of
+/// position is already 1e-4 in `u`, and Embree's ROBUST (Plücker) test places the point
+/// up to ~100 ulps off the ray at grazing angles. So: at least 99.9 % of common hits must
+/// match exactly (same triangle, |Δu|, |Δv| ≤ 1e-4), and every other one must be a
+/// precision tie: the two reported surface points agree to the tolerance `t` is held to
+/// (1e-4 of the scene radius; a different triangle is then a neighbour sharing the edge
+/// the ray passes through). Seen: 1 tie on Suzanne, ~20 on DispersionTest, ≤ 1.6e-5.
+fn check_prim_and_barycentrics(rel: &str, seed: u64) {
+    let Some(path) = assets_file(rel) else { return };
+    let (p, idx) = load_gltf(&path);
+    let embree = EmbreeAccel::build(&p, &idx).unwrap();
+    let bvh = BvhAccel::build(&p, &idx);
+    let radius = p.iter().map(|v| v.length()).fold(0f32, f32::max);
+    let point = |h: RawHit| {
+        let [a, b, c] = idx[h.prim as usize].map(|k| p[k as usize]);
+        a + (b - a) * h.u + (c - a) * h.v
+    };
+    let (mut compared, mut ties, mut other_prim) = (0usize, 0usize, 0usize);
+    for (o, d) in random_rays(&p, RAYS, seed) {
+        let (Some(e), Some(b)) = (
+            embree.closest(o, d, f32::INFINITY),
+            bvh.closest(o, d, f32::INFINITY),
+        ) else {
+            continue;
+        };
+        if !same_t(Some(e), Some(b)) {
+            continue;
+        }
+        compared += 1;
+        if e.prim == b.prim && (e.u - b.u).abs() <= 1e-4 && (e.v - b.v).abs() <= 1e-4 {
+            continue;
+        }
+        let gap = (point(e) - point(b)).length();
+        eprintln!(
+            "{rel}: tie, |dp| = {:.2e} radius: o={o} d={d} embree={e:?} bvh={b:?}",
+            gap / radius
+        );
+        assert!(
+            gap <= REL_T * radius,
+            "{rel}: hit points {gap} apart: o={o} d={d} embree={e:?} bvh={b:?}"
+        );
+        ties += 1;
+        other_prim += (e.prim != b.prim) as usize;
+    }
+    eprintln!(
+        "{rel}: {} triangles, {compared} common hits, {ties} precision ties ({other_prim} on a neighbour)",
+        idx.len()
+    );
+    assert!(compared > RAYS / 4, "too few common hits: {compared}");
+    assert!(
+        ties as f64 <= 1e-3 * compared as f64,
+        "{rel}: {ties} of {compared} hits differ"
+    );
+}
+
+#[test]
+fn same_primitive_and_barycentrics_on_suzanne() {
+    check_prim_and_barycentrics("khronos/Suzanne/glTF/Suzanne.gltf", 2);
+}
+
+#[test]
+fn same_primitive_and_barycentrics_on_dispersion_test() {
+    check_prim_and_barycentrics("khronos/DispersionTest/DispersionTest.glb", 3);
+}
+
+/// Two parallel quads (z = 0 and z = 1e-6·s, spanning [-s, s]²) at scale `s`; rays from
+/// above and below through both faces must report the near face from both backends.
+fn thin_slab(s: f32) {
+    let gap = 1e-6 * s;
+    let quad = |z: f32| {
+        [
+            Vec3::new(-s, -s, z),
+            Vec3::new(s, -s, z),
+            Vec3::new(s, s, z),
+            Vec3::new(-s, s, z),
+        ]
+    };
+    let p: Vec<Vec3> = quad(0.0).into_iter().chain(quad(gap)).collect();
+    // Triangles 0, 1: bottom face (z = 0); 2, 3: top face (z = gap).
+    let idx = [[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]];
+    let embree = EmbreeAccel::build(&p, &idx).unwrap();
+    let bvh = BvhAccel::build(&p, &idx);
+    let mut rng = Rng(0x51AB + s.to_bits() as u64);
+    for i in 0..10_000 {
+        let from_above = i % 2 == 0;
+        // Origins from 0.01·s to 1·s away (t gaps 1e-4 down to 1e-6 relative).
+        let height = s * 10f32.powf(-2.0 * rng.f32());
+        let o = Vec3::new(
+            s * (rng.f32() - 0.5),
+            s * (rng.f32() - 0.5),
+            if from_above { gap + height } else { -height },
+        );
+        let target = Vec3::new(
+            s * (rng.f32() - 0.5),
+            s * (rng.f32() - 0.5),
+            if from_above { gap } else { 0.0 },
+        );
+        let d = (target - o).normalize();
+        let near: [u32; 2] = if from_above { [2, 3] } else { [0, 1] };
+        for (name, hit) in [
+            ("embree", embree.closest(o, d, f32::INFINITY)),
+            ("bvh", bvh.closest(o, d, f32::INFINITY)),
+        ] {
+            let h = hit.unwrap_or_else(|| panic!("scale {s}: {name} missed the slab, o={o} d={d}"));
+            assert!(
+                near.contains(&h.prim),
+                "scale {s}: {name} hit the far face, o={o} d={d} {h:?}"
+            );
+            let expected = (target - o).length();
+            assert!(
+                (h.t - expected).abs() <= 1e-5 * expected,
+                "scale {s}: {name} t={} expected {expected}",
+                h.t
+            );
+        }
+    }
+}
+
+#[test]
+fn thin_slab_at_scale_1e_minus_4() {
+    thin_slab(1e-4);
+}
+
+#[test]
+fn thin_slab_at_scale_1e4() {
+    thin_slab(1e4);
+}
+
+#[test]
+fn thin_slab_at_unit_scale() {
+    thin_slab(1.0);
+}
