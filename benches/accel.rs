@@ -7,9 +7,13 @@
 //! random surface points, cosine-distributed in/out, random order). Directions are unit.
 //!
 //! Groups: `raw_embree_rtcIntersect1` (bare FFI loop, the ceiling), `embree_backend`
-//! (`EmbreeAccel::closest`), `bvh_backend` (`BvhAccel::closest`), `embree4_rs_wrapper`
-//! (the `embree4-rs` safe wrapper, which checks the device error per ray). A group for the
-//! full intersection layer can reuse `displaced_icosphere` and the ray generators.
+//! (`EmbreeAccel::closest`), `bvh_backend` (`BvhAccel::closest`), and the full intersection
+//! layer (`Scene::intersect`, which builds the hit record: position, normals, uv, material,
+//! front_face) on each backend: `iris_layer_embree`, `iris_layer_bvh`.
+//!
+//! The `embree4-rs` 0.0.16 wrapper is not benchmarked: it declares the Embree 4.2
+//! `RTCRayHit` (80 bytes) while the Embree 4.4 library writes 96 (`instPrimID` at byte 80),
+//! i.e. 4 bytes past its stack value on every hit; see `src/accel/embree.rs`.
 //!
 //! Run: `cargo bench --bench accel` (add `-- --quick` for a short run).
 
@@ -212,6 +216,33 @@ fn bench_sets(
     g.finish();
 }
 
+/// The full intersection layer on `backend`: one `Scene::intersect` per ray.
+fn layer(
+    c: &mut Criterion,
+    name: &str,
+    positions: &[Vec3],
+    indices: &[[u32; 3]],
+    sets: &[(&str, Vec<(Vec3, Vec3)>)],
+    backend: iris::accel::Backend,
+) {
+    let desc = iris::scene::desc::SceneDesc {
+        source: "bench".into(),
+        meshes: vec![iris::scene::desc::MeshDesc {
+            name: "displaced icosphere".into(),
+            positions: positions.to_vec(),
+            indices: indices.to_vec(),
+            ..Default::default()
+        }],
+        ..Default::default()
+    };
+    let scene = iris::scene::Scene::build(desc, backend).expect("scene");
+    bench_sets(c, name, sets, |o, d| {
+        scene
+            .intersect(&iris::math::Ray::new(o, d))
+            .map_or(f32::INFINITY, |h| h.t)
+    });
+}
+
 fn backends(c: &mut Criterion) {
     let (positions, indices) = displaced_icosphere(SUBDIV);
     let sets = [
@@ -226,7 +257,25 @@ fn backends(c: &mut Criterion) {
 
     let bvh = BvhAccel::build(&positions, &indices);
     #[cfg(feature = "embree")]
-    embree::all(c, &positions, &indices, &sets, &bvh);
+    {
+        embree::all(c, &positions, &indices, &sets, &bvh);
+        layer(
+            c,
+            "iris_layer_embree",
+            &positions,
+            &indices,
+            &sets,
+            iris::accel::Backend::Embree,
+        );
+    }
+    layer(
+        c,
+        "iris_layer_bvh",
+        &positions,
+        &indices,
+        &sets,
+        iris::accel::Backend::Bvh,
+    );
     bench_sets(c, "bvh_backend", &sets, |o, d| {
         bvh.closest(o, d, f32::INFINITY)
             .map_or(f32::INFINITY, |h| h.t)
@@ -254,7 +303,6 @@ mod embree {
             env!("IRIS_EMBREE_SOURCE"),
             t0.elapsed().as_secs_f64()
         );
-        let wrapper = Wrapper::build(positions, indices);
         for (set, rays) in sets {
             let mut t = vec![0.0; rays.len()];
             accel.raw_closest_batch(rays, &mut t);
@@ -270,12 +318,10 @@ mod embree {
                 bvh.closest(o, d, f32::INFINITY)
                     .map_or(f32::INFINITY, |h| h.t)
             });
-            let wrapper_agree = agree(&|o, d| wrapper.closest(o, d));
             eprintln!(
-                "{set}: hit fraction {:.3}; agreement with raw embree: bvh {:.5}%, embree4-rs {:.5}%",
+                "{set}: hit fraction {:.3}; agreement with raw embree: bvh {:.5}%",
                 hits as f64 / rays.len() as f64,
-                100.0 * bvh_agree as f64 / rays.len() as f64,
-                100.0 * wrapper_agree as f64 / rays.len() as f64
+                100.0 * bvh_agree as f64 / rays.len() as f64
             );
         }
 
@@ -295,62 +341,6 @@ mod embree {
                 .closest(o, d, f32::INFINITY)
                 .map_or(f32::INFINITY, |h| h.t)
         });
-        bench_sets(c, "embree4_rs_wrapper", sets, |o, d| wrapper.closest(o, d));
-    }
-
-    /// The same scene through `embree4-rs` 0.0.16 (ROBUST, HIGH, like `EmbreeAccel`).
-    ///
-    /// Caveats this group demonstrates: `intersect_1` calls `rtcGetDeviceError` after every
-    /// ray, and it uses the Embree 4.2 `RTCRayHit` (80 bytes) while Embree 4.4 writes
-    /// `instPrimID` at byte 80, i.e. 4 bytes past the struct on each hit.
-    /// `Device::try_new(Some(cfg))` would pass a non-NUL-terminated string, so `None` is used.
-    struct Wrapper {
-        scene: embree4_rs::CommittedScene,
-        args: embree4_sys::RTCIntersectArguments,
-    }
-
-    impl Wrapper {
-        fn build(positions: &[Vec3], indices: &[[u32; 3]]) -> Self {
-            let device = embree4_rs::Device::try_new(None).expect("device");
-            let verts: Vec<(f32, f32, f32)> = positions.iter().map(|p| (p.x, p.y, p.z)).collect();
-            let tris: Vec<(u32, u32, u32)> = indices.iter().map(|t| (t[0], t[1], t[2])).collect();
-            let mesh = embree4_rs::geometry::TriangleMeshGeometry::try_new(&device, &verts, &tris)
-                .expect("mesh");
-            let options = embree4_rs::SceneOptions {
-                build_quality: embree4_sys::RTCBuildQuality::HIGH,
-                flags: embree4_sys::RTCSceneFlags::ROBUST,
-            };
-            let scene = embree4_rs::Scene::try_new(device, options).expect("scene");
-            scene.attach_geometry(&mesh).expect("attach");
-            let scene = scene.commit().expect("commit");
-            let args = embree4_sys::RTCIntersectArguments {
-                flags: embree4_sys::RTCRayQueryFlags::INCOHERENT,
-                feature_mask: embree4_sys::RTCFeatureFlags::RTC_FEATURE_FLAG_ALL,
-                context: std::ptr::null_mut(),
-                filter: None,
-                intersect: None,
-            };
-            Wrapper { scene, args }
-        }
-
-        fn closest(&self, o: Vec3, d: Vec3) -> f32 {
-            let ray = embree4_sys::RTCRay {
-                org_x: o.x,
-                org_y: o.y,
-                org_z: o.z,
-                dir_x: d.x,
-                dir_y: d.y,
-                dir_z: d.z,
-                tnear: 0.0,
-                tfar: f32::INFINITY,
-                mask: u32::MAX,
-                ..Default::default()
-            };
-            match self.scene.intersect_1(ray, Some(&self.args)) {
-                Ok(Some(hit)) => hit.ray.tfar,
-                _ => f32::INFINITY,
-            }
-        }
     }
 }
 

@@ -118,7 +118,7 @@ impl Light {
             } => {
                 let v = position - p;
                 let d2 = v.length_squared();
-                if !(d2 > 0.0) {
+                if d2.is_nan() || d2 <= 0.0 {
                     return None;
                 }
                 let d = d2.sqrt();
@@ -139,7 +139,7 @@ impl Light {
             } => {
                 let v = position - p;
                 let d2 = v.length_squared();
-                if !(d2 > 0.0) {
+                if d2.is_nan() || d2 <= 0.0 {
                     return None;
                 }
                 let d = d2.sqrt();

@@ -198,10 +198,13 @@ fn solids_are_closed_and_outward() {
                 let tris = read_triangles(&prim, &buffers);
                 let label = format!("{name} mesh {:?}", mesh.name());
                 if prim.material().transmission().is_none() {
-                    // Planes: open, but every tile faces up (floor) or +Z (backdrop).
+                    // Planes: open, but every tile faces up (floor), +Z (backdrop) or +X (side wall).
                     for [a, b, c] in &tris {
                         let n = (*b - *a).cross(*c - *a);
-                        assert!(n.y > 0.0 || n.z > 0.0, "{label}: tile faces away");
+                        assert!(
+                            n.y > 0.0 || n.z > 0.0 || n.x > 0.0,
+                            "{label}: tile faces away"
+                        );
                     }
                     continue;
                 }

@@ -86,11 +86,35 @@ fn embree_and_bvh_images_agree() {
         let b = dir.join(format!("{name}.bvh.exr"));
         render_command(&opts(&scene, &a, Backend::Embree, 2)).expect("embree render");
         render_command(&opts(&scene, &b, Backend::Bvh, 2)).expect("bvh render");
-        let (e, mean) = rmse(&read_exr(&a).unwrap(), &read_exr(&b).unwrap());
-        // Same rays and seeds: only rays that graze an edge can take another branch, so the
-        // difference is a handful of pixels. 1% of the mean level allows ~ a dozen fully
-        // different pixels in 6912 and still fails on any systematic disagreement.
-        assert!(e <= 0.01 * mean, "{name}: RMSE {e} vs mean {mean}");
+        let (ia, ib) = (read_exr(&a).unwrap(), read_exr(&b).unwrap());
+        let (e, mean) = rmse(&ia, &ib);
+        let mean_b = ib
+            .data
+            .iter()
+            .map(|p| (p.x + p.y + p.z) as f64 / 3.0)
+            .sum::<f64>()
+            / ib.data.len() as f64;
+        let differing = ia
+            .data
+            .iter()
+            .zip(&ib.data)
+            .filter(|(x, y)| ((**x - **y).abs().max_element() as f64) > 0.05 * mean)
+            .count();
+        // Same rays and seeds: only a ray that grazes an edge can take another branch, and
+        // then Russian roulette may send that pixel's path elsewhere (its value can change
+        // by a whole branch weight). So: at most 0.5% of pixels may differ by more than 5%
+        // of the mean, the image means agree within 0.5%, and the RMSE stays under 5% of the
+        // mean. A systematic disagreement (wrong normals, a missed mesh) breaks all three.
+        let limit = ia.data.len() / 200;
+        assert!(
+            differing <= limit,
+            "{name}: {differing} pixels differ (limit {limit})"
+        );
+        assert!(
+            (mean - mean_b).abs() <= 0.005 * mean,
+            "{name}: means {mean} vs {mean_b}"
+        );
+        assert!(e <= 0.05 * mean, "{name}: RMSE {e} vs mean {mean}");
     }
 }
 
