@@ -21,7 +21,7 @@
 //!   see them.
 
 use crate::math::Ray;
-use crate::scene::Scene;
+use crate::scene::{Scene, TriangleData};
 use glam::{Vec2, Vec3};
 
 /// Offset distance per unit of coordinate magnitude: 2^-18 ≈ 3.8e-6, i.e. 32 ulps of f32.
@@ -94,35 +94,41 @@ impl SurfaceHit {
 impl Scene {
     /// Builds the hit record for a raw backend hit.
     fn make_hit(&self, ray: &Ray, t: f32, prim: u32, u: f32, v: f32) -> SurfaceHit {
-        let [i0, i1, i2] = self.triangles[prim as usize];
-        let (p0, p1, p2) = (
-            self.positions[i0 as usize],
-            self.positions[i1 as usize],
-            self.positions[i2 as usize],
-        );
+        let td = &self.triangle_data[prim as usize];
+        let [p0, p1, p2] = td.p;
         let w = 1.0 - u - v;
         let p = p0 * w + p1 * u + p2 * v;
         let ng = (p1 - p0).cross(p2 - p0).normalize_or(Vec3::Z);
-        let interp = self.normals[i0 as usize] * w
-            + self.normals[i1 as usize] * u
-            + self.normals[i2 as usize] * v;
-        let mut ns = interp.normalize_or(ng);
-        if ns.dot(ng) < 0.0 {
-            ns = -ns;
-        }
-        let uv = self.uvs[i0 as usize] * w + self.uvs[i1 as usize] * u + self.uvs[i2 as usize] * v;
+        let ns = if td.info & TriangleData::HAS_NORMALS != 0 {
+            let [i0, i1, i2] = self.triangles[prim as usize].map(|i| i as usize);
+            let n = (self.normals[i0] * w + self.normals[i1] * u + self.normals[i2] * v)
+                .normalize_or(ng);
+            if n.dot(ng) < 0.0 {
+                -n
+            } else {
+                n
+            }
+        } else {
+            ng
+        };
+        let uv = if td.info & TriangleData::HAS_UVS != 0 {
+            let [i0, i1, i2] = self.triangles[prim as usize].map(|i| i as usize);
+            self.uvs[i0] * w + self.uvs[i1] * u + self.uvs[i2] * v
+        } else {
+            Vec2::ZERO
+        };
         let mag = p0.abs().max(p1.abs()).max(p2.abs()).max_element();
-        let dir_len = ray.dir.length();
+        let inv_len = ray.dir.length_recip();
         SurfaceHit {
-            t: t * dir_len,
+            t: t / inv_len,
             p,
             ng,
             ns,
             uv,
             prim,
-            material: self.triangle_material[prim as usize],
+            material: td.material(),
             front_face: ray.dir.dot(ng) < 0.0,
-            wo: -ray.dir / dir_len,
+            wo: -ray.dir * inv_len,
             offset: mag * OFFSET_SCALE,
         }
     }
@@ -140,8 +146,10 @@ impl Scene {
             let raw = self.accel.closest(r.origin, r.dir, r.t_max)?;
             let mut hit = self.make_hit(&r, raw.t, raw.prim, raw.u, raw.v);
             if !self.is_cut_out(&hit) {
-                hit.t += travelled;
-                hit.wo = -ray.dir.normalize();
+                if travelled > 0.0 {
+                    hit.t += travelled;
+                    hit.wo = -ray.dir.normalize();
+                }
                 return Some(hit);
             }
             travelled += hit.t;
