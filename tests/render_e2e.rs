@@ -215,3 +215,25 @@ fn negative_determinant_node_renders_like_its_mirrored_mesh() {
         assert!(e == 0.0, "{backend:?}: RMSE {e} (mean {mean})");
     }
 }
+
+#[test]
+fn emissive_triangles_light_the_cornell_box() {
+    let Some(shared) = common::shared_assets() else {
+        return;
+    };
+    let dir = common::scratch_dir("e2e_cornell");
+    let scene = shared.join("obj/CornellBox-McGuire/CornellBox-Original.obj");
+    let out = dir.join("cornell.exr");
+    let summary = render_command(&opts(&scene, &out, Backend::Auto, 2)).expect("render");
+    // The ceiling light (Ke) is the only light: no default lights may be added.
+    assert!(
+        !summary.notes.iter().any(|n| n.contains("default key")),
+        "{:?}",
+        summary.notes
+    );
+    let img = read_exr(&out).unwrap();
+    // Direct light from the emitter: a good share of the visible walls and floor is lit.
+    let lit = img.data.iter().filter(|p| p.max_element() > 0.05).count();
+    assert!(lit > img.data.len() / 10, "only {lit} lit pixels");
+    assert!(img.data.iter().all(|p| p.is_finite()));
+}

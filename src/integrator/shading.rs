@@ -91,5 +91,40 @@ pub fn direct_light(
             sum += f * ls.irradiance * cos;
         }
     }
-    sum
+    sum + area_light(scene, hit, mat, sp, n, ng, ctx)
+}
+
+/// One sample of the emissive triangles (next-event estimation with a shadow ray).
+fn area_light(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    mat: &Material,
+    sp: &ShadingPoint,
+    n: Vec3,
+    ng: Vec3,
+    ctx: &mut Context,
+) -> Vec3 {
+    let u = ctx.rng.next_f32();
+    let uv = glam::Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
+    let Some(s) = scene.area_lights.sample(&scene.triangle_data, hit.p, u, uv) else {
+        return Vec3::ZERO;
+    };
+    let cos = n.dot(s.wi);
+    if cos <= 0.0 || ng.dot(s.wi) <= 0.0 || !(s.pdf > 0.0) {
+        return Vec3::ZERO;
+    }
+    let light = &scene.materials[scene.triangle_data[s.prim as usize].material() as usize].desc;
+    // Single-sided emitters only shine along their outward normal.
+    if !light.double_sided && s.normal.dot(s.wi) >= 0.0 {
+        return Vec3::ZERO;
+    }
+    let f = brdf(mat, sp, n, hit.wo, s.wi);
+    if f == Vec3::ZERO {
+        return Vec3::ZERO;
+    }
+    ctx.rays += 1;
+    if scene.occluded(&hit.spawn_ray_to(s.point)) {
+        return Vec3::ZERO;
+    }
+    f * light.emissive * (cos / s.pdf)
 }

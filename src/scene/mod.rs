@@ -11,6 +11,7 @@ pub mod desc;
 pub mod validate;
 
 use crate::accel::{Accel, Backend};
+use crate::area_light::AreaLights;
 use crate::error::Result;
 use crate::light::{self, Light};
 use crate::material::Material;
@@ -80,8 +81,10 @@ pub struct Scene {
     pub materials: Vec<Material>,
     /// Texture images.
     pub images: Vec<ImageDesc>,
-    /// Lights (the default key/fill lights when the file has none).
+    /// Lights (the default key/fill lights when the file has no light and no emitter).
     pub lights: Vec<Light>,
+    /// Emissive triangles, sampled for direct light.
+    pub area_lights: AreaLights,
     /// Cameras from the file.
     pub cameras: Vec<CameraDesc>,
     /// World bounding box (min, max).
@@ -162,8 +165,12 @@ impl Scene {
             |(lo, hi), p| (lo.min(*p), hi.max(*p)),
         );
         let mut notes = Vec::new();
+        let area_lights = AreaLights::build(&triangle_data, |m| {
+            let d = &materials[m as usize].desc;
+            (d.emissive, d.double_sided)
+        });
         let mut lights: Vec<Light> = desc.lights.iter().map(Light::from_desc).collect();
-        if lights.is_empty() {
+        if lights.is_empty() && area_lights.is_empty() {
             lights = light::default_lights();
             notes.push("no light in the file: using the default key and fill lights".into());
         }
@@ -184,6 +191,7 @@ impl Scene {
             materials,
             images: desc.images,
             lights,
+            area_lights,
             cameras: desc.cameras,
             bounds,
             warnings: desc.warnings,
