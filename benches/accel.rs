@@ -48,44 +48,8 @@ impl Rng {
 /// of sine noise (about ±0.1 of the unit radius). Shared vertices are generated once
 /// (keyed by their integer barycentric position on the icosahedron), so there are no cracks.
 pub fn displaced_icosphere(n: u32) -> (Vec<Vec3>, Vec<[u32; 3]>) {
-    let t = (1.0 + 5f32.sqrt()) / 2.0;
-    let ico = [
-        [-1.0, t, 0.0],
-        [1.0, t, 0.0],
-        [-1.0, -t, 0.0],
-        [1.0, -t, 0.0],
-        [0.0, -1.0, t],
-        [0.0, 1.0, t],
-        [0.0, -1.0, -t],
-        [0.0, 1.0, -t],
-        [t, 0.0, -1.0],
-        [t, 0.0, 1.0],
-        [-t, 0.0, -1.0],
-        [-t, 0.0, 1.0],
-    ]
-    .map(|v| Vec3::from_array(v).normalize());
-    let faces: [[u32; 3]; 20] = [
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
+    let (ico, faces) = iris::gen::shapes::icosahedron();
+    let ico: Vec<Vec3> = ico.iter().map(|v| v.as_vec3()).collect();
     let octaves: Vec<(Vec3, f32, f32, f32)> = (0..6)
         .map(|k| {
             let f = 2f32.powi(k + 1) * 1.7;

@@ -70,16 +70,12 @@ impl TriMesh {
     }
 }
 
-/// A geodesic sphere centred at the origin: a regular icosahedron whose triangles are split
-/// in four `subdivisions` times, new vertices pushed onto the sphere; smooth normals.
-/// 20·4ˢ triangles and 10·4ˢ + 2 vertices (s = 5: 20 480 and 10 242).
-/// `subdivisions` is clamped to [`MAX_SUBDIVISIONS`].
-pub fn icosphere(radius: f32, subdivisions: u32) -> TriMesh {
-    // Icosahedron vertices (0, ±1, ±φ) and cyclic permutations, φ = (1+√5)/2; face list in
-    // counter-clockwise order seen from outside (A. Kahler, "Creating an icosphere mesh in
-    // code", 2009). Orientation is asserted by the unit tests below.
+/// The regular icosahedron: 12 unit vertices (0, ±1, ±φ) and cyclic permutations,
+/// φ = (1+√5)/2, and 20 faces counter-clockwise seen from outside (A. Kahler, "Creating an
+/// icosphere mesh in code", 2009). Orientation is asserted by the unit tests below.
+pub fn icosahedron() -> (Vec<DVec3>, Vec<[u32; 3]>) {
     let t = (1.0 + 5.0f64.sqrt()) / 2.0;
-    let mut verts: Vec<DVec3> = [
+    let verts: Vec<DVec3> = [
         (-1.0, t, 0.0),
         (1.0, t, 0.0),
         (-1.0, -t, 0.0),
@@ -96,7 +92,7 @@ pub fn icosphere(radius: f32, subdivisions: u32) -> TriMesh {
     .iter()
     .map(|&(x, y, z)| DVec3::new(x, y, z).normalize())
     .collect();
-    let mut faces: Vec<[u32; 3]> = vec![
+    let faces = vec![
         [0, 11, 5],
         [0, 5, 1],
         [0, 1, 7],
@@ -118,6 +114,15 @@ pub fn icosphere(radius: f32, subdivisions: u32) -> TriMesh {
         [8, 6, 7],
         [9, 8, 1],
     ];
+    (verts, faces)
+}
+
+/// A geodesic sphere centred at the origin: a regular icosahedron whose triangles are split
+/// in four `subdivisions` times, new vertices pushed onto the sphere; smooth normals.
+/// 20·4ˢ triangles and 10·4ˢ + 2 vertices (s = 5: 20 480 and 10 242).
+/// `subdivisions` is clamped to [`MAX_SUBDIVISIONS`].
+pub fn icosphere(radius: f32, subdivisions: u32) -> TriMesh {
+    let (mut verts, mut faces) = icosahedron();
     for _ in 0..subdivisions.min(MAX_SUBDIVISIONS) {
         let mut midpoints: BTreeMap<(u32, u32), u32> = BTreeMap::new();
         let mut mid = |a: u32, b: u32, verts: &mut Vec<DVec3>| -> u32 {

@@ -110,7 +110,7 @@ fn area_light(
         return Vec3::ZERO;
     };
     let cos = n.dot(s.wi);
-    if cos <= 0.0 || ng.dot(s.wi) <= 0.0 || !(s.pdf > 0.0) {
+    if cos <= 0.0 || ng.dot(s.wi) <= 0.0 || s.pdf.is_nan() || s.pdf <= 0.0 {
         return Vec3::ZERO;
     }
     let light = &scene.materials[scene.triangle_data[s.prim as usize].material() as usize].desc;
