@@ -305,6 +305,16 @@ mod embree {
                 .closest(o, d, f32::INFINITY)
                 .map_or(f32::INFINITY, |h| h.t)
         });
+        // The same backend with build quality MEDIUM (the default above is HIGH).
+        let t0 = std::time::Instant::now();
+        let medium =
+            EmbreeAccel::build_with_quality(positions, indices, Some(false)).expect("embree build");
+        eprintln!("embree MEDIUM build {:.2} s", t0.elapsed().as_secs_f64());
+        bench_sets(c, "embree_backend_medium", sets, |o, d| {
+            medium
+                .closest(o, d, f32::INFINITY)
+                .map_or(f32::INFINITY, |h| h.t)
+        });
     }
 }
 

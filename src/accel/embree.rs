@@ -229,6 +229,16 @@ impl EmbreeAccel {
     /// Fails with [`Error::Accel`] if an index is out of range or Embree reports an error
     /// (unsupported CPU, out of memory, …).
     pub fn build(positions: &[Vec3], indices: &[[u32; 3]]) -> Result<Self> {
+        Self::build_with_quality(positions, indices, None)
+    }
+
+    /// As [`EmbreeAccel::build`], with the build quality forced: `Some(true)` HIGH,
+    /// `Some(false)` MEDIUM, `None` the default rule (benchmarks compare the two).
+    pub fn build_with_quality(
+        positions: &[Vec3],
+        indices: &[[u32; 3]],
+        high: Option<bool>,
+    ) -> Result<Self> {
         if let Some((i, t)) = indices
             .iter()
             .enumerate()
@@ -256,10 +266,11 @@ impl EmbreeAccel {
                 return Err(accel.error("cannot create the Embree scene"));
             }
             sys::rtcSetSceneFlags(accel.scene, sys::RTCSceneFlags::ROBUST);
-            let quality = if indices.len() > HIGH_QUALITY_MAX_TRIANGLES {
-                sys::RTCBuildQuality::MEDIUM
-            } else {
+            let high = high.unwrap_or(indices.len() <= HIGH_QUALITY_MAX_TRIANGLES);
+            let quality = if high {
                 sys::RTCBuildQuality::HIGH
+            } else {
+                sys::RTCBuildQuality::MEDIUM
             };
             sys::rtcSetSceneBuildQuality(accel.scene, quality);
             if !indices.is_empty() {
