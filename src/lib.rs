@@ -23,6 +23,7 @@
 pub mod accel;
 pub mod app;
 pub mod camera;
+pub mod envmap;
 pub mod error;
 pub mod gen;
 pub mod integrator;
