@@ -132,15 +132,15 @@ fn pdf_zero_only_where_radiance_zero() {
     assert!(zero_seen > 0, "the black bottom row should have pdf 0");
 }
 
-/// Chi-square test of sample() against pdf() on a 16 × 8 (φ, θ) grid of equal-angle bins,
-/// plus the per-sample consistency of the pdf and radiance fields.
-fn chi_square(env: &Environment, seed: u64) {
-    const NU: u32 = 16;
-    const NV: u32 = 8;
+/// Chi-square test of sample() against pdf() on an `nu` × `nv` (φ, θ) grid of equal-angle
+/// bins (aligned with the texels; finer than them when `nu > W`, which checks the placement
+/// of samples inside a texel), plus the per-sample consistency of the pdf and radiance
+/// fields.
+fn chi_square(env: &Environment, seed: u64, nu: u32, nv: u32) {
     const N: usize = 400_000;
     // Expected probability per bin from pdf() by quadrature (bins align with texels).
-    let mut expected = vec![0.0f64; (NU * NV) as usize];
-    let sub = 4;
+    let mut expected = vec![0.0f64; (nu * nv) as usize];
+    let sub = 8;
     let (qu, qv) = (W * sub, H * sub);
     for j in 0..qv {
         let t0 = std::f64::consts::PI * j as f64 / qv as f64;
@@ -148,7 +148,7 @@ fn chi_square(env: &Environment, seed: u64) {
         let d_omega = 2.0 * std::f64::consts::PI / qu as f64 * (t0.cos() - t1.cos());
         for i in 0..qu {
             let uv = Vec2::new((i as f32 + 0.5) / qu as f32, (j as f32 + 0.5) / qv as f32);
-            let bin = (j * NV / qv) * NU + i * NU / qu;
+            let bin = (j * nv / qv) * nu + i * nu / qu;
             expected[bin as usize] += env.pdf(uv_to_dir(uv)) as f64 * d_omega;
         }
     }
@@ -169,8 +169,8 @@ fn chi_square(env: &Environment, seed: u64) {
         assert_eq!(s.radiance, env.eval(s.wi));
         assert!((s.wi.length() - 1.0).abs() < 1e-5);
         let uv = dir_to_uv(s.wi);
-        let (x, y) = mapping::uv_to_pixel(uv, NU, NV);
-        observed[(y * NU + x) as usize] += 1;
+        let (x, y) = mapping::uv_to_pixel(uv, nu, nv);
+        observed[(y * nu + x) as usize] += 1;
     }
     assert!(none < N / 1000, "{none} samples failed");
     // Pool bins with expected count < 5 into one.
@@ -204,8 +204,15 @@ fn chi_square(env: &Environment, seed: u64) {
 
 #[test]
 fn sampling_matches_pdf_chi_square() {
-    chi_square(&synthetic(), 3);
-    chi_square(&uniform(), 4);
+    chi_square(&synthetic(), 3, 16, 8);
+    chi_square(&uniform(), 4, 16, 8);
+}
+
+#[test]
+fn sampling_matches_pdf_within_texels() {
+    // 2 × 2 bins per texel: a sampler that picks the right texel but places the sample
+    // wrongly inside it fails here.
+    chi_square(&synthetic(), 8, 2 * W, 2 * H);
 }
 
 /// ∫ L(ω)·max(ω.y, 0) dω, the irradiance on an upward-facing plane.
