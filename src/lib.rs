@@ -24,6 +24,7 @@ pub mod accel;
 pub mod app;
 pub mod area_light;
 pub mod camera;
+pub mod envmap;
 pub mod error;
 pub mod gen;
 pub mod integrator;
