@@ -44,6 +44,8 @@ pub struct RenderOptions {
     pub display: DisplayOptions,
     /// No progress bar.
     pub quiet: bool,
+    /// Environment light (`--env`).
+    pub env: Option<crate::envmap::Environment>,
 }
 
 /// What a render did, for the one-line summary.
@@ -170,6 +172,7 @@ pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
     };
     output::check_extension(&output)?;
     let (scene, load_time) = load(&opts.scene, opts.accel)?;
+    let scene = scene.with_environment(opts.env.clone());
     let (w, h) = image_size(opts, &scene)?;
     let (cam_desc, cam_note) = choose_camera(&scene, opts.camera.as_deref(), w as f32 / h as f32)?;
     let camera = Camera::new(&cam_desc, w, h);

@@ -93,6 +93,10 @@ struct RenderArgs {
     /// PNG tone map.
     #[arg(long, value_enum, default_value_t = ToneMapArg::Aces)]
     tonemap: ToneMapArg,
+    /// Environment light: `none`, a grey value or `R,G,B` radiance, or an equirectangular
+    /// .exr/.hdr map (+Y up; the image centre looks along −Z).
+    #[arg(long, default_value = "none", allow_hyphen_values = true)]
+    env: String,
     /// No progress bar.
     #[arg(short, long)]
     quiet: bool,
@@ -153,6 +157,7 @@ fn run(cli: Cli) -> iris::Result<()> {
                     },
                 },
                 quiet: a.quiet,
+                env: iris::envmap::Environment::parse_arg(&a.env)?,
             };
             let s = app::render_command(&opts)?;
             for n in &s.notes {

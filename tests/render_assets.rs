@@ -51,6 +51,7 @@ fn every_shared_scene_renders_finite_pixels() {
             camera: None,
             display: DisplayOptions::default(),
             quiet: true,
+            env: None,
         };
         render_command(&opts).unwrap_or_else(|e| panic!("{}: {e}", scene.display()));
         let img = read_exr(&out).unwrap();

@@ -91,7 +91,39 @@ pub fn direct_light(
             sum += f * ls.irradiance * cos;
         }
     }
-    sum + area_light(scene, hit, mat, sp, n, ng, ctx)
+    sum + area_light(scene, hit, mat, sp, n, ng, ctx) + environment(scene, hit, mat, sp, n, ng, ctx)
+}
+
+/// One importance sample of the environment light with a shadow ray.
+fn environment(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    mat: &Material,
+    sp: &ShadingPoint,
+    n: Vec3,
+    ng: Vec3,
+    ctx: &mut Context,
+) -> Vec3 {
+    let Some(env) = &scene.environment else {
+        return Vec3::ZERO;
+    };
+    let u = glam::Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
+    let Some(s) = env.sample(u) else {
+        return Vec3::ZERO;
+    };
+    let cos = n.dot(s.wi);
+    if cos <= 0.0 || ng.dot(s.wi) <= 0.0 {
+        return Vec3::ZERO;
+    }
+    let f = brdf(mat, sp, n, hit.wo, s.wi);
+    if f == Vec3::ZERO {
+        return Vec3::ZERO;
+    }
+    ctx.rays += 1;
+    if scene.occluded(&hit.spawn_ray(s.wi)) {
+        return Vec3::ZERO;
+    }
+    f * s.radiance * (cos / s.pdf)
 }
 
 /// One sample of the emissive triangles (next-event estimation with a shadow ray).

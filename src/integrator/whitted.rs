@@ -43,7 +43,10 @@ fn trace(scene: &Scene, ray: &Ray, depth: u32, max_depth: u32, w: Vec3, ctx: &mu
     }
     ctx.rays += 1;
     let Some(hit) = scene.intersect(ray) else {
-        return Vec3::ZERO;
+        return scene
+            .environment
+            .as_ref()
+            .map_or(Vec3::ZERO, |e| e.eval(ray.dir.normalize()));
     };
     let mat = &scene.materials[hit.material as usize];
     let l = shade(scene, &hit, depth, max_depth, w, ctx);

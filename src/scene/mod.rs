@@ -12,6 +12,7 @@ pub mod validate;
 
 use crate::accel::{Accel, Backend};
 use crate::area_light::AreaLights;
+use crate::envmap::Environment;
 use crate::error::Result;
 use crate::light::{self, Light};
 use crate::material::Material;
@@ -85,6 +86,10 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// Emissive triangles, sampled for direct light.
     pub area_lights: AreaLights,
+    /// Light from infinitely far away (`--env`), if any.
+    pub environment: Option<Environment>,
+    /// Whether `lights` are the default key/fill lights (the file had none).
+    pub default_lights: bool,
     /// Cameras from the file.
     pub cameras: Vec<CameraDesc>,
     /// World bounding box (min, max).
@@ -170,7 +175,8 @@ impl Scene {
             (d.emissive, d.double_sided)
         });
         let mut lights: Vec<Light> = desc.lights.iter().map(Light::from_desc).collect();
-        if lights.is_empty() && area_lights.is_empty() {
+        let default_lights = lights.is_empty() && area_lights.is_empty();
+        if default_lights {
             lights = light::default_lights();
             notes.push("no light in the file: using the default key and fill lights".into());
         }
@@ -192,6 +198,8 @@ impl Scene {
             images: desc.images,
             lights,
             area_lights,
+            environment: None,
+            default_lights,
             cameras: desc.cameras,
             bounds,
             warnings: desc.warnings,
@@ -200,6 +208,21 @@ impl Scene {
             accel_build_time,
             accel,
         })
+    }
+
+    /// Adds an environment light. It replaces the default key/fill lights (which are only
+    /// there because the file has no light of its own).
+    pub fn with_environment(mut self, env: Option<Environment>) -> Scene {
+        if env.is_some() && self.default_lights {
+            self.lights.clear();
+            self.default_lights = false;
+            self.notes.retain(|n| !n.contains("default key"));
+        }
+        if let Some(Environment::Map(m)) = &env {
+            self.warnings.extend(m.warnings().iter().cloned());
+        }
+        self.environment = env;
+        self
     }
 
     /// Name of the acceleration backend in use.
