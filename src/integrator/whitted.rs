@@ -1,26 +1,44 @@
 //! Whitted-style recursive ray tracing, as in the seed paper §4: at a dielectric the ray
 //! splits into a reflected and a refracted branch weighted by the exact Fresnel equations
 //! (total internal reflection sends everything to the reflected branch); opaque surfaces
-//! get direct light from punctual lights; smooth metals recurse as mirrors. Entering vs
-//! exiting comes from `front_face`, which picks η = n_in/n_out or its inverse (the outside
-//! medium is air here; nested media come with the path tracer).
+//! get direct light (punctual, emissive triangles, environment); smooth metals recurse as
+//! mirrors. Entering vs exiting comes from `front_face`; each branch carries the stack of
+//! media it is inside ([`crate::medium`]), so η is the ratio of the indices on the two
+//! sides (glass → water is 1.33/1.5, not 1.33/1), and Beer–Lambert absorption applies to
+//! the medium a segment actually crossed.
 //!
 //! Branches whose weight falls below [`RR_WEIGHT`] continue by Russian roulette (unbiased),
 //! so a gem's branching stays bounded; `max_depth` bounds the recursion.
 
 use super::{shading, Context};
 use crate::interaction::SurfaceHit;
+use crate::material::ShadingPoint;
 use crate::math::Ray;
-use crate::optics::{fresnel_dielectric, orient_interface, reflect, refract};
+use crate::medium::{self, MediumStack};
+use crate::optics::{fresnel_dielectric, fresnel_schlick, reflect, refract};
+use crate::scene::desc::AlphaMode;
 use crate::scene::Scene;
 use glam::Vec3;
 
 /// Branch weight (max RGB component) below which Russian roulette decides survival.
 pub const RR_WEIGHT: f32 = 0.01;
 
-/// Radiance along `ray`.
+/// Where a branch is: its depth, the limit, and the media it is inside.
+#[derive(Debug, Clone, Copy)]
+struct Path {
+    depth: u32,
+    max_depth: u32,
+    media: MediumStack,
+}
+
+/// Radiance along `ray` (the camera is in air).
 pub fn radiance(scene: &Scene, ray: &Ray, max_depth: u32, ctx: &mut Context) -> Vec3 {
-    trace(scene, ray, 0, max_depth, Vec3::ONE, ctx)
+    let path = Path {
+        depth: 0,
+        max_depth,
+        media: MediumStack::new(),
+    };
+    trace(scene, ray, path, Vec3::ONE, ctx)
 }
 
 /// Continues a branch with weight `w` (relative to the pixel): returns the weight to
@@ -37,8 +55,8 @@ fn survive(w: Vec3, ctx: &mut Context) -> Option<f32> {
     (ctx.rng.next_f32() < p).then_some(1.0 / p)
 }
 
-fn trace(scene: &Scene, ray: &Ray, depth: u32, max_depth: u32, w: Vec3, ctx: &mut Context) -> Vec3 {
-    if depth >= max_depth {
+fn trace(scene: &Scene, ray: &Ray, path: Path, w: Vec3, ctx: &mut Context) -> Vec3 {
+    if path.depth >= path.max_depth {
         return Vec3::ZERO;
     }
     ctx.rays += 1;
@@ -48,47 +66,43 @@ fn trace(scene: &Scene, ray: &Ray, depth: u32, max_depth: u32, w: Vec3, ctx: &mu
             .as_ref()
             .map_or(Vec3::ZERO, |e| e.eval(ray.dir.normalize()));
     };
-    let mat = &scene.materials[hit.material as usize];
-    let l = shade(scene, &hit, depth, max_depth, w, ctx);
-    // Beer–Lambert: the segment just travelled was inside this volume if we exit it.
-    if !hit.front_face && mat.is_volume() && mat.is_transmissive() {
-        l * mat.transmittance(hit.t)
-    } else {
-        l
+    let l = shade(scene, &hit, path, w, ctx);
+    // Beer–Lambert over the segment just travelled, inside the current medium.
+    match path.media.current() {
+        Some(m) => l * scene.materials[m as usize].transmittance(hit.t),
+        None => l,
     }
 }
 
-/// Follows a child branch of weight `w·k`.
+/// Follows a child branch of weight `w·k` with the media `media`.
 fn branch(
     scene: &Scene,
     ray: Ray,
-    depth: u32,
-    max_depth: u32,
+    path: Path,
+    media: MediumStack,
     w: Vec3,
     k: Vec3,
     ctx: &mut Context,
 ) -> Vec3 {
     let wk = w * k;
+    let child = Path {
+        depth: path.depth + 1,
+        media,
+        ..path
+    };
     match survive(wk, ctx) {
-        Some(s) => k * s * trace(scene, &ray, depth + 1, max_depth, wk * s, ctx),
+        Some(s) => k * s * trace(scene, &ray, child, wk * s, ctx),
         None => Vec3::ZERO,
     }
 }
 
-fn shade(
-    scene: &Scene,
-    hit: &SurfaceHit,
-    depth: u32,
-    max_depth: u32,
-    w: Vec3,
-    ctx: &mut Context,
-) -> Vec3 {
+fn shade(scene: &Scene, hit: &SurfaceHit, path: Path, w: Vec3, ctx: &mut Context) -> Vec3 {
     let mat = &scene.materials[hit.material as usize];
     let sp = mat.shade(hit.uv, &scene.images);
     let mut l = sp.emissive;
     let t = sp.transmission;
     if t > 0.0 {
-        l += t * dielectric(scene, hit, &sp, depth, max_depth, w * t, ctx);
+        l += t * dielectric(scene, hit, &sp, path, w * t, ctx);
     }
     let opaque = 1.0 - t;
     if opaque > 0.0 {
@@ -102,12 +116,12 @@ fn shade(
             };
             let r = reflect(hit.wo, n);
             if r.dot(hit.ng) * hit.wo.dot(hit.ng) > 0.0 {
-                let f = crate::optics::fresnel_schlick(sp.base_color, hit.wo.dot(n)) * sp.metallic;
+                let f = fresnel_schlick(sp.base_color, hit.wo.dot(n)) * sp.metallic;
                 o += branch(
                     scene,
                     hit.spawn_ray(r),
-                    depth,
-                    max_depth,
+                    path,
+                    path.media,
                     w * opaque,
                     f,
                     ctx,
@@ -117,16 +131,9 @@ fn shade(
         l += opaque * o;
     }
     // glTF BLEND: partial coverage lets the rest of the light through unchanged.
-    if matches!(mat.desc.alpha_mode, crate::scene::desc::AlphaMode::Blend) && sp.alpha < 1.0 {
-        let behind = branch(
-            scene,
-            hit.spawn_ray(-hit.wo),
-            depth,
-            max_depth,
-            w,
-            Vec3::splat(1.0 - sp.alpha),
-            ctx,
-        );
+    if matches!(mat.desc.alpha_mode, AlphaMode::Blend) && sp.alpha < 1.0 {
+        let k = Vec3::splat(1.0 - sp.alpha);
+        let behind = branch(scene, hit.spawn_ray(-hit.wo), path, path.media, w, k, ctx);
         l = l * sp.alpha + behind;
     }
     l
@@ -136,39 +143,50 @@ fn shade(
 fn dielectric(
     scene: &Scene,
     hit: &SurfaceHit,
-    sp: &crate::material::ShadingPoint,
-    depth: u32,
-    max_depth: u32,
+    sp: &ShadingPoint,
+    path: Path,
     w: Vec3,
     ctx: &mut Context,
 ) -> Vec3 {
     let mat = &scene.materials[hit.material as usize];
-    let ior = mat.ior();
-    let thin = !mat.is_volume();
-    // Normal on the incident side, and η = n_t / n_i from front_face.
-    let (n, eta) = orient_interface(hit.front_face, hit.ns, ior);
+    // Normal on the incident side.
+    let n = if hit.front_face { hit.ns } else { -hit.ns };
     let cos_i = hit.wo.dot(n).max(0.0);
+    if !mat.is_volume() {
+        // Thin wall: no bending, the media do not change; the base colour tints what passes.
+        let f = fresnel_dielectric(cos_i, mat.ior());
+        let r = branch(
+            scene,
+            hit.spawn_ray(reflect(hit.wo, n)),
+            path,
+            path.media,
+            w,
+            Vec3::splat(f),
+            ctx,
+        );
+        let k = sp.base_color * (1.0 - f);
+        return r + branch(scene, hit.spawn_ray(-hit.wo), path, path.media, w, k, ctx);
+    }
+    let (n_i, n_t, media_t) = medium::interface(path.media, hit.material, hit.front_face, |m| {
+        scene.materials[m as usize].ior()
+    });
+    // η = n_t / n_i; both infinite (inside an `ior: 0` medium) behaves as no interface.
+    let eta = if n_i == n_t { 1.0 } else { n_t / n_i };
     let f = fresnel_dielectric(cos_i, eta);
-    let mut l = Vec3::ZERO;
-    let r = reflect(hit.wo, n);
-    l += branch(
+    let mut l = branch(
         scene,
-        hit.spawn_ray(r),
-        depth,
-        max_depth,
+        hit.spawn_ray(reflect(hit.wo, n)),
+        path,
+        path.media,
         w,
         Vec3::splat(f),
         ctx,
     );
     if f < 1.0 {
-        if thin {
-            // Thin wall: no bending; the base colour tints what passes.
-            let k = sp.base_color * (1.0 - f);
-            l += branch(scene, hit.spawn_ray(-hit.wo), depth, max_depth, w, k, ctx);
-        } else if let Some(dir) = refract(hit.wo, n, eta) {
+        if let Some(dir) = refract(hit.wo, n, eta) {
             // Radiance is scaled by 1/η² across the interface (pbrt-v4 §9.5.2).
             let k = sp.base_color * ((1.0 - f) / (eta * eta));
-            l += branch(scene, hit.spawn_ray(dir), depth, max_depth, w, k, ctx);
+            l += branch(scene, hit.spawn_ray(dir), path, media_t, w, k, ctx);
         }
     }
     l

@@ -1,0 +1,134 @@
+//! Nested media (Schmidt & Budge 2002, "Simple Nested Dielectrics in Ray Traced Images"):
+//! each path carries the stack of volumetric dielectrics it is inside, so a ray crossing
+//! from one medium directly into another (water in a glass, a gem set in resin) refracts
+//! with the ratio of the two indices, not medium/air.
+//!
+//! Invariants: the stack holds material ids of volumetric materials (KHR_materials_volume
+//! thickness > 0) in the order they were entered; the current medium is the last one (or
+//! air, index 1, when empty). Entering pushes, exiting removes the last occurrence. A path
+//! that exits a medium it never entered (open meshes, a camera inside glass) is handled as
+//! glass-to-current-medium, the best guess. Depth is bounded by [`MAX_NESTING`]; deeper
+//! nesting drops the oldest entry.
+
+/// Deepest nesting tracked.
+pub const MAX_NESTING: usize = 8;
+
+/// The media a path is inside, innermost last. `Copy`, so each branch gets its own.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct MediumStack {
+    ids: [u32; MAX_NESTING],
+    len: u8,
+}
+
+impl MediumStack {
+    /// The empty stack: the path is in air.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The medium the path is in (innermost), or `None` for air.
+    pub fn current(&self) -> Option<u32> {
+        (self.len > 0).then(|| self.ids[self.len as usize - 1])
+    }
+
+    /// Whether the path is inside material `m`.
+    pub fn contains(&self, m: u32) -> bool {
+        self.ids[..self.len as usize].contains(&m)
+    }
+
+    /// The stack after entering material `m`.
+    pub fn entered(mut self, m: u32) -> Self {
+        if self.len as usize == MAX_NESTING {
+            self.ids.copy_within(1.., 0);
+            self.len -= 1;
+        }
+        self.ids[self.len as usize] = m;
+        self.len += 1;
+        self
+    }
+
+    /// The stack after leaving material `m` (its last occurrence; unchanged if absent).
+    pub fn left(mut self, m: u32) -> Self {
+        let n = self.len as usize;
+        if let Some(i) = self.ids[..n].iter().rposition(|&x| x == m) {
+            self.ids.copy_within(i + 1..n, i);
+            self.ids[n - 1] = 0; // keep unused slots zero so equality is structural
+            self.len -= 1;
+        }
+        self
+    }
+}
+
+/// The two sides of a volumetric interface crossed by a path with stack `stack` at a
+/// surface of material `m` (entering when `front_face`): returns (n_incident,
+/// n_transmitted, the stack on the transmitted side). `ior(id)` gives a material's index;
+/// air is 1. Overlapping volumes work out: inside glass, entering water gives 1.5 → 1.33,
+/// and the glass wall met later inside the water is a false interface (1.33 → 1.33).
+pub fn interface(
+    stack: MediumStack,
+    m: u32,
+    front_face: bool,
+    ior: impl Fn(u32) -> f32,
+) -> (f32, f32, MediumStack) {
+    let ior_of = |id: Option<u32>| id.map_or(1.0, &ior);
+    if front_face {
+        let after = stack.entered(m);
+        (ior_of(stack.current()), ior_of(after.current()), after)
+    } else if stack.contains(m) {
+        let after = stack.left(m);
+        (ior_of(stack.current()), ior_of(after.current()), after)
+    } else {
+        // Leaving a medium never entered (open mesh, camera inside): m → current medium.
+        (ior(m), ior_of(stack.current()), stack)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn interface_indices_for_nested_and_overlapping_volumes() {
+        let ior = |m: u32| [1.5f32, 1.33][m as usize];
+        let (glass, water) = (0u32, 1u32);
+        let air = MediumStack::new();
+        // Air → glass.
+        let (ni, nt, in_glass) = interface(air, glass, true, ior);
+        assert_eq!((ni, nt), (1.0, 1.5));
+        // Inside the glass wall, entering the (overlapping) water: 1.5 → 1.33.
+        let (ni, nt, in_water) = interface(in_glass, water, true, ior);
+        assert_eq!((ni, nt), (1.5, 1.33));
+        // The glass's inner wall, met inside the water, is a false interface.
+        let (ni, nt, s) = interface(in_water, glass, false, ior);
+        assert_eq!((ni, nt), (1.33, 1.33));
+        assert_eq!(s.current(), Some(water));
+        // Water → air at the free surface.
+        let (ni, nt, s) = interface(s, water, false, ior);
+        assert_eq!((ni, nt), (1.33, 1.0));
+        assert_eq!(s, MediumStack::new());
+        // Exiting glass never entered (camera inside): glass → air.
+        assert_eq!(interface(air, glass, false, ior).0, 1.5);
+    }
+
+    #[test]
+    fn enter_and_leave_in_any_order() {
+        let s = MediumStack::new();
+        assert_eq!(s.current(), None);
+        let glass = s.entered(1);
+        let water = glass.entered(2);
+        assert_eq!(water.current(), Some(2));
+        // Leaving the glass wall while still in the water (overlapping volumes).
+        assert_eq!(water.left(1).current(), Some(2));
+        assert_eq!(water.left(2).current(), Some(1));
+        assert_eq!(water.left(2).left(1), MediumStack::new());
+        // Leaving something never entered changes nothing.
+        assert_eq!(glass.left(7), glass);
+        // Overflow drops the oldest.
+        let mut deep = MediumStack::new();
+        for i in 0..(MAX_NESTING as u32 + 2) {
+            deep = deep.entered(i);
+        }
+        assert_eq!(deep.current(), Some(MAX_NESTING as u32 + 1));
+        assert!(!deep.contains(0) && !deep.contains(1) && deep.contains(2));
+    }
+}
