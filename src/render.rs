@@ -93,13 +93,12 @@ pub fn render(
                             rays: 0,
                         };
                         let mut sum = DVec3::ZERO;
-                        for s in 0..spp {
+                        for _ in 0..spp {
                             let jitter = if spp == 1 {
                                 Vec2::splat(0.5)
                             } else {
                                 Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32())
                             };
-                            let _ = s;
                             let ray = camera.generate_ray(Vec2::new(x as f32, y as f32) + jitter);
                             let l = integrator.radiance(scene, &ray, &mut ctx);
                             sum += l.as_dvec3();

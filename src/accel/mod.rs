@@ -9,7 +9,9 @@ pub mod bvh;
 pub mod embree;
 pub mod triangle;
 
-use crate::error::{Error, Result};
+#[cfg(not(feature = "embree"))]
+use crate::error::Error;
+use crate::error::Result;
 use glam::Vec3;
 
 /// A raw hit: ray parameter, triangle index, barycentrics.
@@ -93,6 +95,3 @@ impl Accel {
         }
     }
 }
-
-#[allow(dead_code)]
-fn _unused(_: Error) {}
