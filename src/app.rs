@@ -281,8 +281,23 @@ pub fn info_command(path: &Path) -> Result<String> {
         let _ = writeln!(s);
     }
     let _ = writeln!(s, "lights:");
-    if desc.lights.is_empty() {
-        let _ = writeln!(s, "  none (renders use the default key and fill lights)");
+    let emitters = desc
+        .meshes
+        .iter()
+        .filter(|m| {
+            m.material
+                .and_then(|i| desc.materials.get(i))
+                .is_some_and(|x| x.emissive.max_element() > 0.0)
+        })
+        .count();
+    if emitters > 0 {
+        let _ = writeln!(s, "  {emitters} emissive meshes (sampled as area lights)");
+    }
+    if desc.lights.is_empty() && emitters == 0 {
+        let _ = writeln!(
+            s,
+            "  none (renders use the default key and fill lights, or --env)"
+        );
     }
     for l in &desc.lights {
         let line = match l {
