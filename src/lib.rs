@@ -22,6 +22,7 @@
 
 pub mod accel;
 pub mod app;
+pub mod bsdf;
 pub mod camera;
 pub mod error;
 pub mod gen;
