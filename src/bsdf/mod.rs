@@ -60,10 +60,10 @@ pub enum Bsdf {
         /// GGX α.
         alpha: f32,
     },
-    /// Smooth (alpha < 1e-3 ⇒ delta lobes) or rough GGX dielectric (Walter 2007), reflection
-    /// + transmission, `tint` multiplies transmission (glTF base colour), `eta` may be < 1
-    /// (bubble) and may be +∞ (glTF ior 0: pure mirror). η = 1 is always delta (straight
-    /// through).
+    /// Smooth (alpha < 1e-3 ⇒ delta lobes) or rough GGX dielectric (Walter 2007), with
+    /// reflection and transmission; `tint` multiplies transmission (glTF base colour), `eta`
+    /// may be < 1 (bubble) and may be +∞ (glTF ior 0: pure mirror). η = 1 is always delta
+    /// (straight through).
     Dielectric {
         /// n_inside / n_outside.
         eta: f32,
