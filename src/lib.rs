@@ -23,6 +23,7 @@
 pub mod accel;
 pub mod app;
 pub mod area_light;
+pub mod bsdf;
 pub mod camera;
 pub mod envmap;
 pub mod error;

@@ -1,0 +1,191 @@
+//! Scattering functions (BSDFs) for path tracing: Lambert, GGX conductor, smooth/rough
+//! dielectric, thin dielectric and the glTF metallic-roughness mix. A closed enum, no trait
+//! objects.
+//!
+//! Frame: every direction is in the **local shading frame**, z = the surface's OUTWARD
+//! normal (outside of the object is z > 0); unit vectors point AWAY from the surface.
+//! `eta` = n_inside / n_outside; `wo.z < 0` means the path is inside the object (pbrt-v4
+//! `DielectricBxDF` convention). `f` is per steradian, pdfs are per unit solid angle; delta
+//! lobes have `eval = pdf = 0` and are only reachable through [`Bsdf::sample`], whose
+//! `f`/`pdf` then carry the delta's weight (f·|cos θi|/pdf is the throughput factor).
+
+mod dielectric;
+pub mod microfacet;
+mod pbr;
+#[cfg(test)]
+mod tests;
+
+use glam::{Vec2, Vec3};
+
+/// GGX α below which a lobe is treated as perfectly smooth (delta).
+pub const SMOOTH_ALPHA: f32 = 1e-3;
+
+/// Which quantity a path carries (pbrt-v4 §9.5.2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TransportMode {
+    /// Camera paths: refraction scales f by 1/η'² (radiance compression).
+    Radiance,
+    /// Light paths (adjoint BSDF): no η'² factor, f_imp(wo, wi) = f_rad(wi, wo).
+    Importance,
+}
+
+/// Result of [`Bsdf::sample`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BsdfSample {
+    /// Sampled incident direction (local frame, unit).
+    pub wi: Vec3,
+    /// f(wo, wi) (for delta lobes: the delta's coefficient).
+    pub f: Vec3,
+    /// Solid-angle pdf (for delta lobes: the discrete lobe probability).
+    pub pdf: f32,
+    /// Whether the sample is from a delta lobe.
+    pub delta: bool,
+    /// Whether `wi` is on the other side of the surface from `wo`.
+    pub transmission: bool,
+}
+
+/// A BSDF at one shading point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Bsdf {
+    /// Lambertian reflection, f = albedo/π (two-sided).
+    Lambert {
+        /// Diffuse reflectance.
+        albedo: Vec3,
+    },
+    /// GGX microfacet conductor with Schlick Fresnel from f0 (glTF metals: f0 = base colour);
+    /// `alpha < SMOOTH_ALPHA` ⇒ a delta mirror.
+    Conductor {
+        /// Normal-incidence reflectance.
+        f0: Vec3,
+        /// GGX α.
+        alpha: f32,
+    },
+    /// Smooth (alpha < 1e-3 ⇒ delta lobes) or rough GGX dielectric (Walter 2007), with
+    /// reflection and transmission; `tint` multiplies transmission (glTF base colour), `eta`
+    /// may be < 1 (bubble) and may be +∞ (glTF ior 0: pure mirror). η = 1 is always delta
+    /// (straight through).
+    Dielectric {
+        /// n_inside / n_outside.
+        eta: f32,
+        /// GGX α.
+        alpha: f32,
+        /// Transmission tint.
+        tint: Vec3,
+    },
+    /// Thin-walled dielectric (KHR_materials_transmission without volume): straight-through
+    /// transmission, no bending.
+    ThinDielectric {
+        /// Index of the slab relative to its surroundings.
+        eta: f32,
+        /// Transmission tint.
+        tint: Vec3,
+    },
+    /// glTF metallic-roughness: Lambert diffuse + GGX specular with KHR_materials_specular
+    /// (f0 = min(((ior−1)/(ior+1))²·specular_color, 1)·specular, f90 = specular), mixed with
+    /// the metal lobe by `metallic`; sample picks a lobe by an estimate of its weight.
+    /// `alpha` (= roughness²) is floored at 1e-2 (no delta lobe).
+    GltfPbr {
+        /// Base colour (linear).
+        base: Vec3,
+        /// Metalness in [0, 1].
+        metallic: f32,
+        /// GGX α.
+        alpha: f32,
+        /// Index of refraction (∞ allowed).
+        ior: f32,
+        /// KHR_materials_specular factor.
+        specular: f32,
+        /// KHR_materials_specular colour.
+        specular_color: Vec3,
+    },
+}
+
+/// Both directions on the same side of the surface.
+#[inline]
+pub(crate) fn same_hemisphere(a: Vec3, b: Vec3) -> bool {
+    a.z * b.z > 0.0
+}
+
+impl Bsdf {
+    fn gltf(&self) -> Option<pbr::Gltf> {
+        match *self {
+            Bsdf::GltfPbr {
+                base,
+                metallic,
+                alpha,
+                ior,
+                specular,
+                specular_color,
+            } => Some(pbr::Gltf::new(
+                base,
+                metallic,
+                alpha,
+                ior,
+                specular,
+                specular_color,
+            )),
+            _ => None,
+        }
+    }
+
+    /// Whether every lobe is a delta (eval and pdf are then always 0).
+    pub fn is_delta(&self) -> bool {
+        match *self {
+            Bsdf::Lambert { .. } | Bsdf::GltfPbr { .. } => false,
+            Bsdf::Conductor { alpha, .. } => alpha < SMOOTH_ALPHA,
+            Bsdf::Dielectric { eta, alpha, .. } => alpha < SMOOTH_ALPHA || eta == 1.0,
+            Bsdf::ThinDielectric { .. } => true,
+        }
+    }
+
+    /// f(wo, wi); 0 for delta lobes.
+    pub fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Vec3 {
+        if self.is_delta() {
+            return Vec3::ZERO;
+        }
+        match *self {
+            Bsdf::Lambert { albedo } => pbr::lambert_eval(albedo, wo, wi),
+            Bsdf::Conductor { f0, alpha } => pbr::conductor_eval(f0, alpha, wo, wi),
+            Bsdf::Dielectric { eta, alpha, tint } => {
+                dielectric::rough_eval(eta, alpha, tint, wo, wi, mode)
+            }
+            Bsdf::ThinDielectric { .. } => Vec3::ZERO,
+            Bsdf::GltfPbr { .. } => self.gltf().map_or(Vec3::ZERO, |g| g.eval(wo, wi)),
+        }
+    }
+
+    /// Solid-angle pdf of [`Bsdf::sample`] producing `wi`; 0 for delta lobes.
+    pub fn pdf(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> f32 {
+        if self.is_delta() {
+            return 0.0;
+        }
+        match *self {
+            Bsdf::Lambert { .. } => pbr::lambert_pdf(wo, wi),
+            Bsdf::Conductor { alpha, .. } => pbr::conductor_pdf(alpha, wo, wi),
+            Bsdf::Dielectric { eta, alpha, .. } => dielectric::rough_pdf(eta, alpha, wo, wi),
+            Bsdf::ThinDielectric { .. } => 0.0,
+            Bsdf::GltfPbr { .. } => self.gltf().map_or(0.0, |g| g.pdf(wo, wi)),
+        }
+    }
+
+    /// Samples wi given wo; `uc` picks a lobe, `u` the direction (all in [0,1)).
+    /// `None` when no valid direction results (e.g. a microfacet reflection below the
+    /// horizon, or grazing `wo`).
+    pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample> {
+        match *self {
+            Bsdf::Lambert { albedo } => pbr::lambert_sample(albedo, wo, u),
+            Bsdf::Conductor { f0, alpha } => {
+                pbr::conductor_sample(f0, alpha, alpha < SMOOTH_ALPHA, wo, u)
+            }
+            Bsdf::Dielectric { eta, alpha, tint } => {
+                if alpha < SMOOTH_ALPHA || eta == 1.0 {
+                    dielectric::smooth_sample(eta, tint, wo, uc, mode)
+                } else {
+                    dielectric::rough_sample(eta, alpha, tint, wo, uc, u, mode)
+                }
+            }
+            Bsdf::ThinDielectric { eta, tint } => dielectric::thin_sample(eta, tint, wo, uc),
+            Bsdf::GltfPbr { .. } => self.gltf()?.sample(wo, uc, u),
+        }
+    }
+}

@@ -1,0 +1,251 @@
+//! Opaque reflection lobes: Lambert, the GGX conductor with Schlick Fresnel, and the glTF
+//! metallic-roughness mix (glTF 2.0 spec Appendix B + KHR_materials_specular).
+//!
+//! Frame: local shading frame, z = normal. All lobes here are two-sided reflection: they are
+//! non-zero only when `wo` and `wi` lie in the same hemisphere and use |cos θ|. Densities
+//! are per unit solid angle.
+
+use super::microfacet::Ggx;
+use super::{same_hemisphere, BsdfSample};
+use crate::optics::{fresnel_schlick, reflect};
+use glam::{Vec2, Vec3};
+use std::f32::consts::{FRAC_1_PI, PI};
+
+/// Smallest GGX α of the glTF lobe (the same floor as `integrator::shading`): the glTF
+/// material has no delta lobe.
+pub const GLTF_MIN_ALPHA: f32 = 1e-2;
+
+/// Cosine-weighted hemisphere direction on `wo`'s side (Malley's method, pbrt-v4 §A.5.3,
+/// with the concentric map replaced by the polar one), pdf |cos θ|/π.
+#[inline]
+fn cosine_hemisphere(wo: Vec3, u: Vec2) -> Vec3 {
+    let r = u.x.sqrt();
+    let phi = 2.0 * PI * u.y;
+    let z = (1.0 - u.x).max(0.0).sqrt();
+    let z = if wo.z < 0.0 { -z } else { z };
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+/// Lambert f = albedo/π.
+pub(crate) fn lambert_eval(albedo: Vec3, wo: Vec3, wi: Vec3) -> Vec3 {
+    if same_hemisphere(wo, wi) {
+        albedo * FRAC_1_PI
+    } else {
+        Vec3::ZERO
+    }
+}
+
+/// Cosine-weighted pdf |cos θi|/π.
+pub(crate) fn lambert_pdf(wo: Vec3, wi: Vec3) -> f32 {
+    if same_hemisphere(wo, wi) {
+        wi.z.abs() * FRAC_1_PI
+    } else {
+        0.0
+    }
+}
+
+/// Cosine-weighted sample of the Lambert lobe.
+pub(crate) fn lambert_sample(albedo: Vec3, wo: Vec3, u: Vec2) -> Option<BsdfSample> {
+    let wi = cosine_hemisphere(wo, u);
+    let pdf = lambert_pdf(wo, wi);
+    (pdf > 0.0).then(|| BsdfSample {
+        wi,
+        f: albedo * FRAC_1_PI,
+        pdf,
+        delta: false,
+        transmission: false,
+    })
+}
+
+/// Half vector of a reflection pair, faced to +z (`None` when degenerate or not a
+/// reflection).
+#[inline]
+fn half_reflect(wo: Vec3, wi: Vec3) -> Option<Vec3> {
+    if !same_hemisphere(wo, wi) {
+        return None;
+    }
+    let wm = (wo + wi).normalize_or_zero();
+    if wm == Vec3::ZERO {
+        return None;
+    }
+    Some(if wm.z < 0.0 { -wm } else { wm })
+}
+
+/// Cook–Torrance specular term D·G2/(4|cos θo||cos θi|) without Fresnel (Walter 2007,
+/// eq. 20), and |wo·wm| for the Fresnel term.
+#[inline]
+fn ggx_spec(ggx: Ggx, wo: Vec3, wi: Vec3) -> Option<(f32, f32)> {
+    let wm = half_reflect(wo, wi)?;
+    let s = ggx.d(wm) * ggx.g(wo, wi) / (4.0 * wo.z.abs() * wi.z.abs());
+    Some((s, wo.dot(wm).abs()))
+}
+
+/// pdf of reflecting a visible normal: D_wo(wm)/(4|wo·wm|) (Walter 2007, eq. 14;
+/// Heitz 2018, eq. 17).
+#[inline]
+fn ggx_reflect_pdf(ggx: Ggx, wo: Vec3, wi: Vec3) -> f32 {
+    match half_reflect(wo, wi) {
+        Some(wm) => ggx.pdf_visible(wo, wm) / (4.0 * wo.dot(wm).abs()),
+        None => 0.0,
+    }
+}
+
+/// Reflects `wo` about a visible normal; `None` when it lands under the surface.
+#[inline]
+fn ggx_reflect_sample(ggx: Ggx, wo: Vec3, u: Vec2) -> Option<Vec3> {
+    if wo.z == 0.0 {
+        return None;
+    }
+    let wi = reflect(wo, ggx.sample_visible(wo, u));
+    same_hemisphere(wo, wi).then_some(wi)
+}
+
+/// Rough conductor f = D·G2·F_schlick(f0, |wo·wm|)/(4|cos θo||cos θi|).
+pub(crate) fn conductor_eval(f0: Vec3, alpha: f32, wo: Vec3, wi: Vec3) -> Vec3 {
+    match ggx_spec(Ggx { alpha }, wo, wi) {
+        Some((s, cos_h)) => fresnel_schlick(f0, cos_h) * s,
+        None => Vec3::ZERO,
+    }
+}
+
+/// Rough conductor pdf (VNDF reflection).
+pub(crate) fn conductor_pdf(alpha: f32, wo: Vec3, wi: Vec3) -> f32 {
+    ggx_reflect_pdf(Ggx { alpha }, wo, wi)
+}
+
+/// Rough conductor sample (VNDF reflection); smooth (α below the delta threshold) gives the
+/// mirror direction with f = F/|cos θi|, pdf 1.
+pub(crate) fn conductor_sample(
+    f0: Vec3,
+    alpha: f32,
+    smooth: bool,
+    wo: Vec3,
+    u: Vec2,
+) -> Option<BsdfSample> {
+    if wo.z == 0.0 {
+        return None;
+    }
+    if smooth {
+        let wi = Vec3::new(-wo.x, -wo.y, wo.z);
+        return Some(BsdfSample {
+            wi,
+            f: fresnel_schlick(f0, wo.z.abs()) / wi.z.abs(),
+            pdf: 1.0,
+            delta: true,
+            transmission: false,
+        });
+    }
+    let ggx = Ggx { alpha };
+    let wi = ggx_reflect_sample(ggx, wo, u)?;
+    let pdf = ggx_reflect_pdf(ggx, wo, wi);
+    (pdf > 0.0 && pdf.is_finite()).then(|| BsdfSample {
+        wi,
+        f: conductor_eval(f0, alpha, wo, wi),
+        pdf,
+        delta: false,
+        transmission: false,
+    })
+}
+
+/// The glTF metallic-roughness BRDF with KHR_materials_specular, already resolved.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Gltf {
+    pub base: Vec3,
+    pub metallic: f32,
+    pub ggx: Ggx,
+    /// Dielectric F0 = min(((ior−1)/(ior+1))²·specular_color, 1)·specular.
+    pub f0: Vec3,
+    /// Dielectric F90 = specular.
+    pub f90: f32,
+}
+
+impl Gltf {
+    pub fn new(
+        base: Vec3,
+        metallic: f32,
+        alpha: f32,
+        ior: f32,
+        specular: f32,
+        specular_color: Vec3,
+    ) -> Self {
+        let f0_ior = if ior.is_finite() {
+            ((ior - 1.0) / (ior + 1.0)).powi(2)
+        } else {
+            1.0
+        };
+        Gltf {
+            base,
+            metallic: metallic.clamp(0.0, 1.0),
+            ggx: Ggx {
+                alpha: alpha.max(GLTF_MIN_ALPHA),
+            },
+            f0: (Vec3::splat(f0_ior) * specular_color).min(Vec3::ONE) * specular,
+            f90: specular,
+        }
+    }
+
+    /// Schlick with f90 (KHR_materials_specular): F0 + (F90 − F0)(1 − cos)^5.
+    #[inline]
+    fn fresnel_d(&self, cos: f32) -> Vec3 {
+        self.f0 + (Vec3::splat(self.f90) - self.f0) * (1.0 - cos.clamp(0.0, 1.0)).powi(5)
+    }
+
+    /// f = mix((1 − max F_d)·base/π + F_d·spec, F_schlick(base)·spec, metallic)
+    /// (glTF 2.0 Appendix B.3.5; the same expression as `integrator::shading::brdf`).
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        let Some((s, cos_h)) = ggx_spec(self.ggx, wo, wi) else {
+            return Vec3::ZERO;
+        };
+        let fd = self.fresnel_d(cos_h);
+        let dielectric = self.base * FRAC_1_PI * (1.0 - fd.max_element()) + fd * s;
+        let metal = fresnel_schlick(self.base, cos_h) * s;
+        dielectric.lerp(metal, self.metallic)
+    }
+
+    /// Probability of sampling the specular lobe: its estimated weight (Fresnel at |cos θo|)
+    /// over the total, kept in [0.1, 0.9] unless a lobe is exactly absent.
+    fn p_spec(&self, wo: Vec3) -> f32 {
+        let c = wo.z.abs();
+        let fd = self.fresnel_d(c);
+        let m = self.metallic;
+        let w_spec = (1.0 - m) * fd.element_sum() / 3.0
+            + m * fresnel_schlick(self.base, c).element_sum() / 3.0;
+        let w_diff = (1.0 - m) * (self.base.element_sum() / 3.0) * (1.0 - fd.max_element());
+        if w_diff <= 0.0 {
+            1.0
+        } else if w_spec <= 0.0 {
+            0.0
+        } else {
+            (w_spec / (w_spec + w_diff)).clamp(0.1, 0.9)
+        }
+    }
+
+    /// Mixture pdf p_spec·pdf_GGX + (1 − p_spec)·pdf_cos.
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        if wo.z == 0.0 {
+            return 0.0;
+        }
+        let p = self.p_spec(wo);
+        p * ggx_reflect_pdf(self.ggx, wo, wi) + (1.0 - p) * lambert_pdf(wo, wi)
+    }
+
+    /// One-sample lobe selection by `uc`; returns the full f and mixture pdf.
+    pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2) -> Option<BsdfSample> {
+        if wo.z == 0.0 {
+            return None;
+        }
+        let wi = if uc < self.p_spec(wo) {
+            ggx_reflect_sample(self.ggx, wo, u)?
+        } else {
+            cosine_hemisphere(wo, u)
+        };
+        let pdf = self.pdf(wo, wi);
+        (pdf > 0.0 && pdf.is_finite()).then(|| BsdfSample {
+            wi,
+            f: self.eval(wo, wi),
+            pdf,
+            delta: false,
+            transmission: false,
+        })
+    }
+}
