@@ -54,7 +54,46 @@ pub fn brdf(mat: &Material, sp: &ShadingPoint, n: Vec3, wo: Vec3, wi: Vec3) -> V
     dielectric.lerp(metal, sp.metallic)
 }
 
-/// Direct light from every punctual light at an opaque hit, with shadow rays.
+/// An opaque hit seen from the viewer's side, ready to receive light.
+struct Receiver<'a> {
+    scene: &'a Scene,
+    hit: &'a SurfaceHit,
+    mat: &'a Material,
+    sp: &'a ShadingPoint,
+    /// Shading normal on the viewer's side.
+    n: Vec3,
+    /// Geometric normal on the viewer's side.
+    ng: Vec3,
+}
+
+impl Receiver<'_> {
+    /// Light arriving from unit direction `wi` along the unblocked `shadow` ray, carrying
+    /// `incident` (irradiance at normal incidence, or radiance / pdf): f · incident · cos.
+    fn connect(
+        &self,
+        wi: Vec3,
+        shadow: crate::math::Ray,
+        incident: Vec3,
+        ctx: &mut Context,
+    ) -> Vec3 {
+        let cos = self.n.dot(wi);
+        if cos <= 0.0 || self.ng.dot(wi) <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let f = brdf(self.mat, self.sp, self.n, self.hit.wo, wi);
+        if f == Vec3::ZERO {
+            return Vec3::ZERO;
+        }
+        ctx.rays += 1;
+        if self.scene.occluded(&shadow) {
+            return Vec3::ZERO;
+        }
+        f * incident * cos
+    }
+}
+
+/// Direct light at an opaque hit, with shadow rays: every punctual light, one sample of the
+/// emissive triangles and one of the environment.
 pub fn direct_light(
     scene: &Scene,
     hit: &SurfaceHit,
@@ -69,80 +108,51 @@ pub fn direct_light(
     } else {
         (-hit.ns, -hit.ng)
     };
+    let r = Receiver {
+        scene,
+        hit,
+        mat,
+        sp,
+        n,
+        ng,
+    };
     let mut sum = Vec3::ZERO;
     for light in &scene.lights {
-        let Some(ls) = light.sample_li(hit.p) else {
-            continue;
-        };
-        let cos = n.dot(ls.wi);
-        if cos <= 0.0 || ng.dot(ls.wi) <= 0.0 {
-            continue;
-        }
-        let f = brdf(mat, sp, n, hit.wo, ls.wi);
-        if f == Vec3::ZERO {
-            continue;
-        }
-        let shadow = match ls.position {
-            Some(p) => hit.spawn_ray_to(p),
-            None => hit.spawn_ray(ls.wi),
-        };
-        ctx.rays += 1;
-        if !scene.occluded(&shadow) {
-            sum += f * ls.irradiance * cos;
+        if let Some(ls) = light.sample_li(hit.p) {
+            let shadow = match ls.position {
+                Some(p) => hit.spawn_ray_to(p),
+                None => hit.spawn_ray(ls.wi),
+            };
+            sum += r.connect(ls.wi, shadow, ls.irradiance, ctx);
         }
     }
-    sum + area_light(scene, hit, mat, sp, n, ng, ctx) + environment(scene, hit, mat, sp, n, ng, ctx)
+    sum + area_light(&r, ctx) + environment(&r, ctx)
 }
 
-/// One importance sample of the environment light with a shadow ray.
-fn environment(
-    scene: &Scene,
-    hit: &SurfaceHit,
-    mat: &Material,
-    sp: &ShadingPoint,
-    n: Vec3,
-    ng: Vec3,
-    ctx: &mut Context,
-) -> Vec3 {
-    let Some(env) = &scene.environment else {
+/// One importance sample of the environment light.
+fn environment(r: &Receiver, ctx: &mut Context) -> Vec3 {
+    let Some(env) = &r.scene.environment else {
         return Vec3::ZERO;
     };
     let u = glam::Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
-    let Some(s) = env.sample(u) else {
-        return Vec3::ZERO;
-    };
-    let cos = n.dot(s.wi);
-    if cos <= 0.0 || ng.dot(s.wi) <= 0.0 {
-        return Vec3::ZERO;
+    match env.sample(u) {
+        Some(s) => r.connect(s.wi, r.hit.spawn_ray(s.wi), s.radiance / s.pdf, ctx),
+        None => Vec3::ZERO,
     }
-    let f = brdf(mat, sp, n, hit.wo, s.wi);
-    if f == Vec3::ZERO {
-        return Vec3::ZERO;
-    }
-    ctx.rays += 1;
-    if scene.occluded(&hit.spawn_ray(s.wi)) {
-        return Vec3::ZERO;
-    }
-    f * s.radiance * (cos / s.pdf)
 }
 
-/// One sample of the emissive triangles (next-event estimation with a shadow ray).
-fn area_light(
-    scene: &Scene,
-    hit: &SurfaceHit,
-    mat: &Material,
-    sp: &ShadingPoint,
-    n: Vec3,
-    ng: Vec3,
-    ctx: &mut Context,
-) -> Vec3 {
+/// One sample of the emissive triangles.
+fn area_light(r: &Receiver, ctx: &mut Context) -> Vec3 {
+    let scene = r.scene;
     let u = ctx.rng.next_f32();
     let uv = glam::Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
-    let Some(s) = scene.area_lights.sample(&scene.triangle_data, hit.p, u, uv) else {
+    let Some(s) = scene
+        .area_lights
+        .sample(&scene.triangle_data, r.hit.p, u, uv)
+    else {
         return Vec3::ZERO;
     };
-    let cos = n.dot(s.wi);
-    if cos <= 0.0 || ng.dot(s.wi) <= 0.0 || s.pdf.is_nan() || s.pdf <= 0.0 {
+    if s.pdf.is_nan() || s.pdf <= 0.0 {
         return Vec3::ZERO;
     }
     let light = &scene.materials[scene.triangle_data[s.prim as usize].material() as usize].desc;
@@ -150,13 +160,10 @@ fn area_light(
     if !light.double_sided && s.normal.dot(s.wi) >= 0.0 {
         return Vec3::ZERO;
     }
-    let f = brdf(mat, sp, n, hit.wo, s.wi);
-    if f == Vec3::ZERO {
-        return Vec3::ZERO;
-    }
-    ctx.rays += 1;
-    if scene.occluded(&hit.spawn_ray_to(s.point)) {
-        return Vec3::ZERO;
-    }
-    f * light.emissive * (cos / s.pdf)
+    r.connect(
+        s.wi,
+        r.hit.spawn_ray_to(s.point),
+        light.emissive / s.pdf,
+        ctx,
+    )
 }
