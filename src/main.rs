@@ -40,6 +40,8 @@ enum Command {
 enum MethodArg {
     /// Recursive ray tracing (seed paper §4).
     Whitted,
+    /// Path tracing with next-event estimation and MIS.
+    Path,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -138,6 +140,7 @@ fn run(cli: Cli) -> iris::Result<()> {
                 spp: a.spp,
                 method: match a.method {
                     MethodArg::Whitted => Method::Whitted,
+                    MethodArg::Path => Method::Path,
                 },
                 max_depth: a.max_depth,
                 accel: match a.accel {

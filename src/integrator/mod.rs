@@ -2,6 +2,7 @@
 //! maths lives in its own module, and per-hit shading shared between them lives in
 //! [`shading`].
 
+pub mod path;
 pub mod shading;
 pub mod whitted;
 
@@ -15,6 +16,8 @@ pub enum Method {
     /// Recursive ray tracing after the seed paper §4: direct light from punctual lights,
     /// Fresnel-weighted reflection and refraction branches.
     Whitted,
+    /// Unidirectional path tracing with next-event estimation and MIS.
+    Path,
 }
 
 /// Per-thread state an integrator carries along one camera sample.
@@ -39,6 +42,7 @@ impl Integrator {
     pub fn radiance(&self, scene: &Scene, ray: &Ray, ctx: &mut Context) -> Vec3 {
         match self.method {
             Method::Whitted => whitted::radiance(scene, ray, self.max_depth, ctx),
+            Method::Path => path::radiance(scene, ray, self.max_depth, ctx),
         }
     }
 }

@@ -1,0 +1,248 @@
+//! Unidirectional path tracing (`--method path`, Kajiya 1986; pbrt-v4 `PathIntegrator`):
+//! at each non-delta hit, next-event estimation toward one light chosen uniformly among the
+//! punctual lights, the emissive triangles and the environment, combined with BSDF sampling
+//! by multiple importance sampling (power heuristic, Veach 1997). Delta bounces (smooth
+//! glass, mirrors) do not use up the `max_depth` budget: they are counted separately up to
+//! [`MAX_DELTA_BOUNCES`], so a gem's internal reflections are not cut short. Russian
+//! roulette on the throughput after three non-delta bounces.
+//!
+//! Materials become BSDFs ([`crate::bsdf`]) in the local frame of the outward shading
+//! normal; volumes use the path's medium stack for η and Beer–Lambert.
+
+use super::Context;
+use crate::bsdf::{Bsdf, TransportMode};
+use crate::interaction::SurfaceHit;
+use crate::material::ShadingPoint;
+use crate::math::{Frame, Ray};
+use crate::medium::{self, MediumStack};
+use crate::scene::desc::AlphaMode;
+use crate::scene::Scene;
+use glam::{Vec2, Vec3};
+
+/// Most delta (specular) bounces on one path.
+pub const MAX_DELTA_BOUNCES: u32 = 1024;
+
+/// Power heuristic with β = 2.
+fn mis(a: f32, b: f32) -> f32 {
+    let (a2, b2) = (a * a, b * b);
+    if a2 + b2 > 0.0 {
+        a2 / (a2 + b2)
+    } else {
+        0.0
+    }
+}
+
+/// The BSDF at a hit (one lobe chosen by the transmission weight), its frame, and the media
+/// on the far side of a refraction.
+fn make_bsdf(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    sp: &ShadingPoint,
+    media: MediumStack,
+    u: f32,
+) -> (Bsdf, MediumStack) {
+    let mat = &scene.materials[hit.material as usize];
+    let alpha = sp.roughness * sp.roughness;
+    if sp.transmission > 0.0 && u < sp.transmission {
+        if !mat.is_volume() {
+            return (
+                Bsdf::ThinDielectric {
+                    eta: mat.ior(),
+                    tint: sp.base_color,
+                },
+                media,
+            );
+        }
+        let (n_i, n_t, after) = medium::interface(media, hit.material, hit.front_face, |m| {
+            scene.materials[m as usize].ior()
+        });
+        // Bsdf's η is n_inside / n_outside, the outside being the normal's side.
+        let eta = if n_i == n_t {
+            1.0
+        } else if hit.front_face {
+            n_t / n_i
+        } else {
+            n_i / n_t
+        };
+        return (
+            Bsdf::Dielectric {
+                eta,
+                alpha,
+                tint: sp.base_color,
+            },
+            after,
+        );
+    }
+    let d = &mat.desc;
+    let bsdf = Bsdf::GltfPbr {
+        base: sp.base_color,
+        metallic: sp.metallic,
+        alpha,
+        ior: mat.ior(),
+        specular: d.specular,
+        specular_color: d.specular_color,
+    };
+    (bsdf, media)
+}
+
+/// Next-event estimation: one light, chosen uniformly among the light groups.
+fn next_event(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    bsdf: &Bsdf,
+    frame: &Frame,
+    wo: Vec3,
+    ctx: &mut Context,
+) -> Vec3 {
+    let n_punctual = scene.lights.len();
+    let has_area = !scene.area_lights.is_empty();
+    let has_env = scene.environment.is_some();
+    let groups = n_punctual + has_area as usize + has_env as usize;
+    if groups == 0 {
+        return Vec3::ZERO;
+    }
+    let p_sel = 1.0 / groups as f32;
+    let k = ((ctx.rng.next_f32() * groups as f32) as usize).min(groups - 1);
+    let u = Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
+    let uc = ctx.rng.next_f32();
+    // (direction, shadow ray, incident radiance / pdf, light pdf for MIS or None for delta)
+    let (wi, shadow, incident, light_pdf) = if k < n_punctual {
+        let Some(ls) = scene.lights[k].sample_li(hit.p) else {
+            return Vec3::ZERO;
+        };
+        let shadow = match ls.position {
+            Some(p) => hit.spawn_ray_to(p),
+            None => hit.spawn_ray(ls.wi),
+        };
+        (ls.wi, shadow, ls.irradiance / p_sel, None)
+    } else if has_area && k == n_punctual {
+        let Some(s) = scene.area_lights.sample(&scene.triangle_data, hit.p, uc, u) else {
+            return Vec3::ZERO;
+        };
+        let light = &scene.materials[scene.triangle_data[s.prim as usize].material() as usize].desc;
+        if !light.double_sided && s.normal.dot(s.wi) >= 0.0 || s.pdf.is_nan() || s.pdf <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let pdf = s.pdf * p_sel;
+        (
+            s.wi,
+            hit.spawn_ray_to(s.point),
+            light.emissive / pdf,
+            Some(pdf),
+        )
+    } else {
+        let Some(env) = &scene.environment else {
+            return Vec3::ZERO;
+        };
+        let Some(s) = env.sample(u) else {
+            return Vec3::ZERO;
+        };
+        let pdf = s.pdf * p_sel;
+        (s.wi, hit.spawn_ray(s.wi), s.radiance / pdf, Some(pdf))
+    };
+    let wi_local = frame.to_local(wi);
+    let f = bsdf.eval(wo, wi_local, TransportMode::Radiance);
+    if f == Vec3::ZERO {
+        return Vec3::ZERO;
+    }
+    ctx.rays += 1;
+    if scene.occluded(&shadow) {
+        return Vec3::ZERO;
+    }
+    let w = light_pdf.map_or(1.0, |lp| {
+        mis(lp, bsdf.pdf(wo, wi_local, TransportMode::Radiance))
+    });
+    f * incident * (wi_local.z.abs() * w)
+}
+
+/// Radiance along `ray` (the camera is in air).
+pub fn radiance(scene: &Scene, ray: &Ray, max_depth: u32, ctx: &mut Context) -> Vec3 {
+    let mut l = Vec3::ZERO;
+    let mut beta = Vec3::ONE;
+    let mut ray = *ray;
+    let mut media = MediumStack::new();
+    let (mut depth, mut delta_depth) = (0u32, 0u32);
+    // The previous bounce: delta (no MIS), its BSDF pdf and position.
+    let (mut prev_delta, mut prev_pdf, mut prev_p) = (true, 0.0f32, ray.origin);
+    let groups = scene.lights.len()
+        + !scene.area_lights.is_empty() as usize
+        + scene.environment.is_some() as usize;
+    let p_sel = if groups > 0 { 1.0 / groups as f32 } else { 0.0 };
+    loop {
+        ctx.rays += 1;
+        let Some(hit) = scene.intersect(&ray) else {
+            if let Some(env) = &scene.environment {
+                let d = ray.dir.normalize();
+                let w = if prev_delta {
+                    1.0
+                } else {
+                    mis(prev_pdf, p_sel * env.pdf(d))
+                };
+                l += beta * env.eval(d) * w;
+            }
+            break;
+        };
+        if let Some(m) = media.current() {
+            beta *= scene.materials[m as usize].transmittance(hit.t);
+        }
+        let mat = &scene.materials[hit.material as usize];
+        let sp = mat.shade(hit.uv, &scene.images);
+        if sp.emissive != Vec3::ZERO && (hit.front_face || mat.desc.double_sided) {
+            let w = if prev_delta {
+                1.0
+            } else {
+                let lp = p_sel
+                    * scene
+                        .area_lights
+                        .pdf(&scene.triangle_data, hit.prim, prev_p, hit.p);
+                mis(prev_pdf, lp)
+            };
+            l += beta * sp.emissive * w;
+        }
+        // glTF BLEND: stochastic coverage; the uncovered part continues straight on.
+        if matches!(mat.desc.alpha_mode, AlphaMode::Blend) && ctx.rng.next_f32() >= sp.alpha {
+            ray = hit.spawn_ray(-hit.wo);
+            continue;
+        }
+        let (bsdf, media_t) = make_bsdf(scene, &hit, &sp, media, ctx.rng.next_f32());
+        let frame = Frame::from_normal(hit.ns);
+        let wo = frame.to_local(hit.wo);
+        if !bsdf.is_delta() {
+            l += beta * next_event(scene, &hit, &bsdf, &frame, wo, ctx);
+        }
+        let uc = ctx.rng.next_f32();
+        let u = Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
+        let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Radiance) else {
+            break;
+        };
+        if bs.pdf.is_nan() || bs.pdf <= 0.0 || !bs.f.is_finite() {
+            break;
+        }
+        beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
+        let wi = frame.to_world(bs.wi);
+        if bs.transmission && mat.is_volume() {
+            media = media_t;
+        }
+        (prev_delta, prev_pdf, prev_p) = (bs.delta, bs.pdf, hit.p);
+        if bs.delta {
+            delta_depth += 1;
+            if delta_depth > MAX_DELTA_BOUNCES {
+                break;
+            }
+        } else {
+            depth += 1;
+            if depth >= max_depth {
+                break;
+            }
+            if depth >= 3 {
+                let p = beta.max_element().min(0.95);
+                if ctx.rng.next_f32() >= p {
+                    break;
+                }
+                beta /= p;
+            }
+        }
+        ray = hit.spawn_ray(wi);
+    }
+    l
+}
