@@ -63,6 +63,18 @@ fn range_window(d: f32, range: Option<f32>) -> f32 {
     }
 }
 
+/// Unit direction, distance and squared distance from `p` to a light at `position`;
+/// `None` at the light itself.
+fn toward(position: Vec3, p: Vec3) -> Option<(Vec3, f32, f32)> {
+    let v = position - p;
+    let d2 = v.length_squared();
+    if d2.is_nan() || d2 <= 0.0 {
+        return None;
+    }
+    let d = d2.sqrt();
+    Some((v / d, d, d2))
+}
+
 impl Light {
     /// Converts a validated description.
     pub fn from_desc(d: &LightDesc) -> Light {
@@ -116,15 +128,10 @@ impl Light {
                 intensity,
                 range,
             } => {
-                let v = position - p;
-                let d2 = v.length_squared();
-                if d2.is_nan() || d2 <= 0.0 {
-                    return None;
-                }
-                let d = d2.sqrt();
+                let (wi, d, d2) = toward(position, p)?;
                 let e = intensity * (range_window(d, range) / d2);
                 Some(LightSample {
-                    wi: v / d,
+                    wi,
                     position: Some(position),
                     irradiance: e,
                 })
@@ -137,13 +144,7 @@ impl Light {
                 cos_outer,
                 range,
             } => {
-                let v = position - p;
-                let d2 = v.length_squared();
-                if d2.is_nan() || d2 <= 0.0 {
-                    return None;
-                }
-                let d = d2.sqrt();
-                let wi = v / d;
+                let (wi, d, d2) = toward(position, p)?;
                 let cd = (-wi).dot(direction);
                 // Spec: smooth attenuation between the cone cosines, squared.
                 let t = if cos_inner > cos_outer {

@@ -6,38 +6,16 @@
 //! - A white Lambertian sphere (albedo 1, no specular layer): the estimate is noisy but
 //!   unbiased; with 64 spp at 24×24 the image mean is within 1 % (σ of the mean ≈ 0.2 %).
 
+mod common;
+
 use glam::Vec3;
-use iris::accel::Backend;
 use iris::camera::{look_at, Camera};
-use iris::envmap::Environment;
 use iris::integrator::{Integrator, Method};
 use iris::render::{render, RenderSettings};
-use iris::scene::desc::{CameraDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
-use iris::scene::Scene;
+use iris::scene::desc::{CameraDesc, MaterialDesc, Projection};
 
 fn furnace(material: MaterialDesc, spp: u32) -> Vec<Vec3> {
-    let sphere = iris::gen::shapes::icosphere(1.0, 4);
-    let desc = SceneDesc {
-        source: "furnace".into(),
-        meshes: vec![MeshDesc {
-            name: "sphere".into(),
-            positions: sphere.positions,
-            normals: sphere.normals,
-            indices: sphere.indices,
-            material: Some(0),
-            ..Default::default()
-        }],
-        materials: vec![material],
-        ..Default::default()
-    };
-    let scene = Scene::build(
-        iris::scene::validate::validate(desc).unwrap(),
-        Backend::Auto,
-    )
-    .unwrap()
-    .with_environment(Some(Environment::Uniform {
-        radiance: Vec3::ONE,
-    }));
+    let scene = common::sphere_in_white_environment(material);
     let cam = CameraDesc {
         name: "c".into(),
         projection: Projection::Perspective {

@@ -248,34 +248,13 @@ fn emissive_triangles_light_the_cornell_box() {
 /// 20 % or more.
 #[test]
 fn lambertian_sphere_in_uniform_environment_has_albedo_radiance() {
-    use iris::envmap::Environment;
-    use iris::scene::desc::{MaterialDesc, MeshDesc, SceneDesc};
-    let sphere = iris::gen::shapes::icosphere(1.0, 4);
-    let desc = SceneDesc {
-        source: "furnace".into(),
-        meshes: vec![MeshDesc {
-            name: "sphere".into(),
-            positions: sphere.positions,
-            normals: sphere.normals,
-            indices: sphere.indices,
-            material: Some(0),
-            ..Default::default()
-        }],
-        materials: vec![MaterialDesc {
-            name: "white".into(),
-            base_color: glam::Vec4::new(0.8, 0.8, 0.8, 1.0),
-            metallic: 0.0,
-            specular: 0.0,
-            ..Default::default()
-        }],
+    let scene = common::sphere_in_white_environment(iris::scene::desc::MaterialDesc {
+        name: "white".into(),
+        base_color: glam::Vec4::new(0.8, 0.8, 0.8, 1.0),
+        metallic: 0.0,
+        specular: 0.0,
         ..Default::default()
-    };
-    let desc = iris::scene::validate::validate(desc).unwrap();
-    let scene = iris::scene::Scene::build(desc, Backend::Auto)
-        .unwrap()
-        .with_environment(Some(Environment::Uniform {
-            radiance: Vec3::ONE,
-        }));
+    });
     assert!(
         scene.lights.is_empty(),
         "the environment replaces the default lights"

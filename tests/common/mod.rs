@@ -35,3 +35,31 @@ pub fn scratch_dir(name: &str) -> PathBuf {
     std::fs::create_dir_all(&dir).expect("create scratch dir");
     dir
 }
+
+/// A unit sphere (icosphere, 5120 triangles, smooth normals) at the origin with one
+/// material, under a uniform environment of radiance 1: the furnace-test scene.
+pub fn sphere_in_white_environment(
+    material: iris::scene::desc::MaterialDesc,
+) -> iris::scene::Scene {
+    use iris::scene::desc::{MeshDesc, SceneDesc};
+    let sphere = iris::gen::shapes::icosphere(1.0, 4);
+    let desc = SceneDesc {
+        source: "furnace".into(),
+        meshes: vec![MeshDesc {
+            name: "sphere".into(),
+            positions: sphere.positions,
+            normals: sphere.normals,
+            indices: sphere.indices,
+            material: Some(0),
+            ..Default::default()
+        }],
+        materials: vec![material],
+        ..Default::default()
+    };
+    let desc = iris::scene::validate::validate(desc).expect("valid furnace scene");
+    iris::scene::Scene::build(desc, iris::accel::Backend::Auto)
+        .expect("build")
+        .with_environment(Some(iris::envmap::Environment::Uniform {
+            radiance: glam::Vec3::ONE,
+        }))
+}
