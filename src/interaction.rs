@@ -19,6 +19,12 @@
 //!   a large triangle are covered too). No other module adds an epsilon.
 //! - Alpha-masked (glTF `MASK`) hits below the cutoff are skipped here, so integrators never
 //!   see them.
+//! - Coincident surfaces ([`Scene::coincident`]): where two objects share a face (water
+//!   filling a glass, two prisms in optical contact), the surfaces within [`MERGE_SCALE`] ×
+//!   the coordinate magnitude of a hit, measured along its normal, are reported together so
+//!   the caller crosses them as one interface, and the hit's offset grows to clear them all
+//!   (otherwise the ray spawned past the first face would start behind the second and never
+//!   see it).
 
 use crate::math::Ray;
 use crate::scene::{Scene, TriangleData};
@@ -26,6 +32,55 @@ use glam::{Vec2, Vec3};
 
 /// Offset distance per unit of coordinate magnitude: 2^-18 ≈ 3.8e-6, i.e. 32 ulps of f32.
 pub const OFFSET_SCALE: f32 = 1.0 / 262_144.0;
+
+/// Half-length of the coincidence probe per unit of coordinate magnitude: 16 offsets
+/// (2^-14 ≈ 6.1e-5). Faces closer than this along the normal are one interface; a real gap
+/// that thin is below what the offset rule can resolve anyway.
+pub const MERGE_SCALE: f32 = 16.0 * OFFSET_SCALE;
+
+/// Most surfaces merged into one interface with a hit (besides the hit itself).
+pub const MAX_COINCIDENT: usize = 4;
+
+/// A surface lying on a hit, crossed in the same step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Coincident {
+    /// Triangle index.
+    pub prim: u32,
+    /// Material index.
+    pub material: u32,
+    /// The ray crosses it from outside (`dot(dir, ng) < 0`), i.e. enters its object.
+    pub front_face: bool,
+}
+
+/// The other surfaces coincident with a hit: one per (material, side), never the hit's own
+/// (material, side) — an adjacent triangle of the same surface met at a shared edge.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct CoincidentSet {
+    items: [Option<Coincident>; MAX_COINCIDENT],
+    len: usize,
+}
+
+impl CoincidentSet {
+    /// The coincident surfaces.
+    pub fn iter(&self) -> impl Iterator<Item = Coincident> + '_ {
+        self.items[..self.len].iter().flatten().copied()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    fn add(&mut self, c: Coincident) {
+        let dup = self
+            .iter()
+            .any(|o| o.material == c.material && o.front_face == c.front_face);
+        if !dup && self.len < MAX_COINCIDENT {
+            self.items[self.len] = Some(c);
+            self.len += 1;
+        }
+    }
+}
 
 /// Shadow rays toward a point stop this fraction short of it (pbrt-v4 `ShadowEpsilon`), so a
 /// surface *at* the target never occludes it.
@@ -161,6 +216,53 @@ impl Scene {
             };
         }
         None
+    }
+
+    /// The surfaces coincident with `hit` (see the module docs), and `hit` with its offset
+    /// widened so that rays spawned from it start beyond all of them, on either side.
+    ///
+    /// The probe is a segment along the hit's normal through `p`, ±[`MERGE_SCALE`] × the
+    /// hit triangle's coordinate magnitude, so it finds coincident faces whatever the
+    /// incoming ray's angle. Alpha cut-outs are ignored.
+    pub fn coincident(&self, hit: &SurfaceHit) -> (SurfaceHit, CoincidentSet) {
+        let mut set = CoincidentSet::default();
+        let mut out = *hit;
+        let half = hit.offset * (MERGE_SCALE / OFFSET_SCALE);
+        if half.is_nan() || half <= 0.0 {
+            return (out, set);
+        }
+        let probe = Ray {
+            origin: hit.p + hit.ng * half,
+            dir: -hit.ng,
+            t_max: 2.0 * half,
+        };
+        let dir = -hit.wo;
+        for raw in self
+            .accel
+            .all_hits(probe.origin, probe.dir, probe.t_max)
+            .as_slice()
+        {
+            if raw.prim == hit.prim {
+                continue;
+            }
+            let other = self.make_hit(&probe, raw.t, raw.prim, raw.u, raw.v);
+            if self.is_cut_out(&other) {
+                continue;
+            }
+            let front_face = dir.dot(other.ng) < 0.0;
+            if other.material == hit.material && front_face == hit.front_face {
+                continue; // the same surface: a neighbouring triangle at a shared edge
+            }
+            set.add(Coincident {
+                prim: raw.prim,
+                material: other.material,
+                front_face,
+            });
+            // The partner's plane lies `half − t` along ng from p; clear it by its own offset.
+            let gap = (half - raw.t).abs();
+            out.offset = out.offset.max(gap + other.offset.max(hit.offset));
+        }
+        (out, set)
     }
 
     /// Whether anything opaque blocks `ray` within `[0, t_max)`.

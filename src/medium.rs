@@ -10,6 +10,9 @@
 //! glass-to-current-medium, the best guess. Depth is bounded by [`MAX_NESTING`]; deeper
 //! nesting drops the oldest entry.
 
+use crate::interaction::{SurfaceHit, MAX_COINCIDENT};
+use crate::scene::Scene;
+
 /// Deepest nesting tracked.
 pub const MAX_NESTING: usize = 8;
 
@@ -70,17 +73,65 @@ pub fn interface(
     front_face: bool,
     ior: impl Fn(u32) -> f32,
 ) -> (f32, f32, MediumStack) {
+    interface_merged(stack, &[(m, front_face)], ior)
+}
+
+/// As [`interface`] for several surfaces crossed at one point (coincident faces of touching
+/// objects, `(material, entering)` each): the path leaves every medium it exits, then
+/// enters every medium it enters, and refracts once with the indices before and after.
+/// Glass whose inner wall coincides with the water's outer wall gives 1.5 → 1.33 in one
+/// step; two touching prisms of one glass give 1.5 → 1.5 (no interface). A medium exited
+/// but never entered (open meshes, a camera inside) is taken as the incident one.
+pub fn interface_merged(
+    stack: MediumStack,
+    crossings: &[(u32, bool)],
+    ior: impl Fn(u32) -> f32,
+) -> (f32, f32, MediumStack) {
     let ior_of = |id: Option<u32>| id.map_or(1.0, &ior);
-    if front_face {
-        let after = stack.entered(m);
-        (ior_of(stack.current()), ior_of(after.current()), after)
-    } else if stack.contains(m) {
-        let after = stack.left(m);
-        (ior_of(stack.current()), ior_of(after.current()), after)
-    } else {
-        // Leaving a medium never entered (open mesh, camera inside): m → current medium.
-        (ior(m), ior_of(stack.current()), stack)
+    let unknown_exit = crossings
+        .iter()
+        .find(|&&(m, entering)| !entering && !stack.contains(m));
+    let n_i = match unknown_exit {
+        Some(&(m, _)) => ior(m),
+        None => ior_of(stack.current()),
+    };
+    let mut after = stack;
+    for &(m, entering) in crossings {
+        if !entering {
+            after = after.left(m);
+        }
     }
+    for &(m, entering) in crossings {
+        if entering {
+            after = after.entered(m);
+        }
+    }
+    (n_i, ior_of(after.current()), after)
+}
+
+/// The volumetric interface a path with media `media` crosses at `hit`, with every surface
+/// coincident with it merged in ([`Scene::coincident`]): n_incident, n_transmitted, the
+/// media beyond, and the hit whose spawned rays clear all the merged surfaces (use it for
+/// every ray leaving this interface). Only volumetric partners take part; a thin-walled or
+/// opaque face lying on a volume's boundary is ignored here.
+pub fn crossing(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    media: MediumStack,
+) -> (f32, f32, MediumStack, SurfaceHit) {
+    let (hit, set) = scene.coincident(hit);
+    let mut crossings = [(hit.material, hit.front_face); 1 + MAX_COINCIDENT];
+    let mut n = 1;
+    for c in set.iter() {
+        if scene.materials[c.material as usize].is_volume() {
+            crossings[n] = (c.material, c.front_face);
+            n += 1;
+        }
+    }
+    let (n_i, n_t, after) = interface_merged(media, &crossings[..n], |m| {
+        scene.materials[m as usize].ior()
+    });
+    (n_i, n_t, after, hit)
 }
 
 #[cfg(test)]
@@ -108,6 +159,31 @@ mod tests {
         assert_eq!(s, MediumStack::new());
         // Exiting glass never entered (camera inside): glass → air.
         assert_eq!(interface(air, glass, false, ior).0, 1.5);
+    }
+
+    #[test]
+    fn merged_crossings_refract_once_between_the_outer_media() {
+        let ior = |m: u32| [1.5f32, 1.33][m as usize];
+        let (glass, water) = (0u32, 1u32);
+        let in_glass = MediumStack::new().entered(glass);
+        // Glass wall → water through coincident faces: leave glass, enter water.
+        let (ni, nt, s) = interface_merged(in_glass, &[(glass, false), (water, true)], ior);
+        assert_eq!((ni, nt), (1.5, 1.33));
+        assert_eq!(s, MediumStack::new().entered(water));
+        // Order of the crossings does not matter.
+        let (ni2, nt2, s2) = interface_merged(in_glass, &[(water, true), (glass, false)], ior);
+        assert_eq!((ni2, nt2, s2), (ni, nt, s));
+        // And back: water → glass.
+        let (ni, nt, s) = interface_merged(s, &[(water, false), (glass, true)], ior);
+        assert_eq!((ni, nt), (1.33, 1.5));
+        assert_eq!(s, in_glass);
+        // Two touching prisms of the same glass: no interface, still inside glass.
+        let (ni, nt, s) = interface_merged(in_glass, &[(glass, false), (glass, true)], ior);
+        assert_eq!((ni, nt, s), (1.5, 1.5, in_glass));
+        // Exiting glass never entered, into water: 1.5 → 1.33.
+        let (ni, nt, _) =
+            interface_merged(MediumStack::new(), &[(glass, false), (water, true)], ior);
+        assert_eq!((ni, nt), (1.5, 1.33));
     }
 
     #[test]

@@ -11,7 +11,7 @@
 //! below the scene's coordinate magnitude, far below f32 resolution (6e-8 relative).
 
 use super::triangle::RayPrep;
-use super::RawHit;
+use super::{HitList, RawHit};
 use glam::{Vec3, Vec3A};
 use obvhs::cwbvh::CwBvh;
 use obvhs::ray::{Ray, RayHit};
@@ -146,5 +146,30 @@ impl BvhAccel {
             prep.intersect(a, b, c, r.tmax)
                 .map_or(f32::INFINITY, |h| h.0)
         })
+    }
+
+    /// Every hit in `[0, t_max)` (up to [`super::MAX_HITS`]): the closure records each
+    /// candidate and reports a miss, so traversal visits them all.
+    pub fn all_hits(&self, origin: Vec3, dir: Vec3, t_max: f32) -> HitList {
+        let mut out = HitList::default();
+        if self.tris.is_empty() || t_max.is_nan() || t_max <= 0.0 {
+            return out;
+        }
+        let ray = self.ray(origin, dir, t_max);
+        let prep = RayPrep::new(origin * self.scale, dir);
+        let mut hit = RayHit::none();
+        self.bvh.ray_traverse(ray, &mut hit, |r, id| {
+            let [a, b, c] = self.tris[id];
+            if let Some((t, u, v)) = prep.intersect(a, b, c, r.tmax) {
+                out.push(RawHit {
+                    t: t / self.scale,
+                    prim: self.prim_ids[id],
+                    u,
+                    v,
+                });
+            }
+            f32::INFINITY
+        });
+        out
     }
 }

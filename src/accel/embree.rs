@@ -23,7 +23,7 @@
 
 #![allow(unsafe_code)]
 
-use super::RawHit;
+use super::{HitList, RawHit};
 use crate::error::{Error, Result};
 use embree4_sys as sys;
 use glam::Vec3;
@@ -133,6 +133,39 @@ impl RayHit {
                 inst: [INVALID_ID; 2],
             },
         }
+    }
+}
+
+/// The query context of [`EmbreeAccel::all_hits`]: Embree's `RTCRayQueryContext` first
+/// (room for `instID`/`instPrimID` of any level count this build may have), then ours.
+#[repr(C)]
+struct CollectContext {
+    base: [u32; 4],
+    hits: HitList,
+}
+
+/// Argument filter of [`EmbreeAccel::all_hits`]: records every valid candidate of the
+/// ray packet (SOA layout `RTCRayN`/`RTCHitN`, field k of lane i at `k·N + i`) and rejects
+/// it. Lane layout: ray field 8 is `tfar` (the candidate's t); hit fields 3, 4 are u, v
+/// and 5 is `primID`.
+unsafe extern "C" fn collect_filter(args: *const sys::RTCFilterFunctionNArguments) {
+    let args = &*args;
+    let n = args.N as usize;
+    let ctx = &mut *(args.context as *mut CollectContext);
+    let ray = args.ray as *const f32;
+    let hit = args.hit as *const f32;
+    for i in 0..n {
+        let valid = args.valid.add(i);
+        if *valid == 0 {
+            continue;
+        }
+        ctx.hits.push(RawHit {
+            t: *ray.add(8 * n + i),
+            prim: *(hit.add(5 * n + i) as *const u32),
+            u: *hit.add(3 * n + i),
+            v: *hit.add(4 * n + i),
+        });
+        *valid = 0;
     }
 }
 
@@ -265,7 +298,12 @@ impl EmbreeAccel {
             if accel.scene.is_null() {
                 return Err(accel.error("cannot create the Embree scene"));
             }
-            sys::rtcSetSceneFlags(accel.scene, sys::RTCSceneFlags::ROBUST);
+            // FILTER_FUNCTION_IN_ARGUMENTS lets `all_hits` pass its collecting filter per
+            // query; queries without a filter (all others) are unaffected.
+            sys::rtcSetSceneFlags(
+                accel.scene,
+                sys::RTCSceneFlags::ROBUST | sys::RTCSceneFlags::FILTER_FUNCTION_IN_ARGUMENTS,
+            );
             let high = high.unwrap_or(indices.len() <= HIGH_QUALITY_MAX_TRIANGLES);
             let quality = if high {
                 sys::RTCBuildQuality::HIGH
@@ -383,6 +421,35 @@ impl EmbreeAccel {
             );
         }
         ray.tfar == f32::NEG_INFINITY
+    }
+
+    /// Every hit in `[0, t_max)` (up to [`super::MAX_HITS`]): an argument filter records
+    /// each candidate and rejects it, so Embree keeps traversing until none is left.
+    pub fn all_hits(&self, origin: Vec3, dir: Vec3, t_max: f32) -> HitList {
+        let mut ctx = CollectContext {
+            base: [INVALID_ID; 4],
+            hits: HitList::default(),
+        };
+        if t_max.is_nan() || t_max <= 0.0 {
+            return ctx.hits;
+        }
+        let mut rh = RayHit::new(origin, dir, t_max);
+        let mut args = QueryArgs::incoherent();
+        args.flags |= sys::RTCRayQueryFlags::INVOKE_ARGUMENT_FILTER.0;
+        args.context = (&mut ctx as *mut CollectContext).cast();
+        args.filter = collect_filter as *const c_void;
+        // SAFETY: as in `closest`; `args.context` points at `ctx`, whose first field stands
+        // in for the `RTCRayQueryContext` (instance ids, set invalid as
+        // `rtcInitRayQueryContext` does) and which outlives the call; `collect_filter` only
+        // reads through the pointers Embree passes it.
+        unsafe {
+            sys::rtcIntersect1(
+                self.scene,
+                (&mut rh as *mut RayHit).cast(),
+                (&mut args as *mut QueryArgs).cast(),
+            );
+        }
+        ctx.hits
     }
 
     /// Benchmark baseline: a bare `rtcIntersect1` loop over `(origin, dir)` rays with

@@ -27,6 +27,53 @@ pub struct RawHit {
     pub v: f32,
 }
 
+/// Most hits [`Accel::all_hits`] reports; further ones are counted in `overflow` only.
+pub const MAX_HITS: usize = 8;
+
+/// Every surface along a short segment, in no particular order (see [`Accel::all_hits`]).
+#[derive(Debug, Clone, Copy)]
+pub struct HitList {
+    hits: [RawHit; MAX_HITS],
+    len: usize,
+    /// Hits beyond [`MAX_HITS`] that were dropped.
+    pub overflow: usize,
+}
+
+impl Default for HitList {
+    fn default() -> Self {
+        let none = RawHit {
+            t: 0.0,
+            prim: 0,
+            u: 0.0,
+            v: 0.0,
+        };
+        HitList {
+            hits: [none; MAX_HITS],
+            len: 0,
+            overflow: 0,
+        }
+    }
+}
+
+impl HitList {
+    /// Records a hit (dropped, and counted, once the list is full).
+    #[inline]
+    pub fn push(&mut self, h: RawHit) {
+        if self.len < MAX_HITS {
+            self.hits[self.len] = h;
+            self.len += 1;
+        } else {
+            self.overflow += 1;
+        }
+    }
+
+    /// The recorded hits.
+    #[inline]
+    pub fn as_slice(&self) -> &[RawHit] {
+        &self.hits[..self.len]
+    }
+}
+
 /// Which backend to build (`--accel`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Backend {
@@ -83,6 +130,18 @@ impl Accel {
             Accel::Bvh(b) => b.occluded(origin, dir, t_max),
             #[cfg(feature = "embree")]
             Accel::Embree(e) => e.occluded(origin, dir, t_max),
+        }
+    }
+
+    /// Every triangle crossed by `origin + t·dir` for `t` in `[0, t_max)` (up to
+    /// [`MAX_HITS`]). Meant for short probes: the intersection layer uses it to find
+    /// surfaces coincident with a hit.
+    #[inline]
+    pub fn all_hits(&self, origin: Vec3, dir: Vec3, t_max: f32) -> HitList {
+        match self {
+            Accel::Bvh(b) => b.all_hits(origin, dir, t_max),
+            #[cfg(feature = "embree")]
+            Accel::Embree(e) => e.all_hits(origin, dir, t_max),
         }
     }
 

@@ -32,11 +32,12 @@ fn mis(a: f32, b: f32) -> f32 {
     }
 }
 
-/// The BSDF at a hit (one lobe chosen by the transmission weight), its frame, and the media
-/// on the far side of a refraction.
+/// The BSDF at a hit (one lobe chosen by the transmission weight) and the media on the far
+/// side of a refraction. At a volume boundary `hit` becomes the merged interface's hit
+/// (coincident faces of touching objects crossed at once, [`medium::crossing`]).
 fn make_bsdf(
     scene: &Scene,
-    hit: &SurfaceHit,
+    hit: &mut SurfaceHit,
     sp: &ShadingPoint,
     media: MediumStack,
     u: f32,
@@ -53,9 +54,8 @@ fn make_bsdf(
                 media,
             );
         }
-        let (n_i, n_t, after) = medium::interface(media, hit.material, hit.front_face, |m| {
-            scene.materials[m as usize].ior()
-        });
+        let (n_i, n_t, after, merged) = medium::crossing(scene, hit, media);
+        *hit = merged;
         // Bsdf's η is n_inside / n_outside, the outside being the normal's side.
         let eta = if n_i == n_t {
             1.0
@@ -170,7 +170,7 @@ pub fn radiance(scene: &Scene, ray: &Ray, max_depth: u32, ctx: &mut Context) -> 
     let p_sel = if groups > 0 { 1.0 / groups as f32 } else { 0.0 };
     loop {
         ctx.rays += 1;
-        let Some(hit) = scene.intersect(&ray) else {
+        let Some(mut hit) = scene.intersect(&ray) else {
             if let Some(env) = &scene.environment {
                 let d = ray.dir.normalize();
                 let w = if prev_delta {
@@ -204,7 +204,7 @@ pub fn radiance(scene: &Scene, ray: &Ray, max_depth: u32, ctx: &mut Context) -> 
             ray = hit.spawn_ray(-hit.wo);
             continue;
         }
-        let (bsdf, media_t) = make_bsdf(scene, &hit, &sp, media, ctx.rng.next_f32());
+        let (bsdf, media_t) = make_bsdf(scene, &mut hit, &sp, media, ctx.rng.next_f32());
         let frame = Frame::from_normal(hit.ns);
         let wo = frame.to_local(hit.wo);
         if !bsdf.is_delta() {

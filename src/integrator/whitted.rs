@@ -167,9 +167,10 @@ fn dielectric(
         let k = sp.base_color * (1.0 - f);
         return r + branch(scene, hit.spawn_ray(-hit.wo), path, path.media, w, k, ctx);
     }
-    let (n_i, n_t, media_t) = medium::interface(path.media, hit.material, hit.front_face, |m| {
-        scene.materials[m as usize].ior()
-    });
+    // Coincident faces of touching volumes are crossed as one interface; rays leave from
+    // the merged hit, which clears them all.
+    let (n_i, n_t, media_t, merged) = medium::crossing(scene, hit, path.media);
+    let hit = &merged;
     // η = n_t / n_i; both infinite (inside an `ior: 0` medium) behaves as no interface.
     let eta = if n_i == n_t { 1.0 } else { n_t / n_i };
     let f = fresnel_dielectric(cos_i, eta);
