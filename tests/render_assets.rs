@@ -1,10 +1,14 @@
 //! Every glTF/GLB and OBJ scene in the shared third-party assets renders (small, few
-//! samples) on the default backend without NaN or infinite pixels, and not entirely black.
+//! samples) on the default backend without NaN or infinite pixels, and not entirely black:
+//! with `--method whitted` as the file is lit, and with `--method path` under a uniform
+//! environment as well (so every BSDF, environment sampling and MIS run on every file).
 
 mod common;
 
+use glam::Vec3;
 use iris::accel::Backend;
 use iris::app::{render_command, RenderOptions};
+use iris::envmap::Environment;
 use iris::integrator::Method;
 use iris::output::{read_exr, DisplayOptions};
 use std::path::{Path, PathBuf};
@@ -36,31 +40,48 @@ fn every_shared_scene_renders_finite_pixels() {
     scenes(&shared, &mut files);
     assert!(files.len() >= 20, "found only {} scenes", files.len());
     let dir = common::scratch_dir("render_assets");
+    let runs = [
+        (Method::Whitted, 2, None),
+        (
+            Method::Path,
+            4,
+            Some(Environment::Uniform {
+                radiance: Vec3::splat(0.5),
+            }),
+        ),
+    ];
     for (i, scene) in files.iter().enumerate() {
-        let out = dir.join(format!("{i}.exr"));
-        let opts = RenderOptions {
-            scene: scene.clone(),
-            output: Some(out.clone()),
-            size: Some((48, 36)),
-            spp: 2,
-            method: Method::Whitted,
-            max_depth: 64,
-            accel: Backend::Auto,
-            seed: 1,
-            threads: 2,
-            camera: None,
-            display: DisplayOptions::default(),
-            quiet: true,
-            env: None,
-        };
-        render_command(&opts).unwrap_or_else(|e| panic!("{}: {e}", scene.display()));
-        let img = read_exr(&out).unwrap();
-        let bad = img.data.iter().filter(|p| !p.is_finite()).count();
-        assert_eq!(bad, 0, "{}: {bad} non-finite pixels", scene.display());
-        assert!(
-            img.data.iter().any(|p| p.max_element() > 0.0),
-            "{}: black image",
-            scene.display()
-        );
+        for (method, spp, env) in runs.clone() {
+            let out = dir.join(format!("{i}-{method:?}.exr"));
+            let opts = RenderOptions {
+                scene: scene.clone(),
+                output: Some(out.clone()),
+                size: Some((48, 36)),
+                spp,
+                method,
+                max_depth: 64,
+                accel: Backend::Auto,
+                seed: 1,
+                threads: 2,
+                camera: None,
+                display: DisplayOptions::default(),
+                quiet: true,
+                env,
+            };
+            render_command(&opts).unwrap_or_else(|e| panic!("{}: {e}", scene.display()));
+            let img = read_exr(&out).unwrap();
+            let bad = img.data.iter().filter(|p| !p.is_finite()).count();
+            assert_eq!(
+                bad,
+                0,
+                "{} {method:?}: {bad} non-finite pixels",
+                scene.display()
+            );
+            assert!(
+                img.data.iter().any(|p| p.max_element() > 0.0),
+                "{} {method:?}: black image",
+                scene.display()
+            );
+        }
     }
 }

@@ -1,0 +1,100 @@
+//! Path-tracer throughput on real scenes: samples per second and rays per second for
+//! `--method path` at 512×512, 2 threads, on each backend (issue 3's performance figures).
+//!
+//! Scenes (from `../shared/assets`, or `IRIS_SHARED_ASSETS`): Khronos `TransmissionTest`
+//! (its own camera; no lights in the file, so it is lit by a uniform environment of radiance
+//! 0.5, which replaces the default lights) and McGuire's
+//! `CornellBox-Water` (lit by its emissive ceiling, auto-framed camera). One criterion
+//! iteration renders the whole image at 1 spp with a fixed seed, so every iteration traces
+//! the same rays; criterion's throughput is pixel samples/s, and the rays per iteration
+//! (counted once, printed) give rays/s = rays per iteration / time per iteration.
+//! Load and acceleration build are outside the timed loop.
+//!
+//! Run: `cargo bench --bench path` (`--no-default-features` for the BVH alone). Without the
+//! shared assets the bench says so and measures nothing.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use iris::accel::Backend;
+use iris::app::{choose_camera, load};
+use iris::camera::Camera;
+use iris::envmap::Environment;
+use iris::integrator::{Integrator, Method};
+use iris::render::{render, RenderSettings};
+use std::path::PathBuf;
+use std::time::Duration;
+
+const SIZE: u32 = 512;
+
+fn shared_assets() -> Option<PathBuf> {
+    let dir = std::env::var_os("IRIS_SHARED_ASSETS")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/assets"));
+    dir.is_dir().then_some(dir)
+}
+
+fn backends() -> Vec<(&'static str, Backend)> {
+    let mut v = vec![("bvh", Backend::Bvh)];
+    if cfg!(feature = "embree") {
+        v.insert(0, ("embree", Backend::Embree));
+    }
+    v
+}
+
+fn path_tracer(c: &mut Criterion) {
+    let Some(assets) = shared_assets() else {
+        eprintln!("SKIPPED: ../shared/assets not found (set IRIS_SHARED_ASSETS)");
+        return;
+    };
+    let scenes = [
+        (
+            "TransmissionTest",
+            assets.join("khronos/TransmissionTest/glTF-Binary/TransmissionTest.glb"),
+            Some(0.5f32),
+        ),
+        (
+            "CornellBox-Water",
+            assets.join("obj/CornellBox-McGuire/CornellBox-Water.obj"),
+            None,
+        ),
+    ];
+    let integrator = Integrator {
+        method: Method::Path,
+        max_depth: 8,
+    };
+    let settings = RenderSettings {
+        width: SIZE,
+        height: SIZE,
+        spp: 1,
+        seed: 1,
+        threads: 2,
+        quiet: true,
+    };
+    let mut group = c.benchmark_group("path_tracer_512");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_secs(2));
+    group.measurement_time(Duration::from_secs(15));
+    group.throughput(Throughput::Elements(u64::from(SIZE * SIZE)));
+    for (name, path, env) in &scenes {
+        for (bname, backend) in backends() {
+            let (scene, _) = load(path, backend).expect("scene loads");
+            let scene = scene.with_environment(env.map(|g| Environment::Uniform {
+                radiance: glam::Vec3::splat(g),
+            }));
+            let (cam, _) = choose_camera(&scene, None, 1.0).expect("camera");
+            let camera = Camera::new(&cam, SIZE, SIZE);
+            let (_, stats) = render(&scene, &camera, &integrator, &settings).expect("renders");
+            eprintln!(
+                "{name}/{bname}: {} rays per iteration ({:.2} rays per sample)",
+                stats.rays,
+                stats.rays as f64 / stats.samples as f64
+            );
+            group.bench_function(BenchmarkId::new(*name, bname), |b| {
+                b.iter(|| render(&scene, &camera, &integrator, &settings).expect("renders"))
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, path_tracer);
+criterion_main!(benches);
