@@ -191,7 +191,7 @@ impl Gltf {
     }
 
     /// f = mix((1 − max F_d)·base/π + F_d·spec, F_schlick(base)·spec, metallic)
-    /// (glTF 2.0 Appendix B.3.5; the same expression as `integrator::shading::brdf`).
+    /// (glTF 2.0 Appendix B.3.5).
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         let Some((s, cos_h)) = ggx_spec(self.ggx, wo, wi) else {
             return Vec3::ZERO;

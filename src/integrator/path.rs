@@ -9,12 +9,11 @@
 //! Materials become BSDFs ([`crate::bsdf`]) in the local frame of the outward shading
 //! normal; volumes use the path's medium stack for η and Beer–Lambert.
 
-use super::Context;
+use super::{shading, Context};
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::interaction::SurfaceHit;
-use crate::material::ShadingPoint;
 use crate::math::{Frame, Ray};
-use crate::medium::{self, MediumStack};
+use crate::medium::MediumStack;
 use crate::scene::desc::AlphaMode;
 use crate::scene::Scene;
 use glam::{Vec2, Vec3};
@@ -30,59 +29,6 @@ fn mis(a: f32, b: f32) -> f32 {
     } else {
         0.0
     }
-}
-
-/// The BSDF at a hit (one lobe chosen by the transmission weight) and the media on the far
-/// side of a refraction. At a volume boundary `hit` becomes the merged interface's hit
-/// (coincident faces of touching objects crossed at once, [`medium::crossing`]).
-fn make_bsdf(
-    scene: &Scene,
-    hit: &mut SurfaceHit,
-    sp: &ShadingPoint,
-    media: MediumStack,
-    u: f32,
-) -> (Bsdf, MediumStack) {
-    let mat = &scene.materials[hit.material as usize];
-    let alpha = sp.roughness * sp.roughness;
-    if sp.transmission > 0.0 && u < sp.transmission {
-        if !mat.is_volume() {
-            return (
-                Bsdf::ThinDielectric {
-                    eta: mat.ior(),
-                    tint: sp.base_color,
-                },
-                media,
-            );
-        }
-        let (n_i, n_t, after, merged) = medium::crossing(scene, hit, media);
-        *hit = merged;
-        // Bsdf's η is n_inside / n_outside, the outside being the normal's side.
-        let eta = if n_i == n_t {
-            1.0
-        } else if hit.front_face {
-            n_t / n_i
-        } else {
-            n_i / n_t
-        };
-        return (
-            Bsdf::Dielectric {
-                eta,
-                alpha,
-                tint: sp.base_color,
-            },
-            after,
-        );
-    }
-    let d = &mat.desc;
-    let bsdf = Bsdf::GltfPbr {
-        base: sp.base_color,
-        metallic: sp.metallic,
-        alpha,
-        ior: mat.ior(),
-        specular: d.specular,
-        specular_color: d.specular_color,
-    };
-    (bsdf, media)
 }
 
 /// Next-event estimation: one light, chosen uniformly among the light groups.
@@ -204,7 +150,7 @@ pub fn radiance(scene: &Scene, ray: &Ray, max_depth: u32, ctx: &mut Context) -> 
             ray = hit.spawn_ray(-hit.wo);
             continue;
         }
-        let (bsdf, media_t) = make_bsdf(scene, &mut hit, &sp, media, ctx.rng.next_f32());
+        let (bsdf, media_t) = shading::bsdf_at(scene, &mut hit, &sp, media, ctx.rng.next_f32());
         let frame = Frame::from_normal(hit.ns);
         let wo = frame.to_local(hit.wo);
         if !bsdf.is_delta() {

@@ -1,65 +1,88 @@
-//! Per-hit shading shared by the integrators: the glTF metallic-roughness BRDF (glTF 2.0
-//! spec, Appendix B: Lambert diffuse + Trowbridge-Reitz/GGX specular with the Smith
-//! height-correlated visibility, Fresnel-Schlick, `mix(dielectric, metal, metallic)`), and
-//! direct lighting from punctual lights with shadow rays.
+//! The per-hit step shared by the integrators: which BSDF ([`crate::bsdf`]) a hit has —
+//! glTF metallic-roughness (Appendix B of the glTF 2.0 spec, with KHR_materials_specular),
+//! smooth/rough dielectric with η from the path's media, thin-walled transmission — and
+//! direct lighting of opaque hits from punctual lights, emissive triangles and the
+//! environment with shadow rays (Whitted's light step; the path tracer adds MIS on top).
 //!
 //! Directions are unit vectors pointing away from the surface; radiance in the units of the
 //! lights (cd and lux give nits).
 
 use super::Context;
+use crate::bsdf::{Bsdf, TransportMode};
 use crate::interaction::SurfaceHit;
 use crate::material::{Material, ShadingPoint};
-use crate::optics::fresnel_schlick;
+use crate::math::Frame;
+use crate::medium::{self, MediumStack};
 use crate::scene::Scene;
 use glam::Vec3;
-use std::f32::consts::PI;
 
-/// Smallest GGX α used for evaluating point-light highlights (a delta lobe has none).
-const MIN_ALPHA: f32 = 1e-2;
-
-/// glTF BRDF f(wo, wi) for shading normal `n` (both directions on `n`'s side).
-pub fn brdf(mat: &Material, sp: &ShadingPoint, n: Vec3, wo: Vec3, wi: Vec3) -> Vec3 {
-    let nl = n.dot(wi);
-    let nv = n.dot(wo);
-    if nl <= 0.0 || nv <= 0.0 {
-        return Vec3::ZERO;
+/// The surface BSDF of an opaque (non-transmitting) shading point: glTF metallic-roughness
+/// with KHR_materials_specular.
+pub fn surface_bsdf(mat: &Material, sp: &ShadingPoint) -> Bsdf {
+    let d = &mat.desc;
+    Bsdf::GltfPbr {
+        base: sp.base_color,
+        metallic: sp.metallic,
+        alpha: sp.roughness * sp.roughness,
+        ior: mat.ior(),
+        specular: d.specular,
+        specular_color: d.specular_color,
     }
-    let h = (wo + wi).normalize_or_zero();
-    let nh = n.dot(h).max(0.0);
-    let vh = wo.dot(h).max(0.0);
-    let alpha = (sp.roughness * sp.roughness).max(MIN_ALPHA);
-    let a2 = alpha * alpha;
-    // GGX normal distribution (Walter et al. 2007, eq. 33).
-    let dd = nh * nh * (a2 - 1.0) + 1.0;
-    let d = a2 / (PI * dd * dd);
-    // Height-correlated Smith visibility V = G/(4 NL NV) (Heitz 2014, eq. 99).
-    let gv = nl * (nv * nv * (1.0 - a2) + a2).sqrt();
-    let gl = nv * (nl * nl * (1.0 - a2) + a2).sqrt();
-    let vis = 0.5 / (gv + gl).max(1e-12);
-    let spec = d * vis;
-    // Dielectric F0 from the IOR and KHR_materials_specular.
-    let ior = mat.ior();
-    let f0_ior = if ior.is_finite() {
-        ((ior - 1.0) / (ior + 1.0)).powi(2)
-    } else {
-        1.0
-    };
-    let ds = &mat.desc;
-    let f0_d = (Vec3::splat(f0_ior) * ds.specular_color).min(Vec3::ONE) * ds.specular;
-    let f_d = f0_d + (Vec3::splat(ds.specular) - f0_d) * (1.0 - vh).powi(5);
-    let diffuse = sp.base_color / PI;
-    // KHR_materials_specular: the diffuse base is scaled by 1 − max(F).
-    let dielectric = diffuse * (1.0 - f_d.max_element()) + f_d * spec;
-    let metal = fresnel_schlick(sp.base_color, vh) * spec;
-    dielectric.lerp(metal, sp.metallic)
+}
+
+/// The BSDF at a hit (one lobe chosen by the transmission weight with `u`) and the media on
+/// the far side of a refraction. At a volume boundary `hit` becomes the merged interface's
+/// hit (coincident faces of touching objects crossed at once, [`medium::crossing`]), and
+/// η is the ratio of the indices on the two sides from the path's medium stack.
+pub fn bsdf_at(
+    scene: &Scene,
+    hit: &mut SurfaceHit,
+    sp: &ShadingPoint,
+    media: MediumStack,
+    u: f32,
+) -> (Bsdf, MediumStack) {
+    let mat = &scene.materials[hit.material as usize];
+    if sp.transmission > 0.0 && u < sp.transmission {
+        if !mat.is_volume() {
+            return (
+                Bsdf::ThinDielectric {
+                    eta: mat.ior(),
+                    tint: sp.base_color,
+                },
+                media,
+            );
+        }
+        let (n_i, n_t, after, merged) = medium::crossing(scene, hit, media);
+        *hit = merged;
+        // Bsdf's η is n_inside / n_outside, the outside being the normal's side.
+        let eta = if n_i == n_t {
+            1.0
+        } else if hit.front_face {
+            n_t / n_i
+        } else {
+            n_i / n_t
+        };
+        return (
+            Bsdf::Dielectric {
+                eta,
+                alpha: sp.roughness * sp.roughness,
+                tint: sp.base_color,
+            },
+            after,
+        );
+    }
+    (surface_bsdf(mat, sp), media)
 }
 
 /// An opaque hit seen from the viewer's side, ready to receive light.
 struct Receiver<'a> {
     scene: &'a Scene,
     hit: &'a SurfaceHit,
-    mat: &'a Material,
-    sp: &'a ShadingPoint,
+    bsdf: Bsdf,
+    /// Local frame of the outward shading normal (the BSDF's frame).
+    frame: Frame,
+    /// `hit.wo` in that frame.
+    wo: Vec3,
     /// Shading normal on the viewer's side.
     n: Vec3,
     /// Geometric normal on the viewer's side.
@@ -80,7 +103,9 @@ impl Receiver<'_> {
         if cos <= 0.0 || self.ng.dot(wi) <= 0.0 {
             return Vec3::ZERO;
         }
-        let f = brdf(self.mat, self.sp, self.n, self.hit.wo, wi);
+        let f = self
+            .bsdf
+            .eval(self.wo, self.frame.to_local(wi), TransportMode::Radiance);
         if f == Vec3::ZERO {
             return Vec3::ZERO;
         }
@@ -108,11 +133,13 @@ pub fn direct_light(
     } else {
         (-hit.ns, -hit.ng)
     };
+    let frame = Frame::from_normal(hit.ns);
     let r = Receiver {
         scene,
         hit,
-        mat,
-        sp,
+        bsdf: surface_bsdf(mat, sp),
+        frame,
+        wo: frame.to_local(hit.wo),
         n,
         ng,
     };
