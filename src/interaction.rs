@@ -42,14 +42,15 @@ pub const MERGE_SCALE: f32 = 16.0 * OFFSET_SCALE;
 pub const MAX_COINCIDENT: usize = 4;
 
 /// A surface lying on a hit, crossed in the same step.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy)]
 pub struct Coincident {
-    /// Triangle index.
-    pub prim: u32,
     /// Material index.
     pub material: u32,
     /// The ray crosses it from outside (`dot(dir, ng) < 0`), i.e. enters its object.
     pub front_face: bool,
+    /// The same ray's hit on this surface (same `t` and `wo` as the original hit, offset
+    /// widened like it), for callers that let this surface take the original's place.
+    pub hit: SurfaceHit,
 }
 
 /// The other surfaces coincident with a hit: one per (material, side), never the hit's own
@@ -253,14 +254,22 @@ impl Scene {
             if other.material == hit.material && front_face == hit.front_face {
                 continue; // the same surface: a neighbouring triangle at a shared edge
             }
-            set.add(Coincident {
-                prim: raw.prim,
-                material: other.material,
-                front_face,
-            });
             // The partner's plane lies `half − t` along ng from p; clear it by its own offset.
             let gap = (half - raw.t).abs();
             out.offset = out.offset.max(gap + other.offset.max(hit.offset));
+            set.add(Coincident {
+                material: other.material,
+                front_face,
+                hit: SurfaceHit {
+                    t: hit.t,
+                    wo: hit.wo,
+                    front_face,
+                    ..other
+                },
+            });
+        }
+        for c in set.items[..set.len].iter_mut().flatten() {
+            c.hit.offset = out.offset;
         }
         (out, set)
     }

@@ -10,7 +10,7 @@
 //! glass-to-current-medium, the best guess. Depth is bounded by [`MAX_NESTING`]; deeper
 //! nesting drops the oldest entry.
 
-use crate::interaction::{SurfaceHit, MAX_COINCIDENT};
+use crate::interaction::{CoincidentSet, SurfaceHit, MAX_COINCIDENT};
 use crate::scene::Scene;
 
 /// Deepest nesting tracked.
@@ -109,29 +109,27 @@ pub fn interface_merged(
     (n_i, ior_of(after.current()), after)
 }
 
-/// The volumetric interface a path with media `media` crosses at `hit`, with every surface
-/// coincident with it merged in ([`Scene::coincident`]): n_incident, n_transmitted, the
-/// media beyond, and the hit whose spawned rays clear all the merged surfaces (use it for
-/// every ray leaving this interface). Only volumetric partners take part; a thin-walled or
-/// opaque face lying on a volume's boundary is ignored here.
+/// The volumetric interface a path with media `media` crosses at `hit`, with the volumetric
+/// surfaces coincident with it ([`Scene::coincident`]) merged in: n_incident,
+/// n_transmitted and the media beyond. Non-volumetric partners take no part (the caller
+/// lets an opaque partner replace the hit instead, see `integrator::shading::meet`).
 pub fn crossing(
     scene: &Scene,
     hit: &SurfaceHit,
+    coincident: &CoincidentSet,
     media: MediumStack,
-) -> (f32, f32, MediumStack, SurfaceHit) {
-    let (hit, set) = scene.coincident(hit);
+) -> (f32, f32, MediumStack) {
     let mut crossings = [(hit.material, hit.front_face); 1 + MAX_COINCIDENT];
     let mut n = 1;
-    for c in set.iter() {
+    for c in coincident.iter() {
         if scene.materials[c.material as usize].is_volume() {
             crossings[n] = (c.material, c.front_face);
             n += 1;
         }
     }
-    let (n_i, n_t, after) = interface_merged(media, &crossings[..n], |m| {
+    interface_merged(media, &crossings[..n], |m| {
         scene.materials[m as usize].ior()
-    });
-    (n_i, n_t, after, hit)
+    })
 }
 
 #[cfg(test)]

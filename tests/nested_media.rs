@@ -12,13 +12,15 @@
 //! degrees (asserted too), so the 1e-4 tolerance (f32 rounding over three refractions of
 //! unit vectors, ~1e-6) separates the two hypotheses by orders of magnitude.
 //!
-//! The integrators' own step is exercised: [`iris::medium::crossing`] (which merges the
-//! coincident faces through the intersection layer) gives the indices, refraction uses
+//! The integrators' own step is exercised: `shading::meet` (the intersection layer's
+//! coincidence probe) and `medium::crossing` give the indices, refraction uses
 //! `η = n_t / n_i` about the incident-side normal exactly as `--method whitted` does, and the
-//! next ray leaves from the merged hit.
+//! next ray leaves from the merged hit. A last test puts the water against an opaque block
+//! instead: the path must meet the block, not leave the water through it.
 
 use glam::{Vec2, Vec3};
 use iris::accel::Backend;
+use iris::integrator::shading;
 use iris::math::Ray;
 use iris::medium::{self, MediumStack};
 use iris::optics::refract;
@@ -73,6 +75,16 @@ fn dielectric(name: &str, ior: f32) -> MaterialDesc {
 /// Glass (lower-left) and water (upper-right) halves of the square. `water_shift` moves the
 /// water's diagonal face along (1,1)/√2: 0 = exactly coincident, > 0 a gap, < 0 an overlap.
 fn scene(backend: Backend, water_shift: f32, second_material_is_glass: bool) -> Scene {
+    scene_with(backend, water_shift, second_material_is_glass, false)
+}
+
+/// As [`scene`]; `opaque_first` makes the lower-left prism an opaque diffuse block.
+fn scene_with(
+    backend: Backend,
+    water_shift: f32,
+    second_material_is_glass: bool,
+    opaque_first: bool,
+) -> Scene {
     let s = Vec2::splat(water_shift / 2f32.sqrt());
     let glass = prism(
         "glass",
@@ -100,7 +112,17 @@ fn scene(backend: Backend, water_shift: f32, second_material_is_glass: bool) -> 
     let desc = SceneDesc {
         source: "nested".into(),
         meshes: vec![glass, water],
-        materials: vec![dielectric("glass", N_GLASS), second],
+        materials: vec![
+            if opaque_first {
+                MaterialDesc {
+                    name: "block".into(),
+                    ..Default::default()
+                }
+            } else {
+                dielectric("glass", N_GLASS)
+            },
+            second,
+        ],
         ..Default::default()
     };
     Scene::build(iris::scene::validate::validate(desc).unwrap(), backend).unwrap()
@@ -160,7 +182,8 @@ fn trace(scene: &Scene, origin: Vec3, dir: Vec3) -> (Vec3, Vec<(f32, f32)>) {
             );
             return (ray.dir.normalize(), pairs);
         };
-        let (n_i, n_t, after, merged) = medium::crossing(scene, &hit, media);
+        let (merged, coincident) = shading::meet(scene, hit);
+        let (n_i, n_t, after) = medium::crossing(scene, &merged, &coincident, media);
         pairs.push((n_i, n_t));
         let n = if merged.front_face {
             merged.ns
@@ -268,5 +291,40 @@ fn touching_prisms_of_one_glass_are_no_interface() {
                 "{backend:?} dir {dir}"
             );
         }
+    }
+}
+
+#[test]
+fn water_against_an_opaque_wall_meets_the_wall() {
+    for backend in backends() {
+        let scene = scene_with(backend, 0.0, false, true);
+        let (mut met_block, mut n) = (0, 0);
+        // From inside the water, toward the shared diagonal at many angles.
+        for i in 0..200 {
+            let a = (200.0 + 50.0 * (i as f32 / 199.0)).to_radians();
+            let origin = Vec3::new(0.5, 0.5, 0.1 + 0.01 * i as f32);
+            let dir = Vec3::new(a.cos(), a.sin(), 0.0);
+            let hit = scene
+                .intersect(&Ray::new(origin, dir))
+                .expect("hits the diagonal");
+            let (met, co) = shading::meet(&scene, hit);
+            assert!(co.is_empty(), "{backend:?}: no volume interface to cross");
+            n += 1;
+            met_block += (met.material == 0) as usize;
+            // Reflected back into the water, the next ray must not meet the water's
+            // coincident face (it would leave a water it is still inside).
+            let n_in = if met.front_face { met.ng } else { -met.ng };
+            let back = met.spawn_ray(dir - 2.0 * dir.dot(n_in) * n_in);
+            let next = scene.intersect(&back).expect("hits the water's far side");
+            assert!(
+                next.t > 0.1,
+                "{backend:?}: re-hit the shared face at t = {}",
+                next.t
+            );
+        }
+        assert_eq!(
+            met_block, n,
+            "{backend:?}: the wall must win over the water's face"
+        );
     }
 }

@@ -116,7 +116,7 @@ pub fn radiance(scene: &Scene, ray: &Ray, max_depth: u32, ctx: &mut Context) -> 
     let p_sel = if groups > 0 { 1.0 / groups as f32 } else { 0.0 };
     loop {
         ctx.rays += 1;
-        let Some(mut hit) = scene.intersect(&ray) else {
+        let Some(hit) = scene.intersect(&ray) else {
             if let Some(env) = &scene.environment {
                 let d = ray.dir.normalize();
                 let w = if prev_delta {
@@ -131,6 +131,7 @@ pub fn radiance(scene: &Scene, ray: &Ray, max_depth: u32, ctx: &mut Context) -> 
         if let Some(m) = media.current() {
             beta *= scene.materials[m as usize].transmittance(hit.t);
         }
+        let (hit, coincident) = shading::meet(scene, hit);
         let mat = &scene.materials[hit.material as usize];
         let sp = mat.shade(hit.uv, &scene.images);
         if sp.emissive != Vec3::ZERO && (hit.front_face || mat.desc.double_sided) {
@@ -150,7 +151,8 @@ pub fn radiance(scene: &Scene, ray: &Ray, max_depth: u32, ctx: &mut Context) -> 
             ray = hit.spawn_ray(-hit.wo);
             continue;
         }
-        let (bsdf, media_t) = shading::bsdf_at(scene, &mut hit, &sp, media, ctx.rng.next_f32());
+        let (bsdf, media_t) =
+            shading::bsdf_at(scene, &hit, &coincident, &sp, media, ctx.rng.next_f32());
         let frame = Frame::from_normal(hit.ns);
         let wo = frame.to_local(hit.wo);
         if !bsdf.is_delta() {

@@ -9,7 +9,7 @@
 
 use super::Context;
 use crate::bsdf::{Bsdf, TransportMode};
-use crate::interaction::SurfaceHit;
+use crate::interaction::{CoincidentSet, SurfaceHit};
 use crate::material::{Material, ShadingPoint};
 use crate::math::Frame;
 use crate::medium::{self, MediumStack};
@@ -30,13 +30,33 @@ pub fn surface_bsdf(mat: &Material, sp: &ShadingPoint) -> Bsdf {
     }
 }
 
+/// The surface a path really meets at `hit`, for touching objects (the intersection layer's
+/// [`Scene::coincident`], probed only at volume boundaries): a non-volumetric face lying
+/// on the boundary wins — water filling an opaque mug meets the mug's wall, still in the
+/// water — and otherwise the coincident volume faces are returned to be crossed as one
+/// interface. Either way rays leave from the returned hit, which clears all of them.
+pub fn meet(scene: &Scene, hit: SurfaceHit) -> (SurfaceHit, CoincidentSet) {
+    if !scene.materials[hit.material as usize].is_volume() {
+        return (hit, CoincidentSet::default());
+    }
+    let (merged, set) = scene.coincident(&hit);
+    let solid = set
+        .iter()
+        .find(|c| !scene.materials[c.material as usize].is_volume());
+    match solid {
+        Some(solid) => (solid.hit, CoincidentSet::default()),
+        None => (merged, set),
+    }
+}
+
 /// The BSDF at a hit (one lobe chosen by the transmission weight with `u`) and the media on
-/// the far side of a refraction. At a volume boundary `hit` becomes the merged interface's
-/// hit (coincident faces of touching objects crossed at once, [`medium::crossing`]), and
-/// η is the ratio of the indices on the two sides from the path's medium stack.
+/// the far side of a refraction. At a volume boundary η is the ratio of the indices on the
+/// two sides from the path's medium stack, with the `coincident` volume faces (from
+/// [`meet`]) crossed in the same step ([`medium::crossing`]).
 pub fn bsdf_at(
     scene: &Scene,
-    hit: &mut SurfaceHit,
+    hit: &SurfaceHit,
+    coincident: &CoincidentSet,
     sp: &ShadingPoint,
     media: MediumStack,
     u: f32,
@@ -52,8 +72,7 @@ pub fn bsdf_at(
                 media,
             );
         }
-        let (n_i, n_t, after, merged) = medium::crossing(scene, hit, media);
-        *hit = merged;
+        let (n_i, n_t, after) = medium::crossing(scene, hit, coincident, media);
         // Bsdf's η is n_inside / n_outside, the outside being the normal's side.
         let eta = if n_i == n_t {
             1.0

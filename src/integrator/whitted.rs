@@ -11,7 +11,7 @@
 //! so a gem's branching stays bounded; `max_depth` bounds the recursion.
 
 use super::{shading, Context};
-use crate::interaction::SurfaceHit;
+use crate::interaction::{CoincidentSet, SurfaceHit};
 use crate::material::ShadingPoint;
 use crate::math::Ray;
 use crate::medium::{self, MediumStack};
@@ -66,7 +66,8 @@ fn trace(scene: &Scene, ray: &Ray, path: Path, w: Vec3, ctx: &mut Context) -> Ve
             .as_ref()
             .map_or(Vec3::ZERO, |e| e.eval(ray.dir.normalize()));
     };
-    let l = shade(scene, &hit, path, w, ctx);
+    let (hit, coincident) = shading::meet(scene, hit);
+    let l = shade(scene, &hit, &coincident, path, w, ctx);
     // Beer–Lambert over the segment just travelled, inside the current medium.
     match path.media.current() {
         Some(m) => l * scene.materials[m as usize].transmittance(hit.t),
@@ -96,13 +97,20 @@ fn branch(
     }
 }
 
-fn shade(scene: &Scene, hit: &SurfaceHit, path: Path, w: Vec3, ctx: &mut Context) -> Vec3 {
+fn shade(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    coincident: &CoincidentSet,
+    path: Path,
+    w: Vec3,
+    ctx: &mut Context,
+) -> Vec3 {
     let mat = &scene.materials[hit.material as usize];
     let sp = mat.shade(hit.uv, &scene.images);
     let mut l = sp.emissive;
     let t = sp.transmission;
     if t > 0.0 {
-        l += t * dielectric(scene, hit, &sp, path, w * t, ctx);
+        l += t * dielectric(scene, hit, coincident, &sp, path, w * t, ctx);
     }
     let opaque = 1.0 - t;
     if opaque > 0.0 {
@@ -143,6 +151,7 @@ fn shade(scene: &Scene, hit: &SurfaceHit, path: Path, w: Vec3, ctx: &mut Context
 fn dielectric(
     scene: &Scene,
     hit: &SurfaceHit,
+    coincident: &CoincidentSet,
     sp: &ShadingPoint,
     path: Path,
     w: Vec3,
@@ -167,10 +176,8 @@ fn dielectric(
         let k = sp.base_color * (1.0 - f);
         return r + branch(scene, hit.spawn_ray(-hit.wo), path, path.media, w, k, ctx);
     }
-    // Coincident faces of touching volumes are crossed as one interface; rays leave from
-    // the merged hit, which clears them all.
-    let (n_i, n_t, media_t, merged) = medium::crossing(scene, hit, path.media);
-    let hit = &merged;
+    // Coincident faces of touching volumes are crossed as one interface.
+    let (n_i, n_t, media_t) = medium::crossing(scene, hit, coincident, path.media);
     // η = n_t / n_i; both infinite (inside an `ior: 0` medium) behaves as no interface.
     let eta = if n_i == n_t { 1.0 } else { n_t / n_i };
     let f = fresnel_dielectric(cos_i, eta);
