@@ -37,6 +37,7 @@ pub(super) fn fit_smooth_spectrum<const N: usize>(r: &[[f64; N]; 3], t: [f64; 3]
 
 /// Solves min Σ(s_{j+1} − s_j)² s.t. R·s = t and s_j = v for each pinned (j, v), via the
 /// KKT system [Q Cᵀ; C 0]·[s; μ] = [0; d] with Q = 2·DᵀD. `None` if singular.
+#[allow(clippy::needless_range_loop)] // symmetric fill of a[i][j] and a[j][i] reads best indexed
 fn solve_kkt<const N: usize>(
     r: &[[f64; N]; 3],
     t: [f64; 3],

@@ -71,16 +71,22 @@ pub const KNOWN_NAMES: [&str; 6] = [
 ];
 
 /// Three-term Sellmeier coefficients padded to four.
-const fn sellmeier3(b: [f32; 3], c: [f32; 3]) -> IorModel {
+fn sellmeier3(b: [f32; 3], c: [f32; 3]) -> IorModel {
     IorModel::Sellmeier {
         b: [b[0], b[1], b[2], 0.0],
         c: [c[0], c[1], c[2], 0.0],
     }
 }
 
+/// Squares resonance wavelengths (µm → µm²), for sources that tabulate λ_i rather than C_i.
+fn squared<const K: usize>(l: [f32; K]) -> [f32; K] {
+    l.map(|x| x * x)
+}
+
 impl IorModel {
     /// A built-in material by name (case-insensitive; spaces, '_' and '-' are interchangeable;
-    /// "BK7", "SF11", "silica" are accepted aliases).
+    /// "BK7", "SF11", "silica" are accepted aliases). Coefficients keep their sources' digits.
+    #[allow(clippy::excessive_precision)]
     pub fn named(name: &str) -> Result<IorModel, UnknownIorName> {
         let key: String = name
             .trim()
@@ -93,39 +99,49 @@ impl IorModel {
         Ok(match key.as_str() {
             // SCHOTT optical glass data sheet N-BK7 (catalogue 2017): n_d = 1.5168, V_d = 64.17.
             "n-bk7" | "bk7" => sellmeier3(
-                [1.039_612_1, 0.231_792_34, 1.010_469_5],
-                [0.006_000_698_7, 0.020_017_914, 103.560_65],
+                [1.03961212, 0.231792344, 1.01046945],
+                [0.00600069867, 0.0200179144, 103.560653],
             ),
-            // SCHOTT optical glass data sheet N-SF11: n_d = 1.78472, V_d = 25.68.
+            // SCHOTT optical glass data sheet N-SF11 (catalogue 2017): n_d = 1.78472,
+            // V_d = 25.68.
             "n-sf11" | "sf11" => sellmeier3(
-                [1.737_597, 0.313_747_35, 1.898_781],
-                [0.013_188_707, 0.062_306_814, 155.236_29],
+                [1.73759695, 0.313747346, 1.89878101],
+                [0.013188707, 0.0623068142, 155.23629],
             ),
             // I. H. Malitson, "Interspecimen comparison of the refractive index of fused
-            // silica", JOSA 55, 1205 (1965): C_i = (0.0684043, 0.1162414, 9.896161 µm)².
+            // silica", JOSA 55, 1205 (1965), 20 °C; the paper lists λ_i in µm.
             "fused-silica" | "silica" | "fused-quartz" => sellmeier3(
-                [0.696_166_3, 0.407_942_6, 0.897_479_4],
-                [0.004_679_148, 0.013_512_063, 97.934_003],
+                [0.6961663, 0.4079426, 0.8974794],
+                squared([0.0684043, 0.1162414, 9.896161]),
             ),
             // F. Peter, Z. Phys. 15, 358 (1923), two-term fit as on refractiveindex.info
-            // (main/C/Peter): C_i = (0.1750, 0.1060 µm)².
+            // (main/C/Peter); λ_i in µm.
             "diamond" => IorModel::Sellmeier {
                 b: [0.3306, 4.3356, 0.0, 0.0],
-                c: [0.030_625, 0.011_236, 0.0, 0.0],
+                c: squared([0.1750, 0.1060, 0.0, 0.0]),
             },
             // M. Daimon & A. Masumura, "Measurement of the refractive index of distilled water
             // from the near-infrared region to the ultraviolet region", Appl. Opt. 46, 3811
             // (2007), 20.0 °C four-term fit (refractiveindex.info main/H2O/Daimon-20.0C).
             "water" => IorModel::Sellmeier {
-                b: [0.568_402_76, 0.172_617_74, 0.020_861_896, 0.113_074_87],
-                c: [0.005_101_829_7, 0.018_211_539, 0.026_207_223, 10.697_927],
+                b: [
+                    5.684027565e-1,
+                    1.726177391e-1,
+                    2.086189578e-2,
+                    1.130748688e-1,
+                ],
+                c: [
+                    5.101829712e-3,
+                    1.821153936e-2,
+                    2.620722293e-2,
+                    1.069792721e1,
+                ],
             },
             // I. H. Malitson & M. J. Dodge, "Refractive index and birefringence of synthetic
-            // sapphire", JOSA 62, 1405 (1972), ordinary ray, 20 °C:
-            // C_i = (0.0726631, 0.1193242, 18.028251 µm)².
+            // sapphire", JOSA 62, 1405 (1972), ordinary ray, 20 °C; λ_i in µm.
             "sapphire" => sellmeier3(
-                [1.431_349_3, 0.650_547_1, 5.341_402],
-                [0.005_279_926, 0.014_238_265, 325.017_83],
+                [1.4313493, 0.65054713, 5.3414021],
+                squared([0.0726631, 0.1193242, 18.028251]),
             ),
             _ => return Err(UnknownIorName(name.to_string())),
         })

@@ -93,9 +93,9 @@ fn reflectance_round_trip() {
         let s = RgbReflectance::new(rgb);
         worst = worst.max(max_abs_diff(reflectance_rgb(&s), rgb));
     }
-    // Measured ~2e-4: the 4-digit IEC matrix maps D65 to (1,1,1) only to that accuracy; the
-    // basis colours themselves are met to 1e-5 (test above).
-    assert!(worst < 1e-3, "worst round-trip error {worst}");
+    // Measured 1.7e-4 (the white patch): the 4-digit IEC matrix maps D65 to
+    // (1.00001, 1.00008, 0.99983); the basis colours themselves are met to 1e-7.
+    assert!(worst < 5e-4, "worst round-trip error {worst}");
 }
 
 #[test]
