@@ -6,6 +6,8 @@
 //! - [`cie`]: CIE 1931 2° colour-matching functions and D65 (tables in `cie_data.rs`, with
 //!   their sources), Planck's law, XYZ ↔ linear sRGB (IEC 61966-2-1).
 //! - [`upsample`]: RGB → reflectance / illuminant spectra (Smits 1999, basis fitted here).
+//! - [`spectra`]: [`Spectrum`], what a material or light names (constant, RGB reflectance,
+//!   RGB illuminant, blackbody, D65), with emission normalised to a requested luminance.
 //! - [`ior`]: index-of-refraction models (constant, KHR_materials_dispersion, Cauchy,
 //!   Sellmeier) and named materials.
 //!
@@ -19,11 +21,13 @@ mod cie_data;
 mod fit;
 pub mod ior;
 pub mod sampled;
+pub mod spectra;
 pub mod upsample;
 pub mod wavelengths;
 
 pub use ior::{IorModel, UnknownIorName};
 pub use sampled::SampledSpectrum;
+pub use spectra::Spectrum;
 pub use upsample::{RgbIlluminant, RgbReflectance};
 pub use wavelengths::SampledWavelengths;
 
