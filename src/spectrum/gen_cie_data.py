@@ -1,4 +1,14 @@
-import ast, re
+"""Regenerates cie_data.rs (CIE 1931 2 deg CMFs at 1 nm and D65 at 5 nm, 360-830 nm).
+
+Source: the colour-science 0.4.7 wheel from PyPI (BSD-3-Clause), which ships the CVRL /
+CIE tables as Python literals. Usage, from the repository root:
+    pip download --no-deps -d /tmp/cs colour-science==0.4.7
+    (cd /tmp/cs && unzip -q colour_science-0.4.7-py3-none-any.whl)
+    (cd /tmp/cs && python3 "$OLDPWD/src/spectrum/gen_cie_data.py" "$OLDPWD/src/spectrum/cie_data.rs")
+Values are copied unchanged; only D65 above 780 nm is computed (see the output's header).
+"""
+import ast
+import sys
 def load_dict(path, key):
     src = open(path).read()
     i = src.index('"%s": {' % key)
@@ -28,7 +38,7 @@ k=d65[780]/f(780)
 D=[d65[l] if l in d65 else round(k*f(l),4) for l in dl]
 print('ext', D[-10:])
 print(sum(Y), len(D))
-with open('/work/wt/spectrum/src/spectrum/cie_data.rs','w') as f:
+with open(sys.argv[1] if len(sys.argv) > 1 else 'cie_data.rs', 'w') as f:
     f.write('''//! Tabulated CIE data (data only; lookups live in [`super::cie`]).
 //!
 //! - `CIE_X`, `CIE_Y`, `CIE_Z`: CIE 1931 2° standard observer colour-matching functions

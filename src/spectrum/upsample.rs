@@ -6,12 +6,12 @@
 //!
 //! Smits writes any RGB as `min·white + (mid−min)·secondary + (max−mid)·primary`, with
 //! white ≡ 1 and six smooth basis spectra (cyan, magenta, yellow, red, green, blue). Smits'
-//! published bins were fitted for another RGB space; [`basis`] instead fits them, once, by
+//! published bins were fitted for another RGB space; `basis()` instead fits them, once, by
 //! minimising the first-difference roughness Σ(s_{j+1} − s_j)² on a 10 nm grid subject to
 //! rgb(s) = the basis colour exactly and 0 ≤ s ≤ 1 (Smits' §3 criterion; solved as an
 //! equality-constrained least-squares problem whose out-of-range nodes are pinned to the
 //! bound one at a time). Invariants, all tested:
-//! - rgb(upsample(c)) = c for c in [0,1]³, up to the 4-digit sRGB matrix (~2e-4), because
+//! - rgb(upsample(c)) = c for c in [0, 1]³, up to the 4-digit sRGB matrix (~2e-4), because
 //!   the map is linear in the basis and each basis colour is met exactly;
 //! - RGB (g, g, g) gives the constant spectrum g exactly, so white stays white through any
 //!   non-dispersive path; reflectance spectra stay in [0, 1];
