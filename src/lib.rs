@@ -39,6 +39,7 @@ pub mod optics;
 pub mod output;
 pub mod render;
 pub mod scene;
+pub mod spectrum;
 pub mod texture;
 
 pub use error::{Error, LoadError, LoadErrorKind, Result};

@@ -1,0 +1,39 @@
+//! Spectral foundation: the only code that knows about nanometres.
+//!
+//! - [`wavelengths`]: hero-wavelength sampling, 4 λ per camera path over 360–830 nm, and
+//!   `terminate_secondary` for dispersive interfaces (pbrt-v4 `SampledWavelengths`).
+//! - [`sampled`]: [`SampledSpectrum`], values at those 4 λ, and its unbiased XYZ estimator.
+//! - [`cie`]: CIE 1931 2° colour-matching functions and D65 (tables in `cie_data.rs`, with
+//!   their sources), Planck's law, XYZ ↔ linear sRGB (IEC 61966-2-1).
+//! - [`upsample`]: RGB → reflectance / illuminant spectra (Smits 1999, basis fitted here).
+//! - [`spectra`]: [`Spectrum`], what a material or light names (constant, RGB reflectance,
+//!   RGB illuminant, blackbody, D65), with emission normalised to a requested luminance.
+//! - [`ior`]: index-of-refraction models (constant, KHR_materials_dispersion, Cauchy,
+//!   Sellmeier) and named materials.
+//!
+//! Units everywhere: wavelength λ in nm (vacuum); the IOR formulas that are defined in µm
+//! convert internally. Spectral values are f32; table sums accumulate in f64.
+//! Colour flows one way: RGB inputs → spectra (upsample) → per-path `SampledSpectrum`
+//! → XYZ (`SampledSpectrum::to_xyz`, in the film) → linear sRGB (`cie::xyz_to_linear_srgb`).
+
+pub mod cie;
+mod cie_data;
+mod fit;
+pub mod ior;
+pub mod sampled;
+pub mod spectra;
+pub mod upsample;
+pub mod wavelengths;
+
+pub use ior::{IorModel, UnknownIorName};
+pub use sampled::SampledSpectrum;
+pub use spectra::Spectrum;
+pub use upsample::{RgbIlluminant, RgbReflectance};
+pub use wavelengths::SampledWavelengths;
+
+/// Shortest wavelength sampled, nm (pbrt-v4 `Lambda_min`).
+pub const LAMBDA_MIN: f32 = 360.0;
+/// Longest wavelength sampled, nm (pbrt-v4 `Lambda_max`).
+pub const LAMBDA_MAX: f32 = 830.0;
+/// Wavelengths carried per path (hero + 3 companions).
+pub const N_LAMBDA: usize = 4;
