@@ -48,7 +48,7 @@ fn path_tracer(c: &mut Criterion) {
     let scenes = [
         (
             "TransmissionTest",
-            assets.join("khronos/TransmissionTest/glTF-Binary/TransmissionTest.glb"),
+            assets.join("khronos/TransmissionTest/TransmissionTest.glb"),
             Some(0.5f32),
         ),
         (

@@ -26,6 +26,7 @@
 //!   (otherwise the ray spawned past the first face would start behind the second and never
 //!   see it).
 
+use crate::accel::HitList;
 use crate::math::Ray;
 use crate::scene::{Scene, TriangleData};
 use glam::{Vec2, Vec3};
@@ -224,25 +225,20 @@ impl Scene {
     ///
     /// The probe is a segment along the hit's normal through `p`, ±[`MERGE_SCALE`] × the
     /// hit triangle's coordinate magnitude, so it finds coincident faces whatever the
-    /// incoming ray's angle. Alpha cut-outs are ignored.
+    /// incoming ray's angle. Alpha cut-outs are ignored. Only triangles marked
+    /// [`TriangleData::TOUCHES`] at scene build ([`crate::scene::contact`]) are probed: a
+    /// scene without touching objects pays nothing.
     pub fn coincident(&self, hit: &SurfaceHit) -> (SurfaceHit, CoincidentSet) {
         let mut set = CoincidentSet::default();
         let mut out = *hit;
-        let half = hit.offset * (MERGE_SCALE / OFFSET_SCALE);
-        if half.is_nan() || half <= 0.0 {
+        let touches = self.triangle_data[hit.prim as usize].info & TriangleData::TOUCHES != 0;
+        if !touches {
             return (out, set);
         }
-        let probe = Ray {
-            origin: hit.p + hit.ng * half,
-            dir: -hit.ng,
-            t_max: 2.0 * half,
-        };
+        let half = hit.offset * (MERGE_SCALE / OFFSET_SCALE);
+        let (probe, hits) = self.probe(hit.p, hit.ng, half);
         let dir = -hit.wo;
-        for raw in self
-            .accel
-            .all_hits(probe.origin, probe.dir, probe.t_max)
-            .as_slice()
-        {
+        for raw in hits.as_slice() {
             if raw.prim == hit.prim {
                 continue;
             }
@@ -272,6 +268,21 @@ impl Scene {
             c.hit.offset = out.offset;
         }
         (out, set)
+    }
+
+    /// Every surface crossing the segment `p ± half·ng` (the coincidence probe), with the
+    /// probe ray (from `p + half·ng` along `−ng`).
+    pub(crate) fn probe(&self, p: Vec3, ng: Vec3, half: f32) -> (Ray, HitList) {
+        let probe = Ray {
+            origin: p + ng * half,
+            dir: -ng,
+            t_max: 2.0 * half,
+        };
+        if half.is_nan() || half <= 0.0 {
+            return (probe, HitList::default());
+        }
+        let hits = self.accel.all_hits(probe.origin, probe.dir, probe.t_max);
+        (probe, hits)
     }
 
     /// Whether anything opaque blocks `ray` within `[0, t_max)`.

@@ -328,3 +328,20 @@ fn water_against_an_opaque_wall_meets_the_wall() {
         );
     }
 }
+
+#[test]
+fn only_the_shared_faces_are_marked_as_touching() {
+    use iris::scene::TriangleData;
+    for backend in backends() {
+        for (shift, want) in [(0.0f32, 4usize), (1e-6, 4), (1e-3, 0)] {
+            let scene = scene(backend, shift, false);
+            let marked = scene
+                .triangle_data
+                .iter()
+                .filter(|t| t.info & TriangleData::TOUCHES != 0)
+                .count();
+            // The diagonal is two triangles in each prism.
+            assert_eq!(marked, want, "{backend:?} shift {shift}");
+        }
+    }
+}

@@ -7,6 +7,7 @@
 //! cameras and the acceleration structure. It is built once and never mutated; rays reach
 //! it only through [`crate::interaction`].
 
+pub mod contact;
 pub mod desc;
 pub mod validate;
 
@@ -29,8 +30,9 @@ use std::time::{Duration, Instant};
 pub struct TriangleData {
     /// World-space vertex positions.
     pub p: [Vec3; 3],
-    /// Material index in the low 30 bits; [`TriangleData::HAS_NORMALS`] and
-    /// [`TriangleData::HAS_UVS`] say whether to interpolate vertex attributes.
+    /// Material index in the low 29 bits; [`TriangleData::HAS_NORMALS`] and
+    /// [`TriangleData::HAS_UVS`] say whether to interpolate vertex attributes,
+    /// [`TriangleData::TOUCHES`] whether another object's face may lie on it.
     pub info: u32,
 }
 
@@ -39,11 +41,16 @@ impl TriangleData {
     pub const HAS_NORMALS: u32 = 1 << 30;
     /// The triangle's mesh has texture coordinates.
     pub const HAS_UVS: u32 = 1 << 31;
+    /// A face of another mesh lies on this triangle (within the merge distance) somewhere:
+    /// only such hits are probed for coincident surfaces (see [`contact`]).
+    pub const TOUCHES: u32 = 1 << 29;
+    /// Mask of the material index bits.
+    pub const MATERIAL_MASK: u32 = (1 << 29) - 1;
 
     /// The material index.
     #[inline]
     pub fn material(&self) -> u32 {
-        self.info & ((1 << 30) - 1)
+        self.info & Self::MATERIAL_MASK
     }
 }
 
@@ -151,7 +158,7 @@ impl Scene {
                 triangles.push(t.map(|i| i + base));
                 triangle_data.push(TriangleData {
                     p: t.map(|i| m.positions[i as usize]),
-                    info: (mat & ((1 << 30) - 1)) | flags,
+                    info: (mat & TriangleData::MATERIAL_MASK) | flags,
                 });
                 triangle_material.push(mat);
                 triangle_mesh.push(mi as u32);
@@ -184,7 +191,7 @@ impl Scene {
         let start = Instant::now();
         let accel = Accel::build(backend, &positions, &triangles)?;
         let accel_build_time = start.elapsed();
-        Ok(Scene {
+        let mut scene = Scene {
             source: desc.source,
             positions,
             normals,
@@ -207,7 +214,9 @@ impl Scene {
             has_cutouts,
             accel_build_time,
             accel,
-        })
+        };
+        contact::mark_touching(&mut scene);
+        Ok(scene)
     }
 
     /// Adds an environment light. It replaces the default key/fill lights (which are only
