@@ -9,9 +9,10 @@
 //!   dielectric with multiple-scattering compensation (`bsdf::energy`) keeps every vertex's
 //!   expected throughput at 1. Noisy (per-sample σ ≈ 0.6 and 0.8: the compensation's weights
 //!   exceed 1 and compound along internal reflections), so 16 renders of an 8×8 image give
-//!   65 536 / 131 072 spp per pixel and a per-pixel standard error ≈ 0.22 % (RMS), making
-//!   1 % a ≥ 4σ bound. Measured (2026-12-01): r 0.3 mean 1.0002, max |pixel − 1| 0.78 %;
-//!   r 0.7 mean 0.9992, max 0.76 %. Without the compensation (factor forced to 1) the same
+//!   65 536 / 131 072 spp per pixel and a per-pixel standard error ≈ 0.22 % (RMS; ≈ 0.1 %
+//!   inside the silhouette, up to 0.48 % on it), making 1 % a ≥ 4σ bound except at the
+//!   rim. Measured (2026-12-01): r 0.3 mean 1.0002, max |pixel − 1| 0.78 %; r 0.7 mean
+//!   0.9992, max 0.76 %. Without the compensation (factor forced to 1) the same
 //!   test fails: r 0.3 mean 0.956 (worst pixel −9.6 %), r 0.7 mean 0.651 (worst −51 %).
 
 mod common;
@@ -149,13 +150,21 @@ fn check_rough_glass(roughness: f32, spp: u32) {
         "rough glass r {roughness}: mean {img_mean:.5}, max |pixel − 1| {max_err:.5}, \
          per-pixel s.e. rms {rms_se:.5} max {max_se:.5}"
     );
-    // Noise budget: the per-pixel standard error (RMS over pixels) must be ≤ 0.25 %, so a
-    // 1 % deviation is ≥ 4σ; the max estimate is from 15 degrees of freedom per pixel and
-    // may overshoot by ~1.5× even where the true σ is at the RMS level.
+    for row in 0..SIZE as usize {
+        let r = row * SIZE as usize..(row + 1) * SIZE as usize;
+        let fmt = |v: &[f64]| v.iter().map(|x| format!("{x:7.4}")).collect::<String>();
+        eprintln!("  mean {}   s.e. {}", fmt(&mean[r.clone()]), fmt(&se[r]));
+    }
+    // Noise budget: the per-pixel standard error must be ≤ 0.25 % (RMS over pixels) so a
+    // 1 % deviation is ≥ 4σ. Measured: ≈ 0.1 % at the centre, 0.2–0.5 % on the silhouette
+    // (grazing entry, long chains of internal reflections; the corner pixels see only the
+    // environment and have 0). The rim pixels are capped at 0.5 % (1 % ≥ 2σ there); each
+    // s.e. estimate has 15 degrees of freedom (±18 %).
     assert!(
         rms_se <= 0.0025,
         "too noisy to judge 1 %: rms s.e. {rms_se}"
     );
+    assert!(max_se <= 0.005, "too noisy to judge 1 %: max s.e. {max_se}");
     assert!((img_mean - 1.0).abs() < 0.01, "mean {img_mean}");
     for (i, m) in mean.iter().enumerate() {
         assert!((m - 1.0).abs() < 0.01, "pixel {i}: {m} ± {}", se[i]);
