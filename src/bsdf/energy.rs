@@ -31,10 +31,11 @@
 //! after a change to the grid or to the BSDF. A file of the wrong size is regenerated at
 //! run time instead (on scoped OS threads, not rayon: lookups run inside rayon workers).
 //!
-//! Accuracy (tests in `super::tests`): interpolated table vs a 256×128 quadrature ≤ 0.23 %
-//! (α ∈ [0.05, 1], η_eff ∈ {1/2.4 … 2.4, ∞}, μo ∈ [0.05, 1]); the compensated albedo by
-//! sampling is 1 within 0.52 % (≈ 3σ of its Monte Carlo noise) over the same range. Worse
-//! where E_ss is steep: η_eff ∈ (0.9, 1) with large α at grazing μo < 0.1 (a few %).
+//! Accuracy (tests in `super::energy_tests`): interpolated table vs a 256×128 quadrature
+//! ≤ 0.23 % (α ∈ [0.05, 1], η_eff ∈ {1/2.4 … 2.4, ∞}, μo ∈ [0.05, 1]); the compensated
+//! albedo by sampling is 1 within 0.52 % (≈ 3σ of its Monte Carlo noise) over the same
+//! range. Worse where E_ss is steep: η_eff ∈ (0.9, 1) with large α at grazing μo < 0.1 (a
+//! few %).
 //!
 //! Non-reciprocity: the scale depends on wo only, so with the reciprocal single-scatter
 //! part f(wo, wi)·E(wo) = f(wi, wo)·E(wi): the compensated BSDF breaks (generalised)

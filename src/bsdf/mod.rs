@@ -11,6 +11,8 @@
 
 mod dielectric;
 mod energy;
+#[cfg(test)]
+mod energy_tests;
 pub mod microfacet;
 mod pbr;
 #[cfg(test)]
