@@ -7,11 +7,15 @@
 //! transmission is chosen with probability R/(R+T) of the Fresnel term, and in
 //! [`TransportMode::Radiance`] transmission is divided by η'² (η' = n_t/n_i along the path
 //! from `wo` to `wi`, pbrt-v4 §9.5.2). `tint` multiplies transmission only.
+//! The rough interface's `eval`/`sample` include the multiple-scattering compensation of
+//! [`super::energy`] (a factor 1/E_ss(wo); pdf unchanged); `rough_eval_ss` is the
+//! single-scatter, reciprocal part.
 
 use super::{same_hemisphere, BsdfSample, TransportMode};
 use crate::optics::{fresnel_dielectric, reflect, refract};
 use glam::{Vec2, Vec3};
 
+use super::energy;
 use super::microfacet::Ggx;
 
 /// Fresnel reflectance for a cosine on either side (pbrt-v4 `FrDielectric`): a negative
@@ -123,9 +127,29 @@ fn half_vector(eta: f32, wo: Vec3, wi: Vec3) -> Option<(Vec3, f32, bool)> {
     Some((wm, etap, reflect))
 }
 
-/// Rough dielectric f(wo, wi): Walter 2007 eq. 20 (reflection) and eq. 21 (transmission),
-/// with the height-correlated G2 instead of the separable one.
+/// Rough dielectric with multiple-scattering compensation (Turquin 2019, see
+/// [`super::energy`]): the single-scatter [`rough_eval_ss`] divided by its directional
+/// albedo E_ss(wo), so that ∫ f |cos θi| dωi = 1 (Importance mode, tint 1) for every wo.
+/// Not reciprocal: f(wo, wi)·E(wo) = f(wi, wo)·E(wi).
 pub(crate) fn rough_eval(
+    eta: f32,
+    alpha: f32,
+    tint: Vec3,
+    wo: Vec3,
+    wi: Vec3,
+    mode: TransportMode,
+) -> Vec3 {
+    let f = rough_eval_ss(eta, alpha, tint, wo, wi, mode);
+    if f == Vec3::ZERO {
+        return f;
+    }
+    f * energy::compensation(eta, alpha, wo)
+}
+
+/// Single-scatter rough dielectric f_ss(wo, wi): Walter 2007 eq. 20 (reflection) and eq. 21
+/// (transmission), with the height-correlated G2 instead of the separable one. Loses the
+/// energy of light scattered more than once between microfacets.
+pub(crate) fn rough_eval_ss(
     eta: f32,
     alpha: f32,
     tint: Vec3,

@@ -10,6 +10,9 @@
 //! `f`/`pdf` then carry the delta's weight (f·|cos θi|/pdf is the throughput factor).
 
 mod dielectric;
+mod energy;
+#[cfg(test)]
+mod energy_tests;
 pub mod microfacet;
 mod pbr;
 #[cfg(test)]
@@ -60,7 +63,8 @@ pub enum Bsdf {
         /// GGX α.
         alpha: f32,
     },
-    /// Smooth (alpha < 1e-3 ⇒ delta lobes) or rough GGX dielectric (Walter 2007), with
+    /// Smooth (alpha < 1e-3 ⇒ delta lobes) or rough GGX dielectric (Walter 2007, with
+    /// Turquin 2019 multiple-scattering compensation: energy-conserving, not reciprocal), with
     /// reflection and transmission; `tint` multiplies transmission (glTF base colour), `eta`
     /// may be < 1 (bubble) and may be +∞ (glTF ior 0: pure mirror). η = 1 is always delta
     /// (straight through).

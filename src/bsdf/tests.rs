@@ -14,7 +14,10 @@
 //!   0.87–0.98, α 0.1 ≥ 0.97, GltfPbr ≥ 0.988. The "no sample" cell is part of the χ² test.
 //! - Albedo MC vs quadrature: within 1 % everywhere tested (Lambert exact to 1e-5).
 //! - Energy (Importance mode, tint 1): rough GGX without multiple scattering loses energy:
-//!   α 0.1: 0.906–0.999; α 0.4: 0.639–0.976 (worst: η 0.8, wo outside at 75°).
+//!   α 0.1: 0.906–0.999; α 0.4: 0.639–0.976 (worst: η 0.8, wo outside at 75°); over the
+//!   energy-test grid (α 0.05–1, η_eff 1/2.4–2.4, μo 0.05–1) down to 0.309. With the
+//!   multiple-scattering compensation (2026-12-01, `energy`): 1 within 0.52 % everywhere
+//!   on that grid (worst s.e. 0.19 %); E_ss table vs fine quadrature ≤ 0.23 %.
 //! - Mutation checks (done by hand, reverted): dropping the square of the transmission
 //!   Jacobian denominator in `rough_pdf` fails the χ² and albedo tests; dividing by η' instead
 //!   of η'² in `rough_eval` fails the generalised-reciprocity test.
@@ -397,14 +400,28 @@ fn albedo_sampling_matches_quadrature() {
     }
 }
 
-fn rand_dir(rng: &mut Rng, upper: bool) -> Vec3 {
+/// A random direction in the upper (z > 0) or lower hemisphere, |cos θ| ≥ 1e-3.
+pub(super) fn rand_dir(rng: &mut Rng, upper: bool) -> Vec3 {
     let z = rng.next_f32().max(1e-3);
     let p = 2.0 * std::f32::consts::PI * rng.next_f32();
     let r = (1.0 - z * z).sqrt();
     Vec3::new(r * p.cos(), r * p.sin(), if upper { z } else { -z })
 }
 
-/// Test 4: reciprocity eval(wo, wi) = eval(wi, wo) for reflection.
+/// The reciprocal single-scatter part of `b.eval`: for a rough dielectric the BSDF without
+/// the multiple-scattering compensation (which scales by 1/E_ss(wo), see `energy`).
+fn eval_ss(b: &Bsdf, wo: Vec3, wi: Vec3, mode: TransportMode) -> Vec3 {
+    match *b {
+        Bsdf::Dielectric { eta, alpha, tint } if !b.is_delta() => {
+            dielectric::rough_eval_ss(eta, alpha, tint, wo, wi, mode)
+        }
+        _ => b.eval(wo, wi, mode),
+    }
+}
+
+/// Test 4: reciprocity eval(wo, wi) = eval(wi, wo) for reflection (single-scatter part for
+/// the rough dielectric; its compensation is covered by
+/// `energy_tests::compensation_breaks_reciprocity_by_the_albedo_ratio`).
 #[test]
 fn reflection_is_reciprocal() {
     let mut rng = Rng::new(&[4]);
@@ -414,7 +431,7 @@ fn reflection_is_reciprocal() {
         for _ in 0..2000 {
             let up = rng.next_f32() < 0.5 || !matches!(b, Bsdf::Dielectric { .. });
             let (wo, wi) = (rand_dir(&mut rng, up), rand_dir(&mut rng, up));
-            let (a, c) = (b.eval(wo, wi, R), b.eval(wi, wo, R));
+            let (a, c) = (eval_ss(&b, wo, wi, R), eval_ss(&b, wi, wo, R));
             assert!(
                 (a - c).abs().max_element() <= 1e-4 * a.max_element().max(1e-6),
                 "{b:?}: {a} vs {c}"
@@ -426,7 +443,9 @@ fn reflection_is_reciprocal() {
 /// Test 5: generalised reciprocity of transmission (Veach 1997, eq. 5.14, written for
 /// pbrt's argument order f(wo, wi) = f_s(wi → wo)): f(wo, wi)/η(wo)² = f(wi, wo)/η(wi)² in
 /// Radiance mode, η(w) the index of the medium w lies in; and the adjoint relation
-/// f_Importance(wo, wi) = f_Radiance(wi, wo).
+/// f_Importance(wo, wi) = f_Radiance(wi, wo). Checked on the single-scatter part (for the
+/// compensated BSDF see
+/// `energy_tests::compensation_breaks_reciprocity_by_the_albedo_ratio`).
 #[test]
 fn transmission_generalised_reciprocity() {
     let mut rng = Rng::new(&[5]);
@@ -440,7 +459,7 @@ fn transmission_generalised_reciprocity() {
             let mut n = 0;
             for _ in 0..20_000 {
                 let (wo, wi) = (rand_dir(&mut rng, true), rand_dir(&mut rng, false));
-                let (a, c) = (b.eval(wo, wi, R), b.eval(wi, wo, R));
+                let (a, c) = (eval_ss(&b, wo, wi, R), eval_ss(&b, wi, wo, R));
                 // f32 cancellation in (wi·wm + wo·wm/η')² makes tiny values noisy (0.7 %
                 // at f ≈ 4e-7), so only values ≥ 1e-3 are compared.
                 // Grazing pairs (|cos| < 0.1) are excluded for the same reason (1.3 % at f ≈ 5e-4).
@@ -454,7 +473,7 @@ fn transmission_generalised_reciprocity() {
                     (l - r).abs().max_element() <= 5e-3 * l.max_element(),
                     "η {eta}: {l} vs {r}"
                 );
-                let imp = b.eval(wo, wi, I);
+                let imp = eval_ss(&b, wo, wi, I);
                 assert!((imp - c).abs().max_element() <= 5e-3 * c.max_element());
             }
             assert!(n > 1000, "too few valid pairs: {n}");

@@ -108,6 +108,10 @@ pub fn radiance(scene: &Scene, ray: &Ray, max_depth: u32, ctx: &mut Context) -> 
     let mut ray = *ray;
     let mut media = MediumStack::new();
     let (mut depth, mut delta_depth) = (0u32, 0u32);
+    // Product of η'² over the refractions so far: Russian roulette looks at beta·eta_scale,
+    // which leaves out the radiance-mode 1/η'² factors that cancel on leaving the object
+    // (pbrt-v4 `etaScale`); otherwise paths inside glass would be killed ~η² times as often.
+    let mut eta_scale = 1.0f32;
     // The previous bounce: delta (no MIS), its BSDF pdf and position.
     let (mut prev_delta, mut prev_pdf, mut prev_p) = (true, 0.0f32, ray.origin);
     let groups = scene.lights.len()
@@ -167,6 +171,12 @@ pub fn radiance(scene: &Scene, ray: &Ray, max_depth: u32, ctx: &mut Context) -> 
             break;
         }
         beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
+        if let (Bsdf::Dielectric { eta, .. }, true) = (bsdf, bs.transmission) {
+            let etap = if wo.z > 0.0 { eta } else { 1.0 / eta };
+            if etap.is_finite() && etap > 0.0 {
+                eta_scale *= etap * etap;
+            }
+        }
         let wi = frame.to_world(bs.wi);
         if bs.transmission && mat.is_volume() {
             media = media_t;
@@ -183,7 +193,7 @@ pub fn radiance(scene: &Scene, ray: &Ray, max_depth: u32, ctx: &mut Context) -> 
                 break;
             }
             if depth >= 3 {
-                let p = beta.max_element().min(0.95);
+                let p = (beta * eta_scale).max_element().min(0.95);
                 if ctx.rng.next_f32() >= p {
                     break;
                 }
