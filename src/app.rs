@@ -227,11 +227,7 @@ pub fn info_command(path: &Path) -> Result<String> {
     }
     let _ = writeln!(s, "materials:");
     for m in &desc.materials {
-        let ior = if m.ior == 0.0 {
-            "0 (infinite)".to_string()
-        } else {
-            format!("{}", m.ior)
-        };
+        let ior = crate::material::describe_ior(m);
         let _ = write!(
             s,
             "  {}: base [{:.3} {:.3} {:.3} {:.3}] metallic {} roughness {} ior {} transmission {}",
@@ -255,17 +251,6 @@ pub fn info_command(path: &Path) -> Result<String> {
                 m.attenuation_color.z,
                 m.attenuation_distance
             );
-        }
-        if m.dispersion > 0.0 {
-            let _ = write!(
-                s,
-                " dispersion {} (Abbe {:.1})",
-                m.dispersion,
-                20.0 / m.dispersion
-            );
-        }
-        if let Some(model) = m.ior_model {
-            let _ = write!(s, " {model:?}");
         }
         if m.specular != 1.0 || m.specular_color != glam::Vec3::ONE {
             let _ = write!(

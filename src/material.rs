@@ -5,9 +5,15 @@
 //! metallic: volumetric (`thickness > 0`, the mesh bounds a medium: rays bend by Snell's law
 //! and are absorbed by Beer–Lambert inside) or thin-walled (`thickness == 0`: no bending,
 //! the base colour tints what passes). IOR 0 is the KHR_materials_ior special mode:
-//! infinite index, Fresnel = 1.
+//! infinite index, Fresnel = 1, no dispersion.
+//!
+//! Each material carries exactly one n(λ) model ([`spectrum::IorModel`], resolved by
+//! [`MaterialDesc::spectral_ior`] when the material is built): RGB transport uses its n at
+//! the helium d line ([`Material::ior`]), spectral transport evaluates
+//! [`Material::ior_model`] at each wavelength (nm).
 
-use crate::scene::desc::{AlphaMode, ImageDesc, IorModel, MaterialDesc, TextureRef};
+use crate::scene::desc::{AlphaMode, ExplicitIor, ImageDesc, MaterialDesc, TextureRef};
+use crate::spectrum::{self, ior::KNOWN_NAMES};
 use crate::texture::{self, Encoding};
 use glam::{Vec2, Vec3, Vec4};
 
@@ -16,6 +22,8 @@ use glam::{Vec2, Vec3, Vec4};
 pub struct Material {
     /// The validated parameters as loaded.
     pub desc: MaterialDesc,
+    /// n(λ), resolved from `desc` by [`Material::new`].
+    ior_model: spectrum::IorModel,
 }
 
 /// Material parameters at one surface point, textures applied.
@@ -43,9 +51,13 @@ fn lookup(images: &[ImageDesc], tex: Option<TextureRef>, uv: Vec2, enc: Encoding
 }
 
 impl Material {
-    /// Wraps a validated description.
+    /// Wraps a validated description and resolves its IOR model. An unknown glass name
+    /// (which validation rejects) falls back to the KHR values.
     pub fn new(desc: MaterialDesc) -> Self {
-        Material { desc }
+        let ior_model = desc
+            .spectral_ior()
+            .unwrap_or_else(|_| spectrum::IorModel::from_khr(desc.ior, desc.dispersion));
+        Material { desc, ior_model }
     }
 
     /// Resolves textures at texture coordinate `uv`.
@@ -94,17 +106,26 @@ impl Material {
         self.desc.thickness > 0.0
     }
 
-    /// Index of refraction for RGB transport: the KHR `ior` (n_d), or the Cauchy model
-    /// evaluated at the helium d line, 587.56 nm. `f32::INFINITY` for the `ior: 0` mode.
+    /// Index of refraction for RGB transport: the model's n_d (587.56 nm). That is the KHR
+    /// `ior` itself for KHR_materials_dispersion (whose formula gives n_d only to ~1e-5),
+    /// the catalogue n_d for a named glass, b + c/λ_d² for Cauchy, and `f32::INFINITY` for
+    /// the `ior: 0` mode.
     pub fn ior(&self) -> f32 {
-        match self.desc.ior_model {
-            Some(IorModel::Cauchy { b, c }) => {
-                let l = 0.587_56f32;
-                b + c / (l * l)
-            }
-            None if self.desc.ior == 0.0 => f32::INFINITY,
-            None => self.desc.ior,
+        match self.ior_model {
+            spectrum::IorModel::KhrDispersion { n_d, .. } => n_d,
+            model => model.n_d(),
         }
+    }
+
+    /// The material's n(λ) model (λ in nm), for spectral transport.
+    pub fn ior_model(&self) -> &spectrum::IorModel {
+        &self.ior_model
+    }
+
+    /// Whether the index depends on wavelength (spectral transport then terminates the
+    /// secondary wavelengths at a refraction).
+    pub fn is_dispersive(&self) -> bool {
+        self.ior_model.is_dispersive()
     }
 
     /// Beer–Lambert transmittance c^(x/d) over distance `x` inside the medium
@@ -117,5 +138,37 @@ impl Material {
         let c = self.desc.attenuation_color;
         let e = x / d;
         Vec3::new(c.x.powf(e), c.y.powf(e), c.z.powf(e))
+    }
+}
+
+/// One line describing a material's IOR model for `iris info`, e.g.
+/// `Sellmeier N-BK7 (n_d 1.5168, Abbe 64.2)` or `2.42, KHR dispersion 0.36 (Abbe 55.6)`.
+pub fn describe_ior(desc: &MaterialDesc) -> String {
+    let model = match desc.spectral_ior() {
+        Ok(model) => model,
+        Err(e) => return format!("{} ({e})", desc.ior),
+    };
+    if desc.ior == 0.0 {
+        return "0 (infinite, no dispersion)".to_string();
+    }
+    let optics = format!("n_d {:.4}, Abbe {:.1}", model.n_d(), model.abbe_number());
+    match (&desc.ior_model, model) {
+        (Some(ExplicitIor::Glass(name)), _) => {
+            // The catalogue spelling of the name as written (aliases resolve alike).
+            let same = |k: &&&str| spectrum::IorModel::named(k).ok() == Some(model);
+            let canonical = KNOWN_NAMES
+                .iter()
+                .find(same)
+                .copied()
+                .unwrap_or(name.as_str());
+            format!("Sellmeier {canonical} ({optics})")
+        }
+        (_, spectrum::IorModel::Cauchy { b, c }) => format!("Cauchy b {b} c {c} ({optics})"),
+        // The extension defines its Abbe number as 20/D.
+        (_, spectrum::IorModel::KhrDispersion { n_d, dispersion }) => format!(
+            "{n_d}, KHR dispersion {dispersion} (Abbe {:.1})",
+            20.0 / dispersion
+        ),
+        _ => format!("{}", desc.ior),
     }
 }

@@ -4,7 +4,7 @@
 mod common;
 
 use iris::load::load_scene;
-use iris::scene::desc::{IorModel, MaterialDesc, SceneDesc};
+use iris::scene::desc::{ExplicitIor, MaterialDesc, SceneDesc};
 use iris::LoadErrorKind;
 use std::path::{Path, PathBuf};
 
@@ -301,7 +301,10 @@ fn mtl_cauchy_keys_and_warnings() {
     let (_, result) = load_files("cauchy", &[("c.obj", &obj), ("m.mtl", mtl)]);
     let desc = result.unwrap_or_else(|e| panic!("{e}"));
     let gem = material(&desc, "gem");
-    assert_eq!(gem.ior_model, Some(IorModel::Cauchy { b: 1.5, c: 0.0042 }));
+    assert_eq!(
+        gem.ior_model,
+        Some(ExplicitIor::Cauchy { b: 1.5, c: 0.0042 })
+    );
     assert!((gem.ior - 1.51).abs() < 1e-6);
     assert_eq!(gem.transmission, 1.0);
     let warnings = desc.warnings.join("\n");

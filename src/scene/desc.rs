@@ -13,6 +13,7 @@
 //! Values are *not* trusted here: NaN, out-of-range indices and bad IORs are caught by
 //! `scene::validate`, which names the element.
 
+use crate::spectrum::{IorModel as SpectralIor, UnknownIorName};
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -89,17 +90,22 @@ pub enum AlphaMode {
     Blend,
 }
 
-/// Chromatic dispersion model given explicitly by the scene.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum IorModel {
+/// An IOR model given explicitly by the scene (glTF material `extras`, Iris MTL keys).
+/// It takes precedence over KHR_materials_dispersion; see [`MaterialDesc::spectral_ior`].
+#[derive(Debug, Clone, PartialEq)]
+pub enum ExplicitIor {
     /// The seed paper's Cauchy form n(λ) = b + c/λ², λ in micrometres (material extras
-    /// `{"cauchy": {"b": 1.5, "c": 0.0042}}`). Overrides KHR_materials_dispersion.
+    /// `{"cauchy": {"b": 1.5, "c": 0.0042}}`, MTL `cauchy_b`/`cauchy_c`).
     Cauchy {
         /// Constant term b.
         b: f32,
         /// Coefficient c in µm².
         c: f32,
     },
+    /// A named Sellmeier glass from [`crate::spectrum::ior::KNOWN_NAMES`], as written
+    /// (extras `{"iris_glass": "N-BK7"}`, MTL `iris_glass N-BK7`); names are
+    /// case-insensitive and validation rejects unknown ones.
+    Glass(String),
 }
 
 /// A material in glTF metallic-roughness terms plus the KHR extensions Iris reads.
@@ -123,7 +129,8 @@ pub struct MaterialDesc {
     /// Emissive texture (sRGB).
     pub emissive_texture: Option<TextureRef>,
     /// Index of refraction (KHR_materials_ior, default 1.5). The value 0 is the spec's
-    /// special mode: infinite IOR, Fresnel = 1, no dispersion.
+    /// special mode: infinite IOR, Fresnel = 1, no dispersion. Otherwise unused when
+    /// `ior_model` is given (it is then the fallback other renderers read).
     pub ior: f32,
     /// KHR_materials_transmission factor in [0,1].
     pub transmission: f32,
@@ -141,8 +148,8 @@ pub struct MaterialDesc {
     pub specular_color: Vec3,
     /// KHR_materials_dispersion `dispersion` = 20/Abbe number.
     pub dispersion: f32,
-    /// An explicit IOR model from material extras; overrides `dispersion`.
-    pub ior_model: Option<IorModel>,
+    /// An explicit IOR model (extras / MTL keys); overrides `ior` and `dispersion`.
+    pub ior_model: Option<ExplicitIor>,
     /// glTF doubleSided.
     pub double_sided: bool,
     /// glTF alphaMode / alphaCutoff.
@@ -172,6 +179,26 @@ impl Default for MaterialDesc {
             ior_model: None,
             double_sided: false,
             alpha_mode: AlphaMode::Opaque,
+        }
+    }
+}
+
+impl MaterialDesc {
+    /// The one n(λ) model this material refracts with. Precedence: `ior == 0` (the
+    /// KHR_materials_ior infinite-IOR mode: `Constant(+∞)`, no dispersion, whatever else is
+    /// given) > the explicit model (`ior_model`) > KHR_materials_dispersion (`dispersion > 0`,
+    /// `ior` as n_d; `ior` 1 stays constant) > `Constant(ior)`. Errs only on an unknown
+    /// glass name; the value checks are [`crate::scene::validate`]'s.
+    pub fn spectral_ior(&self) -> Result<SpectralIor, UnknownIorName> {
+        if self.ior == 0.0 {
+            return Ok(SpectralIor::Constant(f32::INFINITY));
+        }
+        match &self.ior_model {
+            Some(ExplicitIor::Glass(name)) => SpectralIor::named(name),
+            Some(ExplicitIor::Cauchy { b, c }) => Ok(SpectralIor::Cauchy { b: *b, c: *c }),
+            // n_d = 1 makes the KHR formula's (n_d − 1) factor vanish: n ≡ 1, not dispersive.
+            None if self.ior == 1.0 => Ok(SpectralIor::Constant(1.0)),
+            None => Ok(SpectralIor::from_khr(self.ior, self.dispersion)),
         }
     }
 }

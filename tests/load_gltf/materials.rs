@@ -3,7 +3,7 @@
 use super::fixtures::*;
 use super::{common, load, material};
 use glam::{Mat4, Vec3};
-use iris::scene::desc::{IorModel, LightDesc, Projection};
+use iris::scene::desc::{ExplicitIor, LightDesc, Projection};
 use serde_json::json;
 
 #[test]
@@ -31,7 +31,7 @@ fn cauchy_ior_and_texture_values_pass_through() {
     let glass = material(&desc, "Glass");
     assert_eq!(
         glass.ior_model,
-        Some(IorModel::Cauchy { b: 1.5, c: 0.0042 })
+        Some(ExplicitIor::Cauchy { b: 1.5, c: 0.0042 })
     );
     assert_eq!(glass.dispersion, 0.36);
     assert_eq!(glass.ior, 1.5);

@@ -10,13 +10,18 @@
 //! - `KHR_materials_volume.attenuationDistance` defaults to +∞ (never 0).
 //! - `KHR_materials_dispersion.dispersion` (= 20/V_d) is read from the raw extension JSON,
 //!   which the `gltf` crate does not type.
-//! - Material `extras` `{"cauchy": {"b": B, "c": C}}` gives `IorModel::Cauchy`
-//!   (n(λ) = B + C/λ², λ in µm, C in µm²); it must have finite B ≥ 1 and C ≥ 0.
+//! - Material `extras` (the README's "IOR models"): `{"iris_glass": "N-BK7"}` names a
+//!   built-in Sellmeier glass (`spectrum::ior::KNOWN_NAMES`, case-insensitive) and gives
+//!   `ExplicitIor::Glass`; `{"cauchy": {"b": B, "c": C}}` gives `ExplicitIor::Cauchy`
+//!   (n(λ) = B + C/λ², λ in µm, C in µm²; finite B ≥ 1 and C ≥ 0). Both on one material,
+//!   a non-string name or an unknown name are `InvalidValue` errors naming the material.
+//!   Either overrides KHR_materials_dispersion (the KHR values stay the fallback other
+//!   viewers use); `ior: 0` overrides both (see `MaterialDesc::spectral_ior`).
 
 use super::source::ImageCache;
 use super::{label, Ctx, Warnings};
 use crate::error::{LoadError, LoadErrorKind};
-use crate::scene::desc::{AlphaMode, ImageDesc, IorModel, MaterialDesc, TextureRef};
+use crate::scene::desc::{AlphaMode, ExplicitIor, ImageDesc, MaterialDesc, TextureRef};
 use glam::{Vec3, Vec4};
 use serde_json::Value;
 
@@ -105,7 +110,7 @@ fn read_material(
             Vec3::from(s.specular_color_factor())
         }),
         dispersion: dispersion(ctx, m, &element)?,
-        ior_model: cauchy(ctx, m, &element)?,
+        ior_model: explicit_ior(ctx, m, &element)?,
         double_sided: m.double_sided(),
         alpha_mode,
         name: element,
@@ -130,45 +135,63 @@ fn dispersion(ctx: &Ctx<'_>, m: &gltf::Material<'_>, element: &str) -> Result<f3
     }
 }
 
-/// The Iris extras convention `{"cauchy": {"b": 1.5, "c": 0.0042}}`; other extras keys
-/// and non-object extras are ignored.
-fn cauchy(
+/// The Iris extras keys `iris_glass` and `cauchy` (at most one); other extras keys and
+/// non-object extras are ignored.
+fn explicit_ior(
     ctx: &Ctx<'_>,
     m: &gltf::Material<'_>,
     element: &str,
-) -> Result<Option<IorModel>, LoadError> {
+) -> Result<Option<ExplicitIor>, LoadError> {
     let Some(raw) = m.extras() else {
         return Ok(None);
     };
     let Ok(extras) = serde_json::from_str::<Value>(raw.get()) else {
         return Ok(None);
     };
-    let Some(cauchy) = extras.get("cauchy") else {
-        return Ok(None);
-    };
     let invalid = |detail: String| ctx.error(element, LoadErrorKind::InvalidValue, detail);
-    let fields = cauchy.as_object().ok_or_else(|| {
-        invalid(format!(
-            "extras.cauchy must be an object {{\"b\": …, \"c\": …}}, found {cauchy}"
-        ))
+    match (extras.get("iris_glass"), extras.get("cauchy")) {
+        (Some(_), Some(_)) => Err(invalid(
+            "extras give both iris_glass and cauchy; keep one IOR model".into(),
+        )),
+        (Some(glass), None) => glass_name(glass).map(Some).map_err(invalid),
+        (None, Some(cauchy)) => cauchy_model(cauchy).map(Some).map_err(invalid),
+        (None, None) => Ok(None),
+    }
+}
+
+/// `extras.iris_glass`: a string naming a known glass.
+fn glass_name(glass: &Value) -> Result<ExplicitIor, String> {
+    let name = glass.as_str().ok_or_else(|| {
+        format!("extras.iris_glass must be a string naming a glass, found {glass}")
     })?;
-    let number = |key: &str| -> Result<f32, LoadError> {
+    match crate::spectrum::IorModel::named(name) {
+        Ok(_) => Ok(ExplicitIor::Glass(name.to_string())),
+        Err(e) => Err(format!("extras.iris_glass: {e}")),
+    }
+}
+
+/// `extras.cauchy`: `{"b": B, "c": C}` with finite B ≥ 1, C ≥ 0.
+fn cauchy_model(cauchy: &Value) -> Result<ExplicitIor, String> {
+    let fields = cauchy.as_object().ok_or_else(|| {
+        format!("extras.cauchy must be an object {{\"b\": …, \"c\": …}}, found {cauchy}")
+    })?;
+    let number = |key: &str| -> Result<f32, String> {
         fields
             .get(key)
             .and_then(Value::as_f64)
             .map(|v| v as f32)
-            .ok_or_else(|| invalid(format!("extras.cauchy.{key} is missing or not a number")))
+            .ok_or_else(|| format!("extras.cauchy.{key} is missing or not a number"))
     };
     let (b, c) = (number("b")?, number("c")?);
     if !(b.is_finite() && b >= 1.0) {
-        return Err(invalid(format!(
+        return Err(format!(
             "extras.cauchy.b = {b} must be a finite number >= 1"
-        )));
+        ));
     }
     if !(c.is_finite() && c >= 0.0) {
-        return Err(invalid(format!(
+        return Err(format!(
             "extras.cauchy.c = {c} (µm²) must be a finite number >= 0"
-        )));
+        ));
     }
-    Ok(Some(IorModel::Cauchy { b, c }))
+    Ok(ExplicitIor::Cauchy { b, c })
 }

@@ -5,10 +5,14 @@
 //! | `Kd` (+ `map_Kd`) | base colour (+ sRGB texture; a missing/unreadable file is a warning) |
 //! | `Ks`, `Ns` | specular weight = max(Ks), specular colour = Ks / max(Ks); roughness below |
 //! | `Ke` | emissive |
-//! | `Ni` | ior (absent: 1.5, or n(589.3 nm) of the Cauchy model when given) |
+//! | `Ni` | ior (absent: 1.5, or n(589.3 nm) of the Cauchy model, or the glass's n_d) |
 //! | `d`, else `1 − Tr` | alpha; alpha < 1 → [`AlphaMode::Blend`] |
 //! | `Pr`, `Pm` | roughness, metallic (PBR extension; override the values below) |
-//! | `cauchy_b`, `cauchy_c` | [`IorModel::Cauchy`] (Iris keys) |
+//! | `cauchy_b`, `cauchy_c` | [`ExplicitIor::Cauchy`] (Iris keys) |
+//! | `iris_glass NAME` (or `# iris_glass NAME`) | [`ExplicitIor::Glass`] (Iris key) |
+//!
+//! An Iris IOR model (either key) overrides `Ni` for refraction (`Ni` stays the value other
+//! renderers use) and counts as `Ni` for the illum rules below.
 //!
 //! **Roughness.** Walter et al. 2007 match a Blinn–Phong exponent `Ns` to a microfacet
 //! width `α = sqrt(2 / (Ns + 2))`. `MaterialDesc::roughness` is glTF's *perceptual*
@@ -17,7 +21,7 @@
 //!
 //! **illum.** 0–2: opaque dielectric (metallic 0; 0 and 1 have no specular lobe, `illum 0`
 //! "constant colour" is reported unsupported). 3 and 5: mirror (metallic 1, roughness 0,
-//! base colour `Ks`). 6 and 7 *with* `Ni`: a refracting **dielectric** — transmission 1,
+//! base colour `Ks`). 6 and 7 *with* `Ni` (or an Iris IOR model): a refracting **dielectric** — transmission 1,
 //! thickness 1 (volumetric: the mesh bounds a medium), metallic 0, roughness 0, specular 1,
 //! base colour white, opaque. `illum 4` ("glass", dissolve-based transparency in the MTL
 //! spec) is a dielectric only with `Ni` *and* a dissolve below 1 (`d < 1` or `Tr > 0`);
@@ -30,7 +34,7 @@
 
 use super::mtl::RawMtl;
 use crate::error::{LoadError, LoadErrorKind};
-use crate::scene::desc::{AlphaMode, ImageDesc, IorModel, MaterialDesc, TextureRef};
+use crate::scene::desc::{AlphaMode, ExplicitIor, ImageDesc, MaterialDesc, TextureRef};
 use glam::{Vec3, Vec4};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -136,16 +140,24 @@ pub(super) fn to_material(
         ..MaterialDesc::default()
     };
     if let Some((b, c)) = raw.cauchy {
-        m.ior_model = Some(IorModel::Cauchy { b, c });
+        m.ior_model = Some(ExplicitIor::Cauchy { b, c });
         m.ior = b + c / (SODIUM_D_UM * SODIUM_D_UM);
+    }
+    if let Some(glass) = &raw.glass {
+        // The parser checked the name; `named` cannot fail here.
+        if let Ok(model) = crate::spectrum::IorModel::named(glass) {
+            m.ior = model.n_d();
+        }
+        m.ior_model = Some(ExplicitIor::Glass(glass.clone()));
     }
     if let Some(ni) = raw.ni {
         m.ior = ni;
     }
     let alpha = raw.d.or(raw.tr.map(|t| 1.0 - t)).unwrap_or(1.0);
     let illum = raw.illum.unwrap_or(2);
-    let dielectric = raw.ni.is_some() && (matches!(illum, 6 | 7) || (illum == 4 && alpha < 1.0));
-    if matches!(illum, 6 | 7) && raw.ni.is_none() {
+    let has_ior = raw.ni.is_some() || m.ior_model.is_some();
+    let dielectric = has_ior && (matches!(illum, 6 | 7) || (illum == 4 && alpha < 1.0));
+    if matches!(illum, 6 | 7) && !has_ior {
         unsupported.push((format!("illum {illum} without Ni"), raw.name.clone()));
     } else if !matches!(illum, 1..=7) {
         unsupported.push((format!("illum {illum}"), raw.name.clone()));

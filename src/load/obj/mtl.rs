@@ -12,12 +12,17 @@
 //! - `Kd|Ks|Ke|Tf r [g b]` (one value means grey); `spectral`/`xyz` forms are unsupported;
 //! - `Ns|Ni|d|Tr|Pr|Pm value` (`d -halo value` reads the value), `illum n`;
 //! - `map_Kd [options] FILE` (options like `-s 1 1 1` are skipped and reported);
-//! - the Iris keys `cauchy_b B` and `cauchy_c C` (both or neither, numbers; see `IorModel`);
+//! - the Iris keys `cauchy_b B` and `cauchy_c C` (both or neither, numbers; see
+//!   `ExplicitIor`) and `iris_glass NAME` (a built-in Sellmeier glass,
+//!   `spectrum::ior::KNOWN_NAMES`, case-insensitive, the rest of the line so
+//!   `iris_glass fused silica` works); `iris_glass` may also be written as a comment,
+//!   `# iris_glass NAME`, which other MTL readers skip silently;
 //! - `Ka`/`map_Ka` (ambient: meaningless for a path tracer) are ignored silently; every
 //!   other key is recorded in [`RawMtl::unsupported`] for the loader's single warning.
 //!
 //! Errors: unparsable numbers → `Parse` naming the MTL line; a malformed or lone
-//! `cauchy_b`/`cauchy_c` → `InvalidValue` naming the material.
+//! `cauchy_b`/`cauchy_c`, an unknown or missing `iris_glass` name, or both `iris_glass` and
+//! the Cauchy keys on one material → `InvalidValue` naming the material and the line.
 
 use crate::error::{LoadError, LoadErrorKind};
 use glam::Vec3;
@@ -56,6 +61,8 @@ pub(super) struct RawMtl {
     pub map_kd: Option<String>,
     /// Iris Cauchy model `(b, c)`, c in µm².
     pub cauchy: Option<(f32, f32)>,
+    /// Iris `iris_glass` name as written (already checked against the known names).
+    pub glass: Option<String>,
     /// Keys seen and not used, in order of appearance, without duplicates.
     pub unsupported: Vec<String>,
 }
@@ -77,7 +84,7 @@ pub(super) fn parse_mtl(path: &Path, text: &str) -> Result<MtlLib, LoadError> {
     let mut stray = 0usize;
     for (i, raw) in text.lines().enumerate() {
         let line = i + 1;
-        let content = raw.split('#').next().unwrap_or("");
+        let content = glass_comment(raw).unwrap_or_else(|| raw.split('#').next().unwrap_or(""));
         let words: Vec<&str> = content.split_whitespace().collect();
         let Some((&key, args)) = words.split_first() else {
             continue;
@@ -118,6 +125,7 @@ pub(super) fn parse_mtl(path: &Path, text: &str) -> Result<MtlLib, LoadError> {
             "map_Kd" => mtl.map_kd = texture_file(args, &mut mtl.unsupported),
             "cauchy_b" => cauchy.0 = Some(at.cauchy(&mtl.name, args)?),
             "cauchy_c" => cauchy.1 = Some(at.cauchy(&mtl.name, args)?),
+            "iris_glass" => mtl.glass = Some(at.glass(&mtl.name, args)?),
             "Ka" | "map_Ka" => {}
             other => note(&mut mtl.unsupported, other),
         }
@@ -134,7 +142,14 @@ pub(super) fn parse_mtl(path: &Path, text: &str) -> Result<MtlLib, LoadError> {
     Ok(lib)
 }
 
-/// Closes a material: the Cauchy keys must come as a pair.
+/// The statement inside a comment `# iris_glass NAME`, if the line is one.
+fn glass_comment(raw: &str) -> Option<&str> {
+    let body = raw.trim_start().strip_prefix('#')?.trim_start();
+    let rest = body.strip_prefix("iris_glass")?;
+    rest.starts_with(char::is_whitespace).then_some(body)
+}
+
+/// Closes a material: the Cauchy keys must come as a pair, and not with `iris_glass`.
 fn finish(
     path: &Path,
     mut mtl: RawMtl,
@@ -157,6 +172,14 @@ fn finish(
             ));
         }
     };
+    if mtl.glass.is_some() && mtl.cauchy.is_some() {
+        return Err(LoadError::new(
+            path,
+            format!("material \"{}\" (line {})", mtl.name, mtl.line),
+            LoadErrorKind::InvalidValue,
+            "both `iris_glass` and `cauchy_b`/`cauchy_c` given; keep one IOR model",
+        ));
+    }
     Ok(mtl)
 }
 
@@ -275,6 +298,32 @@ impl Ctx<'_> {
     }
 }
 
+impl Ctx<'_> {
+    /// An `iris_glass` name (the rest of the statement): an unknown one names the material
+    /// and this line, and lists the known names.
+    fn glass(&self, material: &str, args: &[&str]) -> Result<String, LoadError> {
+        let name = args.join(" ");
+        let problem = if args.is_empty() {
+            format!(
+                "`{}` expects a glass name, one of {}",
+                self.key,
+                crate::spectrum::ior::KNOWN_NAMES.join(", ")
+            )
+        } else {
+            match crate::spectrum::IorModel::named(&name) {
+                Ok(_) => return Ok(name),
+                Err(e) => format!("`{}`: {e}", self.key),
+            }
+        };
+        Err(LoadError::new(
+            self.path,
+            format!("material \"{material}\" (line {})", self.line),
+            LoadErrorKind::InvalidValue,
+            problem,
+        ))
+    }
+}
+
 /// Skips `map_Kd` options (`-s 1 1 1`, `-clamp on`, …) and returns the file name.
 fn texture_file(args: &[&str], unsupported: &mut Vec<String>) -> Option<String> {
     let mut rest = args;
@@ -339,6 +388,29 @@ mod tests {
         assert!(e.to_string().contains("\"g\""));
         let e = parse("newmtl g\ncauchy_b x\ncauchy_c 1\n").expect_err("bad");
         assert_eq!(e.kind, LoadErrorKind::InvalidValue);
+    }
+
+    #[test]
+    fn iris_glass_key_and_comment() {
+        let lib = parse("newmtl g\niris_glass N-BK7\nnewmtl s\n  # iris_glass fused silica\n")
+            .expect("parses");
+        assert_eq!(lib.materials[0].glass.as_deref(), Some("N-BK7"));
+        assert_eq!(lib.materials[1].glass.as_deref(), Some("fused silica"));
+        // An ordinary comment that merely mentions the key is still a comment.
+        let lib = parse("newmtl g\n# iris_glassy N-BK7\n#see iris_glass docs\n").expect("parses");
+        assert_eq!(lib.materials[0].glass, None);
+        let e = parse("newmtl g\nKd 1\n\niris_glass unobtainium\n").expect_err("unknown");
+        assert_eq!(e.kind, LoadErrorKind::InvalidValue);
+        let text = e.to_string();
+        assert!(
+            text.contains("\"g\" (line 4)") && text.contains("N-SF11"),
+            "{text}"
+        );
+        let e = parse("newmtl g\niris_glass\n").expect_err("no name");
+        assert!(e.to_string().contains("line 2"), "{e}");
+        let e =
+            parse("newmtl g\niris_glass water\ncauchy_b 1.5\ncauchy_c 0.0042\n").expect_err("both");
+        assert!(e.to_string().contains("both"), "{e}");
     }
 
     #[test]

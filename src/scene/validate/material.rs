@@ -5,7 +5,10 @@
 //! (`InvalidValue` naming the field; `attenuation_distance` may be +∞). The IOR may not be
 //! NaN, infinite or negative (`InvalidIor`); 0 is KHR_materials_ior's special mode; values
 //! in (0, 1) model a bubble (e.g. air in water) and only warn. A Cauchy model needs finite
-//! `b > 0`, `c ≥ 0` (`InvalidIor`). Unit-interval factors (base colour, metallic,
+//! `b > 0`, `c ≥ 0`, and a glass name must be one of `spectrum::ior::KNOWN_NAMES`
+//! (`InvalidIor`); every material then resolves to exactly one `spectrum::IorModel`
+//! ([`MaterialDesc::spectral_ior`]: `ior` 0 > explicit model > KHR dispersion > constant).
+//! `ior` 0 with an explicit model or `dispersion > 0` warns that dispersion is off. Unit-interval factors (base colour, metallic,
 //! roughness, transmission, specular, attenuation colour, alpha cutoff) outside [0, 1] are
 //! clamped with one warning per material; a negative specular colour is clamped to 0.
 //! `attenuation_distance > 0`, `thickness ≥ 0`, `dispersion ≥ 0` and `emissive ≥ 0` are
@@ -13,7 +16,7 @@
 
 use super::{element, fail};
 use crate::error::{LoadError, LoadErrorKind};
-use crate::scene::desc::{AlphaMode, ImageDesc, IorModel, MaterialDesc};
+use crate::scene::desc::{AlphaMode, ExplicitIor, ImageDesc, MaterialDesc};
 use std::path::Path;
 
 pub(super) fn check_images(src: &Path, images: &[ImageDesc]) -> Result<(), LoadError> {
@@ -110,7 +113,7 @@ pub(super) fn check_material(
     Ok(())
 }
 
-/// IOR and Cauchy rules; `Err` carries the detail of an `InvalidIor` error.
+/// IOR and IOR-model rules; `Err` carries the detail of an `InvalidIor` error.
 fn check_ior(m: &MaterialDesc, name: &str, warnings: &mut Vec<String>) -> Result<(), String> {
     let ior = m.ior;
     if !ior.is_finite() || ior < 0.0 {
@@ -121,14 +124,31 @@ fn check_ior(m: &MaterialDesc, name: &str, warnings: &mut Vec<String>) -> Result
             "{name}: ior {ior} < 1 is outside KHR_materials_ior's range; kept (a bubble, e.g. air in water)"
         ));
     }
-    if let Some(IorModel::Cauchy { b, c }) = m.ior_model {
+    if let Some(ExplicitIor::Cauchy { b, c }) = m.ior_model {
         if !(b.is_finite() && c.is_finite() && b > 0.0 && c >= 0.0) {
             return Err(format!(
                 "Cauchy model b = {b}, c = {c} (needs finite b > 0 and c ≥ 0)"
             ));
         }
     }
-    Ok(())
+    // An unknown name fails even under ior 0, so a typo never goes unnoticed.
+    if let Some(ExplicitIor::Glass(glass)) = &m.ior_model {
+        crate::spectrum::IorModel::named(glass).map_err(|e| e.to_string())?;
+    }
+    if ior == 0.0 {
+        let ignored = match (&m.ior_model, m.dispersion > 0.0) {
+            (Some(ExplicitIor::Glass(glass)), _) => Some(format!("iris_glass \"{glass}\"")),
+            (Some(ExplicitIor::Cauchy { .. }), _) => Some("the Cauchy model".to_string()),
+            (None, true) => Some(format!("dispersion {}", m.dispersion)),
+            (None, false) => None,
+        };
+        if let Some(ignored) = ignored {
+            warnings.push(format!(
+                "{name}: ior 0 (KHR_materials_ior infinite-IOR mode) has no dispersion; {ignored} ignored"
+            ));
+        }
+    }
+    m.spectral_ior().map(|_| ()).map_err(|e| e.to_string())
 }
 
 /// Clamps unit-interval factors (and negative specular colour), noting each change.

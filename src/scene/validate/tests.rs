@@ -200,7 +200,7 @@ fn ior_rules() {
 #[test]
 fn cauchy_rules() {
     let mut d = scene();
-    d.materials[0].ior_model = Some(IorModel::Cauchy { b: 1.5, c: 0.0042 });
+    d.materials[0].ior_model = Some(ExplicitIor::Cauchy { b: 1.5, c: 0.0042 });
     assert!(validate(d).is_ok());
     for (b, c) in [
         (0.0, 0.0),
@@ -209,8 +209,51 @@ fn cauchy_rules() {
         (1.5, f32::INFINITY),
     ] {
         let mut d = scene();
-        d.materials[0].ior_model = Some(IorModel::Cauchy { b, c });
+        d.materials[0].ior_model = Some(ExplicitIor::Cauchy { b, c });
         assert_eq!(err_kind(d).0, LoadErrorKind::InvalidIor, "b={b} c={c}");
+    }
+}
+
+#[test]
+fn glass_names_resolve_or_fail_naming_the_material() {
+    use crate::spectrum::IorModel;
+    let mut d = scene();
+    d.materials[0].ior_model = Some(ExplicitIor::Glass("n-bk7".into()));
+    let (d, w) = warnings(d);
+    assert!(w.is_empty(), "{w}");
+    let model = d.materials[0].spectral_ior().expect("known");
+    assert_eq!(model, IorModel::named("N-BK7").expect("catalogue"));
+    let mut d = scene();
+    d.materials[0].ior_model = Some(ExplicitIor::Glass("BK-7x".into()));
+    let (k, msg) = err_kind(d);
+    assert_eq!(k, LoadErrorKind::InvalidIor);
+    assert!(
+        msg.contains("\"glass\"") && msg.contains("BK-7x") && msg.contains("N-SF11"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn ior_zero_disables_dispersion_with_a_warning() {
+    use crate::spectrum::IorModel;
+    let explicit = [
+        None,
+        Some(ExplicitIor::Glass("diamond".into())),
+        Some(ExplicitIor::Cauchy { b: 1.5, c: 0.0042 }),
+    ];
+    for model in explicit {
+        let mut d = scene();
+        d.materials[0].ior = 0.0;
+        d.materials[0].dispersion = 0.36;
+        d.materials[0].ior_model = model.clone();
+        let (d, w) = warnings(d);
+        assert!(
+            w.contains("\"glass\"") && w.contains("ior 0"),
+            "{model:?}: {w}"
+        );
+        let resolved = d.materials[0].spectral_ior().expect("resolves");
+        assert_eq!(resolved, IorModel::Constant(f32::INFINITY), "{model:?}");
+        assert!(!resolved.is_dispersive());
     }
 }
 
