@@ -76,10 +76,13 @@ pub fn encode_glb(scene: &GenScene) -> Result<Vec<u8>> {
     );
     let node_ids: Vec<usize> = (0..w.nodes.len()).collect();
     root.insert("scene".into(), json!(0));
-    root.insert(
-        "scenes".into(),
-        json!([{"name": scene.name, "nodes": node_ids}]),
-    );
+    let mut scene_json = Map::new();
+    scene_json.insert("name".into(), json!(scene.name));
+    scene_json.insert("nodes".into(), json!(node_ids));
+    if let Some(x) = &scene.extras {
+        scene_json.insert("extras".into(), x.clone());
+    }
+    root.insert("scenes".into(), json!([scene_json]));
     insert_array(&mut root, "nodes", std::mem::take(&mut w.nodes));
     insert_array(&mut root, "meshes", std::mem::take(&mut w.meshes));
     insert_array(&mut root, "materials", materials);
@@ -275,6 +278,7 @@ mod tests {
                 yfov: 0.7,
                 aspect: None,
             }),
+            extras: None,
         }
     }
 
