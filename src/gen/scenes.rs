@@ -10,7 +10,7 @@
 //! |---|---|---|---|---|
 //! | `glass_of_water.glb` | a tapered tumbler (Ø 60→72 mm, 110 mm tall, 2.5 mm wall, 8 mm base, 96 segments, rounded rim) holding water up to 75 mm; the water's side and bottom are the glass's inner wall and floor with reversed winding (same vertices); 0.5 mm above a checker table (24×16 tiles of 25 mm) before a checker backdrop at z = −0.2 | glass IOR 1.5; water IOR 1.33, faint blue-green absorption (attenuation colour (0.8, 0.93, 0.96) over 0.25 m) | key panel 16×16 cm facing down at (−0.12, 0.4, 0.12), radiance 60; fill panel 60×30 cm facing −Z at z = 0.6, radiance 3 | eye (0, 0.12, 0.38) → (0, 0.055, 0), yfov 28°, 1:1 |
 //! | `ruby.glb` | round brilliant ([`Brilliant::ideal`], Ø 20 mm, 73 facets) lying on a pavilion main, table tilted 40.75° towards the camera, 0.2 mm above a plain floor | ruby: IOR 1.77, dispersion 0.28 (Abbe ≈ 72), attenuation colour (0.9, 0.1, 0.18) over 20 mm; floor 0.85 grey | panels 5×5 cm radiance 40 (front-left) and 4×4 cm radiance 30 (back-right), facing down; scene extras `iris_environment: 0.15` (uniform grey) | eye (0.015, 0.038, 0.075) → (0, 0.006, 0), yfov 30°, 1:1 |
-//! | `prism_sky.glb` + `sky.hdr` | an upright 60° prism (side 0.25, height 0.4, apex towards +Z) 1 mm above a 3×3 m checker floor (0.15 m tiles) framed by plain floor out to ±12 m | prism glass IOR 1.5, dispersion 1.0 (Abbe 20); checker 0.8 / 0.55 grey, plain floor 0.7 | scene extras `iris_environment: "sky.hdr"` ([`super::sky`]: sky, ground, four coloured panels, sun at elevation 30° whose light crosses the prism near minimum deviation and lands on the floor on the +Z side) | eye (0.55, 0.3, 0.8) → (−0.05, 0.12, 0.1), yfov 45°, 1:1 |
+//! | `prism_sky.glb` + `sky.hdr` | an upright 60° prism (side 0.25, height 0.4, apex towards +Z) 1 mm above a 3×3 m checker floor (0.15 m tiles) framed by plain floor out to ±60 m | prism glass IOR 1.5, dispersion 1.0 (Abbe 20); checker 0.8 / 0.55 grey, plain floor 0.7 | scene extras `iris_environment: "sky.hdr"` ([`super::sky`]: sky, ground, four coloured panels, sun at elevation 30° whose light crosses the prism near minimum deviation and lands on the floor on the +Z side) | eye (0.55, 0.3, 0.8) → (−0.05, 0.12, 0.1), yfov 45°, 1:1 |
 
 use super::gem::Brilliant;
 use super::glb::write_glb;
@@ -196,7 +196,7 @@ pub fn prism_sky() -> GenScene {
         ..GenScene::default()
     };
     // A 3×3 m checker of 0.15 m tiles around the prism, framed by plain floor out to
-    // ±12 m (four quads that meet the checker's edges, no overlap).
+    // ±60 m (four quads that meet the checker's edges, no overlap).
     add_checker(
         &mut s,
         "Floor",
@@ -206,7 +206,7 @@ pub fn prism_sky() -> GenScene {
         Vec3::ZERO,
     );
     let mut frame = TriMesh::default();
-    let (inner, outer) = (1.5f32, 12.0f32);
+    let (inner, outer) = (1.5f32, 60.0f32);
     let mid = (inner + outer) / 2.0;
     let half = (outer - inner) / 2.0;
     for (hx, hz, x, z) in [

@@ -35,8 +35,8 @@ pub const SUN_RADIUS_DEG: f64 = 1.2;
 /// Radiance of the sun disc (warm white).
 pub const SUN_RADIANCE: [f64; 3] = [10000.0, 9500.0, 8800.0];
 
-const HORIZON: DVec3 = DVec3::new(1.05, 1.0, 0.95);
-const ZENITH: DVec3 = DVec3::new(0.22, 0.38, 0.8);
+const HORIZON: DVec3 = DVec3::new(0.8, 0.88, 1.0);
+const ZENITH: DVec3 = DVec3::new(0.15, 0.3, 0.75);
 const GROUND: DVec3 = DVec3::new(0.16, 0.13, 0.1);
 /// Coloured panels: azimuth range, elevation range (degrees), radiance.
 const PANELS: [(f64, f64, f64, f64, [f64; 3]); 4] = [
