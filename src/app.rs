@@ -4,11 +4,12 @@
 
 use crate::accel::Backend;
 use crate::camera::{frame_bounds, Camera};
+use crate::envmap::Environment;
 use crate::error::{Error, Result};
 use crate::integrator::{Integrator, Method};
 use crate::output::{self, DisplayOptions, ImageRgb};
 use crate::render::{render, RenderSettings, RenderStats};
-use crate::scene::desc::{CameraDesc, LightDesc, Projection};
+use crate::scene::desc::{CameraDesc, EnvironmentDesc, LightDesc, Projection};
 use crate::scene::Scene;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -44,8 +45,10 @@ pub struct RenderOptions {
     pub display: DisplayOptions,
     /// No progress bar.
     pub quiet: bool,
-    /// Environment light (`--env`).
-    pub env: Option<crate::envmap::Environment>,
+    /// Environment light from `--env`: `None` = flag not given (use the scene file's
+    /// `iris_environment`, if any), `Some(None)` = `--env none` (no environment, even if
+    /// the file names one), `Some(Some(e))` = use `e` instead of the file's.
+    pub env: Option<Option<crate::envmap::Environment>>,
 }
 
 /// What a render did, for the one-line summary.
@@ -71,10 +74,38 @@ pub struct RenderSummary {
 
 /// Loads, validates and builds a scene.
 pub fn load(path: &Path, accel: Backend) -> Result<(Scene, Duration)> {
+    let (scene, _, time) = load_with_environment(path, accel)?;
+    Ok((scene, time))
+}
+
+/// Like [`load`], also returning the environment the file names (`iris_environment`).
+pub fn load_with_environment(
+    path: &Path,
+    accel: Backend,
+) -> Result<(Scene, Option<EnvironmentDesc>, Duration)> {
     let start = Instant::now();
-    let desc = crate::load::load_scene(path)?;
+    let mut desc = crate::load::load_scene(path)?;
+    let env = desc.environment.take();
     let scene = Scene::build(desc, accel)?;
-    Ok((scene, start.elapsed()))
+    Ok((scene, env, start.elapsed()))
+}
+
+/// The environment to render with: the `--env` choice if given, else the file's
+/// (a map is decoded here; errors name the map file).
+pub fn resolve_environment(
+    flag: Option<Option<Environment>>,
+    from_file: Option<EnvironmentDesc>,
+) -> Result<Option<Environment>> {
+    match (flag, from_file) {
+        (Some(choice), _) => Ok(choice),
+        (None, None) => Ok(None),
+        (None, Some(EnvironmentDesc::Uniform(radiance))) => {
+            Ok(Some(Environment::Uniform { radiance }))
+        }
+        (None, Some(EnvironmentDesc::Map(path))) => {
+            Ok(Some(Environment::Map(crate::envmap::load(&path)?)))
+        }
+    }
 }
 
 /// Picks the camera by name or index, or frames the scene when the file has none.
@@ -171,8 +202,8 @@ pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
         }
     };
     output::check_extension(&output)?;
-    let (scene, load_time) = load(&opts.scene, opts.accel)?;
-    let scene = scene.with_environment(opts.env.clone());
+    let (scene, file_env, load_time) = load_with_environment(&opts.scene, opts.accel)?;
+    let scene = scene.with_environment(resolve_environment(opts.env.clone(), file_env)?);
     let (w, h) = image_size(opts, &scene)?;
     let (cam_desc, cam_note) = choose_camera(&scene, opts.camera.as_deref(), w as f32 / h as f32)?;
     let camera = Camera::new(&cam_desc, w, h);
@@ -278,7 +309,7 @@ pub fn info_command(path: &Path) -> Result<String> {
     if emitters > 0 {
         let _ = writeln!(s, "  {emitters} emissive meshes (sampled as area lights)");
     }
-    if desc.lights.is_empty() && emitters == 0 {
+    if desc.lights.is_empty() && emitters == 0 && desc.environment.is_none() {
         let _ = writeln!(
             s,
             "  none (renders use the default key and fill lights, or --env)"
@@ -317,6 +348,23 @@ pub fn info_command(path: &Path) -> Result<String> {
             ),
         };
         let _ = writeln!(s, "  {line}");
+    }
+    match &desc.environment {
+        Some(EnvironmentDesc::Uniform(c)) => {
+            let _ = writeln!(
+                s,
+                "  environment (file): uniform {:?} (--env overrides)",
+                c.to_array()
+            );
+        }
+        Some(EnvironmentDesc::Map(p)) => {
+            let _ = writeln!(
+                s,
+                "  environment (file): map {} (--env overrides)",
+                p.display()
+            );
+        }
+        None => {}
     }
     let _ = writeln!(s, "cameras:");
     if desc.cameras.is_empty() {

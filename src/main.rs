@@ -29,9 +29,10 @@ enum Command {
         /// Scene file.
         scene: PathBuf,
     },
-    /// Regenerate the project's own scenes (the paper's figures) into a directory.
+    /// Regenerate the project's own scenes into DIR/paper (the paper's figures) and
+    /// DIR/scenes (glass of water, ruby, prism under the sky + sky.hdr).
     GenAssets {
-        /// Output directory, e.g. assets/paper.
+        /// Asset root, e.g. `assets`.
         dir: PathBuf,
     },
 }
@@ -96,9 +97,10 @@ struct RenderArgs {
     #[arg(long, value_enum, default_value_t = ToneMapArg::Aces)]
     tonemap: ToneMapArg,
     /// Environment light: `none`, a grey value or `R,G,B` radiance, or an equirectangular
-    /// .exr/.hdr map (+Y up; the image centre looks along −Z).
-    #[arg(long, default_value = "none", allow_hyphen_values = true)]
-    env: String,
+    /// .exr/.hdr map (+Y up; the image centre looks along −Z). Default: the scene file's
+    /// `iris_environment` (glTF scene extras), else none.
+    #[arg(long, allow_hyphen_values = true)]
+    env: Option<String>,
     /// No progress bar.
     #[arg(short, long)]
     quiet: bool,
@@ -160,7 +162,11 @@ fn run(cli: Cli) -> iris::Result<()> {
                     },
                 },
                 quiet: a.quiet,
-                env: iris::envmap::Environment::parse_arg(&a.env)?,
+                env: a
+                    .env
+                    .as_deref()
+                    .map(iris::envmap::Environment::parse_arg)
+                    .transpose()?,
             };
             let s = app::render_command(&opts)?;
             for n in &s.notes {
@@ -188,7 +194,7 @@ fn run(cli: Cli) -> iris::Result<()> {
             Ok(())
         }
         Command::GenAssets { dir } => {
-            for p in iris::gen::write_paper_scenes(&dir)? {
+            for p in iris::gen::write_all_assets(&dir)? {
                 eprintln!("wrote {}", p.display());
             }
             Ok(())

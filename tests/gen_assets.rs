@@ -1,21 +1,33 @@
-//! The generated paper scenes in `assets/paper/`: they must equal a fresh regeneration
+//! The generated assets: `assets/paper/` (the paper's figures) and `assets/scenes/` (glass
+//! of water, ruby, prism under the sky + `sky.hdr`). They must equal a fresh regeneration
 //! (so they never drift from `src/gen`), parse as glTF 2.0, carry the expected materials,
-//! camera and lights, and their solids must be closed and outward-wound.
+//! camera and lights, and their solids must be closed, manifold and outward-wound; the
+//! water must share its side and bottom triangles with the glass.
 //!
 //! To regenerate the committed files after changing the generator:
 //! `IRIS_BLESS_ASSETS=1 cargo test --release --no-default-features --test gen_assets`
-//! (the other tests in this file may read the old files during that run; run once more).
+//! (the other tests in this file may read the old files during that run; run once more),
+//! or `iris gen-assets assets`.
 
 mod common;
 
 use glam::{Quat, Vec3};
 use iris::gen::paper::PAPER_SCENES;
-use iris::gen::write_paper_scenes;
-use std::collections::HashMap;
+use iris::gen::scenes::{SCENES, SKY_FILE};
+use iris::gen::{write_all_assets, write_paper_scenes, write_scene_assets};
+use std::collections::{HashMap, HashSet};
 use std::path::PathBuf;
 
+fn asset_root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets")
+}
+
 fn committed_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/paper")
+    asset_root().join("paper")
+}
+
+fn scenes_dir() -> PathBuf {
+    asset_root().join("scenes")
 }
 
 /// Expected IORs of the transmissive materials, per file.
@@ -48,7 +60,7 @@ fn committed_bytes() -> Vec<(String, Vec<u8>)> {
 #[test]
 fn committed_assets_match_regeneration() {
     if std::env::var("IRIS_BLESS_ASSETS").is_ok_and(|v| v == "1") {
-        write_paper_scenes(&committed_dir()).expect("bless assets");
+        write_all_assets(&asset_root()).expect("bless assets");
     }
     let scratch = common::scratch_dir("gen_assets_regen");
     let written = write_paper_scenes(&scratch).expect("generate");
@@ -243,4 +255,207 @@ fn solids_are_closed_and_outward() {
         }
         assert!(solids >= 1, "{name}: no closed glass mesh");
     }
+}
+
+/// The files of `assets/scenes/` in [`write_scene_assets`] order.
+fn scene_files() -> Vec<&'static str> {
+    SCENES.iter().map(|(n, _)| *n).chain([SKY_FILE]).collect()
+}
+
+fn read_scene_file(name: &str) -> Vec<u8> {
+    let path = scenes_dir().join(name);
+    std::fs::read(&path).unwrap_or_else(|e| {
+        panic!(
+            "{}: {e} (regenerate with IRIS_BLESS_ASSETS=1)",
+            path.display()
+        )
+    })
+}
+
+#[test]
+fn committed_scenes_match_regeneration() {
+    let scratch = common::scratch_dir("gen_assets_scenes");
+    let written = write_scene_assets(&scratch).expect("generate");
+    let names = scene_files();
+    assert_eq!(written.len(), names.len());
+    for (name, path) in names.iter().zip(&written) {
+        assert_eq!(path.file_name().and_then(|n| n.to_str()), Some(*name));
+        let fresh = std::fs::read(path).expect("read regenerated");
+        let committed = read_scene_file(name);
+        assert!(
+            fresh == committed,
+            "assets/scenes/{name} differs from a regeneration ({} vs {} bytes); \
+             regenerate with IRIS_BLESS_ASSETS=1",
+            committed.len(),
+            fresh.len()
+        );
+        assert!(
+            committed.len() < 300_000,
+            "{name}: {} bytes",
+            committed.len()
+        );
+    }
+    assert_eq!(
+        std::fs::read_dir(&scratch).expect("ls").count(),
+        names.len()
+    );
+}
+
+/// Triangles of the (single-primitive) mesh called `name`, in its node's frame.
+fn mesh_triangles(
+    doc: &gltf::Document,
+    buffers: &[gltf::buffer::Data],
+    name: &str,
+) -> Vec<[Vec3; 3]> {
+    let mesh = doc
+        .meshes()
+        .find(|m| m.name() == Some(name))
+        .unwrap_or_else(|| panic!("no mesh {name:?}"));
+    let prim = mesh.primitives().next().expect("primitive");
+    read_triangles(&prim, buffers)
+}
+
+fn key(p: Vec3) -> [u32; 3] {
+    p.to_array().map(f32::to_bits)
+}
+
+/// Closed 2-manifold with consistent orientation: after welding bit-identical positions
+/// every directed edge occurs exactly once and its reverse exactly once; no degenerate
+/// triangles; positive signed volume (outward winding). Returns the volume.
+fn check_closed_manifold(label: &str, tris: &[[Vec3; 3]]) -> f64 {
+    let mut directed: HashMap<([u32; 3], [u32; 3]), u32> = HashMap::new();
+    for t in tris {
+        let k = t.map(key);
+        assert!(
+            k[0] != k[1] && k[1] != k[2] && k[2] != k[0],
+            "{label}: degenerate triangle"
+        );
+        for i in 0..3 {
+            *directed.entry((k[i], k[(i + 1) % 3])).or_default() += 1;
+        }
+    }
+    for (&(a, b), &n) in &directed {
+        assert_eq!(n, 1, "{label}: directed edge used {n} times");
+        assert_eq!(
+            directed.get(&(b, a)),
+            Some(&1),
+            "{label}: edge without an oppositely oriented partner"
+        );
+    }
+    let vol: f64 = tris
+        .iter()
+        .map(|[a, b, c]| a.as_dvec3().dot(b.as_dvec3().cross(c.as_dvec3())) / 6.0)
+        .sum();
+    assert!(vol > 0.0, "{label}: signed volume {vol}");
+    vol
+}
+
+/// Triangle as a rotation-invariant key (smallest vertex first, winding kept).
+fn tri_key(t: &[Vec3; 3]) -> [[u32; 3]; 3] {
+    let k = t.map(key);
+    let i = (0..3).min_by_key(|&i| k[i]).unwrap_or(0);
+    [k[i], k[(i + 1) % 3], k[(i + 2) % 3]]
+}
+
+#[test]
+fn glass_and_water_are_closed_and_share_their_interface() {
+    let bytes = read_scene_file("glass_of_water.glb");
+    let (doc, buffers, _) = gltf::import_slice(&bytes).expect("import");
+    let glass = mesh_triangles(&doc, &buffers, "Glass");
+    let water = mesh_triangles(&doc, &buffers, "Water");
+    let glass_vol = check_closed_manifold("glass", &glass);
+    let water_vol = check_closed_manifold("water", &water);
+    // Volumes of the frusta (V = πh(R² + Rr + r²)/3) in the generator's dimensions,
+    // within 0.5 %: the 96-gon's area is (96/2π)·sin(2π/96) ≈ 0.9993 of the circle's.
+    let t = iris::gen::scenes::TUMBLER;
+    let frustum =
+        |r0: f64, r1: f64, h: f64| std::f64::consts::PI * h * (r0 * r0 + r0 * r1 + r1 * r1) / 3.0;
+    let inner = |y: f64| t.bottom_radius + (t.top_radius - t.bottom_radius) * y / t.height - t.wall;
+    let expected_water = frustum(inner(t.base), inner(t.water_level), t.water_level - t.base);
+    assert!(
+        (water_vol / expected_water - 1.0).abs() < 5e-3,
+        "{water_vol} vs {expected_water}"
+    );
+    assert!(glass_vol > 0.0 && glass_vol < water_vol, "{glass_vol}");
+
+    // Every water triangle below the surface is a glass triangle with reversed winding
+    // (same three bit-identical positions); the surface triangles are not.
+    let glass_keys: HashSet<_> = glass.iter().map(tri_key).collect();
+    let top = water
+        .iter()
+        .flatten()
+        .map(|p| p.y)
+        .fold(f32::NEG_INFINITY, f32::max);
+    let (mut shared, mut surface) = (0, 0);
+    for [a, b, c] in &water {
+        let reversed = tri_key(&[*a, *c, *b]);
+        if [a, b, c].iter().all(|p| p.y == top) {
+            surface += 1;
+            assert!(
+                !glass_keys.contains(&reversed),
+                "water surface inside the glass"
+            );
+        } else {
+            shared += 1;
+            assert!(
+                glass_keys.contains(&reversed),
+                "water triangle {a} {b} {c} is not a glass inner-wall triangle"
+            );
+        }
+    }
+    let n = t.segments as usize;
+    // Side band: 2 triangles per segment; floor and surface: 1 per segment (fans).
+    assert_eq!((shared, surface), (3 * n, n));
+    assert_eq!(water.len(), 4 * n);
+}
+
+#[test]
+fn ruby_is_a_closed_73_facet_brilliant_with_absorption() {
+    let bytes = read_scene_file("ruby.glb");
+    let (doc, buffers, _) = gltf::import_slice(&bytes).expect("import");
+    let tris = mesh_triangles(&doc, &buffers, "Ruby");
+    check_closed_manifold("ruby", &tris);
+    // Facets = distinct face planes: group triangles by their (rounded) unit normal.
+    // 1e-4 of a unit normal: f32 positions tilt a facet's triangles by < 1e-5, while
+    // neighbouring facets differ by > 0.1.
+    let mut planes: Vec<Vec3> = Vec::new();
+    for [a, b, c] in &tris {
+        let n = (*b - *a).cross(*c - *a).normalize();
+        if !planes.iter().any(|p| (*p - n).length() < 1e-4) {
+            planes.push(n);
+        }
+    }
+    assert_eq!(planes.len(), iris::gen::gem::BRILLIANT_FACETS);
+    let m = doc
+        .materials()
+        .find(|m| m.name() == Some("Ruby IOR 1.77"))
+        .expect("ruby material");
+    assert_eq!(m.ior(), Some(1.77));
+    let vol = m.volume().expect("volume");
+    assert!(vol.thickness_factor() > 0.0);
+    let c = vol.attenuation_color();
+    assert!(c[0] > 0.5 && c[1] < 0.2 && c[2] < 0.3, "red: {c:?}");
+    assert_eq!(vol.attenuation_distance(), 0.02);
+}
+
+#[test]
+fn prism_sky_names_its_sky_and_the_prism_is_closed() {
+    let path = scenes_dir().join("prism_sky.glb");
+    let desc = iris::load::load_scene(&path).expect("load");
+    assert_eq!(
+        desc.environment,
+        Some(iris::scene::desc::EnvironmentDesc::Map(
+            scenes_dir().join(SKY_FILE)
+        ))
+    );
+    let (doc, buffers, _) = gltf::import_slice(read_scene_file("prism_sky.glb")).expect("import");
+    check_closed_manifold("prism", &mesh_triangles(&doc, &buffers, "Prism"));
+    let sky = iris::envmap::load(&scenes_dir().join(SKY_FILE)).expect("sky.hdr");
+    assert_eq!(
+        (sky.width(), sky.height()),
+        (iris::gen::sky::SKY_WIDTH, iris::gen::sky::SKY_HEIGHT)
+    );
+    // The sun is the brightest texel, where the generator put it (RGBE: 1/128 relative).
+    let sun = sky.eval(iris::gen::sky::sun_direction());
+    assert!((sun.x / 10000.0 - 1.0).abs() < 1.0 / 128.0, "{sun}");
 }

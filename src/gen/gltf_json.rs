@@ -45,6 +45,17 @@ pub(super) fn material(m: &GenMaterial, used: &mut BTreeSet<&'static str>) -> Va
         }),
     );
     let mut ext = Map::new();
+    if let Some(e) = m.emissive.filter(|e| e.max_element() > 0.0) {
+        // emissiveFactor is limited to [0, 1]; the strength carries the magnitude.
+        let strength = e.max_element();
+        out.insert("emissiveFactor".into(), vec3(e / strength));
+        if strength != 1.0 {
+            ext.insert(
+                "KHR_materials_emissive_strength".into(),
+                json!({"emissiveStrength": num(strength)}),
+            );
+        }
+    }
     if let Some(ior) = m.ior {
         ext.insert("KHR_materials_ior".into(), json!({"ior": num(ior)}));
     }
@@ -70,6 +81,7 @@ pub(super) fn material(m: &GenMaterial, used: &mut BTreeSet<&'static str>) -> Va
         );
     }
     for name in [
+        "KHR_materials_emissive_strength",
         "KHR_materials_ior",
         "KHR_materials_transmission",
         "KHR_materials_volume",

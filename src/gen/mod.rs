@@ -1,18 +1,47 @@
 //! Iris's own scene generator: small CC0 scenes written as glTF binary (.glb) files.
 //!
 //! - [`shapes`]: mesh builders (sphere, box, prism, plane, checkerboard), CCW-outward.
+//! - [`lathe`]: surfaces of revolution; the glass of water (glass and water sharing their
+//!   interface vertices exactly).
+//! - [`gem`]: the round brilliant cut.
+//! - [`sky`]: the procedural sky map and its `.hdr` (RGBE) encoder.
 //! - [`model`]: the in-memory scene model ([`GenScene`]) in Iris's conventions (metres,
 //!   +Y up, linear colours, candela/lux lights).
 //! - [`glb`]: the deterministic GLB writer.
-//! - [`paper`]: the seed paper's figure scenes shipped in `assets/paper/`;
-//!   [`write_paper_scenes`] regenerates them (`iris gen-assets DIR`).
+//! - [`paper`]: the seed paper's figure scenes shipped in `assets/paper/`.
+//! - [`scenes`]: the demonstration scenes shipped in `assets/scenes/` (glass of water,
+//!   ruby, prism under the sky).
+//!
+//! [`write_all_assets`]`(root)` regenerates both into `root/paper/` and `root/scenes/`
+//! (`iris gen-assets assets`).
 
+pub mod gem;
 pub mod glb;
 mod gltf_json;
+pub mod lathe;
 pub mod model;
 pub mod paper;
+pub mod scenes;
 pub mod shapes;
+pub mod sky;
 
 pub use glb::{encode_glb, write_glb};
 pub use model::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene, GenVolume};
 pub use paper::write_paper_scenes;
+pub use scenes::write_scene_assets;
+
+use crate::error::Result;
+use std::path::{Path, PathBuf};
+
+/// Sub-directory of the asset root holding the paper's figure scenes.
+pub const PAPER_DIR: &str = "paper";
+/// Sub-directory of the asset root holding the demonstration scenes and their sky map.
+pub const SCENES_DIR: &str = "scenes";
+
+/// Writes every generated asset under `root`: [`PAPER_DIR`] and [`SCENES_DIR`]
+/// (directories created as needed, files written atomically); returns the paths written.
+pub fn write_all_assets(root: &Path) -> Result<Vec<PathBuf>> {
+    let mut written = write_paper_scenes(&root.join(PAPER_DIR))?;
+    written.extend(write_scene_assets(&root.join(SCENES_DIR))?);
+    Ok(written)
+}

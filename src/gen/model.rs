@@ -26,6 +26,8 @@ pub struct GenScene {
     pub lights: Vec<GenLight>,
     /// The camera, if any.
     pub camera: Option<GenCamera>,
+    /// Scene `extras` (glTF `scenes[0].extras`), e.g. `{"iris_environment": "sky.hdr"}`.
+    pub extras: Option<serde_json::Value>,
 }
 
 /// A mesh instance: geometry, material and placement.
@@ -73,6 +75,9 @@ pub struct GenMaterial {
     pub dispersion: Option<f32>,
     /// Material `extras` (any JSON, e.g. `{"cauchy": {"b": 1.5, "c": 0.0042}}`).
     pub extras: Option<serde_json::Value>,
+    /// Emitted radiance, linear RGB (may exceed 1): written as `emissiveFactor` = colour /
+    /// max component and `KHR_materials_emissive_strength` = max component.
+    pub emissive: Option<Vec3>,
 }
 
 impl GenMaterial {
@@ -88,6 +93,16 @@ impl GenMaterial {
             volume: None,
             dispersion: None,
             extras: None,
+            emissive: None,
+        }
+    }
+
+    /// A black diffuse surface emitting `radiance` (linear RGB) from its front face: an
+    /// area light.
+    pub fn emitter(name: &str, radiance: Vec3) -> Self {
+        GenMaterial {
+            emissive: Some(radiance),
+            ..GenMaterial::diffuse(name, Vec3::ZERO)
         }
     }
 
@@ -108,6 +123,7 @@ impl GenMaterial {
             }),
             dispersion: None,
             extras: None,
+            emissive: None,
         }
     }
 }
@@ -234,6 +250,12 @@ impl GenScene {
             }
             if !m.dispersion.is_none_or(|d| d.is_finite() && d >= 0.0) {
                 return Err(bad(&el, "dispersion must be finite and ≥ 0"));
+            }
+            if !m
+                .emissive
+                .is_none_or(|e| e.is_finite() && e.min_element() >= 0.0)
+            {
+                return Err(bad(&el, "emissive radiance must be finite and ≥ 0"));
             }
             if let Some(v) = m.volume {
                 let ok = v.thickness.is_finite()

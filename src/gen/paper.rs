@@ -215,17 +215,17 @@ pub fn fig4_4_1_prism() -> GenScene {
 }
 
 /// The light (0.8) and dark (0.05) grey of the checker floors.
-fn grey_pair() -> (Vec3, Vec3) {
+pub(super) fn grey_pair() -> (Vec3, Vec3) {
     (Vec3::splat(0.8), Vec3::splat(0.05))
 }
 
-fn push_material(s: &mut GenScene, m: GenMaterial) -> usize {
+pub(super) fn push_material(s: &mut GenScene, m: GenMaterial) -> usize {
     s.materials.push(m);
     s.materials.len() - 1
 }
 
 /// Adds a two-colour checkerboard mapped by `rotation` then moved by `offset`.
-fn add_checker(
+pub(super) fn add_checker(
     s: &mut GenScene,
     name: &str,
     tiles: [TriMesh; 2],
@@ -262,7 +262,7 @@ fn add_lights(s: &mut GenScene, key_at: Vec3, fill_towards: Vec3) {
     });
 }
 
-fn camera(eye: Vec3, target: Vec3, yfov_degrees: f64, aspect: f32) -> GenCamera {
+pub(super) fn camera(eye: Vec3, target: Vec3, yfov_degrees: f64, aspect: f32) -> GenCamera {
     GenCamera {
         name: "Camera".into(),
         eye,

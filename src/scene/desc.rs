@@ -33,9 +33,22 @@ pub struct SceneDesc {
     pub lights: Vec<LightDesc>,
     /// Cameras, in world space.
     pub cameras: Vec<CameraDesc>,
+    /// The environment light the file asks for (glTF scene `extras.iris_environment`);
+    /// used when `--env` is not given.
+    pub environment: Option<EnvironmentDesc>,
     /// Things the loader saw and did not use (unsupported extensions, MTL keys, primitive
     /// modes), each listed once.
     pub warnings: Vec<String>,
+}
+
+/// An environment light named by the scene file (glTF scene `extras.iris_environment`).
+#[derive(Debug, Clone, PartialEq)]
+pub enum EnvironmentDesc {
+    /// The same radiance from every direction (linear RGB, finite, ≥ 0).
+    Uniform(Vec3),
+    /// An equirectangular `.exr`/`.hdr` map (same convention as `--env FILE`), its path
+    /// already resolved against the scene file's directory; the file exists.
+    Map(PathBuf),
 }
 
 /// One triangle mesh in world space.

@@ -8,13 +8,18 @@
 //!   point/spot, lux for directional; node scale does not affect intensity).
 //! - Cameras look down local −Z with +Y up (§3.10); `world_from_camera` keeps the view
 //!   direction and up vector but has scale and shear removed (Gram–Schmidt, right-handed).
+//! - Environment: the chosen scene's `extras.iris_environment` (an Iris convention) is a
+//!   path to an equirectangular `.exr`/`.hdr` map relative to the glTF file's directory
+//!   (a plain path, not a URI), a grey radiance `g` or `[r, g, b]` (finite, ≥ 0). The map
+//!   must exist; it is decoded later, when the renderer builds the environment. Other
+//!   extras keys are ignored.
 //! - The graph is walked without recursion; a cycle (depth beyond the node count) is a
 //!   `Parse` error and runaway instancing a `TooLarge` error, so hostile files end cleanly.
 
 use super::mesh::{instantiate, read_primitive, Primitive};
 use super::{label, Ctx, Warnings, MAX_TRIANGLES};
 use crate::error::{LoadError, LoadErrorKind};
-use crate::scene::desc::{CameraDesc, LightDesc, Projection, SceneDesc};
+use crate::scene::desc::{CameraDesc, EnvironmentDesc, LightDesc, Projection, SceneDesc};
 use glam::{Mat4, Vec3};
 use gltf::json::validation::Checked;
 use gltf::khr_lights_punctual::Kind;
@@ -30,6 +35,7 @@ pub(super) fn read_scene_graph(
     desc: &mut SceneDesc,
     warnings: &mut Warnings,
 ) -> Result<(), LoadError> {
+    desc.environment = read_environment(ctx)?;
     let node_count = ctx.doc.nodes().len();
     let mut stack: Vec<(gltf::Node<'_>, Mat4, usize)> = root_nodes(ctx.doc)
         .into_iter()
@@ -130,6 +136,81 @@ fn root_nodes(doc: &gltf::Document) -> Vec<gltf::Node<'_>> {
     doc.nodes()
         .filter(|n| !is_child.get(n.index()).copied().unwrap_or(true))
         .collect()
+}
+
+/// The chosen scene's `extras.iris_environment`, checked (see the module docs).
+fn read_environment(ctx: &Ctx<'_>) -> Result<Option<EnvironmentDesc>, LoadError> {
+    let Some(scene) = ctx.doc.default_scene().or_else(|| ctx.doc.scenes().next()) else {
+        return Ok(None);
+    };
+    let Some(raw) = scene.extras() else {
+        return Ok(None);
+    };
+    let Ok(extras) = serde_json::from_str::<serde_json::Value>(raw.get()) else {
+        return Ok(None);
+    };
+    let Some(value) = extras.get("iris_environment") else {
+        return Ok(None);
+    };
+    let element = format!(
+        "{} extras.iris_environment",
+        label("scene", scene.index(), scene.name())
+    );
+    let err = |kind, detail: String| ctx.error(element.as_str(), kind, detail);
+    let radiance = |v: &serde_json::Value| {
+        v.as_f64()
+            .map(|x| x as f32)
+            .filter(|x| x.is_finite() && *x >= 0.0)
+    };
+    use serde_json::Value;
+    let env = match value {
+        Value::String(file) if !file.is_empty() => {
+            let path = ctx.base_dir.join(file);
+            let ext = path
+                .extension()
+                .and_then(|e| e.to_str())
+                .map(str::to_ascii_lowercase);
+            if !matches!(ext.as_deref(), Some("exr" | "hdr")) {
+                return Err(err(
+                    LoadErrorKind::Unsupported,
+                    format!("{file:?}: environment maps must be .exr or .hdr (equirectangular)"),
+                ));
+            }
+            if !path.is_file() {
+                return Err(err(
+                    LoadErrorKind::Io,
+                    format!("file not found: {}", path.display()),
+                ));
+            }
+            EnvironmentDesc::Map(path)
+        }
+        Value::Number(_) => {
+            let g = radiance(value).ok_or_else(|| {
+                err(
+                    LoadErrorKind::InvalidValue,
+                    format!("grey radiance must be finite and ≥ 0, found {value}"),
+                )
+            })?;
+            EnvironmentDesc::Uniform(Vec3::splat(g))
+        }
+        Value::Array(items) if items.len() == 3 => {
+            let rgb: Option<Vec<f32>> = items.iter().map(radiance).collect();
+            let rgb = rgb.ok_or_else(|| {
+                err(
+                    LoadErrorKind::InvalidValue,
+                    format!("[r, g, b] must be finite numbers ≥ 0, found {value}"),
+                )
+            })?;
+            EnvironmentDesc::Uniform(Vec3::new(rgb[0], rgb[1], rgb[2]))
+        }
+        _ => {
+            return Err(err(
+                LoadErrorKind::InvalidValue,
+                format!("expected a .exr/.hdr file name, a grey value or [r, g, b], found {value}"),
+            ))
+        }
+    };
+    Ok(Some(env))
 }
 
 /// The first of the given names, else `fallback`.

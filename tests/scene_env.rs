@@ -1,0 +1,243 @@
+//! The glTF scene-level `extras.iris_environment` (an environment light named by the file):
+//! a map path relative to the glTF file, a grey value or `[r, g, b]`; bad values are load
+//! errors naming the file and the element; `--env` overrides it and `--env none` turns it
+//! off.
+
+mod common;
+
+use glam::Vec3;
+use iris::accel::Backend;
+use iris::app::{render_command, resolve_environment, RenderOptions};
+use iris::envmap::Environment;
+use iris::error::Error;
+use iris::gen::shapes::cuboid;
+use iris::gen::sky::encode_hdr;
+use iris::gen::{encode_glb, GenCamera, GenMaterial, GenMesh, GenScene};
+use iris::integrator::Method;
+use iris::output::{read_exr, DisplayOptions};
+use iris::scene::desc::EnvironmentDesc;
+use serde_json::{json, Value};
+use std::path::{Path, PathBuf};
+
+/// A box behind a camera that looks at the empty sky, with `extras` on the scene.
+fn scene(extras: Option<Value>) -> GenScene {
+    GenScene {
+        name: "env test".into(),
+        meshes: vec![GenMesh {
+            name: "Box".into(),
+            geometry: cuboid(Vec3::splat(0.1)),
+            material: 0,
+            translation: Some(Vec3::new(0.0, 0.0, 5.0)),
+        }],
+        materials: vec![GenMaterial::diffuse("Grey", Vec3::splat(0.5))],
+        lights: vec![],
+        camera: Some(GenCamera {
+            name: "Cam".into(),
+            eye: Vec3::ZERO,
+            target: Vec3::NEG_Z,
+            up: Vec3::Y,
+            yfov: 0.5,
+            aspect: Some(1.0),
+        }),
+        extras,
+    }
+}
+
+/// Writes `scene(extras)` as `dir/name` and returns its path.
+fn write(dir: &Path, name: &str, extras: Option<Value>) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, encode_glb(&scene(extras)).expect("encode")).expect("write");
+    path
+}
+
+/// A tiny uniform 8×4 `.hdr` map of radiance `c`.
+fn write_hdr(path: &Path, c: f64) {
+    let texels = vec![glam::DVec3::splat(c); 32];
+    std::fs::write(path, encode_hdr(8, 4, &texels)).expect("write hdr");
+}
+
+fn load_err(path: &Path) -> String {
+    match iris::load::load_scene(path) {
+        Ok(d) => panic!("{}: loaded {:?}", path.display(), d.environment),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn good_values_are_read_and_paths_resolve_next_to_the_file() {
+    let dir = common::scratch_dir("scene_env_good");
+    std::fs::create_dir_all(dir.join("maps")).expect("mkdir");
+    write_hdr(&dir.join("maps/sky.HDR"), 1.0);
+    let cases = [
+        (
+            json!({"iris_environment": "maps/sky.HDR"}),
+            Some(EnvironmentDesc::Map(dir.join("maps/sky.HDR"))),
+        ),
+        (
+            json!({"iris_environment": 0.25}),
+            Some(EnvironmentDesc::Uniform(Vec3::splat(0.25))),
+        ),
+        (
+            json!({"iris_environment": [1, 0.5, 0]}),
+            Some(EnvironmentDesc::Uniform(Vec3::new(1.0, 0.5, 0.0))),
+        ),
+        (json!({"other": 1}), None),
+        (json!("not an object"), None),
+    ];
+    for (i, (extras, expected)) in cases.into_iter().enumerate() {
+        let path = write(&dir, &format!("s{i}.glb"), Some(extras.clone()));
+        let desc = iris::load::load_scene(&path).unwrap_or_else(|e| panic!("{extras}: {e}"));
+        assert_eq!(desc.environment, expected, "{extras}");
+    }
+    let none = write(&dir, "none.glb", None);
+    assert_eq!(
+        iris::load::load_scene(&none).expect("load").environment,
+        None
+    );
+}
+
+#[test]
+fn bad_values_name_the_file_and_the_element() {
+    let dir = common::scratch_dir("scene_env_bad");
+    std::fs::write(dir.join("sky.png"), b"not a map").expect("write");
+    let cases = [
+        (json!("missing.hdr"), "file not found"),
+        (json!("sky.png"), ".exr or .hdr"),
+        (json!(""), "expected a .exr/.hdr file name"),
+        (json!(-1.0), "finite and ≥ 0"),
+        (json!([1, 2]), "expected a .exr/.hdr file name"),
+        (json!([1, -2, 3]), "finite numbers ≥ 0"),
+        (json!([1, "x", 3]), "finite numbers ≥ 0"),
+        (json!(true), "expected a .exr/.hdr file name"),
+    ];
+    for (i, (value, reason)) in cases.into_iter().enumerate() {
+        let path = write(
+            &dir,
+            &format!("b{i}.glb"),
+            Some(json!({"iris_environment": value})),
+        );
+        let msg = load_err(&path);
+        for part in [
+            path.display().to_string().as_str(),
+            "scene 0 \"env test\" extras.iris_environment",
+            reason,
+        ] {
+            assert!(msg.contains(part), "{value}: {msg:?} lacks {part:?}");
+        }
+    }
+    // A map that exists but is not a valid .hdr fails when the environment is built,
+    // naming the map file.
+    std::fs::write(dir.join("broken.hdr"), b"garbage").expect("write");
+    let path = write(
+        &dir,
+        "broken.glb",
+        Some(json!({"iris_environment": "broken.hdr"})),
+    );
+    let desc = iris::load::load_scene(&path).expect("load");
+    let err = resolve_environment(None, desc.environment).expect_err("broken map");
+    assert!(
+        matches!(&err, Error::Load(_)) && err.to_string().contains("broken.hdr"),
+        "{err}"
+    );
+}
+
+#[test]
+fn flag_overrides_the_file_and_none_turns_it_off() {
+    let grey = Some(EnvironmentDesc::Uniform(Vec3::splat(0.3)));
+    let red = Environment::Uniform { radiance: Vec3::X };
+    let radiance = |e: Option<Environment>| match e {
+        Some(Environment::Uniform { radiance }) => Some(radiance),
+        Some(Environment::Map(_)) => Some(Vec3::NAN),
+        None => None,
+    };
+    let r = |flag, file| radiance(resolve_environment(flag, file).expect("resolve"));
+    assert_eq!(r(None, grey.clone()), Some(Vec3::splat(0.3)));
+    assert_eq!(r(Some(Some(red.clone())), grey.clone()), Some(Vec3::X));
+    assert_eq!(r(Some(None), grey), None);
+    assert_eq!(r(None, None), None);
+}
+
+/// Mean linear colour of an EXR render of `scene` with the given `--env` choice.
+fn render_mean(scene: &Path, env: Option<Option<Environment>>, out: &Path) -> Vec3 {
+    let opts = RenderOptions {
+        scene: scene.to_path_buf(),
+        output: Some(out.to_path_buf()),
+        size: Some((8, 8)),
+        spp: 1,
+        method: Method::Path,
+        max_depth: 4,
+        accel: Backend::Bvh,
+        seed: 1,
+        threads: 1,
+        camera: None,
+        display: DisplayOptions::default(),
+        quiet: true,
+        env,
+    };
+    render_command(&opts).expect("render");
+    let img = read_exr(out).expect("read");
+    img.data.iter().copied().sum::<Vec3>() / img.data.len() as f32
+}
+
+#[test]
+fn renders_use_the_file_environment_unless_overridden() {
+    let dir = common::scratch_dir("scene_env_render");
+    write_hdr(&dir.join("sky.hdr"), 0.5);
+    let grey = write(
+        &dir,
+        "grey.glb",
+        Some(json!({"iris_environment": [0.25, 0.5, 1.0]})),
+    );
+    let mapped = write(
+        &dir,
+        "mapped.glb",
+        Some(json!({"iris_environment": "sky.hdr"})),
+    );
+    let out = dir.join("out.exr");
+    // The camera sees only sky, so every pixel is the environment's radiance (RGBE keeps
+    // 0.5 exactly; 1e-6 allows for float summation).
+    let close = |a: Vec3, b: Vec3| (a - b).abs().max_element() < 1e-6;
+    let m = render_mean(&grey, None, &out);
+    assert!(close(m, Vec3::new(0.25, 0.5, 1.0)), "{m}");
+    let m = render_mean(&mapped, None, &out);
+    assert!(close(m, Vec3::splat(0.5)), "{m}");
+    let red = Environment::Uniform { radiance: Vec3::X };
+    let m = render_mean(&grey, Some(Some(red)), &out);
+    assert!(close(m, Vec3::X), "{m}");
+    let m = render_mean(&grey, Some(None), &out);
+    assert!(close(m, Vec3::ZERO), "--env none: {m}");
+}
+
+#[test]
+fn cli_env_flag_defaults_to_the_file_and_none_turns_it_off() {
+    let dir = common::scratch_dir("scene_env_cli");
+    let scene = write(&dir, "grey.glb", Some(json!({"iris_environment": 0.5})));
+    let run = |extra: &[&str]| -> Vec3 {
+        let out = dir.join("cli.exr");
+        let mut args = vec!["render", scene.to_str().expect("utf-8 path"), "-o"];
+        args.extend([
+            out.to_str().expect("utf-8 path"),
+            "--size",
+            "4x4",
+            "--quiet",
+        ]);
+        args.extend(["--spp", "1", "--method", "path"]);
+        args.extend(extra);
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_iris"))
+            .args(&args)
+            .output()
+            .expect("run iris");
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let img = read_exr(&out).expect("read");
+        img.data.iter().copied().sum::<Vec3>() / img.data.len() as f32
+    };
+    // Sky-only view: pixels equal the environment radiance (1e-6: float summation).
+    assert!((run(&[]) - Vec3::splat(0.5)).abs().max_element() < 1e-6);
+    assert!(
+        (run(&["--env", "2"]) - Vec3::splat(2.0))
+            .abs()
+            .max_element()
+            < 1e-6
+    );
+    assert_eq!(run(&["--env", "none"]), Vec3::ZERO);
+}
