@@ -66,7 +66,7 @@ fn every_shared_scene_renders_finite_pixels() {
                 camera: None,
                 display: DisplayOptions::default(),
                 quiet: true,
-                env,
+                env: env.map(Some),
             };
             render_command(&opts).unwrap_or_else(|e| panic!("{}: {e}", scene.display()));
             let img = read_exr(&out).unwrap();
