@@ -4,6 +4,8 @@
 //! direction, displaced sideways by d·sin(θi − θt)/cos θt (plane-parallel plate), and a
 //! beam inside steeper than the critical angle is totally internally reflected.
 
+mod common;
+
 use glam::{Mat3, Vec3};
 use iris::accel::Backend;
 use iris::math::Ray;
@@ -31,13 +33,7 @@ fn slab(backend: Backend) -> Scene {
     Scene::build(iris::scene::validate::validate(desc).unwrap(), backend).unwrap()
 }
 
-fn backends() -> Vec<Backend> {
-    if cfg!(feature = "embree") {
-        vec![Backend::Bvh, Backend::Embree]
-    } else {
-        vec![Backend::Bvh]
-    }
-}
+use common::backends;
 
 #[test]
 fn beam_through_slab_obeys_snell_on_entry_and_exit() {

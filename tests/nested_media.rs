@@ -18,6 +18,8 @@
 //! next ray leaves from the merged hit. A last test puts the water against an opaque block
 //! instead: the path must meet the block, not leave the water through it.
 
+mod common;
+
 use glam::{Vec2, Vec3};
 use iris::accel::Backend;
 use iris::integrator::shading;
@@ -128,13 +130,7 @@ fn scene_with(
     Scene::build(iris::scene::validate::validate(desc).unwrap(), backend).unwrap()
 }
 
-fn backends() -> Vec<Backend> {
-    if cfg!(feature = "embree") {
-        vec![Backend::Bvh, Backend::Embree]
-    } else {
-        vec![Backend::Bvh]
-    }
-}
+use common::backends;
 
 /// Textbook vector form of Snell's law for unit `d` hitting a surface with unit normal `n`
 /// facing the incoming side (d·n < 0), from index `n1` into `n2`; `None` beyond the

@@ -4,19 +4,15 @@
 //! a ray leaving a face outward (dot(dir, ng) > 0) can hit nothing at all, and a ray
 //! leaving inward must hit a *different* face from inside (front_face = false).
 
+mod common;
+
 use glam::Vec3;
 use iris::accel::Backend;
 use iris::math::{Ray, Rng};
 use iris::scene::desc::{MeshDesc, SceneDesc};
 use iris::scene::Scene;
 
-fn backends() -> Vec<Backend> {
-    let mut b = vec![Backend::Bvh];
-    if cfg!(feature = "embree") {
-        b.push(Backend::Embree);
-    }
-    b
-}
+use common::backends;
 
 fn sphere_scene(scale: f32, backend: Backend) -> (Scene, Vec3, f32) {
     let iris::gen::shapes::TriMesh {

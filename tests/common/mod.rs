@@ -63,3 +63,12 @@ pub fn sphere_in_white_environment(
             radiance: glam::Vec3::ONE,
         }))
 }
+
+/// Every backend compiled in: the BVH, then Embree when the `embree` feature is on.
+pub fn backends() -> Vec<iris::accel::Backend> {
+    let mut b = vec![iris::accel::Backend::Bvh];
+    if cfg!(feature = "embree") {
+        b.push(iris::accel::Backend::Embree);
+    }
+    b
+}
