@@ -5,7 +5,9 @@
 //! `0 ≤ inner < outer ≤ π/2` — `inner ≥ outer` is repaired to a hard-edged cone
 //! (`inner = 0.999·outer`) with a warning. Cameras: perspective `0 < yfov < π` and
 //! `aspect > 0` when given, orthographic `xmag`, `ymag` finite and non-zero, a finite
-//! world-from-camera matrix. Violations are `InvalidValue` naming the light or camera.
+//! world-from-camera matrix. An `iris_spectrum` blackbody must lie in
+//! [`BLACKBODY_KELVIN`](crate::scene::desc::BLACKBODY_KELVIN). Violations are
+//! `InvalidValue` naming the light or camera.
 
 use super::{element, fail};
 use crate::error::{LoadError, LoadErrorKind};
@@ -19,6 +21,7 @@ pub(super) fn check_light(
     light: &mut LightDesc,
     warnings: &mut Vec<String>,
 ) -> Result<(), LoadError> {
+    let spectrum = light.spectrum();
     let (name, position, direction, color, intensity, range) = match light {
         LightDesc::Point {
             name,
@@ -26,6 +29,7 @@ pub(super) fn check_light(
             color,
             intensity,
             range,
+            ..
         } => (name, Some(*position), None, *color, *intensity, *range),
         LightDesc::Spot {
             name,
@@ -48,6 +52,7 @@ pub(super) fn check_light(
             direction,
             color,
             intensity,
+            ..
         } => (name, None, Some(direction), *color, *intensity, None),
     };
     let name = element(name, "light", index);
@@ -71,6 +76,9 @@ pub(super) fn check_light(
     }
     if let Some(r) = range.filter(|r| r.is_nan() || *r <= 0.0) {
         return Err(invalid(format!("range {r} must be > 0")));
+    }
+    if let Some(Err(e)) = spectrum.map(|s| s.check()) {
+        return Err(invalid(format!("iris_spectrum: {e}")));
     }
     if let LightDesc::Spot {
         inner_cone,
