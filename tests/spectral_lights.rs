@@ -71,6 +71,7 @@ fn blackbody_colours_follow_the_planckian_locus() {
         );
         // Luminance 1 (f32 rounding of the matrix product only).
         let c = s.linear_srgb();
+        eprintln!("{kelvin} K: xy {got:?}, independent {independent:?}, linear sRGB {c}");
         assert!((luminance(c) - 1.0).abs() < 1e-4, "{kelvin} K: {c}");
         // The RGB colour is the independent XYZ through the sRGB matrix, scaled to Y = 1.
         let x = planck_xyz(f64::from(kelvin));
@@ -87,6 +88,11 @@ fn blackbody_colours_follow_the_planckian_locus() {
 #[test]
 fn sun_is_a_5772_k_blackbody_and_extremes_stay_valid() {
     let sun = EmissionSpectrum::Sun.linear_srgb();
+    eprintln!(
+        "sun: xy {:?}, linear sRGB {sun}; D65 {}",
+        chromaticity(EmissionSpectrum::Sun.xyz()),
+        EmissionSpectrum::D65.linear_srgb()
+    );
     let bb = EmissionSpectrum::Blackbody { kelvin: 5772.0 }.linear_srgb();
     assert_eq!(sun, bb);
     // Slightly warmer than D65 (6504 K): red above blue.
@@ -335,6 +341,7 @@ fn render_under_a_2700_k_light_has_its_colour() {
     let want = EmissionSpectrum::Blackbody { kelvin: 2700.0 }.linear_srgb();
     let image = render(json!({"blackbody": 2700}));
     let mut checked = 0;
+    let mut worst = 0.0f32;
     for (i, p) in image.data.iter().enumerate() {
         // The plane is white, so the pixel is the light colour times a scalar (BRDF,
         // cosine, distance); only f32 rounding and the EXR's storage precision separate the
@@ -342,6 +349,11 @@ fn render_under_a_2700_k_light_has_its_colour() {
         assert!(p.y > 0.0, "pixel {i} is black: {p}");
         let (got_r, got_b) = (p.x / p.y, p.z / p.y);
         let (want_r, want_b) = (want.x / want.y, want.z / want.y);
+        worst = worst.max(
+            (got_r / want_r - 1.0)
+                .abs()
+                .max((got_b / want_b - 1.0).abs()),
+        );
         assert!(
             (got_r / want_r - 1.0).abs() < 0.01 && (got_b / want_b - 1.0).abs() < 0.01,
             "pixel {i}: {p} vs light colour {want}"
@@ -349,6 +361,7 @@ fn render_under_a_2700_k_light_has_its_colour() {
         checked += 1;
     }
     assert_eq!(checked, 256);
+    eprintln!("2700 K render: worst R/G, B/G ratio error {worst:e} over {checked} pixels");
     let grey = render(json!("D65"));
     for p in &grey.data {
         // D65 is (1, 1, 1) within 1e-3 (see `d65_is_rgb_white`).
@@ -362,5 +375,6 @@ fn render_under_a_2700_k_light_has_its_colour() {
     let lum =
         |img: &iris::output::ImageRgb| -> f32 { img.data.iter().map(|p| luminance(*p)).sum() };
     let (a, b) = (lum(&image), lum(&grey));
+    eprintln!("summed luminance 2700 K {a}, D65 {b}");
     assert!((a / b - 1.0).abs() < 0.01, "{a} vs {b}");
 }

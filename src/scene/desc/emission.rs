@@ -136,3 +136,44 @@ impl fmt::Display for EmissionSpectrum {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_names_case_insensitively() {
+        let p = |s: &str| EmissionSpectrum::parse_words(&s.split_whitespace().collect::<Vec<_>>());
+        assert_eq!(p("d65"), Ok(EmissionSpectrum::D65));
+        assert_eq!(p("SUN"), Ok(EmissionSpectrum::Sun));
+        assert_eq!(
+            p("BlackBody 2700.5"),
+            Ok(EmissionSpectrum::Blackbody { kelvin: 2700.5 })
+        );
+        for bad in [
+            "",
+            "neon",
+            "blackbody",
+            "blackbody x",
+            "blackbody 1 2",
+            "blackbody 999.9",
+        ] {
+            assert!(p(bad).is_err(), "{bad:?}");
+        }
+        let e = p("blackbody 50000").unwrap_err();
+        assert!(e.contains("1000") && e.contains("40000"), "{e}");
+    }
+
+    #[test]
+    fn effective_colour_filters_the_spectrum() {
+        let warm = EmissionSpectrum::Blackbody { kelvin: 2700.0 };
+        let filter = Vec3::new(0.5, 1.0, 2.0);
+        assert_eq!(effective_color(filter, None), filter);
+        assert_eq!(
+            effective_color(filter, Some(warm)),
+            filter * warm.linear_srgb()
+        );
+        // The spectrum module's `blackbody` test checks the SPD itself; here its Y = 1.
+        assert!((warm.xyz()[1] - 1.0).abs() < 1e-4);
+    }
+}

@@ -151,6 +151,7 @@ mod tests {
             range: None,
             inner_cone: inner,
             outer_cone: outer,
+            spectrum: None,
         }
     }
 
@@ -171,6 +172,7 @@ mod tests {
                 direction: Vec3::ZERO,
                 color: Vec3::ONE,
                 intensity: 1.0,
+                spectrum: None,
             },
             LightDesc::Point {
                 name: "light 0 \"bulb\"".into(),
@@ -178,6 +180,7 @@ mod tests {
                 color: Vec3::ONE,
                 intensity: 1.0,
                 range: None,
+                spectrum: None,
             },
             LightDesc::Point {
                 name: "light 0 \"bulb\"".into(),
@@ -185,6 +188,7 @@ mod tests {
                 color: Vec3::ONE,
                 intensity: -1.0,
                 range: None,
+                spectrum: None,
             },
             LightDesc::Point {
                 name: "light 0 \"bulb\"".into(),
@@ -192,6 +196,7 @@ mod tests {
                 color: Vec3::ONE,
                 intensity: 1.0,
                 range: Some(0.0),
+                spectrum: None,
             },
         ];
         for light in bad {
@@ -200,6 +205,37 @@ mod tests {
             let (k, msg) = err_kind(d);
             assert_eq!(k, LoadErrorKind::InvalidValue);
             assert!(msg.contains("light 0"), "{msg}");
+        }
+    }
+
+    #[test]
+    fn light_spectrum_is_checked() {
+        let with = |spectrum| LightDesc::Directional {
+            name: "light 0 \"sun\"".into(),
+            direction: Vec3::NEG_Y,
+            color: Vec3::ONE,
+            intensity: 1.0,
+            spectrum: Some(spectrum),
+        };
+        for ok in [
+            EmissionSpectrum::D65,
+            EmissionSpectrum::Sun,
+            EmissionSpectrum::Blackbody { kelvin: 1000.0 },
+            EmissionSpectrum::Blackbody { kelvin: 40000.0 },
+        ] {
+            let mut d = scene();
+            d.lights.push(with(ok));
+            assert!(validate(d).is_ok(), "{ok:?}");
+        }
+        for kelvin in [999.0, 40001.0, f32::NAN, f32::INFINITY, -3000.0] {
+            let mut d = scene();
+            d.lights.push(with(EmissionSpectrum::Blackbody { kelvin }));
+            let (k, msg) = err_kind(d);
+            assert_eq!(k, LoadErrorKind::InvalidValue);
+            assert!(
+                msg.contains("\"sun\"") && msg.contains("iris_spectrum"),
+                "{msg}"
+            );
         }
     }
 
