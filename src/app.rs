@@ -294,6 +294,9 @@ pub fn info_command(path: &Path) -> Result<String> {
         if m.emissive != glam::Vec3::ZERO {
             let _ = write!(s, " emissive {:?}", m.emissive.to_array());
         }
+        if let Some(spectrum) = m.emission_spectrum {
+            let _ = write!(s, " {}", spectrum_note(spectrum));
+        }
         let _ = writeln!(s);
     }
     let _ = writeln!(s, "lights:");
@@ -347,7 +350,14 @@ pub fn info_command(path: &Path) -> Result<String> {
                 direction.to_array()
             ),
         };
-        let _ = writeln!(s, "  {line}");
+        match l.spectrum() {
+            Some(spectrum) => {
+                let _ = writeln!(s, "  {line}, {}", spectrum_note(spectrum));
+            }
+            None => {
+                let _ = writeln!(s, "  {line}");
+            }
+        }
     }
     match &desc.environment {
         Some(EnvironmentDesc::Uniform(c)) => {
@@ -386,4 +396,14 @@ pub fn info_command(path: &Path) -> Result<String> {
         }
     }
     Ok(s)
+}
+
+/// `spectrum D65 (sRGB [1.000 1.000 1.000])`: an emitter's `iris_spectrum` and the colour
+/// the RGB renderer gives it (luminance 1, before the file's colour filter).
+fn spectrum_note(spectrum: crate::scene::desc::EmissionSpectrum) -> String {
+    let c = spectrum.linear_srgb();
+    format!(
+        "spectrum {spectrum} (sRGB [{:.3} {:.3} {:.3}])",
+        c.x, c.y, c.z
+    )
 }

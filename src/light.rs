@@ -4,6 +4,10 @@
 //! illuminance in lux (lm/m²). `sample_li` returns the **irradiance at normal incidence**
 //! E⊥ (lux), so a surface with BRDF f receives radiance f·E⊥·cos θ. Range falloff and spot
 //! cone falloff follow the spec's recommended formulas.
+//!
+//! Colour: a light with an `iris_spectrum` ([`crate::scene::desc::EmissionSpectrum`]) emits
+//! `intensity × color × linear_srgb(spectrum)`, the spectrum's sRGB colour normalised to
+//! luminance 1, so its luminous intensity is unchanged ([`LightDesc::effective_color`]).
 
 use crate::scene::desc::LightDesc;
 use glam::Vec3;
@@ -78,22 +82,21 @@ fn toward(position: Vec3, p: Vec3) -> Option<(Vec3, f32, f32)> {
 impl Light {
     /// Converts a validated description.
     pub fn from_desc(d: &LightDesc) -> Light {
+        let color = d.effective_color();
         match d {
             LightDesc::Point {
                 position,
-                color,
                 intensity,
                 range,
                 ..
             } => Light::Point {
                 position: *position,
-                intensity: *color * *intensity,
+                intensity: color * *intensity,
                 range: *range,
             },
             LightDesc::Spot {
                 position,
                 direction,
-                color,
                 intensity,
                 range,
                 inner_cone,
@@ -102,19 +105,18 @@ impl Light {
             } => Light::Spot {
                 position: *position,
                 direction: direction.normalize_or(Vec3::NEG_Z),
-                intensity: *color * *intensity,
+                intensity: color * *intensity,
                 cos_inner: inner_cone.cos(),
                 cos_outer: outer_cone.cos(),
                 range: *range,
             },
             LightDesc::Directional {
                 direction,
-                color,
                 intensity,
                 ..
             } => Light::Directional {
                 direction: direction.normalize_or(Vec3::NEG_Y),
-                illuminance: *color * *intensity,
+                illuminance: color * *intensity,
             },
         }
     }

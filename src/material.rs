@@ -12,7 +12,9 @@
 //! the helium d line ([`Material::ior`]), spectral transport evaluates
 //! [`Material::ior_model`] at each wavelength (nm).
 
-use crate::scene::desc::{AlphaMode, ExplicitIor, ImageDesc, MaterialDesc, TextureRef};
+use crate::scene::desc::{
+    effective_color, AlphaMode, ExplicitIor, ImageDesc, MaterialDesc, TextureRef,
+};
 use crate::spectrum::{self, ior::KNOWN_NAMES};
 use crate::texture::{self, Encoding};
 use glam::{Vec2, Vec3, Vec4};
@@ -24,6 +26,8 @@ pub struct Material {
     pub desc: MaterialDesc,
     /// n(λ), resolved from `desc` by [`Material::new`].
     ior_model: spectrum::IorModel,
+    /// Linear-sRGB colour of `desc.emission_spectrum` (Y = 1), or white without one.
+    emission_tint: Vec3,
 }
 
 /// Material parameters at one surface point, textures applied.
@@ -57,7 +61,24 @@ impl Material {
         let ior_model = desc
             .spectral_ior()
             .unwrap_or_else(|_| spectrum::IorModel::from_khr(desc.ior, desc.dispersion));
-        Material { desc, ior_model }
+        let emission_tint = effective_color(Vec3::ONE, desc.emission_spectrum);
+        Material {
+            desc,
+            ior_model,
+            emission_tint,
+        }
+    }
+
+    /// Emitted radiance factor for the RGB transport (before the emissive texture):
+    /// `emissive` × the `iris_spectrum` colour (normalised to luminance 1).
+    pub fn emission(&self) -> Vec3 {
+        self.desc.emissive * self.emission_tint
+    }
+
+    /// The emission's spectral shape (Y = 1) for the spectral transport, which multiplies it
+    /// by the `emissive` filter; `None` means "upsample `emissive` as an illuminant".
+    pub fn emission_spectrum(&self) -> Option<spectrum::Spectrum> {
+        self.desc.emission_spectrum.map(|s| s.spectrum())
     }
 
     /// Resolves textures at texture coordinate `uv`.
@@ -75,7 +96,7 @@ impl Material {
             metallic,
             roughness: (d.roughness * mr.y).clamp(0.0, 1.0),
             transmission: (d.transmission * tr.x).clamp(0.0, 1.0) * (1.0 - metallic),
-            emissive: d.emissive * em.truncate(),
+            emissive: self.emission() * em.truncate(),
         }
     }
 

@@ -8,10 +8,18 @@
 //!   transform has had its winding flipped by the loader;
 //! - per-vertex arrays (`normals`, `uvs`) are either empty or as long as `positions`;
 //! - colours are **linear** RGB (sRGB-encoded values have been decoded);
-//! - light intensities keep their glTF units: candela (point, spot), lux (directional).
+//! - light intensities keep their glTF units: candela (point, spot), lux (directional);
+//! - an emission spectrum ([`EmissionSpectrum`], the Iris key `iris_spectrum`) only sets the
+//!   *shape* of a light's or emissive material's spectrum, normalised to luminance Y = 1:
+//!   the photometric intensity (cd, lx, emissive strength) is unchanged and the glTF
+//!   `color` / `emissiveFactor` still multiplies it as a filter.
 //!
 //! Values are *not* trusted here: NaN, out-of-range indices and bad IORs are caught by
 //! `scene::validate`, which names the element.
+
+mod emission;
+
+pub use emission::{effective_color, EmissionSpectrum, BLACKBODY_KELVIN, SUN_KELVIN};
 
 use crate::spectrum::{IorModel as SpectralIor, UnknownIorName};
 use glam::{Mat4, Vec2, Vec3, Vec4};
@@ -141,6 +149,9 @@ pub struct MaterialDesc {
     pub emissive: Vec3,
     /// Emissive texture (sRGB).
     pub emissive_texture: Option<TextureRef>,
+    /// Spectral shape of the emission (extras / MTL `iris_spectrum`); `None` upsamples the
+    /// RGB `emissive` as an illuminant. See [`EmissionSpectrum`] for how the two combine.
+    pub emission_spectrum: Option<EmissionSpectrum>,
     /// Index of refraction (KHR_materials_ior, default 1.5). The value 0 is the spec's
     /// special mode: infinite IOR, Fresnel = 1, no dispersion. Otherwise unused when
     /// `ior_model` is given (it is then the fallback other renderers read).
@@ -180,6 +191,7 @@ impl Default for MaterialDesc {
             metallic_roughness_texture: None,
             emissive: Vec3::ZERO,
             emissive_texture: None,
+            emission_spectrum: None,
             ior: 1.5,
             transmission: 0.0,
             transmission_texture: None,
@@ -231,6 +243,8 @@ pub enum LightDesc {
         intensity: f32,
         /// Optional range (world units).
         range: Option<f32>,
+        /// Spectral shape (extras `iris_spectrum`), `color` filtering it.
+        spectrum: Option<EmissionSpectrum>,
     },
     /// Spot light: candela, cone around `direction`.
     Spot {
@@ -250,6 +264,8 @@ pub enum LightDesc {
         inner_cone: f32,
         /// Outer cone angle, radians.
         outer_cone: f32,
+        /// Spectral shape (extras `iris_spectrum`), `color` filtering it.
+        spectrum: Option<EmissionSpectrum>,
     },
     /// Directional light: illuminance in lux.
     Directional {
@@ -261,7 +277,44 @@ pub enum LightDesc {
         color: Vec3,
         /// Illuminance in lux.
         intensity: f32,
+        /// Spectral shape (extras `iris_spectrum`), `color` filtering it.
+        spectrum: Option<EmissionSpectrum>,
     },
+}
+
+impl LightDesc {
+    /// The light's name as stored by the loader.
+    pub fn name(&self) -> &str {
+        match self {
+            LightDesc::Point { name, .. }
+            | LightDesc::Spot { name, .. }
+            | LightDesc::Directional { name, .. } => name,
+        }
+    }
+
+    /// The filter colour (glTF `color`, linear RGB).
+    pub fn color(&self) -> Vec3 {
+        match self {
+            LightDesc::Point { color, .. }
+            | LightDesc::Spot { color, .. }
+            | LightDesc::Directional { color, .. } => *color,
+        }
+    }
+
+    /// The spectral shape named by `iris_spectrum`, if any.
+    pub fn spectrum(&self) -> Option<EmissionSpectrum> {
+        match self {
+            LightDesc::Point { spectrum, .. }
+            | LightDesc::Spot { spectrum, .. }
+            | LightDesc::Directional { spectrum, .. } => *spectrum,
+        }
+    }
+
+    /// The colour the RGB transport multiplies the intensity by:
+    /// `color` × [`EmissionSpectrum::linear_srgb`] with a spectrum, else `color`.
+    pub fn effective_color(&self) -> Vec3 {
+        effective_color(self.color(), self.spectrum())
+    }
 }
 
 /// Camera projection.

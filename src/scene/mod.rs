@@ -178,8 +178,8 @@ impl Scene {
         );
         let mut notes = Vec::new();
         let area_lights = AreaLights::build(&triangle_data, |m| {
-            let d = &materials[m as usize].desc;
-            (d.emissive, d.double_sided)
+            let mat = &materials[m as usize];
+            (mat.emission(), mat.desc.double_sided)
         });
         let mut lights: Vec<Light> = desc.lights.iter().map(Light::from_desc).collect();
         let default_lights = lights.is_empty() && area_lights.is_empty();

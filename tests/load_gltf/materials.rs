@@ -98,6 +98,7 @@ fn lights_and_cameras_in_world_space() {
             color,
             intensity,
             range,
+            ..
         } => {
             assert_eq!(
                 (name.as_str(), *intensity, *range),

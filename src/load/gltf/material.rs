@@ -17,11 +17,18 @@
 //!   a non-string name or an unknown name are `InvalidValue` errors naming the material.
 //!   Either overrides KHR_materials_dispersion (the KHR values stay the fallback other
 //!   viewers use); `ior: 0` overrides both (see `MaterialDesc::spectral_ior`).
+//! - `extras.iris_spectrum` (material or KHR_lights_punctual light, [`iris_spectrum`]):
+//!   `"D65"`, `"sun"`, `{"blackbody": K}` or `"blackbody K"` (case-insensitive, K in
+//!   1000–40000) gives [`EmissionSpectrum`], the emission's spectral shape (Y = 1); the
+//!   colour / `emissiveFactor` then acts as a filter. Anything else is `InvalidValue`
+//!   naming the element and `extras.iris_spectrum`.
 
 use super::source::ImageCache;
 use super::{label, Ctx, Warnings};
 use crate::error::{LoadError, LoadErrorKind};
-use crate::scene::desc::{AlphaMode, ExplicitIor, ImageDesc, MaterialDesc, TextureRef};
+use crate::scene::desc::{
+    AlphaMode, EmissionSpectrum, ExplicitIor, ImageDesc, MaterialDesc, TextureRef,
+};
 use glam::{Vec3, Vec4};
 use serde_json::Value;
 
@@ -89,6 +96,7 @@ fn read_material(
         metallic_roughness_texture,
         emissive: Vec3::from(m.emissive_factor()) * m.emissive_strength().unwrap_or(1.0),
         emissive_texture,
+        emission_spectrum: iris_spectrum(ctx, m.extras(), &element)?,
         ior: m.ior().unwrap_or(defaults.ior),
         transmission: transmission
             .as_ref()
@@ -194,4 +202,56 @@ fn cauchy_model(cauchy: &Value) -> Result<ExplicitIor, String> {
         ));
     }
     Ok(ExplicitIor::Cauchy { b, c })
+}
+
+/// `extras.iris_spectrum` of a material or light (`element` names it for errors); `None`
+/// when absent or when the extras are not a JSON object.
+pub(super) fn iris_spectrum(
+    ctx: &Ctx<'_>,
+    extras: &gltf::json::Extras,
+    element: &str,
+) -> Result<Option<EmissionSpectrum>, LoadError> {
+    let Some(raw) = extras else {
+        return Ok(None);
+    };
+    let Ok(extras) = serde_json::from_str::<Value>(raw.get()) else {
+        return Ok(None);
+    };
+    let Some(value) = extras.get("iris_spectrum") else {
+        return Ok(None);
+    };
+    spectrum_value(value).map(Some).map_err(|detail| {
+        ctx.error(
+            format!("{element} extras.iris_spectrum"),
+            LoadErrorKind::InvalidValue,
+            detail,
+        )
+    })
+}
+
+/// `"D65"`, `"sun"`, `"blackbody K"` or `{"blackbody": K}` (keys and names
+/// case-insensitive).
+fn spectrum_value(value: &Value) -> Result<EmissionSpectrum, String> {
+    match value {
+        Value::String(s) => {
+            EmissionSpectrum::parse_words(&s.split_whitespace().collect::<Vec<_>>())
+        }
+        Value::Object(map) if map.len() == 1 => {
+            let Some((key, k)) = map.iter().next() else {
+                return Err("empty spectrum object".into());
+            };
+            if !key.eq_ignore_ascii_case("blackbody") {
+                return Err(format!(
+                    "unknown spectrum object key `{key}`; expected {{\"blackbody\": K}}"
+                ));
+            }
+            let kelvin = k.as_f64().ok_or_else(|| {
+                format!("blackbody temperature must be a number in kelvin, found {k}")
+            })?;
+            EmissionSpectrum::blackbody(kelvin)
+        }
+        other => Err(format!(
+            "expected \"D65\", \"sun\" or {{\"blackbody\": K}}, found {other}"
+        )),
+    }
 }

@@ -5,7 +5,8 @@
 //! - World matrix of a node: `parent · local`, local = `matrix` or `T·R·S` (§3.5.2).
 //! - Lights (KHR_lights_punctual): position = world translation; direction = world image
 //!   of the node's −Z, normalised; intensity and colour are copied unchanged (candela for
-//!   point/spot, lux for directional; node scale does not affect intensity).
+//!   point/spot, lux for directional; node scale does not affect intensity); the light's
+//!   `extras.iris_spectrum` is read as for materials (`material::iris_spectrum`).
 //! - Cameras look down local −Z with +Y up (§3.10); `world_from_camera` keeps the view
 //!   direction and up vector but has scale and shear removed (Gram–Schmidt, right-handed).
 //! - Environment: the chosen scene's `extras.iris_environment` (an Iris convention) is a
@@ -236,6 +237,11 @@ fn light_desc(
     let position = world.transform_point3(Vec3::ZERO);
     let color = Vec3::from(light.color());
     let intensity = light.intensity();
+    let spectrum = super::material::iris_spectrum(
+        ctx,
+        light.extras(),
+        &label("light", light.index(), light.name()),
+    )?;
     let direction = || {
         world
             .transform_vector3(Vec3::NEG_Z)
@@ -258,6 +264,7 @@ fn light_desc(
             color,
             intensity,
             range: light.range(),
+            spectrum,
         },
         Kind::Spot {
             inner_cone_angle,
@@ -271,12 +278,14 @@ fn light_desc(
             range: light.range(),
             inner_cone: inner_cone_angle,
             outer_cone: outer_cone_angle,
+            spectrum,
         },
         Kind::Directional => LightDesc::Directional {
             name,
             direction: direction()?,
             color,
             intensity,
+            spectrum,
         },
     })
 }

@@ -5,6 +5,7 @@
 //! | `Kd` (+ `map_Kd`) | base colour (+ sRGB texture; a missing/unreadable file is a warning) |
 //! | `Ks`, `Ns` | specular weight = max(Ks), specular colour = Ks / max(Ks); roughness below |
 //! | `Ke` | emissive |
+//! | `iris_spectrum D65\|sun\|blackbody K` | emission spectrum, `Ke` as its filter (Iris key) |
 //! | `Ni` | ior (absent: 1.5, or n(589.3 nm) of the Cauchy model, or the glass's n_d) |
 //! | `d`, else `1 − Tr` | alpha; alpha < 1 → [`AlphaMode::Blend`] |
 //! | `Pr`, `Pm` | roughness, metallic (PBR extension; override the values below) |
@@ -164,6 +165,7 @@ pub(super) fn to_material(
     }
 
     m.emissive = raw.ke.unwrap_or(Vec3::ZERO);
+    m.emission_spectrum = raw.spectrum;
     if dielectric {
         m.base_color = Vec4::ONE;
         m.transmission = 1.0;

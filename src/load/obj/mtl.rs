@@ -17,14 +17,18 @@
 //!   `spectrum::ior::KNOWN_NAMES`, case-insensitive, the rest of the line so
 //!   `iris_glass fused silica` works); `iris_glass` may also be written as a comment,
 //!   `# iris_glass NAME`, which other MTL readers skip silently;
+//! - the Iris key `iris_spectrum D65|sun|blackbody K` (case-insensitive, K in 1000–40000):
+//!   the spectral shape of the `Ke` emission (see `EmissionSpectrum`);
 //! - `Ka`/`map_Ka` (ambient: meaningless for a path tracer) are ignored silently; every
 //!   other key is recorded in [`RawMtl::unsupported`] for the loader's single warning.
 //!
 //! Errors: unparsable numbers → `Parse` naming the MTL line; a malformed or lone
 //! `cauchy_b`/`cauchy_c`, an unknown or missing `iris_glass` name, or both `iris_glass` and
-//! the Cauchy keys on one material → `InvalidValue` naming the material and the line.
+//! the Cauchy keys on one material, or a bad `iris_spectrum` → `InvalidValue` naming the
+//! material and the line.
 
 use crate::error::{LoadError, LoadErrorKind};
+use crate::scene::desc::EmissionSpectrum;
 use glam::Vec3;
 use std::path::Path;
 
@@ -63,6 +67,8 @@ pub(super) struct RawMtl {
     pub cauchy: Option<(f32, f32)>,
     /// Iris `iris_glass` name as written (already checked against the known names).
     pub glass: Option<String>,
+    /// Iris `iris_spectrum`: the spectral shape of `Ke`.
+    pub spectrum: Option<EmissionSpectrum>,
     /// Keys seen and not used, in order of appearance, without duplicates.
     pub unsupported: Vec<String>,
 }
@@ -126,6 +132,7 @@ pub(super) fn parse_mtl(path: &Path, text: &str) -> Result<MtlLib, LoadError> {
             "cauchy_b" => cauchy.0 = Some(at.cauchy(&mtl.name, args)?),
             "cauchy_c" => cauchy.1 = Some(at.cauchy(&mtl.name, args)?),
             "iris_glass" => mtl.glass = Some(at.glass(&mtl.name, args)?),
+            "iris_spectrum" => mtl.spectrum = Some(at.spectrum(&mtl.name, args)?),
             "Ka" | "map_Ka" => {}
             other => note(&mut mtl.unsupported, other),
         }
@@ -321,6 +328,20 @@ impl Ctx<'_> {
             LoadErrorKind::InvalidValue,
             problem,
         ))
+    }
+}
+
+impl Ctx<'_> {
+    /// An `iris_spectrum` value; a bad one names the material and this line.
+    fn spectrum(&self, material: &str, args: &[&str]) -> Result<EmissionSpectrum, LoadError> {
+        EmissionSpectrum::parse_words(args).map_err(|e| {
+            LoadError::new(
+                self.path,
+                format!("material \"{material}\" (line {})", self.line),
+                LoadErrorKind::InvalidValue,
+                format!("`{}`: {e}", self.key),
+            )
+        })
     }
 }
 

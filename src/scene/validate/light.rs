@@ -5,7 +5,9 @@
 //! `0 ≤ inner < outer ≤ π/2` — `inner ≥ outer` is repaired to a hard-edged cone
 //! (`inner = 0.999·outer`) with a warning. Cameras: perspective `0 < yfov < π` and
 //! `aspect > 0` when given, orthographic `xmag`, `ymag` finite and non-zero, a finite
-//! world-from-camera matrix. Violations are `InvalidValue` naming the light or camera.
+//! world-from-camera matrix. An `iris_spectrum` blackbody must lie in
+//! [`BLACKBODY_KELVIN`](crate::scene::desc::BLACKBODY_KELVIN). Violations are
+//! `InvalidValue` naming the light or camera.
 
 use super::{element, fail};
 use crate::error::{LoadError, LoadErrorKind};
@@ -19,6 +21,7 @@ pub(super) fn check_light(
     light: &mut LightDesc,
     warnings: &mut Vec<String>,
 ) -> Result<(), LoadError> {
+    let spectrum = light.spectrum();
     let (name, position, direction, color, intensity, range) = match light {
         LightDesc::Point {
             name,
@@ -26,6 +29,7 @@ pub(super) fn check_light(
             color,
             intensity,
             range,
+            ..
         } => (name, Some(*position), None, *color, *intensity, *range),
         LightDesc::Spot {
             name,
@@ -48,6 +52,7 @@ pub(super) fn check_light(
             direction,
             color,
             intensity,
+            ..
         } => (name, None, Some(direction), *color, *intensity, None),
     };
     let name = element(name, "light", index);
@@ -71,6 +76,9 @@ pub(super) fn check_light(
     }
     if let Some(r) = range.filter(|r| r.is_nan() || *r <= 0.0) {
         return Err(invalid(format!("range {r} must be > 0")));
+    }
+    if let Some(Err(e)) = spectrum.map(|s| s.check()) {
+        return Err(invalid(format!("iris_spectrum: {e}")));
     }
     if let LightDesc::Spot {
         inner_cone,
@@ -143,6 +151,7 @@ mod tests {
             range: None,
             inner_cone: inner,
             outer_cone: outer,
+            spectrum: None,
         }
     }
 
@@ -163,6 +172,7 @@ mod tests {
                 direction: Vec3::ZERO,
                 color: Vec3::ONE,
                 intensity: 1.0,
+                spectrum: None,
             },
             LightDesc::Point {
                 name: "light 0 \"bulb\"".into(),
@@ -170,6 +180,7 @@ mod tests {
                 color: Vec3::ONE,
                 intensity: 1.0,
                 range: None,
+                spectrum: None,
             },
             LightDesc::Point {
                 name: "light 0 \"bulb\"".into(),
@@ -177,6 +188,7 @@ mod tests {
                 color: Vec3::ONE,
                 intensity: -1.0,
                 range: None,
+                spectrum: None,
             },
             LightDesc::Point {
                 name: "light 0 \"bulb\"".into(),
@@ -184,6 +196,7 @@ mod tests {
                 color: Vec3::ONE,
                 intensity: 1.0,
                 range: Some(0.0),
+                spectrum: None,
             },
         ];
         for light in bad {
@@ -192,6 +205,37 @@ mod tests {
             let (k, msg) = err_kind(d);
             assert_eq!(k, LoadErrorKind::InvalidValue);
             assert!(msg.contains("light 0"), "{msg}");
+        }
+    }
+
+    #[test]
+    fn light_spectrum_is_checked() {
+        let with = |spectrum| LightDesc::Directional {
+            name: "light 0 \"sun\"".into(),
+            direction: Vec3::NEG_Y,
+            color: Vec3::ONE,
+            intensity: 1.0,
+            spectrum: Some(spectrum),
+        };
+        for ok in [
+            EmissionSpectrum::D65,
+            EmissionSpectrum::Sun,
+            EmissionSpectrum::Blackbody { kelvin: 1000.0 },
+            EmissionSpectrum::Blackbody { kelvin: 40000.0 },
+        ] {
+            let mut d = scene();
+            d.lights.push(with(ok));
+            assert!(validate(d).is_ok(), "{ok:?}");
+        }
+        for kelvin in [999.0, 40001.0, f32::NAN, f32::INFINITY, -3000.0] {
+            let mut d = scene();
+            d.lights.push(with(EmissionSpectrum::Blackbody { kelvin }));
+            let (k, msg) = err_kind(d);
+            assert_eq!(k, LoadErrorKind::InvalidValue);
+            assert!(
+                msg.contains("\"sun\"") && msg.contains("iris_spectrum"),
+                "{msg}"
+            );
         }
     }
 

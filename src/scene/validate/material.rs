@@ -12,11 +12,13 @@
 //! roughness, transmission, specular, attenuation colour, alpha cutoff) outside [0, 1] are
 //! clamped with one warning per material; a negative specular colour is clamped to 0.
 //! `attenuation_distance > 0`, `thickness ≥ 0`, `dispersion ≥ 0` and `emissive ≥ 0` are
-//! errors when violated (`InvalidValue`).
+//! errors when violated (`InvalidValue`), as is an `emission_spectrum` blackbody outside
+//! [`BLACKBODY_KELVIN`](crate::scene::desc::BLACKBODY_KELVIN).
 
 use super::{element, fail};
 use crate::error::{LoadError, LoadErrorKind};
 use crate::scene::desc::{AlphaMode, ExplicitIor, ImageDesc, MaterialDesc};
+use glam::Vec3;
 use std::path::Path;
 
 pub(super) fn check_images(src: &Path, images: &[ImageDesc]) -> Result<(), LoadError> {
@@ -107,6 +109,17 @@ pub(super) fn check_material(
                 format!("{field} is negative ({value})"),
             ));
         }
+    }
+    if let Some(Err(e)) = m.emission_spectrum.map(|s| s.check()) {
+        return Err(invalid(
+            LoadErrorKind::InvalidValue,
+            format!("iris_spectrum: {e}"),
+        ));
+    }
+    if let Some(spectrum) = m.emission_spectrum.filter(|_| m.emissive == Vec3::ZERO) {
+        warnings.push(format!(
+            "{name}: iris_spectrum {spectrum} has no effect without an emissive colour"
+        ));
     }
     check_ior(m, &name, warnings).map_err(|d| invalid(LoadErrorKind::InvalidIor, d))?;
     clamp_factors(m, &name, warnings);

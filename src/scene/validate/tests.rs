@@ -317,3 +317,31 @@ fn volume_and_emission_ranges() {
     d.materials[0].attenuation_distance = f32::INFINITY;
     assert!(validate(d).is_ok());
 }
+
+#[test]
+fn emission_spectrum_rules() {
+    let mut d = scene();
+    d.materials[0].emissive = Vec3::splat(2.0);
+    d.materials[0].emission_spectrum = Some(EmissionSpectrum::Blackbody { kelvin: 3200.0 });
+    let (_, w) = warnings(d);
+    assert!(!w.contains("iris_spectrum"), "{w}");
+    for kelvin in [500.0, 50_000.0, f32::NAN] {
+        let mut d = scene();
+        d.materials[0].emissive = Vec3::splat(2.0);
+        d.materials[0].emission_spectrum = Some(EmissionSpectrum::Blackbody { kelvin });
+        let (k, msg) = err_kind(d);
+        assert_eq!(k, LoadErrorKind::InvalidValue);
+        assert!(
+            msg.contains("\"glass\"") && msg.contains("iris_spectrum"),
+            "{msg}"
+        );
+    }
+    // Not emissive: the spectrum does nothing, which is worth a warning, not an error.
+    let mut d = scene();
+    d.materials[0].emission_spectrum = Some(EmissionSpectrum::D65);
+    let (_, w) = warnings(d);
+    assert!(
+        w.contains("\"glass\": iris_spectrum D65 has no effect"),
+        "{w}"
+    );
+}
