@@ -22,9 +22,10 @@
 //! - screen: white (0.85) quad 0.8 × 0.7 m standing on the floor, perpendicular to the
 //!   587.6 nm exit ray, centre [`SCREEN_DISTANCE`] along it from the exit point. The
 //!   486.1–656.3 nm spread there is ≈ 0.71° × 3 m ≈ 37 mm;
-//! - room: dark floor (0.2), fill panel 1 × 1 m facing down at y = 2.5 (radiance
-//!   [`FILL_RADIANCE`]); no environment (black);
-//! - camera: behind and above the prism, looking along the exit beam towards the screen.
+//! - room: dark grey floor (0.3), black (0.05) stand, tube and baffle, a dim directional
+//!   fill of [`FILL_LUX`] lx; no environment (black);
+//! - camera: 0.9 m behind and 0.35 m above the exit point, 0.3 m to the +Z side, looking
+//!   along the exit beam towards the screen (yfov 40°, 16:9).
 //!
 //! The emitter-behind-a-slit (not a spot light with a tiny cone) is deliberate: it is an
 //! area light, so a path can reach it and both integrators (and a photon mapper) see the
@@ -34,9 +35,10 @@
 //! **`diamond.glb`**: a round brilliant ([`Brilliant`] with table 53 %, crown 34.5°,
 //! pavilion 40.75°, Ø 6.5 mm ≈ 1 ct) lying on a pavilion main (table tilted 40.75° towards
 //! +Z) 0.1 mm above a dark grey (0.1) floor; material `KHR_materials_ior` 2.42,
-//! `KHR_materials_dispersion` 0.36 (Abbe ≈ 55), clear volume; four 8 × 8 mm emitters of
-//! radiance [`GEM_LIGHT_RADIANCE`] about 12 cm away and a faint uniform environment
-//! (`iris_environment: 0.02`); camera 6 cm from the stone, 30° off the table normal.
+//! `KHR_materials_dispersion` 0.36 (Abbe ≈ 55), clear volume; seven 1 × 1 cm emitters of
+//! radiance [`GEM_LIGHT_RADIANCE`] 12 cm away, ringed 25° and 40° around the table normal,
+//! and a faint uniform environment (`iris_environment: 0.02`); camera 6 cm from the
+//! stone's vertex centroid, 30° off the table normal (towards +Y), yfov 10°.
 
 use super::gem::Brilliant;
 use super::lathe::sin_cos;
