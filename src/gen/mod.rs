@@ -10,7 +10,8 @@
 //! - [`glb`]: the deterministic GLB writer.
 //! - [`paper`]: the seed paper's figure scenes shipped in `assets/paper/`.
 //! - [`scenes`]: the demonstration scenes shipped in `assets/scenes/` (glass of water,
-//!   ruby, prism under the sky).
+//!   ruby, prism under the sky, and [`spectral_scenes`]: the prism beam of Fig. 5.3.1 and
+//!   a diamond).
 //!
 //! [`write_all_assets`]`(root)` regenerates both into `root/paper/` and `root/scenes/`
 //! (`iris gen-assets assets`).
@@ -24,6 +25,7 @@ pub mod paper;
 pub mod scenes;
 pub mod shapes;
 pub mod sky;
+pub mod spectral_scenes;
 
 pub use glb::{encode_glb, write_glb};
 pub use model::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene, GenVolume};

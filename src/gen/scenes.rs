@@ -10,7 +10,10 @@
 //! |---|---|---|---|---|
 //! | `glass_of_water.glb` | a tapered tumbler (Ø 60→72 mm, 110 mm tall, 2.5 mm wall, 8 mm base, 96 segments, rounded rim) holding water up to 75 mm; the water's side and bottom are the glass's inner wall and floor with reversed winding (same vertices); 0.5 mm above a checker table (24×16 tiles of 25 mm) before a checker backdrop at z = −0.2 | glass IOR 1.5; water IOR 1.33, faint blue-green absorption (attenuation colour (0.8, 0.93, 0.96) over 0.25 m) | key panel 16×16 cm facing down at (−0.12, 0.4, 0.12), radiance 60; fill panel 60×30 cm facing −Z at z = 0.6, radiance 3 | eye (0, 0.12, 0.38) → (0, 0.055, 0), yfov 28°, 1:1 |
 //! | `ruby.glb` | round brilliant ([`Brilliant::ideal`], Ø 20 mm, 73 facets) lying on a pavilion main, table tilted 40.75° towards the camera, 0.2 mm above a plain floor | ruby: IOR 1.77, dispersion 0.28 (Abbe ≈ 72), attenuation colour (0.9, 0.1, 0.18) over 20 mm; floor 0.85 grey | panels 5×5 cm radiance 40 (front-left) and 4×4 cm radiance 30 (back-right), facing down; scene extras `iris_environment: 0.15` (uniform grey) | eye (0.015, 0.038, 0.075) → (0, 0.006, 0), yfov 30°, 1:1 |
-//! | `prism_sky.glb` + `sky.hdr` | an upright 60° prism (side 0.25, height 0.4, apex towards +Z) 1 mm above a 3×3 m checker floor (0.15 m tiles) framed by plain floor out to ±60 m | prism glass IOR 1.5, dispersion 1.0 (Abbe 20); checker 0.8 / 0.55 grey, plain floor 0.7 | scene extras `iris_environment: "sky.hdr"` ([`super::sky`]: sky, ground, four coloured panels, sun at elevation 30° whose light crosses the prism near minimum deviation and lands on the floor on the +Z side) | eye (0.55, 0.3, 0.8) → (−0.05, 0.12, 0.1), yfov 45°, 1:1 |
+//! | `prism_sky.glb` + `sky.hdr` | an upright 60° prism (side 0.25, height 0.4, apex towards +Z) 1 mm above a 3×3 m checker floor (0.15 m tiles) framed by plain floor out to ±60 m | prism glass IOR 1.5, dispersion 1.0 (Abbe 20); checker 0.8 / 0.55 grey, plain floor 0.7 | scene extras `iris_environment: "sky.hdr"` ([`super::sky`]: sky, ground, four coloured panels, sun at elevation 30° whose light crosses the prism near minimum deviation and lands on the floor on the +Z side) | eye (0.55, 0.3, 0.8) → (−0.05, 0.12, 0.1), yfov 45°, 1:1 |//!
+//! `fig5_3_1_prism_beam.glb` (a white beam through an N-BK7 prism at minimum deviation
+//! onto a screen) and `diamond.glb` (IOR 2.42, dispersion 0.36) are built in
+//! [`super::spectral_scenes`], which documents them.
 
 use super::gem::Brilliant;
 use super::glb::write_glb;
@@ -19,6 +22,7 @@ use super::model::{GenMaterial, GenMesh, GenScene, GenVolume};
 use super::paper::{add_checker, camera, grey_pair, push_material, SceneBuilder};
 use super::shapes::{checkerboard, ground_plane, prism, quarter_turn_x, TriMesh};
 use super::sky::sky_hdr;
+use super::spectral_scenes::{diamond, fig5_3_1_prism_beam};
 use crate::error::{Error, Result};
 use glam::{Mat3, Vec3};
 use std::path::{Path, PathBuf};
@@ -28,10 +32,12 @@ pub const SKY_FILE: &str = "sky.hdr";
 
 /// File names and builders of the scenes, in the order [`write_scene_assets`] writes them
 /// (the sky map [`SKY_FILE`] comes last).
-pub const SCENES: [(&str, SceneBuilder); 3] = [
+pub const SCENES: [(&str, SceneBuilder); 5] = [
     ("glass_of_water.glb", glass_of_water),
     ("ruby.glb", ruby),
     ("prism_sky.glb", prism_sky),
+    ("fig5_3_1_prism_beam.glb", fig5_3_1_prism_beam),
+    ("diamond.glb", diamond),
 ];
 
 /// The drinking glass of [`glass_of_water`].
