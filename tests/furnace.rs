@@ -45,6 +45,7 @@ fn furnace_image(material: MaterialDesc, size: u32, spp: u32, seed: u64) -> Vec<
         seed,
         threads: 2,
         quiet: true,
+        spectral: false,
     };
     let integrator = Integrator {
         method: Method::Path,
