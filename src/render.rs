@@ -51,14 +51,19 @@ pub struct RenderStats {
 /// One camera sample's radiance as linear RGB: wavelengths drawn for spectral transport,
 /// and the film's conversion ([`Carrier::to_rgb`], spectrum → XYZ → sRGB) — the only place
 /// colour is converted.
+///
+/// `stratum` = (k, n): this is the k-th of the pixel's n samples; the hero wavelength's
+/// uniform variate is stratified over them ((k + ξ)/n), which cuts colour noise.
 fn sample<C: Carrier>(
     scene: &Scene,
     integrator: &Integrator,
     ray: &crate::math::Ray,
+    stratum: (u32, u32),
     ctx: &mut Context,
 ) -> Vec3 {
     let lambda = if C::SPECTRAL {
-        C::sample_lambda(ctx.rng.next_f32())
+        let (k, n) = stratum;
+        C::sample_lambda(((k as f32 + ctx.rng.next_f32()) / n as f32).min(1.0 - f32::EPSILON))
     } else {
         C::sample_lambda(0.0)
     };
@@ -115,7 +120,7 @@ pub fn render(
                             rays: 0,
                         };
                         let mut sum = DVec3::ZERO;
-                        for _ in 0..spp {
+                        for k in 0..spp {
                             let jitter = if spp == 1 {
                                 Vec2::splat(0.5)
                             } else {
@@ -123,9 +128,15 @@ pub fn render(
                             };
                             let ray = camera.generate_ray(Vec2::new(x as f32, y as f32) + jitter);
                             let l = if settings.spectral {
-                                sample::<SampledSpectrum>(scene, integrator, &ray, &mut ctx)
+                                sample::<SampledSpectrum>(
+                                    scene,
+                                    integrator,
+                                    &ray,
+                                    (k, spp),
+                                    &mut ctx,
+                                )
                             } else {
-                                sample::<Vec3>(scene, integrator, &ray, &mut ctx)
+                                sample::<Vec3>(scene, integrator, &ray, (k, spp), &mut ctx)
                             };
                             sum += l.as_dvec3();
                         }
