@@ -68,6 +68,7 @@ fn path_tracer(c: &mut Criterion) {
         seed: 1,
         threads: 2,
         quiet: true,
+        spectral: false,
     };
     let mut group = c.benchmark_group("path_tracer_512");
     group.sample_size(10);

@@ -49,6 +49,8 @@ pub struct RenderOptions {
     /// `iris_environment`, if any), `Some(None)` = `--env none` (no environment, even if
     /// the file names one), `Some(Some(e))` = use `e` instead of the file's.
     pub env: Option<Option<crate::envmap::Environment>>,
+    /// `--spectral`: spectral transport always, never, or when the scene needs it.
+    pub spectral: SpectralMode,
 }
 
 /// What a render did, for the one-line summary.
@@ -186,6 +188,29 @@ pub fn check_size(w: u32, h: u32) -> Result<()> {
     Ok(())
 }
 
+/// `--spectral auto|on|off`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SpectralMode {
+    /// Spectral transport when a material is dispersive, RGB otherwise.
+    #[default]
+    Auto,
+    /// Always spectral.
+    On,
+    /// Always RGB (dispersive materials use n_d).
+    Off,
+}
+
+impl SpectralMode {
+    /// Whether to render `scene` spectrally.
+    pub fn resolve(self, scene: &Scene) -> bool {
+        match self {
+            SpectralMode::On => true,
+            SpectralMode::Off => false,
+            SpectralMode::Auto => scene.materials.iter().any(|m| m.is_dispersive()),
+        }
+    }
+}
+
 /// `iris render`.
 pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
     if let Some((w, h)) = opts.size {
@@ -218,10 +243,18 @@ pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
         seed: opts.seed,
         threads: opts.threads,
         quiet: opts.quiet,
+        spectral: opts.spectral.resolve(&scene),
     };
     let (image, stats) = render(&scene, &camera, &integrator, &settings)?;
     output::write_image(&output, &image, &opts.display)?;
     let mut notes = scene.notes.clone();
+    if settings.spectral {
+        notes.push(match opts.spectral {
+            SpectralMode::On => "spectral transport (--spectral on)".into(),
+            _ => "spectral transport: the scene has dispersive materials (--spectral off for RGB)"
+                .into(),
+        });
+    }
     notes.extend(cam_note);
     notes.extend(scene.warnings.iter().cloned());
     Ok(RenderSummary {

@@ -53,6 +53,13 @@ enum AccelArg {
 }
 
 #[derive(Clone, Copy, ValueEnum)]
+enum SpectralArg {
+    Auto,
+    On,
+    Off,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
 enum ToneMapArg {
     Aces,
     Reinhard,
@@ -101,6 +108,10 @@ struct RenderArgs {
     /// `iris_environment` (glTF scene extras), else none.
     #[arg(long, allow_hyphen_values = true)]
     env: Option<String>,
+    /// Spectral transport (4 wavelengths per sample, CIE colour): `auto` when a material is
+    /// dispersive, `on` always, `off` never (RGB, dispersive materials use n_d).
+    #[arg(long, value_enum, default_value_t = SpectralArg::Auto)]
+    spectral: SpectralArg,
     /// No progress bar.
     #[arg(short, long)]
     quiet: bool,
@@ -167,6 +178,11 @@ fn run(cli: Cli) -> iris::Result<()> {
                     .as_deref()
                     .map(iris::envmap::Environment::parse_arg)
                     .transpose()?,
+                spectral: match a.spectral {
+                    SpectralArg::Auto => app::SpectralMode::Auto,
+                    SpectralArg::On => app::SpectralMode::On,
+                    SpectralArg::Off => app::SpectralMode::Off,
+                },
             };
             let s = app::render_command(&opts)?;
             for n in &s.notes {

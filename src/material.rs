@@ -17,6 +17,7 @@ use crate::scene::desc::{
 };
 use crate::spectrum::{self, ior::KNOWN_NAMES};
 use crate::texture::{self, Encoding};
+use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3, Vec4};
 
 /// One material of the render scene.
@@ -152,13 +153,27 @@ impl Material {
     /// Beer–Lambert transmittance c^(x/d) over distance `x` inside the medium
     /// (KHR_materials_volume). Exactly 1 for the default infinite attenuation distance.
     pub fn transmittance(&self, x: f32) -> Vec3 {
+        self.transmittance_at::<Vec3>(x, &())
+    }
+
+    /// [`Material::transmittance`] for any carrier: the attenuation colour upsampled as a
+    /// reflectance at the path's wavelengths, raised to x/d per lane.
+    pub fn transmittance_at<C: Carrier>(&self, x: f32, l: &C::Lambda) -> C {
         let d = self.desc.attenuation_distance;
         if !d.is_finite() {
-            return Vec3::ONE;
+            return C::ONE;
         }
-        let c = self.desc.attenuation_color;
-        let e = x / d;
-        Vec3::new(c.x.powf(e), c.y.powf(e), c.z.powf(e))
+        C::reflectance(self.desc.attenuation_color, l).powf(x / d)
+    }
+
+    /// The index of refraction a path at the given wavelengths sees: n(hero λ) from the IOR
+    /// model in spectral transport when `dispersive` (the caller keeps only the hero), else
+    /// [`Material::ior`]. `f32::INFINITY` for the `ior: 0` mode.
+    pub fn ior_at(&self, hero: Option<f32>, dispersive: bool) -> f32 {
+        match hero {
+            Some(l) if dispersive && self.is_dispersive() => self.ior_model().ior(l),
+            _ => self.ior(),
+        }
     }
 }
 

@@ -34,6 +34,11 @@ impl MediumStack {
         (self.len > 0).then(|| self.ids[self.len as usize - 1])
     }
 
+    /// The media the path is inside, outermost first.
+    pub fn iter(&self) -> impl Iterator<Item = u32> + '_ {
+        self.ids[..self.len as usize].iter().copied()
+    }
+
     /// Whether the path is inside material `m`.
     pub fn contains(&self, m: u32) -> bool {
         self.ids[..self.len as usize].contains(&m)
@@ -111,13 +116,14 @@ pub fn interface_merged(
 
 /// The volumetric interface a path with media `media` crosses at `hit`, with the volumetric
 /// surfaces coincident with it ([`Scene::coincident`]) merged in: n_incident,
-/// n_transmitted and the media beyond. Non-volumetric partners take no part (the caller
+/// n_transmitted and the media beyond, with `ior(material)` the index of each medium. Non-volumetric partners take no part (the caller
 /// lets an opaque partner replace the hit instead, see `integrator::shading::meet`).
 pub fn crossing(
     scene: &Scene,
     hit: &SurfaceHit,
     coincident: &CoincidentSet,
     media: MediumStack,
+    ior: impl Fn(u32) -> f32,
 ) -> (f32, f32, MediumStack) {
     let mut crossings = [(hit.material, hit.front_face); 1 + MAX_COINCIDENT];
     let mut n = 1;
@@ -127,9 +133,7 @@ pub fn crossing(
             n += 1;
         }
     }
-    interface_merged(media, &crossings[..n], |m| {
-        scene.materials[m as usize].ior()
-    })
+    interface_merged(media, &crossings[..n], ior)
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@
 //! Sign convention: `n` is the unit normal on the side the incident direction comes from,
 //! i.e. `dot(wi, n) > 0` where `wi` points *away* from the surface toward the viewer/light.
 
+use crate::spectrum::Carrier;
 use glam::Vec3;
 
 /// Mirror reflection of `wi` (pointing away from the surface) about `n`.
@@ -59,9 +60,9 @@ pub fn critical_angle(eta: f32) -> Option<f32> {
 /// Schlick's approximation F0 + (1−F0)(1−cos)^5 (Schlick 1994), used for metals with a
 /// base-colour F0 as the glTF spec prescribes.
 #[inline]
-pub fn fresnel_schlick(f0: Vec3, cos_i: f32) -> Vec3 {
+pub fn fresnel_schlick<C: Carrier>(f0: C, cos_i: f32) -> C {
     let m = (1.0 - cos_i.clamp(0.0, 1.0)).powi(5);
-    f0 + (Vec3::ONE - f0) * m
+    f0 + (C::ONE - f0) * m
 }
 
 /// Orients an interface for a ray arriving at a surface with outward normal `n_out` and

@@ -9,6 +9,7 @@ use crate::integrator::{Context, Integrator};
 use crate::math::Rng;
 use crate::output::ImageRgb;
 use crate::scene::Scene;
+use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::{DVec3, Vec2, Vec3};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
@@ -32,6 +33,8 @@ pub struct RenderSettings {
     pub threads: usize,
     /// Hide the progress bar.
     pub quiet: bool,
+    /// Spectral transport (4 wavelengths per sample) instead of RGB.
+    pub spectral: bool,
 }
 
 /// Figures from one render.
@@ -43,6 +46,30 @@ pub struct RenderStats {
     pub rays: u64,
     /// Pixel samples taken.
     pub samples: u64,
+}
+
+/// One camera sample's radiance as linear RGB: wavelengths drawn for spectral transport,
+/// and the film's conversion ([`Carrier::to_rgb`], spectrum → XYZ → sRGB) — the only place
+/// colour is converted.
+///
+/// `stratum` = (k, n): this is the k-th of the pixel's n samples; the hero wavelength's
+/// uniform variate is stratified over them ((k + ξ)/n), which cuts colour noise.
+fn sample<C: Carrier>(
+    scene: &Scene,
+    integrator: &Integrator,
+    ray: &crate::math::Ray,
+    stratum: (u32, u32),
+    ctx: &mut Context,
+) -> Vec3 {
+    let lambda = if C::SPECTRAL {
+        let (k, n) = stratum;
+        C::sample_lambda(((k as f32 + ctx.rng.next_f32()) / n as f32).min(1.0 - f32::EPSILON))
+    } else {
+        C::sample_lambda(0.0)
+    };
+    integrator
+        .radiance::<C>(scene, ray, lambda, ctx)
+        .to_rgb(&lambda)
 }
 
 /// Renders `scene` through `camera`.
@@ -93,14 +120,24 @@ pub fn render(
                             rays: 0,
                         };
                         let mut sum = DVec3::ZERO;
-                        for _ in 0..spp {
+                        for k in 0..spp {
                             let jitter = if spp == 1 {
                                 Vec2::splat(0.5)
                             } else {
                                 Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32())
                             };
                             let ray = camera.generate_ray(Vec2::new(x as f32, y as f32) + jitter);
-                            let l = integrator.radiance(scene, &ray, &mut ctx);
+                            let l = if settings.spectral {
+                                sample::<SampledSpectrum>(
+                                    scene,
+                                    integrator,
+                                    &ray,
+                                    (k, spp),
+                                    &mut ctx,
+                                )
+                            } else {
+                                sample::<Vec3>(scene, integrator, &ray, (k, spp), &mut ctx)
+                            };
                             sum += l.as_dvec3();
                         }
                         rays += ctx.rays;

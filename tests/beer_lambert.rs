@@ -59,6 +59,7 @@ fn transmitted(thickness: f32, distance: f32, color: Vec3, backend: Backend) -> 
         seed: 0,
         threads: 1,
         quiet: true,
+        spectral: false,
     };
     let integrator = Integrator {
         method: Method::Whitted,

@@ -13,7 +13,7 @@
 //! unit vectors, ~1e-6) separates the two hypotheses by orders of magnitude.
 //!
 //! The integrators' own step is exercised: `shading::meet` (the intersection layer's
-//! coincidence probe) and `medium::crossing` give the indices, refraction uses
+//! coincidence probe) and `shading::interface` give the indices, refraction uses
 //! `η = n_t / n_i` about the incident-side normal exactly as `--method whitted` does, and the
 //! next ray leaves from the merged hit. A last test puts the water against an opaque block
 //! instead: the path must meet the block, not leave the water through it.
@@ -24,7 +24,7 @@ use glam::{Vec2, Vec3};
 use iris::accel::Backend;
 use iris::integrator::shading;
 use iris::math::Ray;
-use iris::medium::{self, MediumStack};
+use iris::medium::MediumStack;
 use iris::optics::refract;
 use iris::scene::desc::{MaterialDesc, MeshDesc, SceneDesc};
 use iris::scene::Scene;
@@ -179,7 +179,8 @@ fn trace(scene: &Scene, origin: Vec3, dir: Vec3) -> (Vec3, Vec<(f32, f32)>) {
             return (ray.dir.normalize(), pairs);
         };
         let (merged, coincident) = shading::meet(scene, hit);
-        let (n_i, n_t, after) = medium::crossing(scene, &merged, &coincident, media);
+        let (n_i, n_t, after, _) =
+            shading::interface::<glam::Vec3>(scene, &merged, &coincident, media, &());
         pairs.push((n_i, n_t));
         let n = if merged.front_face {
             merged.ns

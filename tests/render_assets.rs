@@ -66,6 +66,7 @@ fn every_shared_scene_renders_finite_pixels() {
                 camera: None,
                 display: DisplayOptions::default(),
                 quiet: true,
+                spectral: Default::default(),
                 env: env.map(Some),
             };
             render_command(&opts).unwrap_or_else(|e| panic!("{}: {e}", scene.display()));

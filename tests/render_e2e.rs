@@ -32,6 +32,7 @@ fn opts(scene: &Path, out: &Path, accel: Backend, threads: usize) -> RenderOptio
         camera: None,
         display: DisplayOptions::default(),
         quiet: true,
+        spectral: Default::default(),
         env: None,
     }
 }
@@ -282,6 +283,7 @@ fn lambertian_sphere_in_uniform_environment_has_albedo_radiance() {
         seed: 3,
         threads: 2,
         quiet: true,
+        spectral: false,
     };
     let (img, _) = iris::render::render(&scene, &cam, &integrator, &settings).unwrap();
     // The sphere (radius 1 at distance 5, yfov 0.6) spans ~ ±0.2 rad: pixels within 6 of the

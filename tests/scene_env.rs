@@ -172,6 +172,7 @@ fn render_mean(scene: &Path, env: Option<Option<Environment>>, out: &Path) -> Ve
         camera: None,
         display: DisplayOptions::default(),
         quiet: true,
+        spectral: Default::default(),
         env,
     };
     render_command(&opts).expect("render");

@@ -12,6 +12,7 @@
 //! single-scatter, reciprocal part.
 
 use super::{same_hemisphere, BsdfSample, TransportMode};
+use crate::spectrum::Carrier;
 use crate::optics::{fresnel_dielectric, reflect, refract};
 use glam::{Vec2, Vec3};
 
@@ -50,13 +51,13 @@ fn refract_either(w: Vec3, n: Vec3, eta: f32) -> Option<(Vec3, f32)> {
 
 /// Sample of the smooth interface (delta lobes). For η = 1 the interface vanishes: all
 /// energy goes straight through, `wi = −wo`, f = tint/|cos θi|.
-pub(crate) fn smooth_sample(
+pub(crate) fn smooth_sample<C: Carrier>(
     eta: f32,
-    tint: Vec3,
+    tint: C,
     wo: Vec3,
     uc: f32,
     mode: TransportMode,
-) -> Option<BsdfSample> {
+) -> Option<BsdfSample<C>> {
     if wo.z == 0.0 {
         return None;
     }
@@ -66,7 +67,7 @@ pub(crate) fn smooth_sample(
         let wi = Vec3::new(-wo.x, -wo.y, wo.z);
         return Some(BsdfSample {
             wi,
-            f: Vec3::splat(r / wi.z.abs()),
+            f: C::splat(r / wi.z.abs()),
             pdf: r,
             delta: true,
             transmission: false,
@@ -131,16 +132,16 @@ fn half_vector(eta: f32, wo: Vec3, wi: Vec3) -> Option<(Vec3, f32, bool)> {
 /// [`super::energy`]): the single-scatter [`rough_eval_ss`] divided by its directional
 /// albedo E_ss(wo), so that ∫ f |cos θi| dωi = 1 (Importance mode, tint 1) for every wo.
 /// Not reciprocal: f(wo, wi)·E(wo) = f(wi, wo)·E(wi).
-pub(crate) fn rough_eval(
+pub(crate) fn rough_eval<C: Carrier>(
     eta: f32,
     alpha: f32,
-    tint: Vec3,
+    tint: C,
     wo: Vec3,
     wi: Vec3,
     mode: TransportMode,
-) -> Vec3 {
+) -> C {
     let f = rough_eval_ss(eta, alpha, tint, wo, wi, mode);
-    if f == Vec3::ZERO {
+    if f == C::ZERO {
         return f;
     }
     f * energy::compensation(eta, alpha, wo)
@@ -149,22 +150,22 @@ pub(crate) fn rough_eval(
 /// Single-scatter rough dielectric f_ss(wo, wi): Walter 2007 eq. 20 (reflection) and eq. 21
 /// (transmission), with the height-correlated G2 instead of the separable one. Loses the
 /// energy of light scattered more than once between microfacets.
-pub(crate) fn rough_eval_ss(
+pub(crate) fn rough_eval_ss<C: Carrier>(
     eta: f32,
     alpha: f32,
-    tint: Vec3,
+    tint: C,
     wo: Vec3,
     wi: Vec3,
     mode: TransportMode,
-) -> Vec3 {
+) -> C {
     let Some((wm, etap, refl)) = half_vector(eta, wo, wi) else {
-        return Vec3::ZERO;
+        return C::ZERO;
     };
     let ggx = Ggx { alpha };
     let f = fresnel(wo.dot(wm), eta);
     let (co, ci) = (wo.z, wi.z);
     if refl {
-        return Vec3::splat(ggx.d(wm) * ggx.g(wo, wi) * f / (4.0 * ci * co).abs());
+        return C::splat(ggx.d(wm) * ggx.g(wo, wi) * f / (4.0 * ci * co).abs());
     }
     let denom = (wi.dot(wm) + wo.dot(wm) / etap).powi(2) * ci * co;
     let mut ft = ggx.d(wm) * (1.0 - f) * ggx.g(wo, wi) * (wi.dot(wm) * wo.dot(wm) / denom).abs();
@@ -195,15 +196,15 @@ pub(crate) fn rough_pdf(eta: f32, alpha: f32, wo: Vec3, wi: Vec3) -> f32 {
 /// Samples the rough dielectric: a visible microfacet normal (Heitz 2018), then reflection
 /// with probability F(wo·wm), else refraction through that microfacet (TIR ⇒ F = 1).
 /// `None` when the scattered direction ends on the wrong side of the macro-surface.
-pub(crate) fn rough_sample(
+pub(crate) fn rough_sample<C: Carrier>(
     eta: f32,
     alpha: f32,
-    tint: Vec3,
+    tint: C,
     wo: Vec3,
     uc: f32,
     u: Vec2,
     mode: TransportMode,
-) -> Option<BsdfSample> {
+) -> Option<BsdfSample<C>> {
     if wo.z == 0.0 {
         return None;
     }
@@ -240,7 +241,12 @@ pub(crate) fn rough_sample(
 /// inter-reflections between the two parallel interfaces gives R' = R + T²R/(1 − R²),
 /// T' = 1 − R'; transmission goes straight through (`wi = −wo`, no bending, no η² factor
 /// since both sides are the same medium), tinted by `tint`.
-pub(crate) fn thin_sample(eta: f32, tint: Vec3, wo: Vec3, uc: f32) -> Option<BsdfSample> {
+pub(crate) fn thin_sample<C: Carrier>(
+    eta: f32,
+    tint: C,
+    wo: Vec3,
+    uc: f32,
+) -> Option<BsdfSample<C>> {
     if wo.z == 0.0 {
         return None;
     }
@@ -254,7 +260,7 @@ pub(crate) fn thin_sample(eta: f32, tint: Vec3, wo: Vec3, uc: f32) -> Option<Bsd
         let wi = Vec3::new(-wo.x, -wo.y, wo.z);
         Some(BsdfSample {
             wi,
-            f: Vec3::splat(r / wi.z.abs()),
+            f: C::splat(r / wi.z.abs()),
             pdf: r,
             delta: true,
             transmission: false,

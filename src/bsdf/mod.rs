@@ -18,6 +18,7 @@ mod pbr;
 #[cfg(test)]
 mod tests;
 
+use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
 
 /// GGX α below which a lobe is treated as perfectly smooth (delta).
@@ -34,11 +35,11 @@ pub enum TransportMode {
 
 /// Result of [`Bsdf::sample`].
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BsdfSample {
+pub struct BsdfSample<C = Vec3> {
     /// Sampled incident direction (local frame, unit).
     pub wi: Vec3,
     /// f(wo, wi) (for delta lobes: the delta's coefficient).
-    pub f: Vec3,
+    pub f: C,
     /// Solid-angle pdf (for delta lobes: the discrete lobe probability).
     pub pdf: f32,
     /// Whether the sample is from a delta lobe.
@@ -49,17 +50,17 @@ pub struct BsdfSample {
 
 /// A BSDF at one shading point.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Bsdf {
+pub enum Bsdf<C = Vec3> {
     /// Lambertian reflection, f = albedo/π (two-sided).
     Lambert {
         /// Diffuse reflectance.
-        albedo: Vec3,
+        albedo: C,
     },
     /// GGX microfacet conductor with Schlick Fresnel from f0 (glTF metals: f0 = base colour);
     /// `alpha < SMOOTH_ALPHA` ⇒ a delta mirror.
     Conductor {
         /// Normal-incidence reflectance.
-        f0: Vec3,
+        f0: C,
         /// GGX α.
         alpha: f32,
     },
@@ -74,7 +75,7 @@ pub enum Bsdf {
         /// GGX α.
         alpha: f32,
         /// Transmission tint.
-        tint: Vec3,
+        tint: C,
     },
     /// Thin-walled dielectric (KHR_materials_transmission without volume): straight-through
     /// transmission, no bending.
@@ -82,7 +83,7 @@ pub enum Bsdf {
         /// Index of the slab relative to its surroundings.
         eta: f32,
         /// Transmission tint.
-        tint: Vec3,
+        tint: C,
     },
     /// glTF metallic-roughness: Lambert diffuse + GGX specular with KHR_materials_specular
     /// (f0 = min(((ior−1)/(ior+1))²·specular_color, 1)·specular, f90 = specular), mixed with
@@ -90,7 +91,7 @@ pub enum Bsdf {
     /// `alpha` (= roughness²) is floored at 1e-2 (no delta lobe).
     GltfPbr {
         /// Base colour (linear).
-        base: Vec3,
+        base: C,
         /// Metalness in [0, 1].
         metallic: f32,
         /// GGX α.
@@ -100,7 +101,7 @@ pub enum Bsdf {
         /// KHR_materials_specular factor.
         specular: f32,
         /// KHR_materials_specular colour.
-        specular_color: Vec3,
+        specular_color: C,
     },
 }
 
@@ -110,8 +111,8 @@ pub(crate) fn same_hemisphere(a: Vec3, b: Vec3) -> bool {
     a.z * b.z > 0.0
 }
 
-impl Bsdf {
-    fn gltf(&self) -> Option<pbr::Gltf> {
+impl<C: Carrier> Bsdf<C> {
+    fn gltf(&self) -> Option<pbr::Gltf<C>> {
         match *self {
             Bsdf::GltfPbr {
                 base,
@@ -143,9 +144,9 @@ impl Bsdf {
     }
 
     /// f(wo, wi); 0 for delta lobes.
-    pub fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Vec3 {
+    pub fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> C {
         if self.is_delta() {
-            return Vec3::ZERO;
+            return C::ZERO;
         }
         match *self {
             Bsdf::Lambert { albedo } => pbr::lambert_eval(albedo, wo, wi),
@@ -153,8 +154,8 @@ impl Bsdf {
             Bsdf::Dielectric { eta, alpha, tint } => {
                 dielectric::rough_eval(eta, alpha, tint, wo, wi, mode)
             }
-            Bsdf::ThinDielectric { .. } => Vec3::ZERO,
-            Bsdf::GltfPbr { .. } => self.gltf().map_or(Vec3::ZERO, |g| g.eval(wo, wi)),
+            Bsdf::ThinDielectric { .. } => C::ZERO,
+            Bsdf::GltfPbr { .. } => self.gltf().map_or(C::ZERO, |g| g.eval(wo, wi)),
         }
     }
 
@@ -175,7 +176,13 @@ impl Bsdf {
     /// Samples wi given wo; `uc` picks a lobe, `u` the direction (all in [0,1)).
     /// `None` when no valid direction results (e.g. a microfacet reflection below the
     /// horizon, or grazing `wo`).
-    pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample> {
+    pub fn sample(
+        &self,
+        wo: Vec3,
+        uc: f32,
+        u: Vec2,
+        mode: TransportMode,
+    ) -> Option<BsdfSample<C>> {
         match *self {
             Bsdf::Lambert { albedo } => pbr::lambert_sample(albedo, wo, u),
             Bsdf::Conductor { f0, alpha } => {

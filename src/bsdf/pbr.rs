@@ -7,6 +7,7 @@
 
 use super::microfacet::Ggx;
 use super::{same_hemisphere, BsdfSample};
+use crate::spectrum::Carrier;
 use crate::optics::{fresnel_schlick, reflect};
 use glam::{Vec2, Vec3};
 use std::f32::consts::{FRAC_1_PI, PI};
@@ -27,11 +28,11 @@ fn cosine_hemisphere(wo: Vec3, u: Vec2) -> Vec3 {
 }
 
 /// Lambert f = albedo/π.
-pub(crate) fn lambert_eval(albedo: Vec3, wo: Vec3, wi: Vec3) -> Vec3 {
+pub(crate) fn lambert_eval<C: Carrier>(albedo: C, wo: Vec3, wi: Vec3) -> C {
     if same_hemisphere(wo, wi) {
         albedo * FRAC_1_PI
     } else {
-        Vec3::ZERO
+        C::ZERO
     }
 }
 
@@ -45,7 +46,7 @@ pub(crate) fn lambert_pdf(wo: Vec3, wi: Vec3) -> f32 {
 }
 
 /// Cosine-weighted sample of the Lambert lobe.
-pub(crate) fn lambert_sample(albedo: Vec3, wo: Vec3, u: Vec2) -> Option<BsdfSample> {
+pub(crate) fn lambert_sample<C: Carrier>(albedo: C, wo: Vec3, u: Vec2) -> Option<BsdfSample<C>> {
     let wi = cosine_hemisphere(wo, u);
     let pdf = lambert_pdf(wo, wi);
     (pdf > 0.0).then(|| BsdfSample {
@@ -101,10 +102,10 @@ fn ggx_reflect_sample(ggx: Ggx, wo: Vec3, u: Vec2) -> Option<Vec3> {
 }
 
 /// Rough conductor f = D·G2·F_schlick(f0, |wo·wm|)/(4|cos θo||cos θi|).
-pub(crate) fn conductor_eval(f0: Vec3, alpha: f32, wo: Vec3, wi: Vec3) -> Vec3 {
+pub(crate) fn conductor_eval<C: Carrier>(f0: C, alpha: f32, wo: Vec3, wi: Vec3) -> C {
     match ggx_spec(Ggx { alpha }, wo, wi) {
         Some((s, cos_h)) => fresnel_schlick(f0, cos_h) * s,
-        None => Vec3::ZERO,
+        None => C::ZERO,
     }
 }
 
@@ -115,13 +116,13 @@ pub(crate) fn conductor_pdf(alpha: f32, wo: Vec3, wi: Vec3) -> f32 {
 
 /// Rough conductor sample (VNDF reflection); smooth (α below the delta threshold) gives the
 /// mirror direction with f = F/|cos θi|, pdf 1.
-pub(crate) fn conductor_sample(
-    f0: Vec3,
+pub(crate) fn conductor_sample<C: Carrier>(
+    f0: C,
     alpha: f32,
     smooth: bool,
     wo: Vec3,
     u: Vec2,
-) -> Option<BsdfSample> {
+) -> Option<BsdfSample<C>> {
     if wo.z == 0.0 {
         return None;
     }
@@ -149,24 +150,24 @@ pub(crate) fn conductor_sample(
 
 /// The glTF metallic-roughness BRDF with KHR_materials_specular, already resolved.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Gltf {
-    pub base: Vec3,
+pub(crate) struct Gltf<C: Carrier> {
+    pub base: C,
     pub metallic: f32,
     pub ggx: Ggx,
     /// Dielectric F0 = min(((ior−1)/(ior+1))²·specular_color, 1)·specular.
-    pub f0: Vec3,
+    pub f0: C,
     /// Dielectric F90 = specular.
     pub f90: f32,
 }
 
-impl Gltf {
+impl<C: Carrier> Gltf<C> {
     pub fn new(
-        base: Vec3,
+        base: C,
         metallic: f32,
         alpha: f32,
         ior: f32,
         specular: f32,
-        specular_color: Vec3,
+        specular_color: C,
     ) -> Self {
         let f0_ior = if ior.is_finite() {
             ((ior - 1.0) / (ior + 1.0)).powi(2)
@@ -179,22 +180,22 @@ impl Gltf {
             ggx: Ggx {
                 alpha: alpha.max(GLTF_MIN_ALPHA),
             },
-            f0: (Vec3::splat(f0_ior) * specular_color).min(Vec3::ONE) * specular,
+            f0: (specular_color * f0_ior).min(C::ONE) * specular,
             f90: specular,
         }
     }
 
     /// Schlick with f90 (KHR_materials_specular): F0 + (F90 − F0)(1 − cos)^5.
     #[inline]
-    fn fresnel_d(&self, cos: f32) -> Vec3 {
-        self.f0 + (Vec3::splat(self.f90) - self.f0) * (1.0 - cos.clamp(0.0, 1.0)).powi(5)
+    fn fresnel_d(&self, cos: f32) -> C {
+        self.f0 + (C::splat(self.f90) - self.f0) * (1.0 - cos.clamp(0.0, 1.0)).powi(5)
     }
 
     /// f = mix((1 − max F_d)·base/π + F_d·spec, F_schlick(base)·spec, metallic)
     /// (glTF 2.0 Appendix B.3.5).
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> C {
         let Some((s, cos_h)) = ggx_spec(self.ggx, wo, wi) else {
-            return Vec3::ZERO;
+            return C::ZERO;
         };
         let fd = self.fresnel_d(cos_h);
         let dielectric = self.base * FRAC_1_PI * (1.0 - fd.max_element()) + fd * s;
@@ -208,9 +209,8 @@ impl Gltf {
         let c = wo.z.abs();
         let fd = self.fresnel_d(c);
         let m = self.metallic;
-        let w_spec = (1.0 - m) * fd.element_sum() / 3.0
-            + m * fresnel_schlick(self.base, c).element_sum() / 3.0;
-        let w_diff = (1.0 - m) * (self.base.element_sum() / 3.0) * (1.0 - fd.max_element());
+        let w_spec = (1.0 - m) * fd.average() + m * fresnel_schlick(self.base, c).average();
+        let w_diff = (1.0 - m) * self.base.average() * (1.0 - fd.max_element());
         if w_diff <= 0.0 {
             1.0
         } else if w_spec <= 0.0 {
@@ -230,7 +230,7 @@ impl Gltf {
     }
 
     /// One-sample lobe selection by `uc`; returns the full f and mixture pdf.
-    pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2) -> Option<BsdfSample<C>> {
         if wo.z == 0.0 {
             return None;
         }

@@ -8,6 +8,8 @@ pub mod whitted;
 
 use crate::math::{Ray, Rng};
 use crate::scene::Scene;
+use crate::spectrum::Carrier;
+#[allow(unused_imports)]
 use glam::Vec3;
 
 /// The rendering method (`--method`).
@@ -38,11 +40,18 @@ pub struct Integrator {
 }
 
 impl Integrator {
-    /// Radiance arriving along `ray` (linear RGB).
-    pub fn radiance(&self, scene: &Scene, ray: &Ray, ctx: &mut Context) -> Vec3 {
+    /// Radiance arriving along `ray` at the sample's wavelengths `lambda` (linear RGB when
+    /// `C` is [`Vec3`]).
+    pub fn radiance<C: Carrier>(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        lambda: C::Lambda,
+        ctx: &mut Context,
+    ) -> C {
         match self.method {
-            Method::Whitted => whitted::radiance(scene, ray, self.max_depth, ctx),
-            Method::Path => path::radiance(scene, ray, self.max_depth, ctx),
+            Method::Whitted => whitted::radiance(scene, ray, self.max_depth, lambda, ctx),
+            Method::Path => path::radiance(scene, ray, self.max_depth, lambda, ctx),
         }
     }
 }

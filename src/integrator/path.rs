@@ -16,6 +16,7 @@ use crate::math::{Frame, Ray};
 use crate::medium::MediumStack;
 use crate::scene::desc::AlphaMode;
 use crate::scene::Scene;
+use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
 
 /// Most delta (specular) bounces on one path.
@@ -32,20 +33,21 @@ fn mis(a: f32, b: f32) -> f32 {
 }
 
 /// Next-event estimation: one light, chosen uniformly among the light groups.
-fn next_event(
+fn next_event<C: Carrier>(
     scene: &Scene,
     hit: &SurfaceHit,
-    bsdf: &Bsdf,
+    bsdf: &Bsdf<C>,
     frame: &Frame,
     wo: Vec3,
+    lambda: &C::Lambda,
     ctx: &mut Context,
-) -> Vec3 {
+) -> C {
     let n_punctual = scene.lights.len();
     let has_area = !scene.area_lights.is_empty();
     let has_env = scene.environment.is_some();
     let groups = n_punctual + has_area as usize + has_env as usize;
     if groups == 0 {
-        return Vec3::ZERO;
+        return C::ZERO;
     }
     let p_sel = 1.0 / groups as f32;
     let k = ((ctx.rng.next_f32() * groups as f32) as usize).min(groups - 1);
@@ -54,7 +56,7 @@ fn next_event(
     // (direction, shadow ray, incident radiance / pdf, light pdf for MIS or None for delta)
     let (wi, shadow, incident, light_pdf) = if k < n_punctual {
         let Some(ls) = scene.lights[k].sample_li(hit.p) else {
-            return Vec3::ZERO;
+            return C::ZERO;
         };
         let shadow = match ls.position {
             Some(p) => hit.spawn_ray_to(p),
@@ -63,11 +65,11 @@ fn next_event(
         (ls.wi, shadow, ls.irradiance / p_sel, None)
     } else if has_area && k == n_punctual {
         let Some(s) = scene.area_lights.sample(&scene.triangle_data, hit.p, uc, u) else {
-            return Vec3::ZERO;
+            return C::ZERO;
         };
         let light = &scene.materials[scene.triangle_data[s.prim as usize].material() as usize].desc;
         if !light.double_sided && s.normal.dot(s.wi) >= 0.0 || s.pdf.is_nan() || s.pdf <= 0.0 {
-            return Vec3::ZERO;
+            return C::ZERO;
         }
         let pdf = s.pdf * p_sel;
         (
@@ -78,33 +80,40 @@ fn next_event(
         )
     } else {
         let Some(env) = &scene.environment else {
-            return Vec3::ZERO;
+            return C::ZERO;
         };
         let Some(s) = env.sample(u) else {
-            return Vec3::ZERO;
+            return C::ZERO;
         };
         let pdf = s.pdf * p_sel;
         (s.wi, hit.spawn_ray(s.wi), s.radiance / pdf, Some(pdf))
     };
     let wi_local = frame.to_local(wi);
     let f = bsdf.eval(wo, wi_local, TransportMode::Radiance);
-    if f == Vec3::ZERO {
-        return Vec3::ZERO;
+    if f == C::ZERO {
+        return C::ZERO;
     }
     ctx.rays += 1;
     if scene.occluded(&shadow) {
-        return Vec3::ZERO;
+        return C::ZERO;
     }
     let w = light_pdf.map_or(1.0, |lp| {
         mis(lp, bsdf.pdf(wo, wi_local, TransportMode::Radiance))
     });
-    f * incident * (wi_local.z.abs() * w)
+    f * C::illuminant(incident, lambda) * (wi_local.z.abs() * w)
 }
 
-/// Radiance along `ray` (the camera is in air).
-pub fn radiance(scene: &Scene, ray: &Ray, max_depth: u32, ctx: &mut Context) -> Vec3 {
-    let mut l = Vec3::ZERO;
-    let mut beta = Vec3::ONE;
+/// Radiance along `ray` (the camera is in air) at the sample's wavelengths `lambda`
+/// (nothing in RGB transport).
+pub fn radiance<C: Carrier>(
+    scene: &Scene,
+    ray: &Ray,
+    max_depth: u32,
+    mut lambda: C::Lambda,
+    ctx: &mut Context,
+) -> C {
+    let mut l = C::ZERO;
+    let mut beta = C::ONE;
     let mut ray = *ray;
     let mut media = MediumStack::new();
     let (mut depth, mut delta_depth) = (0u32, 0u32);
@@ -128,12 +137,12 @@ pub fn radiance(scene: &Scene, ray: &Ray, max_depth: u32, ctx: &mut Context) -> 
                 } else {
                     mis(prev_pdf, p_sel * env.pdf(d))
                 };
-                l += beta * env.eval(d) * w;
+                l += beta * C::illuminant(env.eval(d), &lambda) * w;
             }
             break;
         };
         if let Some(m) = media.current() {
-            beta *= scene.materials[m as usize].transmittance(hit.t);
+            beta *= scene.materials[m as usize].transmittance_at::<C>(hit.t, &lambda);
         }
         let (hit, coincident) = shading::meet(scene, hit);
         let mat = &scene.materials[hit.material as usize];
@@ -148,19 +157,31 @@ pub fn radiance(scene: &Scene, ray: &Ray, max_depth: u32, ctx: &mut Context) -> 
                         .pdf(&scene.triangle_data, hit.prim, prev_p, hit.p);
                 mis(prev_pdf, lp)
             };
-            l += beta * sp.emissive * w;
+            l += beta * C::illuminant(sp.emissive, &lambda) * w;
         }
         // glTF BLEND: stochastic coverage; the uncovered part continues straight on.
         if matches!(mat.desc.alpha_mode, AlphaMode::Blend) && ctx.rng.next_f32() >= sp.alpha {
             ray = hit.spawn_ray(-hit.wo);
             continue;
         }
-        let (bsdf, media_t) =
-            shading::bsdf_at(scene, &hit, &coincident, &sp, media, ctx.rng.next_f32());
+        let (bsdf, media_t, dispersive) = shading::bsdf_at::<C>(
+            scene,
+            &hit,
+            &coincident,
+            &sp,
+            media,
+            ctx.rng.next_f32(),
+            &lambda,
+        );
+        if dispersive {
+            // The directions from here on are the hero wavelength's (pbrt-v4
+            // `TerminateSecondary`).
+            beta = beta.keep_hero(&mut lambda);
+        }
         let frame = Frame::from_normal(hit.ns);
         let wo = frame.to_local(hit.wo);
         if !bsdf.is_delta() {
-            l += beta * next_event(scene, &hit, &bsdf, &frame, wo, ctx);
+            l += beta * next_event(scene, &hit, &bsdf, &frame, wo, &lambda, ctx);
         }
         let uc = ctx.rng.next_f32();
         let u = Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());

@@ -9,6 +9,7 @@
 
 use super::Context;
 use crate::bsdf::{Bsdf, TransportMode};
+use crate::spectrum::Carrier;
 use crate::interaction::{CoincidentSet, SurfaceHit};
 use crate::material::{Material, ShadingPoint};
 use crate::math::Frame;
@@ -18,15 +19,15 @@ use glam::Vec3;
 
 /// The surface BSDF of an opaque (non-transmitting) shading point: glTF metallic-roughness
 /// with KHR_materials_specular.
-pub fn surface_bsdf(mat: &Material, sp: &ShadingPoint) -> Bsdf {
+pub fn surface_bsdf<C: Carrier>(mat: &Material, sp: &ShadingPoint, l: &C::Lambda) -> Bsdf<C> {
     let d = &mat.desc;
     Bsdf::GltfPbr {
-        base: sp.base_color,
+        base: C::reflectance(sp.base_color, l),
         metallic: sp.metallic,
         alpha: sp.roughness * sp.roughness,
         ior: mat.ior(),
         specular: d.specular,
-        specular_color: d.specular_color,
+        specular_color: C::reflectance(d.specular_color, l),
     }
 }
 
@@ -53,26 +54,35 @@ pub fn meet(scene: &Scene, hit: SurfaceHit) -> (SurfaceHit, CoincidentSet) {
 /// the far side of a refraction. At a volume boundary η is the ratio of the indices on the
 /// two sides from the path's medium stack, with the `coincident` volume faces (from
 /// [`meet`]) crossed in the same step ([`medium::crossing`]).
-pub fn bsdf_at(
+///
+/// Spectral transport: when a medium on either side may be dispersive (a dispersive
+/// material among the surfaces crossed or the media the path is in), the indices are taken
+/// at the hero wavelength and the third value is `true`: the caller must then keep only the
+/// hero ([`Carrier::keep_hero`]) — the refracted direction is the hero's alone. Thin walls
+/// do not bend light and use n_d.
+pub fn bsdf_at<C: Carrier>(
     scene: &Scene,
     hit: &SurfaceHit,
     coincident: &CoincidentSet,
     sp: &ShadingPoint,
     media: MediumStack,
     u: f32,
-) -> (Bsdf, MediumStack) {
+    l: &C::Lambda,
+) -> (Bsdf<C>, MediumStack, bool) {
     let mat = &scene.materials[hit.material as usize];
+    let tint = C::reflectance(sp.base_color, l);
     if sp.transmission > 0.0 && u < sp.transmission {
         if !mat.is_volume() {
             return (
                 Bsdf::ThinDielectric {
                     eta: mat.ior(),
-                    tint: sp.base_color,
+                    tint,
                 },
                 media,
+                false,
             );
         }
-        let (n_i, n_t, after) = medium::crossing(scene, hit, coincident, media);
+        let (n_i, n_t, after, dispersive) = interface::<C>(scene, hit, coincident, media, l);
         // Bsdf's η is n_inside / n_outside, the outside being the normal's side.
         let eta = if n_i == n_t {
             1.0
@@ -85,19 +95,44 @@ pub fn bsdf_at(
             Bsdf::Dielectric {
                 eta,
                 alpha: sp.roughness * sp.roughness,
-                tint: sp.base_color,
+                tint,
             },
             after,
+            dispersive,
         );
     }
-    (surface_bsdf(mat, sp), media)
+    (surface_bsdf(mat, sp, l), media, false)
+}
+
+/// The indices on both sides of the volume boundary at `hit` (coincident volume faces
+/// merged, [`medium::crossing`]), the media beyond, and whether the path must keep only its
+/// hero wavelength: in spectral transport, when a dispersive material is among the surfaces
+/// crossed or the media the path is in, the indices are those at the hero wavelength.
+pub fn interface<C: Carrier>(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    coincident: &CoincidentSet,
+    media: MediumStack,
+    l: &C::Lambda,
+) -> (f32, f32, MediumStack, bool) {
+    let hero = C::hero(l);
+    let disp = |m: u32| scene.materials[m as usize].is_dispersive();
+    let dispersive = hero.is_some()
+        && (disp(hit.material)
+            || coincident.iter().any(|c| disp(c.material))
+            || media.iter().any(disp));
+    let (n_i, n_t, after) = medium::crossing(scene, hit, coincident, media, |m| {
+        scene.materials[m as usize].ior_at(hero, dispersive)
+    });
+    (n_i, n_t, after, dispersive)
 }
 
 /// An opaque hit seen from the viewer's side, ready to receive light.
-struct Receiver<'a> {
+struct Receiver<'a, C: Carrier> {
     scene: &'a Scene,
     hit: &'a SurfaceHit,
-    bsdf: Bsdf,
+    bsdf: Bsdf<C>,
+    lambda: C::Lambda,
     /// Local frame of the outward shading normal (the BSDF's frame).
     frame: Frame,
     /// `hit.wo` in that frame.
@@ -108,7 +143,7 @@ struct Receiver<'a> {
     ng: Vec3,
 }
 
-impl Receiver<'_> {
+impl<C: Carrier> Receiver<'_, C> {
     /// Light arriving from unit direction `wi` along the unblocked `shadow` ray, carrying
     /// `incident` (irradiance at normal incidence, or radiance / pdf): f · incident · cos.
     fn connect(
@@ -117,34 +152,35 @@ impl Receiver<'_> {
         shadow: crate::math::Ray,
         incident: Vec3,
         ctx: &mut Context,
-    ) -> Vec3 {
+    ) -> C {
         let cos = self.n.dot(wi);
         if cos <= 0.0 || self.ng.dot(wi) <= 0.0 {
-            return Vec3::ZERO;
+            return C::ZERO;
         }
         let f = self
             .bsdf
             .eval(self.wo, self.frame.to_local(wi), TransportMode::Radiance);
-        if f == Vec3::ZERO {
-            return Vec3::ZERO;
+        if f == C::ZERO {
+            return C::ZERO;
         }
         ctx.rays += 1;
         if self.scene.occluded(&shadow) {
-            return Vec3::ZERO;
+            return C::ZERO;
         }
-        f * incident * cos
+        f * C::illuminant(incident, &self.lambda) * cos
     }
 }
 
 /// Direct light at an opaque hit, with shadow rays: every punctual light, one sample of the
 /// emissive triangles and one of the environment.
-pub fn direct_light(
+pub fn direct_light<C: Carrier>(
     scene: &Scene,
     hit: &SurfaceHit,
     mat: &Material,
     sp: &ShadingPoint,
+    lambda: &C::Lambda,
     ctx: &mut Context,
-) -> Vec3 {
+) -> C {
     // Shade the side the viewer is on.
     let (n, ng) = if hit.front_face || mat.desc.double_sided || !mat.is_volume() {
         let s = if hit.ng.dot(hit.wo) >= 0.0 { 1.0 } else { -1.0 };
@@ -156,13 +192,14 @@ pub fn direct_light(
     let r = Receiver {
         scene,
         hit,
-        bsdf: surface_bsdf(mat, sp),
+        bsdf: surface_bsdf(mat, sp, lambda),
+        lambda: *lambda,
         frame,
         wo: frame.to_local(hit.wo),
         n,
         ng,
     };
-    let mut sum = Vec3::ZERO;
+    let mut sum = C::ZERO;
     for light in &scene.lights {
         if let Some(ls) = light.sample_li(hit.p) {
             let shadow = match ls.position {
@@ -176,19 +213,19 @@ pub fn direct_light(
 }
 
 /// One importance sample of the environment light.
-fn environment(r: &Receiver, ctx: &mut Context) -> Vec3 {
+fn environment<C: Carrier>(r: &Receiver<C>, ctx: &mut Context) -> C {
     let Some(env) = &r.scene.environment else {
-        return Vec3::ZERO;
+        return C::ZERO;
     };
     let u = glam::Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
     match env.sample(u) {
         Some(s) => r.connect(s.wi, r.hit.spawn_ray(s.wi), s.radiance / s.pdf, ctx),
-        None => Vec3::ZERO,
+        None => C::ZERO,
     }
 }
 
 /// One sample of the emissive triangles.
-fn area_light(r: &Receiver, ctx: &mut Context) -> Vec3 {
+fn area_light<C: Carrier>(r: &Receiver<C>, ctx: &mut Context) -> C {
     let scene = r.scene;
     let u = ctx.rng.next_f32();
     let uv = glam::Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
@@ -196,15 +233,15 @@ fn area_light(r: &Receiver, ctx: &mut Context) -> Vec3 {
         .area_lights
         .sample(&scene.triangle_data, r.hit.p, u, uv)
     else {
-        return Vec3::ZERO;
+        return C::ZERO;
     };
     if s.pdf.is_nan() || s.pdf <= 0.0 {
-        return Vec3::ZERO;
+        return C::ZERO;
     }
     let light = &scene.materials[scene.triangle_data[s.prim as usize].material() as usize].desc;
     // Single-sided emitters only shine along their outward normal.
     if !light.double_sided && s.normal.dot(s.wi) >= 0.0 {
-        return Vec3::ZERO;
+        return C::ZERO;
     }
     r.connect(
         s.wi,

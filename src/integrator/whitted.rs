@@ -14,36 +14,45 @@ use super::{shading, Context};
 use crate::interaction::{CoincidentSet, SurfaceHit};
 use crate::material::ShadingPoint;
 use crate::math::Ray;
-use crate::medium::{self, MediumStack};
+use crate::medium::MediumStack;
 use crate::optics::{fresnel_dielectric, fresnel_schlick, reflect, refract};
 use crate::scene::desc::AlphaMode;
 use crate::scene::Scene;
-use glam::Vec3;
+use crate::spectrum::Carrier;
 
 /// Branch weight (max RGB component) below which Russian roulette decides survival.
 pub const RR_WEIGHT: f32 = 0.01;
 
 /// Where a branch is: its depth, the limit, and the media it is inside.
 #[derive(Debug, Clone, Copy)]
-struct Path {
+struct Path<C: Carrier> {
     depth: u32,
     max_depth: u32,
     media: MediumStack,
+    /// The sample's wavelengths (marked hero-only past a dispersive interface).
+    lambda: C::Lambda,
 }
 
-/// Radiance along `ray` (the camera is in air).
-pub fn radiance(scene: &Scene, ray: &Ray, max_depth: u32, ctx: &mut Context) -> Vec3 {
+/// Radiance along `ray` (the camera is in air) at the sample's wavelengths `lambda`.
+pub fn radiance<C: Carrier>(
+    scene: &Scene,
+    ray: &Ray,
+    max_depth: u32,
+    lambda: C::Lambda,
+    ctx: &mut Context,
+) -> C {
     let path = Path {
         depth: 0,
         max_depth,
         media: MediumStack::new(),
+        lambda,
     };
-    trace(scene, ray, path, Vec3::ONE, ctx)
+    trace(scene, ray, path, C::ONE, ctx)
 }
 
 /// Continues a branch with weight `w` (relative to the pixel): returns the weight to
 /// multiply its radiance by, or `None` if Russian roulette ends it.
-fn survive(w: Vec3, ctx: &mut Context) -> Option<f32> {
+fn survive<C: Carrier>(w: C, ctx: &mut Context) -> Option<f32> {
     let m = w.max_element();
     if m <= 0.0 {
         return None;
@@ -55,36 +64,38 @@ fn survive(w: Vec3, ctx: &mut Context) -> Option<f32> {
     (ctx.rng.next_f32() < p).then_some(1.0 / p)
 }
 
-fn trace(scene: &Scene, ray: &Ray, path: Path, w: Vec3, ctx: &mut Context) -> Vec3 {
+fn trace<C: Carrier>(scene: &Scene, ray: &Ray, path: Path<C>, w: C, ctx: &mut Context) -> C {
     if path.depth >= path.max_depth {
-        return Vec3::ZERO;
+        return C::ZERO;
     }
     ctx.rays += 1;
     let Some(hit) = scene.intersect(ray) else {
         return scene
             .environment
             .as_ref()
-            .map_or(Vec3::ZERO, |e| e.eval(ray.dir.normalize()));
+            .map_or(C::ZERO, |e| {
+                C::illuminant(e.eval(ray.dir.normalize()), &path.lambda)
+            });
     };
     let (hit, coincident) = shading::meet(scene, hit);
     let l = shade(scene, &hit, &coincident, path, w, ctx);
     // Beer–Lambert over the segment just travelled, inside the current medium.
     match path.media.current() {
-        Some(m) => l * scene.materials[m as usize].transmittance(hit.t),
+        Some(m) => l * scene.materials[m as usize].transmittance_at::<C>(hit.t, &path.lambda),
         None => l,
     }
 }
 
 /// Follows a child branch of weight `w·k` with the media `media`.
-fn branch(
+fn branch<C: Carrier>(
     scene: &Scene,
     ray: Ray,
-    path: Path,
+    path: Path<C>,
     media: MediumStack,
-    w: Vec3,
-    k: Vec3,
+    w: C,
+    k: C,
     ctx: &mut Context,
-) -> Vec3 {
+) -> C {
     let wk = w * k;
     let child = Path {
         depth: path.depth + 1,
@@ -93,28 +104,28 @@ fn branch(
     };
     match survive(wk, ctx) {
         Some(s) => k * s * trace(scene, &ray, child, wk * s, ctx),
-        None => Vec3::ZERO,
+        None => C::ZERO,
     }
 }
 
-fn shade(
+fn shade<C: Carrier>(
     scene: &Scene,
     hit: &SurfaceHit,
     coincident: &CoincidentSet,
-    path: Path,
-    w: Vec3,
+    path: Path<C>,
+    w: C,
     ctx: &mut Context,
-) -> Vec3 {
+) -> C {
     let mat = &scene.materials[hit.material as usize];
     let sp = mat.shade(hit.uv, &scene.images);
-    let mut l = sp.emissive;
+    let mut l = C::illuminant(sp.emissive, &path.lambda);
     let t = sp.transmission;
     if t > 0.0 {
-        l += t * dielectric(scene, hit, coincident, &sp, path, w * t, ctx);
+        l += dielectric(scene, hit, coincident, &sp, path, w * t, ctx) * t;
     }
     let opaque = 1.0 - t;
     if opaque > 0.0 {
-        let mut o = shading::direct_light(scene, hit, mat, &sp, ctx);
+        let mut o = shading::direct_light::<C>(scene, hit, mat, &sp, &path.lambda, ctx);
         // Smooth metals reflect the scene as mirrors.
         if sp.metallic > 0.0 && sp.roughness < 0.1 {
             let n = if hit.wo.dot(hit.ns) >= 0.0 {
@@ -124,7 +135,8 @@ fn shade(
             };
             let r = reflect(hit.wo, n);
             if r.dot(hit.ng) * hit.wo.dot(hit.ng) > 0.0 {
-                let f = fresnel_schlick(sp.base_color, hit.wo.dot(n)) * sp.metallic;
+                let base = C::reflectance(sp.base_color, &path.lambda);
+                let f = fresnel_schlick(base, hit.wo.dot(n)) * sp.metallic;
                 o += branch(
                     scene,
                     hit.spawn_ray(r),
@@ -136,11 +148,11 @@ fn shade(
                 );
             }
         }
-        l += opaque * o;
+        l += o * opaque;
     }
     // glTF BLEND: partial coverage lets the rest of the light through unchanged.
     if matches!(mat.desc.alpha_mode, AlphaMode::Blend) && sp.alpha < 1.0 {
-        let k = Vec3::splat(1.0 - sp.alpha);
+        let k = C::splat(1.0 - sp.alpha);
         let behind = branch(scene, hit.spawn_ray(-hit.wo), path, path.media, w, k, ctx);
         l = l * sp.alpha + behind;
     }
@@ -148,16 +160,17 @@ fn shade(
 }
 
 /// The smooth dielectric interface: Fresnel-weighted reflection and refraction.
-fn dielectric(
+fn dielectric<C: Carrier>(
     scene: &Scene,
     hit: &SurfaceHit,
     coincident: &CoincidentSet,
     sp: &ShadingPoint,
-    path: Path,
-    w: Vec3,
+    path: Path<C>,
+    w: C,
     ctx: &mut Context,
-) -> Vec3 {
+) -> C {
     let mat = &scene.materials[hit.material as usize];
+    let tint = C::reflectance(sp.base_color, &path.lambda);
     // Normal on the incident side.
     let n = if hit.front_face { hit.ns } else { -hit.ns };
     let cos_i = hit.wo.dot(n).max(0.0);
@@ -170,14 +183,22 @@ fn dielectric(
             path,
             path.media,
             w,
-            Vec3::splat(f),
+            C::splat(f),
             ctx,
         );
-        let k = sp.base_color * (1.0 - f);
+        let k = tint * (1.0 - f);
         return r + branch(scene, hit.spawn_ray(-hit.wo), path, path.media, w, k, ctx);
     }
     // Coincident faces of touching volumes are crossed as one interface.
-    let (n_i, n_t, media_t) = medium::crossing(scene, hit, coincident, path.media);
+    // In spectral transport a dispersive interface keeps the hero wavelength only, on both
+    // branches (the Fresnel split depends on λ too).
+    let (n_i, n_t, media_t, dispersive) =
+        shading::interface::<C>(scene, hit, coincident, path.media, &path.lambda);
+    let mut path = path;
+    let mut hero = C::ONE;
+    if dispersive {
+        hero = hero.keep_hero(&mut path.lambda);
+    }
     // η = n_t / n_i; both infinite (inside an `ior: 0` medium) behaves as no interface.
     let eta = if n_i == n_t { 1.0 } else { n_t / n_i };
     let f = fresnel_dielectric(cos_i, eta);
@@ -187,13 +208,13 @@ fn dielectric(
         path,
         path.media,
         w,
-        Vec3::splat(f),
+        hero * f,
         ctx,
     );
     if f < 1.0 {
         if let Some(dir) = refract(hit.wo, n, eta) {
             // Radiance is scaled by 1/η² across the interface (pbrt-v4 §9.5.2).
-            let k = sp.base_color * ((1.0 - f) / (eta * eta));
+            let k = hero * tint * ((1.0 - f) / (eta * eta));
             l += branch(scene, hit.spawn_ray(dir), path, media_t, w, k, ctx);
         }
     }

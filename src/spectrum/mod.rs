@@ -16,6 +16,7 @@
 //! Colour flows one way: RGB inputs → spectra (upsample) → per-path `SampledSpectrum`
 //! → XYZ (`SampledSpectrum::to_xyz`, in the film) → linear sRGB (`cie::xyz_to_linear_srgb`).
 
+pub mod carrier;
 pub mod cie;
 mod cie_data;
 mod fit;
@@ -25,6 +26,7 @@ pub mod spectra;
 pub mod upsample;
 pub mod wavelengths;
 
+pub use carrier::{Carrier, Lambdas};
 pub use ior::{IorModel, UnknownIorName};
 pub use sampled::SampledSpectrum;
 pub use spectra::Spectrum;

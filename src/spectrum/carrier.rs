@@ -1,0 +1,207 @@
+//! What a path carries: linear RGB ([`Vec3`]) or radiance at 4 sampled wavelengths
+//! ([`SampledSpectrum`] with its [`Lambdas`]). The BSDFs and integrators are written once,
+//! generic over [`Carrier`]; the renderer picks RGB for scenes that need nothing spectral
+//! (`--spectral auto`), so those keep plain RGB transport, and spectral transport otherwise.
+//!
+//! Conventions:
+//! - Colour inputs (base colour, tint, attenuation colour) become carriers through
+//!   [`Carrier::reflectance`] (values in [0, 1]), emission through [`Carrier::illuminant`]
+//!   (RGB (1,1,1) ↦ D65 with luminance 1); in RGB mode both are the identity.
+//! - At a dispersive interface the path keeps only its hero wavelength
+//!   ([`Carrier::keep_hero`]): the hero lane is multiplied by 4 and the others zeroed, which
+//!   with the unchanged wavelength pdfs is exactly pbrt-v4's `TerminateSecondary` (pdf/4 on
+//!   the hero) — but as a property of the carried value, so Whitted's branches may terminate
+//!   independently and still add up.
+//! - [`Carrier::to_rgb`] is the film's conversion (spectrum → CIE XYZ → linear sRGB); it is
+//!   the only place colour is converted.
+
+use super::cie::xyz_to_linear_srgb;
+use super::{RgbIlluminant, RgbReflectance, SampledSpectrum, SampledWavelengths, N_LAMBDA};
+use glam::Vec3;
+use std::fmt::Debug;
+use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Sub};
+
+/// The wavelengths of one camera sample, and whether the path kept only the hero.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lambdas {
+    /// The 4 sampled wavelengths and their pdfs (never terminated: see the module docs).
+    pub wl: SampledWavelengths,
+    /// The path went through a dispersive interface: only lane 0 carries radiance now.
+    pub hero_only: bool,
+}
+
+/// A radiometric quantity carried along paths (see the module docs).
+pub trait Carrier:
+    Copy
+    + Debug
+    + PartialEq
+    + Send
+    + Sync
+    + 'static
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Mul<f32, Output = Self>
+    + Div<f32, Output = Self>
+    + AddAssign
+    + MulAssign
+    + MulAssign<f32>
+    + DivAssign<f32>
+{
+    /// What the wavelengths of a sample are (nothing for RGB).
+    type Lambda: Copy + Debug + Send + Sync;
+    /// Zero everywhere.
+    const ZERO: Self;
+    /// One everywhere.
+    const ONE: Self;
+    /// Whether this carrier is spectral.
+    const SPECTRAL: bool;
+
+    /// The same value in every channel / lane.
+    fn splat(v: f32) -> Self;
+    /// Largest channel.
+    fn max_element(self) -> f32;
+    /// Channel-wise minimum.
+    fn min(self, o: Self) -> Self;
+    /// Channel-wise power.
+    fn powf(self, e: f32) -> Self;
+    /// Every channel finite.
+    fn is_finite(self) -> bool;
+    /// Mean over the channels.
+    fn average(self) -> f32;
+    /// `self + (o − self)·t`.
+    fn lerp(self, o: Self, t: f32) -> Self {
+        self + (o - self) * t
+    }
+
+    /// Wavelengths for one camera sample from a uniform `u`.
+    fn sample_lambda(u: f32) -> Self::Lambda;
+    /// A reflectance-like RGB colour (components in [0, 1]).
+    fn reflectance(rgb: Vec3, l: &Self::Lambda) -> Self;
+    /// An emitted RGB radiance (any non-negative values).
+    fn illuminant(rgb: Vec3, l: &Self::Lambda) -> Self;
+    /// The film's conversion to linear sRGB.
+    fn to_rgb(self, l: &Self::Lambda) -> Vec3;
+    /// The hero wavelength in nm (`None` in RGB): what a dispersive interface refracts with.
+    fn hero(l: &Self::Lambda) -> Option<f32>;
+    /// Keeps the hero wavelength only (a dispersive interface); marks `l`.
+    fn keep_hero(self, l: &mut Self::Lambda) -> Self;
+}
+
+impl Carrier for Vec3 {
+    type Lambda = ();
+    const ZERO: Self = Vec3::ZERO;
+    const ONE: Self = Vec3::ONE;
+    const SPECTRAL: bool = false;
+
+    #[inline]
+    fn splat(v: f32) -> Self {
+        Vec3::splat(v)
+    }
+    #[inline]
+    fn max_element(self) -> f32 {
+        Vec3::max_element(self)
+    }
+    #[inline]
+    fn min(self, o: Self) -> Self {
+        Vec3::min(self, o)
+    }
+    #[inline]
+    fn powf(self, e: f32) -> Self {
+        Vec3::powf(self, e)
+    }
+    #[inline]
+    fn is_finite(self) -> bool {
+        Vec3::is_finite(self)
+    }
+    #[inline]
+    fn average(self) -> f32 {
+        self.element_sum() / 3.0
+    }
+    #[inline]
+    fn sample_lambda(_u: f32) -> Self::Lambda {}
+    #[inline]
+    fn reflectance(rgb: Vec3, _l: &()) -> Self {
+        rgb
+    }
+    #[inline]
+    fn illuminant(rgb: Vec3, _l: &()) -> Self {
+        rgb
+    }
+    #[inline]
+    fn to_rgb(self, _l: &()) -> Vec3 {
+        self
+    }
+    #[inline]
+    fn hero(_l: &()) -> Option<f32> {
+        None
+    }
+    #[inline]
+    fn keep_hero(self, _l: &mut ()) -> Self {
+        self
+    }
+}
+
+impl Carrier for SampledSpectrum {
+    type Lambda = Lambdas;
+    const ZERO: Self = SampledSpectrum::zero();
+    const ONE: Self = SampledSpectrum::one();
+    const SPECTRAL: bool = true;
+
+    #[inline]
+    fn splat(v: f32) -> Self {
+        SampledSpectrum::splat(v)
+    }
+    #[inline]
+    fn max_element(self) -> f32 {
+        self.max_value()
+    }
+    #[inline]
+    fn min(self, o: Self) -> Self {
+        let (a, b) = (self.values(), o.values());
+        SampledSpectrum::new(std::array::from_fn(|i| a[i].min(b[i])))
+    }
+    #[inline]
+    fn powf(self, e: f32) -> Self {
+        self.map(|v| v.powf(e))
+    }
+    #[inline]
+    fn is_finite(self) -> bool {
+        self.values().iter().all(|v| v.is_finite())
+    }
+    #[inline]
+    fn average(self) -> f32 {
+        SampledSpectrum::average(&self)
+    }
+    fn sample_lambda(u: f32) -> Lambdas {
+        Lambdas {
+            wl: SampledWavelengths::sample_visible(u),
+            hero_only: false,
+        }
+    }
+    fn reflectance(rgb: Vec3, l: &Lambdas) -> Self {
+        if rgb.x == rgb.y && rgb.y == rgb.z {
+            return SampledSpectrum::splat(rgb.x.clamp(0.0, 1.0));
+        }
+        RgbReflectance::new(rgb.to_array()).sample(&l.wl)
+    }
+    fn illuminant(rgb: Vec3, l: &Lambdas) -> Self {
+        RgbIlluminant::new(rgb.to_array()).sample(&l.wl)
+    }
+    fn to_rgb(self, l: &Lambdas) -> Vec3 {
+        Vec3::from_array(xyz_to_linear_srgb(self.to_xyz(&l.wl)))
+    }
+    #[inline]
+    fn hero(l: &Lambdas) -> Option<f32> {
+        Some(l.wl.hero())
+    }
+    fn keep_hero(self, l: &mut Lambdas) -> Self {
+        if l.hero_only {
+            return self;
+        }
+        l.hero_only = true;
+        let mut v = [0.0; N_LAMBDA];
+        v[0] = self.values()[0] * N_LAMBDA as f32;
+        SampledSpectrum::new(v)
+    }
+}
