@@ -15,9 +15,9 @@
 use crate::scene::desc::{
     effective_color, AlphaMode, ExplicitIor, ImageDesc, MaterialDesc, TextureRef,
 };
+use crate::spectrum::Carrier;
 use crate::spectrum::{self, ior::KNOWN_NAMES};
 use crate::texture::{self, Encoding};
-use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3, Vec4};
 
 /// One material of the render scene.

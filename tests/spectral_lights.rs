@@ -334,6 +334,7 @@ fn render_under_a_2700_k_light_has_its_colour() {
             camera: None,
             display: DisplayOptions::default(),
             quiet: true,
+            spectral: Default::default(),
             env: None,
         };
         render_command(&opts).expect("render").image

@@ -12,8 +12,8 @@
 //! single-scatter, reciprocal part.
 
 use super::{same_hemisphere, BsdfSample, TransportMode};
-use crate::spectrum::Carrier;
 use crate::optics::{fresnel_dielectric, reflect, refract};
+use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
 
 use super::energy;

@@ -176,13 +176,7 @@ impl<C: Carrier> Bsdf<C> {
     /// Samples wi given wo; `uc` picks a lobe, `u` the direction (all in [0,1)).
     /// `None` when no valid direction results (e.g. a microfacet reflection below the
     /// horizon, or grazing `wo`).
-    pub fn sample(
-        &self,
-        wo: Vec3,
-        uc: f32,
-        u: Vec2,
-        mode: TransportMode,
-    ) -> Option<BsdfSample<C>> {
+    pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample<C>> {
         match *self {
             Bsdf::Lambert { albedo } => pbr::lambert_sample(albedo, wo, u),
             Bsdf::Conductor { f0, alpha } => {

@@ -7,8 +7,8 @@
 
 use super::microfacet::Ggx;
 use super::{same_hemisphere, BsdfSample};
-use crate::spectrum::Carrier;
 use crate::optics::{fresnel_schlick, reflect};
+use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
 use std::f32::consts::{FRAC_1_PI, PI};
 

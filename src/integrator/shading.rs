@@ -9,12 +9,12 @@
 
 use super::Context;
 use crate::bsdf::{Bsdf, TransportMode};
-use crate::spectrum::Carrier;
 use crate::interaction::{CoincidentSet, SurfaceHit};
 use crate::material::{Material, ShadingPoint};
 use crate::math::Frame;
 use crate::medium::{self, MediumStack};
 use crate::scene::Scene;
+use crate::spectrum::Carrier;
 use glam::Vec3;
 
 /// The surface BSDF of an opaque (non-transmitting) shading point: glTF metallic-roughness
@@ -146,13 +146,7 @@ struct Receiver<'a, C: Carrier> {
 impl<C: Carrier> Receiver<'_, C> {
     /// Light arriving from unit direction `wi` along the unblocked `shadow` ray, carrying
     /// `incident` (irradiance at normal incidence, or radiance / pdf): f · incident · cos.
-    fn connect(
-        &self,
-        wi: Vec3,
-        shadow: crate::math::Ray,
-        incident: Vec3,
-        ctx: &mut Context,
-    ) -> C {
+    fn connect(&self, wi: Vec3, shadow: crate::math::Ray, incident: Vec3, ctx: &mut Context) -> C {
         let cos = self.n.dot(wi);
         if cos <= 0.0 || self.ng.dot(wi) <= 0.0 {
             return C::ZERO;

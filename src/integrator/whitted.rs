@@ -70,12 +70,9 @@ fn trace<C: Carrier>(scene: &Scene, ray: &Ray, path: Path<C>, w: C, ctx: &mut Co
     }
     ctx.rays += 1;
     let Some(hit) = scene.intersect(ray) else {
-        return scene
-            .environment
-            .as_ref()
-            .map_or(C::ZERO, |e| {
-                C::illuminant(e.eval(ray.dir.normalize()), &path.lambda)
-            });
+        return scene.environment.as_ref().map_or(C::ZERO, |e| {
+            C::illuminant(e.eval(ray.dir.normalize()), &path.lambda)
+        });
     };
     let (hit, coincident) = shading::meet(scene, hit);
     let l = shade(scene, &hit, &coincident, path, w, ctx);
