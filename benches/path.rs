@@ -97,5 +97,60 @@ fn path_tracer(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, path_tracer);
+/// `--spectral on` vs `off` on non-dispersive scenes (issue 4: the spectral path must cost
+/// ≤ 1.3× per sample): the paper's Fig. 7.1 spheres (in the repo) and TransmissionTest,
+/// 256×256, 2 spp per iteration, Embree (or the BVH without it).
+fn spectral_overhead(c: &mut Criterion) {
+    let mut scenes = vec![(
+        "fig7_1_spheres",
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/paper/fig7_1_spheres.glb"),
+        None,
+    )];
+    if let Some(assets) = shared_assets() {
+        scenes.push((
+            "TransmissionTest",
+            assets.join("khronos/TransmissionTest/TransmissionTest.glb"),
+            Some(0.5f32),
+        ));
+    }
+    let integrator = Integrator {
+        method: Method::Path,
+        max_depth: 8,
+    };
+    let mut group = c.benchmark_group("spectral_overhead_256");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_secs(2));
+    group.measurement_time(Duration::from_secs(8));
+    group.throughput(Throughput::Elements(256 * 256 * 2));
+    for (name, path, env) in &scenes {
+        let (scene, _) = load(path, backends()[0].1).expect("scene loads");
+        let scene = scene.with_environment(env.map(|g| Environment::Uniform {
+            radiance: glam::Vec3::splat(g),
+        }));
+        let (cam, _) = choose_camera(&scene, None, 1.0).expect("camera");
+        let camera = Camera::new(&cam, 256, 256);
+        for spectral in [false, true] {
+            let settings = RenderSettings {
+                width: 256,
+                height: 256,
+                spp: 2,
+                seed: 1,
+                threads: 2,
+                quiet: true,
+                spectral,
+            };
+            let id = if spectral {
+                "spectral_on"
+            } else {
+                "spectral_off"
+            };
+            group.bench_function(BenchmarkId::new(*name, id), |b| {
+                b.iter(|| render(&scene, &camera, &integrator, &settings).expect("renders"))
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, path_tracer, spectral_overhead);
 criterion_main!(benches);

@@ -61,10 +61,7 @@ fn scene(mesh: iris::gen::shapes::TriMesh, material: MaterialDesc) -> Scene {
 
 /// Wavelengths whose hero is exactly `nm`.
 fn hero(nm: f32) -> Lambdas {
-    Lambdas {
-        wl: SampledWavelengths::sample_uniform((nm - 360.0) / 470.0),
-        hero_only: false,
-    }
+    Lambdas::new(SampledWavelengths::sample_uniform((nm - 360.0) / 470.0))
 }
 
 /// Follows a beam with the interface step of carrier `C`: refracts at every surface except

@@ -15,8 +15,9 @@
 //! - [`Carrier::to_rgb`] is the film's conversion (spectrum → CIE XYZ → linear sRGB); it is
 //!   the only place colour is converted.
 
+use super::cie::d65_normalized;
 use super::cie::xyz_to_linear_srgb;
-use super::{RgbIlluminant, RgbReflectance, SampledSpectrum, SampledWavelengths, N_LAMBDA};
+use super::{RgbReflectance, SampledSpectrum, SampledWavelengths, N_LAMBDA};
 use glam::Vec3;
 use std::fmt::Debug;
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Sub};
@@ -28,6 +29,20 @@ pub struct Lambdas {
     pub wl: SampledWavelengths,
     /// The path went through a dispersive interface: only lane 0 carries radiance now.
     pub hero_only: bool,
+    /// D65 (luminance 1) at the 4 wavelengths, looked up once per sample: every emission
+    /// upsampling multiplies by it.
+    pub d65: SampledSpectrum,
+}
+
+impl Lambdas {
+    /// Wraps sampled wavelengths.
+    pub fn new(wl: SampledWavelengths) -> Self {
+        Lambdas {
+            wl,
+            hero_only: false,
+            d65: SampledSpectrum::from_fn(&wl, d65_normalized),
+        }
+    }
 }
 
 /// A radiometric quantity carried along paths (see the module docs).
@@ -174,10 +189,7 @@ impl Carrier for SampledSpectrum {
         SampledSpectrum::average(&self)
     }
     fn sample_lambda(u: f32) -> Lambdas {
-        Lambdas {
-            wl: SampledWavelengths::sample_visible(u),
-            hero_only: false,
-        }
+        Lambdas::new(SampledWavelengths::sample_visible(u))
     }
     fn reflectance(rgb: Vec3, l: &Lambdas) -> Self {
         if rgb.x == rgb.y && rgb.y == rgb.z {
@@ -186,7 +198,16 @@ impl Carrier for SampledSpectrum {
         RgbReflectance::new(rgb.to_array()).sample(&l.wl)
     }
     fn illuminant(rgb: Vec3, l: &Lambdas) -> Self {
-        RgbIlluminant::new(rgb.to_array()).sample(&l.wl)
+        // RgbIlluminant: max(rgb) · reflectance(rgb / max) · D65/Y(D65), with the D65
+        // factor cached per sample.
+        let m = rgb.max_element();
+        if m.is_nan() || m <= 0.0 || !m.is_finite() {
+            return SampledSpectrum::zero();
+        }
+        if rgb.x == rgb.y && rgb.y == rgb.z {
+            return l.d65 * m;
+        }
+        RgbReflectance::new((rgb / m).to_array()).sample(&l.wl) * l.d65 * m
     }
     fn to_rgb(self, l: &Lambdas) -> Vec3 {
         Vec3::from_array(xyz_to_linear_srgb(self.to_xyz(&l.wl)))
