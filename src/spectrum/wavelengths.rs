@@ -28,7 +28,7 @@ pub fn visible_wavelength_pdf(lambda: f32) -> f32 {
     // cosh via exp in f32: |x| ≤ 2.3 here, so no overflow, and f32 keeps ~1e-7 relative.
     let e = (0.0072 * (lambda - 538.0)).exp();
     let c = 0.5 * (e + 1.0 / e);
-    0.003_939_804_2 / (c * c)
+    0.003_939_804 / (c * c)
 }
 
 /// Inverse CDF of [`visible_wavelength_pdf`]: λ = 538 − 138.888889·atanh(0.85691062 −
