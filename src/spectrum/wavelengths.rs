@@ -36,7 +36,7 @@ pub fn visible_wavelength_pdf(lambda: f32) -> f32 {
 /// against rounding.
 pub fn sample_visible_wavelength(u: f32) -> f32 {
     // atanh(y) = ½·ln((1 + y)/(1 − y)), in f32 (|y| ≤ 0.97 for u in [0, 1)).
-    let y = 0.856_910_62 - 1.827_501_97 * u;
+    let y = 0.856_910_62 - 1.827_502 * u;
     let l = 538.0 - 138.888_89 * 0.5 * ((1.0 + y) / (1.0 - y)).ln();
     if l.is_nan() {
         return LAMBDA_MIN;
