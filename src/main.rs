@@ -29,6 +29,14 @@ enum Command {
         /// Scene file.
         scene: PathBuf,
     },
+    /// Compare an EXR image with a reference EXR of the same size: RMSE (linear RGB, all
+    /// channels), RMSE relative to the reference's mean, and the mean of each.
+    Diff {
+        /// Image to measure.
+        image: PathBuf,
+        /// Reference image.
+        reference: PathBuf,
+    },
     /// Regenerate the project's own scenes into DIR/paper (the paper's figures) and
     /// DIR/scenes (glass of water, ruby, prism under the sky + sky.hdr).
     GenAssets {
@@ -207,6 +215,14 @@ fn run(cli: Cli) -> iris::Result<()> {
         }
         Command::Info { scene } => {
             print!("{}", app::info_command(&scene)?);
+            Ok(())
+        }
+        Command::Diff { image, reference } => {
+            let d = app::diff_command(&image, &reference)?;
+            println!(
+                "rmse {:.6e} relative {:.6e} mean {:.6e} reference mean {:.6e}",
+                d.rmse, d.relative_rmse, d.mean, d.reference_mean
+            );
             Ok(())
         }
         Command::GenAssets { dir } => {

@@ -15,8 +15,8 @@
 use crate::scene::desc::{
     effective_color, AlphaMode, ExplicitIor, ImageDesc, MaterialDesc, TextureRef,
 };
-use crate::spectrum::Carrier;
 use crate::spectrum::{self, ior::KNOWN_NAMES};
+use crate::spectrum::{Carrier, EmitterShape};
 use crate::texture::{self, Encoding};
 use glam::{Vec2, Vec3, Vec4};
 
@@ -29,6 +29,7 @@ pub struct Material {
     ior_model: spectrum::IorModel,
     /// Linear-sRGB colour of `desc.emission_spectrum` (Y = 1), or white without one.
     emission_tint: Vec3,
+    emitter_shape: Option<EmitterShape>,
 }
 
 /// Material parameters at one surface point, textures applied.
@@ -63,11 +64,23 @@ impl Material {
             .spectral_ior()
             .unwrap_or_else(|_| spectrum::IorModel::from_khr(desc.ior, desc.dispersion));
         let emission_tint = effective_color(Vec3::ONE, desc.emission_spectrum);
+        let emitter_shape = desc.emission_spectrum.map(|s| EmitterShape {
+            shape: s.spectrum(),
+            filter: desc.emissive,
+            reference: desc.emissive * emission_tint,
+        });
         Material {
             desc,
             ior_model,
             emission_tint,
+            emitter_shape,
         }
+    }
+
+    /// The exact spectral shape of the emission for spectral transport (`iris_spectrum`),
+    /// or `None` (upsample the RGB emission).
+    pub fn emitter_shape(&self) -> Option<&EmitterShape> {
+        self.emitter_shape.as_ref()
     }
 
     /// Emitted radiance factor for the RGB transport (before the emissive texture):

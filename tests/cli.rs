@@ -201,3 +201,36 @@ fn info_lists_materials_lights_and_cameras() {
         assert!(s.contains(needle), "info output lacks {needle:?}:\n{s}");
     }
 }
+
+/// `iris diff`: an image against itself has RMSE 0; against a scaled copy the RMSE is what
+/// the scale implies; different sizes are a usage error naming both files.
+#[test]
+fn diff_measures_rmse_and_rejects_size_mismatch() {
+    use iris::output::{write_image, DisplayOptions, ImageRgb};
+    let dir = common::scratch_dir("cli_diff");
+    let img = |w: u32, h: u32, v: f32| ImageRgb {
+        width: w,
+        height: h,
+        data: vec![glam::Vec3::splat(v); (w * h) as usize],
+    };
+    let (a, b, c) = (dir.join("a.exr"), dir.join("b.exr"), dir.join("c.exr"));
+    write_image(&a, &img(4, 3, 1.0), &DisplayOptions::default()).unwrap();
+    write_image(&b, &img(4, 3, 1.5), &DisplayOptions::default()).unwrap();
+    write_image(&c, &img(3, 4, 1.0), &DisplayOptions::default()).unwrap();
+    let same = iris::app::diff_command(&a, &a).unwrap();
+    assert_eq!(same.rmse, 0.0);
+    let d = iris::app::diff_command(&b, &a).unwrap();
+    assert!(
+        (d.rmse - 0.5).abs() < 1e-6 && (d.relative_rmse - 0.5).abs() < 1e-6,
+        "{d:?}"
+    );
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_iris"))
+        .args(["diff"])
+        .arg(&c)
+        .arg(&a)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("c.exr") && err.contains("a.exr"), "{err}");
+}

@@ -69,7 +69,11 @@ fn block_scene(glass: MaterialDesc) -> Scene {
         materials: vec![white, glass, lamp_m],
         ..Default::default()
     };
-    Scene::build(iris::scene::validate::validate(desc).unwrap(), Backend::Auto).unwrap()
+    Scene::build(
+        iris::scene::validate::validate(desc).unwrap(),
+        Backend::Auto,
+    )
+    .unwrap()
 }
 
 fn render_spectral(scene: &Scene, cam: &CameraDesc, size: u32, spp: u32) -> Vec<Vec3> {
@@ -164,7 +168,11 @@ fn dispersion_test_zero_column_stays_white() {
     let before = desc.meshes.len();
     desc.meshes
         .retain(|m| !m.name.contains("\"Prism_") || m.name.contains("_D1\""));
-    assert_eq!(before - desc.meshes.len(), 20, "expected 20 dispersive prisms removed");
+    assert_eq!(
+        before - desc.meshes.len(),
+        20,
+        "expected 20 dispersive prisms removed"
+    );
     let scene = Scene::build(desc, Backend::Auto)
         .unwrap()
         .with_environment(Some(iris::envmap::Environment::Uniform {

@@ -54,6 +54,7 @@ fn next_event<C: Carrier>(
     let u = Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
     let uc = ctx.rng.next_f32();
     // (direction, shadow ray, incident radiance / pdf, light pdf for MIS or None for delta)
+    let mut shape = None;
     let (wi, shadow, incident, light_pdf) = if k < n_punctual {
         let Some(ls) = scene.lights[k].sample_li(hit.p) else {
             return C::ZERO;
@@ -62,12 +63,15 @@ fn next_event<C: Carrier>(
             Some(p) => hit.spawn_ray_to(p),
             None => hit.spawn_ray(ls.wi),
         };
+        shape = scene.light_shapes.get(k).and_then(Option::as_ref);
         (ls.wi, shadow, ls.irradiance / p_sel, None)
     } else if has_area && k == n_punctual {
         let Some(s) = scene.area_lights.sample(&scene.triangle_data, hit.p, uc, u) else {
             return C::ZERO;
         };
-        let light = &scene.materials[scene.triangle_data[s.prim as usize].material() as usize].desc;
+        let mat = &scene.materials[scene.triangle_data[s.prim as usize].material() as usize];
+        let light = &mat.desc;
+        shape = mat.emitter_shape();
         if !light.double_sided && s.normal.dot(s.wi) >= 0.0 || s.pdf.is_nan() || s.pdf <= 0.0 {
             return C::ZERO;
         }
@@ -75,7 +79,7 @@ fn next_event<C: Carrier>(
         (
             s.wi,
             hit.spawn_ray_to(s.point),
-            light.emissive / pdf,
+            mat.emission() / pdf,
             Some(pdf),
         )
     } else {
@@ -100,7 +104,7 @@ fn next_event<C: Carrier>(
     let w = light_pdf.map_or(1.0, |lp| {
         mis(lp, bsdf.pdf(wo, wi_local, TransportMode::Radiance))
     });
-    f * C::illuminant(incident, lambda) * (wi_local.z.abs() * w)
+    f * C::emitted(incident, shape, lambda) * (wi_local.z.abs() * w)
 }
 
 /// Radiance along `ray` (the camera is in air) at the sample's wavelengths `lambda`
@@ -157,7 +161,7 @@ pub fn radiance<C: Carrier>(
                         .pdf(&scene.triangle_data, hit.prim, prev_p, hit.p);
                 mis(prev_pdf, lp)
             };
-            l += beta * C::illuminant(sp.emissive, &lambda) * w;
+            l += beta * C::emitted(sp.emissive, mat.emitter_shape(), &lambda) * w;
         }
         // glTF BLEND: stochastic coverage; the uncovered part continues straight on.
         if matches!(mat.desc.alpha_mode, AlphaMode::Blend) && ctx.rng.next_f32() >= sp.alpha {

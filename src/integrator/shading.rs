@@ -14,7 +14,7 @@ use crate::material::{Material, ShadingPoint};
 use crate::math::Frame;
 use crate::medium::{self, MediumStack};
 use crate::scene::Scene;
-use crate::spectrum::Carrier;
+use crate::spectrum::{Carrier, EmitterShape};
 use glam::Vec3;
 
 /// The surface BSDF of an opaque (non-transmitting) shading point: glTF metallic-roughness
@@ -146,7 +146,14 @@ struct Receiver<'a, C: Carrier> {
 impl<C: Carrier> Receiver<'_, C> {
     /// Light arriving from unit direction `wi` along the unblocked `shadow` ray, carrying
     /// `incident` (irradiance at normal incidence, or radiance / pdf): f · incident · cos.
-    fn connect(&self, wi: Vec3, shadow: crate::math::Ray, incident: Vec3, ctx: &mut Context) -> C {
+    fn connect(
+        &self,
+        wi: Vec3,
+        shadow: crate::math::Ray,
+        incident: Vec3,
+        shape: Option<&EmitterShape>,
+        ctx: &mut Context,
+    ) -> C {
         let cos = self.n.dot(wi);
         if cos <= 0.0 || self.ng.dot(wi) <= 0.0 {
             return C::ZERO;
@@ -161,7 +168,7 @@ impl<C: Carrier> Receiver<'_, C> {
         if self.scene.occluded(&shadow) {
             return C::ZERO;
         }
-        f * C::illuminant(incident, &self.lambda) * cos
+        f * C::emitted(incident, shape, &self.lambda) * cos
     }
 }
 
@@ -194,13 +201,14 @@ pub fn direct_light<C: Carrier>(
         ng,
     };
     let mut sum = C::ZERO;
-    for light in &scene.lights {
+    for (k, light) in scene.lights.iter().enumerate() {
         if let Some(ls) = light.sample_li(hit.p) {
             let shadow = match ls.position {
                 Some(p) => hit.spawn_ray_to(p),
                 None => hit.spawn_ray(ls.wi),
             };
-            sum += r.connect(ls.wi, shadow, ls.irradiance, ctx);
+            let shape = scene.light_shapes.get(k).and_then(Option::as_ref);
+            sum += r.connect(ls.wi, shadow, ls.irradiance, shape, ctx);
         }
     }
     sum + area_light(&r, ctx) + environment(&r, ctx)
@@ -213,7 +221,7 @@ fn environment<C: Carrier>(r: &Receiver<C>, ctx: &mut Context) -> C {
     };
     let u = glam::Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
     match env.sample(u) {
-        Some(s) => r.connect(s.wi, r.hit.spawn_ray(s.wi), s.radiance / s.pdf, ctx),
+        Some(s) => r.connect(s.wi, r.hit.spawn_ray(s.wi), s.radiance / s.pdf, None, ctx),
         None => C::ZERO,
     }
 }
@@ -232,7 +240,8 @@ fn area_light<C: Carrier>(r: &Receiver<C>, ctx: &mut Context) -> C {
     if s.pdf.is_nan() || s.pdf <= 0.0 {
         return C::ZERO;
     }
-    let light = &scene.materials[scene.triangle_data[s.prim as usize].material() as usize].desc;
+    let mat = &scene.materials[scene.triangle_data[s.prim as usize].material() as usize];
+    let light = &mat.desc;
     // Single-sided emitters only shine along their outward normal.
     if !light.double_sided && s.normal.dot(s.wi) >= 0.0 {
         return C::ZERO;
@@ -240,7 +249,8 @@ fn area_light<C: Carrier>(r: &Receiver<C>, ctx: &mut Context) -> C {
     r.connect(
         s.wi,
         r.hit.spawn_ray_to(s.point),
-        light.emissive / s.pdf,
+        mat.emission() / s.pdf,
+        mat.emitter_shape(),
         ctx,
     )
 }

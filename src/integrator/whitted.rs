@@ -115,7 +115,7 @@ fn shade<C: Carrier>(
 ) -> C {
     let mat = &scene.materials[hit.material as usize];
     let sp = mat.shade(hit.uv, &scene.images);
-    let mut l = C::illuminant(sp.emissive, &path.lambda);
+    let mut l = C::emitted(sp.emissive, mat.emitter_shape(), &path.lambda);
     let t = sp.transmission;
     if t > 0.0 {
         l += dielectric(scene, hit, coincident, &sp, path, w * t, ctx) * t;

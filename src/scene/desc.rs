@@ -292,6 +292,15 @@ impl LightDesc {
         }
     }
 
+    /// Intensity: candela (point, spot) or lux (directional).
+    pub fn intensity(&self) -> f32 {
+        match self {
+            LightDesc::Point { intensity, .. }
+            | LightDesc::Spot { intensity, .. }
+            | LightDesc::Directional { intensity, .. } => *intensity,
+        }
+    }
+
     /// The filter colour (glTF `color`, linear RGB).
     pub fn color(&self) -> Vec3 {
         match self {

@@ -17,6 +17,7 @@ use crate::envmap::Environment;
 use crate::error::Result;
 use crate::light::{self, Light};
 use crate::material::Material;
+use crate::spectrum::EmitterShape;
 use desc::{CameraDesc, ImageDesc, MaterialDesc, SceneDesc};
 use glam::{Vec2, Vec3};
 use std::path::PathBuf;
@@ -91,6 +92,9 @@ pub struct Scene {
     pub images: Vec<ImageDesc>,
     /// Lights (the default key/fill lights when the file has no light and no emitter).
     pub lights: Vec<Light>,
+    /// The exact spectral shape of each light that names one (`iris_spectrum`), for
+    /// spectral transport; parallel to `lights`.
+    pub light_shapes: Vec<Option<EmitterShape>>,
     /// Emissive triangles, sampled for direct light.
     pub area_lights: AreaLights,
     /// Light from infinitely far away (`--env`), if any.
@@ -182,9 +186,22 @@ impl Scene {
             (mat.emission(), mat.desc.double_sided)
         });
         let mut lights: Vec<Light> = desc.lights.iter().map(Light::from_desc).collect();
+        let mut light_shapes: Vec<Option<EmitterShape>> = desc
+            .lights
+            .iter()
+            .map(|l| {
+                let filter = l.color() * l.intensity();
+                l.spectrum().map(|s| EmitterShape {
+                    shape: s.spectrum(),
+                    filter,
+                    reference: desc::effective_color(filter, Some(s)),
+                })
+            })
+            .collect();
         let default_lights = lights.is_empty() && area_lights.is_empty();
         if default_lights {
             lights = light::default_lights();
+            light_shapes = vec![None; lights.len()];
             notes.push("no light in the file: using the default key and fill lights".into());
         }
         let has_cutouts = materials.iter().any(Material::may_cut_out);
@@ -204,6 +221,7 @@ impl Scene {
             materials,
             images: desc.images,
             lights,
+            light_shapes,
             area_lights,
             environment: None,
             default_lights,

@@ -45,6 +45,21 @@ impl Lambdas {
     }
 }
 
+/// The exact spectral shape of an emitter that names one (`iris_spectrum`: D65, blackbody,
+/// sun): `filter(λ)·shape(λ)`, where the RGB transport uses `reference` = filter ×
+/// sRGB(shape) for the same emitter at unit geometry. A value handed to
+/// [`Carrier::emitted`] is `reference` × a geometric factor (distance falloff, 1/pdf, …),
+/// which the spectral transport recovers and applies to the exact shape.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EmitterShape {
+    /// Spectral shape (luminance 1).
+    pub shape: super::Spectrum,
+    /// The RGB filter (glTF light colour × intensity, or emissive factor × strength).
+    pub filter: Vec3,
+    /// What the RGB transport uses for this emitter: filter × sRGB(shape).
+    pub reference: Vec3,
+}
+
 /// A radiometric quantity carried along paths (see the module docs).
 pub trait Carrier:
     Copy
@@ -95,6 +110,11 @@ pub trait Carrier:
     fn reflectance(rgb: Vec3, l: &Self::Lambda) -> Self;
     /// An emitted RGB radiance (any non-negative values).
     fn illuminant(rgb: Vec3, l: &Self::Lambda) -> Self;
+    /// Emitted radiance (or irradiance) `rgb` of an emitter with an optional exact spectral
+    /// shape: RGB transport takes `rgb`; spectral transport takes the shape times the
+    /// filter, scaled by `rgb`'s ratio to the shape's reference, or upsamples `rgb` as an
+    /// illuminant when there is no shape.
+    fn emitted(rgb: Vec3, shape: Option<&EmitterShape>, l: &Self::Lambda) -> Self;
     /// The film's conversion to linear sRGB.
     fn to_rgb(self, l: &Self::Lambda) -> Vec3;
     /// The hero wavelength in nm (`None` in RGB): what a dispersive interface refracts with.
@@ -141,6 +161,10 @@ impl Carrier for Vec3 {
     }
     #[inline]
     fn illuminant(rgb: Vec3, _l: &()) -> Self {
+        rgb
+    }
+    #[inline]
+    fn emitted(rgb: Vec3, _shape: Option<&EmitterShape>, _l: &()) -> Self {
         rgb
     }
     #[inline]
@@ -209,6 +233,17 @@ impl Carrier for SampledSpectrum {
         }
         RgbReflectance::new((rgb / m).to_array()).sample(&l.wl) * l.d65 * m
     }
+    fn emitted(rgb: Vec3, shape: Option<&EmitterShape>, l: &Lambdas) -> Self {
+        let Some(sh) = shape else {
+            return Self::illuminant(rgb, l);
+        };
+        let (r, f) = (sh.reference.max_element(), sh.filter.max_element());
+        let k = rgb.max_element();
+        if r.is_nan() || r <= 0.0 || f.is_nan() || f <= 0.0 || k.is_nan() || k <= 0.0 {
+            return SampledSpectrum::zero();
+        }
+        Self::reflectance(sh.filter / f, l) * sh.shape.sample(&l.wl) * (f * k / r)
+    }
     fn to_rgb(self, l: &Lambdas) -> Vec3 {
         Vec3::from_array(xyz_to_linear_srgb(self.to_xyz(&l.wl)))
     }
@@ -224,5 +259,42 @@ impl Carrier for SampledSpectrum {
         let mut v = [0.0; N_LAMBDA];
         v[0] = self.values()[0] * N_LAMBDA as f32;
         SampledSpectrum::new(v)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::desc::EmissionSpectrum;
+
+    /// A named emitter spectrum (2700 K) reaches the path as Planck's law itself, scaled by
+    /// the RGB value's ratio to the reference, while the RGB transport keeps the RGB value;
+    /// the upsampled sRGB colour of the same light differs by more than 5 % at some λ (so the
+    /// test tells the two apart).
+    #[test]
+    fn emitted_uses_the_exact_shape() {
+        let bb = EmissionSpectrum::Blackbody { kelvin: 2700.0 };
+        let filter = Vec3::new(3.0, 3.0, 3.0);
+        let sh = EmitterShape {
+            shape: bb.spectrum(),
+            filter,
+            reference: filter * bb.linear_srgb(),
+        };
+        let l = Lambdas::new(SampledWavelengths::sample_uniform((450.0 - 360.0) / 470.0));
+        let rgb = sh.reference * 2.0;
+        let v = SampledSpectrum::emitted(rgb, Some(&sh), &l).values();
+        let up = SampledSpectrum::illuminant(rgb, &l).values();
+        let mut differs = false;
+        for (i, lam) in l.wl.lambdas().into_iter().enumerate() {
+            let want = 2.0 * 3.0 * bb.spectrum().eval(lam);
+            assert!(
+                (v[i] - want).abs() <= 1e-4 * want,
+                "{lam} nm: {} vs {want}",
+                v[i]
+            );
+            differs |= (up[i] - want).abs() > 0.05 * want;
+        }
+        assert!(differs, "upsampled {up:?} vs exact {v:?}");
+        assert_eq!(Vec3::emitted(rgb, Some(&sh), &()), rgb);
     }
 }

@@ -26,7 +26,7 @@ pub mod spectra;
 pub mod upsample;
 pub mod wavelengths;
 
-pub use carrier::{Carrier, Lambdas};
+pub use carrier::{Carrier, EmitterShape, Lambdas};
 pub use ior::{IorModel, UnknownIorName};
 pub use sampled::SampledSpectrum;
 pub use spectra::Spectrum;
