@@ -191,7 +191,8 @@ pub fn check_size(w: u32, h: u32) -> Result<()> {
 /// `--spectral auto|on|off`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum SpectralMode {
-    /// Spectral transport when a material is dispersive, RGB otherwise.
+    /// Spectral transport when a material is dispersive or a light or emissive material names
+    /// a spectrum (`iris_spectrum`), RGB otherwise.
     #[default]
     Auto,
     /// Always spectral.
@@ -206,7 +207,13 @@ impl SpectralMode {
         match self {
             SpectralMode::On => true,
             SpectralMode::Off => false,
-            SpectralMode::Auto => scene.materials.iter().any(|m| m.is_dispersive()),
+            SpectralMode::Auto => {
+                scene
+                    .materials
+                    .iter()
+                    .any(|m| m.is_dispersive() || m.emitter_shape().is_some())
+                    || scene.light_shapes.iter().any(Option::is_some)
+            }
         }
     }
 }
@@ -251,7 +258,8 @@ pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
     if settings.spectral {
         notes.push(match opts.spectral {
             SpectralMode::On => "spectral transport (--spectral on)".into(),
-            _ => "spectral transport: the scene has dispersive materials (--spectral off for RGB)"
+            _ => "spectral transport: the scene has dispersive materials or spectral lights \
+                  (--spectral off for RGB)"
                 .into(),
         });
     }

@@ -117,7 +117,8 @@ struct RenderArgs {
     #[arg(long, allow_hyphen_values = true)]
     env: Option<String>,
     /// Spectral transport (4 wavelengths per sample, CIE colour): `auto` when a material is
-    /// dispersive, `on` always, `off` never (RGB, dispersive materials use n_d).
+    /// dispersive or a light names a spectrum, `on` always, `off` never (RGB, dispersive
+    /// materials use n_d).
     #[arg(long, value_enum, default_value_t = SpectralArg::Auto)]
     spectral: SpectralArg,
     /// No progress bar.

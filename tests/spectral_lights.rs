@@ -314,8 +314,9 @@ fn info_shows_the_spectra() {
     );
 }
 
-/// A white Lambert plane under a 2700 K point light: every pixel's colour ratios are the
-/// spectrum's sRGB ratios, and a D65 light renders grey.
+/// A white Lambert plane under a 2700 K point light, RGB transport (`--spectral off`; auto
+/// would go spectral for a named spectrum): every pixel's colour ratios are the spectrum's
+/// sRGB ratios, and a D65 light renders grey.
 #[test]
 fn render_under_a_2700_k_light_has_its_colour() {
     let dir = common::scratch_dir("spectral_render");
@@ -334,7 +335,7 @@ fn render_under_a_2700_k_light_has_its_colour() {
             camera: None,
             display: DisplayOptions::default(),
             quiet: true,
-            spectral: Default::default(),
+            spectral: iris::app::SpectralMode::Off, // the RGB renderer's colour
             env: None,
         };
         render_command(&opts).expect("render").image
@@ -416,4 +417,25 @@ fn spectral_render_under_a_2700_k_light_has_the_planckian_chromaticity() {
     let want = xy(planck_xyz(2700.0));
     eprintln!("spectral 2700 K: mean {mean}, xy {got:?} vs Planck {want:?}");
     assert!(close2(got, want, 0.002), "xy {got:?} vs {want:?}");
+}
+
+/// `--spectral auto` turns spectral transport on for a scene whose only spectral feature is
+/// a named light spectrum, and leaves a plain scene on RGB.
+#[test]
+fn auto_mode_goes_spectral_for_a_named_light_spectrum() {
+    use iris::app::SpectralMode;
+    let dir = common::scratch_dir("spectral_auto");
+    let named = plane_gltf(
+        &dir,
+        json!({"iris_spectrum": {"blackbody": 2700}}),
+        json!(null),
+    );
+    let (scene, _) = iris::app::load(&named, Backend::Auto).unwrap();
+    assert!(SpectralMode::Auto.resolve(&scene));
+    assert!(!SpectralMode::Off.resolve(&scene));
+    let dir2 = common::scratch_dir("spectral_auto_plain");
+    let plain = plane_gltf(&dir2, json!(null), json!(null));
+    let (scene, _) = iris::app::load(&plain, Backend::Auto).unwrap();
+    assert!(!SpectralMode::Auto.resolve(&scene));
+    assert!(SpectralMode::On.resolve(&scene));
 }
