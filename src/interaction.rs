@@ -42,29 +42,19 @@ pub const MERGE_SCALE: f32 = 16.0 * OFFSET_SCALE;
 /// Most surfaces merged into one interface with a hit (besides the hit itself).
 pub const MAX_COINCIDENT: usize = 4;
 
-/// A surface lying on a hit, crossed in the same step.
-#[derive(Debug, Clone, Copy)]
-pub struct Coincident {
-    /// Material index.
-    pub material: u32,
-    /// The ray crosses it from outside (`dot(dir, ng) < 0`), i.e. enters its object.
-    pub front_face: bool,
-    /// The same ray's hit on this surface (same `t` and `wo` as the original hit, offset
-    /// widened like it), for callers that let this surface take the original's place.
-    pub hit: SurfaceHit,
-}
-
-/// The other surfaces coincident with a hit: one per (material, side), never the hit's own
-/// (material, side) — an adjacent triangle of the same surface met at a shared edge.
+/// The other surfaces coincident with a hit, as hits of the same ray on them (same `t` and
+/// `wo`, `front_face` for the ray's direction, offset widened like the hit's): one per
+/// (material, side), never the hit's own (material, side) — an adjacent triangle of the
+/// same surface met at a shared edge.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct CoincidentSet {
-    items: [Option<Coincident>; MAX_COINCIDENT],
+    items: [Option<SurfaceHit>; MAX_COINCIDENT],
     len: usize,
 }
 
 impl CoincidentSet {
     /// The coincident surfaces.
-    pub fn iter(&self) -> impl Iterator<Item = Coincident> + '_ {
+    pub fn iter(&self) -> impl Iterator<Item = SurfaceHit> + '_ {
         self.items[..self.len].iter().flatten().copied()
     }
 
@@ -73,7 +63,7 @@ impl CoincidentSet {
         self.len == 0
     }
 
-    fn add(&mut self, c: Coincident) {
+    fn add(&mut self, c: SurfaceHit) {
         let dup = self
             .iter()
             .any(|o| o.material == c.material && o.front_face == c.front_face);
@@ -253,19 +243,15 @@ impl Scene {
             // The partner's plane lies `half − t` along ng from p; clear it by its own offset.
             let gap = (half - raw.t).abs();
             out.offset = out.offset.max(gap + other.offset.max(hit.offset));
-            set.add(Coincident {
-                material: other.material,
+            set.add(SurfaceHit {
+                t: hit.t,
+                wo: hit.wo,
                 front_face,
-                hit: SurfaceHit {
-                    t: hit.t,
-                    wo: hit.wo,
-                    front_face,
-                    ..other
-                },
+                ..other
             });
         }
         for c in set.items[..set.len].iter_mut().flatten() {
-            c.hit.offset = out.offset;
+            c.offset = out.offset;
         }
         (out, set)
     }

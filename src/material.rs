@@ -64,11 +64,9 @@ impl Material {
             .spectral_ior()
             .unwrap_or_else(|_| spectrum::IorModel::from_khr(desc.ior, desc.dispersion));
         let emission_tint = effective_color(Vec3::ONE, desc.emission_spectrum);
-        let emitter_shape = desc.emission_spectrum.map(|s| EmitterShape {
-            shape: s.spectrum(),
-            filter: desc.emissive,
-            reference: desc.emissive * emission_tint,
-        });
+        let emitter_shape = desc
+            .emission_spectrum
+            .map(|s| s.emitter_shape(desc.emissive));
         Material {
             desc,
             ior_model,
@@ -164,13 +162,9 @@ impl Material {
     }
 
     /// Beer–Lambert transmittance c^(x/d) over distance `x` inside the medium
-    /// (KHR_materials_volume). Exactly 1 for the default infinite attenuation distance.
-    pub fn transmittance(&self, x: f32) -> Vec3 {
-        self.transmittance_at::<Vec3>(x, &())
-    }
-
-    /// [`Material::transmittance`] for any carrier: the attenuation colour upsampled as a
-    /// reflectance at the path's wavelengths, raised to x/d per lane.
+    /// (KHR_materials_volume), for any carrier: the attenuation colour (upsampled as a
+    /// reflectance at the path's wavelengths in spectral transport) raised to x/d per
+    /// channel. Exactly 1 for the default infinite attenuation distance.
     pub fn transmittance_at<C: Carrier>(&self, x: f32, l: &C::Lambda) -> C {
         let d = self.desc.attenuation_distance;
         if !d.is_finite() {

@@ -67,23 +67,13 @@ impl MediumStack {
     }
 }
 
-/// The two sides of a volumetric interface crossed by a path with stack `stack` at a
-/// surface of material `m` (entering when `front_face`): returns (n_incident,
-/// n_transmitted, the stack on the transmitted side). `ior(id)` gives a material's index;
-/// air is 1. Overlapping volumes work out: inside glass, entering water gives 1.5 → 1.33,
-/// and the glass wall met later inside the water is a false interface (1.33 → 1.33).
-pub fn interface(
-    stack: MediumStack,
-    m: u32,
-    front_face: bool,
-    ior: impl Fn(u32) -> f32,
-) -> (f32, f32, MediumStack) {
-    interface_merged(stack, &[(m, front_face)], ior)
-}
-
-/// As [`interface`] for several surfaces crossed at one point (coincident faces of touching
-/// objects, `(material, entering)` each): the path leaves every medium it exits, then
-/// enters every medium it enters, and refracts once with the indices before and after.
+/// The two sides of a volumetric interface crossed by a path with stack `stack`: the
+/// surfaces crossed at one point are `(material, entering)` — one, or several where
+/// touching objects share a face. Returns (n_incident, n_transmitted, the stack on the
+/// transmitted side); `ior(id)` gives a material's index, air is 1. The path leaves every
+/// medium it exits, then enters every medium it enters, and refracts once with the indices
+/// before and after. Overlapping volumes work out: inside glass, entering water gives
+/// 1.5 → 1.33, and the glass wall met later inside the water is a false interface.
 /// Glass whose inner wall coincides with the water's outer wall gives 1.5 → 1.33 in one
 /// step; two touching prisms of one glass give 1.5 → 1.5 (no interface). A medium exited
 /// but never entered (open meshes, a camera inside) is taken as the incident one.
@@ -146,21 +136,21 @@ mod tests {
         let (glass, water) = (0u32, 1u32);
         let air = MediumStack::new();
         // Air → glass.
-        let (ni, nt, in_glass) = interface(air, glass, true, ior);
+        let (ni, nt, in_glass) = interface_merged(air, &[(glass, true)], ior);
         assert_eq!((ni, nt), (1.0, 1.5));
         // Inside the glass wall, entering the (overlapping) water: 1.5 → 1.33.
-        let (ni, nt, in_water) = interface(in_glass, water, true, ior);
+        let (ni, nt, in_water) = interface_merged(in_glass, &[(water, true)], ior);
         assert_eq!((ni, nt), (1.5, 1.33));
         // The glass's inner wall, met inside the water, is a false interface.
-        let (ni, nt, s) = interface(in_water, glass, false, ior);
+        let (ni, nt, s) = interface_merged(in_water, &[(glass, false)], ior);
         assert_eq!((ni, nt), (1.33, 1.33));
         assert_eq!(s.current(), Some(water));
         // Water → air at the free surface.
-        let (ni, nt, s) = interface(s, water, false, ior);
+        let (ni, nt, s) = interface_merged(s, &[(water, false)], ior);
         assert_eq!((ni, nt), (1.33, 1.0));
         assert_eq!(s, MediumStack::new());
         // Exiting glass never entered (camera inside): glass → air.
-        assert_eq!(interface(air, glass, false, ior).0, 1.5);
+        assert_eq!(interface_merged(air, &[(glass, false)], ior).0, 1.5);
     }
 
     #[test]

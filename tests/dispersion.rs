@@ -15,6 +15,8 @@
 //!   maximum) on an icosphere of 20,480 faces with interpolated normals.
 //! - RGB transport (`Vec3`) refracts every colour with n_d: no dispersion.
 
+mod common;
+
 use glam::Vec3;
 use iris::accel::Backend;
 use iris::integrator::shading;
@@ -27,14 +29,8 @@ use iris::spectrum::{Carrier, IorModel, Lambdas, SampledSpectrum, SampledWavelen
 
 fn glass(name: &str) -> MaterialDesc {
     MaterialDesc {
-        name: name.into(),
-        metallic: 0.0,
-        roughness: 0.0,
-        transmission: 1.0,
-        thickness: 1.0,
         ior_model: Some(ExplicitIor::Glass(name.into())),
-        ior: IorModel::named(name).unwrap().n_d(),
-        ..Default::default()
+        ..common::clear_glass(name, IorModel::named(name).unwrap().n_d())
     }
 }
 

@@ -75,15 +75,7 @@ fn furnace_render(
 
 #[test]
 fn smooth_glass_sphere_vanishes_in_a_white_furnace() {
-    let glass = MaterialDesc {
-        name: "glass".into(),
-        metallic: 0.0,
-        roughness: 0.0,
-        transmission: 1.0,
-        thickness: 1.0,
-        ior: 1.5,
-        ..Default::default()
-    };
+    let glass = common::clear_glass("glass", 1.5);
     let px = furnace(glass, 16);
     let mean = px.iter().map(|p| p.x as f64).sum::<f64>() / px.len() as f64;
     assert!((mean - 1.0).abs() < 0.01, "mean {mean}");
@@ -97,12 +89,7 @@ fn smooth_glass_sphere_vanishes_in_a_white_furnace() {
 
 #[test]
 fn white_lambertian_sphere_vanishes_in_a_white_furnace() {
-    let white = MaterialDesc {
-        name: "white".into(),
-        metallic: 0.0,
-        specular: 0.0,
-        ..Default::default()
-    };
+    let white = common::white_lambert();
     let px = furnace(white, 64);
     let mean = px.iter().map(|p| p.x as f64).sum::<f64>() / px.len() as f64;
     assert!((mean - 1.0).abs() < 0.01, "mean {mean}");
@@ -119,13 +106,8 @@ const SIZE: u32 = 6;
 fn rough_glass_furnace(roughness: f32, spp: u32) -> (Vec<f64>, Vec<f64>) {
     const K: usize = 16;
     let glass = MaterialDesc {
-        name: "rough glass".into(),
-        metallic: 0.0,
         roughness,
-        transmission: 1.0,
-        thickness: 1.0,
-        ior: 1.5,
-        ..Default::default()
+        ..common::clear_glass("rough glass", 1.5)
     };
     let images: Vec<Vec<Vec3>> = (0..K as u64)
         .map(|k| furnace_image(glass.clone(), SIZE, spp, 100 + k))
@@ -206,21 +188,8 @@ fn spectral_transport_keeps_white_white_and_energy() {
     use iris::spectrum::cie::{chromaticity, linear_srgb_to_xyz};
     // CIE 15:2004, D65 white point (2° observer).
     const D65_XY: [f32; 2] = [0.3127, 0.3290];
-    let glass = MaterialDesc {
-        name: "glass".into(),
-        metallic: 0.0,
-        roughness: 0.0,
-        transmission: 1.0,
-        thickness: 1.0,
-        ior: 1.5,
-        ..Default::default()
-    };
-    let white = MaterialDesc {
-        name: "white".into(),
-        metallic: 0.0,
-        specular: 0.0,
-        ..Default::default()
-    };
+    let glass = common::clear_glass("glass", 1.5);
+    let white = common::white_lambert();
     for (name, m, spp, px_tol) in [("glass", glass, 256, 0.01f32), ("white", white, 256, 0.2)] {
         let px = furnace_render(m, 24, spp, 7, true);
         let mean = px.iter().fold(glam::DVec3::ZERO, |a, p| a + p.as_dvec3()) / px.len() as f64;

@@ -62,18 +62,6 @@ fn prism(name: &str, poly: &[Vec2], material: usize) -> MeshDesc {
     }
 }
 
-fn dielectric(name: &str, ior: f32) -> MaterialDesc {
-    MaterialDesc {
-        name: name.into(),
-        metallic: 0.0,
-        roughness: 0.0,
-        transmission: 1.0,
-        thickness: 1.0,
-        ior,
-        ..Default::default()
-    }
-}
-
 /// Glass (lower-left) and water (upper-right) halves of the square. `water_shift` moves the
 /// water's diagonal face along (1,1)/√2: 0 = exactly coincident, > 0 a gap, < 0 an overlap.
 fn scene(backend: Backend, water_shift: f32, second_material_is_glass: bool) -> Scene {
@@ -107,9 +95,9 @@ fn scene_with(
         1,
     );
     let second = if second_material_is_glass {
-        dielectric("glass 2", N_GLASS)
+        common::clear_glass("glass 2", N_GLASS)
     } else {
-        dielectric("water", N_WATER)
+        common::clear_glass("water", N_WATER)
     };
     let desc = SceneDesc {
         source: "nested".into(),
@@ -121,7 +109,7 @@ fn scene_with(
                     ..Default::default()
                 }
             } else {
-                dielectric("glass", N_GLASS)
+                common::clear_glass("glass", N_GLASS)
             },
             second,
         ],

@@ -47,12 +47,7 @@ fn block_scene(glass: MaterialDesc) -> Scene {
         glam::Mat3::from_rotation_x(std::f32::consts::PI),
         Vec3::new(0.3, 3.0, 0.2),
     );
-    let white = MaterialDesc {
-        name: "white".into(),
-        metallic: 0.0,
-        specular: 0.0,
-        ..Default::default()
-    };
+    let white = common::white_lambert();
     let lamp_m = MaterialDesc {
         name: "lamp".into(),
         base_color: glam::Vec4::new(0.0, 0.0, 0.0, 1.0),
@@ -130,14 +125,9 @@ fn d65_light_through_a_glass_block_stays_white() {
         world_from_camera: look_at(Vec3::new(0.0, 2.5, 0.01), Vec3::ZERO, Vec3::Y),
     };
     let glass = |name: &str, dispersion: f32| MaterialDesc {
-        name: name.into(),
-        metallic: 0.0,
-        roughness: 0.0,
-        transmission: 1.0,
         thickness: 0.4,
-        ior: 1.5,
         dispersion,
-        ..Default::default()
+        ..common::clear_glass(name, 1.5)
     };
     let mut worst_clear = 0f32;
     for (name, d) in [("ior 1.5", 0.0), ("KHR dispersion 0", 0.0)] {

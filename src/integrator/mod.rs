@@ -2,6 +2,7 @@
 //! maths lives in its own module, and per-hit shading shared between them lives in
 //! [`shading`].
 
+pub mod lights;
 pub mod path;
 pub mod shading;
 pub mod whitted;

@@ -9,7 +9,7 @@
 //! Materials become BSDFs ([`crate::bsdf`]) in the local frame of the outward shading
 //! normal; volumes use the path's medium stack for η and Beer–Lambert.
 
-use super::{shading, Context};
+use super::{lights, shading, Context};
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::interaction::SurfaceHit;
 use crate::math::{Frame, Ray};
@@ -53,58 +53,32 @@ fn next_event<C: Carrier>(
     let k = ((ctx.rng.next_f32() * groups as f32) as usize).min(groups - 1);
     let u = Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
     let uc = ctx.rng.next_f32();
-    // (direction, shadow ray, incident radiance / pdf, light pdf for MIS or None for delta)
-    let mut shape = None;
-    let (wi, shadow, incident, light_pdf) = if k < n_punctual {
-        let Some(ls) = scene.lights[k].sample_li(hit.p) else {
-            return C::ZERO;
-        };
-        let shadow = match ls.position {
-            Some(p) => hit.spawn_ray_to(p),
-            None => hit.spawn_ray(ls.wi),
-        };
-        shape = scene.light_shapes.get(k).and_then(Option::as_ref);
-        (ls.wi, shadow, ls.irradiance / p_sel, None)
+    let sample = if k < n_punctual {
+        lights::punctual(scene, hit, k)
     } else if has_area && k == n_punctual {
-        let Some(s) = scene.area_lights.sample(&scene.triangle_data, hit.p, uc, u) else {
-            return C::ZERO;
-        };
-        let mat = &scene.materials[scene.triangle_data[s.prim as usize].material() as usize];
-        let light = &mat.desc;
-        shape = mat.emitter_shape();
-        if !light.double_sided && s.normal.dot(s.wi) >= 0.0 || s.pdf.is_nan() || s.pdf <= 0.0 {
-            return C::ZERO;
-        }
-        let pdf = s.pdf * p_sel;
-        (
-            s.wi,
-            hit.spawn_ray_to(s.point),
-            mat.emission() / pdf,
-            Some(pdf),
-        )
+        lights::area(scene, hit, uc, u)
     } else {
-        let Some(env) = &scene.environment else {
-            return C::ZERO;
-        };
-        let Some(s) = env.sample(u) else {
-            return C::ZERO;
-        };
-        let pdf = s.pdf * p_sel;
-        (s.wi, hit.spawn_ray(s.wi), s.radiance / pdf, Some(pdf))
+        lights::environment(scene, hit, u)
     };
-    let wi_local = frame.to_local(wi);
+    let Some(ls) = sample else {
+        return C::ZERO;
+    };
+    // The light's pdf includes choosing its group.
+    let light_pdf = ls.pdf.map(|p| p * p_sel);
+    let wi_local = frame.to_local(ls.wi);
     let f = bsdf.eval(wo, wi_local, TransportMode::Radiance);
     if f == C::ZERO {
         return C::ZERO;
     }
     ctx.rays += 1;
-    if scene.occluded(&shadow) {
+    if scene.occluded(&ls.shadow) {
         return C::ZERO;
     }
     let w = light_pdf.map_or(1.0, |lp| {
         mis(lp, bsdf.pdf(wo, wi_local, TransportMode::Radiance))
     });
-    f * C::emitted(incident, shape, lambda) * (wi_local.z.abs() * w)
+    let incident = C::emitted(ls.incident / p_sel, ls.shape, lambda);
+    f * incident * (wi_local.z.abs() * w)
 }
 
 /// Radiance along `ray` (the camera is in air) at the sample's wavelengths `lambda`

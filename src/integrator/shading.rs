@@ -7,6 +7,7 @@
 //! Directions are unit vectors pointing away from the surface; radiance in the units of the
 //! lights (cd and lux give nits).
 
+use super::lights::{self, LightSample};
 use super::Context;
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::interaction::{CoincidentSet, SurfaceHit};
@@ -14,8 +15,8 @@ use crate::material::{Material, ShadingPoint};
 use crate::math::Frame;
 use crate::medium::{self, MediumStack};
 use crate::scene::Scene;
-use crate::spectrum::{Carrier, EmitterShape};
-use glam::Vec3;
+use crate::spectrum::Carrier;
+use glam::{Vec2, Vec3};
 
 /// The surface BSDF of an opaque (non-transmitting) shading point: glTF metallic-roughness
 /// with KHR_materials_specular.
@@ -45,7 +46,7 @@ pub fn meet(scene: &Scene, hit: SurfaceHit) -> (SurfaceHit, CoincidentSet) {
         .iter()
         .find(|c| !scene.materials[c.material as usize].is_volume());
     match solid {
-        Some(solid) => (solid.hit, CoincidentSet::default()),
+        Some(solid) => (solid, CoincidentSet::default()),
         None => (merged, set),
     }
 }
@@ -70,8 +71,8 @@ pub fn bsdf_at<C: Carrier>(
     l: &C::Lambda,
 ) -> (Bsdf<C>, MediumStack, bool) {
     let mat = &scene.materials[hit.material as usize];
-    let tint = C::reflectance(sp.base_color, l);
     if sp.transmission > 0.0 && u < sp.transmission {
+        let tint = C::reflectance(sp.base_color, l);
         if !mat.is_volume() {
             return (
                 Bsdf::ThinDielectric {
@@ -130,7 +131,6 @@ pub fn interface<C: Carrier>(
 /// An opaque hit seen from the viewer's side, ready to receive light.
 struct Receiver<'a, C: Carrier> {
     scene: &'a Scene,
-    hit: &'a SurfaceHit,
     bsdf: Bsdf<C>,
     lambda: C::Lambda,
     /// Local frame of the outward shading normal (the BSDF's frame).
@@ -144,31 +144,26 @@ struct Receiver<'a, C: Carrier> {
 }
 
 impl<C: Carrier> Receiver<'_, C> {
-    /// Light arriving from unit direction `wi` along the unblocked `shadow` ray, carrying
-    /// `incident` (irradiance at normal incidence, or radiance / pdf): f · incident · cos.
-    fn connect(
-        &self,
-        wi: Vec3,
-        shadow: crate::math::Ray,
-        incident: Vec3,
-        shape: Option<&EmitterShape>,
-        ctx: &mut Context,
-    ) -> C {
-        let cos = self.n.dot(wi);
-        if cos <= 0.0 || self.ng.dot(wi) <= 0.0 {
+    /// Light from `ls` if its shadow ray is unblocked: f · incident · cos.
+    fn connect(&self, ls: Option<LightSample>, ctx: &mut Context) -> C {
+        let Some(ls) = ls else {
+            return C::ZERO;
+        };
+        let cos = self.n.dot(ls.wi);
+        if cos <= 0.0 || self.ng.dot(ls.wi) <= 0.0 {
             return C::ZERO;
         }
         let f = self
             .bsdf
-            .eval(self.wo, self.frame.to_local(wi), TransportMode::Radiance);
+            .eval(self.wo, self.frame.to_local(ls.wi), TransportMode::Radiance);
         if f == C::ZERO {
             return C::ZERO;
         }
         ctx.rays += 1;
-        if self.scene.occluded(&shadow) {
+        if self.scene.occluded(&ls.shadow) {
             return C::ZERO;
         }
-        f * C::emitted(incident, shape, &self.lambda) * cos
+        f * C::emitted(ls.incident, ls.shape, &self.lambda) * cos
     }
 }
 
@@ -192,7 +187,6 @@ pub fn direct_light<C: Carrier>(
     let frame = Frame::from_normal(hit.ns);
     let r = Receiver {
         scene,
-        hit,
         bsdf: surface_bsdf(mat, sp, lambda),
         lambda: *lambda,
         frame,
@@ -201,56 +195,16 @@ pub fn direct_light<C: Carrier>(
         ng,
     };
     let mut sum = C::ZERO;
-    for (k, light) in scene.lights.iter().enumerate() {
-        if let Some(ls) = light.sample_li(hit.p) {
-            let shadow = match ls.position {
-                Some(p) => hit.spawn_ray_to(p),
-                None => hit.spawn_ray(ls.wi),
-            };
-            let shape = scene.light_shapes.get(k).and_then(Option::as_ref);
-            sum += r.connect(ls.wi, shadow, ls.irradiance, shape, ctx);
-        }
+    for k in 0..scene.lights.len() {
+        sum += r.connect(lights::punctual(scene, hit, k), ctx);
     }
-    sum + area_light(&r, ctx) + environment(&r, ctx)
-}
-
-/// One importance sample of the environment light.
-fn environment<C: Carrier>(r: &Receiver<C>, ctx: &mut Context) -> C {
-    let Some(env) = &r.scene.environment else {
-        return C::ZERO;
-    };
-    let u = glam::Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
-    match env.sample(u) {
-        Some(s) => r.connect(s.wi, r.hit.spawn_ray(s.wi), s.radiance / s.pdf, None, ctx),
-        None => C::ZERO,
+    // One emissive-triangle sample, then one environment sample.
+    let uc = ctx.rng.next_f32();
+    let u = Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
+    sum += r.connect(lights::area(scene, hit, uc, u), ctx);
+    if scene.environment.is_some() {
+        let u = Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
+        sum += r.connect(lights::environment(scene, hit, u), ctx);
     }
-}
-
-/// One sample of the emissive triangles.
-fn area_light<C: Carrier>(r: &Receiver<C>, ctx: &mut Context) -> C {
-    let scene = r.scene;
-    let u = ctx.rng.next_f32();
-    let uv = glam::Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
-    let Some(s) = scene
-        .area_lights
-        .sample(&scene.triangle_data, r.hit.p, u, uv)
-    else {
-        return C::ZERO;
-    };
-    if s.pdf.is_nan() || s.pdf <= 0.0 {
-        return C::ZERO;
-    }
-    let mat = &scene.materials[scene.triangle_data[s.prim as usize].material() as usize];
-    let light = &mat.desc;
-    // Single-sided emitters only shine along their outward normal.
-    if !light.double_sided && s.normal.dot(s.wi) >= 0.0 {
-        return C::ZERO;
-    }
-    r.connect(
-        s.wi,
-        r.hit.spawn_ray_to(s.point),
-        mat.emission() / s.pdf,
-        mat.emitter_shape(),
-        ctx,
-    )
+    sum
 }

@@ -190,12 +190,8 @@ impl Scene {
             .lights
             .iter()
             .map(|l| {
-                let filter = l.color() * l.intensity();
-                l.spectrum().map(|s| EmitterShape {
-                    shape: s.spectrum(),
-                    filter,
-                    reference: desc::effective_color(filter, Some(s)),
-                })
+                l.spectrum()
+                    .map(|s| s.emitter_shape(l.color() * l.intensity()))
             })
             .collect();
         let default_lights = lights.is_empty() && area_lights.is_empty();

@@ -17,7 +17,7 @@
 
 use super::cie::d65_normalized;
 use super::cie::xyz_to_linear_srgb;
-use super::{RgbReflectance, SampledSpectrum, SampledWavelengths, N_LAMBDA};
+use super::{RgbIlluminant, RgbReflectance, SampledSpectrum, SampledWavelengths, N_LAMBDA};
 use glam::Vec3;
 use std::fmt::Debug;
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Sub};
@@ -222,16 +222,7 @@ impl Carrier for SampledSpectrum {
         RgbReflectance::new(rgb.to_array()).sample(&l.wl)
     }
     fn illuminant(rgb: Vec3, l: &Lambdas) -> Self {
-        // RgbIlluminant: max(rgb) · reflectance(rgb / max) · D65/Y(D65), with the D65
-        // factor cached per sample.
-        let m = rgb.max_element();
-        if m.is_nan() || m <= 0.0 || !m.is_finite() {
-            return SampledSpectrum::zero();
-        }
-        if rgb.x == rgb.y && rgb.y == rgb.z {
-            return l.d65 * m;
-        }
-        RgbReflectance::new((rgb / m).to_array()).sample(&l.wl) * l.d65 * m
+        RgbIlluminant::new(rgb.to_array()).sample_with_d65(&l.wl, l.d65)
     }
     fn emitted(rgb: Vec3, shape: Option<&EmitterShape>, l: &Lambdas) -> Self {
         let Some(sh) = shape else {
@@ -275,11 +266,8 @@ mod tests {
     fn emitted_uses_the_exact_shape() {
         let bb = EmissionSpectrum::Blackbody { kelvin: 2700.0 };
         let filter = Vec3::new(3.0, 3.0, 3.0);
-        let sh = EmitterShape {
-            shape: bb.spectrum(),
-            filter,
-            reference: filter * bb.linear_srgb(),
-        };
+        let sh = bb.emitter_shape(filter);
+        assert_eq!(sh.reference, filter * bb.linear_srgb());
         let l = Lambdas::new(SampledWavelengths::sample_uniform((450.0 - 360.0) / 470.0));
         let rgb = sh.reference * 2.0;
         let v = SampledSpectrum::emitted(rgb, Some(&sh), &l).values();

@@ -171,7 +171,20 @@ impl RgbIlluminant {
 
     /// Radiance at the path's wavelengths.
     pub fn sample(&self, lambda: &SampledWavelengths) -> SampledSpectrum {
-        SampledSpectrum::from_fn(lambda, |l| self.eval(l))
+        self.sample_with_d65(lambda, SampledSpectrum::from_fn(lambda, d65_normalized))
+    }
+
+    /// [`Self::sample`] with D65/Y(D65) at those wavelengths already looked up (the spectral
+    /// transport caches it per camera sample).
+    pub fn sample_with_d65(
+        &self,
+        lambda: &SampledWavelengths,
+        d65: SampledSpectrum,
+    ) -> SampledSpectrum {
+        if self.scale == 0.0 {
+            return SampledSpectrum::zero();
+        }
+        self.shape.sample(lambda) * d65 * self.scale
     }
 }
 

@@ -72,3 +72,27 @@ pub fn backends() -> Vec<iris::accel::Backend> {
     }
     b
 }
+
+/// A clear, smooth, volumetric dielectric (KHR transmission 1, volume thickness 1) of index
+/// `ior`.
+pub fn clear_glass(name: &str, ior: f32) -> iris::scene::desc::MaterialDesc {
+    iris::scene::desc::MaterialDesc {
+        name: name.into(),
+        metallic: 0.0,
+        roughness: 0.0,
+        transmission: 1.0,
+        thickness: 1.0,
+        ior,
+        ..Default::default()
+    }
+}
+
+/// A white Lambertian material: albedo 1, no specular layer.
+pub fn white_lambert() -> iris::scene::desc::MaterialDesc {
+    iris::scene::desc::MaterialDesc {
+        name: "white".into(),
+        metallic: 0.0,
+        specular: 0.0,
+        ..Default::default()
+    }
+}

@@ -9,7 +9,7 @@
 //! file's RGB colour multiplies as a filter.
 
 use crate::spectrum::cie::{spectrum_to_xyz, xyz_to_linear_srgb};
-use crate::spectrum::Spectrum;
+use crate::spectrum::{EmitterShape, Spectrum};
 use glam::Vec3;
 use std::fmt;
 
@@ -49,6 +49,17 @@ pub const BLACKBODY_KELVIN: (f32, f32) = (1000.0, 40000.0);
 pub const SUN_KELVIN: f32 = 5772.0;
 
 impl EmissionSpectrum {
+    /// What the spectral transport needs for an emitter of this spectrum filtered by
+    /// `filter` (colour × intensity): the shape, the filter, and the RGB the RGB transport
+    /// uses for it ([`effective_color`]).
+    pub fn emitter_shape(&self, filter: Vec3) -> EmitterShape {
+        EmitterShape {
+            shape: self.spectrum(),
+            filter,
+            reference: effective_color(filter, Some(*self)),
+        }
+    }
+
     /// A blackbody, or the reason `kelvin` is not accepted (NaN, ±∞, outside
     /// [`BLACKBODY_KELVIN`]).
     pub fn blackbody(kelvin: f64) -> Result<Self, String> {

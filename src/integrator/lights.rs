@@ -1,0 +1,81 @@
+//! Light samples toward a hit, shared by both integrators' direct lighting: one punctual
+//! light, one point on the emissive triangles, or one direction of the environment, each
+//! with its shadow ray, its incident light and, for an emitter that names one, its exact
+//! spectral shape. Random numbers are drawn by the callers, so each integrator keeps its own
+//! sequence.
+//!
+//! Units: `incident` is irradiance at normal incidence (lux-based) for punctual lights, and
+//! radiance / solid-angle pdf for area and environment samples, linear RGB (spectral
+//! transport converts it with [`crate::spectrum::Carrier::emitted`]).
+
+use crate::interaction::SurfaceHit;
+use crate::math::Ray;
+use crate::scene::Scene;
+use crate::spectrum::EmitterShape;
+use glam::{Vec2, Vec3};
+
+/// One light sample seen from a hit.
+#[derive(Debug, Clone, Copy)]
+pub struct LightSample<'a> {
+    /// Unit direction from the hit toward the light.
+    pub wi: Vec3,
+    /// The shadow ray that must be unblocked.
+    pub shadow: Ray,
+    /// Irradiance (punctual) or radiance / pdf (area, environment), linear RGB.
+    pub incident: Vec3,
+    /// The emitter's exact spectral shape, if it names one.
+    pub shape: Option<&'a EmitterShape>,
+    /// Solid-angle pdf for MIS, `None` for delta (punctual) lights.
+    pub pdf: Option<f32>,
+}
+
+/// Punctual light `k`.
+pub fn punctual<'a>(scene: &'a Scene, hit: &SurfaceHit, k: usize) -> Option<LightSample<'a>> {
+    let ls = scene.lights[k].sample_li(hit.p)?;
+    let shadow = match ls.position {
+        Some(p) => hit.spawn_ray_to(p),
+        None => hit.spawn_ray(ls.wi),
+    };
+    Some(LightSample {
+        wi: ls.wi,
+        shadow,
+        incident: ls.irradiance,
+        shape: scene.light_shapes.get(k).and_then(Option::as_ref),
+        pdf: None,
+    })
+}
+
+/// A point on the emissive triangles (chosen by power with `uc`, placed with `u`); `None`
+/// when the emitter faces away (single-sided) or the density is degenerate.
+pub fn area<'a>(scene: &'a Scene, hit: &SurfaceHit, uc: f32, u: Vec2) -> Option<LightSample<'a>> {
+    let s = scene
+        .area_lights
+        .sample(&scene.triangle_data, hit.p, uc, u)?;
+    if s.pdf.is_nan() || s.pdf <= 0.0 {
+        return None;
+    }
+    let mat = &scene.materials[scene.triangle_data[s.prim as usize].material() as usize];
+    // Single-sided emitters only shine along their outward normal.
+    if !mat.desc.double_sided && s.normal.dot(s.wi) >= 0.0 {
+        return None;
+    }
+    Some(LightSample {
+        wi: s.wi,
+        shadow: hit.spawn_ray_to(s.point),
+        incident: mat.emission() / s.pdf,
+        shape: mat.emitter_shape(),
+        pdf: Some(s.pdf),
+    })
+}
+
+/// An importance-sampled direction of the environment.
+pub fn environment<'a>(scene: &'a Scene, hit: &SurfaceHit, u: Vec2) -> Option<LightSample<'a>> {
+    let s = scene.environment.as_ref()?.sample(u)?;
+    Some(LightSample {
+        wi: s.wi,
+        shadow: hit.spawn_ray(s.wi),
+        incident: s.radiance / s.pdf,
+        shape: None,
+        pdf: Some(s.pdf),
+    })
+}
