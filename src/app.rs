@@ -324,6 +324,9 @@ pub fn info_command(path: &Path) -> Result<String> {
                 m.attenuation_distance
             );
         }
+        if m.priority != 0 {
+            let _ = write!(s, " priority {}", m.priority);
+        }
         if m.specular != 1.0 || m.specular_color != glam::Vec3::ONE {
             let _ = write!(
                 s,

@@ -3,12 +3,17 @@
 //! from one medium directly into another (water in a glass, a gem set in resin) refracts
 //! with the ratio of the two indices, not medium/air.
 //!
-//! Invariants: the stack holds material ids of volumetric materials (KHR_materials_volume
-//! thickness > 0) in the order they were entered; the current medium is the last one (or
-//! air, index 1, when empty). Entering pushes, exiting removes the last occurrence. A path
-//! that exits a medium it never entered (open meshes, a camera inside glass) is handled as
-//! glass-to-current-medium, the best guess. Depth is bounded by [`MAX_NESTING`]; deeper
-//! nesting drops the oldest entry.
+//! Invariants: the stack holds the volumetric materials (KHR_materials_volume thickness > 0)
+//! the path is inside, with their priorities, in the order they were entered. Where volumes
+//! overlap, the medium the path is in is the one of **highest priority**, the most recently
+//! entered among equals (Schmidt & Budge's rule; priority is the material's `iris_priority`,
+//! default 0, so by default the last medium entered wins). Crossing a surface of a medium
+//! that is not the current one on either side is a false interface: no refraction. So water
+//! modelled overlapping its glass (glass at a higher priority) refracts at the glass's inner
+//! wall both ways, and its own faces inside the glass are ignored. Entering pushes, exiting
+//! removes the last occurrence. A path that exits a medium it never entered (open meshes, a
+//! camera inside glass) is handled as that-medium-to-current, the best guess. Depth is
+//! bounded by [`MAX_NESTING`]; deeper nesting drops the oldest entry.
 
 use crate::interaction::{CoincidentSet, SurfaceHit, MAX_COINCIDENT};
 use crate::scene::Scene;
@@ -20,6 +25,7 @@ pub const MAX_NESTING: usize = 8;
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct MediumStack {
     ids: [u32; MAX_NESTING],
+    priorities: [i32; MAX_NESTING],
     len: u8,
 }
 
@@ -29,9 +35,12 @@ impl MediumStack {
         Self::default()
     }
 
-    /// The medium the path is in (innermost), or `None` for air.
+    /// The medium the path is in: the highest priority, the latest entered among equals;
+    /// `None` for air.
     pub fn current(&self) -> Option<u32> {
-        (self.len > 0).then(|| self.ids[self.len as usize - 1])
+        let n = self.len as usize;
+        let best = (0..n).max_by_key(|&i| (self.priorities[i], i))?;
+        Some(self.ids[best])
     }
 
     /// The media the path is inside, outermost first.
@@ -44,13 +53,15 @@ impl MediumStack {
         self.ids[..self.len as usize].contains(&m)
     }
 
-    /// The stack after entering material `m`.
-    pub fn entered(mut self, m: u32) -> Self {
+    /// The stack after entering material `m` of priority `priority`.
+    pub fn entered(mut self, m: u32, priority: i32) -> Self {
         if self.len as usize == MAX_NESTING {
             self.ids.copy_within(1.., 0);
+            self.priorities.copy_within(1.., 0);
             self.len -= 1;
         }
         self.ids[self.len as usize] = m;
+        self.priorities[self.len as usize] = priority;
         self.len += 1;
         self
     }
@@ -60,7 +71,10 @@ impl MediumStack {
         let n = self.len as usize;
         if let Some(i) = self.ids[..n].iter().rposition(|&x| x == m) {
             self.ids.copy_within(i + 1..n, i);
-            self.ids[n - 1] = 0; // keep unused slots zero so equality is structural
+            self.priorities.copy_within(i + 1..n, i);
+            // Keep unused slots zero so equality is structural.
+            self.ids[n - 1] = 0;
+            self.priorities[n - 1] = 0;
             self.len -= 1;
         }
         self
@@ -68,7 +82,7 @@ impl MediumStack {
 }
 
 /// The two sides of a volumetric interface crossed by a path with stack `stack`: the
-/// surfaces crossed at one point are `(material, entering)` — one, or several where
+/// surfaces crossed at one point are `(material, entering, priority)` — one, or several where
 /// touching objects share a face. Returns (n_incident, n_transmitted, the stack on the
 /// transmitted side); `ior(id)` gives a material's index, air is 1. The path leaves every
 /// medium it exits, then enters every medium it enters, and refracts once with the indices
@@ -79,26 +93,26 @@ impl MediumStack {
 /// but never entered (open meshes, a camera inside) is taken as the incident one.
 pub fn interface_merged(
     stack: MediumStack,
-    crossings: &[(u32, bool)],
+    crossings: &[(u32, bool, i32)],
     ior: impl Fn(u32) -> f32,
 ) -> (f32, f32, MediumStack) {
     let ior_of = |id: Option<u32>| id.map_or(1.0, &ior);
     let unknown_exit = crossings
         .iter()
-        .find(|&&(m, entering)| !entering && !stack.contains(m));
+        .find(|&&(m, entering, _)| !entering && !stack.contains(m));
     let n_i = match unknown_exit {
-        Some(&(m, _)) => ior(m),
+        Some(&(m, _, _)) => ior(m),
         None => ior_of(stack.current()),
     };
     let mut after = stack;
-    for &(m, entering) in crossings {
+    for &(m, entering, _) in crossings {
         if !entering {
             after = after.left(m);
         }
     }
-    for &(m, entering) in crossings {
+    for &(m, entering, priority) in crossings {
         if entering {
-            after = after.entered(m);
+            after = after.entered(m, priority);
         }
     }
     (n_i, ior_of(after.current()), after)
@@ -106,7 +120,8 @@ pub fn interface_merged(
 
 /// The volumetric interface a path with media `media` crosses at `hit`, with the volumetric
 /// surfaces coincident with it ([`Scene::coincident`]) merged in: n_incident,
-/// n_transmitted and the media beyond, with `ior(material)` the index of each medium. Non-volumetric partners take no part (the caller
+/// n_transmitted and the media beyond, with `ior(material)` the index of each medium and the
+/// materials' `iris_priority` for overlaps. Non-volumetric partners take no part (the caller
 /// lets an opaque partner replace the hit instead, see `integrator::shading::meet`).
 pub fn crossing(
     scene: &Scene,
@@ -115,11 +130,13 @@ pub fn crossing(
     media: MediumStack,
     ior: impl Fn(u32) -> f32,
 ) -> (f32, f32, MediumStack) {
-    let mut crossings = [(hit.material, hit.front_face); 1 + MAX_COINCIDENT];
+    let priority = |m: u32| scene.materials[m as usize].desc.priority;
+    let mut crossings =
+        [(hit.material, hit.front_face, priority(hit.material)); 1 + MAX_COINCIDENT];
     let mut n = 1;
     for c in coincident.iter() {
         if scene.materials[c.material as usize].is_volume() {
-            crossings[n] = (c.material, c.front_face);
+            crossings[n] = (c.material, c.front_face, priority(c.material));
             n += 1;
         }
     }
@@ -136,45 +153,79 @@ mod tests {
         let (glass, water) = (0u32, 1u32);
         let air = MediumStack::new();
         // Air → glass.
-        let (ni, nt, in_glass) = interface_merged(air, &[(glass, true)], ior);
+        let (ni, nt, in_glass) = interface_merged(air, &[(glass, true, 0)], ior);
         assert_eq!((ni, nt), (1.0, 1.5));
         // Inside the glass wall, entering the (overlapping) water: 1.5 → 1.33.
-        let (ni, nt, in_water) = interface_merged(in_glass, &[(water, true)], ior);
+        let (ni, nt, in_water) = interface_merged(in_glass, &[(water, true, 0)], ior);
         assert_eq!((ni, nt), (1.5, 1.33));
         // The glass's inner wall, met inside the water, is a false interface.
-        let (ni, nt, s) = interface_merged(in_water, &[(glass, false)], ior);
+        let (ni, nt, s) = interface_merged(in_water, &[(glass, false, 0)], ior);
         assert_eq!((ni, nt), (1.33, 1.33));
         assert_eq!(s.current(), Some(water));
         // Water → air at the free surface.
-        let (ni, nt, s) = interface_merged(s, &[(water, false)], ior);
+        let (ni, nt, s) = interface_merged(s, &[(water, false, 0)], ior);
         assert_eq!((ni, nt), (1.33, 1.0));
         assert_eq!(s, MediumStack::new());
         // Exiting glass never entered (camera inside): glass → air.
-        assert_eq!(interface_merged(air, &[(glass, false)], ior).0, 1.5);
+        assert_eq!(interface_merged(air, &[(glass, false, 0)], ior).0, 1.5);
     }
 
     #[test]
     fn merged_crossings_refract_once_between_the_outer_media() {
         let ior = |m: u32| [1.5f32, 1.33][m as usize];
         let (glass, water) = (0u32, 1u32);
-        let in_glass = MediumStack::new().entered(glass);
+        let in_glass = MediumStack::new().entered(glass, 0);
         // Glass wall → water through coincident faces: leave glass, enter water.
-        let (ni, nt, s) = interface_merged(in_glass, &[(glass, false), (water, true)], ior);
+        let (ni, nt, s) = interface_merged(in_glass, &[(glass, false, 0), (water, true, 0)], ior);
         assert_eq!((ni, nt), (1.5, 1.33));
-        assert_eq!(s, MediumStack::new().entered(water));
+        assert_eq!(s, MediumStack::new().entered(water, 0));
         // Order of the crossings does not matter.
-        let (ni2, nt2, s2) = interface_merged(in_glass, &[(water, true), (glass, false)], ior);
+        let (ni2, nt2, s2) =
+            interface_merged(in_glass, &[(water, true, 0), (glass, false, 0)], ior);
         assert_eq!((ni2, nt2, s2), (ni, nt, s));
         // And back: water → glass.
-        let (ni, nt, s) = interface_merged(s, &[(water, false), (glass, true)], ior);
+        let (ni, nt, s) = interface_merged(s, &[(water, false, 0), (glass, true, 0)], ior);
         assert_eq!((ni, nt), (1.33, 1.5));
         assert_eq!(s, in_glass);
         // Two touching prisms of the same glass: no interface, still inside glass.
-        let (ni, nt, s) = interface_merged(in_glass, &[(glass, false), (glass, true)], ior);
+        let (ni, nt, s) = interface_merged(in_glass, &[(glass, false, 0), (glass, true, 0)], ior);
         assert_eq!((ni, nt, s), (1.5, 1.5, in_glass));
         // Exiting glass never entered, into water: 1.5 → 1.33.
-        let (ni, nt, _) =
-            interface_merged(MediumStack::new(), &[(glass, false), (water, true)], ior);
+        let (ni, nt, _) = interface_merged(
+            MediumStack::new(),
+            &[(glass, false, 0), (water, true, 0)],
+            ior,
+        );
+        assert_eq!((ni, nt), (1.5, 1.33));
+    }
+
+    /// Schmidt & Budge: water (priority 0) modelled overlapping the wall of its glass
+    /// (priority 1). Along a ray through the glass: the water's face inside the glass wall is
+    /// a false interface, the real glass→water interface is the glass's inner wall, and the
+    /// same holds on the way out — whichever order the faces are met in.
+    #[test]
+    fn priorities_decide_overlaps() {
+        let ior = |m: u32| [1.5f32, 1.33][m as usize];
+        let (glass, water) = (0u32, 1u32);
+        let air = MediumStack::new();
+        let (_, _, s) = interface_merged(air, &[(glass, true, 1)], ior);
+        // Entering the water inside the glass wall: glass still wins.
+        let (ni, nt, s) = interface_merged(s, &[(water, true, 0)], ior);
+        assert_eq!((ni, nt, s.current()), (1.5, 1.5, Some(glass)));
+        // Leaving the glass at its inner wall: into the water.
+        let (ni, nt, s) = interface_merged(s, &[(glass, false, 1)], ior);
+        assert_eq!((ni, nt, s.current()), (1.5, 1.33, Some(water)));
+        // Far side: entering the glass's inner wall from the water.
+        let (ni, nt, s) = interface_merged(s, &[(glass, true, 1)], ior);
+        assert_eq!((ni, nt, s.current()), (1.33, 1.5, Some(glass)));
+        // The water's face inside the glass wall: false.
+        let (ni, nt, s) = interface_merged(s, &[(water, false, 0)], ior);
+        assert_eq!((ni, nt), (1.5, 1.5));
+        let (ni, nt, s) = interface_merged(s, &[(glass, false, 1)], ior);
+        assert_eq!((ni, nt, s), (1.5, 1.0, air));
+        // With equal priorities the last medium entered wins instead (the default).
+        let (_, _, s) = interface_merged(air, &[(glass, true, 0)], ior);
+        let (ni, nt, _) = interface_merged(s, &[(water, true, 0)], ior);
         assert_eq!((ni, nt), (1.5, 1.33));
     }
 
@@ -182,8 +233,8 @@ mod tests {
     fn enter_and_leave_in_any_order() {
         let s = MediumStack::new();
         assert_eq!(s.current(), None);
-        let glass = s.entered(1);
-        let water = glass.entered(2);
+        let glass = s.entered(1, 0);
+        let water = glass.entered(2, 0);
         assert_eq!(water.current(), Some(2));
         // Leaving the glass wall while still in the water (overlapping volumes).
         assert_eq!(water.left(1).current(), Some(2));
@@ -194,7 +245,7 @@ mod tests {
         // Overflow drops the oldest.
         let mut deep = MediumStack::new();
         for i in 0..(MAX_NESTING as u32 + 2) {
-            deep = deep.entered(i);
+            deep = deep.entered(i, 0);
         }
         assert_eq!(deep.current(), Some(MAX_NESTING as u32 + 1));
         assert!(!deep.contains(0) && !deep.contains(1) && deep.contains(2));

@@ -271,3 +271,49 @@ fn dispersion_test_columns_resolve_to_khr_models() {
     assert_eq!(air.dispersion, 5.0);
     assert!(!Material::new(air.clone()).is_dispersive());
 }
+
+/// Nested-media priority: glTF `extras.iris_priority` and MTL `iris_priority` load as
+/// integers (default 0); non-integers and out-of-range values are errors naming the file,
+/// the material and (MTL) the line.
+#[test]
+fn iris_priority_loads_and_rejects_bad_values() {
+    let desc = loaded(
+        "priority_gltf",
+        json!([{"name": "Glass", "extras": {"iris_priority": 3}}, {"name": "Plain"}]),
+    );
+    assert_eq!(
+        (desc.materials[0].priority, desc.materials[1].priority),
+        (3, 0)
+    );
+    for bad in [json!(1.5), json!("high"), json!(2_000_000)] {
+        let text = expect_material_error(
+            "priority_gltf_bad",
+            json!([{"name": "Glass", "extras": {"iris_priority": bad}}]),
+            LoadErrorKind::InvalidValue,
+        );
+        assert!(
+            text.contains("iris_priority") && text.contains("Glass"),
+            "{text}"
+        );
+    }
+    let dir = common::scratch_dir("priority_mtl");
+    let obj = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl glass\nf 1 2 3\n";
+    std::fs::write(dir.join("a.obj"), obj).expect("write");
+    std::fs::write(
+        dir.join("m.mtl"),
+        "newmtl glass\nillum 7\nNi 1.5\niris_priority 2\n",
+    )
+    .unwrap();
+    let desc = load_scene(&dir.join("a.obj")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(desc.materials[0].priority, 2);
+    std::fs::write(
+        dir.join("m.mtl"),
+        "newmtl glass\nillum 7\nNi 1.5\niris_priority x\n",
+    )
+    .unwrap();
+    let text = load_scene(&dir.join("a.obj")).unwrap_err().to_string();
+    assert!(
+        text.contains("m.mtl") && text.contains("glass") && text.contains("line 4"),
+        "{text}"
+    );
+}

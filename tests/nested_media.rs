@@ -65,15 +65,17 @@ fn prism(name: &str, poly: &[Vec2], material: usize) -> MeshDesc {
 /// Glass (lower-left) and water (upper-right) halves of the square. `water_shift` moves the
 /// water's diagonal face along (1,1)/√2: 0 = exactly coincident, > 0 a gap, < 0 an overlap.
 fn scene(backend: Backend, water_shift: f32, second_material_is_glass: bool) -> Scene {
-    scene_with(backend, water_shift, second_material_is_glass, false)
+    scene_with(backend, water_shift, second_material_is_glass, false, 0)
 }
 
-/// As [`scene`]; `opaque_first` makes the lower-left prism an opaque diffuse block.
+/// As [`scene`]; `opaque_first` makes the lower-left prism an opaque diffuse block, and the
+/// glass gets nested-media priority `glass_priority` (the water has 0).
 fn scene_with(
     backend: Backend,
     water_shift: f32,
     second_material_is_glass: bool,
     opaque_first: bool,
+    glass_priority: i32,
 ) -> Scene {
     let s = Vec2::splat(water_shift / 2f32.sqrt());
     let glass = prism(
@@ -109,7 +111,10 @@ fn scene_with(
                     ..Default::default()
                 }
             } else {
-                common::clear_glass("glass", N_GLASS)
+                MaterialDesc {
+                    priority: glass_priority,
+                    ..common::clear_glass("glass", N_GLASS)
+                }
             },
             second,
         ],
@@ -282,7 +287,7 @@ fn touching_prisms_of_one_glass_are_no_interface() {
 #[test]
 fn water_against_an_opaque_wall_meets_the_wall() {
     for backend in backends() {
-        let scene = scene_with(backend, 0.0, false, true);
+        let scene = scene_with(backend, 0.0, false, true, 0);
         let (mut met_block, mut n) = (0, 0);
         // From inside the water, toward the shared diagonal at many angles.
         for i in 0..200 {
@@ -328,5 +333,49 @@ fn only_the_shared_faces_are_marked_as_touching() {
             // The diagonal is two triangles in each prism.
             assert_eq!(marked, want, "{backend:?} shift {shift}");
         }
+    }
+}
+
+/// Water modelled overlapping its glass by 0.02 (far beyond the merge distance): with equal
+/// priorities the last medium entered wins, so the beam refracts glass→water at the water's
+/// face inside the glass and the glass face inside the water is false; with the glass at
+/// priority 1 (Schmidt & Budge) the overlap is glass: the water's face is false and the real
+/// 1.5→1.33 interface is the glass's own face. Either way the beam leaves in the same
+/// direction (the two candidate faces are parallel, so only a sideways shift differs).
+#[test]
+fn overlapping_volumes_follow_their_priorities() {
+    for backend in backends() {
+        let mut exits: Vec<Vec3> = Vec::new();
+        for (priority, want) in [
+            (
+                0,
+                [
+                    (1.0, N_GLASS),
+                    (N_GLASS, N_WATER),
+                    (N_WATER, N_WATER),
+                    (N_WATER, 1.0),
+                ],
+            ),
+            (
+                1,
+                [
+                    (1.0, N_GLASS),
+                    (N_GLASS, N_GLASS),
+                    (N_GLASS, N_WATER),
+                    (N_WATER, 1.0),
+                ],
+            ),
+        ] {
+            let scene = scene_with(backend, -0.02, false, false, priority);
+            let (dir, y) = beams().nth(1).unwrap();
+            let origin = Vec3::new(-3.0, y - dir.y / dir.x * 2.0, 0.3);
+            let (out, pairs) = trace(&scene, origin, dir);
+            assert_eq!(pairs, want.to_vec(), "{backend:?} priority {priority}");
+            exits.push(out);
+        }
+        assert!(
+            (exits[0] - exits[1]).length() < 1e-5,
+            "{backend:?}: {exits:?}"
+        );
     }
 }

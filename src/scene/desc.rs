@@ -152,6 +152,10 @@ pub struct MaterialDesc {
     /// Spectral shape of the emission (extras / MTL `iris_spectrum`); `None` upsamples the
     /// RGB `emissive` as an illuminant. See [`EmissionSpectrum`] for how the two combine.
     pub emission_spectrum: Option<EmissionSpectrum>,
+    /// Nested-media priority where volumes overlap (extras / MTL `iris_priority`, default
+    /// 0): inside an overlap the path is in the medium of highest priority (Schmidt & Budge
+    /// 2002; see [`crate::medium`]).
+    pub priority: i32,
     /// Index of refraction (KHR_materials_ior, default 1.5). The value 0 is the spec's
     /// special mode: infinite IOR, Fresnel = 1, no dispersion. Otherwise unused when
     /// `ior_model` is given (it is then the fallback other renderers read).
@@ -192,6 +196,7 @@ impl Default for MaterialDesc {
             emissive: Vec3::ZERO,
             emissive_texture: None,
             emission_spectrum: None,
+            priority: 0,
             ior: 1.5,
             transmission: 0.0,
             transmission_texture: None,

@@ -119,6 +119,7 @@ fn read_material(
         }),
         dispersion: dispersion(ctx, m, &element)?,
         ior_model: explicit_ior(ctx, m, &element)?,
+        priority: priority(ctx, m, &element)?,
         double_sided: m.double_sided(),
         alpha_mode,
         name: element,
@@ -165,6 +166,29 @@ fn explicit_ior(
         (None, Some(cauchy)) => cauchy_model(cauchy).map(Some).map_err(invalid),
         (None, None) => Ok(None),
     }
+}
+
+/// `extras.iris_priority`: the nested-media priority, an integer in ±1,000,000 (default 0).
+fn priority(ctx: &Ctx<'_>, m: &gltf::Material<'_>, element: &str) -> Result<i32, LoadError> {
+    let Some(raw) = m.extras() else {
+        return Ok(0);
+    };
+    let Ok(extras) = serde_json::from_str::<Value>(raw.get()) else {
+        return Ok(0);
+    };
+    let Some(p) = extras.get("iris_priority") else {
+        return Ok(0);
+    };
+    p.as_i64()
+        .filter(|v| v.abs() <= 1_000_000)
+        .map(|v| v as i32)
+        .ok_or_else(|| {
+            ctx.error(
+                element,
+                LoadErrorKind::InvalidValue,
+                format!("extras.iris_priority must be an integer in ±1000000, found {p}"),
+            )
+        })
 }
 
 /// `extras.iris_glass`: a string naming a known glass.

@@ -166,6 +166,7 @@ pub(super) fn to_material(
 
     m.emissive = raw.ke.unwrap_or(Vec3::ZERO);
     m.emission_spectrum = raw.spectrum;
+    m.priority = raw.priority.unwrap_or(0);
     if dielectric {
         m.base_color = Vec4::ONE;
         m.transmission = 1.0;

@@ -69,6 +69,8 @@ pub(super) struct RawMtl {
     pub glass: Option<String>,
     /// Iris `iris_spectrum`: the spectral shape of `Ke`.
     pub spectrum: Option<EmissionSpectrum>,
+    /// Iris `iris_priority`: nested-media priority (default 0).
+    pub priority: Option<i32>,
     /// Keys seen and not used, in order of appearance, without duplicates.
     pub unsupported: Vec<String>,
 }
@@ -133,6 +135,7 @@ pub(super) fn parse_mtl(path: &Path, text: &str) -> Result<MtlLib, LoadError> {
             "cauchy_c" => cauchy.1 = Some(at.cauchy(&mtl.name, args)?),
             "iris_glass" => mtl.glass = Some(at.glass(&mtl.name, args)?),
             "iris_spectrum" => mtl.spectrum = Some(at.spectrum(&mtl.name, args)?),
+            "iris_priority" => mtl.priority = Some(at.priority(&mtl.name, args)?),
             "Ka" | "map_Ka" => {}
             other => note(&mut mtl.unsupported, other),
         }
@@ -332,6 +335,26 @@ impl Ctx<'_> {
 }
 
 impl Ctx<'_> {
+    /// An `iris_priority` value: one integer in ±1,000,000.
+    fn priority(&self, material: &str, args: &[&str]) -> Result<i32, LoadError> {
+        match args {
+            [v] => v.parse::<i32>().ok().filter(|p| p.abs() <= 1_000_000),
+            _ => None,
+        }
+        .ok_or_else(|| {
+            LoadError::new(
+                self.path,
+                format!("material \"{material}\" (line {})", self.line),
+                LoadErrorKind::InvalidValue,
+                format!(
+                    "`{}` takes one integer in ±1000000, found `{}`",
+                    self.key,
+                    args.join(" ")
+                ),
+            )
+        })
+    }
+
     /// An `iris_spectrum` value; a bad one names the material and this line.
     fn spectrum(&self, material: &str, args: &[&str]) -> Result<EmissionSpectrum, LoadError> {
         EmissionSpectrum::parse_words(args).map_err(|e| {
