@@ -379,3 +379,66 @@ fn overlapping_volumes_follow_their_priorities() {
         );
     }
 }
+
+/// The test case, McGuire's CornellBox-Water (shared assets): beams from the room
+/// enter the open water surface (IOR 1.33, `illum 7`), bend by Snell's law about the
+/// surface's shading normal (n sin θ conserved to 1e-4), and reach the floor or a sphere
+/// while the path's medium stack holds the water.
+#[test]
+fn cornell_water_beams_refract_into_the_water_and_reach_the_floor() {
+    let Some(shared) = common::shared_assets() else {
+        return;
+    };
+    let path = shared.join("obj/CornellBox-McGuire/CornellBox-Water.obj");
+    for backend in backends() {
+        let (scene, _) = iris::app::load(&path, backend).unwrap();
+        let water = scene
+            .materials
+            .iter()
+            .position(|m| m.desc.name.contains("water"))
+            .expect("a water material") as u32;
+        let (mut checked, mut on_floor) = (0, 0);
+        for i in 0..100 {
+            let (x, z) = (-0.6 + 0.012 * i as f32, -0.5 + 0.009 * i as f32);
+            let dir = Vec3::new(0.3, -1.0, 0.2).normalize();
+            let Some(hit) = scene.intersect(&Ray::new(Vec3::new(x, 1.2, z), dir)) else {
+                continue;
+            };
+            if hit.material != water {
+                continue; // a sphere above the waterline
+            }
+            let (hit, co) = shading::meet(&scene, hit);
+            let (n_i, n_t, media, _) =
+                shading::interface::<Vec3>(&scene, &hit, &co, MediumStack::new(), &());
+            assert!(
+                hit.front_face,
+                "{backend:?}: the surface is entered from above"
+            );
+            assert_eq!((n_i, n_t), (1.0, 1.33), "{backend:?}");
+            assert_eq!(media.current(), Some(water));
+            let n = hit.ns;
+            let out = refract(hit.wo, n, n_t / n_i).expect("no TIR entering water");
+            let sin_i = hit.wo.cross(n).length();
+            let sin_t = out.cross(-n).length();
+            assert!(
+                (sin_i - 1.33 * sin_t).abs() < 1e-4,
+                "{backend:?}: {sin_i} vs {sin_t}"
+            );
+            let next = scene
+                .intersect(&hit.spawn_ray(out))
+                .expect("something below");
+            let name = &scene.materials[next.material as usize].desc.name;
+            assert_ne!(
+                next.material, water,
+                "{backend:?}: re-hit the water surface"
+            );
+            // Material names carry their source: `material 2 "floor" (… line 28)`.
+            on_floor += name.contains("\"floor\"") as usize;
+            checked += 1;
+        }
+        assert!(
+            checked > 30 && on_floor > 20,
+            "{backend:?}: {checked} beams, {on_floor} floor"
+        );
+    }
+}
