@@ -37,6 +37,7 @@ pub mod math;
 pub mod medium;
 pub mod optics;
 pub mod output;
+pub mod photon;
 pub mod render;
 pub mod scene;
 pub mod spectrum;

@@ -1,0 +1,16 @@
+//! Photons: light paths traced from the emitters, for photon mapping (`--method photon`,
+//! Jensen 1996/2001) and stochastic progressive photon mapping (`--method sppm`, Hachisuka
+//! & Jensen 2009 with Knaus & Zwicker 2011's radius sequence).
+//!
+//! - [`emit`]: where photons start, from every light type, chosen by power.
+//! - [`store`]: the compact stored photon (32 bytes) and the kd-tree photon map (k-nearest
+//!   and radius queries) and the hash grid (fixed-radius queries).
+//! - [`trace`]: photon paths through the shared per-hit step in importance mode.
+//!
+//! Units: photon power is flux in the lights' units (cd·sr = lm for punctual lights, nit·m²·sr
+//! for emitters), so that the sum over all photons emitted, divided by their number, is the
+//! scene's emitted power. World space, metres.
+
+pub mod emit;
+pub mod store;
+pub mod trace;
