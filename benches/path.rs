@@ -60,6 +60,7 @@ fn path_tracer(c: &mut Criterion) {
     let integrator = Integrator {
         method: Method::Path,
         max_depth: 8,
+        photon: Default::default(),
     };
     let settings = RenderSettings {
         width: SIZE,
@@ -69,6 +70,7 @@ fn path_tracer(c: &mut Criterion) {
         threads: 2,
         quiet: true,
         spectral: false,
+        time_limit: None,
     };
     let mut group = c.benchmark_group("path_tracer_512");
     group.sample_size(10);
@@ -116,6 +118,7 @@ fn spectral_overhead(c: &mut Criterion) {
     let integrator = Integrator {
         method: Method::Path,
         max_depth: 8,
+        photon: Default::default(),
     };
     let mut group = c.benchmark_group("spectral_overhead_256");
     group.sample_size(10);

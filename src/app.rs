@@ -8,7 +8,7 @@ use crate::envmap::Environment;
 use crate::error::{Error, Result};
 use crate::integrator::{Integrator, Method};
 use crate::output::{self, DisplayOptions, ImageRgb};
-use crate::render::{render, RenderSettings, RenderStats};
+use crate::render::{render_with_checkpoints, RenderSettings, RenderStats};
 use crate::scene::desc::{CameraDesc, EnvironmentDesc, LightDesc, Projection};
 use crate::scene::Scene;
 use std::fmt::Write as _;
@@ -33,6 +33,12 @@ pub struct RenderOptions {
     pub method: Method,
     /// Recursion depth limit.
     pub max_depth: u32,
+    /// `--time`: stop the photon passes after this long (at least one pass).
+    pub time_limit: Option<Duration>,
+    /// `--checkpoint K`: write the image every K SPPM passes.
+    pub checkpoint: Option<u32>,
+    /// Photon-mapping settings (`--photons`, `--radius`, `--alpha`, `--passes`, …).
+    pub photon: crate::integrator::PhotonSettings,
     /// Acceleration backend.
     pub accel: Backend,
     /// Seed.
@@ -239,9 +245,11 @@ pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
     let (w, h) = image_size(opts, &scene)?;
     let (cam_desc, cam_note) = choose_camera(&scene, opts.camera.as_deref(), w as f32 / h as f32)?;
     let camera = Camera::new(&cam_desc, w, h);
+    let (method, method_note) = opts.method.resolve(&scene);
     let integrator = Integrator {
-        method: opts.method,
+        method,
         max_depth: opts.max_depth,
+        photon: opts.photon,
     };
     let settings = RenderSettings {
         width: w,
@@ -251,10 +259,24 @@ pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
         threads: opts.threads,
         quiet: opts.quiet,
         spectral: opts.spectral.resolve(&scene),
+        time_limit: opts.time_limit,
     };
-    let (image, stats) = render(&scene, &camera, &integrator, &settings)?;
+    let display = opts.display;
+    let out_path = output.clone();
+    let mut write_checkpoint = move |img: &ImageRgb, _passes: u32| -> Result<()> {
+        output::write_image(&out_path, img, &display)
+    };
+    let checkpoint = opts.checkpoint.map(|k| {
+        (
+            k,
+            &mut write_checkpoint as &mut (dyn FnMut(&ImageRgb, u32) -> Result<()> + Send),
+        )
+    });
+    let (image, stats) =
+        render_with_checkpoints(&scene, &camera, &integrator, &settings, checkpoint)?;
     output::write_image(&output, &image, &opts.display)?;
     let mut notes = scene.notes.clone();
+    notes.extend(method_note);
     if settings.spectral {
         notes.push(match opts.spectral {
             SpectralMode::On => "spectral transport (--spectral on)".into(),

@@ -4,8 +4,9 @@
 use clap::{Parser, Subcommand, ValueEnum};
 use iris::accel::Backend;
 use iris::app::{self, RenderOptions};
-use iris::integrator::Method;
+use iris::integrator::{Method, PhotonSettings};
 use iris::output::{DisplayOptions, Exposure, ToneMap};
+use iris::photon::trace::Roulette;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -51,6 +52,21 @@ enum MethodArg {
     Whitted,
     /// Path tracing with next-event estimation and MIS.
     Path,
+    /// Classic photon mapping (caustic + global maps, final gather).
+    Photon,
+    /// Stochastic progressive photon mapping (passes; converges).
+    Sppm,
+    /// SPPM when light can reach a diffuse surface through specular ones (caustics), the
+    /// path tracer otherwise.
+    Auto,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum RouletteArg {
+    /// On the throughput: survivors keep their power.
+    Throughput,
+    /// The seed paper's rule: diffuse / reflect / refract by the material's colours.
+    Seed,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -121,9 +137,54 @@ struct RenderArgs {
     /// materials use n_d).
     #[arg(long, value_enum, default_value_t = SpectralArg::Auto)]
     spectral: SpectralArg,
+    /// SPPM passes (`--method sppm`; with `--time`, whichever comes first).
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=10_000_000))]
+    passes: u32,
+    /// Time budget in seconds for progressive methods (SPPM stops after the pass that
+    /// crosses it; at least one pass).
+    #[arg(long, value_parser = parse_seconds)]
+    time: Option<f64>,
+    /// Photons per SPPM pass (default: one per pixel) or in total for `--method photon`
+    /// (default 500000).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4_000_000_000))]
+    photons: Option<u64>,
+    /// Initial SPPM gather radius / largest photon-map radius, in scene units (default: from
+    /// the pixel footprint).
+    #[arg(long, value_parser = parse_radius)]
+    radius: Option<f32>,
+    /// SPPM radius reduction α in (0, 1): r²ᵢ₊₁ = r²ᵢ (i+α)/(i+1) (Knaus & Zwicker 2011).
+    #[arg(long, default_value_t = 2.0 / 3.0, value_parser = parse_alpha)]
+    alpha: f32,
+    /// Write the image so far every K SPPM passes.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    checkpoint: Option<u32>,
+    /// Photon Russian roulette rule.
+    #[arg(long, value_enum, default_value_t = RouletteArg::Throughput)]
+    photon_rr: RouletteArg,
     /// No progress bar.
     #[arg(short, long)]
     quiet: bool,
+}
+
+fn parse_seconds(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 && v <= 1e7 => Ok(v),
+        _ => Err(format!("expected seconds > 0, got {s:?}")),
+    }
+}
+
+fn parse_radius(s: &str) -> Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!("expected a finite radius > 0, got {s:?}")),
+    }
+}
+
+fn parse_alpha(s: &str) -> Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(v) if v > 0.0 && v < 1.0 => Ok(v),
+        _ => Err(format!("expected α strictly between 0 and 1, got {s:?}")),
+    }
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -163,8 +224,24 @@ fn run(cli: Cli) -> iris::Result<()> {
                 method: match a.method {
                     MethodArg::Whitted => Method::Whitted,
                     MethodArg::Path => Method::Path,
+                    MethodArg::Photon => Method::Photon,
+                    MethodArg::Sppm => Method::Sppm,
+                    MethodArg::Auto => Method::Auto,
                 },
                 max_depth: a.max_depth,
+                time_limit: a.time.map(std::time::Duration::from_secs_f64),
+                checkpoint: a.checkpoint,
+                photon: PhotonSettings {
+                    photons: a.photons.unwrap_or(0),
+                    radius: a.radius,
+                    alpha: a.alpha,
+                    passes: a.passes,
+                    roulette: match a.photon_rr {
+                        RouletteArg::Throughput => Roulette::Throughput,
+                        RouletteArg::Seed => Roulette::Seed,
+                    },
+                    ..PhotonSettings::default()
+                },
                 accel: match a.accel {
                     AccelArg::Auto => Backend::Auto,
                     AccelArg::Embree => Backend::Embree,

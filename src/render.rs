@@ -5,7 +5,7 @@
 
 use crate::camera::Camera;
 use crate::error::{Error, Result};
-use crate::integrator::{Context, Integrator};
+use crate::integrator::{photon_map, sppm, Context, Integrator, Method};
 use crate::math::Rng;
 use crate::output::ImageRgb;
 use crate::scene::Scene;
@@ -35,7 +35,16 @@ pub struct RenderSettings {
     pub quiet: bool,
     /// Spectral transport (4 wavelengths per sample) instead of RGB.
     pub spectral: bool,
+    /// Stop progressive methods (SPPM passes) after this long; at least one pass runs.
+    pub time_limit: Option<Duration>,
 }
+
+/// Called every K passes of a progressive method with the image so far and the number of
+/// passes done (`--checkpoint K`).
+pub type Checkpoint<'a> = (
+    u32,
+    &'a mut (dyn FnMut(&ImageRgb, u32) -> Result<()> + Send),
+);
 
 /// Figures from one render.
 #[derive(Debug, Clone, Copy)]
@@ -46,6 +55,10 @@ pub struct RenderStats {
     pub rays: u64,
     /// Pixel samples taken.
     pub samples: u64,
+    /// Photons emitted (photon methods).
+    pub photons: u64,
+    /// Passes done (SPPM; 1 otherwise).
+    pub passes: u32,
 }
 
 /// One camera sample's radiance as linear RGB: wavelengths drawn for spectral transport,
@@ -72,6 +85,33 @@ fn sample<C: Carrier>(
         .to_rgb(&lambda)
 }
 
+/// The worker pool for `settings.threads` (FTZ/DAZ on for Embree on every worker).
+pub fn thread_pool(settings: &RenderSettings) -> Result<rayon::ThreadPool> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(settings.threads)
+        .start_handler(|_| {
+            #[cfg(feature = "embree")]
+            crate::accel::embree::enable_flush_to_zero();
+        })
+        .build()
+        .map_err(|e| Error::Usage(format!("cannot start {} threads: {e}", settings.threads)))
+}
+
+/// A progress bar on stderr (hidden with `quiet`).
+pub fn progress_bar(quiet: bool, len: u64, what: &str) -> ProgressBar {
+    if quiet {
+        return ProgressBar::hidden();
+    }
+    let b = ProgressBar::new(len);
+    b.set_style(
+        ProgressStyle::with_template(&format!(
+            "{{spinner}} {what} [{{elapsed_precise}}] {{bar:40}} {{pos}}/{{len}} {{msg}} eta {{eta}}"
+        ))
+        .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    b
+}
+
 /// Renders `scene` through `camera`.
 pub fn render(
     scene: &Scene,
@@ -79,76 +119,85 @@ pub fn render(
     integrator: &Integrator,
     settings: &RenderSettings,
 ) -> Result<(ImageRgb, RenderStats)> {
+    render_with_checkpoints(scene, camera, integrator, settings, None)
+}
+
+/// [`render`], calling `checkpoint` every K passes of a progressive method.
+pub fn render_with_checkpoints(
+    scene: &Scene,
+    camera: &Camera,
+    integrator: &Integrator,
+    settings: &RenderSettings,
+    checkpoint: Option<Checkpoint>,
+) -> Result<(ImageRgb, RenderStats)> {
+    let pool = thread_pool(settings)?;
+    match integrator.method {
+        Method::Whitted | Method::Path | Method::Auto => {
+            let (image, mut stats) = pool.install(|| {
+                render_samples(camera, settings, |ray, stratum, ctx| {
+                    if settings.spectral {
+                        sample::<SampledSpectrum>(scene, integrator, ray, stratum, ctx)
+                    } else {
+                        sample::<Vec3>(scene, integrator, ray, stratum, ctx)
+                    }
+                })
+            });
+            stats.passes = 1;
+            Ok((image, stats))
+        }
+        Method::Photon => pool.install(|| photon_map::render(scene, camera, integrator, settings)),
+        Method::Sppm => {
+            pool.install(|| sppm::render(scene, camera, integrator, settings, checkpoint))
+        }
+    }
+}
+
+/// The tile loop of the per-sample methods: `spp` jittered camera samples per pixel, each
+/// estimated by `estimate(ray, (k, spp), ctx)` (linear RGB), averaged. Runs on the current
+/// rayon pool.
+pub fn render_samples(
+    camera: &Camera,
+    settings: &RenderSettings,
+    estimate: impl Fn(&crate::math::Ray, (u32, u32), &mut Context) -> Vec3 + Sync,
+) -> (ImageRgb, RenderStats) {
     let (w, h) = (settings.width, settings.height);
     let tiles_x = w.div_ceil(TILE);
     let tiles_y = h.div_ceil(TILE);
     let tiles: Vec<(u32, u32)> = (0..tiles_y)
         .flat_map(|ty| (0..tiles_x).map(move |tx| (tx, ty)))
         .collect();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(settings.threads)
-        .start_handler(|_| {
-            #[cfg(feature = "embree")]
-            crate::accel::embree::enable_flush_to_zero();
-        })
-        .build()
-        .map_err(|e| Error::Usage(format!("cannot start {} threads: {e}", settings.threads)))?;
-    let bar = if settings.quiet {
-        ProgressBar::hidden()
-    } else {
-        let b = ProgressBar::new(tiles.len() as u64);
-        b.set_style(
-            ProgressStyle::with_template(
-                "{spinner} rendering [{elapsed_precise}] {bar:40} {percent:>3}% tiles {pos}/{len} eta {eta}",
-            )
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-        );
-        b
-    };
+    let bar = progress_bar(settings.quiet, tiles.len() as u64, "rendering tiles");
     let start = Instant::now();
     let spp = settings.spp.max(1);
-    let results: Vec<(Vec<(u32, Vec3)>, u64)> = pool.install(|| {
-        tiles
-            .par_iter()
-            .map(|&(tx, ty)| {
-                let mut out = Vec::with_capacity((TILE * TILE) as usize);
-                let mut rays = 0u64;
-                for y in ty * TILE..((ty + 1) * TILE).min(h) {
-                    for x in tx * TILE..((tx + 1) * TILE).min(w) {
-                        let mut ctx = Context {
-                            rng: Rng::new(&[settings.seed, x as u64, y as u64]),
-                            rays: 0,
+    let results: Vec<(Vec<(u32, Vec3)>, u64)> = tiles
+        .par_iter()
+        .map(|&(tx, ty)| {
+            let mut out = Vec::with_capacity((TILE * TILE) as usize);
+            let mut rays = 0u64;
+            for y in ty * TILE..((ty + 1) * TILE).min(h) {
+                for x in tx * TILE..((tx + 1) * TILE).min(w) {
+                    let mut ctx = Context {
+                        rng: Rng::new(&[settings.seed, x as u64, y as u64]),
+                        rays: 0,
+                    };
+                    let mut sum = DVec3::ZERO;
+                    for k in 0..spp {
+                        let jitter = if spp == 1 {
+                            Vec2::splat(0.5)
+                        } else {
+                            Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32())
                         };
-                        let mut sum = DVec3::ZERO;
-                        for k in 0..spp {
-                            let jitter = if spp == 1 {
-                                Vec2::splat(0.5)
-                            } else {
-                                Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32())
-                            };
-                            let ray = camera.generate_ray(Vec2::new(x as f32, y as f32) + jitter);
-                            let l = if settings.spectral {
-                                sample::<SampledSpectrum>(
-                                    scene,
-                                    integrator,
-                                    &ray,
-                                    (k, spp),
-                                    &mut ctx,
-                                )
-                            } else {
-                                sample::<Vec3>(scene, integrator, &ray, (k, spp), &mut ctx)
-                            };
-                            sum += l.as_dvec3();
-                        }
-                        rays += ctx.rays;
-                        out.push((y * w + x, (sum / spp as f64).as_vec3()));
+                        let ray = camera.generate_ray(Vec2::new(x as f32, y as f32) + jitter);
+                        sum += estimate(&ray, (k, spp), &mut ctx).as_dvec3();
                     }
+                    rays += ctx.rays;
+                    out.push((y * w + x, (sum / spp as f64).as_vec3()));
                 }
-                bar.inc(1);
-                (out, rays)
-            })
-            .collect()
-    });
+            }
+            bar.inc(1);
+            (out, rays)
+        })
+        .collect();
     bar.finish_and_clear();
     let time = start.elapsed();
     let mut data = vec![Vec3::ZERO; (w * h) as usize];
@@ -159,7 +208,7 @@ pub fn render(
             data[i as usize] = v;
         }
     }
-    Ok((
+    (
         ImageRgb {
             width: w,
             height: h,
@@ -169,6 +218,8 @@ pub fn render(
             time,
             rays,
             samples: w as u64 * h as u64 * spp as u64,
+            photons: 0,
+            passes: 1,
         },
-    ))
+    )
 }

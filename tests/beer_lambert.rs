@@ -60,10 +60,12 @@ fn transmitted(thickness: f32, distance: f32, color: Vec3, backend: Backend) -> 
         threads: 1,
         quiet: true,
         spectral: false,
+        time_limit: None,
     };
     let integrator = Integrator {
         method: Method::Whitted,
         max_depth: 16,
+        photon: Default::default(),
     };
     let (img, _) = render(&scene, &Camera::new(&cam, 8, 8), &integrator, &settings).unwrap();
     let first = img.data[0];

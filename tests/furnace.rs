@@ -57,10 +57,12 @@ fn furnace_render(
         threads: 2,
         quiet: true,
         spectral,
+        time_limit: None,
     };
     let integrator = Integrator {
         method: Method::Path,
         max_depth: 64,
+        photon: Default::default(),
     };
     render(
         &scene,

@@ -26,6 +26,9 @@ fn opts(scene: &Path, out: &Path, accel: Backend, threads: usize) -> RenderOptio
         spp: 3,
         method: Method::Whitted,
         max_depth: 64,
+        time_limit: None,
+        checkpoint: None,
+        photon: Default::default(),
         accel,
         seed: 7,
         threads,
@@ -275,6 +278,7 @@ fn lambertian_sphere_in_uniform_environment_has_albedo_radiance() {
     let integrator = iris::integrator::Integrator {
         method: Method::Whitted,
         max_depth: 8,
+        photon: Default::default(),
     };
     let settings = iris::render::RenderSettings {
         width: 32,
@@ -284,6 +288,7 @@ fn lambertian_sphere_in_uniform_environment_has_albedo_radiance() {
         threads: 2,
         quiet: true,
         spectral: false,
+        time_limit: None,
     };
     let (img, _) = iris::render::render(&scene, &cam, &integrator, &settings).unwrap();
     // The sphere (radius 1 at distance 5, yfov 0.6) spans ~ ±0.2 rad: pixels within 6 of the

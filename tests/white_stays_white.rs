@@ -80,10 +80,12 @@ fn render_spectral(scene: &Scene, cam: &CameraDesc, size: u32, spp: u32) -> Vec<
         threads: 2,
         quiet: true,
         spectral: true,
+        time_limit: None,
     };
     let integrator = Integrator {
         method: Method::Path,
         max_depth: 16,
+        photon: Default::default(),
     };
     render(scene, &Camera::new(cam, size, size), &integrator, &settings)
         .unwrap()

@@ -33,6 +33,9 @@ fn mis(a: f32, b: f32) -> f32 {
 }
 
 /// Next-event estimation: one light, chosen uniformly among the light groups.
+/// With `use_mis` false the light sample gets the full weight (the path stops here, so
+/// BSDF sampling will not find the light).
+#[allow(clippy::too_many_arguments)]
 fn next_event<C: Carrier>(
     scene: &Scene,
     hit: &SurfaceHit,
@@ -40,6 +43,7 @@ fn next_event<C: Carrier>(
     frame: &Frame,
     wo: Vec3,
     lambda: &C::Lambda,
+    use_mis: bool,
     ctx: &mut Context,
 ) -> C {
     let n_punctual = scene.lights.len();
@@ -74,11 +78,63 @@ fn next_event<C: Carrier>(
     if scene.occluded(&ls.shadow) {
         return C::ZERO;
     }
-    let w = light_pdf.map_or(1.0, |lp| {
-        mis(lp, bsdf.pdf(wo, wi_local, TransportMode::Radiance))
-    });
+    let w = match light_pdf {
+        Some(lp) if use_mis => mis(lp, bsdf.pdf(wo, wi_local, TransportMode::Radiance)),
+        _ => 1.0,
+    };
     let incident = C::emitted(ls.incident / p_sel, ls.shape, lambda);
     f * incident * (wi_local.z.abs() * w)
+}
+
+/// Where a camera path ends (`--method photon` and `sppm` hand the rest to photons).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopAt {
+    /// The plain path tracer: continue until Russian roulette or the depth limit.
+    Never,
+    /// Stop at the first diffuse-like hit ([`is_diffuse_like`]) and return it as a
+    /// [`VisiblePoint`]; its direct light is still estimated here (with full weight, as
+    /// BSDF sampling does not continue).
+    Diffuse,
+}
+
+/// The first diffuse-like hit of a camera path: where photons are gathered.
+#[derive(Debug, Clone, Copy)]
+pub struct VisiblePoint<C: Carrier> {
+    /// Position.
+    pub p: Vec3,
+    /// Geometric normal (outward).
+    pub ng: Vec3,
+    /// Frame of the shading normal (the BSDF's frame).
+    pub frame: Frame,
+    /// Direction toward the camera, in `frame`.
+    pub wo: Vec3,
+    /// The BSDF there.
+    pub bsdf: Bsdf<C>,
+    /// Path throughput from the camera to here.
+    pub beta: C,
+    /// The path's wavelengths (hero only if it crossed a dispersive interface).
+    pub lambda: C::Lambda,
+    /// The hit (for spawning final-gather rays).
+    pub hit: SurfaceHit,
+}
+
+/// GGX α from which a glossy lobe is treated like a diffuse one (a visible point); below
+/// it camera paths continue by BSDF sampling.
+pub const GLOSSY_ALPHA: f32 = 0.25;
+
+/// Whether photons should be gathered at a BSDF rather than continuing the camera path:
+/// anything with a diffuse lobe, or a glossy lobe at least [`GLOSSY_ALPHA`] rough.
+pub fn is_diffuse_like<C: Carrier>(b: &Bsdf<C>) -> bool {
+    match *b {
+        Bsdf::Lambert { .. } => true,
+        Bsdf::GltfPbr {
+            metallic, alpha, ..
+        } => metallic < 1.0 || alpha >= GLOSSY_ALPHA,
+        Bsdf::Conductor { alpha, .. } | Bsdf::Dielectric { alpha, .. } => {
+            !b.is_delta() && alpha >= GLOSSY_ALPHA
+        }
+        Bsdf::ThinDielectric { .. } => false,
+    }
 }
 
 /// Radiance along `ray` (the camera is in air) at the sample's wavelengths `lambda`
@@ -87,9 +143,23 @@ pub fn radiance<C: Carrier>(
     scene: &Scene,
     ray: &Ray,
     max_depth: u32,
-    mut lambda: C::Lambda,
+    lambda: C::Lambda,
     ctx: &mut Context,
 ) -> C {
+    camera_path(scene, ray, max_depth, lambda, StopAt::Never, ctx).0
+}
+
+/// The path tracer's loop: radiance gathered along the path and, with [`StopAt::Diffuse`],
+/// the visible point where it stopped (none if it escaped, was absorbed or hit the depth
+/// limit first).
+pub fn camera_path<C: Carrier>(
+    scene: &Scene,
+    ray: &Ray,
+    max_depth: u32,
+    mut lambda: C::Lambda,
+    stop: StopAt,
+    ctx: &mut Context,
+) -> (C, Option<VisiblePoint<C>>) {
     let mut l = C::ZERO;
     let mut beta = C::ONE;
     let mut ray = *ray;
@@ -158,8 +228,22 @@ pub fn radiance<C: Carrier>(
         }
         let frame = Frame::from_normal(hit.ns);
         let wo = frame.to_local(hit.wo);
+        if stop == StopAt::Diffuse && is_diffuse_like(&bsdf) {
+            l += beta * next_event(scene, &hit, &bsdf, &frame, wo, &lambda, false, ctx);
+            let vp = VisiblePoint {
+                p: hit.p,
+                ng: hit.ng,
+                frame,
+                wo,
+                bsdf,
+                beta,
+                lambda,
+                hit,
+            };
+            return (l, Some(vp));
+        }
         if !bsdf.is_delta() {
-            l += beta * next_event(scene, &hit, &bsdf, &frame, wo, &lambda, ctx);
+            l += beta * next_event(scene, &hit, &bsdf, &frame, wo, &lambda, true, ctx);
         }
         let uc = ctx.rng.next_f32();
         let u = Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
@@ -201,5 +285,5 @@ pub fn radiance<C: Carrier>(
         }
         ray = hit.spawn_ray(wi);
     }
-    l
+    (l, None)
 }

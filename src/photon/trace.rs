@@ -1,1 +1,286 @@
-//! (in progress)
+//! Photon paths: a photon from [`super::emit`] followed through the scene with the
+//! integrators' per-hit step ([`crate::integrator::shading`]: coincident faces, the BSDF,
+//! the medium stack and η), sampling the BSDFs in importance mode
+//! ([`TransportMode::Importance`]: no 1/η'² factor on refraction, pbrt-v4 §9.5.2) and
+//! Beer–Lambert attenuation in media. Every non-delta hit is reported to the caller, which
+//! keeps what its estimator needs (a caustic map keeps L S+ D, SPPM keeps everything after
+//! the first bounce).
+//!
+//! Spectral transport: the photon carries the 4 wavelengths it was given (one random set
+//! per photon for `--method photon`, the pass's shared set for SPPM); a dispersive interface
+//! keeps only the hero, as for camera paths ([`Carrier::keep_hero`]).
+//!
+//! Russian roulette ([`Roulette`]): by default on the throughput (survival = the ratio of
+//! the new to the old throughput's largest channel, capped at 1, so a surviving photon keeps
+//! its power: Jensen 2001 §5.1); or the seed paper's rule, which picks diffuse reflection,
+//! specular reflection or refraction by the magnitudes of the material's colours and
+//! absorbs otherwise (Jensen 2001 §2.4 / the seed's §4.5), ignoring Fresnel's angle
+//! dependence and roughness — kept to reproduce the paper's figures.
+//!
+//! Lights are assumed to be outside every volume (the photon starts with an empty medium
+//! stack, like camera rays).
+
+use super::emit::EmittedPhoton;
+use crate::bsdf::{Bsdf, TransportMode};
+use crate::integrator::path::{is_diffuse_like, MAX_DELTA_BOUNCES};
+use crate::integrator::shading;
+use crate::math::{Frame, Ray, Rng};
+use crate::medium::MediumStack;
+use crate::optics::refract;
+use crate::scene::desc::AlphaMode;
+use crate::scene::Scene;
+use crate::spectrum::Carrier;
+use glam::{Vec2, Vec3};
+
+/// How photon paths are terminated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Roulette {
+    /// Survival probability from the throughput change; survivors keep their power.
+    #[default]
+    Throughput,
+    /// The seed paper's rule: diffuse / reflect / refract / absorb chosen by the magnitudes
+    /// of the material's diffuse, specular and transmission colours.
+    Seed,
+}
+
+/// Photon tracing limits.
+#[derive(Debug, Clone, Copy)]
+pub struct TraceSettings {
+    /// Most non-delta bounces (delta bounces are limited by [`MAX_DELTA_BOUNCES`]).
+    pub max_depth: u32,
+    /// Termination rule.
+    pub roulette: Roulette,
+}
+
+/// A photon arriving at a non-delta surface.
+#[derive(Debug, Clone, Copy)]
+pub struct PhotonVertex<C: Carrier> {
+    /// Position.
+    pub p: Vec3,
+    /// Unit direction back toward where the photon came from (world).
+    pub wi: Vec3,
+    /// Flux carried (the emitted photon's power times the path's throughput).
+    pub power: C,
+    /// Bounces before this hit (0: straight from the light).
+    pub bounces: u32,
+    /// The path so far is L S+ (at least one bounce, all specular or near-specular): a
+    /// caustic photon.
+    pub caustic: bool,
+}
+
+/// The lobe colours the seed paper's rule chooses among: (diffuse, specular, transmission).
+fn seed_colours<C: Carrier>(bsdf: &Bsdf<C>) -> (C, C, C) {
+    let f0 = |eta: f32| {
+        if eta.is_infinite() {
+            1.0
+        } else {
+            ((eta - 1.0) / (eta + 1.0)).powi(2)
+        }
+    };
+    match *bsdf {
+        Bsdf::Lambert { albedo } => (albedo, C::ZERO, C::ZERO),
+        Bsdf::Conductor { f0, .. } => (C::ZERO, f0, C::ZERO),
+        Bsdf::GltfPbr {
+            base,
+            metallic,
+            ior,
+            specular,
+            specular_color,
+            ..
+        } => {
+            let dielectric_f0 = (specular_color * (f0(ior) * specular)).min(C::ONE);
+            (
+                base * (1.0 - metallic),
+                base * metallic + dielectric_f0 * (1.0 - metallic),
+                C::ZERO,
+            )
+        }
+        Bsdf::Dielectric { eta, tint, .. } | Bsdf::ThinDielectric { eta, tint } => {
+            let r = f0(eta);
+            (C::ZERO, C::splat(r), tint * (1.0 - r))
+        }
+    }
+}
+
+/// One step of the seed paper's rule at local `wo`: the new local direction and the
+/// colour factor, `None` when absorbed.
+fn seed_step<C: Carrier>(bsdf: &Bsdf<C>, wo: Vec3, rng: &mut Rng) -> Option<(Vec3, C, bool)> {
+    let (d, s, t) = seed_colours(bsdf);
+    let (pd, ps, pt) = (d.average(), s.average(), t.average());
+    let xi = rng.next_f32();
+    let side = if wo.z >= 0.0 { 1.0 } else { -1.0 };
+    if xi < pd {
+        let u = Vec2::new(rng.next_f32(), rng.next_f32());
+        let wi = Bsdf::<C>::Lambert { albedo: C::ONE }
+            .sample(wo, 0.5, u, TransportMode::Importance)?
+            .wi;
+        Some((wi, d / pd, false))
+    } else if xi < pd + ps {
+        Some((Vec3::new(-wo.x, -wo.y, wo.z), s / ps, false))
+    } else if xi < pd + ps + pt {
+        let wi = match *bsdf {
+            Bsdf::Dielectric { eta, .. } => {
+                let etap = if wo.z >= 0.0 { eta } else { 1.0 / eta };
+                refract(wo, Vec3::new(0.0, 0.0, side), etap)
+                    .unwrap_or(Vec3::new(-wo.x, -wo.y, wo.z))
+            }
+            _ => -wo,
+        };
+        Some((wi, t / pt, wi.z * wo.z < 0.0))
+    } else {
+        None
+    }
+}
+
+/// The KHR_lights_punctual range window clamp(1 − (d/range)⁴, 0, 1).
+fn range_window(d: f32, range: Option<f32>) -> f32 {
+    match range {
+        Some(r) if r > 0.0 => (1.0 - (d / r).powi(4)).clamp(0.0, 1.0),
+        _ => 1.0,
+    }
+}
+
+/// Traces one photon; `store(vertex, lambda)` is called at every non-delta hit with the
+/// photon's wavelengths at that point (hero-only after a dispersive interface). Returns the
+/// number of rays traced.
+pub fn trace<C: Carrier>(
+    scene: &Scene,
+    photon: &EmittedPhoton,
+    mut lambda: C::Lambda,
+    settings: &TraceSettings,
+    rng: &mut Rng,
+    mut store: impl FnMut(&PhotonVertex<C>, &C::Lambda),
+) -> u64 {
+    let mut beta = C::emitted(photon.power, photon.shape, &lambda);
+    let mut ray = photon.ray;
+    let mut media = MediumStack::new();
+    let (mut bounces, mut depth, mut delta_depth) = (0u32, 0u32, 0u32);
+    let mut all_specular = true;
+    let mut rays = 0u64;
+    loop {
+        rays += 1;
+        let Some(hit) = scene.intersect(&ray) else {
+            break;
+        };
+        if bounces == 0 && photon.range.is_some() {
+            beta *= range_window(hit.t * ray.dir.length(), photon.range);
+        }
+        if let Some(m) = media.current() {
+            beta *= scene.materials[m as usize].transmittance_at::<C>(hit.t, &lambda);
+        }
+        if beta == C::ZERO {
+            break;
+        }
+        let (hit, coincident) = shading::meet(scene, hit);
+        let mat = &scene.materials[hit.material as usize];
+        let sp = mat.shade(hit.uv, &scene.images);
+        if matches!(mat.desc.alpha_mode, AlphaMode::Blend) && rng.next_f32() >= sp.alpha {
+            ray = hit.spawn_ray(-hit.wo);
+            continue;
+        }
+        let (bsdf, media_t, dispersive) = shading::bsdf_at::<C>(
+            scene,
+            &hit,
+            &coincident,
+            &sp,
+            media,
+            rng.next_f32(),
+            &lambda,
+        );
+        if dispersive {
+            beta = beta.keep_hero(&mut lambda);
+        }
+        if !bsdf.is_delta() {
+            let v = PhotonVertex {
+                p: hit.p,
+                wi: hit.wo,
+                power: beta,
+                bounces,
+                caustic: bounces > 0 && all_specular,
+            };
+            store(&v, &lambda);
+        }
+        let frame = Frame::from_normal(hit.ns);
+        let wo = frame.to_local(hit.wo);
+        let (wi, transmission, delta) = match settings.roulette {
+            Roulette::Throughput => {
+                let uc = rng.next_f32();
+                let u = Vec2::new(rng.next_f32(), rng.next_f32());
+                let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Importance) else {
+                    break;
+                };
+                if bs.pdf.is_nan() || bs.pdf <= 0.0 || !bs.f.is_finite() {
+                    break;
+                }
+                let new_beta = beta * bs.f * (bs.wi.z.abs() / bs.pdf);
+                let old = beta.max_element();
+                let p = if old > 0.0 {
+                    (new_beta.max_element() / old).min(1.0)
+                } else {
+                    0.0
+                };
+                if p <= 0.0 || rng.next_f32() >= p {
+                    break;
+                }
+                beta = new_beta / p;
+                (bs.wi, bs.transmission, bs.delta)
+            }
+            Roulette::Seed => {
+                let Some((wi, colour, transmission)) = seed_step(&bsdf, wo, rng) else {
+                    break;
+                };
+                beta *= colour;
+                (wi, transmission, !is_diffuse_like(&bsdf) || bsdf.is_delta())
+            }
+        };
+        if !beta.is_finite() {
+            break;
+        }
+        all_specular &= !is_diffuse_like(&bsdf);
+        if transmission && mat.is_volume() {
+            media = media_t;
+        }
+        bounces += 1;
+        if delta {
+            delta_depth += 1;
+            if delta_depth > MAX_DELTA_BOUNCES {
+                break;
+            }
+        } else {
+            depth += 1;
+            if depth >= settings.max_depth {
+                break;
+            }
+        }
+        ray = hit.spawn_ray(frame.to_world(wi));
+    }
+    rays
+}
+
+/// Whether the scene has caustic paths: of `n` photons traced from the lights (fixed seed),
+/// at least one reaches a diffuse-like surface after specular bounces only.
+pub fn has_caustic_paths(scene: &Scene, emitter: &super::emit::PhotonEmitter, n: u32) -> bool {
+    let settings = TraceSettings {
+        max_depth: 8,
+        roulette: Roulette::Throughput,
+    };
+    (0..n).any(|i| {
+        let mut rng = Rng::new(&[0xCA05_71C5, i as u64]);
+        let u = rng.next_f32();
+        let up = Vec2::new(rng.next_f32(), rng.next_f32());
+        let ud = Vec2::new(rng.next_f32(), rng.next_f32());
+        let Some(ph) = emitter.emit(scene, u, up, ud) else {
+            return false;
+        };
+        let mut found = false;
+        trace::<Vec3>(scene, &ph, (), &settings, &mut rng, |v, _| {
+            found |= v.caustic && v.power != Vec3::ZERO;
+        });
+        found
+    })
+}
+
+/// A ray's origin and direction, for tests and tools that follow photons by hand.
+pub fn photon_ray(p: &EmittedPhoton) -> Ray {
+    p.ray
+}

@@ -121,6 +121,12 @@ pub trait Carrier:
     fn hero(l: &Self::Lambda) -> Option<f32>;
     /// Keeps the hero wavelength only (a dispersive interface); marks `l`.
     fn keep_hero(self, l: &mut Self::Lambda) -> Self;
+    /// Whether the path kept only its hero wavelength ([`Carrier::keep_hero`]).
+    fn is_hero_only(l: &Self::Lambda) -> bool;
+    /// The channels / lanes as 4 floats (RGB: the 4th is 0), for compact storage.
+    fn to_lanes(self) -> [f32; 4];
+    /// Inverse of [`Carrier::to_lanes`].
+    fn from_lanes(v: [f32; 4]) -> Self;
 }
 
 impl Carrier for Vec3 {
@@ -178,6 +184,18 @@ impl Carrier for Vec3 {
     #[inline]
     fn keep_hero(self, _l: &mut ()) -> Self {
         self
+    }
+    #[inline]
+    fn is_hero_only(_l: &()) -> bool {
+        false
+    }
+    #[inline]
+    fn to_lanes(self) -> [f32; 4] {
+        [self.x, self.y, self.z, 0.0]
+    }
+    #[inline]
+    fn from_lanes(v: [f32; 4]) -> Self {
+        Vec3::new(v[0], v[1], v[2])
     }
 }
 
@@ -249,6 +267,19 @@ impl Carrier for SampledSpectrum {
         l.hero_only = true;
         let mut v = [0.0; N_LAMBDA];
         v[0] = self.values()[0] * N_LAMBDA as f32;
+        SampledSpectrum::new(v)
+    }
+    #[inline]
+    fn is_hero_only(l: &Lambdas) -> bool {
+        l.hero_only
+    }
+    #[inline]
+    fn to_lanes(self) -> [f32; 4] {
+        let v = self.values();
+        [v[0], v[1], v[2], v[3]]
+    }
+    #[inline]
+    fn from_lanes(v: [f32; 4]) -> Self {
         SampledSpectrum::new(v)
     }
 }

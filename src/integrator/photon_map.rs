@@ -1,0 +1,295 @@
+//! Classic two-pass photon mapping (`--method photon`; Jensen 1996, "Global Illumination
+//! using Photon Maps", and Jensen 2001, "Realistic Image Synthesis Using Photon Mapping").
+//!
+//! Pass 1 traces `photons` photons ([`crate::photon`]) and builds two kd-tree maps:
+//! - the **caustic map**: photons whose path is L S+ D (specular or near-specular bounces
+//!   only, then a diffuse-like surface);
+//! - the **global map**: every photon stored at a non-delta surface.
+//!
+//! Pass 2 follows camera paths with the path tracer's loop ([`path::camera_path`]) through
+//! specular and glossy bounces to the first diffuse-like hit x, and adds there
+//! - direct light from shadow rays (the path tracer's next-event estimation),
+//! - the caustic map's radiance estimate: the k nearest caustic photons with Jensen's cone
+//!   filter (k_cone = 1.1; L = Σ f Φ w_p / ((1 − 2/(3 k_cone)) π r²), w_p = 1 − d/(k_cone r)),
+//! - one final-gather ray per camera sample: BSDF-sampled from x, through specular
+//!   surfaces to the next non-delta hit y, where the global map's k-nearest estimate gives
+//!   the radiance leaving y toward x. Emission and the environment seen by gather rays are
+//!   skipped (they are direct light or caustics, already counted).
+//!
+//! Spectral scenes: photons are traced spectrally (4 random wavelengths each, a dispersive
+//! interface keeps the hero, as in the seed paper: one wavelength per photon), and each
+//! stored photon's flux is converted to linear RGB through the film's conversion
+//! ([`Carrier::to_rgb`]) when it is stored; camera paths and gathering are RGB (dispersive
+//! glass seen directly uses n_d). `--method sppm` is fully spectral.
+//!
+//! Flux in the maps is per emitted photon (already divided by their number).
+
+use super::path::{self, StopAt, VisiblePoint};
+use super::{shading, Context, Integrator};
+use crate::bsdf::TransportMode;
+use crate::camera::Camera;
+use crate::error::Result;
+use crate::math::{Frame, Rng};
+use crate::medium::MediumStack;
+use crate::output::ImageRgb;
+use crate::photon::emit::PhotonEmitter;
+use crate::photon::store::{Photon, PhotonMap};
+use crate::photon::trace::{self, TraceSettings};
+use crate::render::{render_samples, RenderSettings, RenderStats};
+use crate::scene::Scene;
+use crate::spectrum::{Carrier, SampledSpectrum};
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// Photons when `--photons` is not given.
+pub const DEFAULT_PHOTONS: u64 = 500_000;
+/// Jensen's cone-filter constant k.
+const CONE_K: f32 = 1.1;
+/// Photons traced per parallel work item.
+const CHUNK: u64 = 4096;
+/// Most specular bounces a final-gather ray follows.
+const GATHER_SPECULAR: u32 = 16;
+
+/// The two photon maps.
+pub struct PhotonMaps {
+    /// L S+ D photons.
+    pub caustic: PhotonMap,
+    /// All photons at non-delta surfaces.
+    pub global: PhotonMap,
+    /// Largest gather radius, squared.
+    pub max_r2: f32,
+    /// Rays traced building the maps.
+    pub rays: u64,
+    /// Photons emitted.
+    pub emitted: u64,
+}
+
+/// Traces `n` photons and builds the maps (photon powers are per emitted photon).
+pub fn build_maps(
+    scene: &Scene,
+    n: u64,
+    settings: &TraceSettings,
+    seed: u64,
+    spectral: bool,
+) -> (Vec<Photon>, Vec<Photon>, u64) {
+    let emitter = PhotonEmitter::new(scene);
+    let inv_n = 1.0 / n.max(1) as f32;
+    let chunks = n.div_ceil(CHUNK);
+    let per_chunk: Vec<(Vec<Photon>, Vec<Photon>, u64)> = (0..chunks)
+        .into_par_iter()
+        .map(|c| {
+            let (mut caustic, mut global, mut rays) = (Vec::new(), Vec::new(), 0);
+            for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
+                let mut rng = Rng::new(&[seed, i, 0x9E07_0001]);
+                let ul = rng.next_f32();
+                let up = Vec2::new(rng.next_f32(), rng.next_f32());
+                let ud = Vec2::new(rng.next_f32(), rng.next_f32());
+                let Some(ph) = emitter.emit(scene, ul, up, ud) else {
+                    continue;
+                };
+                let mut keep = |p: Vec3, wi: Vec3, rgb: Vec3, is_caustic: bool| {
+                    let photon = Photon::new(p, wi, (rgb * inv_n).to_lanes(), 0);
+                    if is_caustic {
+                        caustic.push(photon);
+                    }
+                    global.push(photon);
+                };
+                rays += if spectral {
+                    let lambda = SampledSpectrum::sample_lambda(rng.next_f32());
+                    trace::trace::<SampledSpectrum>(
+                        scene,
+                        &ph,
+                        lambda,
+                        settings,
+                        &mut rng,
+                        |v, l| keep(v.p, v.wi, v.power.to_rgb(l), v.caustic),
+                    )
+                } else {
+                    trace::trace::<Vec3>(scene, &ph, (), settings, &mut rng, |v, _| {
+                        keep(v.p, v.wi, v.power, v.caustic)
+                    })
+                };
+            }
+            (caustic, global, rays)
+        })
+        .collect();
+    let (mut caustic, mut global, mut rays) = (Vec::new(), Vec::new(), 0);
+    for (c, g, r) in per_chunk {
+        caustic.extend(c);
+        global.extend(g);
+        rays += r;
+    }
+    (caustic, global, rays)
+}
+
+impl PhotonMaps {
+    /// Reflected radiance at a visible point from the k nearest photons of `map` within the
+    /// largest radius, cone-filtered (`cone`) or not.
+    fn estimate(
+        &self,
+        map: &PhotonMap,
+        k: usize,
+        vp_p: Vec3,
+        frame: &Frame,
+        wo: Vec3,
+        bsdf: &crate::bsdf::Bsdf<Vec3>,
+        cone: bool,
+        buf: &mut Vec<(f32, u32)>,
+    ) -> Vec3 {
+        if map.is_empty() {
+            return Vec3::ZERO;
+        }
+        let found = map.knn(vp_p, k, self.max_r2, buf);
+        if buf.is_empty() {
+            return Vec3::ZERO;
+        }
+        // Fewer than k photons within the largest radius: the density is over that disc.
+        let r2 = if buf.len() < k { self.max_r2 } else { found };
+        if r2.is_nan() || r2 <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let r = r2.sqrt();
+        let mut sum = Vec3::ZERO;
+        for &(d2, i) in buf.iter() {
+            let ph = map.get(i as usize);
+            let f = bsdf.eval(wo, frame.to_local(ph.wi()), TransportMode::Radiance);
+            let wgt = if cone {
+                1.0 - d2.sqrt() / (CONE_K * r)
+            } else {
+                1.0
+            };
+            sum += f * Vec3::from_lanes(ph.power()) * wgt;
+        }
+        let norm = if cone {
+            1.0 - 2.0 / (3.0 * CONE_K)
+        } else {
+            1.0
+        };
+        sum / (norm * std::f32::consts::PI * r2)
+    }
+
+    /// Caustics plus one final-gather sample at a visible point.
+    fn indirect(
+        &self,
+        scene: &Scene,
+        vp: &VisiblePoint<Vec3>,
+        k: (usize, usize),
+        ctx: &mut Context,
+        buf: &mut Vec<(f32, u32)>,
+    ) -> Vec3 {
+        let mut l = self.estimate(
+            &self.caustic,
+            k.0,
+            vp.p,
+            &vp.frame,
+            vp.wo,
+            &vp.bsdf,
+            true,
+            buf,
+        );
+        // Final gather.
+        let uc = ctx.rng.next_f32();
+        let u = Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
+        let Some(bs) = vp.bsdf.sample(vp.wo, uc, u, TransportMode::Radiance) else {
+            return l;
+        };
+        if bs.pdf.is_nan() || bs.pdf <= 0.0 {
+            return l;
+        }
+        let mut beta = bs.f * (bs.wi.z.abs() / bs.pdf);
+        let mut ray = vp.hit.spawn_ray(vp.frame.to_world(bs.wi));
+        // Gather rays start outside volumes (visible points are on opaque surfaces).
+        let mut media = MediumStack::new();
+        for _ in 0..GATHER_SPECULAR {
+            ctx.rays += 1;
+            let Some(hit) = scene.intersect(&ray) else {
+                break;
+            };
+            if let Some(m) = media.current() {
+                beta *= scene.materials[m as usize].transmittance_at::<Vec3>(hit.t, &());
+            }
+            let (hit, coincident) = shading::meet(scene, hit);
+            let mat = &scene.materials[hit.material as usize];
+            let sp = mat.shade(hit.uv, &scene.images);
+            let (bsdf, media_t, _) = shading::bsdf_at::<Vec3>(
+                scene,
+                &hit,
+                &coincident,
+                &sp,
+                media,
+                ctx.rng.next_f32(),
+                &(),
+            );
+            let frame = Frame::from_normal(hit.ns);
+            let wo = frame.to_local(hit.wo);
+            if !bsdf.is_delta() {
+                l += beta * self.estimate(&self.global, k.1, hit.p, &frame, wo, &bsdf, false, buf);
+                break;
+            }
+            let uc = ctx.rng.next_f32();
+            let Some(bs) = bsdf.sample(wo, uc, Vec2::ZERO, TransportMode::Radiance) else {
+                break;
+            };
+            if bs.pdf.is_nan() || bs.pdf <= 0.0 {
+                break;
+            }
+            beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
+            if bs.transmission && mat.is_volume() {
+                media = media_t;
+            }
+            ray = hit.spawn_ray(frame.to_world(bs.wi));
+        }
+        l
+    }
+}
+
+/// Renders with classic photon mapping.
+pub fn render(
+    scene: &Scene,
+    camera: &Camera,
+    integrator: &Integrator,
+    settings: &RenderSettings,
+) -> Result<(ImageRgb, RenderStats)> {
+    let ps = &integrator.photon;
+    let start = Instant::now();
+    let n = if ps.photons > 0 {
+        ps.photons
+    } else {
+        DEFAULT_PHOTONS
+    };
+    let ts = TraceSettings {
+        max_depth: integrator.max_depth,
+        roulette: ps.roulette,
+    };
+    let (caustic, global, rays) = build_maps(scene, n, &ts, settings.seed, settings.spectral);
+    let max_r = ps.radius.unwrap_or_else(|| {
+        // 16 pixel footprints at the distance of the scene's centre.
+        let c = 0.5 * (scene.bounds.0 + scene.bounds.1);
+        let o = camera
+            .generate_ray(Vec2::new(settings.width as f32, settings.height as f32) * 0.5)
+            .origin;
+        16.0 * super::sppm::pixel_footprint(camera, settings, o.distance(c))
+    });
+    let maps = PhotonMaps {
+        caustic: PhotonMap::build(caustic),
+        global: PhotonMap::build(global),
+        max_r2: max_r * max_r,
+        rays,
+        emitted: n,
+    };
+    let k = (ps.k_caustic.max(1), ps.k_global.max(1));
+    let (image, mut stats) = render_samples(camera, settings, |ray, _stratum, ctx| {
+        let (ld, vp) =
+            path::camera_path::<Vec3>(scene, ray, integrator.max_depth, (), StopAt::Diffuse, ctx);
+        let Some(vp) = vp else {
+            return ld;
+        };
+        let mut buf = Vec::with_capacity(k.0.max(k.1));
+        ld + vp.beta * maps.indirect(scene, &vp, k, ctx, &mut buf)
+    });
+    stats.time = start.elapsed();
+    stats.rays += maps.rays;
+    stats.photons = maps.emitted;
+    Ok((image, stats))
+}
