@@ -16,6 +16,7 @@
 //! [`write_all_assets`]`(root)` regenerates both into `root/paper/` and `root/scenes/`
 //! (`iris gen-assets assets`).
 
+pub mod bench_scenes;
 pub mod gem;
 pub mod glb;
 mod gltf_json;

@@ -215,6 +215,9 @@ fn run<C: Carrier>(
             })
             .collect();
         photons.clear();
+        // Exact reservation: the buffer's capacity is the largest pass's photon count, not
+        // a doubling of it.
+        photons.reserve_exact(per_chunk.iter().map(|c| c.0.len()).sum());
         for (p, r) in per_chunk {
             photons.extend_from_slice(&p);
             rays += r;

@@ -96,3 +96,13 @@ pub fn white_lambert() -> iris::scene::desc::MaterialDesc {
         ..Default::default()
     }
 }
+
+/// The caustic test scene ([`iris::gen::bench_scenes::caustic_sphere`]), built on the
+/// automatic backend.
+#[allow(dead_code)]
+pub fn caustic_sphere(area: bool) -> (iris::scene::Scene, iris::scene::desc::CameraDesc) {
+    let (desc, cam) = iris::gen::bench_scenes::caustic_sphere(area);
+    let desc = iris::scene::validate::validate(desc).expect("valid caustic scene");
+    let scene = iris::scene::Scene::build(desc, iris::accel::Backend::Auto).expect("build");
+    (scene, cam)
+}
