@@ -11,7 +11,7 @@ use iris::envmap::{luminance, EnvMap, Environment};
 use iris::light::Light;
 use iris::math::Rng;
 use iris::photon::emit::{EmittedPhoton, PhotonEmitter, DISC_MARGIN};
-use iris::scene::desc::{MaterialDesc, MeshDesc, SceneDesc};
+use iris::scene::desc::{ImageDesc, MaterialDesc, MeshDesc, SceneDesc, TextureRef};
 use iris::scene::Scene;
 use std::f32::consts::PI;
 
@@ -36,7 +36,15 @@ fn quad(y: f32, half: f32, down: bool, material: usize) -> MeshDesc {
 }
 
 /// A floor (2 × 2 at y = 0) plus `extra` meshes; materials 0 = grey, then `materials`.
-fn scene(extra: Vec<MeshDesc>, mut materials: Vec<MaterialDesc>) -> Scene {
+fn scene(extra: Vec<MeshDesc>, materials: Vec<MaterialDesc>) -> Scene {
+    scene_with_images(extra, materials, vec![])
+}
+
+fn scene_with_images(
+    extra: Vec<MeshDesc>,
+    mut materials: Vec<MaterialDesc>,
+    images: Vec<ImageDesc>,
+) -> Scene {
     materials.insert(0, MaterialDesc::default());
     let mut meshes = vec![quad(0.0, 1.0, false, 0)];
     meshes.extend(extra);
@@ -44,6 +52,7 @@ fn scene(extra: Vec<MeshDesc>, mut materials: Vec<MaterialDesc>) -> Scene {
         source: "photon_emit".into(),
         meshes,
         materials,
+        images,
         ..Default::default()
     };
     let desc = iris::scene::validate::validate(desc).expect("valid scene");
@@ -279,6 +288,56 @@ fn area_light_single_sided_emits_down_only() {
     let se = 0.236 / (n as f64).sqrt();
     assert!((mean_cos / n as f64 - 2.0 / 3.0).abs() < 5.0 * se);
     assert_mean(&ph, n, flux);
+}
+
+#[test]
+fn area_light_applies_the_emissive_texture_at_the_sampled_uv() {
+    // A 2 × 1 texture, black then white, on a quad with u = (x + h)/2h. Bilinear, repeat
+    // wrap (texture::sample): f(u) = 0.5 − 2u below u = ¼, then 1 − |2u − 1.5|; mean ½.
+    let f = |u: f32| {
+        if u < 0.25 {
+            0.5 - 2.0 * u
+        } else {
+            1.0 - (2.0 * u - 1.5).abs()
+        }
+    };
+    let (le, half, height) = (Vec3::new(2.0, 1.0, 0.5), 0.5f32, 1.2f32);
+    let mut lamp = quad(height, half, true, 1);
+    lamp.uvs = lamp
+        .positions
+        .iter()
+        .map(|p| Vec2::new((p.x + half) / (2.0 * half), (p.z + half) / (2.0 * half)))
+        .collect();
+    let mut mat = emitter(le, false);
+    mat.emissive_texture = Some(TextureRef {
+        image: 0,
+        texcoord: 0,
+    });
+    let img = ImageDesc {
+        name: "bw".into(),
+        width: 2,
+        height: 1,
+        rgba8: std::sync::Arc::new(vec![0, 0, 0, 255, 255, 255, 255, 255]),
+    };
+    let s = scene_with_images(vec![lamp], vec![mat], vec![img]);
+    let e = PhotonEmitter::new(&s);
+    let flux = le * PI * 4.0 * half * half;
+    // total_power uses the emissive factor (documented upper bound for textured emitters).
+    assert!(close(e.total_power(), flux, 1e-5));
+    let n = 40_000;
+    let ph = photons(&e, &s, n, 9);
+    for p in &ph {
+        let u = (p.ray.origin.x + half) / (2.0 * half);
+        // Every photon carries factor flux × f(u); f32 interpolation of uv and the
+        // bilinear weights err by ~1e-6, so 1e-4 of the largest flux is ample.
+        let want = flux * f(u);
+        assert!(
+            (p.power - want).abs().max_element() < 1e-4 * flux.max_element(),
+            "u {u}: {} vs {want}",
+            p.power
+        );
+    }
+    assert_mean(&ph, n, 0.5 * flux);
 }
 
 #[test]
