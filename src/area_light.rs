@@ -47,6 +47,23 @@ pub struct AreaSample {
     pub pdf: f32,
 }
 
+/// A point sampled on an emitter with no receiver (photon emission).
+#[derive(Debug, Clone, Copy)]
+pub struct EmitterPoint {
+    /// Triangle index of the emitter.
+    pub prim: u32,
+    /// The point on the light.
+    pub point: Vec3,
+    /// Barycentric weights of the triangle's vertices 0, 1, 2 at `point`.
+    pub bary: [f32; 3],
+    /// The triangle's unit outward normal.
+    pub normal: Vec3,
+    /// The triangle's area.
+    pub area: f32,
+    /// Probability that this triangle was chosen (so the area density is `prob / area`).
+    pub prob: f32,
+}
+
 impl AreaLights {
     /// Collects emitters: `emission(material)` gives a material's emitted radiance (factor
     /// only; textures modulate it at shading time) and whether it is double-sided.
@@ -96,9 +113,10 @@ impl AreaLights {
         self.total
     }
 
-    /// Samples a point on an emitter for the receiver at `p`: `u` picks the triangle,
-    /// `uv` the point (uniform by area, Turk 1990 square-root mapping).
-    pub fn sample(&self, tris: &[TriangleData], p: Vec3, u: f32, uv: Vec2) -> Option<AreaSample> {
+    /// Samples a point on an emitter, independent of any receiver: `u` picks the triangle
+    /// (by power), `uv` the point (uniform by area, Turk 1990 square-root mapping). `None`
+    /// if there is no emitter or the triangle is degenerate.
+    pub fn sample_point(&self, tris: &[TriangleData], u: f32, uv: Vec2) -> Option<EmitterPoint> {
         if self.prims.is_empty() {
             return None;
         }
@@ -107,16 +125,40 @@ impl AreaLights {
             .partition_point(|&c| c <= u)
             .min(self.prims.len() - 1);
         let prim = self.prims[k];
-        let t = &tris[prim as usize];
+        let t = tris.get(prim as usize)?;
         let su = uv.x.sqrt();
-        let (b1, b2) = (1.0 - su, uv.y * su);
-        let point = t.p[0] * b1 + t.p[1] * b2 + t.p[2] * (1.0 - b1 - b2);
+        let (b0, b1) = (1.0 - su, uv.y * su);
+        let b2 = 1.0 - b0 - b1;
+        let point = t.p[0] * b0 + t.p[1] * b1 + t.p[2] * b2;
         let n = (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]);
         let area = 0.5 * n.length();
-        let normal = n.normalize_or_zero();
+        if area.is_nan() || area <= 0.0 {
+            return None;
+        }
+        Some(EmitterPoint {
+            prim,
+            point,
+            bary: [b0, b1, b2],
+            normal: n.normalize_or_zero(),
+            area,
+            prob: self.prob[k],
+        })
+    }
+
+    /// Samples a point on an emitter for the receiver at `p`: `u` picks the triangle,
+    /// `uv` the point (uniform by area, Turk 1990 square-root mapping).
+    pub fn sample(&self, tris: &[TriangleData], p: Vec3, u: f32, uv: Vec2) -> Option<AreaSample> {
+        let EmitterPoint {
+            prim,
+            point,
+            normal,
+            area,
+            prob,
+            ..
+        } = self.sample_point(tris, u, uv)?;
         let v = point - p;
         let d2 = v.length_squared();
-        if area <= 0.0 || d2 <= 0.0 {
+        if d2 <= 0.0 {
             return None;
         }
         let dist = d2.sqrt();
@@ -131,7 +173,7 @@ impl AreaLights {
             wi,
             dist,
             prim,
-            pdf: self.prob[k] / area * d2 / cos_l,
+            pdf: prob / area * d2 / cos_l,
         })
     }
 

@@ -139,6 +139,16 @@ impl SurfaceHit {
 }
 
 impl Scene {
+    /// A ray leaving the point `p` of triangle `prim` in direction `dir` (photons emitted
+    /// from an emissive triangle), offset by the same rule as [`SurfaceHit::spawn_ray`].
+    pub fn spawn_from_triangle(&self, prim: u32, p: Vec3, dir: Vec3) -> Ray {
+        let [p0, p1, p2] = self.triangle_data[prim as usize].p;
+        let ng = (p1 - p0).cross(p2 - p0).normalize_or(Vec3::Z);
+        let mag = p0.abs().max(p1.abs()).max(p2.abs()).max_element();
+        let side = if dir.dot(ng) >= 0.0 { 1.0 } else { -1.0 };
+        Ray::new(p + ng * (side * mag * OFFSET_SCALE), dir)
+    }
+
     /// Builds the hit record for a raw backend hit.
     fn make_hit(&self, ray: &Ray, t: f32, prim: u32, u: f32, v: f32) -> SurfaceHit {
         let td = &self.triangle_data[prim as usize];

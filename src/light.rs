@@ -60,7 +60,7 @@ pub struct LightSample {
 }
 
 /// KHR_lights_punctual recommended range window: clamp(1 − (d/range)⁴, 0, 1).
-fn range_window(d: f32, range: Option<f32>) -> f32 {
+pub(crate) fn range_window(d: f32, range: Option<f32>) -> f32 {
     match range {
         Some(r) if r > 0.0 => (1.0 - (d / r).powi(4)).clamp(0.0, 1.0),
         _ => 1.0,

@@ -80,7 +80,8 @@ fn sppm_error_falls_with_passes_and_memory_stays_flat() {
     let (scene, cam) = common::caustic_sphere(false);
     let camera = Camera::new(&cam, W, H);
     let (reference, _) = render(&scene, &camera, &sppm(512, 32_000), &settings(999)).unwrap();
-    let mean: f64 = reference.data.iter().map(|p| p.y as f64).sum::<f64>() / reference.data.len() as f64;
+    let mean: f64 =
+        reference.data.iter().map(|p| p.y as f64).sum::<f64>() / reference.data.len() as f64;
     assert!(mean > 0.0);
     let (mut e8, mut e64) = (0.0, 0.0);
     let mut live = Vec::new();
@@ -122,4 +123,3 @@ fn sppm_error_falls_with_passes_and_memory_stays_flat() {
         }
     }
 }
-

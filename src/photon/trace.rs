@@ -24,7 +24,7 @@ use super::emit::EmittedPhoton;
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::integrator::path::{is_diffuse_like, MAX_DELTA_BOUNCES};
 use crate::integrator::shading;
-use crate::math::{Frame, Ray, Rng};
+use crate::math::{Frame, Rng};
 use crate::medium::MediumStack;
 use crate::optics::refract;
 use crate::scene::desc::AlphaMode;
@@ -132,14 +132,6 @@ fn seed_step<C: Carrier>(bsdf: &Bsdf<C>, wo: Vec3, rng: &mut Rng) -> Option<(Vec
     }
 }
 
-/// The KHR_lights_punctual range window clamp(1 − (d/range)⁴, 0, 1).
-fn range_window(d: f32, range: Option<f32>) -> f32 {
-    match range {
-        Some(r) if r > 0.0 => (1.0 - (d / r).powi(4)).clamp(0.0, 1.0),
-        _ => 1.0,
-    }
-}
-
 /// Traces one photon; `store(vertex, lambda)` is called at every non-delta hit with the
 /// photon's wavelengths at that point (hero-only after a dispersive interface). Returns the
 /// number of rays traced.
@@ -163,7 +155,7 @@ pub fn trace<C: Carrier>(
             break;
         };
         if bounces == 0 && photon.range.is_some() {
-            beta *= range_window(hit.t * ray.dir.length(), photon.range);
+            beta *= crate::light::range_window(hit.t, photon.range);
         }
         if let Some(m) = media.current() {
             beta *= scene.materials[m as usize].transmittance_at::<C>(hit.t, &lambda);
@@ -278,9 +270,4 @@ pub fn has_caustic_paths(scene: &Scene, emitter: &super::emit::PhotonEmitter, n:
         });
         found
     })
-}
-
-/// A ray's origin and direction, for tests and tools that follow photons by hand.
-pub fn photon_ray(p: &EmittedPhoton) -> Ray {
-    p.ray
 }
