@@ -77,7 +77,7 @@ fn rmse(a: &ImageRgb, b: &ImageRgb) -> f64 {
 
 #[test]
 fn sppm_error_falls_with_passes_and_memory_stays_flat() {
-    let (scene, cam) = common::caustic_sphere(false);
+    let (scene, cam) = common::caustic_sphere(None);
     let camera = Camera::new(&cam, W, H);
     let (reference, _) = render(&scene, &camera, &sppm(512, 32_000), &settings(999)).unwrap();
     let mean: f64 =

@@ -17,10 +17,11 @@ fn white() -> MaterialDesc {
 }
 /// The caustic test scene: a glass sphere (n 1.5, radius 0.25, centre (0, 0.25, 0)) on a
 /// white (0.8) floor 2 × 2 m, lit from the side either by a point light of 1 cd at
-/// (1, 0.8, 0) or, with `area`, by a 10 × 10 cm emitter facing down at the same place
-/// (radiance 100, so ~1 W-equivalent in the lights' units). Camera above, looking down at
+/// (1, 0.8, 0) or, with `area = Some(h)`, by a 2h × 2h emitter facing down at the same
+/// place with radiance 100·(0.05/h)² (the power of a 10 cm square at radiance 100, π W
+/// in the lights' units, whatever its size). Camera above, looking down at
 /// the sphere's shadow and caustic. Backend auto.
-pub fn caustic_sphere(area: bool) -> (SceneDesc, CameraDesc) {
+pub fn caustic_sphere(area: Option<f32>) -> (SceneDesc, CameraDesc) {
     let mesh = |name: &str, m: shapes::TriMesh, material: usize| MeshDesc {
         name: name.into(),
         positions: m.positions,
@@ -49,15 +50,15 @@ pub fn caustic_sphere(area: bool) -> (SceneDesc, CameraDesc) {
     ];
     let mut lights = Vec::new();
     let light_pos = Vec3::new(1.0, 0.8, 0.0);
-    if area {
+    if let Some(half) = area {
         // A horizontal quad facing down (−Y): the ground plane flipped over.
         let flip = Mat3::from_cols(Vec3::X, -Vec3::Y, -Vec3::Z);
-        let quad = shapes::ground_plane(0.05, 0.05).transformed(flip, light_pos);
+        let quad = shapes::ground_plane(half, half).transformed(flip, light_pos);
         meshes.push(mesh("lamp", quad, 2));
         materials.push(MaterialDesc {
             name: "lamp".into(),
             base_color: glam::Vec4::new(0.0, 0.0, 0.0, 1.0),
-            emissive: Vec3::splat(100.0),
+            emissive: Vec3::splat(100.0 * (0.05 / half) * (0.05 / half)),
             ..white()
         });
     } else {

@@ -100,7 +100,7 @@ pub fn white_lambert() -> iris::scene::desc::MaterialDesc {
 /// The caustic test scene ([`iris::gen::bench_scenes::caustic_sphere`]), built on the
 /// automatic backend.
 #[allow(dead_code)]
-pub fn caustic_sphere(area: bool) -> (iris::scene::Scene, iris::scene::desc::CameraDesc) {
+pub fn caustic_sphere(area: Option<f32>) -> (iris::scene::Scene, iris::scene::desc::CameraDesc) {
     let (desc, cam) = iris::gen::bench_scenes::caustic_sphere(area);
     let desc = iris::scene::validate::validate(desc).expect("valid caustic scene");
     let scene = iris::scene::Scene::build(desc, iris::accel::Backend::Auto).expect("build");
