@@ -134,7 +134,8 @@ impl PhotonMap {
             // Pop the next far subtree that can still hold something closer.
             loop {
                 if sp == 0 {
-                    return heap.v.iter().fold(0.0, |a, &(d2, _)| a.max(d2));
+                    // The max-heap's root holds the largest d².
+                    return heap.v.first().map_or(0.0, |e| e.0);
                 }
                 sp -= 1;
                 let (a, b, plane2) = stack[sp];

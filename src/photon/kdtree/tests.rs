@@ -195,3 +195,17 @@ fn build_is_deterministic_across_thread_counts() {
         }
     }
 }
+
+#[test]
+fn knn_reuses_out_without_reallocating() {
+    let map = PhotonMap::build(point_sets(5000).swap_remove(0).1);
+    let mut out = Vec::with_capacity(50);
+    let (ptr, cap) = (out.as_ptr(), out.capacity());
+    for q in queries(map.photons(), 100) {
+        let far = map.knn(q, 50, f32::INFINITY, &mut out);
+        assert_eq!(out.len(), 50);
+        // The heap root is the returned maximum.
+        assert_eq!(far, out.iter().fold(0.0f32, |a, e| a.max(e.0)));
+    }
+    assert_eq!((out.as_ptr(), out.capacity()), (ptr, cap));
+}
