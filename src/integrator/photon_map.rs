@@ -33,7 +33,8 @@ use crate::math::{Frame, Rng};
 use crate::medium::MediumStack;
 use crate::output::ImageRgb;
 use crate::photon::emit::PhotonEmitter;
-use crate::photon::store::{Photon, PhotonMap};
+use crate::photon::kdtree::PhotonMap;
+use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
 use crate::render::{render_samples, RenderSettings, RenderStats};
 use crate::scene::Scene;
@@ -152,7 +153,9 @@ impl PhotonMaps {
         let r = r2.sqrt();
         let mut sum = Vec3::ZERO;
         for &(d2, i) in buf.iter() {
-            let ph = map.get(i as usize);
+            let Some(ph) = map.get(i as usize) else {
+                continue;
+            };
             let f = bsdf.eval(wo, frame.to_local(ph.wi()), TransportMode::Radiance);
             let wgt = if cone {
                 1.0 - d2.sqrt() / (CONE_K * r)

@@ -3,8 +3,9 @@
 //! & Jensen 2009 with Knaus & Zwicker 2011's radius sequence).
 //!
 //! - [`emit`]: where photons start, from every light type, chosen by power.
-//! - [`store`]: the compact stored photon (32 bytes) and the kd-tree photon map (k-nearest
-//!   and radius queries) and the hash grid (fixed-radius queries).
+//! - [`store`]: the compact stored photon (32 bytes, octahedral direction, flags).
+//! - [`kdtree`]: the photon map, a kd-tree with k-nearest and radius queries.
+//! - [`grid`]: the hash grid for fixed-radius queries, rebuilt every SPPM pass.
 //! - [`trace`]: photon paths through the shared per-hit step in importance mode.
 //!
 //! Units: photon power is flux in the lights' units (cd·sr = lm for punctual lights, nit·m²·sr
@@ -12,5 +13,7 @@
 //! scene's emitted power. World space, metres.
 
 pub mod emit;
+pub mod grid;
+pub mod kdtree;
 pub mod store;
 pub mod trace;
