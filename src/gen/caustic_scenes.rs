@@ -9,29 +9,30 @@
 //! (`scenes/fig5_3_1_rainbow.glb`) is in [`super::rainbow`].
 //!
 //! **`paper/fig4_5_1_caustics.glb`** (the seed paper's Fig. 4.5.1):
-//! - floor: white (0.8) square 1.2 × 1.2 m at y = 0, centred on the origin;
+//! - floor: white (0.8), x from −0.6 to 0.9, z from −0.6 to 0.8, at y = 0;
 //! - sphere: icosphere r = [`SPHERE_RADIUS`] (subdivision 5, 20 480 triangles, radial
 //!   normals), centre [`SPHERE_CENTRE`] (1 mm above the floor), glass IOR 1.5;
 //! - prism: upright equilateral prism (side 0.1, height 0.12, apex towards +Z, as
-//!   [`upright_prism`]) 1 mm above the floor, centroid axis at x = 0.05, z = 0.18, glass
-//!   IOR 1.5;
-//! - light: one point light of [`CAUSTICS_CANDELA`] cd at [`CAUSTICS_LIGHT`], no fill. The
-//!   floor around the objects (≈ 1 m from the light, 40° off its vertical) gets ≈ 2.2 lx,
-//!   the floor below the light 5.3 lx;
-//! - sphere caustic: the light is u = 0.869 m from the sphere's centre; a ball lens has its
-//!   focal length f = nR/(2(n−1)) = 0.15 m from the centre (Hecht, "Optics", 5th ed.,
-//!   §6.2, thick lens with both principal planes at the centre), so the paraxial image of
-//!   the light is at v = 1/(1/f − 1/u) = 0.181 m beyond the centre. The light→centre line
-//!   meets the floor 0.135 m from the centre, at ≈ (0.14, 0, −0.21): between the sphere's
-//!   back and the paraxial focus, where spherical aberration makes the caustic smallest,
-//!   so a bright spot lies inside the sphere's shadow;
-//! - prism caustic: seen from above, the light reaches the prism along ≈ (0.95, 0, 0.31),
-//!   within 1.2° of the minimum-deviation direction in the horizontal plane (entry by the
-//!   −X face, exit by the +X face, as in [`super::spectral_scenes`]); the vertical
-//!   faces keep the rays' descent (0.75 of their length per unit horizontal travel), so
-//!   the refracted light lands on the floor as a band 0…0.11 m beyond the exit face,
-//!   turned ≈ 39° (towards −Z) from the prism's shadow;
-//! - camera: eye (0.8, 0.6, 0.3) → (0.1, 0.03, 0), yfov 45°, 16:9.
+//!   [`upright_prism`]) 1 mm above the floor, centroid axis at [`PRISM_AT`], glass IOR 1.5;
+//! - light: one point light of [`CAUSTICS_CANDELA`] cd at [`CAUSTICS_LIGHT`], no fill; the
+//!   floor gets ≈ 3.5 lx beyond the sphere, ≈ 1.5 lx where the prism's band falls (tested);
+//! - sphere caustic: the light is u = 0.78 m from the sphere's centre, 40° above it. A ball
+//!   lens has its focal length f = nR/(2(n−1)) = 0.15 m from the centre (Hecht, "Optics",
+//!   5th ed., §6.2: a thick lens with both principal planes at the centre), so the paraxial
+//!   image of the light is v = 1/(1/f − 1/u) = 0.186 m beyond the centre. The light→centre
+//!   line meets the floor 0.158 m from the centre: between the sphere's back and the
+//!   paraxial focus, where spherical aberration makes the caustic smallest, so a bright
+//!   spot lies inside the sphere's shadow;
+//! - prism caustic: the light reaches the prism descending at ≈ 28°, and seen from above
+//!   along (0.908, 0, 0.418), i.e. at ≈ 55° incidence on the −X face: near minimum
+//!   deviation for the index n' = √(n² − sin²γ)/cos γ ≈ 1.62 that governs the horizontal
+//!   projection of a ray at elevation γ through vertical faces (Bravais' effective index;
+//!   Born & Wolf, "Principles of Optics", §4.7.2). It leaves by the +X face and lands on the
+//!   floor 4–24 cm from the prism's axis at x 0.42…0.65, z 0.33…0.47 (a band turned ≈ 37°
+//!   towards −Z from the prism's shadow). A steeper light would not do: a 60° prism passes
+//!   nothing once n' sin 30° > 1, i.e. for rays steeper than ≈ 48°;
+//! - camera: eye (1.25, 0.75, 0.1) → (0.3, 0, 0.05), yfov 35°, 16:9, facing the light, so
+//!   the shadows and caustics fall towards it.
 //!
 //! **`scenes/gem_caustics.glb`**: a round brilliant ([`Brilliant::ideal`], Ø
 //! [`GEM_DIAMETER`] = 15 mm, 73 facets) lying on a pavilion main (table tilted 40.75°
@@ -54,12 +55,15 @@ use glam::{DVec3, Vec3};
 
 /// Radius of the glass sphere in Fig. 4.5.1, metres.
 pub const SPHERE_RADIUS: f32 = 0.1;
-/// Centre of the glass sphere in Fig. 4.5.1 (1 mm above the floor).
-pub const SPHERE_CENTRE: Vec3 = Vec3::new(0.05, 0.101, -0.18);
+/// Centre of the glass sphere in Fig. 4.5.1 (1 mm above the floor): 0.6 m from the light
+/// horizontally, 25° from +X towards −Z.
+pub const SPHERE_CENTRE: Vec3 = Vec3::new(0.044, 0.101, -0.254);
+/// Translation of Fig. 4.5.1's prism (its centroid axis): 1 m from the light horizontally.
+pub const PRISM_AT: Vec3 = Vec3::new(0.408, 0.0, 0.418);
 /// Position of Fig. 4.5.1's point light.
-pub const CAUSTICS_LIGHT: Vec3 = Vec3::new(-0.5, 0.75, 0.0);
+pub const CAUSTICS_LIGHT: Vec3 = Vec3::new(-0.5, 0.6, 0.0);
 /// Intensity of Fig. 4.5.1's point light, candela.
-pub const CAUSTICS_CANDELA: f32 = 3.0;
+pub const CAUSTICS_CANDELA: f32 = 5.0;
 /// Girdle diameter of the gem in `gem_caustics.glb`, metres.
 pub const GEM_DIAMETER: f64 = 0.015;
 /// Intensity of the gem's spot light, candela.
@@ -83,7 +87,8 @@ pub fn fig4_5_1_caustics() -> GenScene {
         ..GenScene::default()
     };
     let floor = GenMaterial::diffuse("Floor", Vec3::splat(0.8));
-    add(&mut s, "Floor", ground_plane(0.6, 0.6), floor, None);
+    let floor_at = Some(Vec3::new(0.15, 0.0, 0.1));
+    add(&mut s, "Floor", ground_plane(0.75, 0.7), floor, floor_at);
     let r = SPHERE_RADIUS;
     let glass = GenMaterial::clear_glass("Glass sphere IOR 1.5", 1.5, 2.0 * r);
     let sphere = icosphere(r, 5);
@@ -104,9 +109,9 @@ pub fn fig4_5_1_caustics() -> GenScene {
         intensity: CAUSTICS_CANDELA,
     });
     s.camera = Some(camera(
-        Vec3::new(0.8, 0.6, 0.3),
-        Vec3::new(0.1, 0.03, 0.0),
-        45.0,
+        Vec3::new(1.25, 0.75, 0.1),
+        Vec3::new(0.3, 0.0, 0.05),
+        35.0,
         16.0 / 9.0,
     ));
     s
