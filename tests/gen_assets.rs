@@ -3,7 +3,10 @@
 //! They must equal a fresh regeneration (so they never drift from `src/gen`), parse as
 //! glTF 2.0, carry the expected materials, camera and lights, and their solids must be
 //! closed, manifold and outward-wound; the water must share its side and bottom triangles
-//! with the glass; the prism beam must meet the prism at minimum deviation.
+//! with the glass; the prism beam must meet the prism at minimum deviation. The caustic
+//! scenes (Fig. 4.5.1, the sun-through-a-slit rainbow, the gem under a spot) must have
+//! their delta lights where their docs say, the rainbow's baffle must shade all but the
+//! slit, and violet must land beyond red along the exported dispersion direction.
 //!
 //! To regenerate the committed files after changing the generator:
 //! `IRIS_BLESS_ASSETS=1 cargo test --release --no-default-features --test gen_assets`
@@ -37,6 +40,7 @@ fn expected_iors(name: &str) -> &'static [f32] {
         "fig7_1_spheres.glb" => &[1.2, 1.4, 1.6],
         "fig7_2_bubble.glb" => &[0.8],
         "fig4_4_1_prism.glb" => &[1.5],
+        "fig4_5_1_caustics.glb" => &[1.5, 1.5],
         other => panic!("unexpected scene {other}"),
     }
 }
@@ -747,4 +751,230 @@ fn diamond_is_a_closed_brilliant_with_ior_2_42_and_dispersion_0_36() {
         .filter(|m| m.name().is_some_and(|n| n.starts_with("Light ")))
         .count();
     assert!(lights >= 4, "{lights} small lights");
+}
+
+/// The world-space light nodes of a document: (light, node position, unit direction the
+/// light travels).
+fn lights(doc: &gltf::Document) -> Vec<(gltf::khr_lights_punctual::Light<'_>, DVec3, DVec3)> {
+    doc.nodes()
+        .filter_map(|n| {
+            let l = n.light()?;
+            let (t, r, _) = n.transform().decomposed();
+            let dir = (Quat::from_array(r) * Vec3::NEG_Z).as_dvec3();
+            Some((l, Vec3::from(t).as_dvec3(), dir))
+        })
+        .collect()
+}
+
+#[test]
+fn caustics_figure_has_one_point_light_over_a_white_floor() {
+    use iris::gen::caustic_scenes::{CAUSTICS_CANDELA, SPHERE_CENTRE, SPHERE_RADIUS};
+    let bytes = std::fs::read(committed_dir().join("fig4_5_1_caustics.glb")).expect("read");
+    let (doc, buffers, _) = gltf::import_slice(&bytes).expect("import");
+    let lights = lights(&doc);
+    assert_eq!(lights.len(), 1, "one light, no fill");
+    let (light, at, _) = &lights[0];
+    assert!(matches!(
+        light.kind(),
+        gltf::khr_lights_punctual::Kind::Point
+    ));
+    assert_eq!(light.intensity(), CAUSTICS_CANDELA);
+    // Irradiance E = I cos θ / d² on the floor 0.1 m beyond the sphere (where its caustic
+    // falls) and in the middle of the prism's band (module doc): within the brief's 1–5 lx.
+    let c = SPHERE_CENTRE.as_dvec3();
+    let away = DVec3::new(c.x - at.x, 0.0, c.z - at.z).normalize();
+    for p in [
+        DVec3::new(c.x, 0.0, c.z) + 0.1 * away,
+        DVec3::new(0.53, 0.0, 0.4),
+    ] {
+        let d = *at - p;
+        let e = f64::from(CAUSTICS_CANDELA) * d.y / d.length().powi(3);
+        eprintln!("fig4_5_1: floor irradiance {e:.2} lx at {p}");
+        assert!((1.0..5.0).contains(&e), "floor irradiance {e} lx at {p}");
+    }
+    // The light→centre line meets the floor between the sphere's back and the paraxial
+    // focus f = nR/(2(n−1)) imaged from the light: 1/v = 1/f − 1/u (thick ball lens,
+    // principal planes at the centre).
+    let r = f64::from(SPHERE_RADIUS);
+    let u = (c - *at).length();
+    let v = 1.0 / (1.0 / (1.5 * r / 1.0) - 1.0 / u);
+    let to_floor = c.y / ((*at - c).y / u);
+    assert!(
+        r < to_floor && to_floor < v,
+        "floor {to_floor} m, focus {v} m"
+    );
+    // A fine sphere with radial normals (cos > 0.99999: vertex normals are the normalised
+    // f64 positions, rounded to f32).
+    let sphere = doc
+        .meshes()
+        .find(|m| m.name() == Some("Glass sphere"))
+        .expect("sphere");
+    let prim = sphere.primitives().next().expect("primitive");
+    let reader = prim.reader(|b| Some(&buffers[b.index()]));
+    let normals: Vec<Vec3> = reader
+        .read_normals()
+        .expect("normals")
+        .map(Vec3::from)
+        .collect();
+    let positions: Vec<Vec3> = reader
+        .read_positions()
+        .expect("positions")
+        .map(Vec3::from)
+        .collect();
+    assert!(positions.len() > 10_000);
+    for (p, n) in positions.iter().zip(&normals) {
+        assert!(p.normalize().dot(*n) > 0.99999);
+    }
+    check_closed_manifold("sphere", &read_triangles(&prim, &buffers));
+    check_closed_manifold("prism", &mesh_triangles(&doc, &buffers, "Prism"));
+    let floor = doc
+        .materials()
+        .find(|m| m.name() == Some("Floor"))
+        .expect("floor");
+    assert_eq!(
+        floor.pbr_metallic_roughness().base_color_factor(),
+        [0.8, 0.8, 0.8, 1.0]
+    );
+    assert!(doc.as_json().scenes[0].extras.is_none(), "no environment");
+}
+
+/// Whether the plane point `p` lies in one of the triangles `tris` (all in one plane).
+fn covered(p: DVec3, tris: &[[Vec3; 3]]) -> bool {
+    tris.iter().any(|t| {
+        let [a, b, c] = t.map(|q| q.as_dvec3());
+        let n = (b - a).cross(c - a);
+        let side = |x: DVec3, y: DVec3| (y - x).cross(p - x).dot(n) >= 0.0;
+        side(a, b) && side(b, c) && side(c, a)
+    })
+}
+
+#[test]
+fn rainbow_sun_passes_only_the_slit_and_violet_lands_beyond_red() {
+    use iris::gen::rainbow::{
+        rainbow_landing, rainbow_layout, LAMBDA_RED, LAMBDA_VIOLET, SLIT_WIDTH,
+    };
+    let name = "fig5_3_1_rainbow.glb";
+    let l = rainbow_layout();
+    let desc = iris::load::load_scene(&scenes_dir().join(name)).expect("load");
+    let glass = desc
+        .materials
+        .iter()
+        .find(|m| m.name.contains("Prism N-BK7"))
+        .expect("prism");
+    assert_eq!(
+        glass.ior_model,
+        Some(iris::scene::desc::ExplicitIor::Glass("N-BK7".into()))
+    );
+    assert_eq!((glass.ior, glass.transmission), (1.5168, 1.0));
+    let model = glass.spectral_ior().expect("known glass");
+
+    let (doc, buffers, _) = gltf::import_slice(read_scene_file(name)).expect("import");
+    let sun = lights(&doc)
+        .into_iter()
+        .find(|(l, _, _)| l.name() == Some("Sun"))
+        .expect("sun");
+    assert!(matches!(
+        sun.0.kind(),
+        gltf::khr_lights_punctual::Kind::Directional
+    ));
+    assert!(sun
+        .0
+        .extras()
+        .as_ref()
+        .expect("extras")
+        .get()
+        .contains("\"iris_spectrum\":\"sun\""));
+    // The node rotation is f32: 1e-6 of a unit vector.
+    assert!(
+        (sun.2 - l.dir_in).length() < 1e-6,
+        "sun travels along {}",
+        sun.2
+    );
+    assert!(
+        sun.2.y.abs() < 1e-6,
+        "horizontal sun: no direct light on the floor"
+    );
+    let prism = mesh_triangles(&doc, &buffers, "Prism");
+    check_closed_manifold("prism", &prism);
+    check_normals_follow_winding(&doc, &buffers, "Prism");
+
+    // Shade test: project points along the sun onto the baffle plane. The prism's corners
+    // and the screen's corners (pulled 1 mm inwards so they are strictly inside) are shaded;
+    // the slit centre and ±0.4 of its half-width are open.
+    let baffle = mesh_triangles(&doc, &buffers, "Slit baffle");
+    let onto = |p: DVec3| p - (p - l.slit).dot(l.dir_in) * l.dir_in;
+    let screen = mesh_triangles(&doc, &buffers, "Screen");
+    let centre = mean_corner(&screen);
+    let screen_corners = screen.iter().flatten().map(|p| p.as_dvec3());
+    let inner = screen_corners.map(|p| p + 1e-3 * (centre - p).normalize());
+    for q in inner.chain(prism.iter().flatten().map(|p| p.as_dvec3())) {
+        assert!(covered(onto(q), &baffle), "{q} is lit by the sun");
+    }
+    let across = DVec3::Y.cross(l.dir_in);
+    for k in [-0.4, 0.0, 0.4] {
+        let p = l.slit + k * SLIT_WIDTH / 2.0 * across;
+        assert!(!covered(p, &baffle), "slit closed at {p}");
+    }
+    // The screen faces the beam, centred on the n_d landing point (1e-4 m: the screen's
+    // centre is the rectangle's mean corner in f32).
+    assert!(face_normal(&screen[0]).dot(l.screen_normal) > 1.0 - 1e-9);
+    assert!((centre - DVec3::new(l.screen_centre.x, 0.125, l.screen_centre.z)).length() < 1e-4);
+
+    // Through the loader's N-BK7: violet (430 nm) lands ≥ 1 cm beyond red (656.27 nm) along
+    // the exported dispersion direction, both on the 0.4 m wide screen.
+    let land = |nm: f64| {
+        rainbow_landing(f64::from(model.ior(nm as f32)))
+            .expect("passes")
+            .2
+    };
+    let (violet, red) = (land(LAMBDA_VIOLET), land(LAMBDA_RED));
+    let spread = (violet - red).dot(l.dispersion);
+    eprintln!(
+        "rainbow: violet − red along the dispersion direction {:.2} mm",
+        spread * 1e3
+    );
+    assert!(spread > 0.01, "spread {spread} m");
+    for p in [violet, red] {
+        assert!((p - l.screen_centre).length() < 0.2);
+    }
+}
+
+#[test]
+fn gem_caustics_spot_covers_the_stone_and_little_floor() {
+    use iris::gen::caustic_scenes::{gem_resting, GEM_CANDELA};
+    let name = "gem_caustics.glb";
+    let desc = iris::load::load_scene(&scenes_dir().join(name)).expect("load");
+    let m = desc
+        .materials
+        .iter()
+        .find(|m| m.name.contains("Diamond IOR 2.42"))
+        .expect("diamond");
+    assert_eq!((m.ior, m.dispersion, m.transmission), (2.42, 0.36, 1.0));
+    let (doc, buffers, _) = gltf::import_slice(read_scene_file(name)).expect("import");
+    let tris = mesh_triangles(&doc, &buffers, "Diamond");
+    check_closed_manifold("diamond", &tris);
+    check_normals_follow_winding(&doc, &buffers, "Diamond");
+    let lights = lights(&doc);
+    assert_eq!(lights.len(), 1);
+    let (spot, at, axis) = &lights[0];
+    let gltf::khr_lights_punctual::Kind::Spot {
+        outer_cone_angle, ..
+    } = spot.kind()
+    else {
+        panic!("not a spot light");
+    };
+    assert_eq!(spot.intensity(), GEM_CANDELA);
+    let inside = |p: DVec3| (p - *at).normalize().dot(*axis) > f64::from(outer_cone_angle).cos();
+    for p in tris.iter().flatten() {
+        assert!(inside(p.as_dvec3()), "stone corner {p} outside the cone");
+    }
+    // Floor points 25 mm from the stone's foot (any azimuth) are outside the cone: the
+    // caustics land on unlit floor.
+    let (_, centre) = gem_resting();
+    for k in 0..16 {
+        let a = k as f64 * std::f64::consts::PI / 8.0;
+        let p = DVec3::new(centre.x + 0.025 * a.cos(), 0.0, centre.z + 0.025 * a.sin());
+        assert!(!inside(p), "floor at {p} directly lit");
+    }
+    check_camera_sees_glass(name, &doc, &buffers);
 }

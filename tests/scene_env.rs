@@ -40,6 +40,7 @@ fn scene(extras: Option<Value>) -> GenScene {
             aspect: Some(1.0),
         }),
         extras,
+        light_extras: Vec::new(),
     }
 }
 

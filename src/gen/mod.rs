@@ -12,17 +12,22 @@
 //! - [`scenes`]: the demonstration scenes shipped in `assets/scenes/` (glass of water,
 //!   ruby, prism under the sky, and [`spectral_scenes`]: the prism beam of Fig. 5.3.1 and
 //!   a diamond).
+//! - [`caustic_scenes`]: scenes lit by delta lights for the photon mapper (Fig. 4.5.1's
+//!   sphere and prism caustics, a diamond's caustics) and the [`caustic_scenes::focus_bench`]
+//!   ball-lens test scene; [`rainbow`]: the sun-through-a-slit prism rainbow.
 //!
 //! [`write_all_assets`]`(root)` regenerates both into `root/paper/` and `root/scenes/`
 //! (`iris gen-assets assets`).
 
 pub mod bench_scenes;
+pub mod caustic_scenes;
 pub mod gem;
 pub mod glb;
 mod gltf_json;
 pub mod lathe;
 pub mod model;
 pub mod paper;
+pub mod rainbow;
 pub mod scenes;
 pub mod shapes;
 pub mod sky;

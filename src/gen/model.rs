@@ -28,6 +28,9 @@ pub struct GenScene {
     pub camera: Option<GenCamera>,
     /// Scene `extras` (glTF `scenes[0].extras`), e.g. `{"iris_environment": "sky.hdr"}`.
     pub extras: Option<serde_json::Value>,
+    /// `extras` of `lights[i]` (e.g. `{"iris_spectrum": "sun"}`); missing entries = none.
+    /// Must not be longer than `lights`.
+    pub light_extras: Vec<Option<serde_json::Value>>,
 }
 
 /// A mesh instance: geometry, material and placement.
@@ -320,6 +323,9 @@ impl GenScene {
             if dir.is_some_and(|d| !(finite3(*d) && d.length_squared() > 0.0)) {
                 return Err(bad(&el, "direction must be finite and non-zero"));
             }
+        }
+        if self.light_extras.len() > self.lights.len() {
+            return Err(bad("light extras", "more entries than lights"));
         }
         if let Some(c) = &self.camera {
             let el = format!("camera \"{}\"", c.name);

@@ -13,13 +13,18 @@
 //! | `prism_sky.glb` + `sky.hdr` | an upright 60° prism (side 0.25, height 0.4, apex towards +Z) 1 mm above a 3×3 m checker floor (0.15 m tiles) framed by plain floor out to ±60 m | prism glass IOR 1.5, dispersion 1.0 (Abbe 20); checker 0.8 / 0.55 grey, plain floor 0.7 | scene extras `iris_environment: "sky.hdr"` ([`super::sky`]: sky, ground, four coloured panels, sun at elevation 30° whose light crosses the prism near minimum deviation and lands on the floor on the +Z side) | eye (0.55, 0.3, 0.8) → (−0.05, 0.12, 0.1), yfov 45°, 1:1 |//!
 //! `fig5_3_1_prism_beam.glb` (a white beam through an N-BK7 prism at minimum deviation
 //! onto a screen) and `diamond.glb` (IOR 2.42, dispersion 0.36) are built in
-//! [`super::spectral_scenes`], which documents them.
+//! [`super::spectral_scenes`], which documents them. `fig5_3_1_rainbow.glb` (sunlight
+//! through a slit and an N-BK7 prism, the rainbow as a caustic on a screen) is built in
+//! [`super::rainbow`] and `gem_caustics.glb` (a diamond under a narrow spot light) in
+//! [`super::caustic_scenes`].
 
+use super::caustic_scenes::gem_caustics;
 use super::gem::Brilliant;
 use super::glb::write_glb;
 use super::lathe::{append, Tumbler};
 use super::model::{GenMaterial, GenMesh, GenScene, GenVolume};
 use super::paper::{add_checker, camera, grey_pair, push_material, SceneBuilder};
+use super::rainbow::fig5_3_1_rainbow;
 use super::shapes::{checkerboard, ground_plane, prism, quarter_turn_x, TriMesh};
 use super::sky::sky_hdr;
 use super::spectral_scenes::{diamond, fig5_3_1_prism_beam};
@@ -32,12 +37,14 @@ pub const SKY_FILE: &str = "sky.hdr";
 
 /// File names and builders of the scenes, in the order [`write_scene_assets`] writes them
 /// (the sky map [`SKY_FILE`] comes last).
-pub const SCENES: [(&str, SceneBuilder); 5] = [
+pub const SCENES: [(&str, SceneBuilder); 7] = [
     ("glass_of_water.glb", glass_of_water),
     ("ruby.glb", ruby),
     ("prism_sky.glb", prism_sky),
     ("fig5_3_1_prism_beam.glb", fig5_3_1_prism_beam),
     ("diamond.glb", diamond),
+    ("fig5_3_1_rainbow.glb", fig5_3_1_rainbow),
+    ("gem_caustics.glb", gem_caustics),
 ];
 
 /// The drinking glass of [`glass_of_water`].
