@@ -145,7 +145,11 @@ fn a_paraxial_beam_focuses_at_the_paraxial_focal_length() {
     let f = (N * R / (2.0 * (N - 1.0))) as f64;
     // The screen beyond the focus; lines are followed back to each plane.
     let photons = screen_photons(0.1 * R, 2.2 * R, 6_000_000, "paraxial");
-    assert!(photons.len() > 2000, "only {} photons through the hole", photons.len());
+    assert!(
+        photons.len() > 2000,
+        "only {} photons through the hole",
+        photons.len()
+    );
     let best = best_plane(|s| rms_at(&photons, s), 0.7 * f, 1.3 * f);
     eprintln!(
         "paraxial: {} photons, best plane {best:.4} vs f {f:.4} ({:+.2} %), rms there {:.2e}",
@@ -185,5 +189,8 @@ fn a_wide_beam_focuses_closer_as_exact_ray_tracing_predicts() {
     );
     // Spherical aberration: clearly closer than the paraxial focus.
     assert!(predicted < 0.9 * f);
-    assert!((best / predicted - 1.0).abs() < 0.03, "best {best} vs predicted {predicted}");
+    assert!(
+        (best / predicted - 1.0).abs() < 0.03,
+        "best {best} vs predicted {predicted}"
+    );
 }
