@@ -141,6 +141,7 @@ fn spectral_overhead(c: &mut Criterion) {
                 threads: 2,
                 quiet: true,
                 spectral,
+                time_limit: None,
             };
             let id = if spectral {
                 "spectral_on"

@@ -142,7 +142,7 @@ struct RenderArgs {
     passes: u32,
     /// Time budget in seconds for progressive methods (SPPM stops after the pass that
     /// crosses it; at least one pass).
-    #[arg(long, value_parser = parse_seconds)]
+    #[arg(long, value_parser = parse_seconds, allow_hyphen_values = true)]
     time: Option<f64>,
     /// Photons per SPPM pass (default: one per pixel) or in total for `--method photon`
     /// (default 500000).
@@ -150,10 +150,10 @@ struct RenderArgs {
     photons: Option<u64>,
     /// Initial SPPM gather radius / largest photon-map radius, in scene units (default: from
     /// the pixel footprint).
-    #[arg(long, value_parser = parse_radius)]
+    #[arg(long, value_parser = parse_radius, allow_hyphen_values = true)]
     radius: Option<f32>,
     /// SPPM radius reduction α in (0, 1): r²ᵢ₊₁ = r²ᵢ (i+α)/(i+1) (Knaus & Zwicker 2011).
-    #[arg(long, default_value_t = 2.0 / 3.0, value_parser = parse_alpha)]
+    #[arg(long, default_value_t = 2.0 / 3.0, value_parser = parse_alpha, allow_hyphen_values = true)]
     alpha: f32,
     /// Write the image so far every K SPPM passes.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
@@ -275,13 +275,18 @@ fn run(cli: Cli) -> iris::Result<()> {
                 eprintln!("note: {n}");
             }
             let secs = s.stats.time.as_secs_f64();
+            let work = if s.stats.photons > 0 {
+                format!("{} passes, {} photons", s.stats.passes, s.stats.photons)
+            } else {
+                format!("{} spp", opts.spp)
+            };
             eprintln!(
-                "iris: {} -> {}: {}x{}, {} spp, {} triangles, {}, render {:.2} s (load {:.2} s, build {:.2} s), {:.2} Mrays/s",
+                "iris: {} -> {}: {}x{}, {}, {} triangles, {}, render {:.2} s (load {:.2} s, build {:.2} s), {:.2} Mrays/s",
                 opts.scene.display(),
                 s.output.display(),
                 s.image.width,
                 s.image.height,
-                opts.spp,
+                work,
                 s.triangles,
                 s.backend,
                 secs,

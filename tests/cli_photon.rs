@@ -1,0 +1,237 @@
+//! The photon methods from the command line: `--method sppm|photon|auto`, `--passes`,
+//! `--time`, `--checkpoint`, `--photons`, `--radius`, `--alpha`, `--photon-rr`; bad values
+//! end in a message naming the flag, a non-zero exit and no output.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn iris(args: &[&str], cwd: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_iris"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .expect("run iris")
+}
+
+fn asset(path: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("assets")
+        .join(path)
+        .to_string_lossy()
+        .into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn mean_of_png(p: &Path) -> f64 {
+    let img = image::open(p).expect("png").to_rgb8();
+    img.pixels()
+        .map(|p| p.0.iter().map(|&c| c as f64).sum::<f64>())
+        .sum::<f64>()
+        / (3.0 * img.pixels().len() as f64)
+}
+
+#[test]
+fn sppm_renders_in_passes_and_reports_them() {
+    let dir = common::scratch_dir("cli_sppm");
+    let o = iris(
+        &[
+            "render",
+            &asset("paper/fig4_5_1_caustics.glb"),
+            "--method",
+            "sppm",
+            "--passes",
+            "4",
+            "--photons",
+            "20000",
+            "--size",
+            "64x48",
+            "-q",
+            "-o",
+            "s.exr",
+        ],
+        &dir,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(e.contains("4 passes") && e.contains("80000 photons"), "{e}");
+    assert!(dir.join("s.exr").is_file());
+}
+
+#[test]
+fn photon_method_and_seed_roulette_render() {
+    let dir = common::scratch_dir("cli_photon");
+    for rr in ["throughput", "seed"] {
+        let out = format!("p_{rr}.png");
+        let o = iris(
+            &[
+                "render",
+                &asset("paper/fig4_5_1_caustics.glb"),
+                "--method",
+                "photon",
+                "--photons",
+                "50000",
+                "--photon-rr",
+                rr,
+                "--size",
+                "48x36",
+                "--spp",
+                "2",
+                "-q",
+                "-o",
+                &out,
+            ],
+            &dir,
+        );
+        assert!(o.status.success(), "{rr}: {}", stderr(&o));
+        assert!(mean_of_png(&dir.join(&out)) > 1.0, "{rr}: black image");
+    }
+}
+
+#[test]
+fn checkpoints_write_the_image_while_passes_run_and_time_stops_them() {
+    let dir = common::scratch_dir("cli_checkpoint");
+    // 1 000 000 passes would take hours: the 1.5 s budget must stop it.
+    let o = iris(
+        &[
+            "render",
+            &asset("paper/fig4_5_1_caustics.glb"),
+            "--method",
+            "sppm",
+            "--passes",
+            "1000000",
+            "--time",
+            "1.5",
+            "--checkpoint",
+            "2",
+            "--photons",
+            "5000",
+            "--size",
+            "32x24",
+            "-q",
+            "-o",
+            "c.png",
+        ],
+        &dir,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e = stderr(&o);
+    let passes: u64 = e
+        .split(" passes")
+        .next()
+        .and_then(|s| s.rsplit(' ').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no pass count in {e}"));
+    assert!((1..1_000_000).contains(&passes), "{passes} passes");
+    assert!(dir.join("c.png").is_file());
+    // No temporary files left behind.
+    let names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, vec!["c.png".to_string()]);
+}
+
+#[test]
+fn auto_picks_sppm_for_caustics_and_path_otherwise() {
+    let dir = common::scratch_dir("cli_auto");
+    let o = iris(
+        &[
+            "render",
+            &asset("paper/fig4_5_1_caustics.glb"),
+            "--method",
+            "auto",
+            "--passes",
+            "2",
+            "--photons",
+            "5000",
+            "--size",
+            "32x24",
+            "-q",
+            "-o",
+            "a.png",
+        ],
+        &dir,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("SPPM"), "{}", stderr(&o));
+    // A scene with no transmissive or mirror material: the path tracer.
+    let mut scene = iris::gen::GenScene {
+        name: "diffuse only".into(),
+        ..Default::default()
+    };
+    scene.meshes.push(iris::gen::GenMesh {
+        name: "floor".into(),
+        geometry: iris::gen::shapes::ground_plane(1.0, 1.0),
+        material: 0,
+        translation: None,
+    });
+    scene.materials.push(iris::gen::GenMaterial::diffuse(
+        "white",
+        glam::Vec3::splat(0.8),
+    ));
+    scene.lights.push(iris::gen::GenLight::Point {
+        name: "bulb".into(),
+        position: glam::Vec3::new(0.0, 1.0, 0.0),
+        color: glam::Vec3::ONE,
+        intensity: 1.0,
+    });
+    let plain = dir.join("plain.glb");
+    iris::gen::write_glb(&plain, &scene).unwrap();
+    let o = iris(
+        &[
+            "render",
+            plain.to_str().unwrap(),
+            "--method",
+            "auto",
+            "--size",
+            "32x24",
+            "-q",
+            "-o",
+            "b.png",
+        ],
+        &dir,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("path tracer"), "{}", stderr(&o));
+}
+
+#[test]
+fn bad_photon_flags_fail_cleanly() {
+    let dir = common::scratch_dir("cli_photon_bad");
+    for (flag, value) in [
+        ("--alpha", "1.5"),
+        ("--alpha", "0"),
+        ("--radius", "-1"),
+        ("--radius", "nan"),
+        ("--time", "0"),
+        ("--passes", "0"),
+        ("--photons", "0"),
+        ("--checkpoint", "0"),
+        ("--photon-rr", "fast"),
+        ("--method", "bdpt"),
+    ] {
+        let o = iris(
+            &[
+                "render",
+                &asset("paper/fig4_5_1_caustics.glb"),
+                "--method",
+                "sppm",
+                flag,
+                value,
+                "-o",
+                "x.png",
+            ],
+            &dir,
+        );
+        assert!(!o.status.success(), "{flag} {value} should fail");
+        let e = stderr(&o);
+        assert!(e.contains(flag), "{flag} {value}: {e}");
+        assert!(!e.contains("panicked"), "{e}");
+    }
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+}
