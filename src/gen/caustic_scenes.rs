@@ -54,6 +54,9 @@ use super::shapes::{ground_plane, icosphere, TriMesh};
 use super::spectral_scenes::upright_prism;
 use glam::{DVec3, Vec3};
 
+/// The ball-lens test scene, also reachable from here (see [`super::focus_bench`]).
+pub use super::focus_bench::focus_bench;
+
 /// Radius of the glass sphere in Fig. 4.5.1, metres.
 pub const SPHERE_RADIUS: f32 = 0.1;
 /// Centre of the glass sphere in Fig. 4.5.1 (1 mm above the floor): 0.6 m from the light
