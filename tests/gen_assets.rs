@@ -978,3 +978,27 @@ fn gem_caustics_spot_covers_the_stone_and_little_floor() {
     }
     check_camera_sees_glass(name, &doc, &buffers);
 }
+
+#[test]
+fn focus_bench_loads_with_its_light_plate_and_screen() {
+    use iris::gen::focus_bench::focus_bench;
+    let dir = common::scratch_dir("gen_assets_focus_bench");
+    let path = dir.join("bench.glb");
+    let bench = focus_bench(1.5, 0.01, 0.002, 0.016, 5);
+    std::fs::write(&path, iris::gen::encode_glb(&bench).expect("encode")).expect("write");
+    let desc = iris::load::load_scene(&path).expect("load");
+    assert_eq!(desc.meshes.len(), 3);
+    assert_eq!(desc.cameras.len(), 0);
+    assert!(desc.warnings.is_empty(), "{:?}", desc.warnings);
+    assert!(matches!(
+        desc.lights.as_slice(),
+        [iris::scene::desc::LightDesc::Directional { direction, .. }]
+            if (*direction - Vec3::NEG_Z).length() < 1e-6
+    ));
+    let glass = desc
+        .materials
+        .iter()
+        .find(|m| m.transmission == 1.0)
+        .expect("glass");
+    assert_eq!(glass.ior, 1.5);
+}

@@ -1,9 +1,9 @@
 //! Caustic scenes lit by delta lights (point, spot, directional) for the photon mapper,
-//! shipped (CC0) in `assets/`, and [`focus_bench`], a ball-lens test scene built in memory.
+//! shipped (CC0) in `assets/`.
 //!
 //! Units are metres, +Y up, linear RGB, candela (point, spot) and lux (directional).
 //! Glass is [`GenMaterial::clear_glass`] (smooth, transmission 1, clear volume). No scene
-//! has an environment (black). The path tracer cannot carry light from a delta light
+//! has an environment (black). The ball-lens test scene is [`super::focus_bench`]. The path tracer cannot carry light from a delta light
 //! through glass to a diffuse floor, so it renders these scenes with black shadows where
 //! the caustics belong; the photon mapper draws them. The sun-through-a-slit rainbow
 //! (`scenes/fig5_3_1_rainbow.glb`) is in [`super::rainbow`].
@@ -29,7 +29,8 @@
 //!   projection of a ray at elevation γ through vertical faces (Bravais' effective index;
 //!   Born & Wolf, "Principles of Optics", §4.7.2). It leaves by the +X face and lands on the
 //!   floor 4–24 cm from the prism's axis at x 0.42…0.65, z 0.33…0.47 (a band turned ≈ 37°
-//!   towards −Z from the prism's shadow). A steeper light would not do: a 60° prism passes
+//!   towards −Z from the prism's shadow); light entering the lowest few cm is totally
+//!   reflected by the bottom cap and leaves upwards. A steeper light would not do: a 60° prism passes
 //!   nothing once n' sin 30° > 1, i.e. for rays steeper than ≈ 48°;
 //! - camera: eye (1.25, 0.75, 0.1) → (0.3, 0, 0.05), yfov 35°, 16:9, facing the light, so
 //!   the shadows and caustics fall towards it.
@@ -47,11 +48,14 @@
 
 use super::gem::Brilliant;
 use super::lathe::sin_cos;
-use super::model::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
+use super::model::{GenLight, GenMaterial, GenMesh, GenScene};
 use super::paper::{camera, push_material};
-use super::shapes::{ground_plane, icosphere, quarter_turn_x, TriMesh};
+use super::shapes::{ground_plane, icosphere, TriMesh};
 use super::spectral_scenes::upright_prism;
 use glam::{DVec3, Vec3};
+
+/// The ball-lens test scene, also reachable from here (see [`super::focus_bench`]).
+pub use super::focus_bench::focus_bench;
 
 /// Radius of the glass sphere in Fig. 4.5.1, metres.
 pub const SPHERE_RADIUS: f32 = 0.1;
@@ -161,239 +165,60 @@ pub fn gem_caustics() -> GenScene {
     s
 }
 
-/// Smallest number of segments of [`focus_bench`]'s aperture plate.
-pub const APERTURE_SEGMENTS: u32 = 256;
-
-/// The square plate `[−half, half]²` in the plane z = 0, facing +Z, with a round hole of
-/// radius `hole` (< `half`) at the origin: a ring of `segments` quads (rounded up to a
-/// multiple of 8, so the square's corners are vertices) between the hole's polygon and
-/// the square, both sampled at the angles 2πk/segments.
-pub fn aperture_plate(hole: f64, half: f64, segments: u32) -> TriMesh {
-    let n = segments.max(8).div_ceil(8) * 8;
-    let mut mesh = TriMesh::default();
-    for k in 0..n {
-        let (s, c) = sin_cos(2.0 * std::f64::consts::PI * f64::from(k) / f64::from(n));
-        let outer = if (8 * k) % n == 0 && (8 * k / n) % 2 == 1 {
-            // A corner: exactly (±half, ±half).
-            half * DVec3::new(c.signum(), s.signum(), 0.0)
-        } else if c.abs() >= s.abs() {
-            DVec3::new(half * c.signum(), half * s / c.abs(), 0.0)
-        } else {
-            DVec3::new(half * c / s.abs(), half * s.signum(), 0.0)
-        };
-        mesh.positions
-            .push(DVec3::new(hole * c, hole * s, 0.0).as_vec3());
-        mesh.positions.push(outer.as_vec3());
-        mesh.normals.extend([Vec3::Z, Vec3::Z]);
-        let (i0, o0) = (2 * k, 2 * k + 1);
-        let (i1, o1) = (2 * ((k + 1) % n), 2 * ((k + 1) % n) + 1);
-        // Radial × tangential (counter-clockwise) = +Z.
-        mesh.indices.push([i0, o0, o1]);
-        mesh.indices.push([i0, o1, i1]);
-    }
-    mesh
-}
-
-/// A ball-lens focus bench: a glass sphere of index `n` and radius `radius` centred at the
-/// origin (icosphere with `subdivisions` levels, clamped to 7, radial vertex normals); a
-/// directional light of 1 lx travelling along −Z; an opaque black (0) plate at
-/// z = +2·radius, 6·radius square, facing +Z, with a hole of radius `aperture` on the axis
-/// ([`aperture_plate`], [`APERTURE_SEGMENTS`] segments; `aperture` is clamped to
-/// [radius/1000, 2.5·radius]); a white (0.8) square screen 5·radius wide at
-/// z = −`screen_distance`, facing +Z (the plate shades all of it but the light through the
-/// hole). No camera.
-///
-/// The paraxial focus is f = n·R / (2(n − 1)) from the centre (Hecht, "Optics", §6.2).
-/// Tessellation: the icosphere's flat triangles lie inside the sphere by at most the
-/// sagitta ≈ e²/8R of an edge e ≈ 1.1·R/2ˢ; with the interpolated radial normals, rays
-/// at 0.1R and 0.3R cross the axis within 2.3·10⁻⁴·f of the exact sphere's crossing at
-/// s = 5 and 6.3·10⁻⁵·f at s = 6 (unit test below, n = 1.5). Use s ≥ 5.
-/// Invalid `n`, `radius` or `screen_distance` (non-finite, ≤ 0) give non-finite or
-/// degenerate geometry that [`GenScene::validate`] rejects.
-pub fn focus_bench(
-    n: f32,
-    radius: f32,
-    aperture: f32,
-    screen_distance: f32,
-    subdivisions: u32,
-) -> GenScene {
-    let r = f64::from(radius);
-    // max/min, not clamp: clamp panics when the bounds are NaN (radius NaN).
-    let hole = f64::from(aperture).max(r / 1000.0).min(2.5 * r);
-    let mut s = GenScene {
-        name: format!("Focus bench: ball lens n = {n}, R = {radius} m"),
-        ..GenScene::default()
-    };
-    let glass = GenMaterial::clear_glass(&format!("Glass IOR {n}"), n, 2.0 * radius);
-    add(
-        &mut s,
-        "Sphere",
-        icosphere(radius, subdivisions),
-        glass,
-        None,
-    );
-    let plate = aperture_plate(hole, 3.0 * r, APERTURE_SEGMENTS);
-    let black = GenMaterial::diffuse("Plate", Vec3::ZERO);
-    let at = Some(Vec3::new(0.0, 0.0, 2.0 * radius));
-    add(&mut s, "Aperture plate", plate, black, at);
-    let screen = ground_plane(2.5 * radius, 2.5 * radius).transformed(quarter_turn_x(), Vec3::ZERO);
-    let white = GenMaterial::diffuse("Screen", Vec3::splat(0.8));
-    let at = Some(Vec3::new(0.0, 0.0, -screen_distance));
-    add(&mut s, "Screen", screen, white, at);
-    s.lights.push(GenLight::Directional {
-        name: "Sun".into(),
-        direction: Vec3::NEG_Z,
-        color: Vec3::ONE,
-        intensity: 1.0,
-    });
-    s
-}
-
-/// A camera for [`focus_bench`] scenes: looks at the screen's centre from `distance` in
-/// front of it, 30° off the axis (above); it sees past the plate when `distance`/2 exceeds
-/// 3·radius.
-pub fn focus_bench_camera(screen_distance: f32, distance: f32) -> GenCamera {
-    let target = Vec3::new(0.0, 0.0, -screen_distance);
-    let eye = target + distance * Vec3::new(0.0, 0.5, 0.75f32.sqrt());
-    camera(eye, target, 30.0, 1.0)
-}
-
 #[cfg(test)]
 mod tests {
+    use super::super::focus_bench::tests::{hit_mesh, refract};
     use super::*;
 
     #[test]
-    fn aperture_plate_covers_the_square_minus_the_hole() {
-        // Area = 4h² − (polygon area of the hole) exactly up to f32 rounding: the ring of
-        // quads tiles the square without gaps when the corners are vertices (1e-5 relative:
-        // f32 positions of size ≤ 1 give ≤ 1e-7 relative error per triangle).
-        let (hole, half) = (0.02, 0.3);
-        let m = aperture_plate(hole, half, 250);
-        assert_eq!(m.triangle_count(), 2 * 256);
-        let mut area = 0.0;
-        for t in &m.indices {
-            let [a, b, c] = t.map(|i| m.positions[i as usize].as_dvec3());
-            let n = (b - a).cross(c - a);
-            assert!(n.z > 0.0, "faces +Z");
-            area += n.z / 2.0;
-        }
-        let polygon = 256.0 / 2.0 * hole * hole * (2.0 * std::f64::consts::PI / 256.0).sin();
-        let want = 4.0 * half * half - polygon;
-        assert!((area / want - 1.0).abs() < 1e-5, "{area} vs {want}");
-    }
-
-    #[test]
-    fn focus_bench_places_plate_sphere_and_screen() {
-        let s = focus_bench(1.5, 0.01, 0.002, 0.02, 5);
-        s.validate().expect("valid");
-        let z = |name: &str| {
-            let m = s.meshes.iter().find(|m| m.name == name).expect(name);
-            m.translation.unwrap_or(Vec3::ZERO).z
-        };
-        assert_eq!(
-            (z("Sphere"), z("Aperture plate"), z("Screen")),
-            (0.0, 0.02, -0.02)
+    fn fig4_5_1_prism_throws_its_band_where_the_doc_says() {
+        // Rays from the light to a 6 × 5 grid on the prism's −X face, through the mesh
+        // (flat facets, n = 1.5, total internal reflection followed): at least 2/3 must leave
+        // into the floor in the doc's box (x 0.42…0.65, z 0.33…0.47, with 1 cm slack) outside the
+        // prism's footprint (> 3 cm from its axis; the footprint's circumradius is 5.8 cm
+        // but the band lies off its +X face, whose distance from the axis is 2.9 cm).
+        let n = 1.5;
+        let prism = upright_prism(0.1, 0.001, 0.12).transformed(glam::Mat3::IDENTITY, PRISM_AT);
+        let light = CAUSTICS_LIGHT.as_dvec3();
+        let at = PRISM_AT.as_dvec3();
+        let (a, c) = (
+            DVec3::new(-0.05, 0.0, -0.0289),
+            DVec3::new(0.0, 0.0, 0.0577),
         );
-        // The sphere's vertices all lie on the sphere (f32: 1e-6 relative).
-        let sphere = &s.meshes[0].geometry;
-        for p in &sphere.positions {
-            assert!((p.length() / 0.01 - 1.0).abs() < 1e-6);
-        }
-        // The screen faces +Z and is no wider than the plate, so the plate shades it.
-        let screen = &s.meshes[2].geometry;
-        let [a, b, c] = screen.indices[0].map(|i| screen.positions[i as usize]);
-        assert!((b - a).cross(c - a).z > 0.0);
-        let wide = screen.positions.iter().map(|p| p.x.abs().max(p.y.abs()));
-        assert!(wide.fold(0.0, f32::max) < 0.03);
-        assert!(
-            matches!(s.lights[0], GenLight::Directional { direction, .. } if direction == Vec3::NEG_Z)
-        );
-        // Bad input is rejected by validation, not a panic.
-        assert!(focus_bench(1.5, f32::NAN, 0.002, 0.02, 5)
-            .validate()
-            .is_err());
-    }
-
-    /// Vector Snell's law (pbrt-v4 §9.3): `n` faces against `d`, `eta` = n_i / n_t.
-    fn refract(d: DVec3, n: DVec3, eta: f64) -> DVec3 {
-        let cos_i = -d.dot(n);
-        let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
-        eta * d + (eta * cos_i - (1.0 - sin2_t).sqrt()) * n
-    }
-
-    /// Nearest hit of `o + t·d` (t > 1e-9) on `m`: (t, interpolated unit normal); Möller &
-    /// Trumbore (1997), brute force.
-    fn hit_mesh(m: &TriMesh, o: DVec3, d: DVec3) -> Option<(f64, DVec3)> {
-        let mut best: Option<(f64, DVec3)> = None;
-        for t in &m.indices {
-            let [a, b, c] = t.map(|i| m.positions[i as usize].as_dvec3());
-            let (e1, e2) = (b - a, c - a);
-            let p = d.cross(e2);
-            let det = e1.dot(p);
-            if det.abs() < 1e-15 {
-                continue;
-            }
-            let s = o - a;
-            let u = s.dot(p) / det;
-            let q = s.cross(e1);
-            let v = d.dot(q) / det;
-            let dist = e2.dot(q) / det;
-            if u < 0.0 || v < 0.0 || u + v > 1.0 || dist <= 1e-9 {
-                continue;
-            }
-            if best.is_none_or(|(b, _)| dist < b) {
-                let [na, nb, nc] = t.map(|i| m.normals[i as usize].as_dvec3());
-                best = Some((dist, ((1.0 - u - v) * na + u * nb + v * nc).normalize()));
-            }
-        }
-        best
-    }
-
-    /// z where a ray coming down −Z at (x, y) crosses closest to the axis after the lens
-    /// `hit` (entry and exit through the same surface, index `n`).
-    fn axis_crossing(hit: &dyn Fn(DVec3, DVec3) -> (f64, DVec3), x: f64, y: f64, n: f64) -> f64 {
-        let (o, d) = (DVec3::new(x, y, 10.0), DVec3::NEG_Z);
-        let (t, nrm) = hit(o, d);
-        let (o, d) = (o + t * d, refract(d, nrm, 1.0 / n));
-        let (t, nrm) = hit(o, d);
-        let (o, d) = (o + t * d, refract(d, -nrm, n));
-        let t = -(o.x * d.x + o.y * d.y) / (d.x * d.x + d.y * d.y);
-        o.z + t * d.z
-    }
-
-    #[test]
-    fn tessellated_ball_lens_focuses_within_half_a_percent_of_the_sphere() {
-        // Rays at heights 0.1R and 0.3R, at azimuths off the icosahedron's symmetry
-        // planes, through the icosphere (interpolated normals) and the exact sphere:
-        // the axis crossings agree to 0.5 % of f = nR/(2(n − 1)) (the brief's tolerance).
-        let (n, r) = (1.5, 1.0);
-        let f = n * r / (2.0 * (n - 1.0));
-        let sphere = |o: DVec3, d: DVec3| {
-            let b = o.dot(d);
-            let t = -b - (b * b - o.length_squared() + r * r).sqrt();
-            let t = if t > 1e-9 {
-                t
-            } else {
-                -b + (b * b - o.length_squared() + r * r).sqrt()
-            };
-            (t, (o + t * d).normalize())
-        };
-        for s in [5, 6] {
-            let mesh = icosphere(r as f32, s);
-            let on_mesh = |o: DVec3, d: DVec3| hit_mesh(&mesh, o, d).expect("hits");
-            let mut worst: f64 = 0.0;
-            for h in [0.1, 0.3] {
-                for a in [0.3f64, 1.1, 2.0] {
-                    let (x, y) = (h * a.cos(), h * a.sin());
-                    let exact = axis_crossing(&sphere, x, y, n);
-                    let tess = axis_crossing(&on_mesh, x, y, n);
-                    assert!(exact < 0.0 && -exact > r && -exact < f, "{exact}");
-                    worst = worst.max((tess - exact).abs() / f);
+        let (mut landed, mut up) = (0, 0);
+        for i in 1..=6 {
+            for j in 1..=5 {
+                let q = at + a + (c - a) * (f64::from(i) / 7.0) + DVec3::Y * 0.02 * f64::from(j);
+                let d = (q - light).normalize();
+                let (t, nrm) = hit_mesh(&prism, light, d).expect("hits the prism");
+                assert!(nrm.x < -0.8, "enters by the −X face");
+                let (mut o, mut d) = (light + t * d, refract(d, nrm, 1.0 / n));
+                for _ in 0..4 {
+                    let (t, nrm) = hit_mesh(&prism, o + 1e-7 * d, d).expect("leaves");
+                    o += (t + 1e-7) * d;
+                    let cos_i = d.dot(nrm);
+                    if n * n * (1.0 - cos_i * cos_i) >= 1.0 {
+                        d -= 2.0 * cos_i * nrm;
+                        continue;
+                    }
+                    let out = refract(d, -nrm, n);
+                    if out.y >= 0.0 {
+                        // Totally reflected by the bottom cap first, then out and up.
+                        up += 1;
+                        break;
+                    }
+                    let p = o - o.y / out.y * out;
+                    let axis = ((p.x - at.x).powi(2) + (p.z - at.z).powi(2)).sqrt();
+                    let in_box = (0.41..0.66).contains(&p.x) && (0.32..0.48).contains(&p.z);
+                    assert!(in_box && axis > 0.03, "lands at {p}");
+                    landed += 1;
+                    break;
                 }
             }
-            eprintln!("icosphere s = {s}: worst focus error {:.2e} of f", worst);
-            assert!(worst < 5e-3, "s = {s}: {worst}");
         }
+        eprintln!("fig4_5_1 prism: {landed} of 30 rays land in the band, {up} leave upwards");
+        assert_eq!(landed + up, 30);
+        assert!(landed >= 20, "{landed} land");
     }
 
     #[test]

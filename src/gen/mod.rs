@@ -13,14 +13,15 @@
 //!   ruby, prism under the sky, and [`spectral_scenes`]: the prism beam of Fig. 5.3.1 and
 //!   a diamond).
 //! - [`caustic_scenes`]: scenes lit by delta lights for the photon mapper (Fig. 4.5.1's
-//!   sphere and prism caustics, a diamond's caustics) and the [`caustic_scenes::focus_bench`]
-//!   ball-lens test scene; [`rainbow`]: the sun-through-a-slit prism rainbow.
+//!   sphere and prism caustics, a diamond's caustics); [`rainbow`]: the sun-through-a-slit
+//!   prism rainbow; [`focus_bench`]: the ball-lens test scene (not an asset).
 //!
 //! [`write_all_assets`]`(root)` regenerates both into `root/paper/` and `root/scenes/`
 //! (`iris gen-assets assets`).
 
 pub mod bench_scenes;
 pub mod caustic_scenes;
+pub mod focus_bench;
 pub mod gem;
 pub mod glb;
 mod gltf_json;
