@@ -875,8 +875,11 @@ fn rainbow_sun_passes_only_the_slit_and_violet_lands_beyond_red() {
         .expect("sun");
     assert!(matches!(
         sun.0.kind(),
-        gltf::khr_lights_punctual::Kind::Directional
+        gltf::khr_lights_punctual::Kind::Spot { .. }
     ));
+    // The spot sits SUN_DISTANCE upstream of the slit, on the beam axis.
+    let expect = l.slit - iris::gen::rainbow::SUN_DISTANCE * l.dir_in;
+    assert!((sun.1 - expect).length() < 1e-5, "sun at {}", sun.1);
     assert!(sun
         .0
         .extras()
