@@ -43,7 +43,10 @@ fn photon_methods_are_deterministic_across_thread_counts() {
             let a = image(method, 1, 5, spectral);
             let b = image(method, 2, 5, spectral);
             assert!(a.iter().all(|p| p.is_finite()));
-            assert!(a == b, "{method:?} spectral {spectral}: 1 and 2 threads differ");
+            assert!(
+                a == b,
+                "{method:?} spectral {spectral}: 1 and 2 threads differ"
+            );
             // And the seed matters (the test could fail).
             let c = image(method, 2, 6, spectral);
             assert!(a != c, "{method:?}: seed ignored");

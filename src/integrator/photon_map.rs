@@ -52,6 +52,15 @@ const CHUNK: u64 = 4096;
 /// Most specular bounces a final-gather ray follows.
 const GATHER_SPECULAR: u32 = 16;
 
+/// Where a map is queried: a position and its BSDF in the local frame.
+struct GatherPoint {
+    p: Vec3,
+    frame: Frame,
+    /// Direction toward the viewer, local.
+    wo: Vec3,
+    bsdf: crate::bsdf::Bsdf<Vec3>,
+}
+
 /// The two photon maps.
 pub struct PhotonMaps {
     /// L S+ D photons.
@@ -125,23 +134,20 @@ pub fn build_maps(
 }
 
 impl PhotonMaps {
-    /// Reflected radiance at a visible point from the k nearest photons of `map` within the
-    /// largest radius, cone-filtered (`cone`) or not.
+    /// Reflected radiance at `at` from the k nearest photons of `map` within the largest
+    /// radius, cone-filtered (`cone`) or not.
     fn estimate(
         &self,
         map: &PhotonMap,
         k: usize,
-        vp_p: Vec3,
-        frame: &Frame,
-        wo: Vec3,
-        bsdf: &crate::bsdf::Bsdf<Vec3>,
+        at: &GatherPoint,
         cone: bool,
         buf: &mut Vec<(f32, u32)>,
     ) -> Vec3 {
         if map.is_empty() {
             return Vec3::ZERO;
         }
-        let found = map.knn(vp_p, k, self.max_r2, buf);
+        let found = map.knn(at.p, k, self.max_r2, buf);
         if buf.is_empty() {
             return Vec3::ZERO;
         }
@@ -156,7 +162,9 @@ impl PhotonMaps {
             let Some(ph) = map.get(i as usize) else {
                 continue;
             };
-            let f = bsdf.eval(wo, frame.to_local(ph.wi()), TransportMode::Radiance);
+            let f = at
+                .bsdf
+                .eval(at.wo, at.frame.to_local(ph.wi()), TransportMode::Radiance);
             let wgt = if cone {
                 1.0 - d2.sqrt() / (CONE_K * r)
             } else {
@@ -181,16 +189,13 @@ impl PhotonMaps {
         ctx: &mut Context,
         buf: &mut Vec<(f32, u32)>,
     ) -> Vec3 {
-        let mut l = self.estimate(
-            &self.caustic,
-            k.0,
-            vp.p,
-            &vp.frame,
-            vp.wo,
-            &vp.bsdf,
-            true,
-            buf,
-        );
+        let at = GatherPoint {
+            p: vp.p,
+            frame: vp.frame,
+            wo: vp.wo,
+            bsdf: vp.bsdf,
+        };
+        let mut l = self.estimate(&self.caustic, k.0, &at, true, buf);
         // Final gather.
         let uc = ctx.rng.next_f32();
         let u = Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
@@ -227,7 +232,13 @@ impl PhotonMaps {
             let frame = Frame::from_normal(hit.ns);
             let wo = frame.to_local(hit.wo);
             if !bsdf.is_delta() {
-                l += beta * self.estimate(&self.global, k.1, hit.p, &frame, wo, &bsdf, false, buf);
+                let at = GatherPoint {
+                    p: hit.p,
+                    frame,
+                    wo,
+                    bsdf,
+                };
+                l += beta * self.estimate(&self.global, k.1, &at, false, buf);
                 break;
             }
             let uc = ctx.rng.next_f32();
