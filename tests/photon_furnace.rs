@@ -156,3 +156,66 @@ fn photon_map_with_final_gather_matches_the_analytic_room() {
         expected()
     );
 }
+
+/// A closed white box (a cube seen from inside, albedo ρ) around a point light: every photon
+/// stays inside until absorbed, so the flux arriving at the walls summed over all bounces is
+/// Φ (1 + ρ + ρ² + …) = Φ/(1 − ρ), whatever the box's shape. The photons stored by the
+/// tracer (one per wall hit) must carry exactly that on average: this checks emission,
+/// the Lambertian bounce and Russian roulette together.
+#[test]
+fn photons_in_a_closed_white_box_carry_the_geometric_series_of_the_light_power() {
+    use iris::photon::trace::{trace, Roulette, TraceSettings};
+    let cube = iris::gen::shapes::cuboid(Vec3::new(1.0, 0.7, 0.5));
+    let white = MaterialDesc {
+        base_color: glam::Vec4::new(RHO, RHO, RHO, 1.0),
+        ..common::white_lambert()
+    };
+    let desc = SceneDesc {
+        source: "white box".into(),
+        meshes: vec![MeshDesc {
+            name: "box".into(),
+            positions: cube.positions,
+            normals: cube.normals,
+            indices: cube.indices,
+            material: Some(0),
+            ..Default::default()
+        }],
+        materials: vec![white],
+        lights: vec![LightDesc::Point {
+            name: "bulb".into(),
+            position: Vec3::new(0.3, -0.2, 0.1),
+            color: Vec3::ONE,
+            intensity: 1.0,
+            range: None,
+            spectrum: None,
+        }],
+        ..Default::default()
+    };
+    let desc = iris::scene::validate::validate(desc).expect("valid scene");
+    let scene = Scene::build(desc, iris::accel::Backend::Auto).expect("build");
+    let emitter = PhotonEmitter::new(&scene);
+    let settings = TraceSettings {
+        max_depth: 1000,
+        roulette: Roulette::Throughput,
+    };
+    let n = 200_000u64;
+    let mut per_photon = Vec::with_capacity(n as usize);
+    for i in 0..n {
+        let mut rng = iris::math::Rng::new(&[11, i]);
+        let ul = rng.next_f32();
+        let up = Vec2::new(rng.next_f32(), rng.next_f32());
+        let ud = Vec2::new(rng.next_f32(), rng.next_f32());
+        let ph = emitter.emit(&scene, ul, up, ud).expect("photon");
+        let mut sum = 0.0f64;
+        trace::<Vec3>(&scene, &ph, (), &settings, &mut rng, |v, _| sum += v.power.y as f64);
+        per_photon.push(sum);
+    }
+    let mean = per_photon.iter().sum::<f64>() / n as f64;
+    let var = per_photon.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+    let se = (var / n as f64).sqrt();
+    let phi = 4.0 * std::f64::consts::PI;
+    let expected = phi / (1.0 - RHO as f64);
+    eprintln!("stored flux per photon {mean:.4} ± {se:.4}, expected Φ/(1−ρ) = {expected:.4}");
+    // 5 standard errors (≈ 0.3 % here) plus f32 accumulation.
+    assert!((mean - expected).abs() < 5.0 * se + 1e-4 * expected, "{mean} vs {expected}");
+}
