@@ -207,7 +207,9 @@ fn photons_in_a_closed_white_box_carry_the_geometric_series_of_the_light_power()
         let ud = Vec2::new(rng.next_f32(), rng.next_f32());
         let ph = emitter.emit(&scene, ul, up, ud).expect("photon");
         let mut sum = 0.0f64;
-        trace::<Vec3>(&scene, &ph, (), &settings, &mut rng, |v, _| sum += v.power.y as f64);
+        trace::<Vec3>(&scene, &ph, (), &settings, &mut rng, |v, _| {
+            sum += v.power.y as f64
+        });
         per_photon.push(sum);
     }
     let mean = per_photon.iter().sum::<f64>() / n as f64;
@@ -217,5 +219,8 @@ fn photons_in_a_closed_white_box_carry_the_geometric_series_of_the_light_power()
     let expected = phi / (1.0 - RHO as f64);
     eprintln!("stored flux per photon {mean:.4} ± {se:.4}, expected Φ/(1−ρ) = {expected:.4}");
     // 5 standard errors (≈ 0.3 % here) plus f32 accumulation.
-    assert!((mean - expected).abs() < 5.0 * se + 1e-4 * expected, "{mean} vs {expected}");
+    assert!(
+        (mean - expected).abs() < 5.0 * se + 1e-4 * expected,
+        "{mean} vs {expected}"
+    );
 }

@@ -1,7 +1,9 @@
 //! Every glTF/GLB and OBJ scene in the shared third-party assets renders (small, few
 //! samples) on the default backend without NaN or infinite pixels, and not entirely black:
 //! with `--method whitted` as the file is lit, and with `--method path` under a uniform
-//! environment as well (so every BSDF, environment sampling and MIS run on every file).
+//! environment as well (so every BSDF, environment sampling and MIS run on every file), and
+//! with `--method sppm` and `--method photon` under that environment (photons from every
+//! light type, including the environment, through every file's materials).
 
 mod common;
 
@@ -9,7 +11,7 @@ use glam::Vec3;
 use iris::accel::Backend;
 use iris::app::{render_command, RenderOptions};
 use iris::envmap::Environment;
-use iris::integrator::Method;
+use iris::integrator::{Method, PhotonSettings};
 use iris::output::{read_exr, DisplayOptions};
 use std::path::{Path, PathBuf};
 
@@ -40,18 +42,22 @@ fn every_shared_scene_renders_finite_pixels() {
     scenes(&shared, &mut files);
     assert!(files.len() >= 20, "found only {} scenes", files.len());
     let dir = common::scratch_dir("render_assets");
+    let env = Some(Environment::Uniform {
+        radiance: Vec3::splat(0.5),
+    });
+    let photons = |photons, passes| PhotonSettings {
+        photons,
+        passes,
+        ..PhotonSettings::default()
+    };
     let runs = [
-        (Method::Whitted, 2, None),
-        (
-            Method::Path,
-            4,
-            Some(Environment::Uniform {
-                radiance: Vec3::splat(0.5),
-            }),
-        ),
+        (Method::Whitted, 2, None, PhotonSettings::default()),
+        (Method::Path, 4, env.clone(), PhotonSettings::default()),
+        (Method::Sppm, 1, env.clone(), photons(4000, 2)),
+        (Method::Photon, 1, env.clone(), photons(20_000, 1)),
     ];
     for (i, scene) in files.iter().enumerate() {
-        for (method, spp, env) in runs.clone() {
+        for (method, spp, env, photon) in runs.clone() {
             let out = dir.join(format!("{i}-{method:?}.exr"));
             let opts = RenderOptions {
                 scene: scene.clone(),
@@ -62,7 +68,7 @@ fn every_shared_scene_renders_finite_pixels() {
                 max_depth: 64,
                 time_limit: None,
                 checkpoint: None,
-                photon: Default::default(),
+                photon,
                 accel: Backend::Auto,
                 seed: 1,
                 threads: 2,
