@@ -15,7 +15,15 @@
 //! `RTCRayHit` (80 bytes) while the Embree 4.4 library writes 96 (`instPrimID` at byte 80),
 //! i.e. 4 bytes past its stack value on every hit; see `src/accel/embree.rs`.
 //!
-//! Run: `cargo bench --bench accel` (add `-- --quick` for a short run).
+//! Group `shared_scenes/<scene>/<backend>/<set>` (issue 6): the same layer on real scenes
+//! from `../shared/assets` (or `IRIS_SHARED_ASSETS`; SKIPPED when absent), with
+//! [`SHARED_RAYS`] rays per set: **coherent** = the scene's camera rays (first camera, or
+//! the auto-framing one) over a 256 × 256 image in 8×8 tiles; **incoherent** = origins
+//! uniform in the scene's bounding box, directions uniform on the sphere, in random order.
+//! The hit fraction and the share of rays on which Embree and the BVH agree are printed.
+//!
+//! Run: `cargo bench --bench accel` (add `-- --quick` for a short run;
+//! `cargo bench --bench accel -- shared_scenes` for the real scenes alone).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::Vec3;
@@ -318,5 +326,145 @@ mod embree {
     }
 }
 
-criterion_group!(benches, backends);
+/// Rays per set on the shared scenes (256²).
+const SHARED_RAYS: usize = 1 << 16;
+
+/// The scene's camera rays over a 256 × 256 image, traced in 8×8 tiles.
+fn camera_rays(scene: &iris::scene::Scene) -> Vec<(Vec3, Vec3)> {
+    let side = (SHARED_RAYS as f64).sqrt() as u32;
+    let (desc, _) = iris::app::choose_camera(scene, None, 1.0).expect("camera");
+    let cam = iris::camera::Camera::new(&desc, side, side);
+    let mut rays = Vec::with_capacity(SHARED_RAYS);
+    for ty in (0..side).step_by(8) {
+        for tx in (0..side).step_by(8) {
+            for y in ty..ty + 8 {
+                for x in tx..tx + 8 {
+                    let r = cam.generate_ray(glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
+                    rays.push((r.origin, r.dir));
+                }
+            }
+        }
+    }
+    rays
+}
+
+/// Origins uniform in the bounding box `(lo, hi)`, unit directions uniform on the sphere.
+fn box_rays(lo: Vec3, hi: Vec3) -> Vec<(Vec3, Vec3)> {
+    let mut rng = Rng(0xB0C5_5EED);
+    (0..SHARED_RAYS)
+        .map(|_| {
+            let o = lo + (hi - lo) * Vec3::new(rng.f32(), rng.f32(), rng.f32());
+            let z = 1.0 - 2.0 * rng.f32();
+            let phi = std::f32::consts::TAU * rng.f32();
+            let r = (1.0 - z * z).max(0.0).sqrt();
+            (o, Vec3::new(r * phi.cos(), r * phi.sin(), z))
+        })
+        .collect()
+}
+
+/// `Scene::intersect` throughput per backend on real scenes (see the module docs).
+fn shared_scenes(c: &mut Criterion) {
+    let dir = std::env::var_os("IRIS_SHARED_ASSETS")
+        .map(std::path::PathBuf::from)
+        .unwrap_or_else(|| {
+            std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/assets")
+        });
+    if !dir.is_dir() {
+        eprintln!("SKIPPED shared_scenes: ../shared/assets not found (set IRIS_SHARED_ASSETS)");
+        return;
+    }
+    let scenes = [
+        (
+            "CornellBox-Water",
+            "obj/CornellBox-McGuire/CornellBox-Water.obj",
+        ),
+        (
+            "GlassVaseFlowers",
+            "khronos/GlassVaseFlowers/GlassVaseFlowers.glb",
+        ),
+        (
+            "DispersionTest",
+            "khronos/DispersionTest/DispersionTest.glb",
+        ),
+        (
+            "TransmissionTest",
+            "khronos/TransmissionTest/TransmissionTest.glb",
+        ),
+    ];
+    let mut backends = vec![("bvh", iris::accel::Backend::Bvh)];
+    if cfg!(feature = "embree") {
+        backends.insert(0, ("embree", iris::accel::Backend::Embree));
+    }
+    let mut g = c.benchmark_group("shared_scenes");
+    g.sample_size(10)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2))
+        .throughput(Throughput::Elements(SHARED_RAYS as u64));
+    for (name, file) in scenes {
+        let built: Vec<_> = backends
+            .iter()
+            .filter_map(
+                |&(b, backend)| match iris::app::load(&dir.join(file), backend) {
+                    Ok((scene, _)) => Some((b, scene)),
+                    Err(e) => {
+                        eprintln!("SKIPPED {name} on {b}: {e}");
+                        None
+                    }
+                },
+            )
+            .collect();
+        let Some((_, first)) = built.first() else {
+            continue;
+        };
+        let sets = [
+            ("coherent", camera_rays(first)),
+            ("incoherent", box_rays(first.bounds.0, first.bounds.1)),
+        ];
+        let trace = |scene: &iris::scene::Scene, (o, d): (Vec3, Vec3)| {
+            scene
+                .intersect(&iris::math::Ray::new(o, d))
+                .map_or(f32::INFINITY, |h| h.t)
+        };
+        for (set, rays) in &sets {
+            let t: Vec<Vec<f32>> = built
+                .iter()
+                .map(|(_, s)| rays.iter().map(|&r| trace(s, r)).collect())
+                .collect();
+            let hits = t[0].iter().filter(|t| t.is_finite()).count();
+            let agree = t.last().map_or(0, |last| {
+                t[0].iter()
+                    .zip(last)
+                    .filter(|&(a, b)| a == b || (a - b).abs() <= 1e-4 * b.abs())
+                    .count()
+            });
+            eprintln!(
+                "{name} ({} triangles) {set}: hit fraction {:.3}; {} agree with {}: {:.3}%",
+                first.triangle_count(),
+                hits as f64 / rays.len() as f64,
+                built.last().map_or("", |b| b.0),
+                built[0].0,
+                100.0 * agree as f64 / rays.len() as f64
+            );
+        }
+        for (b, scene) in &built {
+            for (set, rays) in &sets {
+                g.bench_with_input(
+                    BenchmarkId::new(format!("{name}/{b}"), set),
+                    rays,
+                    |bch, rays| {
+                        bch.iter(|| {
+                            rays.iter()
+                                .map(|&r| trace(scene, r))
+                                .filter(|t| t.is_finite())
+                                .count()
+                        })
+                    },
+                );
+            }
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(benches, shared_scenes, backends);
 criterion_main!(benches);
