@@ -33,9 +33,11 @@ pub struct RenderOptions {
     pub method: Method,
     /// Recursion depth limit.
     pub max_depth: u32,
-    /// `--time`: stop the photon passes after this long (at least one pass).
+    /// `--time`: stop after the round (SPPM: pass) that crosses this wall time (every method;
+    /// at least one sample or pass).
     pub time_limit: Option<Duration>,
-    /// `--checkpoint K`: write the image every K SPPM passes.
+    /// `--checkpoint K`: write the image at the checkpoints (1, 2, 4, … samples or passes)
+    /// that come at least K samples (passes) after the last write.
     pub checkpoint: Option<u32>,
     /// Photon-mapping settings (`--photons`, `--radius`, `--alpha`, `--passes`, …).
     pub photon: crate::integrator::PhotonSettings,
