@@ -8,7 +8,7 @@ use crate::envmap::Environment;
 use crate::error::{Error, Result};
 use crate::integrator::{Integrator, Method};
 use crate::output::{self, DisplayOptions, ImageRgb};
-use crate::render::{render_with_checkpoints, RenderSettings, RenderStats};
+use crate::render::{render_progressive, Control, Observer, Progress, RenderSettings, RenderStats};
 use crate::scene::desc::{CameraDesc, EnvironmentDesc, LightDesc, Projection};
 use crate::scene::Scene;
 use std::fmt::Write as _;
@@ -33,9 +33,11 @@ pub struct RenderOptions {
     pub method: Method,
     /// Recursion depth limit.
     pub max_depth: u32,
-    /// `--time`: stop the photon passes after this long (at least one pass).
+    /// `--time`: stop after the round (SPPM: pass) that crosses this wall time (every method;
+    /// at least one sample or pass).
     pub time_limit: Option<Duration>,
-    /// `--checkpoint K`: write the image every K SPPM passes.
+    /// `--checkpoint K`: write the image at the checkpoints (1, 2, 4, … samples or passes)
+    /// that come at least K samples (passes) after the last write.
     pub checkpoint: Option<u32>,
     /// Photon-mapping settings (`--photons`, `--radius`, `--alpha`, `--passes`, …).
     pub photon: crate::integrator::PhotonSettings,
@@ -263,17 +265,19 @@ pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
     };
     let display = opts.display;
     let out_path = output.clone();
-    let mut write_checkpoint = move |img: &ImageRgb, _passes: u32| -> Result<()> {
-        output::write_image(&out_path, img, &display)
+    // `--checkpoint K`: at the checkpoints (1, 2, 4, … samples or passes), write the image
+    // when at least K samples (passes) were added since the last write.
+    let mut written = 0u64;
+    let mut write_checkpoint = move |p: &Progress| -> Result<Control> {
+        let k = opts.checkpoint.unwrap_or(0) as u64;
+        if k > 0 && !p.done && p.samples >= written + k {
+            output::write_image(&out_path, p.image, &display)?;
+            written = p.samples;
+        }
+        Ok(Control::Continue)
     };
-    let checkpoint = opts.checkpoint.map(|k| {
-        (
-            k,
-            &mut write_checkpoint as &mut (dyn FnMut(&ImageRgb, u32) -> Result<()> + Send),
-        )
-    });
-    let (image, stats) =
-        render_with_checkpoints(&scene, &camera, &integrator, &settings, checkpoint)?;
+    let observer: Option<Observer> = opts.checkpoint.map(|_| &mut write_checkpoint as Observer);
+    let (image, stats) = render_progressive(&scene, &camera, &integrator, &settings, observer)?;
     output::write_image(&output, &image, &opts.display)?;
     let mut notes = scene.notes.clone();
     notes.extend(method_note);

@@ -1,19 +1,37 @@
-//! The renderer: splits the image into tiles rendered in parallel with rayon, with one
-//! deterministic random stream per (seed, pixel, sample), so the same scene, seed and
-//! backend give the same image whatever the thread count or scheduling. Shows progress on
-//! stderr and returns the linear image with statistics.
+//! The renderer: progressive rendering in rounds, tiles rendered in parallel with rayon.
+//!
+//! Per-sample methods (path, Whitted, photon) take their samples in rounds that double the
+//! samples per pixel (1, 1, 2, 4, … capped by `spp`; a time limit may split a round); SPPM
+//! renders in passes. After 1, 2, 4, 8, … samples (passes) and at the end an optional
+//! [`Observer`] sees the image so far ([`Progress`]) and may stop the render.
+//!
+//! Invariants:
+//! - Sample k of pixel (x, y) draws only from the stream `Rng::new(&[seed, x, y, k])` and is
+//!   added to the pixel's running sums in the order k = 0, 1, 2, …, so the image after N
+//!   samples is bit-identical however the rounds were split and whatever the thread count.
+//! - The spectral hero wavelength of sample k uses the rank-1 lattice (golden-ratio)
+//!   sequence u_k = frac(o + k·φ⁻¹) with a per-pixel random offset o (a Cranley–Patterson
+//!   rotation; Owen, "Monte Carlo theory, methods and examples", §15.4): every prefix of
+//!   samples is well stratified, so stopping early (time limit, observer) keeps colour noise
+//!   low and unbiased.
+//! - Sample k goes to half k mod 2: the two half images are independent estimates used to
+//!   estimate the error without a reference.
+//!
+//! Images are linear RGB (radiance, W·sr⁻¹·m⁻² per channel); times are wall-clock.
 
 use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::integrator::{photon_map, sppm, Context, Integrator, Method};
-use crate::math::Rng;
+use crate::math::Ray;
 use crate::output::ImageRgb;
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
-use glam::{DVec3, Vec2, Vec3};
+use glam::Vec3;
 use indicatif::{ProgressBar, ProgressStyle};
-use rayon::prelude::*;
 use std::time::{Duration, Instant};
+
+mod samples;
+pub use samples::render_samples;
 
 /// Tile edge in pixels.
 const TILE: u32 = 16;
@@ -35,16 +53,10 @@ pub struct RenderSettings {
     pub quiet: bool,
     /// Spectral transport (4 wavelengths per sample) instead of RGB.
     pub spectral: bool,
-    /// Stop progressive methods (SPPM passes) after this long; at least one pass runs.
+    /// Stop after the round (SPPM: pass) that crosses this wall time, counted from the start
+    /// of the render (photon map building included); at least one sample (pass) is taken.
     pub time_limit: Option<Duration>,
 }
-
-/// Called every K passes of a progressive method with the image so far and the number of
-/// passes done (`--checkpoint K`).
-pub type Checkpoint<'a> = (
-    u32,
-    &'a mut (dyn FnMut(&ImageRgb, u32) -> Result<()> + Send),
-);
 
 /// Figures from one render.
 #[derive(Debug, Clone, Copy)]
@@ -53,7 +65,7 @@ pub struct RenderStats {
     pub time: Duration,
     /// Rays traced (closest-hit + shadow).
     pub rays: u64,
-    /// Pixel samples taken.
+    /// Pixel samples taken (all pixels; SPPM: one per pixel and pass).
     pub samples: u64,
     /// Photons emitted (photon methods).
     pub photons: u64,
@@ -61,25 +73,76 @@ pub struct RenderStats {
     pub passes: u32,
 }
 
-/// One camera sample's radiance as linear RGB: wavelengths drawn for spectral transport,
-/// and the film's conversion ([`Carrier::to_rgb`], spectrum → XYZ → sRGB) — the only place
-/// colour is converted.
-///
-/// `stratum` = (k, n): this is the k-th of the pixel's n samples; the hero wavelength's
-/// uniform variate is stratified over them ((k + ξ)/n), which cuts colour noise.
+/// The state of a render at a checkpoint, shown to an [`Observer`].
+#[derive(Debug, Clone, Copy)]
+pub struct Progress<'a> {
+    /// The mean of all samples (passes) so far.
+    pub image: &'a ImageRgb,
+    /// The means of two independent halves of the samples (even and odd sample indices;
+    /// SPPM: even and odd passes). With a single sample (pass) the second half is empty and
+    /// both are that sample's image, so error estimates from them are 0 then.
+    pub halves: (&'a ImageRgb, &'a ImageRgb),
+    /// Wall time since the render started (photon map building included).
+    pub elapsed: Duration,
+    /// Samples per pixel so far (SPPM: passes).
+    pub samples: u64,
+    /// Passes done (SPPM; 1 for the other methods).
+    pub passes: u32,
+    /// Rays traced so far.
+    pub rays: u64,
+    /// Photons emitted so far.
+    pub photons: u64,
+    /// True on the last call of a render that ended by itself (sample, pass or time limit).
+    /// After an observer returns [`Control::Stop`] it is not called again.
+    pub done: bool,
+}
+
+/// An observer's answer: render on, or end the render with the image just shown.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Control {
+    /// Keep rendering.
+    Continue,
+    /// Stop now; the render returns the image the observer just saw.
+    Stop,
+}
+
+/// Called at checkpoints 1, 2, 4, 8, … samples per pixel (SPPM: passes) and at the end.
+/// An error aborts the render and is returned.
+pub type Observer<'a> = &'a mut (dyn FnMut(&Progress) -> Result<Control> + Send);
+
+/// Work done before the first camera sample (photon maps): its start time and counts.
+#[derive(Debug, Clone, Copy)]
+pub struct Setup {
+    /// When the render started.
+    pub start: Instant,
+    /// Rays traced building (photon maps).
+    pub rays: u64,
+    /// Photons emitted.
+    pub photons: u64,
+}
+
+impl Setup {
+    /// Nothing done yet: starts the clock now.
+    pub fn now() -> Self {
+        Setup {
+            start: Instant::now(),
+            rays: 0,
+            photons: 0,
+        }
+    }
+}
+
+/// One camera sample's radiance as linear RGB: wavelengths drawn for spectral transport
+/// from the hero variate `u_lambda` ∈ [0, 1), and the film's conversion
+/// ([`Carrier::to_rgb`], spectrum → XYZ → sRGB) — the only place colour is converted.
 fn sample<C: Carrier>(
     scene: &Scene,
     integrator: &Integrator,
-    ray: &crate::math::Ray,
-    stratum: (u32, u32),
+    ray: &Ray,
+    u_lambda: f32,
     ctx: &mut Context,
 ) -> Vec3 {
-    let lambda = if C::SPECTRAL {
-        let (k, n) = stratum;
-        C::sample_lambda(((k as f32 + ctx.rng.next_f32()) / n as f32).min(1.0 - f32::EPSILON))
-    } else {
-        C::sample_lambda(0.0)
-    };
+    let lambda = C::sample_lambda(if C::SPECTRAL { u_lambda } else { 0.0 });
     integrator
         .radiance::<C>(scene, ray, lambda, ctx)
         .to_rgb(&lambda)
@@ -97,7 +160,8 @@ pub fn thread_pool(settings: &RenderSettings) -> Result<rayon::ThreadPool> {
         .map_err(|e| Error::Usage(format!("cannot start {} threads: {e}", settings.threads)))
 }
 
-/// A progress bar on stderr (hidden with `quiet`).
+/// A progress bar on stderr (hidden with `quiet`): elapsed time, the bar, and a message
+/// (samples or passes done, rays).
 pub fn progress_bar(quiet: bool, len: u64, what: &str) -> ProgressBar {
     if quiet {
         return ProgressBar::hidden();
@@ -105,121 +169,56 @@ pub fn progress_bar(quiet: bool, len: u64, what: &str) -> ProgressBar {
     let b = ProgressBar::new(len);
     b.set_style(
         ProgressStyle::with_template(&format!(
-            "{{spinner}} {what} [{{elapsed_precise}}] {{bar:40}} {{pos}}/{{len}} {{msg}} eta {{eta}}"
+            "{{spinner}} {what} [{{elapsed_precise}}] {{bar:40}} {{percent}}% {{msg}} eta {{eta}}"
         ))
         .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     b
 }
 
-/// Renders `scene` through `camera`.
+/// Renders `scene` through `camera` to the end (no observer).
 pub fn render(
     scene: &Scene,
     camera: &Camera,
     integrator: &Integrator,
     settings: &RenderSettings,
 ) -> Result<(ImageRgb, RenderStats)> {
-    render_with_checkpoints(scene, camera, integrator, settings, None)
+    render_progressive(scene, camera, integrator, settings, None)
 }
 
-/// [`render`], calling `checkpoint` every K passes of a progressive method.
-pub fn render_with_checkpoints(
+/// Renders progressively, stopping at `settings.spp` samples per pixel (path, Whitted,
+/// photon), `integrator.photon.passes` (SPPM), `settings.time_limit`, or when the observer
+/// says [`Control::Stop`] — whichever first. The observer is called at checkpoints 1, 2, 4,
+/// 8, … samples (or passes) and at the end (`done`).
+pub fn render_progressive(
     scene: &Scene,
     camera: &Camera,
     integrator: &Integrator,
     settings: &RenderSettings,
-    checkpoint: Option<Checkpoint>,
+    observer: Option<Observer>,
 ) -> Result<(ImageRgb, RenderStats)> {
     let pool = thread_pool(settings)?;
     match integrator.method {
-        Method::Whitted | Method::Path | Method::Auto => {
-            let (image, mut stats) = pool.install(|| {
-                render_samples(camera, settings, |ray, stratum, ctx| {
+        Method::Whitted | Method::Path | Method::Auto => pool.install(|| {
+            render_samples(
+                camera,
+                settings,
+                Setup::now(),
+                observer,
+                |ray, u_lambda, ctx| {
                     if settings.spectral {
-                        sample::<SampledSpectrum>(scene, integrator, ray, stratum, ctx)
+                        sample::<SampledSpectrum>(scene, integrator, ray, u_lambda, ctx)
                     } else {
-                        sample::<Vec3>(scene, integrator, ray, stratum, ctx)
+                        sample::<Vec3>(scene, integrator, ray, u_lambda, ctx)
                     }
-                })
-            });
-            stats.passes = 1;
-            Ok((image, stats))
+                },
+            )
+        }),
+        Method::Photon => {
+            pool.install(|| photon_map::render(scene, camera, integrator, settings, observer))
         }
-        Method::Photon => pool.install(|| photon_map::render(scene, camera, integrator, settings)),
         Method::Sppm => {
-            pool.install(|| sppm::render(scene, camera, integrator, settings, checkpoint))
+            pool.install(|| sppm::render(scene, camera, integrator, settings, observer))
         }
     }
-}
-
-/// The tile loop of the per-sample methods: `spp` jittered camera samples per pixel, each
-/// estimated by `estimate(ray, (k, spp), ctx)` (linear RGB), averaged. Runs on the current
-/// rayon pool.
-pub fn render_samples(
-    camera: &Camera,
-    settings: &RenderSettings,
-    estimate: impl Fn(&crate::math::Ray, (u32, u32), &mut Context) -> Vec3 + Sync,
-) -> (ImageRgb, RenderStats) {
-    let (w, h) = (settings.width, settings.height);
-    let tiles_x = w.div_ceil(TILE);
-    let tiles_y = h.div_ceil(TILE);
-    let tiles: Vec<(u32, u32)> = (0..tiles_y)
-        .flat_map(|ty| (0..tiles_x).map(move |tx| (tx, ty)))
-        .collect();
-    let bar = progress_bar(settings.quiet, tiles.len() as u64, "rendering tiles");
-    let start = Instant::now();
-    let spp = settings.spp.max(1);
-    let results: Vec<(Vec<(u32, Vec3)>, u64)> = tiles
-        .par_iter()
-        .map(|&(tx, ty)| {
-            let mut out = Vec::with_capacity((TILE * TILE) as usize);
-            let mut rays = 0u64;
-            for y in ty * TILE..((ty + 1) * TILE).min(h) {
-                for x in tx * TILE..((tx + 1) * TILE).min(w) {
-                    let mut ctx = Context {
-                        rng: Rng::new(&[settings.seed, x as u64, y as u64]),
-                        rays: 0,
-                    };
-                    let mut sum = DVec3::ZERO;
-                    for k in 0..spp {
-                        let jitter = if spp == 1 {
-                            Vec2::splat(0.5)
-                        } else {
-                            Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32())
-                        };
-                        let ray = camera.generate_ray(Vec2::new(x as f32, y as f32) + jitter);
-                        sum += estimate(&ray, (k, spp), &mut ctx).as_dvec3();
-                    }
-                    rays += ctx.rays;
-                    out.push((y * w + x, (sum / spp as f64).as_vec3()));
-                }
-            }
-            bar.inc(1);
-            (out, rays)
-        })
-        .collect();
-    bar.finish_and_clear();
-    let time = start.elapsed();
-    let mut data = vec![Vec3::ZERO; (w * h) as usize];
-    let mut rays = 0;
-    for (px, r) in results {
-        rays += r;
-        for (i, v) in px {
-            data[i as usize] = v;
-        }
-    }
-    (
-        ImageRgb {
-            width: w,
-            height: h,
-            data,
-        },
-        RenderStats {
-            time,
-            rays,
-            samples: w as u64 * h as u64 * spp as u64,
-            photons: 0,
-            passes: 1,
-        },
-    )
 }

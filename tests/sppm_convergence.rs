@@ -12,7 +12,7 @@ mod common;
 use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::output::ImageRgb;
-use iris::render::{render, render_with_checkpoints, RenderSettings};
+use iris::render::{render, render_progressive, Control, Progress, RenderSettings};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicIsize, Ordering};
 
@@ -87,21 +87,22 @@ fn sppm_error_falls_with_passes_and_memory_stays_flat() {
     let mut live = Vec::new();
     for seed in 1..=3u64 {
         let mut at8 = None;
-        let mut cb = |img: &ImageRgb, passes: u32| -> iris::Result<()> {
-            if passes == 8 {
-                at8 = Some(img.clone());
+        // Checkpoints at 1, 2, 4, …, 64 passes.
+        let mut cb = |p: &Progress| -> iris::Result<Control> {
+            if p.passes == 8 {
+                at8 = Some(p.image.clone());
             }
             if seed == 1 {
-                live.push((passes, LIVE.load(Ordering::Relaxed)));
+                live.push((p.passes, LIVE.load(Ordering::Relaxed)));
             }
-            Ok(())
+            Ok(Control::Continue)
         };
-        let (img64, stats) = render_with_checkpoints(
+        let (img64, stats) = render_progressive(
             &scene,
             &camera,
             &sppm(64, 2000),
             &settings(seed),
-            Some((4, &mut cb)),
+            Some(&mut cb),
         )
         .unwrap();
         assert_eq!(stats.passes, 64);
@@ -111,7 +112,7 @@ fn sppm_error_falls_with_passes_and_memory_stays_flat() {
     let ratio = e64 / e8;
     eprintln!("RMSE 8 passes {:.4e}, 64 passes {:.4e}, ratio {ratio:.3} (passes^-1/3 → 0.5); mean {mean:.4}", e8 / 3.0, e64 / 3.0);
     assert!(ratio < 0.7, "RMSE ratio 64/8 passes {ratio}");
-    // Live heap at checkpoints 8..60 (seed 1): no growth beyond 5 % + 64 KiB of pass 8's.
+    // Live heap at checkpoints 8..64 (seed 1): no growth beyond 5 % + 64 KiB of pass 8's.
     eprintln!("live heap by pass: {live:?}");
     let base = live.iter().find(|(p, _)| *p == 8).unwrap().1;
     for &(p, b) in &live {

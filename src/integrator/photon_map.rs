@@ -36,7 +36,7 @@ use crate::photon::emit::PhotonEmitter;
 use crate::photon::kdtree::PhotonMap;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
-use crate::render::{render_samples, RenderSettings, RenderStats};
+use crate::render::{render_samples, Observer, RenderSettings, RenderStats, Setup};
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::{Vec2, Vec3};
@@ -258,12 +258,14 @@ impl PhotonMaps {
     }
 }
 
-/// Renders with classic photon mapping.
+/// Renders with classic photon mapping: builds the maps once, then takes camera samples in
+/// progressive rounds ([`render_samples`]; the observer sees checkpoints 1, 2, 4, … spp).
 pub fn render(
     scene: &Scene,
     camera: &Camera,
     integrator: &Integrator,
     settings: &RenderSettings,
+    observer: Option<Observer>,
 ) -> Result<(ImageRgb, RenderStats)> {
     let ps = &integrator.photon;
     let start = Instant::now();
@@ -293,7 +295,12 @@ pub fn render(
         emitted: n,
     };
     let k = (ps.k_caustic.max(1), ps.k_global.max(1));
-    let (image, mut stats) = render_samples(camera, settings, |ray, _stratum, ctx| {
+    let setup = Setup {
+        start,
+        rays: maps.rays,
+        photons: maps.emitted,
+    };
+    render_samples(camera, settings, setup, observer, |ray, _u_lambda, ctx| {
         let (ld, vp) =
             path::camera_path::<Vec3>(scene, ray, integrator.max_depth, (), StopAt::Diffuse, ctx);
         let Some(vp) = vp else {
@@ -301,9 +308,5 @@ pub fn render(
         };
         let mut buf = Vec::with_capacity(k.0.max(k.1));
         ld + vp.beta * maps.indirect(scene, &vp, k, ctx, &mut buf)
-    });
-    stats.time = start.elapsed();
-    stats.rays += maps.rays;
-    stats.photons = maps.emitted;
-    Ok((image, stats))
+    })
 }

@@ -25,6 +25,11 @@
 //!
 //! The initial radius, unless given, is 2 pixel footprints at the median visible point of
 //! the first pass.
+//!
+//! Progress: per pixel, the sums of the passes' estimates are kept apart for even and odd
+//! passes (two independent half images). After 1, 2, 4, … passes and at the end an
+//! observer ([`crate::render::Observer`]) sees the mean so far and the halves' means, and
+//! may stop the render; the time limit is checked between passes.
 
 use super::path::{self, StopAt, VisiblePoint};
 use super::{Context, Integrator};
@@ -37,7 +42,7 @@ use crate::photon::emit::PhotonEmitter;
 use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
-use crate::render::{progress_bar, Checkpoint, RenderSettings, RenderStats};
+use crate::render::{progress_bar, Control, Observer, Progress, RenderSettings, RenderStats};
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::{DVec3, Vec2, Vec3};
@@ -47,18 +52,18 @@ use std::time::Instant;
 /// Photons traced per parallel work item (the split is fixed, so results are deterministic).
 const CHUNK: u64 = 4096;
 
-/// Renders with SPPM.
+/// Renders with SPPM: `passes` passes, fewer if the time limit or the observer stops it.
 pub fn render(
     scene: &Scene,
     camera: &Camera,
     integrator: &Integrator,
     settings: &RenderSettings,
-    checkpoint: Option<Checkpoint>,
+    observer: Option<Observer>,
 ) -> Result<(ImageRgb, RenderStats)> {
     if settings.spectral {
-        run::<SampledSpectrum>(scene, camera, integrator, settings, checkpoint)
+        run::<SampledSpectrum>(scene, camera, integrator, settings, observer)
     } else {
-        run::<Vec3>(scene, camera, integrator, settings, checkpoint)
+        run::<Vec3>(scene, camera, integrator, settings, observer)
     }
 }
 
@@ -101,7 +106,7 @@ fn run<C: Carrier>(
     camera: &Camera,
     integrator: &Integrator,
     settings: &RenderSettings,
-    mut checkpoint: Option<Checkpoint>,
+    mut observer: Option<Observer>,
 ) -> Result<(ImageRgb, RenderStats)> {
     let ps = &integrator.photon;
     let (w, h) = (settings.width, settings.height);
@@ -119,9 +124,10 @@ fn run<C: Carrier>(
     let passes = ps.passes.max(1);
     let bar = progress_bar(settings.quiet, passes as u64, "sppm passes");
     let start = Instant::now();
-    // Per-pixel sums over passes of the direct (camera) and photon estimates.
-    let mut ld = vec![DVec3::ZERO; n_pix];
-    let mut tau = vec![DVec3::ZERO; n_pix];
+    // Per-pixel sums over even [0] and odd [1] passes of the direct (camera) and photon
+    // estimates.
+    let mut ld = vec![[DVec3::ZERO; 2]; n_pix];
+    let mut tau = vec![[DVec3::ZERO; 2]; n_pix];
     let mut vps: Vec<Option<VisiblePoint<C>>> = vec![None; n_pix];
     let mut photons: Vec<Photon> = Vec::new();
     let mut grid = HashGrid::new();
@@ -129,6 +135,7 @@ fn run<C: Carrier>(
     let (mut rays, mut emitted) = (0u64, 0u64);
     let mut done = 0u32;
     for pass in 0..passes {
+        let half = (pass % 2) as usize;
         // 1. The pass's wavelengths: a golden-ratio sequence over passes.
         let u_l = (0.5 + pass as f64 * 0.618_033_988_749_895 + (settings.seed % 1024) as f64 * 0.1)
             .fract() as f32;
@@ -155,7 +162,7 @@ fn run<C: Carrier>(
                         StopAt::Diffuse,
                         &mut ctx,
                     );
-                    ld_row[x] += l.to_rgb(&lambda).as_dvec3();
+                    ld_row[x][half] += l.to_rgb(&lambda).as_dvec3();
                     vp_row[x] = vp;
                     rays += ctx.rays;
                 }
@@ -231,26 +238,48 @@ fn run<C: Carrier>(
             if let Some(vp) = vp {
                 let phi = gather(vp, &photons, &grid, r);
                 if area > 0.0 {
-                    *t += (vp.beta * phi).to_rgb(&vp.lambda).as_dvec3() / area;
+                    t[half] += (vp.beta * phi).to_rgb(&vp.lambda).as_dvec3() / area;
                 }
             }
         });
         done = pass + 1;
         r2 = r2.map(|x| x * radius2_factor(done, ps.alpha));
         bar.inc(1);
-        bar.set_message(format!("r {:.3e}, {} photons stored", r, photons.len()));
-        if let Some((k, cb)) = checkpoint.as_mut() {
-            if *k > 0 && done % *k == 0 && done < passes {
-                cb(&image(&ld, &tau, done, w, h), done)?;
+        bar.set_message(format!(
+            "{done} passes, {rays} rays, r {r:.3e}, {} photons stored",
+            photons.len()
+        ));
+        let finished = done == passes || settings.time_limit.is_some_and(|t| start.elapsed() >= t);
+        if let (Some(obs), true) = (observer.as_mut(), finished || done.is_power_of_two()) {
+            let mean = image(&ld, &tau, done, w, h, |s| s[0] + s[1]);
+            let (n0, n1) = (done.div_ceil(2), done / 2);
+            let a = image(&ld, &tau, n0, w, h, |s| s[0]);
+            let b = if n1 > 0 {
+                image(&ld, &tau, n1, w, h, |s| s[1])
+            } else {
+                a.clone()
+            };
+            let progress = Progress {
+                image: &mean,
+                halves: (&a, &b),
+                elapsed: start.elapsed(),
+                samples: done as u64,
+                passes: done,
+                rays,
+                photons: emitted,
+                done: finished,
+            };
+            if obs(&progress)? == Control::Stop {
+                break;
             }
         }
-        if settings.time_limit.is_some_and(|t| start.elapsed() >= t) {
+        if finished {
             break;
         }
     }
     bar.finish_and_clear();
     Ok((
-        image(&ld, &tau, done, w, h),
+        image(&ld, &tau, done, w, h, |s| s[0] + s[1]),
         RenderStats {
             time: start.elapsed(),
             rays,
@@ -261,8 +290,15 @@ fn run<C: Carrier>(
     ))
 }
 
-/// The average of the passes so far.
-fn image(ld: &[DVec3], tau: &[DVec3], passes: u32, w: u32, h: u32) -> ImageRgb {
+/// The mean over `passes` passes of `pick`(per-parity sums of direct + photon estimates).
+fn image(
+    ld: &[[DVec3; 2]],
+    tau: &[[DVec3; 2]],
+    passes: u32,
+    w: u32,
+    h: u32,
+    pick: impl Fn([DVec3; 2]) -> DVec3,
+) -> ImageRgb {
     let inv = 1.0 / passes.max(1) as f64;
     ImageRgb {
         width: w,
@@ -270,7 +306,7 @@ fn image(ld: &[DVec3], tau: &[DVec3], passes: u32, w: u32, h: u32) -> ImageRgb {
         data: ld
             .iter()
             .zip(tau)
-            .map(|(a, b)| ((*a + *b) * inv).as_vec3())
+            .map(|(a, b)| (pick([a[0] + b[0], a[1] + b[1]]) * inv).as_vec3())
             .collect(),
     }
 }
