@@ -258,21 +258,13 @@ mod tests {
                 .map(|i| Vec3::new(0.5 + (i % w) as f32 / w as f32, 0.5, 2.0))
                 .collect(),
         };
-        let mut noisy = |img: &ImageRgb| ImageRgb {
-            data: img
-                .data
-                .iter()
-                .enumerate()
-                .map(|(i, p)| {
-                    let s = if i % 2 == 0 { 0.02 } else { 0.08 };
-                    *p + Vec3::new(
-                        (s * rng.normal()) as f32,
-                        (s * rng.normal()) as f32,
-                        (s * rng.normal()) as f32,
-                    )
-                })
-                .collect(),
-            ..img.clone()
+        let mut noisy = |img: &ImageRgb| {
+            let mut out = img.clone();
+            for (i, p) in out.data.iter_mut().enumerate() {
+                let s = if i % 2 == 0 { 0.02 } else { 0.08 };
+                *p += Vec3::from_array([(); 3].map(|_| (s * rng.normal()) as f32));
+            }
+            out
         };
         let (a, b) = (noisy(&truth), noisy(&truth));
         let full = ImageRgb {

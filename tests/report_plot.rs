@@ -92,9 +92,11 @@ fn csv_has_documented_columns_and_reads_back() {
 
 #[test]
 fn csv_to_missing_directory_is_an_error() {
-    let path = scratch("csv-missing").join("no/such/dir/report.csv");
+    let dir = scratch("csv-missing");
+    let path = dir.join("no/such/dir/report.csv");
     let err = write_csv(&path, &[]).expect_err("missing directory");
     assert!(err.to_string().contains("report.csv"), "{err}");
+    cleanup(&dir);
 }
 
 fn two_series() -> Vec<Series> {
