@@ -1,0 +1,128 @@
+//! The error-against-time report: one CSV row per checkpoint of a run, plus rows for the
+//! stages a user also waits for (scene load, acceleration-structure build).
+//!
+//! Format (RFC 4180 CSV, UTF-8, `\n` line ends), columns exactly [`CSV_HEADER`]:
+//! - `run`: free text naming the run (method, backend, …); quoted if it holds `,` `"` or a
+//!   line break, with `"` doubled.
+//! - `stage`: `load`, `build` or `render`.
+//! - `wall_s`: wall-clock seconds since the run started (cumulative, so a `render` row's time
+//!   includes nothing hidden); `samples_per_pixel`, `passes`, `rays`, `photons`: counts so far.
+//! - `rmse, rel_mse, mae`: error against a reference ([`crate::metrics::compare`]);
+//!   `est_*`: the reference-free half-buffer estimate
+//!   ([`crate::metrics::half_buffer_estimate`]). Empty cells where not computed.
+//!
+//! Numbers are written with Rust's shortest round-trip formatting, so `str::parse::<f64>` /
+//! `parse::<u64>` read back the exact values (NaN and infinities as `NaN`, `inf`, `-inf`).
+//! The file is replaced atomically ([`crate::output::atomic`]).
+
+use crate::error::Result;
+use crate::metrics::ErrorMetrics;
+use crate::output::atomic::write_file_atomic;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// The CSV header line (without the line end); the column order of every row.
+pub const CSV_HEADER: &str = "run,stage,wall_s,samples_per_pixel,passes,rays,photons,rmse,rel_mse,mae,est_rmse,est_rel_mse,est_mae";
+
+/// One line of the report: a checkpoint of a run, or a load/build stage.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReportRow {
+    /// Name of the run (method, backend, …).
+    pub run: String,
+    /// `"load"`, `"build"` or `"render"`.
+    pub stage: String,
+    /// Wall-clock seconds since the run started.
+    pub wall_s: f64,
+    /// Samples per pixel so far.
+    pub samples: u64,
+    /// Photon passes so far (0 for methods without passes).
+    pub passes: u32,
+    /// Rays traced so far.
+    pub rays: u64,
+    /// Photons traced so far.
+    pub photons: u64,
+    /// Error against a reference, if one was given.
+    pub error: Option<ErrorMetrics>,
+    /// Reference-free estimate from two half images, if available.
+    pub estimate: Option<ErrorMetrics>,
+}
+
+/// Appends `field` as one CSV cell, quoting it when needed (RFC 4180 §2.6–2.7).
+fn push_text(out: &mut String, field: &str) {
+    if field.contains([',', '"', '\n', '\r']) {
+        out.push('"');
+        out.push_str(&field.replace('"', "\"\""));
+        out.push('"');
+    } else {
+        out.push_str(field);
+    }
+}
+
+/// Appends the three cells of `m` (each preceded by a comma), empty when `None`.
+fn push_metrics(out: &mut String, m: Option<&ErrorMetrics>) {
+    match m {
+        // Writing to a String cannot fail.
+        Some(m) => {
+            let _ = write!(out, ",{},{},{}", m.rmse, m.rel_mse, m.mae);
+        }
+        None => out.push_str(",,,"),
+    }
+}
+
+/// The CSV text for `rows`: [`CSV_HEADER`], then one line per row, each ending in `\n`.
+pub fn format_csv(rows: &[ReportRow]) -> String {
+    let mut out = String::with_capacity(CSV_HEADER.len() + 1 + rows.len() * 120);
+    out.push_str(CSV_HEADER);
+    out.push('\n');
+    for r in rows {
+        push_text(&mut out, &r.run);
+        out.push(',');
+        push_text(&mut out, &r.stage);
+        let _ = write!(
+            out,
+            ",{},{},{},{},{}",
+            r.wall_s, r.samples, r.passes, r.rays, r.photons
+        );
+        push_metrics(&mut out, r.error.as_ref());
+        push_metrics(&mut out, r.estimate.as_ref());
+        out.push('\n');
+    }
+    out
+}
+
+/// Writes `rows` as CSV ([`format_csv`]) to `path`, atomically (temporary file + rename).
+///
+/// Errors: [`crate::Error::Output`] naming `path` if it cannot be written.
+pub fn write_csv(path: &Path, rows: &[ReportRow]) -> Result<()> {
+    write_file_atomic(path, format_csv(rows).as_bytes())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quoting_and_empty_cells() {
+        let rows = [ReportRow {
+            run: "path, \"bvh\"".into(),
+            stage: "load".into(),
+            wall_s: 0.25,
+            samples: 0,
+            passes: 0,
+            rays: 0,
+            photons: 0,
+            error: None,
+            estimate: None,
+        }];
+        let csv = format_csv(&rows);
+        assert_eq!(
+            csv,
+            format!("{CSV_HEADER}\n\"path, \"\"bvh\"\"\",load,0.25,0,0,0,0,,,,,,\n")
+        );
+    }
+
+    #[test]
+    fn header_has_thirteen_columns() {
+        assert_eq!(CSV_HEADER.split(',').count(), 13);
+    }
+}
