@@ -223,3 +223,133 @@ pub fn render_samples(
         },
     )
 }
+
+// STAND-IN until Y1 lands (drop this whole block at merge): progressive rendering as
+// rounds of independent renders, two per round (one per half), doubling each round.
+
+/// The state of a progressive render at a checkpoint.
+pub struct Progress<'a> {
+    /// Mean so far.
+    pub image: &'a ImageRgb,
+    /// Means of two independent halves of the samples/passes.
+    pub halves: (&'a ImageRgb, &'a ImageRgb),
+    /// Wall time since rendering started.
+    pub elapsed: Duration,
+    /// Samples per pixel so far.
+    pub samples: u64,
+    /// Passes so far.
+    pub passes: u32,
+    /// Rays so far.
+    pub rays: u64,
+    /// Photons so far.
+    pub photons: u64,
+    /// Last call.
+    pub done: bool,
+}
+
+/// What the observer wants.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Control {
+    /// Keep rendering.
+    Continue,
+    /// Stop now.
+    Stop,
+}
+
+/// Called at checkpoints.
+pub type Observer<'a> = &'a mut (dyn FnMut(&Progress) -> Result<Control> + Send);
+
+/// Renders progressively (stand-in: rounds of independent renders).
+pub fn render_progressive(
+    scene: &Scene,
+    camera: &Camera,
+    integrator: &Integrator,
+    settings: &RenderSettings,
+    mut observer: Option<Observer>,
+) -> Result<(ImageRgb, RenderStats)> {
+    let sppm = integrator.method == Method::Sppm;
+    let bound = if sppm {
+        integrator.photon.passes.max(1)
+    } else {
+        settings.spp.max(1)
+    };
+    let start = Instant::now();
+    let n = (settings.width * settings.height) as usize;
+    let (mut sum_a, mut sum_b) = (vec![DVec3::ZERO; n], vec![DVec3::ZERO; n]);
+    let (mut done_units, mut round, mut stats) = (0u32, 0u64, None::<RenderStats>);
+    loop {
+        let per_half = (done_units / 2).max(1).min((bound - done_units).div_ceil(2).max(1));
+        let mut halves = Vec::new();
+        for half in 0..2u64 {
+            let mut s = settings.clone();
+            let mut it = integrator.clone();
+            s.seed = settings.seed ^ (round * 2 + half + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+            s.time_limit = None;
+            s.quiet = true;
+            if sppm {
+                it.photon.passes = per_half;
+            } else {
+                s.spp = per_half;
+            }
+            halves.push(render_with_checkpoints(scene, camera, &it, &s, None)?);
+        }
+        for (sum, (img, _)) in [&mut sum_a, &mut sum_b].into_iter().zip(&halves) {
+            for (acc, p) in sum.iter_mut().zip(&img.data) {
+                *acc += p.as_dvec3() * f64::from(per_half);
+            }
+        }
+        done_units += 2 * per_half;
+        round += 1;
+        let st = stats.get_or_insert(RenderStats {
+            time: Duration::ZERO,
+            rays: 0,
+            samples: 0,
+            photons: 0,
+            passes: 0,
+        });
+        for (_, h) in &halves {
+            st.rays += h.rays;
+            st.samples += h.samples;
+            st.photons += h.photons;
+        }
+        st.passes = if sppm { done_units } else { 1 };
+        st.time = start.elapsed();
+        let to_img = |v: &[DVec3], k: f64| ImageRgb {
+            width: settings.width,
+            height: settings.height,
+            data: v.iter().map(|p| (*p / k).as_vec3()).collect(),
+        };
+        let half_units = f64::from(done_units / 2);
+        let a = to_img(&sum_a, half_units);
+        let b = to_img(&sum_b, half_units);
+        let mean = ImageRgb {
+            width: settings.width,
+            height: settings.height,
+            data: a.data.iter().zip(&b.data).map(|(p, q)| (*p + *q) * 0.5).collect(),
+        };
+        let timed_out = settings.time_limit.is_some_and(|t| start.elapsed() >= t);
+        let mut done = done_units >= bound || timed_out;
+        let mut ask = |done: bool| -> Result<Control> {
+            match observer.as_mut() {
+                Some(o) => o(&Progress {
+                    image: &mean,
+                    halves: (&a, &b),
+                    elapsed: start.elapsed(),
+                    samples: if sppm { u64::from(done_units) } else { u64::from(done_units) },
+                    passes: st.passes,
+                    rays: st.rays,
+                    photons: st.photons,
+                    done,
+                }),
+                None => Ok(Control::Continue),
+            }
+        };
+        if ask(done)? == Control::Stop && !done {
+            done = true;
+            ask(true)?;
+        }
+        if done {
+            return Ok((mean, *st));
+        }
+    }
+}
