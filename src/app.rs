@@ -4,12 +4,12 @@
 
 use crate::accel::Backend;
 use crate::camera::{frame_bounds, Camera};
+use crate::converge::{measure::Recorder, MeasureOptions};
 use crate::envmap::Environment;
 use crate::error::{Error, Result};
 use crate::integrator::{Integrator, Method};
-use crate::output::{self, DisplayOptions, ImageRgb};
-use crate::converge::{measure::Recorder, MeasureOptions};
 use crate::metrics::ErrorMetrics;
+use crate::output::{self, DisplayOptions, ImageRgb};
 use crate::render::{render_progressive, Control, Progress, RenderSettings, RenderStats};
 use crate::report::ReportRow;
 use crate::scene::desc::{CameraDesc, EnvironmentDesc, LightDesc, Projection};
@@ -273,7 +273,7 @@ pub fn render_command_measured(
     let reference = measure
         .reference
         .as_deref()
-        .map(output::read_exr)
+        .map(crate::converge::measure::read_reference_file)
         .transpose()?;
     let (scene, file_env, load_time) = load_with_environment(&opts.scene, opts.accel)?;
     let scene = scene.with_environment(resolve_environment(opts.env.clone(), file_env)?);

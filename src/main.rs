@@ -228,7 +228,9 @@ struct ConvergeArgs {
 fn parse_target(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
-        _ => Err(format!("expected a relative error > 0, e.g. 0.05, got {s:?}")),
+        _ => Err(format!(
+            "expected a relative error > 0, e.g. 0.05, got {s:?}"
+        )),
     }
 }
 
@@ -354,7 +356,10 @@ fn run(cli: Cli) -> iris::Result<()> {
             let work = if s.stats.photons > 0 {
                 format!("{} passes, {} photons", s.stats.passes, s.stats.photons)
             } else {
-                format!("{} spp", s.rows.last().map_or(opts.spp as u64, |r| r.samples))
+                format!(
+                    "{} spp",
+                    s.rows.last().map_or(opts.spp as u64, |r| r.samples)
+                )
             };
             eprintln!(
                 "iris: {} -> {}: {}x{}, {}, {} triangles, {}, render {:.2} s (load {:.2} s, build {:.2} s), {:.2} Mrays/s",
@@ -371,10 +376,7 @@ fn run(cli: Cli) -> iris::Result<()> {
                 s.stats.rays as f64 / secs.max(1e-9) / 1e6
             );
             if let Some(e) = s.final_estimate() {
-                let mut line = format!(
-                    "iris: estimated relative error {:.4}",
-                    relative_rmse(&e)
-                );
+                let mut line = format!("iris: estimated relative error {:.4}", relative_rmse(&e));
                 if let Some(r) = s.final_error() {
                     line.push_str(&format!(
                         ", against the reference {:.4} (rmse {:.4e}, mae {:.4e})",

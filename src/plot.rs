@@ -33,7 +33,12 @@ pub fn loglog_slope(points: &[(f64, f64)]) -> Option<f64> {
 }
 
 /// Writes a placeholder plot (blank PNG or minimal SVG).
-pub fn plot_error_vs_time(path: &Path, title: &str, _y_label: &str, series: &[Series]) -> Result<()> {
+pub fn plot_error_vs_time(
+    path: &Path,
+    title: &str,
+    _y_label: &str,
+    series: &[Series],
+) -> Result<()> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())

@@ -278,7 +278,9 @@ pub fn render_progressive(
     let (mut sum_a, mut sum_b) = (vec![DVec3::ZERO; n], vec![DVec3::ZERO; n]);
     let (mut done_units, mut round, mut stats) = (0u32, 0u64, None::<RenderStats>);
     loop {
-        let per_half = (done_units / 2).max(1).min((bound - done_units).div_ceil(2).max(1));
+        let per_half = (done_units / 2)
+            .max(1)
+            .min((bound - done_units).div_ceil(2).max(1));
         let mut halves = Vec::new();
         for half in 0..2u64 {
             let mut s = settings.clone();
@@ -325,7 +327,12 @@ pub fn render_progressive(
         let mean = ImageRgb {
             width: settings.width,
             height: settings.height,
-            data: a.data.iter().zip(&b.data).map(|(p, q)| (*p + *q) * 0.5).collect(),
+            data: a
+                .data
+                .iter()
+                .zip(&b.data)
+                .map(|(p, q)| (*p + *q) * 0.5)
+                .collect(),
         };
         let timed_out = settings.time_limit.is_some_and(|t| start.elapsed() >= t);
         let mut done = done_units >= bound || timed_out;
@@ -335,7 +342,11 @@ pub fn render_progressive(
                     image: &mean,
                     halves: (&a, &b),
                     elapsed: start.elapsed(),
-                    samples: if sppm { u64::from(done_units) } else { u64::from(done_units) },
+                    samples: if sppm {
+                        u64::from(done_units)
+                    } else {
+                        u64::from(done_units)
+                    },
                     passes: st.passes,
                     rays: st.rays,
                     photons: st.photons,

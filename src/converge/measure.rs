@@ -23,15 +23,13 @@ pub fn relative_rmse(m: &ErrorMetrics) -> f64 {
     m.rel_mse.max(0.0).sqrt()
 }
 
-/// Reads a reference EXR and checks it is `width`×`height`; the error names both the
-/// reference file and the render (`what`) with their sizes.
-pub fn read_reference(path: &Path, width: u32, height: u32, what: &str) -> Result<ImageRgb> {
-    let reference = crate::output::read_exr(path)?;
-    check_reference_size(&reference, path, width, height, what)?;
-    Ok(reference)
+/// Reads `--reference FILE`; errors name the flag and the file.
+pub fn read_reference_file(path: &Path) -> Result<ImageRgb> {
+    crate::output::read_exr(path).map_err(|e| Error::Usage(format!("--reference: {e}")))
 }
 
-/// [`read_reference`]'s size check on an image already read.
+/// Checks that the reference is `width`×`height`; the error names the reference file and
+/// the render (`what`) with both sizes.
 pub fn check_reference_size(
     reference: &ImageRgb,
     path: &Path,
@@ -101,7 +99,10 @@ impl<'a> Recorder<'a> {
             estimate: Some(estimate),
         });
         if self.verbose {
-            eprintln!("{}", checkpoint_line(&self.run, p, &estimate, error.as_ref()));
+            eprintln!(
+                "{}",
+                checkpoint_line(&self.run, p, &estimate, error.as_ref())
+            );
         }
         let reached = self
             .target_error
@@ -125,7 +126,11 @@ impl<'a> Recorder<'a> {
 pub fn points(rows: &[ReportRow]) -> Vec<(f64, f64)> {
     rows.iter()
         .filter(|r| r.stage == "render")
-        .filter_map(|r| r.error.or(r.estimate).map(|m| (r.wall_s, relative_rmse(&m))))
+        .filter_map(|r| {
+            r.error
+                .or(r.estimate)
+                .map(|m| (r.wall_s, relative_rmse(&m)))
+        })
         .collect()
 }
 
@@ -180,11 +185,13 @@ pub fn levels_table(runs: &[(String, Vec<(f64, f64)>)]) -> String {
             Some((i, t)) => format!("{} at {t:.2} s", runs[i].0),
             None => "none".into(),
         };
-        s.push_str(&format!("{level:<14}  {first:<20}  ({})\n", others.join(", ")));
+        s.push_str(&format!(
+            "{level:<14}  {first:<20}  ({})\n",
+            others.join(", ")
+        ));
     }
     s
 }
-
 
 #[cfg(test)]
 mod tests {
@@ -225,7 +232,10 @@ mod tests {
             estimate,
         };
         // sqrt(0.25) = 0.5 (reference) wins over sqrt(0.04) = 0.2 (estimate).
-        assert_eq!(points(&[row(Some(m(0.25)), Some(m(0.04)))]), vec![(2.0, 0.5)]);
+        assert_eq!(
+            points(&[row(Some(m(0.25)), Some(m(0.04)))]),
+            vec![(2.0, 0.5)]
+        );
         assert_eq!(points(&[row(None, Some(m(0.04)))]), vec![(2.0, 0.2)]);
     }
 }

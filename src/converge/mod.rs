@@ -128,8 +128,10 @@ pub fn check_plot_extension(path: &Path) -> Result<()> {
 }
 
 fn file_name(path: &Path) -> String {
-    path.file_name()
-        .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned())
+    path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
 }
 
 /// The method's command-line name, used as the run name in reports and file names.
@@ -155,8 +157,8 @@ pub fn parse_methods(list: &str) -> Result<Vec<Method>> {
             "sppm" => Method::Sppm,
             _ => {
                 return Err(Error::Usage(format!(
-                    "--methods {list}: unknown method {name:?} (accepted: whitted, path, photon, sppm)"
-                )))
+                "--methods {list}: unknown method {name:?} (accepted: whitted, path, photon, sppm)"
+            )))
             }
         };
         if methods.contains(&m) {
@@ -263,7 +265,7 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
     let given_reference = opts
         .reference
         .as_deref()
-        .map(output::read_exr)
+        .map(crate::converge::measure::read_reference_file)
         .transpose()?;
     prepare_dir(&opts.out_dir)?;
     let (scene, file_env, load_time) = app::load_with_environment(&opts.scene, opts.accel)?;
