@@ -165,7 +165,8 @@ struct RenderArgs {
     /// SPPM radius reduction α in (0, 1): r²ᵢ₊₁ = r²ᵢ (i+α)/(i+1) (Knaus & Zwicker 2011).
     #[arg(long, default_value_t = 2.0 / 3.0, value_parser = parse_alpha, allow_hyphen_values = true)]
     alpha: f32,
-    /// Write the image so far every K SPPM passes.
+    /// Write the image so far at the checkpoints (1, 2, 4, … samples, or passes for SPPM)
+    /// that are at least K samples or passes after the last one written.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     checkpoint: Option<u32>,
     /// Photon Russian roulette rule.

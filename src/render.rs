@@ -284,7 +284,7 @@ pub fn render_progressive(
         let mut halves = Vec::new();
         for half in 0..2u64 {
             let mut s = settings.clone();
-            let mut it = integrator.clone();
+            let mut it = *integrator;
             s.seed = settings.seed ^ (round * 2 + half + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15);
             s.time_limit = None;
             s.quiet = true;
@@ -342,11 +342,7 @@ pub fn render_progressive(
                     image: &mean,
                     halves: (&a, &b),
                     elapsed: start.elapsed(),
-                    samples: if sppm {
-                        u64::from(done_units)
-                    } else {
-                        u64::from(done_units)
-                    },
+                    samples: u64::from(done_units),
                     passes: st.passes,
                     rays: st.rays,
                     photons: st.photons,

@@ -87,6 +87,14 @@ impl<'a> Recorder<'a> {
             Some(r) => Some(compare(p.image, r)?),
             None => None,
         };
+        // A final call (`done`) at the same count as the last checkpoint replaces its row.
+        if self
+            .rows
+            .last()
+            .is_some_and(|r| r.samples == p.samples && r.passes == p.passes)
+        {
+            self.rows.pop();
+        }
         self.rows.push(ReportRow {
             run: self.run.clone(),
             stage: "render".into(),
@@ -98,7 +106,7 @@ impl<'a> Recorder<'a> {
             error,
             estimate: Some(estimate),
         });
-        if self.verbose {
+        if self.verbose && !p.done {
             eprintln!(
                 "{}",
                 checkpoint_line(&self.run, p, &estimate, error.as_ref())
@@ -211,6 +219,44 @@ mod tests {
         assert!(line("0.5 ").contains("a at 0.20 s"), "{t}");
         assert!(line("0.1 ").contains("b at 0.60 s"), "{t}");
         assert!(line("0.02").contains("none"), "{t}");
+    }
+
+    #[test]
+    fn recorder_stops_at_the_target_and_merges_the_final_call() {
+        use glam::Vec3;
+        let img = |v: f32| ImageRgb {
+            width: 2,
+            height: 1,
+            data: vec![Vec3::splat(v); 2],
+        };
+        // Halves 0.9 and 1.1: per channel (a−b)²/4 = 0.01 over m² + 0.01 = 1.01, so the
+        // estimated relative RMSE is sqrt(0.01/1.01) ≈ 0.0995.
+        let (a, b, m) = (img(0.9), img(1.1), img(1.0));
+        let reference = img(1.0);
+        let mut rec = Recorder::new("path", Some(&reference), Some(0.1));
+        let progress = |done| Progress {
+            image: &m,
+            halves: (&a, &b),
+            elapsed: std::time::Duration::from_millis(5),
+            samples: 4,
+            passes: 1,
+            rays: 8,
+            photons: 0,
+            done,
+        };
+        assert_eq!(rec.observe(&progress(false)).unwrap(), Control::Stop);
+        assert!(rec.reached_target);
+        rec.observe(&progress(true)).unwrap();
+        assert_eq!(
+            rec.rows.len(),
+            1,
+            "the final call at 4 spp replaces the checkpoint row"
+        );
+        let est = rec.rows[0].estimate.unwrap();
+        assert!((relative_rmse(&est) - (0.01f64 / 1.01).sqrt()).abs() < 1e-6);
+        assert_eq!(rec.rows[0].error.unwrap().rmse, 0.0);
+        let mut strict = Recorder::new("path", None, Some(0.09));
+        assert_eq!(strict.observe(&progress(false)).unwrap(), Control::Continue);
     }
 
     #[test]
