@@ -4,11 +4,14 @@
 
 use crate::accel::Backend;
 use crate::camera::{frame_bounds, Camera};
+use crate::converge::{measure::Recorder, MeasureOptions};
 use crate::envmap::Environment;
 use crate::error::{Error, Result};
 use crate::integrator::{Integrator, Method};
+use crate::metrics::ErrorMetrics;
 use crate::output::{self, DisplayOptions, ImageRgb};
-use crate::render::{render_progressive, Control, Observer, Progress, RenderSettings, RenderStats};
+use crate::render::{render_progressive, Control, Progress, RenderSettings, RenderStats};
+use crate::report::ReportRow;
 use crate::scene::desc::{CameraDesc, EnvironmentDesc, LightDesc, Projection};
 use crate::scene::Scene;
 use std::fmt::Write as _;
@@ -80,6 +83,22 @@ pub struct RenderSummary {
     pub backend: &'static str,
     /// Decisions taken for the user and loader warnings.
     pub notes: Vec<String>,
+    /// Report rows: "load", "build", then one "render" row per checkpoint.
+    pub rows: Vec<ReportRow>,
+    /// Whether `--target-error` stopped the render.
+    pub reached_target: bool,
+}
+
+impl RenderSummary {
+    /// The last checkpoint's error against the reference (with `--reference`).
+    pub fn final_error(&self) -> Option<ErrorMetrics> {
+        self.rows.last().and_then(|r| r.error)
+    }
+
+    /// The last checkpoint's half-buffer error estimate.
+    pub fn final_estimate(&self) -> Option<ErrorMetrics> {
+        self.rows.last().and_then(|r| r.estimate)
+    }
 }
 
 /// Loads, validates and builds a scene.
@@ -167,23 +186,23 @@ pub fn choose_camera(
 
 /// The image size: the flag, else 800 wide at the first camera's aspect ratio (or 4:3).
 fn image_size(opts: &RenderOptions, scene: &Scene) -> Result<(u32, u32)> {
-    let (w, h) = match opts.size {
-        Some(s) => s,
-        None => {
-            let aspect = scene
-                .cameras
-                .first()
-                .and_then(|c| match c.projection {
-                    Projection::Perspective { aspect, .. } => aspect,
-                    Projection::Orthographic { xmag, ymag } => Some(xmag / ymag),
-                })
-                .filter(|a| a.is_finite() && *a > 0.05 && *a < 20.0)
-                .unwrap_or(4.0 / 3.0);
-            (800, ((800.0 / aspect).round() as u32).max(1))
-        }
-    };
+    let (w, h) = opts.size.unwrap_or_else(|| default_size(scene));
     check_size(w, h)?;
     Ok((w, h))
+}
+
+/// The default image size: 800 wide at the first camera's aspect ratio (or 4:3).
+pub fn default_size(scene: &Scene) -> (u32, u32) {
+    let aspect = scene
+        .cameras
+        .first()
+        .and_then(|c| match c.projection {
+            Projection::Perspective { aspect, .. } => aspect,
+            Projection::Orthographic { xmag, ymag } => Some(xmag / ymag),
+        })
+        .filter(|a| a.is_finite() && *a > 0.05 && *a < 20.0)
+        .unwrap_or(4.0 / 3.0);
+    (800, ((800.0 / aspect).round() as u32).max(1))
 }
 
 /// Rejects empty or absurd image sizes before anything is allocated.
@@ -228,6 +247,16 @@ impl SpectralMode {
 
 /// `iris render`.
 pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
+    render_command_measured(opts, &MeasureOptions::default())
+}
+
+/// `iris render` with `--reference`, `--report`, `--plot` and `--target-error`: every flag is
+/// checked (extensions, the reference's file and size) before rendering; the image, then the
+/// CSV, then the plot are written, each atomically.
+pub fn render_command_measured(
+    opts: &RenderOptions,
+    measure: &MeasureOptions,
+) -> Result<RenderSummary> {
     if let Some((w, h)) = opts.size {
         check_size(w, h)?;
     }
@@ -242,12 +271,35 @@ pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
         }
     };
     output::check_extension(&output)?;
+    measure.check_flags()?;
+    let reference = measure
+        .reference
+        .as_deref()
+        .map(crate::converge::measure::read_reference_file)
+        .transpose()?;
     let (scene, file_env, load_time) = load_with_environment(&opts.scene, opts.accel)?;
     let scene = scene.with_environment(resolve_environment(opts.env.clone(), file_env)?);
-    let (w, h) = image_size(opts, &scene)?;
+    let (w, h) = match (&reference, opts.size) {
+        (Some(r), None) => (r.width, r.height),
+        _ => image_size(opts, &scene)?,
+    };
+    if let (Some(r), Some(path)) = (&reference, &measure.reference) {
+        crate::converge::measure::check_reference_size(
+            r,
+            path,
+            w,
+            h,
+            &format!("the render of {}", opts.scene.display()),
+        )?;
+    }
     let (cam_desc, cam_note) = choose_camera(&scene, opts.camera.as_deref(), w as f32 / h as f32)?;
     let camera = Camera::new(&cam_desc, w, h);
     let (method, method_note) = opts.method.resolve(&scene);
+    measure.check_checkpoints(if method == Method::Sppm {
+        opts.photon.passes
+    } else {
+        opts.spp
+    })?;
     let integrator = Integrator {
         method,
         max_depth: opts.max_depth,
@@ -263,22 +315,32 @@ pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
         spectral: opts.spectral.resolve(&scene),
         time_limit: opts.time_limit,
     };
-    let display = opts.display;
-    let out_path = output.clone();
-    // `--checkpoint K`: at the checkpoints (1, 2, 4, … samples or passes), write the image
-    // when at least K samples (passes) were added since the last write.
-    let mut written = 0u64;
-    let mut write_checkpoint = move |p: &Progress| -> Result<Control> {
-        let k = opts.checkpoint.unwrap_or(0) as u64;
-        if k > 0 && !p.done && p.samples >= written + k {
-            output::write_image(&out_path, p.image, &display)?;
-            written = p.samples;
+    let run = crate::converge::method_name(method);
+    let mut rows = crate::converge::setup_rows(run, load_time, scene.accel_build_time);
+    let mut recorder = Recorder::new(run, reference.as_ref(), measure.target_error);
+    recorder.verbose = !opts.quiet && measure.any();
+    // `--checkpoint K`: write the image whenever K more samples (passes for SPPM) are done.
+    let mut last_written = 0u64;
+    let mut observe = |p: &Progress| -> Result<Control> {
+        if let Some(k) = opts.checkpoint {
+            let units = if method == Method::Sppm {
+                u64::from(p.passes)
+            } else {
+                p.samples
+            };
+            if !p.done && units >= last_written + u64::from(k) {
+                output::write_image(&output, p.image, &opts.display)?;
+                last_written = units;
+            }
         }
-        Ok(Control::Continue)
+        recorder.observe(p)
     };
-    let observer: Option<Observer> = opts.checkpoint.map(|_| &mut write_checkpoint as Observer);
-    let (image, stats) = render_progressive(&scene, &camera, &integrator, &settings, observer)?;
+    let (image, stats) =
+        render_progressive(&scene, &camera, &integrator, &settings, Some(&mut observe))?;
     output::write_image(&output, &image, &opts.display)?;
+    let reached_target = recorder.reached_target;
+    rows.append(&mut recorder.rows);
+    let measure_notes = measure.write_outputs(&rows, &opts.scene)?;
     let mut notes = scene.notes.clone();
     notes.extend(method_note);
     if settings.spectral {
@@ -291,6 +353,7 @@ pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
     }
     notes.extend(cam_note);
     notes.extend(scene.warnings.iter().cloned());
+    notes.extend(measure_notes);
     Ok(RenderSummary {
         output,
         image,
@@ -300,6 +363,8 @@ pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
         triangles: scene.triangle_count(),
         backend: scene.backend_name(),
         notes,
+        rows,
+        reached_target,
     })
 }
 

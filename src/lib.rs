@@ -25,6 +25,7 @@ pub mod app;
 pub mod area_light;
 pub mod bsdf;
 pub mod camera;
+pub mod converge;
 pub mod envmap;
 pub mod error;
 pub mod gen;

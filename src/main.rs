@@ -4,6 +4,10 @@
 use clap::{Parser, Subcommand, ValueEnum};
 use iris::accel::Backend;
 use iris::app::{self, RenderOptions};
+use iris::converge::measure::relative_rmse;
+use iris::converge::{
+    converge_command, method_name, parse_methods, ConvergeOptions, MeasureOptions,
+};
 use iris::integrator::{Method, PhotonSettings};
 use iris::output::{DisplayOptions, Exposure, ToneMap};
 use iris::photon::trace::Roulette;
@@ -38,6 +42,12 @@ enum Command {
         /// Reference image.
         reference: PathBuf,
     },
+    /// Render a scene with several methods for the same time budget and compare their error
+    /// against time: DIR/<method>.exr/.png, DIR/report.csv, DIR/convergence.png, and which
+    /// method reached each error level first. Without --reference, a reference is rendered
+    /// first (SPPM for caustic scenes, the path tracer otherwise) for 4× the budget and
+    /// written to DIR/reference.exr.
+    Converge(ConvergeArgs),
     /// Regenerate the project's own scenes into DIR/paper (the paper's figures) and
     /// DIR/scenes (glass of water, ruby, prism under the sky + sky.hdr).
     GenAssets {
@@ -155,15 +165,82 @@ struct RenderArgs {
     /// SPPM radius reduction α in (0, 1): r²ᵢ₊₁ = r²ᵢ (i+α)/(i+1) (Knaus & Zwicker 2011).
     #[arg(long, default_value_t = 2.0 / 3.0, value_parser = parse_alpha, allow_hyphen_values = true)]
     alpha: f32,
-    /// Write the image so far every K SPPM passes.
+    /// Write the image so far at the checkpoints (1, 2, 4, … samples, or passes for SPPM)
+    /// that are at least K samples or passes after the last one written.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     checkpoint: Option<u32>,
     /// Photon Russian roulette rule.
     #[arg(long, value_enum, default_value_t = RouletteArg::Throughput)]
     photon_rr: RouletteArg,
+    /// Reference EXR (same size as the render; sets the size if --size is not given): error
+    /// against it at every checkpoint (1, 2, 4, … samples or passes).
+    #[arg(long)]
+    reference: Option<PathBuf>,
+    /// Write error against time as CSV: a "load" row, a "build" row, one "render" row per
+    /// checkpoint.
+    #[arg(long)]
+    report: Option<PathBuf>,
+    /// Plot error against time, log-log (.png or .svg): against --reference if given, else
+    /// the half-buffer estimate.
+    #[arg(long)]
+    plot: Option<PathBuf>,
+    /// Stop once the estimated relative RMSE is at or below E (upper bound: --time, --spp or
+    /// --passes, whichever comes first).
+    #[arg(long, value_parser = parse_target, allow_hyphen_values = true)]
+    target_error: Option<f64>,
     /// No progress bar.
     #[arg(short, long)]
     quiet: bool,
+}
+
+#[derive(clap::Args)]
+struct ConvergeArgs {
+    /// Scene file (.gltf, .glb, .obj).
+    scene: PathBuf,
+    /// Methods to compare, comma-separated: whitted, path, photon, sppm.
+    #[arg(long, default_value = "path,photon,sppm")]
+    methods: String,
+    /// Time budget of each method in seconds.
+    #[arg(long, value_parser = parse_seconds, allow_hyphen_values = true)]
+    time: f64,
+    /// Reference EXR; without it one is rendered for 4× --time (DIR/reference.exr).
+    #[arg(long)]
+    reference: Option<PathBuf>,
+    /// Output directory (created if missing).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Image size WxH (default: the reference's, else 800 wide at the camera's aspect).
+    #[arg(long, value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    /// Random seed of the runs.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Worker threads (0 = all cores).
+    #[arg(long, default_value_t = 0)]
+    threads: usize,
+    /// Intersection backend.
+    #[arg(long, value_enum, default_value_t = AccelArg::Auto)]
+    accel: AccelArg,
+    /// No progress output.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+fn parse_target(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!(
+            "expected a relative error > 0, e.g. 0.05, got {s:?}"
+        )),
+    }
+}
+
+fn accel_of(a: AccelArg) -> Backend {
+    match a {
+        AccelArg::Auto => Backend::Auto,
+        AccelArg::Embree => Backend::Embree,
+        AccelArg::Bvh => Backend::Bvh,
+    }
 }
 
 fn parse_seconds(s: &str) -> Result<f64, String> {
@@ -242,11 +319,7 @@ fn run(cli: Cli) -> iris::Result<()> {
                     },
                     ..PhotonSettings::default()
                 },
-                accel: match a.accel {
-                    AccelArg::Auto => Backend::Auto,
-                    AccelArg::Embree => Backend::Embree,
-                    AccelArg::Bvh => Backend::Bvh,
-                },
+                accel: accel_of(a.accel),
                 seed: a.seed,
                 threads: a.threads,
                 camera: a.camera,
@@ -270,7 +343,13 @@ fn run(cli: Cli) -> iris::Result<()> {
                     SpectralArg::Off => app::SpectralMode::Off,
                 },
             };
-            let s = app::render_command(&opts)?;
+            let measure = MeasureOptions {
+                reference: a.reference,
+                report: a.report,
+                plot: a.plot,
+                target_error: a.target_error,
+            };
+            let s = app::render_command_measured(&opts, &measure)?;
             for n in &s.notes {
                 eprintln!("note: {n}");
             }
@@ -278,7 +357,10 @@ fn run(cli: Cli) -> iris::Result<()> {
             let work = if s.stats.photons > 0 {
                 format!("{} passes, {} photons", s.stats.passes, s.stats.photons)
             } else {
-                format!("{} spp", opts.spp)
+                format!(
+                    "{} spp",
+                    s.rows.last().map_or(opts.spp as u64, |r| r.samples)
+                )
             };
             eprintln!(
                 "iris: {} -> {}: {}x{}, {}, {} triangles, {}, render {:.2} s (load {:.2} s, build {:.2} s), {:.2} Mrays/s",
@@ -294,6 +376,64 @@ fn run(cli: Cli) -> iris::Result<()> {
                 s.build_time.as_secs_f64(),
                 s.stats.rays as f64 / secs.max(1e-9) / 1e6
             );
+            if let Some(e) = s.final_estimate() {
+                let mut line = format!("iris: estimated relative error {:.4}", relative_rmse(&e));
+                if let Some(r) = s.final_error() {
+                    line.push_str(&format!(
+                        ", against the reference {:.4} (rmse {:.4e}, mae {:.4e})",
+                        relative_rmse(&r),
+                        r.rmse,
+                        r.mae
+                    ));
+                }
+                if let Some(t) = measure.target_error {
+                    line.push_str(&if s.reached_target {
+                        format!(", target {t} reached")
+                    } else {
+                        format!(", target {t} not reached within the bound")
+                    });
+                }
+                eprintln!("{line}");
+            }
+            Ok(())
+        }
+        Command::Converge(a) => {
+            let opts = ConvergeOptions {
+                scene: a.scene,
+                methods: parse_methods(&a.methods)?,
+                time: std::time::Duration::from_secs_f64(a.time),
+                reference: a.reference,
+                out_dir: a.output,
+                size: a.size,
+                seed: a.seed,
+                threads: a.threads,
+                accel: accel_of(a.accel),
+                quiet: a.quiet,
+            };
+            let s = converge_command(&opts)?;
+            if let Some((m, path)) = &s.rendered_reference {
+                println!(
+                    "reference: rendered with {} for {:.1} s -> {}",
+                    method_name(*m),
+                    4.0 * a.time,
+                    path.display()
+                );
+            }
+            for r in &s.runs {
+                println!(
+                    "{}: {:.2} s, {} spp, {} passes, {} photons, relative error {:.4}",
+                    r.name,
+                    r.stats.time.as_secs_f64(),
+                    r.spp,
+                    r.stats.passes,
+                    r.stats.photons,
+                    r.relative_error
+                );
+            }
+            print!("{}", s.table);
+            for f in &s.files {
+                eprintln!("wrote {}", f.display());
+            }
             Ok(())
         }
         Command::Info { scene } => {

@@ -1,0 +1,287 @@
+//! Measuring a progressive render: at each checkpoint of
+//! [`render_progressive`](crate::render::render_progressive), the error against a reference
+//! (if one was given) and the half-buffer estimate (always), as [`ReportRow`]s; the
+//! `--target-error` stop; and the error levels each run reached first.
+//!
+//! Units: times are wall seconds since rendering started (loading and the acceleration build
+//! are their own rows); errors are on the linear image ([`crate::metrics`]). The *relative
+//! error* used for `--target-error`, the plots and the levels table is the relative RMSE
+//! `sqrt(rel_mse)`, with `rel_mse = mean((x−r)²/(r²+0.01))` (issue 6).
+
+use crate::error::{Error, Result};
+use crate::metrics::{compare, half_buffer_estimate, ErrorMetrics};
+use crate::output::ImageRgb;
+use crate::render::{Control, Progress};
+use crate::report::ReportRow;
+use std::path::Path;
+
+/// Error levels (relative RMSE) reported by `iris converge`, coarse to fine.
+pub const LEVELS: [f64; 5] = [0.5, 0.2, 0.1, 0.05, 0.02];
+
+/// The relative RMSE `sqrt(rel_mse)` of a metrics triple.
+pub fn relative_rmse(m: &ErrorMetrics) -> f64 {
+    m.rel_mse.max(0.0).sqrt()
+}
+
+/// Reads `--reference FILE`; errors name the flag and the file.
+pub fn read_reference_file(path: &Path) -> Result<ImageRgb> {
+    crate::output::read_exr(path).map_err(|e| Error::Usage(format!("--reference: {e}")))
+}
+
+/// Checks that the reference is `width`×`height`; the error names the reference file and
+/// the render (`what`) with both sizes.
+pub fn check_reference_size(
+    reference: &ImageRgb,
+    path: &Path,
+    width: u32,
+    height: u32,
+    what: &str,
+) -> Result<()> {
+    if (reference.width, reference.height) != (width, height) {
+        return Err(Error::Usage(format!(
+            "--reference {} is {}x{} but {what} is {width}x{height} (pass --size {}x{} or a matching reference)",
+            path.display(),
+            reference.width,
+            reference.height,
+            reference.width,
+            reference.height
+        )));
+    }
+    Ok(())
+}
+
+/// Collects one [`ReportRow`] per checkpoint of one run and decides when to stop.
+#[derive(Debug)]
+pub struct Recorder<'a> {
+    /// Run name written in the `run` column (the method).
+    pub run: String,
+    /// The reference, if any.
+    pub reference: Option<&'a ImageRgb>,
+    /// Stop once the estimated relative RMSE is at or below this.
+    pub target_error: Option<f64>,
+    /// Print one line per checkpoint on stderr.
+    pub verbose: bool,
+    /// The rows so far ("render" stage only).
+    pub rows: Vec<ReportRow>,
+    /// Whether the target error was reached.
+    pub reached_target: bool,
+}
+
+impl<'a> Recorder<'a> {
+    /// A recorder for run `run`.
+    pub fn new(run: &str, reference: Option<&'a ImageRgb>, target_error: Option<f64>) -> Self {
+        Recorder {
+            run: run.to_string(),
+            reference,
+            target_error,
+            verbose: false,
+            rows: Vec::new(),
+            reached_target: false,
+        }
+    }
+
+    /// Records a checkpoint; returns [`Control::Stop`] when the target error is reached.
+    pub fn observe(&mut self, p: &Progress) -> Result<Control> {
+        let estimate = half_buffer_estimate(p.halves.0, p.halves.1)?;
+        let error = match self.reference {
+            Some(r) => Some(compare(p.image, r)?),
+            None => None,
+        };
+        // A final call (`done`) at the same count as the last checkpoint replaces its row.
+        if self
+            .rows
+            .last()
+            .is_some_and(|r| r.samples == p.samples && r.passes == p.passes)
+        {
+            self.rows.pop();
+        }
+        self.rows.push(ReportRow {
+            run: self.run.clone(),
+            stage: "render".into(),
+            wall_s: p.elapsed.as_secs_f64(),
+            samples: p.samples,
+            passes: p.passes,
+            rays: p.rays,
+            photons: p.photons,
+            error,
+            estimate: Some(estimate),
+        });
+        if self.verbose && !p.done {
+            eprintln!(
+                "{}",
+                checkpoint_line(&self.run, p, &estimate, error.as_ref())
+            );
+        }
+        let reached = self
+            .target_error
+            .is_some_and(|e| relative_rmse(&estimate) <= e);
+        if reached {
+            self.reached_target = true;
+            return Ok(Control::Stop);
+        }
+        Ok(Control::Continue)
+    }
+
+    /// (seconds, error) points for a plot: the error against the reference if there is one,
+    /// else the estimate; relative RMSE.
+    pub fn points(&self) -> Vec<(f64, f64)> {
+        points(&self.rows)
+    }
+}
+
+/// (seconds, relative RMSE) of the "render" rows: against the reference when the rows have
+/// it, else the half-buffer estimate.
+pub fn points(rows: &[ReportRow]) -> Vec<(f64, f64)> {
+    rows.iter()
+        .filter(|r| r.stage == "render")
+        .filter_map(|r| {
+            r.error
+                .or(r.estimate)
+                .map(|m| (r.wall_s, relative_rmse(&m)))
+        })
+        .collect()
+}
+
+/// `path: 16 spp, 3 passes, 1.25 s: estimated relative error 0.081 (vs reference 0.094)`.
+fn checkpoint_line(
+    run: &str,
+    p: &Progress,
+    estimate: &ErrorMetrics,
+    error: Option<&ErrorMetrics>,
+) -> String {
+    let mut s = format!(
+        "{run}: {} spp, {} passes, {:.2} s: estimated relative error {:.4}",
+        p.samples,
+        p.passes,
+        p.elapsed.as_secs_f64(),
+        relative_rmse(estimate)
+    );
+    if let Some(e) = error {
+        s.push_str(&format!(" (vs reference {:.4})", relative_rmse(e)));
+    }
+    s
+}
+
+/// The first time each run's error (relative RMSE, reference if present else estimate)
+/// reached `level`: one entry per run, `None` if it never did.
+pub fn first_reached(runs: &[(String, Vec<(f64, f64)>)], level: f64) -> Vec<Option<f64>> {
+    runs.iter()
+        .map(|(_, pts)| pts.iter().find(|(_, e)| *e <= level).map(|(t, _)| *t))
+        .collect()
+}
+
+/// The levels table of `iris converge`: for each of [`LEVELS`], the run that reached it
+/// first and when (checkpoint resolution: checkpoints fall at 1, 2, 4, … samples or passes).
+pub fn levels_table(runs: &[(String, Vec<(f64, f64)>)]) -> String {
+    let mut s = String::from("relative error  first to reach it\n");
+    for level in LEVELS {
+        let times = first_reached(runs, level);
+        let best = times
+            .iter()
+            .enumerate()
+            .filter_map(|(i, t)| t.map(|t| (i, t)))
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        let others: Vec<String> = runs
+            .iter()
+            .zip(&times)
+            .map(|((name, _), t)| match t {
+                Some(t) => format!("{name} {t:.2} s"),
+                None => format!("{name} not reached"),
+            })
+            .collect();
+        let first = match best {
+            Some((i, t)) => format!("{} at {t:.2} s", runs[i].0),
+            None => "none".into(),
+        };
+        s.push_str(&format!(
+            "{level:<14}  {first:<20}  ({})\n",
+            others.join(", ")
+        ));
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn levels_pick_the_earliest_run() {
+        // Hand-made curves: "a" is faster to 0.5 and 0.2, "b" alone reaches 0.05.
+        let runs = vec![
+            ("a".to_string(), vec![(0.1, 0.6), (0.2, 0.3), (0.4, 0.15)]),
+            ("b".to_string(), vec![(0.3, 0.45), (0.6, 0.04)]),
+        ];
+        assert_eq!(first_reached(&runs, 0.5), vec![Some(0.2), Some(0.3)]);
+        assert_eq!(first_reached(&runs, 0.05), vec![None, Some(0.6)]);
+        let t = levels_table(&runs);
+        let line = |l: &str| t.lines().find(|x| x.starts_with(l)).unwrap().to_string();
+        assert!(line("0.5 ").contains("a at 0.20 s"), "{t}");
+        assert!(line("0.1 ").contains("b at 0.60 s"), "{t}");
+        assert!(line("0.02").contains("none"), "{t}");
+    }
+
+    #[test]
+    fn recorder_stops_at_the_target_and_merges_the_final_call() {
+        use glam::Vec3;
+        let img = |v: f32| ImageRgb {
+            width: 2,
+            height: 1,
+            data: vec![Vec3::splat(v); 2],
+        };
+        // Halves 0.9 and 1.1: per channel (a−b)²/4 = 0.01 over m² + 0.01 = 1.01, so the
+        // estimated relative RMSE is sqrt(0.01/1.01) ≈ 0.0995.
+        let (a, b, m) = (img(0.9), img(1.1), img(1.0));
+        let reference = img(1.0);
+        let mut rec = Recorder::new("path", Some(&reference), Some(0.1));
+        let progress = |done| Progress {
+            image: &m,
+            halves: (&a, &b),
+            elapsed: std::time::Duration::from_millis(5),
+            samples: 4,
+            passes: 1,
+            rays: 8,
+            photons: 0,
+            done,
+        };
+        assert_eq!(rec.observe(&progress(false)).unwrap(), Control::Stop);
+        assert!(rec.reached_target);
+        rec.observe(&progress(true)).unwrap();
+        assert_eq!(
+            rec.rows.len(),
+            1,
+            "the final call at 4 spp replaces the checkpoint row"
+        );
+        let est = rec.rows[0].estimate.unwrap();
+        assert!((relative_rmse(&est) - (0.01f64 / 1.01).sqrt()).abs() < 1e-6);
+        assert_eq!(rec.rows[0].error.unwrap().rmse, 0.0);
+        let mut strict = Recorder::new("path", None, Some(0.09));
+        assert_eq!(strict.observe(&progress(false)).unwrap(), Control::Continue);
+    }
+
+    #[test]
+    fn points_prefer_the_reference_error() {
+        let m = |rel: f64| ErrorMetrics {
+            rmse: 1.0,
+            rel_mse: rel,
+            mae: 1.0,
+        };
+        let row = |error, estimate| ReportRow {
+            run: "x".into(),
+            stage: "render".into(),
+            wall_s: 2.0,
+            samples: 1,
+            passes: 1,
+            rays: 0,
+            photons: 0,
+            error,
+            estimate,
+        };
+        // sqrt(0.25) = 0.5 (reference) wins over sqrt(0.04) = 0.2 (estimate).
+        assert_eq!(
+            points(&[row(Some(m(0.25)), Some(m(0.04)))]),
+            vec![(2.0, 0.5)]
+        );
+        assert_eq!(points(&[row(None, Some(m(0.04)))]), vec![(2.0, 0.2)]);
+    }
+}

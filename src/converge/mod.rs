@@ -1,0 +1,419 @@
+//! Error against run time on the command line: the measuring flags of `iris render`
+//! (`--reference`, `--report`, `--plot`, `--target-error`, see [`MeasureOptions`]) and the
+//! `iris converge` command ([`converge_command`]), which renders one scene with several
+//! methods under the same time budget and compares their error curves.
+//!
+//! Units and conventions: wall-clock seconds; errors on the linear image
+//! ([`crate::metrics`]); "relative error" is the relative RMSE `sqrt(rel_mse)`
+//! ([`measure::relative_rmse`]). Every file is written atomically (temporary file + rename),
+//! and every flag and input file is checked before anything is rendered.
+
+pub mod measure;
+
+use crate::accel::Backend;
+use crate::app::{self, SpectralMode};
+use crate::camera::Camera;
+use crate::error::{Error, Result};
+use crate::integrator::{Integrator, Method, PhotonSettings};
+use crate::output::{self, DisplayOptions, ImageRgb};
+use crate::plot::{plot_error_vs_time, Series};
+use crate::render::{render_progressive, Control, Progress, RenderSettings, RenderStats};
+use crate::report::{write_csv, ReportRow};
+use crate::scene::Scene;
+use measure::Recorder;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+/// The measuring flags of `iris render`; all off by default.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct MeasureOptions {
+    /// `--reference ref.exr`: error against this image at each checkpoint.
+    pub reference: Option<PathBuf>,
+    /// `--report out.csv`: one row per checkpoint (plus "load" and "build").
+    pub report: Option<PathBuf>,
+    /// `--plot out.png|svg`: error against time, log-log.
+    pub plot: Option<PathBuf>,
+    /// `--target-error E`: stop once the estimated relative RMSE is ≤ E.
+    pub target_error: Option<f64>,
+}
+
+impl MeasureOptions {
+    /// Whether any measuring flag was given.
+    pub fn any(&self) -> bool {
+        self.reference.is_some()
+            || self.report.is_some()
+            || self.plot.is_some()
+            || self.target_error.is_some()
+    }
+
+    /// Checks the flags that need no scene: the plot's extension and the target's range.
+    pub fn check_flags(&self) -> Result<()> {
+        if let Some(p) = &self.plot {
+            check_plot_extension(p)?;
+        }
+        if let Some(e) = self.target_error {
+            if e.is_nan() || e <= 0.0 || e.is_infinite() {
+                return Err(Error::Usage(format!(
+                    "--target-error {e}: expected a finite relative error > 0"
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// `--plot` needs at least 2 checkpoints (at 1, 2, 4, … samples or passes), so the
+    /// sample or pass bound must be at least 2.
+    pub fn check_checkpoints(&self, bound: u32) -> Result<()> {
+        if self.plot.is_some() && bound < 2 {
+            return Err(Error::Usage(format!(
+                "--plot needs at least 2 checkpoints, but the render stops after {bound} sample or pass (raise --spp, or --passes for SPPM)"
+            )));
+        }
+        Ok(())
+    }
+
+    /// Writes the CSV and the plot asked for; returns notes (a plot skipped because the
+    /// render stopped after one checkpoint).
+    pub fn write_outputs(&self, rows: &[ReportRow], scene: &Path) -> Result<Vec<String>> {
+        let mut notes = Vec::new();
+        if let Some(path) = &self.report {
+            write_csv(path, rows)?;
+        }
+        if let Some(path) = &self.plot {
+            let points = measure::points(rows);
+            if points.len() < 2 {
+                notes.push(format!(
+                    "--plot {}: not written, the render stopped after {} checkpoint(s) (a line needs 2)",
+                    path.display(),
+                    points.len()
+                ));
+            } else {
+                let label = rows
+                    .iter()
+                    .find(|r| r.stage == "render")
+                    .map_or("render", |r| r.run.as_str());
+                let y = if self.reference.is_some() {
+                    "relative RMSE against the reference"
+                } else {
+                    "estimated relative RMSE (half buffers)"
+                };
+                plot_error_vs_time(
+                    path,
+                    &format!("{}: error against time", file_name(scene)),
+                    y,
+                    &[Series {
+                        label: label.to_string(),
+                        points,
+                    }],
+                )?;
+            }
+        }
+        Ok(notes)
+    }
+}
+
+/// `.png` or `.svg` (case-insensitive), else [`Error::Usage`] naming the file.
+pub fn check_plot_extension(path: &Path) -> Result<()> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("png") | Some("svg") => Ok(()),
+        _ => Err(Error::Usage(format!(
+            "--plot {}: unknown plot format (accepted extensions: .png, .svg)",
+            path.display()
+        ))),
+    }
+}
+
+fn file_name(path: &Path) -> String {
+    path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
+}
+
+/// The method's command-line name, used as the run name in reports and file names.
+pub fn method_name(method: Method) -> &'static str {
+    match method {
+        Method::Whitted => "whitted",
+        Method::Path => "path",
+        Method::Photon => "photon",
+        Method::Sppm => "sppm",
+        Method::Auto => "auto",
+    }
+}
+
+/// Parses `--methods path,photon,sppm`: names from whitted, path, photon, sppm, each at most
+/// once, at least one.
+pub fn parse_methods(list: &str) -> Result<Vec<Method>> {
+    let mut methods = Vec::new();
+    for name in list.split(',').map(str::trim) {
+        let m = match name.to_ascii_lowercase().as_str() {
+            "whitted" => Method::Whitted,
+            "path" => Method::Path,
+            "photon" => Method::Photon,
+            "sppm" => Method::Sppm,
+            _ => {
+                return Err(Error::Usage(format!(
+                "--methods {list}: unknown method {name:?} (accepted: whitted, path, photon, sppm)"
+            )))
+            }
+        };
+        if methods.contains(&m) {
+            return Err(Error::Usage(format!(
+                "--methods {list}: {name} is listed twice"
+            )));
+        }
+        methods.push(m);
+    }
+    Ok(methods)
+}
+
+/// The "load" (parse + validation, without the acceleration build) and "build" rows.
+pub fn setup_rows(run: &str, load_and_build: Duration, build: Duration) -> Vec<ReportRow> {
+    let row = |stage: &str, t: Duration| ReportRow {
+        run: run.to_string(),
+        stage: stage.to_string(),
+        wall_s: t.as_secs_f64(),
+        samples: 0,
+        passes: 0,
+        rays: 0,
+        photons: 0,
+        error: None,
+        estimate: None,
+    };
+    vec![
+        row("load", load_and_build.saturating_sub(build)),
+        row("build", build),
+    ]
+}
+
+/// Everything `iris converge` needs.
+#[derive(Debug, Clone)]
+pub struct ConvergeOptions {
+    /// Scene file.
+    pub scene: PathBuf,
+    /// Methods to compare, in order.
+    pub methods: Vec<Method>,
+    /// Time budget of each method.
+    pub time: Duration,
+    /// Reference image; `None` = render one first (see [`converge_command`]).
+    pub reference: Option<PathBuf>,
+    /// Output directory (created if missing).
+    pub out_dir: PathBuf,
+    /// Image size; default the reference's, else as `iris render`.
+    pub size: Option<(u32, u32)>,
+    /// Seed of the runs (the rendered reference uses another stream).
+    pub seed: u64,
+    /// Threads (0 = all).
+    pub threads: usize,
+    /// Acceleration backend.
+    pub accel: Backend,
+    /// No progress output.
+    pub quiet: bool,
+}
+
+/// What `iris converge` did.
+#[derive(Debug, Clone)]
+pub struct ConvergeSummary {
+    /// Every file written, in order.
+    pub files: Vec<PathBuf>,
+    /// The reference, when one was rendered: its method and file.
+    pub rendered_reference: Option<(Method, PathBuf)>,
+    /// Each run, in the order of `--methods`.
+    pub runs: Vec<RunSummary>,
+    /// The levels table ([`measure::levels_table`]).
+    pub table: String,
+}
+
+/// One method's run in `iris converge`.
+#[derive(Debug, Clone)]
+pub struct RunSummary {
+    /// Method name.
+    pub name: String,
+    /// Render figures.
+    pub stats: RenderStats,
+    /// Samples per pixel at the end.
+    pub spp: u64,
+    /// Final relative RMSE against the reference.
+    pub relative_error: f64,
+}
+
+/// Largest sample and pass counts given to a run, so that the time budget stops it.
+const UNBOUNDED_SPP: u32 = 1_000_000;
+const UNBOUNDED_PASSES: u32 = 10_000_000;
+/// Seed offset of a rendered reference, so its noise is independent of the runs'.
+const REFERENCE_SEED: u64 = 0x5EED_0F2E_FE2E_7C00;
+
+/// `iris converge`: renders the scene with each method for the same time budget, writes
+/// DIR/<method>.exr and .png, DIR/report.csv (every checkpoint of every run, run = method)
+/// and DIR/convergence.png (relative RMSE against time, one line per method), and returns
+/// the table of which method reached each of [`measure::LEVELS`] first.
+///
+/// Without a reference it first renders one for 4× the budget with `--method auto`'s choice
+/// (SPPM when the scene has caustic paths, the path tracer otherwise) on an independent
+/// seed, and writes it to DIR/reference.exr.
+pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
+    if opts.methods.is_empty() {
+        return Err(Error::Usage("--methods: name at least one method".into()));
+    }
+    if let Some((w, h)) = opts.size {
+        app::check_size(w, h)?;
+    }
+    let given_reference = opts
+        .reference
+        .as_deref()
+        .map(crate::converge::measure::read_reference_file)
+        .transpose()?;
+    prepare_dir(&opts.out_dir)?;
+    let (scene, file_env, load_time) = app::load_with_environment(&opts.scene, opts.accel)?;
+    let scene = scene.with_environment(app::resolve_environment(None, file_env)?);
+    let (w, h) = match (opts.size, &given_reference) {
+        (Some(s), _) => s,
+        (None, Some(r)) => (r.width, r.height),
+        (None, None) => app::default_size(&scene),
+    };
+    app::check_size(w, h)?;
+    if let (Some(r), Some(path)) = (&given_reference, &opts.reference) {
+        measure::check_reference_size(
+            r,
+            path,
+            w,
+            h,
+            &format!("--size of {}", opts.scene.display()),
+        )?;
+    }
+    let (cam_desc, _) = app::choose_camera(&scene, None, w as f32 / h as f32)?;
+    let job = Job {
+        scene: &scene,
+        camera: Camera::new(&cam_desc, w, h),
+        base: RenderSettings {
+            width: w,
+            height: h,
+            spp: UNBOUNDED_SPP,
+            seed: opts.seed,
+            threads: opts.threads,
+            quiet: opts.quiet,
+            spectral: SpectralMode::Auto.resolve(&scene),
+            time_limit: Some(opts.time),
+        },
+    };
+    let display = DisplayOptions::default();
+    let mut files = Vec::new();
+    let mut rendered_reference = None;
+    let reference = match given_reference {
+        Some(r) => r,
+        None => {
+            let (method, _) = Method::Auto.resolve(&scene);
+            if !opts.quiet {
+                eprintln!(
+                    "iris converge: no --reference: rendering one with {} for {:.1} s (4× the budget)",
+                    method_name(method),
+                    4.0 * opts.time.as_secs_f64()
+                );
+            }
+            let mut settings = job.base.clone();
+            settings.seed ^= REFERENCE_SEED;
+            settings.time_limit = Some(opts.time * 4);
+            let (image, _) = job.run(method, &settings, None)?;
+            let path = opts.out_dir.join("reference.exr");
+            output::write_image(&path, &image, &display)?;
+            files.push(path.clone());
+            rendered_reference = Some((method, path));
+            image
+        }
+    };
+    let mut rows = setup_rows("scene", load_time, scene.accel_build_time);
+    let mut runs = Vec::new();
+    let mut curves = Vec::new();
+    for &method in &opts.methods {
+        let name = method_name(method);
+        let mut recorder = Recorder::new(name, Some(&reference), None);
+        recorder.verbose = !opts.quiet;
+        let mut observe = |p: &Progress| -> Result<Control> { recorder.observe(p) };
+        let (image, stats) = job.run(method, &job.base, Some(&mut observe))?;
+        for ext in ["exr", "png"] {
+            let path = opts.out_dir.join(format!("{name}.{ext}"));
+            output::write_image(&path, &image, &display)?;
+            files.push(path);
+        }
+        let last = crate::metrics::compare(&image, &reference)?;
+        runs.push(RunSummary {
+            name: name.to_string(),
+            stats,
+            spp: recorder.rows.last().map_or(0, |r| r.samples),
+            relative_error: measure::relative_rmse(&last),
+        });
+        curves.push((name.to_string(), recorder.points()));
+        rows.append(&mut recorder.rows);
+    }
+    let report = opts.out_dir.join("report.csv");
+    write_csv(&report, &rows)?;
+    files.push(report);
+    let plot = opts.out_dir.join("convergence.png");
+    let series: Vec<Series> = curves
+        .iter()
+        .map(|(label, points)| Series {
+            label: label.clone(),
+            points: points.clone(),
+        })
+        .collect();
+    plot_error_vs_time(
+        &plot,
+        &format!(
+            "{}: error against time ({} s each)",
+            file_name(&opts.scene),
+            opts.time.as_secs_f64()
+        ),
+        "relative RMSE against the reference",
+        &series,
+    )?;
+    files.push(plot);
+    Ok(ConvergeSummary {
+        files,
+        rendered_reference,
+        runs,
+        table: measure::levels_table(&curves),
+    })
+}
+
+/// Creates the output directory and proves it writable (a probe file, removed again), so a
+/// bad `-o` fails before any rendering.
+fn prepare_dir(dir: &Path) -> Result<()> {
+    let fail = |e: std::io::Error| Error::Output {
+        path: dir.to_path_buf(),
+        reason: format!("-o: cannot write to this directory: {e}"),
+    };
+    std::fs::create_dir_all(dir).map_err(fail)?;
+    let probe = dir.join(format!(".iris-converge-probe-{}", std::process::id()));
+    std::fs::write(&probe, b"").map_err(fail)?;
+    std::fs::remove_file(&probe).map_err(fail)
+}
+
+/// The parts shared by every run of one `iris converge`.
+struct Job<'a> {
+    scene: &'a Scene,
+    camera: Camera,
+    base: RenderSettings,
+}
+
+impl Job<'_> {
+    fn run(
+        &self,
+        method: Method,
+        settings: &RenderSettings,
+        observer: Option<crate::render::Observer>,
+    ) -> Result<(ImageRgb, RenderStats)> {
+        let integrator = Integrator {
+            method,
+            max_depth: 64,
+            photon: PhotonSettings {
+                passes: UNBOUNDED_PASSES,
+                ..PhotonSettings::default()
+            },
+        };
+        render_progressive(self.scene, &self.camera, &integrator, settings, observer)
+    }
+}
