@@ -87,6 +87,8 @@ pub struct RenderSummary {
     pub rows: Vec<ReportRow>,
     /// Whether `--target-error` stopped the render.
     pub reached_target: bool,
+    /// The method that rendered (`--method auto` resolved).
+    pub method: Method,
 }
 
 impl RenderSummary {
@@ -365,6 +367,7 @@ pub fn render_command_measured(
         notes,
         rows,
         reached_target,
+        method,
     })
 }
 

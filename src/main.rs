@@ -150,8 +150,8 @@ struct RenderArgs {
     /// SPPM passes (`--method sppm`; with `--time`, whichever comes first).
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=10_000_000))]
     passes: u32,
-    /// Time budget in seconds for progressive methods (SPPM stops after the pass that
-    /// crosses it; at least one pass).
+    /// Time budget in seconds: every method stops after the round of samples (SPPM: the
+    /// pass) that crosses it, with at least one sample per pixel.
     #[arg(long, value_parser = parse_seconds, allow_hyphen_values = true)]
     time: Option<f64>,
     /// Photons per SPPM pass (default: one per pixel) or in total for `--method photon`
@@ -354,13 +354,12 @@ fn run(cli: Cli) -> iris::Result<()> {
                 eprintln!("note: {n}");
             }
             let secs = s.stats.time.as_secs_f64();
-            let work = if s.stats.photons > 0 {
-                format!("{} passes, {} photons", s.stats.passes, s.stats.photons)
-            } else {
-                format!(
-                    "{} spp",
-                    s.rows.last().map_or(opts.spp as u64, |r| r.samples)
-                )
+            let pixels = u64::from(s.image.width) * u64::from(s.image.height);
+            let spp_done = s.stats.samples / pixels.max(1);
+            let work = match s.method {
+                Method::Sppm => format!("{} passes, {} photons", s.stats.passes, s.stats.photons),
+                Method::Photon => format!("{spp_done} spp, {} photons", s.stats.photons),
+                _ => format!("{spp_done} spp"),
             };
             eprintln!(
                 "iris: {} -> {}: {}x{}, {}, {} triangles, {}, render {:.2} s (load {:.2} s, build {:.2} s), {:.2} Mrays/s",
