@@ -160,6 +160,19 @@ pub fn thread_pool(settings: &RenderSettings) -> Result<rayon::ThreadPool> {
         .map_err(|e| Error::Usage(format!("cannot start {} threads: {e}", settings.threads)))
 }
 
+/// The relative error of the full image estimated from its two halves
+/// ([`crate::metrics::half_buffer_estimate`], √ of the relative MSE), for the progress bar.
+pub fn relative_error_estimate(a: &ImageRgb, b: &ImageRgb) -> Option<f64> {
+    crate::metrics::half_buffer_estimate(a, b)
+        .ok()
+        .map(|e| e.rel_mse.sqrt())
+}
+
+/// ", est. rel. error 0.123" for the progress bar, or nothing before the first estimate.
+pub fn estimate_note(e: Option<f64>) -> String {
+    e.map_or(String::new(), |e| format!(", est. rel. error {e:.3}"))
+}
+
 /// A progress bar on stderr (hidden with `quiet`): elapsed time, the bar, and a message
 /// (samples or passes done, rays).
 pub fn progress_bar(quiet: bool, len: u64, what: &str) -> ProgressBar {

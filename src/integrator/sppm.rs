@@ -123,6 +123,7 @@ fn run<C: Carrier>(
     };
     let passes = ps.passes.max(1);
     let bar = progress_bar(settings.quiet, passes as u64, "sppm passes");
+    let mut last_estimate: Option<f64> = None;
     let start = Instant::now();
     // Per-pixel sums over even [0] and odd [1] passes of the direct (camera) and photon
     // estimates.
@@ -246,11 +247,18 @@ fn run<C: Carrier>(
         r2 = r2.map(|x| x * radius2_factor(done, ps.alpha));
         bar.inc(1);
         bar.set_message(format!(
-            "{done} passes, {rays} rays, r {r:.3e}, {} photons stored",
-            photons.len()
+            "{done} passes, {rays} rays, r {r:.3e}, {} photons stored{}",
+            photons.len(),
+            crate::render::estimate_note(last_estimate)
         ));
         let finished = done == passes || settings.time_limit.is_some_and(|t| start.elapsed() >= t);
-        if let (Some(obs), true) = (observer.as_mut(), finished || done.is_power_of_two()) {
+        let checkpoint = finished || done.is_power_of_two();
+        if checkpoint && done >= 2 && (observer.is_some() || !settings.quiet) {
+            let a = image(&ld, &tau, done.div_ceil(2), w, h, |s| s[0]);
+            let b = image(&ld, &tau, done / 2, w, h, |s| s[1]);
+            last_estimate = crate::render::relative_error_estimate(&a, &b);
+        }
+        if let (Some(obs), true) = (observer.as_mut(), checkpoint) {
             let mean = image(&ld, &tau, done, w, h, |s| s[0] + s[1]);
             let (n0, n1) = (done.div_ceil(2), done / 2);
             let a = image(&ld, &tau, n0, w, h, |s| s[0]);

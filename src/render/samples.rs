@@ -115,6 +115,7 @@ fn sample_rounds(
     let tiles_x = acc.tiles_x;
     let n_tiles = acc.sums.len() / TILE_PIXELS;
     let bar = progress_bar(settings.quiet, target * n_tiles as u64, "rendering");
+    let mut last_estimate: Option<f64> = None;
     let sampling_start = Instant::now();
     let (mut done, mut rays, mut next_checkpoint) = (0u64, setup.rays, 1u64);
     loop {
@@ -162,7 +163,10 @@ fn sample_rounds(
             })
             .sum::<u64>();
         done = k1;
-        bar.set_message(format!("{done} spp, {rays} rays"));
+        bar.set_message(format!(
+            "{done} spp, {rays} rays{}",
+            super::estimate_note(last_estimate)
+        ));
         let out_of_time = settings
             .time_limit
             .is_some_and(|t| setup.start.elapsed() >= t);
@@ -173,9 +177,24 @@ fn sample_rounds(
         while next_checkpoint <= done {
             next_checkpoint *= 2;
         }
+        if !settings.quiet && observer.is_none() && done >= 2 {
+            let (a, b) = acc.halves(done);
+            last_estimate = super::relative_error_estimate(&a, &b);
+            bar.set_message(format!(
+                "{done} spp, {rays} rays{}",
+                super::estimate_note(last_estimate)
+            ));
+        }
         if let Some(obs) = observer.as_mut() {
             let image = acc.mean(done);
             let (a, b) = acc.halves(done);
+            if done >= 2 {
+                last_estimate = super::relative_error_estimate(&a, &b);
+                bar.set_message(format!(
+                    "{done} spp, {rays} rays{}",
+                    super::estimate_note(last_estimate)
+                ));
+            }
             let progress = Progress {
                 image: &image,
                 halves: (&a, &b),
