@@ -16,6 +16,7 @@
 
 use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::metrics::compare;
 use iris::output::ImageRgb;
 use iris::render::{render, RenderSettings};
 use iris::scene::Scene;
@@ -49,28 +50,12 @@ fn integrator(method: Method, photons: u64, passes: u32) -> Integrator {
     }
 }
 
-/// Relative MSE (issue 6's definition): mean over pixels and channels of
-/// (x − ref)² / (ref² + 0.01). It keeps the few pixels of a focused caustic, whose
-/// reference values are themselves uncertain, from dominating the figure.
-fn rel_mse(a: &ImageRgb, b: &ImageRgb) -> f64 {
-    let mut s = 0.0;
-    for (x, y) in a.data.iter().zip(&b.data) {
-        for c in 0..3 {
-            let (x, y) = (x[c] as f64, y[c] as f64);
-            s += (x - y).powi(2) / (y * y + 0.01);
-        }
-    }
-    s / (3.0 * a.data.len() as f64)
+fn rmse(a: &ImageRgb, b: &ImageRgb) -> f64 {
+    compare(a, b).expect("same size").rmse
 }
 
-fn rmse(a: &ImageRgb, b: &ImageRgb) -> f64 {
-    let s: f64 = a
-        .data
-        .iter()
-        .zip(&b.data)
-        .map(|(x, y)| (*x - *y).length_squared() as f64 / 3.0)
-        .sum();
-    (s / a.data.len() as f64).sqrt()
+fn rel_mse(a: &ImageRgb, b: &ImageRgb) -> f64 {
+    compare(a, b).expect("same size").rel_mse
 }
 
 struct Row {

@@ -109,27 +109,14 @@ fn budget(method: Method, k: u32) -> (Integrator, u32, String) {
     }
 }
 
-/// Relative MSE (issue 6): mean over pixels and channels of (x − r)² / (r² + 0.01).
+/// Relative MSE (issue 6's definition, [`iris::metrics::compare`]).
 fn rel_mse(a: &ImageRgb, r: &ImageRgb) -> f64 {
-    let mut s = 0.0;
-    for (x, y) in a.data.iter().zip(&r.data) {
-        for c in 0..3 {
-            let (x, y) = (f64::from(x[c]), f64::from(y[c]));
-            s += (x - y).powi(2) / (y * y + 0.01);
-        }
-    }
-    s / (3.0 * a.data.len() as f64)
+    iris::metrics::compare(a, r).expect("same size").rel_mse
 }
 
 /// RMSE over pixels and channels (linear RGB).
 fn rmse(a: &ImageRgb, r: &ImageRgb) -> f64 {
-    let s: f64 = a
-        .data
-        .iter()
-        .zip(&r.data)
-        .map(|(x, y)| f64::from((*x - *y).length_squared()) / 3.0)
-        .sum();
-    (s / a.data.len() as f64).sqrt()
+    iris::metrics::compare(a, r).expect("same size").rmse
 }
 
 /// The scene on `backend` with its camera, or `None` (printed) when it cannot be loaded.

@@ -106,3 +106,27 @@ pub fn caustic_sphere(area: Option<f32>) -> (iris::scene::Scene, iris::scene::de
     let scene = iris::scene::Scene::build(desc, iris::accel::Backend::Auto).expect("build");
     (scene, cam)
 }
+
+/// Runs the `iris` binary with `args` in `cwd`.
+pub fn iris(args: &[&str], cwd: &std::path::Path) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_iris"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .expect("run iris")
+}
+
+/// A command's standard error as text.
+pub fn stderr(o: &std::process::Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// The file names in `dir`, sorted.
+pub fn entries(dir: &std::path::Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
