@@ -8,7 +8,7 @@
 //! Run: `cargo bench --bench photon_trace`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use iris::math::Rng;
 use iris::photon::emit::PhotonEmitter;
 use iris::photon::trace::{trace, Roulette, TraceSettings};
@@ -39,10 +39,7 @@ fn shoot<C: Carrier>(scene: &Scene, emitter: &PhotonEmitter) -> u64 {
             let mut stored = 0u64;
             for i in c * CHUNK..((c + 1) * CHUNK).min(PHOTONS) {
                 let mut rng = Rng::new(&[1, i]);
-                let ul = rng.next_f32();
-                let up = Vec2::new(rng.next_f32(), rng.next_f32());
-                let ud = Vec2::new(rng.next_f32(), rng.next_f32());
-                let Some(ph) = emitter.emit(scene, ul, up, ud) else {
+                let Some(ph) = emitter.emit_from(scene, &mut rng) else {
                     continue;
                 };
                 let lambda = C::sample_lambda(rng.next_f32());

@@ -22,7 +22,7 @@
 
 mod common;
 
-use glam::{DVec3, Vec2, Vec3};
+use glam::{DVec3, Vec3};
 use iris::photon::emit::PhotonEmitter;
 use iris::photon::trace::{trace, Roulette, TraceSettings};
 use rayon::prelude::*;
@@ -60,10 +60,7 @@ fn screen_photons(aperture: f32, screen: f32, photons: u64, tag: &str) -> Vec<(V
             let mut out = Vec::new();
             for i in c * chunk..((c + 1) * chunk).min(photons) {
                 let mut rng = iris::math::Rng::new(&[17, i]);
-                let ul = rng.next_f32();
-                let up = Vec2::new(rng.next_f32(), rng.next_f32());
-                let ud = Vec2::new(rng.next_f32(), rng.next_f32());
-                let Some(ph) = emitter.emit(&scene, ul, up, ud) else {
+                let Some(ph) = emitter.emit_from(&scene, &mut rng) else {
                     continue;
                 };
                 trace::<Vec3>(&scene, &ph, (), &settings, &mut rng, |v, _| {

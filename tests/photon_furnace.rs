@@ -202,10 +202,7 @@ fn photons_in_a_closed_white_box_carry_the_geometric_series_of_the_light_power()
     let mut per_photon = Vec::with_capacity(n as usize);
     for i in 0..n {
         let mut rng = iris::math::Rng::new(&[11, i]);
-        let ul = rng.next_f32();
-        let up = Vec2::new(rng.next_f32(), rng.next_f32());
-        let ud = Vec2::new(rng.next_f32(), rng.next_f32());
-        let ph = emitter.emit(&scene, ul, up, ud).expect("photon");
+        let ph = emitter.emit_from(&scene, &mut rng).expect("photon");
         let mut sum = 0.0f64;
         trace::<Vec3>(&scene, &ph, (), &settings, &mut rng, |v, _| {
             sum += v.power.y as f64

@@ -192,9 +192,7 @@ pub fn camera_path<C: Carrier>(
         if let Some(m) = media.current() {
             beta *= scene.materials[m as usize].transmittance_at::<C>(hit.t, &lambda);
         }
-        let (hit, coincident) = shading::meet(scene, hit);
-        let mat = &scene.materials[hit.material as usize];
-        let sp = mat.shade(hit.uv, &scene.images);
+        let (hit, coincident, mat, sp) = shading::arrive(scene, hit);
         if sp.emissive != Vec3::ZERO && (hit.front_face || mat.desc.double_sided) {
             let w = if prev_delta {
                 1.0

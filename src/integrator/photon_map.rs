@@ -92,10 +92,7 @@ pub fn build_maps(
             let (mut caustic, mut global, mut rays) = (Vec::new(), Vec::new(), 0);
             for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
                 let mut rng = Rng::new(&[seed, i, 0x9E07_0001]);
-                let ul = rng.next_f32();
-                let up = Vec2::new(rng.next_f32(), rng.next_f32());
-                let ud = Vec2::new(rng.next_f32(), rng.next_f32());
-                let Some(ph) = emitter.emit(scene, ul, up, ud) else {
+                let Some(ph) = emitter.emit_from(scene, &mut rng) else {
                     continue;
                 };
                 let mut keep = |p: Vec3, wi: Vec3, rgb: Vec3, is_caustic: bool| {
@@ -217,9 +214,7 @@ impl PhotonMaps {
             if let Some(m) = media.current() {
                 beta *= scene.materials[m as usize].transmittance_at::<Vec3>(hit.t, &());
             }
-            let (hit, coincident) = shading::meet(scene, hit);
-            let mat = &scene.materials[hit.material as usize];
-            let sp = mat.shade(hit.uv, &scene.images);
+            let (hit, coincident, mat, sp) = shading::arrive(scene, hit);
             let (bsdf, media_t, _) = shading::bsdf_at::<Vec3>(
                 scene,
                 &hit,

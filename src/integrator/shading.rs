@@ -51,6 +51,19 @@ pub fn meet(scene: &Scene, hit: SurfaceHit) -> (SurfaceHit, CoincidentSet) {
     }
 }
 
+/// Arriving at a surface, the first part of the per-hit step every path (camera, photon,
+/// final gather) takes: the surface really met ([`meet`]), its material and the shading
+/// point (textures evaluated at the hit).
+pub fn arrive(
+    scene: &Scene,
+    hit: SurfaceHit,
+) -> (SurfaceHit, CoincidentSet, &Material, ShadingPoint) {
+    let (hit, coincident) = meet(scene, hit);
+    let mat = &scene.materials[hit.material as usize];
+    let sp = mat.shade(hit.uv, &scene.images);
+    (hit, coincident, mat, sp)
+}
+
 /// The BSDF at a hit (one lobe chosen by the transmission weight with `u`) and the media on
 /// the far side of a refraction. At a volume boundary η is the ratio of the indices on the
 /// two sides from the path's medium stack, with the `coincident` volume faces (from

@@ -197,10 +197,7 @@ fn run<C: Carrier>(
                 let inv_n = 1.0 / n_photons as f32;
                 for i in c * CHUNK..((c + 1) * CHUNK).min(n_photons) {
                     let mut rng = Rng::new(&[settings.seed, pass as u64, i, 0x9E07]);
-                    let ul = rng.next_f32();
-                    let up = Vec2::new(rng.next_f32(), rng.next_f32());
-                    let ud = Vec2::new(rng.next_f32(), rng.next_f32());
-                    let Some(ph) = emitter.emit(scene, ul, up, ud) else {
+                    let Some(ph) = emitter.emit_from(scene, &mut rng) else {
                         continue;
                     };
                     rays +=
@@ -253,13 +250,9 @@ fn run<C: Carrier>(
         ));
         let finished = done == passes || settings.time_limit.is_some_and(|t| start.elapsed() >= t);
         let checkpoint = finished || done.is_power_of_two();
-        if checkpoint && done >= 2 && (observer.is_some() || !settings.quiet) {
-            let a = image(&ld, &tau, done.div_ceil(2), w, h, |s| s[0]);
-            let b = image(&ld, &tau, done / 2, w, h, |s| s[1]);
-            last_estimate = crate::render::relative_error_estimate(&a, &b);
-        }
-        if let (Some(obs), true) = (observer.as_mut(), checkpoint) {
-            let mean = image(&ld, &tau, done, w, h, |s| s[0] + s[1]);
+        // The two halves (even and odd passes), built once per checkpoint for the observer
+        // and the progress bar's error estimate.
+        let halves = (checkpoint && (observer.is_some() || !settings.quiet)).then(|| {
             let (n0, n1) = (done.div_ceil(2), done / 2);
             let a = image(&ld, &tau, n0, w, h, |s| s[0]);
             let b = if n1 > 0 {
@@ -267,9 +260,16 @@ fn run<C: Carrier>(
             } else {
                 a.clone()
             };
+            (a, b)
+        });
+        if let (Some((a, b)), true) = (&halves, done >= 2) {
+            last_estimate = crate::render::relative_error_estimate(a, b);
+        }
+        if let (Some(obs), Some((a, b))) = (observer.as_mut(), &halves) {
+            let mean = image(&ld, &tau, done, w, h, |s| s[0] + s[1]);
             let progress = Progress {
                 image: &mean,
-                halves: (&a, &b),
+                halves: (a, b),
                 elapsed: start.elapsed(),
                 samples: done as u64,
                 passes: done,

@@ -35,7 +35,7 @@
 use crate::envmap::{luminance, Environment};
 use crate::interaction::OFFSET_SCALE;
 use crate::light::Light;
-use crate::math::{Frame, Ray};
+use crate::math::{Frame, Ray, Rng};
 use crate::scene::{Scene, TriangleData};
 use crate::spectrum::EmitterShape;
 use crate::texture::{self, Encoding};
@@ -252,6 +252,15 @@ impl PhotonEmitter {
     /// The distant-light disc: bounding-sphere centre and radius r (0 without geometry).
     pub fn disc(&self) -> (Vec3, f32) {
         (self.centre, self.radius)
+    }
+
+    /// A photon from the next five numbers of `rng` (light, point, direction: the order
+    /// every photon loop uses, so photon `i` of a seed is the same everywhere).
+    pub fn emit_from<'a>(&self, scene: &'a Scene, rng: &mut Rng) -> Option<EmittedPhoton<'a>> {
+        let u_light = rng.next_f32();
+        let u_pos = Vec2::new(rng.next_f32(), rng.next_f32());
+        let u_dir = Vec2::new(rng.next_f32(), rng.next_f32());
+        self.emit(scene, u_light, u_pos, u_dir)
     }
 
     /// A photon from uniform numbers: `u_light` picks the light (by power), `u_pos` the

@@ -163,9 +163,7 @@ pub fn trace<C: Carrier>(
         if beta == C::ZERO {
             break;
         }
-        let (hit, coincident) = shading::meet(scene, hit);
-        let mat = &scene.materials[hit.material as usize];
-        let sp = mat.shade(hit.uv, &scene.images);
+        let (hit, coincident, mat, sp) = shading::arrive(scene, hit);
         if matches!(mat.desc.alpha_mode, AlphaMode::Blend) && rng.next_f32() >= sp.alpha {
             ray = hit.spawn_ray(-hit.wo);
             continue;
@@ -258,10 +256,7 @@ pub fn has_caustic_paths(scene: &Scene, emitter: &super::emit::PhotonEmitter, n:
     };
     (0..n).any(|i| {
         let mut rng = Rng::new(&[0xCA05_71C5, i as u64]);
-        let u = rng.next_f32();
-        let up = Vec2::new(rng.next_f32(), rng.next_f32());
-        let ud = Vec2::new(rng.next_f32(), rng.next_f32());
-        let Some(ph) = emitter.emit(scene, u, up, ud) else {
+        let Some(ph) = emitter.emit_from(scene, &mut rng) else {
             return false;
         };
         let mut found = false;
