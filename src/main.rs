@@ -1,5 +1,12 @@
 //! The `iris` command line: parses flags, calls [`iris::app`], prints a summary, and turns
 //! errors into a message on stderr and a non-zero exit code.
+//!
+//! Interruption: the first SIGINT (Ctrl-C) or SIGTERM asks the render to stop
+//! ([`iris::render::guard::request_stop`]); it finishes the tiles (SPPM: the pass) in
+//! flight, writes the image so far atomically, says so, and exits with 130 (128 + SIGINT,
+//! so shells and scripts see the interruption). A second one exits at once with 130;
+//! outputs are written to a temporary name and renamed, so no half-written file is left
+//! under the output's name.
 
 use clap::{Parser, Subcommand, ValueEnum};
 use iris::accel::Backend;
@@ -353,6 +360,15 @@ fn run(cli: Cli) -> iris::Result<()> {
             for n in &s.notes {
                 eprintln!("note: {n}");
             }
+            if s.stats.bad_samples > 0 {
+                eprintln!(
+                    "warning: {} samples were NaN or infinite and were left out of the image (a numerical failure: please report it with the scene)",
+                    s.stats.bad_samples
+                );
+            }
+            if s.stats.interrupted {
+                eprintln!("iris: interrupted: the image has the samples taken so far");
+            }
             let secs = s.stats.time.as_secs_f64();
             let pixels = u64::from(s.image.width) * u64::from(s.image.height);
             let spp_done = s.stats.samples / pixels.max(1);
@@ -456,9 +472,23 @@ fn run(cli: Cli) -> iris::Result<()> {
     }
 }
 
+/// Exit code of an interrupted run: 128 + SIGINT.
+const INTERRUPTED: u8 = 130;
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    let handler = ctrlc::set_handler(|| {
+        if iris::render::guard::stop_requested() {
+            std::process::exit(INTERRUPTED.into());
+        }
+        eprintln!("\niris: stopping: finishing the samples in flight and writing the image (again to quit at once)");
+        iris::render::guard::request_stop();
+    });
+    if let Err(e) = handler {
+        eprintln!("warning: cannot catch Ctrl-C ({e}): an interrupted render writes nothing");
+    }
     match run(cli) {
+        Ok(()) if iris::render::guard::stop_requested() => ExitCode::from(INTERRUPTED),
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");

@@ -30,6 +30,7 @@ use glam::Vec3;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::time::{Duration, Instant};
 
+pub mod guard;
 mod samples;
 pub use samples::render_samples;
 
@@ -71,6 +72,13 @@ pub struct RenderStats {
     pub photons: u64,
     /// Passes done (SPPM; 1 otherwise).
     pub passes: u32,
+    /// Samples (SPPM: per-pixel pass contributions) dropped because they were NaN or
+    /// infinite ([`guard::admit`]); 0 in a healthy render.
+    pub bad_samples: u64,
+    /// The render ended early on a stop request ([`guard::request_stop`], SIGINT); the image
+    /// is the mean of the samples taken so far (tiles of the last round may have one round
+    /// more than others).
+    pub interrupted: bool,
 }
 
 /// The state of a render at a checkpoint, shown to an [`Observer`].

@@ -3,7 +3,8 @@
 //! with `--method whitted` as the file is lit, and with `--method path` under a uniform
 //! environment as well (so every BSDF, environment sampling and MIS run on every file), and
 //! with `--method sppm` and `--method photon` under that environment (photons from every
-//! light type, including the environment, through every file's materials).
+//! light type, including the environment, through every file's materials). The same runs
+//! cover the project's own assets/. Every run's film guard counts 0 bad (NaN/inf) samples.
 
 mod common;
 
@@ -41,7 +42,24 @@ fn every_shared_scene_renders_finite_pixels() {
     let mut files = Vec::new();
     scenes(&shared, &mut files);
     assert!(files.len() >= 20, "found only {} scenes", files.len());
-    let dir = common::scratch_dir("render_assets");
+    render_all(&files, "render_assets");
+}
+
+#[test]
+fn every_project_asset_renders_finite_pixels() {
+    let mut files = Vec::new();
+    scenes(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("assets"),
+        &mut files,
+    );
+    assert!(files.len() >= 8, "found only {} scenes", files.len());
+    render_all(&files, "render_project_assets");
+}
+
+/// Renders every file with every method (see the module docs) and checks the images and
+/// the film's bad-sample count.
+fn render_all(files: &[PathBuf], scratch: &str) {
+    let dir = common::scratch_dir(scratch);
     let env = Some(Environment::Uniform {
         radiance: Vec3::splat(0.5),
     });
@@ -78,7 +96,14 @@ fn every_shared_scene_renders_finite_pixels() {
                 spectral: Default::default(),
                 env: env.map(Some),
             };
-            render_command(&opts).unwrap_or_else(|e| panic!("{}: {e}", scene.display()));
+            let summary =
+                render_command(&opts).unwrap_or_else(|e| panic!("{}: {e}", scene.display()));
+            assert_eq!(
+                summary.stats.bad_samples,
+                0,
+                "{} {method:?}: NaN/inf samples",
+                scene.display()
+            );
             let img = read_exr(&out).unwrap();
             let bad = img.data.iter().filter(|p| !p.is_finite()).count();
             assert_eq!(

@@ -42,7 +42,9 @@ use crate::photon::emit::PhotonEmitter;
 use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
-use crate::render::{progress_bar, Control, Observer, Progress, RenderSettings, RenderStats};
+use crate::render::{
+    guard, progress_bar, Control, Observer, Progress, RenderSettings, RenderStats,
+};
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::{DVec3, Vec2, Vec3};
@@ -135,6 +137,7 @@ fn run<C: Carrier>(
     let mut r2: Option<f64> = ps.radius.map(|r| (r as f64) * (r as f64));
     let (mut rays, mut emitted) = (0u64, 0u64);
     let mut done = 0u32;
+    let (mut bad, mut interrupted) = (0u64, false);
     for pass in 0..passes {
         let half = (pass % 2) as usize;
         // 1. The pass's wavelengths: a golden-ratio sequence over passes.
@@ -142,12 +145,12 @@ fn run<C: Carrier>(
             .fract() as f32;
         let lambda = C::sample_lambda(u_l.min(1.0 - f32::EPSILON));
         // 2. Camera paths.
-        let cam_rays: u64 = ld
+        let (cam_rays, cam_bad) = ld
             .par_chunks_mut(w as usize)
             .zip(vps.par_chunks_mut(w as usize))
             .enumerate()
             .map(|(y, (ld_row, vp_row))| {
-                let mut rays = 0;
+                let (mut rays, mut bad) = (0, 0);
                 for x in 0..w as usize {
                     let mut ctx = Context {
                         rng: Rng::new(&[settings.seed, pass as u64, x as u64, y as u64]),
@@ -163,14 +166,15 @@ fn run<C: Carrier>(
                         StopAt::Diffuse,
                         &mut ctx,
                     );
-                    ld_row[x][half] += l.to_rgb(&lambda).as_dvec3();
+                    ld_row[x][half] += guard::admit(l.to_rgb(&lambda), &mut bad).as_dvec3();
                     vp_row[x] = vp;
                     rays += ctx.rays;
                 }
-                rays
+                (rays, bad)
             })
-            .sum();
+            .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
         rays += cam_rays;
+        bad += cam_bad;
         if r2.is_none() {
             let o = camera
                 .generate_ray(Vec2::new(w as f32, h as f32) * 0.5)
@@ -232,14 +236,19 @@ fn run<C: Carrier>(
         // 4. Gather.
         grid.rebuild(&photons, r);
         let area = std::f64::consts::PI * r2.unwrap_or(0.0);
-        tau.par_iter_mut().zip(vps.par_iter()).for_each(|(t, vp)| {
-            if let Some(vp) = vp {
-                let phi = gather(vp, &photons, &grid, r);
-                if area > 0.0 {
-                    t[half] += (vp.beta * phi).to_rgb(&vp.lambda).as_dvec3() / area;
+        bad += tau
+            .par_iter_mut()
+            .zip(vps.par_iter())
+            .map(|(t, vp)| {
+                let mut bad = 0;
+                if let (Some(vp), true) = (vp, area > 0.0) {
+                    let phi = gather(vp, &photons, &grid, r);
+                    let l = guard::admit((vp.beta * phi).to_rgb(&vp.lambda), &mut bad);
+                    t[half] += l.as_dvec3() / area;
                 }
-            }
-        });
+                bad
+            })
+            .sum::<u64>();
         done = pass + 1;
         r2 = r2.map(|x| x * radius2_factor(done, ps.alpha));
         bar.inc(1);
@@ -248,7 +257,10 @@ fn run<C: Carrier>(
             photons.len(),
             crate::render::estimate_note(last_estimate)
         ));
-        let finished = done == passes || settings.time_limit.is_some_and(|t| start.elapsed() >= t);
+        interrupted = guard::stop_requested() && done < passes;
+        let finished = done == passes
+            || settings.time_limit.is_some_and(|t| start.elapsed() >= t)
+            || interrupted;
         let checkpoint = finished || done.is_power_of_two();
         // The two halves (even and odd passes), built once per checkpoint for the observer
         // and the progress bar's error estimate.
@@ -294,6 +306,8 @@ fn run<C: Carrier>(
             samples: n_pix as u64 * done as u64,
             photons: emitted,
             passes: done,
+            bad_samples: bad,
+            interrupted,
         },
     ))
 }

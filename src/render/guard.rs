@@ -1,0 +1,71 @@
+//! The film's guards: what may enter an image, and when a render may stop early.
+//!
+//! - **Bad samples.** A sample whose linear RGB radiance has a NaN or infinite component
+//!   (a numerical failure somewhere on its path) is not added to the image: it is counted
+//!   ([`super::RenderStats::bad_samples`]) and replaced by zero, as pbrt-v4's film does
+//!   (`RGBFilm::AddSample` drops non-finite values; Pharr, Jakob & Humphreys, "Physically
+//!   Based Rendering", 4th ed., §5.4.2), so one failure costs one sample instead of painting
+//!   a pixel. The CLI reports the count; the test suite asserts it is 0 on every asset.
+//!   Negative components are legitimate (spectra outside the sRGB gamut) and pass.
+//! - **Interruption.** [`request_stop`] is a process-wide stop request (SIGINT in the CLI):
+//!   the per-sample methods finish the tiles already started and skip the rest of the
+//!   round, SPPM ends after the current pass; the render returns the image so far with
+//!   [`super::RenderStats::interrupted`] set. The first round (pass) always completes, so an
+//!   interrupted render still has an image.
+
+use glam::Vec3;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// The process-wide stop request.
+static STOP: AtomicBool = AtomicBool::new(false);
+
+/// Asks every running render to stop at its next safe point (async-signal-safe: one atomic
+/// store).
+pub fn request_stop() {
+    STOP.store(true, Ordering::SeqCst);
+}
+
+/// True once [`request_stop`] was called.
+pub fn stop_requested() -> bool {
+    STOP.load(Ordering::Relaxed)
+}
+
+/// `v` if all its components are finite, else zero with `bad` incremented.
+#[inline]
+pub fn admit(v: Vec3, bad: &mut u64) -> Vec3 {
+    if v.is_finite() {
+        v
+    } else {
+        *bad += 1;
+        Vec3::ZERO
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn non_finite_samples_are_counted_and_zeroed() {
+        let mut bad = 0;
+        assert_eq!(
+            admit(Vec3::new(1.0, -0.5, 2.0), &mut bad),
+            Vec3::new(1.0, -0.5, 2.0)
+        );
+        assert_eq!(bad, 0);
+        for v in [
+            Vec3::new(f32::NAN, 0.0, 0.0),
+            Vec3::new(0.0, f32::INFINITY, 0.0),
+            Vec3::new(0.0, 0.0, f32::NEG_INFINITY),
+        ] {
+            assert_eq!(admit(v, &mut bad), Vec3::ZERO);
+        }
+        assert_eq!(bad, 3);
+        // The largest finite value is a (very bright) sample, not a bad one.
+        assert_eq!(
+            admit(Vec3::splat(f32::MAX), &mut bad),
+            Vec3::splat(f32::MAX)
+        );
+        assert_eq!(bad, 3);
+    }
+}
