@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 /// `kill` command: the test crate has no libc) and returns its exit code and stderr.
 fn interrupt(dir: &Path, extra: &[&str], signal: &str, after: Duration) -> (Option<i32>, String) {
     let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/paper/fig4_5_1_caustics.glb");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_iris"))
+    let child = Command::new(env!("CARGO_BIN_EXE_iris"))
         .arg("render")
         .arg(&scene)
         .args(["--size", "64x48", "-o", "out.png", "--threads", "2"])
