@@ -9,18 +9,42 @@
 //! in floating point, so hits are bit-identical to the unscaled test (barring
 //! over/underflow), and `t` scales by exactly `s`. The 1e-4 clamp then sits about 1e-10
 //! below the scene's coordinate magnitude, far below f32 resolution (6e-8 relative).
+//!
+//! **Rays along an axis, and boxes a ray only touches.** A direction component that is zero
+//! (or so small that its reciprocal overflows) has no finite inverse. An infinite one makes
+//! obvhs's quantized slab test compute ∞ − ∞ = NaN for every node, and NaN is accepted, so
+//! such a ray would visit the whole tree (correct, ~1000× slower). We pass a finite inverse
+//! of magnitude [`BIG_INV`] instead (no overflow for any scaled coordinate, so nodes off the
+//! ray are culled as usual). With a finite inverse a box whose face lies exactly on the
+//! ray's constant coordinate gets distance 0 on that face, and obvhs's entry clamp (≥ 1e-4)
+//! would cull it; rounding likewise culls boxes that a ray touches only at a corner or an
+//! edge (a ray through a shared vertex). Every triangle's box is therefore padded by
+//! [`BOX_PAD`] before the build (pbrt-v4 widens its slab test's far distance by 1 + 2γ₃ for
+//! the same reason), which makes such faces strictly enclose the ray. tests/accel_parity.rs
+//! casts rays along the axes and coordinate-plane diagonals through rows of shared vertices
+//! lying exactly on box faces, at scales 1e-4, 1 and 1e4, and compares with brute force.
 
 use super::triangle::RayPrep;
 use super::{HitList, RawHit};
 use glam::{Vec3, Vec3A};
+use obvhs::aabb::Aabb;
 use obvhs::cwbvh::CwBvh;
 use obvhs::ray::{Ray, RayHit};
-use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 use std::time::Duration;
 
 /// Target magnitude of the largest coordinate in the scaled frame.
 const TARGET_EXPONENT: i32 = 20;
+
+/// Padding of every triangle's box in the scaled frame: 4 units where coordinates reach
+/// 2^20–2^21, i.e. 2–4 × 10⁻⁶ of the scene's size (a few ulps of the slab test's distances).
+const BOX_PAD: f32 = 4.0;
+
+/// Largest inverse direction magnitude handed to obvhs: 2^80. Its node test multiplies the
+/// inverse by node extents (≤ 2^23 in the scaled frame, times a quantized 255) and by
+/// origin offsets; both products stay below f32::MAX (2^128) for origins within 2^47 of the
+/// scene.
+const BIG_INV: f32 = 1.2089258e24;
 
 /// obvhs CWBVH over a scaled copy of the triangles, stored in BVH leaf order.
 pub struct BvhAccel {
@@ -53,20 +77,23 @@ impl BvhAccel {
             .iter()
             .map(|t| t.map(|k| positions[k as usize] * scale))
             .collect();
-        let obv: Vec<Triangle> = scaled
+        // Each triangle's box, padded by BOX_PAD scaled units so rounding in obvhs's slab
+        // test cannot cull a box the ray only touches (a ray through a shared vertex or
+        // along an edge of the box; pbrt-v4 widens tFar by 1 + 2γ₃ for the same reason).
+        let boxes: Vec<Aabb> = scaled
             .iter()
-            .map(|t| Triangle {
-                v0: t[0].into(),
-                v1: t[1].into(),
-                v2: t[2].into(),
+            .map(|t| {
+                let lo = t[0].min(t[1]).min(t[2]) - Vec3::splat(BOX_PAD);
+                let hi = t[0].max(t[1]).max(t[2]) + Vec3::splat(BOX_PAD);
+                Aabb::new(lo.into(), hi.into())
             })
             .collect();
         let mut build_time = Duration::ZERO;
-        let bvh = if obv.is_empty() {
+        let bvh = if boxes.is_empty() {
             CwBvh::default()
         } else {
-            obvhs::cwbvh::builder::build_cwbvh_from_tris(
-                &obv,
+            obvhs::cwbvh::builder::build_cwbvh(
+                &boxes,
                 BvhBuildParams::medium_build(),
                 &mut build_time,
             )
@@ -85,16 +112,17 @@ impl BvhAccel {
         }
     }
 
-    /// Builds the obvhs ray in the scaled frame. The inverse direction is computed
-    /// directly (obvhs's `Ray::new` clamps tiny components to 1/f32::EPSILON).
+    /// The obvhs ray in the scaled frame. A direction component without a finite inverse
+    /// below [`BIG_INV`] gets ±`BIG_INV`, signed as obvhs orders the slab (`direction < 0`,
+    /// so −0 counts as positive) — see the module docs.
     #[inline]
     fn ray(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Ray {
-        let inv = Vec3A::from(dir).recip();
-        let inv = Vec3A::select(
-            inv.is_finite_mask(),
-            inv,
-            Vec3A::splat(f32::MAX).copysign(Vec3A::from(dir)),
-        );
+        let mut inv = Vec3A::from(dir).recip();
+        for axis in 0..3 {
+            if inv[axis].is_nan() || inv[axis].abs() > BIG_INV {
+                inv[axis] = if dir[axis] < 0.0 { -BIG_INV } else { BIG_INV };
+            }
+        }
         Ray {
             origin: Vec3A::from(origin * self.scale),
             direction: dir.into(),
