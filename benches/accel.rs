@@ -22,6 +22,12 @@
 //! uniform in the scene's bounding box, directions uniform on the sphere, in random order.
 //! The hit fraction and the share of rays on which Embree and the BVH agree are printed.
 //!
+//! Group `axis_rays/<backend>/<set>` (issue 7): orthographic rays exactly along −Z (two
+//! zero direction components) over the mesh vs the same rays tilted by 1 mrad, on each
+//! backend. Before the BVH backend used a finite inverse for zero components, obvhs
+//! accepted every node for such rays (NaN box distances); the ratio axis/tilted shows the
+//! cost of axis-aligned rays now.
+//!
 //! Run: `cargo bench --bench accel` (add `-- --quick` for a short run;
 //! `cargo bench --bench accel -- shared_scenes` for the real scenes alone).
 
@@ -466,5 +472,74 @@ fn shared_scenes(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, shared_scenes, backends);
+/// Orthographic rays on a 128 × 128 grid over the mesh's box, along −Z or tilted 1 mrad.
+fn ortho_rays(positions: &[Vec3], tilt: bool) -> Vec<(Vec3, Vec3)> {
+    let (lo, hi) = positions.iter().fold(
+        (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
+        |(a, b), p| (a.min(*p), b.max(*p)),
+    );
+    let d = if tilt {
+        Vec3::new(1e-3, 7e-4, -1.0).normalize()
+    } else {
+        Vec3::NEG_Z
+    };
+    (0..128 * 128)
+        .map(|i| {
+            let (u, v) = ((i % 128) as f32 / 127.0, (i / 128) as f32 / 127.0);
+            let o = Vec3::new(
+                lo.x + u * (hi.x - lo.x),
+                lo.y + v * (hi.y - lo.y),
+                hi.z + 1.0,
+            );
+            (o, d)
+        })
+        .collect()
+}
+
+fn axis_rays(c: &mut Criterion) {
+    let (positions, indices) = displaced_icosphere(SUBDIV / 4);
+    let sets = [
+        ("along_axis", ortho_rays(&positions, false)),
+        ("tilted_1mrad", ortho_rays(&positions, true)),
+    ];
+    let mut g = c.benchmark_group("axis_rays");
+    g.sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(3))
+        .throughput(Throughput::Elements(sets[0].1.len() as u64));
+    let bvh = BvhAccel::build(&positions, &indices);
+    let mut accels: Vec<(&str, Box<dyn Fn(Vec3, Vec3) -> f32>)> = vec![(
+        "bvh",
+        Box::new(move |o, d| {
+            bvh.closest(o, d, f32::INFINITY)
+                .map_or(f32::INFINITY, |h| h.t)
+        }),
+    )];
+    #[cfg(feature = "embree")]
+    {
+        let e = iris::accel::embree::EmbreeAccel::build(&positions, &indices).expect("embree");
+        accels.push((
+            "embree",
+            Box::new(move |o, d| {
+                e.closest(o, d, f32::INFINITY)
+                    .map_or(f32::INFINITY, |h| h.t)
+            }),
+        ));
+    }
+    for (name, trace) in &accels {
+        for (set, rays) in &sets {
+            g.bench_with_input(BenchmarkId::new(*name, set), rays, |bch, rays| {
+                bch.iter(|| {
+                    rays.iter()
+                        .map(|&(o, d)| trace(o, d))
+                        .filter(|t| t.is_finite())
+                        .count()
+                })
+            });
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(benches, axis_rays, shared_scenes, backends);
 criterion_main!(benches);
