@@ -195,8 +195,13 @@ impl Scene {
         self.has_cutouts && self.materials[hit.material as usize].is_cut_out(hit.uv, &self.images)
     }
 
-    /// The closest visible surface along `ray`, skipping alpha cut-outs.
+    /// The closest visible surface along `ray`, skipping alpha cut-outs. A ray with a
+    /// non-finite origin or direction (a numerical failure upstream) never reaches a
+    /// backend: it misses, and whatever it then carries is caught by the film's guard.
     pub fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
+        if !ray.is_valid() {
+            return None;
+        }
         let mut r = *ray;
         let mut travelled = 0.0;
         for _ in 0..MAX_CUTOUTS {
@@ -281,8 +286,12 @@ impl Scene {
         (probe, hits)
     }
 
-    /// Whether anything opaque blocks `ray` within `[0, t_max)`.
+    /// Whether anything opaque blocks `ray` within `[0, t_max)`. A ray with a non-finite
+    /// origin or direction is blocked (no light arrives along it).
     pub fn occluded(&self, ray: &Ray) -> bool {
+        if !ray.is_valid() {
+            return true;
+        }
         if !self.has_cutouts {
             return self.accel.occluded(ray.origin, ray.dir, ray.t_max);
         }

@@ -28,6 +28,16 @@ impl Ray {
         }
     }
 
+    /// Whether the ray can be traced: finite origin, finite non-zero direction, `t_max` not
+    /// NaN (+∞ is fine).
+    #[inline]
+    pub fn is_valid(&self) -> bool {
+        self.origin.is_finite()
+            && self.dir.is_finite()
+            && self.dir != Vec3::ZERO
+            && !self.t_max.is_nan()
+    }
+
     /// The point at parameter `t`.
     #[inline]
     pub fn at(&self, t: f32) -> Vec3 {
