@@ -472,6 +472,9 @@ fn shared_scenes(c: &mut Criterion) {
     g.finish();
 }
 
+/// One ray (origin, direction) → hit distance or ∞.
+type Tracer = Box<dyn Fn(Vec3, Vec3) -> f32>;
+
 /// Orthographic rays on a 128 × 128 grid over the mesh's box, along −Z or tilted 1 mrad.
 fn ortho_rays(positions: &[Vec3], tilt: bool) -> Vec<(Vec3, Vec3)> {
     let (lo, hi) = positions.iter().fold(
@@ -508,7 +511,7 @@ fn axis_rays(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(3))
         .throughput(Throughput::Elements(sets[0].1.len() as u64));
     let bvh = BvhAccel::build(&positions, &indices);
-    let mut accels: Vec<(&str, Box<dyn Fn(Vec3, Vec3) -> f32>)> = vec![(
+    let mut accels: Vec<(&str, Tracer)> = vec![(
         "bvh",
         Box::new(move |o, d| {
             bvh.closest(o, d, f32::INFINITY)
