@@ -511,24 +511,27 @@ fn axis_rays(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(3))
         .throughput(Throughput::Elements(sets[0].1.len() as u64));
     let bvh = BvhAccel::build(&positions, &indices);
-    let mut accels: Vec<(&str, Tracer)> = vec![(
+    let bvh_tracer: (&str, Tracer) = (
         "bvh",
         Box::new(move |o, d| {
             bvh.closest(o, d, f32::INFINITY)
                 .map_or(f32::INFINITY, |h| h.t)
         }),
-    )];
+    );
     #[cfg(feature = "embree")]
-    {
+    let embree_tracer: Option<(&str, Tracer)> = {
         let e = iris::accel::embree::EmbreeAccel::build(&positions, &indices).expect("embree");
-        accels.push((
+        Some((
             "embree",
             Box::new(move |o, d| {
                 e.closest(o, d, f32::INFINITY)
                     .map_or(f32::INFINITY, |h| h.t)
             }),
-        ));
-    }
+        ))
+    };
+    #[cfg(not(feature = "embree"))]
+    let embree_tracer: Option<(&str, Tracer)> = None;
+    let accels: Vec<(&str, Tracer)> = std::iter::once(bvh_tracer).chain(embree_tracer).collect();
     for (name, trace) in &accels {
         for (set, rays) in &sets {
             g.bench_with_input(BenchmarkId::new(*name, set), rays, |bch, rays| {
