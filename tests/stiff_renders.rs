@@ -1,4 +1,4 @@
-//! Stiff optical cases rendered end to end (issue 7, cases 1, 2, 4, 6) on every backend
+//! Stiff optical cases rendered end to end (issue 7, cases 1, 2, 3, 4, 6) on every backend
 //! ([`common::backends`]), with the closed forms that hold for whole images:
 //!
 //! - Furnace (uniform environment of radiance 1, no other light, lossless dielectrics): a
@@ -20,6 +20,9 @@
 //! - Case 4, n = 100 and `ior: 0`: finite, furnace-bounded; the `ior: 0` sphere loaded
 //!   from a glTF written here mirrors the black sky (its centre is 0) where n = 1.5 shows
 //!   the backdrop through it, and in the furnace it is exactly 1.
+//! - Case 3, paper Fig. 7.2's bubble (relative index 0.8): the image equals a perfect
+//!   mirror's exactly where the camera ray's impact parameter b/R > 0.8 (TIR), and the
+//!   measured edge of that ring is at 0.8 ± 0.03.
 //! - Case 6, Beer–Lambert: a slab (n = 1.5) in the furnace, Whitted (deterministic split):
 //!   attenuation distance 1e-9 leaves only the front-face reflection R(0) = 0.04, exactly;
 //!   1e9 equals clear glass to 1e-5.
@@ -403,5 +406,110 @@ fn beer_lambert_extreme_distances_render() {
                 "slab",
             );
         }
+    }
+}
+
+/// Case 3 rendered: paper Fig. 7.2's bubble (relative index 0.8), written and loaded as the
+/// shipped glb is. Where a camera ray's impact parameter b (distance from the bubble's
+/// centre to the ray's line) has b/R > 0.8 the interface reflects totally, so the image is
+/// exactly that of a perfect mirror (`ior: 0`) there (Whitted's split with F = 1 both
+/// times, same seed, so bitwise); inside, refraction shows the backdrop instead. b is taken
+/// at the pixel centre; the jitter moves it by half a pixel (≈ 0.015 R at 96 px), so pixels
+/// within 0.04 R of the critical 0.8 (and the silhouette, past 0.97) are left out. The
+/// measured ring edge is the midpoint between the largest b/R that differs and the next
+/// one (above it) that matches. Inside, a few pixels match by coincidence, where both
+/// views are black (measured 30 of 1512, ≈ 2 %; bound 5 %).
+#[test]
+fn bubble_ring_starts_at_the_critical_impact_parameter() {
+    let dir = common::scratch_dir("stiff_bubble");
+    let path = dir.join("fig7_2_bubble.glb");
+    iris::gen::glb::write_glb(&path, &iris::gen::paper::fig7_2_bubble()).expect("write");
+    let desc = iris::load::load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
+    let bubble = desc
+        .materials
+        .iter()
+        .position(|m| m.name.contains("Air bubble"))
+        .expect("bubble material");
+    assert_eq!(desc.materials[bubble].ior, 0.8);
+    let mut mirror = desc.clone();
+    mirror.materials[bubble].ior = 0.0;
+    let size = 96;
+    let cam = Camera::new(&desc.cameras[0], size, size);
+    let (centre, radius) = (Vec3::new(0.0, 1.0, 0.0), 0.4f32);
+    let settings = RenderSettings {
+        width: size,
+        height: size,
+        spp: 1,
+        seed: 3,
+        threads: 0,
+        quiet: true,
+        spectral: false,
+        time_limit: None,
+    };
+    let whitted = Integrator {
+        method: Method::Whitted,
+        max_depth: 16,
+        photon: Default::default(),
+    };
+    for backend in common::backends() {
+        let shot = |d: &SceneDesc| {
+            let scene = Scene::build(d.clone(), backend).expect("build");
+            render(&scene, &cam, &whitted, &settings).expect("render").0
+        };
+        let (a, b) = (shot(&desc), shot(&mirror));
+        assert_finite(&a, "bubble");
+        let (mut inner, mut inner_same, mut ring, mut ring_same) = (0u32, 0u32, 0u32, 0u32);
+        let mut samples: Vec<(f32, bool)> = Vec::new();
+        for y in 0..size {
+            for x in 0..size {
+                let ray = cam.generate_ray(glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
+                let d = ray.dir.normalize();
+                let to_c = centre - ray.origin;
+                if to_c.dot(d) <= 0.0 {
+                    continue;
+                }
+                let s = to_c.cross(d).length() / radius;
+                let i = (y * size + x) as usize;
+                let same = (a.data[i] - b.data[i]).abs().max_element() <= 1e-6;
+                if s < 0.97 {
+                    samples.push((s, same));
+                }
+                if s < 0.76 {
+                    inner += 1;
+                    inner_same += same as u32;
+                } else if (0.84..0.97).contains(&s) {
+                    ring += 1;
+                    ring_same += same as u32;
+                }
+            }
+        }
+        let last_differ = samples
+            .iter()
+            .filter(|p| !p.1)
+            .map(|p| p.0)
+            .fold(0.0, f32::max);
+        let first_same = samples
+            .iter()
+            .filter(|p| p.1 && p.0 > last_differ)
+            .map(|p| p.0)
+            .fold(1.0, f32::min);
+        let edge = 0.5 * (last_differ + first_same);
+        eprintln!(
+            "{backend:?}: ring edge at b/R = {edge:.3} (differs up to {last_differ:.3}, \
+             mirror-equal from {first_same:.3}; closed form 0.8); inner {inner_same}/{inner} \
+             equal, ring {ring_same}/{ring} equal"
+        );
+        assert!(
+            ring > 100 && ring_same == ring,
+            "{backend:?}: ring {ring_same}/{ring}"
+        );
+        assert!(
+            inner > 1000 && inner_same * 20 < inner,
+            "{backend:?}: {inner_same}/{inner}"
+        );
+        assert!(
+            (edge - 0.8).abs() < 0.03,
+            "{backend:?}: ring edge at {edge}"
+        );
     }
 }
