@@ -206,6 +206,7 @@ pub fn describe_ior(desc: &MaterialDesc) -> String {
                 .unwrap_or(name.as_str());
             format!("Sellmeier {canonical} ({optics})")
         }
+        (Some(ExplicitIor::Sellmeier { .. }), _) => format!("Sellmeier ({optics})"),
         (_, spectrum::IorModel::Cauchy { b, c }) => format!("Cauchy b {b} c {c} ({optics})"),
         // The extension defines its Abbe number as 20/D.
         (_, spectrum::IorModel::KhrDispersion { n_d, dispersion }) => format!(

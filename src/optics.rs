@@ -16,39 +16,66 @@ pub fn reflect(wi: Vec3, n: Vec3) -> Vec3 {
 
 /// Refracts `wi` (pointing away from the surface, on the side of `n`) into the other medium
 /// with relative index `eta` = n_t/n_i. Returns `None` on total internal reflection.
-/// Snell's law n_i sin θ_i = n_t sin θ_t in vector form (pbrt-v4 §9.3, `Refract`).
-/// The result is unit length when `wi` and `n` are.
+/// Snell's law n_i sin θ_i = n_t sin θ_t in vector form (pbrt-v4 §9.3, `Refract`):
+/// w_t = −(w_i − cos θ_i n)/η − cos θ_t n. The result is unit length when `wi` and `n` are.
+///
+/// Stiff cases: computed in f64 with cos θ_t from [`cos_transmitted`]'s cancellation-free
+/// form, so grazing rays keep their digits; η = 1 returns `-wi` exactly at every angle,
+/// η = 1 + 1e-7 bends a grazing ray by the right 5e-4 rad, and η from 1e-38 to 3e38 gives
+/// a unit vector or `None`. η = +∞ gives `-n`; η ≤ 0 or NaN gives `None`.
 #[inline]
 pub fn refract(wi: Vec3, n: Vec3, eta: f32) -> Option<Vec3> {
-    let cos_i = wi.dot(n).clamp(0.0, 1.0);
-    let sin2_i = (1.0 - cos_i * cos_i).max(0.0);
-    let sin2_t = sin2_i / (eta * eta);
-    if sin2_t >= 1.0 {
+    if eta.is_nan() || eta <= 0.0 {
         return None;
     }
-    let cos_t = (1.0 - sin2_t).sqrt();
-    let wt = -wi / eta + (cos_i / eta - cos_t) * n;
-    Some(wt.normalize())
+    if eta == 1.0 {
+        return Some(-wi);
+    }
+    if eta.is_infinite() {
+        return Some(-n);
+    }
+    let (wi, n) = (wi.as_dvec3(), n.as_dvec3());
+    let cos_i = wi.dot(n).clamp(0.0, 1.0);
+    let cos_t = cos_transmitted(cos_i, f64::from(eta))?;
+    let wt = -(wi - cos_i * n) / f64::from(eta) - cos_t * n;
+    Some(wt.normalize().as_vec3())
+}
+
+/// cos θ_t for cos θ_i ∈ [0, 1] and a finite η > 0, or `None` under total internal
+/// reflection: cos²θ_t = 1 − sin²θ_i/η² = (η² − (1 − cos θ_i)(1 + cos θ_i))/η² (Snell), in
+/// f64 and in that form so that neither η² nor sin²θ_i loses its small part (η ≈ 1 at
+/// grazing incidence; η → 0 at normal incidence). At the critical angle it is 0.
+#[inline]
+fn cos_transmitted(cos_i: f64, eta: f64) -> Option<f64> {
+    let k = eta * eta - (1.0 - cos_i) * (1.0 + cos_i);
+    (k >= 0.0).then(|| k.sqrt() / eta)
 }
 
 /// Exact unpolarised Fresnel reflectance of a smooth dielectric interface
 /// (Born & Wolf; pbrt-v4 `FrDielectric`): the mean of the s- and p-polarised reflectances,
 /// `cos_i` = cosine of the incident angle (≥ 0), `eta` = n_t/n_i. Returns 1 under total
-/// internal reflection. `eta` = +∞ (the glTF `ior: 0` mode) gives 1.
+/// internal reflection. `eta` = +∞ (the glTF `ior: 0` mode) gives 1; `eta` = 1 (no
+/// interface) gives 0 at every angle. Evaluated in f64 with cos θ_t as in [`refract`], so
+/// 1 − R keeps its digits at grazing incidence (→ 2 cos θ_i (η²+1)/√(η²−1), see
+/// `tests/stiff_optics.rs`) and no η in (0, ∞) yields NaN.
 #[inline]
 pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
-    let cos_i = cos_i.clamp(0.0, 1.0);
-    if eta.is_infinite() {
+    if eta.is_infinite() || eta.is_nan() || eta <= 0.0 {
         return 1.0;
     }
-    let sin2_t = (1.0 - cos_i * cos_i).max(0.0) / (eta * eta);
-    if sin2_t >= 1.0 {
-        return 1.0;
+    if eta == 1.0 {
+        return 0.0;
     }
-    let cos_t = (1.0 - sin2_t).max(0.0).sqrt();
+    let cos_i = f64::from(cos_i.clamp(0.0, 1.0));
+    let eta = f64::from(eta);
+    // cos θ_t = 0 only at the critical angle (then R = 1 below), never with cos θ_i = 0
+    // (that needs η = 1), so no 0/0.
+    let Some(cos_t) = cos_transmitted(cos_i, eta) else {
+        return 1.0;
+    };
     let r_parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
     let r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    (0.5 * (r_parl * r_parl + r_perp * r_perp)).clamp(0.0, 1.0)
+    (0.5 * (r_parl * r_parl + r_perp * r_perp)).clamp(0.0, 1.0) as f32
 }
 
 /// Critical angle θ_c = asin(n_t/n_i) for light going from the denser medium; `None` when

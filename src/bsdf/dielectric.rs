@@ -114,8 +114,14 @@ fn half_vector(eta: f32, wo: Vec3, wi: Vec3) -> Option<(Vec3, f32, bool)> {
     if !reflect && (!etap.is_finite() || etap <= 0.0) {
         return None;
     }
-    let wm = wi * etap + wo;
-    if wm.length_squared() == 0.0 {
+    // wi·η' + wo, scaled by 1/η' when η' > 1 so that neither form overflows for extreme
+    // indices (η' = 1e30 made |wm|² = +∞ and wm NaN); the direction is the same.
+    let wm = if etap > 1.0 {
+        wi + wo / etap
+    } else {
+        wi * etap + wo
+    };
+    if wm.length_squared() == 0.0 || !wm.is_finite() {
         return None;
     }
     let mut wm = wm.normalize();
@@ -167,10 +173,17 @@ pub(crate) fn rough_eval_ss<C: Carrier>(
     if refl {
         return C::splat(ggx.d(wm) * ggx.g(wo, wi) * f / (4.0 * ci * co).abs());
     }
-    let denom = (wi.dot(wm) + wo.dot(wm) / etap).powi(2) * ci * co;
-    let mut ft = ggx.d(wm) * (1.0 - f) * ggx.g(wo, wi) * (wi.dot(wm) * wo.dot(wm) / denom).abs();
-    if mode == TransportMode::Radiance {
-        ft /= etap * etap;
+    // Radiance mode divides by η'²; folding it into the denominator,
+    // (wi·wm + wo·wm/η')²·η'² = (η' wi·wm + wo·wm)², keeps 0/0 and ∞/∞ out of extreme
+    // indices (η' = 1e-30 made the denominator +∞ and η'² zero).
+    let (iw, ow) = (wi.dot(wm), wo.dot(wm));
+    let denom = match mode {
+        TransportMode::Radiance => (etap * iw + ow).powi(2),
+        TransportMode::Importance => (iw + ow / etap).powi(2),
+    };
+    let ft = ggx.d(wm) * (1.0 - f) * ggx.g(wo, wi) * (iw * ow / (denom * ci * co)).abs();
+    if !ft.is_finite() {
+        return C::ZERO;
     }
     tint * ft
 }

@@ -127,6 +127,15 @@ pub enum ExplicitIor {
     /// (extras `{"iris_glass": "N-BK7"}`, MTL `iris_glass N-BK7`); names are
     /// case-insensitive and validation rejects unknown ones.
     Glass(String),
+    /// Sellmeier coefficients given directly (extras `{"sellmeier": {"b": [..], "c": [..]}}`,
+    /// up to 4 terms, C_i in µm²); unused terms are 0. Validation rejects a resonance
+    /// √C_i inside the sampled wavelength range.
+    Sellmeier {
+        /// Oscillator strengths B_i.
+        b: [f32; 4],
+        /// Resonance wavelengths squared C_i, µm².
+        c: [f32; 4],
+    },
 }
 
 /// A material in glTF metallic-roughness terms plus the KHR extensions Iris reads.
@@ -226,6 +235,7 @@ impl MaterialDesc {
         match &self.ior_model {
             Some(ExplicitIor::Glass(name)) => SpectralIor::named(name),
             Some(ExplicitIor::Cauchy { b, c }) => Ok(SpectralIor::Cauchy { b: *b, c: *c }),
+            Some(ExplicitIor::Sellmeier { b, c }) => Ok(SpectralIor::Sellmeier { b: *b, c: *c }),
             // n_d = 1 makes the KHR formula's (n_d − 1) factor vanish: n ≡ 1, not dispersive.
             None if self.ior == 1.0 => Ok(SpectralIor::Constant(1.0)),
             None => Ok(SpectralIor::from_khr(self.ior, self.dispersion)),

@@ -188,7 +188,32 @@ impl IorModel {
         if !n.is_finite() {
             return 1.0;
         }
-        n.max(1.0) as f32
+        // Saturate instead of overflowing to +∞ in the cast (Cauchy c = 3e38 at 360 nm is
+        // 2e39 in f64): +∞ is reserved for the `ior: 0` mode.
+        n.clamp(1.0, f64::from(f32::MAX)) as f32
+    }
+
+    /// The resonance wavelengths (poles) of a Sellmeier model in nm, λ_i = 1000·√C_i, for
+    /// the terms in use (b_i ≠ 0, C_i > 0); none for the other models, whose n(λ) has no
+    /// pole at λ > 0.
+    pub fn poles_nm(&self) -> Vec<f32> {
+        match *self {
+            IorModel::Sellmeier { b, c } => b
+                .iter()
+                .zip(&c)
+                .filter(|(bi, ci)| **bi != 0.0 && **ci > 0.0)
+                .map(|(_, &ci)| (f64::from(ci).sqrt() * 1e3) as f32)
+                .collect(),
+            _ => Vec::new(),
+        }
+    }
+
+    /// The first pole ([`IorModel::poles_nm`]) in the closed range `[lo, hi]` nm, if any.
+    /// Validation rejects a model with a pole in the sampled range
+    /// [`LAMBDA_MIN`](super::LAMBDA_MIN)–[`LAMBDA_MAX`](super::LAMBDA_MAX): n(λ) diverges
+    /// there (and n² < 0 just below it), so no clamp gives a meaningful index.
+    pub fn pole_in(&self, lo: f32, hi: f32) -> Option<f32> {
+        self.poles_nm().into_iter().find(|&p| p >= lo && p <= hi)
     }
 
     /// Whether n depends on λ (the integrator then calls `terminate_secondary`).

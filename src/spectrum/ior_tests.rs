@@ -119,3 +119,44 @@ fn sellmeier_never_nan() {
         assert!(m.ior(l) >= 1.0 && m.ior(l).is_finite(), "{l}: {}", m.ior(l));
     }
 }
+
+#[test]
+fn dispersive_models_saturate_instead_of_overflowing() {
+    // c = f32::MAX µm² at 0.36 µm is 2.6e39 in f64, beyond f32: n saturates to f32::MAX
+    // (finite); +∞ stays reserved for `Constant(+∞)`, the `ior: 0` mode.
+    let m = IorModel::Cauchy {
+        b: 1.5,
+        c: f32::MAX,
+    };
+    assert_eq!(m.ior(360.0), f32::MAX);
+    // KHR with D = f32::MAX: 4 + 3·(D/20)·2.52 = 1.3e38 at 360 nm, still finite.
+    let k = IorModel::KhrDispersion {
+        n_d: 4.0,
+        dispersion: f32::MAX,
+    };
+    assert!(k.ior(360.0).is_finite() && k.ior(360.0) > 1e38);
+    assert_eq!(k.ior(830.0), 1.0);
+    let k = IorModel::KhrDispersion {
+        n_d: 100.0,
+        dispersion: f32::MAX,
+    };
+    assert_eq!(k.ior(360.0), f32::MAX);
+}
+
+#[test]
+fn sellmeier_poles() {
+    // √0.25 µm² = 500 nm; terms with b = 0 or c ≤ 0 have no pole.
+    let m = IorModel::Sellmeier {
+        b: [1.0, 0.0, 2.0, 1.0],
+        c: [0.25, 0.09, 100.0, 0.0],
+    };
+    let poles = m.poles_nm();
+    assert_eq!(poles.len(), 2);
+    assert!((poles[0] - 500.0).abs() < 1e-3 && (poles[1] - 10_000.0).abs() < 1e-2);
+    assert!((m.pole_in(360.0, 830.0).unwrap() - 500.0).abs() < 1e-3);
+    assert_eq!(m.pole_in(501.0, 9_000.0), None);
+    assert!(IorModel::Cauchy { b: 1.5, c: 0.1 }.poles_nm().is_empty());
+    for name in KNOWN_NAMES {
+        assert_eq!(named(name).pole_in(360.0, 830.0), None, "{name}");
+    }
+}

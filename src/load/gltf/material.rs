@@ -15,6 +15,8 @@
 //!   `ExplicitIor::Glass`; `{"cauchy": {"b": B, "c": C}}` gives `ExplicitIor::Cauchy`
 //!   (n(λ) = B + C/λ², λ in µm, C in µm²; finite B ≥ 1 and C ≥ 0). Both on one material,
 //!   a non-string name or an unknown name are `InvalidValue` errors naming the material.
+//!   `{"sellmeier": {"b": [B1, …], "c": [C1, …]}}` (1–4 terms, C in µm²) gives
+//!   `ExplicitIor::Sellmeier`; validation rejects a resonance √C inside 360–830 nm.
 //!   Either overrides KHR_materials_dispersion (the KHR values stay the fallback other
 //!   viewers use); `ior: 0` overrides both (see `MaterialDesc::spectral_ior`).
 //! - `extras.iris_spectrum` (material or KHR_lights_punctual light, [`iris_spectrum`]):
@@ -144,7 +146,7 @@ fn dispersion(ctx: &Ctx<'_>, m: &gltf::Material<'_>, element: &str) -> Result<f3
     }
 }
 
-/// The Iris extras keys `iris_glass` and `cauchy` (at most one); other extras keys and
+/// The Iris extras keys `iris_glass`, `cauchy` and `sellmeier` (at most one); other extras keys and
 /// non-object extras are ignored.
 fn explicit_ior(
     ctx: &Ctx<'_>,
@@ -158,14 +160,54 @@ fn explicit_ior(
         return Ok(None);
     };
     let invalid = |detail: String| ctx.error(element, LoadErrorKind::InvalidValue, detail);
-    match (extras.get("iris_glass"), extras.get("cauchy")) {
-        (Some(_), Some(_)) => Err(invalid(
-            "extras give both iris_glass and cauchy; keep one IOR model".into(),
-        )),
-        (Some(glass), None) => glass_name(glass).map(Some).map_err(invalid),
-        (None, Some(cauchy)) => cauchy_model(cauchy).map(Some).map_err(invalid),
-        (None, None) => Ok(None),
+    let keys = ["iris_glass", "cauchy", "sellmeier"];
+    let given: Vec<&str> = keys
+        .into_iter()
+        .filter(|k| extras.get(k).is_some())
+        .collect();
+    if given.len() > 1 {
+        return Err(invalid(format!(
+            "extras give both {}; keep one IOR model",
+            given.join(" and ")
+        )));
     }
+    match given.first().copied() {
+        Some("iris_glass") => glass_name(&extras["iris_glass"]).map(Some).map_err(invalid),
+        Some("cauchy") => cauchy_model(&extras["cauchy"]).map(Some).map_err(invalid),
+        Some(_) => sellmeier_model(&extras["sellmeier"])
+            .map(Some)
+            .map_err(invalid),
+        None => Ok(None),
+    }
+}
+
+/// `extras.sellmeier`: `{"b": [B1, …], "c": [C1, …]}`, 1 to 4 terms of each (same count),
+/// C in µm². Range checks (finite, ≥ 0, no resonance in the sampled range) are
+/// `scene::validate`'s.
+fn sellmeier_model(sellmeier: &Value) -> Result<ExplicitIor, String> {
+    let shape = || {
+        format!("extras.sellmeier must be {{\"b\": [B1, …], \"c\": [C1, …]}} with 1 to 4 numbers each, found {sellmeier}")
+    };
+    let terms = |key: &str| -> Result<Vec<f32>, String> {
+        let list = sellmeier
+            .get(key)
+            .and_then(Value::as_array)
+            .ok_or_else(shape)?;
+        if list.is_empty() || list.len() > 4 {
+            return Err(shape());
+        }
+        list.iter()
+            .map(|v| v.as_f64().map(|x| x as f32).ok_or_else(shape))
+            .collect()
+    };
+    let (b_list, c_list) = (terms("b")?, terms("c")?);
+    if b_list.len() != c_list.len() {
+        return Err(shape());
+    }
+    let (mut b, mut c) = ([0.0f32; 4], [0.0f32; 4]);
+    b[..b_list.len()].copy_from_slice(&b_list);
+    c[..c_list.len()].copy_from_slice(&c_list);
+    Ok(ExplicitIor::Sellmeier { b, c })
 }
 
 /// `extras.iris_priority`: the nested-media priority, an integer in ±1,000,000 (default 0).

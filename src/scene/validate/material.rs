@@ -5,8 +5,9 @@
 //! (`InvalidValue` naming the field; `attenuation_distance` may be +∞). The IOR may not be
 //! NaN, infinite or negative (`InvalidIor`); 0 is KHR_materials_ior's special mode; values
 //! in (0, 1) model a bubble (e.g. air in water) and only warn. A Cauchy model needs finite
-//! `b > 0`, `c ≥ 0`, and a glass name must be one of `spectrum::ior::KNOWN_NAMES`
-//! (`InvalidIor`); every material then resolves to exactly one `spectrum::IorModel`
+//! `b > 0`, `c ≥ 0`, a Sellmeier model finite `b_i, c_i ≥ 0`, and a glass name must be one
+//! of `spectrum::ior::KNOWN_NAMES` (`InvalidIor`); a model with a resonance (pole) inside
+//! the sampled range `LAMBDA_MIN`–`LAMBDA_MAX` (360–830 nm) is `InvalidIor` too; every material then resolves to exactly one `spectrum::IorModel`
 //! ([`MaterialDesc::spectral_ior`]: `ior` 0 > explicit model > KHR dispersion > constant).
 //! `ior` 0 with an explicit model or `dispersion > 0` warns that dispersion is off. Unit-interval factors (base colour, metallic,
 //! roughness, transmission, specular, attenuation colour, alpha cutoff) outside [0, 1] are
@@ -18,6 +19,7 @@
 use super::{element, fail};
 use crate::error::{LoadError, LoadErrorKind};
 use crate::scene::desc::{AlphaMode, ExplicitIor, ImageDesc, MaterialDesc};
+use crate::spectrum::{LAMBDA_MAX, LAMBDA_MIN};
 use glam::Vec3;
 use std::path::Path;
 
@@ -144,6 +146,14 @@ fn check_ior(m: &MaterialDesc, name: &str, warnings: &mut Vec<String>) -> Result
             ));
         }
     }
+    if let Some(ExplicitIor::Sellmeier { b, c }) = m.ior_model {
+        let bad = |v: &f32| !v.is_finite() || *v < 0.0;
+        if b.iter().chain(&c).any(bad) {
+            return Err(format!(
+                "Sellmeier model b = {b:?}, c = {c:?} (needs finite b ≥ 0 and c ≥ 0 µm²)"
+            ));
+        }
+    }
     // An unknown name fails even under ior 0, so a typo never goes unnoticed.
     if let Some(ExplicitIor::Glass(glass)) = &m.ior_model {
         crate::spectrum::IorModel::named(glass).map_err(|e| e.to_string())?;
@@ -152,6 +162,7 @@ fn check_ior(m: &MaterialDesc, name: &str, warnings: &mut Vec<String>) -> Result
         let ignored = match (&m.ior_model, m.dispersion > 0.0) {
             (Some(ExplicitIor::Glass(glass)), _) => Some(format!("iris_glass \"{glass}\"")),
             (Some(ExplicitIor::Cauchy { .. }), _) => Some("the Cauchy model".to_string()),
+            (Some(ExplicitIor::Sellmeier { .. }), _) => Some("the Sellmeier model".to_string()),
             (None, true) => Some(format!("dispersion {}", m.dispersion)),
             (None, false) => None,
         };
@@ -161,7 +172,15 @@ fn check_ior(m: &MaterialDesc, name: &str, warnings: &mut Vec<String>) -> Result
             ));
         }
     }
-    m.spectral_ior().map(|_| ()).map_err(|e| e.to_string())
+    let model = m.spectral_ior().map_err(|e| e.to_string())?;
+    if let Some(pole) = model.pole_in(LAMBDA_MIN, LAMBDA_MAX) {
+        return Err(format!(
+            "Sellmeier resonance at {pole:.1} nm lies inside the sampled range \
+             {LAMBDA_MIN}–{LAMBDA_MAX} nm, where n(λ) diverges; move the pole (√C_i, µm) \
+             outside it"
+        ));
+    }
+    Ok(())
 }
 
 /// Clamps unit-interval factors (and negative specular colour), noting each change.
