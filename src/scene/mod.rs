@@ -10,6 +10,7 @@
 pub mod contact;
 pub mod desc;
 pub mod validate;
+pub mod winding;
 
 use crate::accel::{Accel, Backend};
 use crate::area_light::AreaLights;
