@@ -9,6 +9,7 @@
 
 pub mod contact;
 pub mod desc;
+mod thin;
 pub mod validate;
 pub mod winding;
 
