@@ -403,7 +403,9 @@ fn inside_out_meshes_are_turned_and_cavities_keep_facing_inward() {
     // A gem with a bubble: the outer shell outward and the inner shell (radius 0.3) wound
     // towards the bubble, in one mesh. Correct as authored: nothing changes. Fully
     // inverted: both shells are turned back.
-    let inner = inverted(&sphere.transformed(Mat3::from_diagonal(Vec3::splat(0.3)), Vec3::ZERO));
+    let mut inner =
+        inverted(&sphere.transformed(Mat3::from_diagonal(Vec3::splat(0.3)), Vec3::ZERO));
+    inner.normals.iter_mut().for_each(|n| *n = -*n); // the bubble's normals face inward
     let mut both = sphere.clone();
     let base = both.positions.len() as u32;
     both.positions.extend(&inner.positions);
@@ -414,6 +416,22 @@ fn inside_out_meshes_are_turned_and_cavities_keep_facing_inward() {
     assert_eq!(fixed, both.indices, "{w}");
     let (fixed, _) = validated(&inverted(&both));
     assert_eq!(fixed, both.indices);
+    // Without normals the inner shell is taken as a cavity; with normals agreeing with an
+    // outward inner shell (a part inside another, not a bubble) it is kept outward.
+    let bare = TriMesh {
+        normals: Vec::new(),
+        ..inverted(&both)
+    };
+    assert_eq!(validated(&bare).0, both.indices);
+    let mut part = both.clone();
+    let k = sphere.indices.len();
+    for t in &mut part.indices[k..] {
+        t.swap(1, 2); // the inner shell wound outward...
+    }
+    for n in &mut part.normals[sphere.positions.len()..] {
+        *n = -*n; // ...and its normals outward too
+    }
+    assert_eq!(validated(&part).0, part.indices);
     // Open surface (a floor): made consistent, the majority's side kept.
     let floor = ground_plane(1.0, 1.0);
     let (bad, _) = flip_some(&floor, 0.3, 5);
@@ -501,6 +519,54 @@ fn winding_repair_cost_on_the_largest_shared_assets() {
         }
         for w in &v.warnings {
             eprintln!("  warning: {w}");
+        }
+    }
+}
+
+/// Every shared asset loads with no NaN in its geometry after repair; prints what the
+/// repair did to each (the winding pass must leave correct files alone).
+#[test]
+fn shared_assets_repair_report() {
+    let Some(shared) = common::shared_assets() else {
+        return;
+    };
+    let mut files = Vec::new();
+    let mut stack = vec![shared.clone()];
+    while let Some(dir) = stack.pop() {
+        for e in std::fs::read_dir(&dir).unwrap().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if matches!(
+                p.extension().and_then(|x| x.to_str()),
+                Some("glb" | "gltf" | "obj")
+            ) {
+                files.push(p);
+            }
+        }
+    }
+    files.sort();
+    for path in files {
+        let Ok(desc) = iris::load::load_scene(&path) else {
+            continue; // load errors are other tests' business
+        };
+        for m in &desc.meshes {
+            assert!(
+                m.positions.iter().all(|p| p.is_finite()),
+                "{}",
+                path.display()
+            );
+        }
+        let repairs: Vec<&String> = desc
+            .warnings
+            .iter()
+            .filter(|w| {
+                w.contains("winding") || w.contains("degenerate") || w.contains("shading normals")
+            })
+            .collect();
+        eprintln!("{}: {} repair warning(s)", path.display(), repairs.len());
+        for w in repairs {
+            eprintln!("  {w}");
         }
     }
 }

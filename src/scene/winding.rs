@@ -16,10 +16,13 @@
 //!    when a cycle contradicts itself (Möbius strip); it is left exactly as it was.
 //! 4. **Choose the side.** A *closed* component (no border and no non-manifold edge) is
 //!    oriented so its signed volume `Σ p0·(p1×p2)/6` (divergence theorem) is positive —
-//!    unless it lies inside an odd number of the mesh's other closed components, where it
-//!    bounds a cavity (a bubble in a gem) and must face into the cavity: negative volume.
-//!    An open one keeps the orientation of the majority of its triangle area (it cannot be
-//!    oriented "outward"; it is reported).
+//!    unless it lies inside an odd number of the mesh's other closed components. Such a
+//!    shell is either a cavity (a bubble in a gem: it must face into the cavity, negative
+//!    volume) or a part modelled inside another (a pin inside a spectacle frame: outward);
+//!    the mesh's shading normals decide when it has them (the side they agree with, by
+//!    area), otherwise it is taken as a cavity. An open component cannot be oriented
+//!    "outward": it takes the side its shading normals agree with, or without normals the
+//!    winding of the majority of its triangle area.
 //!
 //! Invariants: only the order of each triangle's corners changes (a flip swaps the last
 //! two indices); triangles keep their index in the mesh; the result depends only on the
@@ -137,7 +140,13 @@ pub fn orient(mesh: &mut MeshDesc) -> WindingReport {
             closed_components.push(members);
         } else {
             report.open += 1;
-            if flipped_area_majority(mesh, &members, &flip) {
+            let vote = normal_vote(mesh, &members, &flip);
+            let reverse = if vote != 0.0 {
+                vote < 0.0
+            } else {
+                flipped_area_majority(mesh, &members, &flip)
+            };
+            if reverse {
                 members.iter().for_each(|&t| flip[t] ^= true);
             }
         }
@@ -192,11 +201,39 @@ fn orient_closed(mesh: &MeshDesc, shells: &[Vec<usize>], flip: &mut [bool]) {
             })
             .count();
         let volume = signed_volume(mesh, members, flip);
-        let want_positive = depth % 2 == 0;
-        if volume != 0.0 && (volume > 0.0) != want_positive {
+        let vote = normal_vote(mesh, members, flip);
+        let reverse = if depth % 2 == 0 {
+            volume < 0.0
+        } else if vote != 0.0 {
+            vote < 0.0 // a part inside another, or a cavity: the artist's normals decide
+        } else {
+            volume > 0.0 // a cavity faces inward
+        };
+        if reverse {
             members.iter().for_each(|&t| flip[t] ^= true);
         }
     }
+}
+
+/// How much the component's shading normals agree with its faces as currently flipped:
+/// Σ (p1−p0)×(p2−p0) · (n0+n1+n2) (area-weighted); 0 when the mesh has no normals. Used
+/// only where geometry cannot decide (open components, shells nested inside others).
+fn normal_vote(mesh: &MeshDesc, members: &[usize], flip: &[bool]) -> f64 {
+    if mesh.normals.len() != mesh.positions.len() {
+        return 0.0;
+    }
+    members
+        .iter()
+        .map(|&t| {
+            let [p0, p1, p2] = corners(mesh, t, flip[t]);
+            let n: DVec3 = mesh.indices[t]
+                .iter()
+                .map(|&i| mesh.normals[i as usize].as_dvec3())
+                .filter(|n| n.is_finite())
+                .sum();
+            (p1 - p0).cross(p2 - p0).dot(n)
+        })
+        .sum()
 }
 
 /// Generalized winding number of the shell about `q`: the solid angles its triangles
