@@ -37,7 +37,7 @@ use iris::medium::MediumStack;
 use iris::optics::refract;
 use iris::render::{render, RenderSettings};
 use iris::scene::desc::{CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
-use iris::scene::Scene;
+use iris::scene::{Scene, TriangleData};
 
 const N_DIAMOND: f32 = 2.417;
 
@@ -220,6 +220,11 @@ fn offset_rule_holds_on_the_gem_at_every_scale() {
                 ..Default::default()
             };
             let scene = build(desc, backend);
+            // A lone convex stone has no thin part: nothing is probed for partners.
+            assert!(scene
+                .triangle_data
+                .iter()
+                .all(|td| td.info & TriangleData::TOUCHES == 0));
             let mut rng = Rng::new(&[scale.to_bits() as u64]);
             let mut failures = Vec::new();
             for i in 0..5000 {
@@ -323,6 +328,19 @@ fn thin_slab_keeps_direction_and_shifts_by_the_plate_formula() {
             for rel in [1e-3f32, 1e-6] {
                 let t = rel * m;
                 let (scene, centre) = slab_scene(m, t, backend);
+                // Only a slab thinner than the merge distance is a "thin sheet" whose two
+                // sides are probed together; the 1e-3 one is resolved face by face.
+                let touching = scene
+                    .triangle_data
+                    .iter()
+                    .filter(|td| td.info & TriangleData::TOUCHES != 0)
+                    .count();
+                let thin = t < 2.0 * iris::interaction::MERGE_SCALE * m;
+                assert_eq!(
+                    touching,
+                    if thin { 4 } else { 0 },
+                    "m {m} t {rel}·m: top + bottom"
+                );
                 for deg in [0.0f32, 30.0, 60.0, 80.0] {
                     let (s, c) = deg.to_radians().sin_cos();
                     let d = Vec3::new(s, -c, 0.0);
