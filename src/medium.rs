@@ -198,6 +198,16 @@ mod tests {
         // Two touching prisms of the same glass: no interface, still inside glass.
         let (ni, nt, s) = interface_merged(in_glass, &[(glass, false, 0), (glass, true, 0)], ior);
         assert_eq!((ni, nt, s), (1.5, 1.5, in_glass));
+        // Both faces of a glass sheet thinner than the merge distance, met from air or from
+        // inside water: no interface, and the sheet is not left on the stack.
+        let air = MediumStack::new();
+        let sheet = [(glass, true, 0), (glass, false, 0)];
+        assert_eq!(interface_merged(air, &sheet, ior), (1.0, 1.0, air));
+        let in_water = air.entered(water, 0);
+        assert_eq!(
+            interface_merged(in_water, &sheet, ior),
+            (1.33, 1.33, in_water)
+        );
         // Exiting glass never entered, into water: 1.5 → 1.33.
         let (ni, nt, _) = interface_merged(
             MediumStack::new(),
