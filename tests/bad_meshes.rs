@@ -254,10 +254,10 @@ fn a_mesh_of_only_bad_triangles_is_removed_or_an_error() {
 fn obj_with_degenerate_faces_and_bad_normals_is_repaired() {
     let dir = common::scratch_dir("bad_meshes_obj");
     // A tetrahedron (outward faces) + a face repeating a vertex + a collinear face; its
-    // normals: one zero-length, the rest pointing inward.
+    // normals: one zero-length, one NaN, the rest pointing inward.
     let text = "o stone\n\
         v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 2 0 0\n\
-        vn 0 0 0\nvn -1 0 0\nvn 0 -1 0\nvn 0 0 -1\nvn 0 0 -1\n\
+        vn 0 0 0\nvn nan 0 0\nvn 0 -1 0\nvn 0 0 -1\nvn 0 0 -1\n\
         f 1//1 3//3 2//2\nf 1//1 2//2 4//4\nf 1//1 4//4 3//3\nf 2//2 3//3 4//4\n\
         f 1//1 1//1 2//2\nf 1//1 2//2 5//5\n";
     let path = dir.join("stone.obj");
@@ -268,7 +268,7 @@ fn obj_with_degenerate_faces_and_bad_normals_is_repaired() {
     assert!(w.contains(&format!("{at}: dropped 2 degenerate")), "{w}");
     assert!(
         w.contains(&format!(
-            "{at}: shading normals: 1 non-finite or zero-length"
+            "{at}: shading normals: 2 non-finite or zero-length replaced by face normals, 2 pointing inward reversed"
         )),
         "{w}"
     );
