@@ -138,12 +138,36 @@ impl SurfaceHit {
     }
 }
 
+/// The unit geometric normal `normalize((p1−p0)×(p2−p0))` of a triangle, or `None` when it
+/// has none (zero area, or non-finite corners). Tiny triangles whose f32 cross product
+/// underflows (edges below ~1e-10 of any unit: |e|⁴ < f32::MIN_POSITIVE) are rescaled by
+/// their longest edge component first, so the normal is scale-free like the offset rule.
+/// Validation drops every triangle for which this is `None`, so hits never see one.
+#[inline]
+pub fn geometric_normal([p0, p1, p2]: [Vec3; 3]) -> Option<Vec3> {
+    let (e1, e2) = (p1 - p0, p2 - p0);
+    let n = e1.cross(e2);
+    let rcp = n.length_recip();
+    if rcp.is_finite() && rcp > 0.0 {
+        return Some(n * rcp);
+    }
+    // Rare path: rescale (exact for a power of two) and retry.
+    let m = e1.abs().max(e2.abs()).max_element();
+    if m.is_nan() || m <= 0.0 || m.is_infinite() {
+        return None;
+    }
+    let s = 2f32.powi(-m.log2().floor() as i32);
+    let n = (e1 * s).cross(e2 * s);
+    let rcp = n.length_recip();
+    (rcp.is_finite() && rcp > 0.0).then(|| n * rcp)
+}
+
 impl Scene {
     /// A ray leaving the point `p` of triangle `prim` in direction `dir` (photons emitted
     /// from an emissive triangle), offset by the same rule as [`SurfaceHit::spawn_ray`].
     pub fn spawn_from_triangle(&self, prim: u32, p: Vec3, dir: Vec3) -> Ray {
         let [p0, p1, p2] = self.triangle_data[prim as usize].p;
-        let ng = (p1 - p0).cross(p2 - p0).normalize_or(Vec3::Z);
+        let ng = geometric_normal([p0, p1, p2]).unwrap_or(Vec3::Z);
         let mag = p0.abs().max(p1.abs()).max(p2.abs()).max_element();
         let side = if dir.dot(ng) >= 0.0 { 1.0 } else { -1.0 };
         Ray::new(p + ng * (side * mag * OFFSET_SCALE), dir)
@@ -155,7 +179,7 @@ impl Scene {
         let [p0, p1, p2] = td.p;
         let w = 1.0 - u - v;
         let p = p0 * w + p1 * u + p2 * v;
-        let ng = (p1 - p0).cross(p2 - p0).normalize_or(Vec3::Z);
+        let ng = geometric_normal([p0, p1, p2]).unwrap_or(Vec3::Z);
         let ns = if td.info & TriangleData::HAS_NORMALS != 0 {
             let [i0, i1, i2] = self.triangles[prim as usize].map(|i| i as usize);
             let n = (self.normals[i0] * w + self.normals[i1] * u + self.normals[i2] * v)

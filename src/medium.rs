@@ -89,28 +89,36 @@ impl MediumStack {
 /// before and after. Overlapping volumes work out: inside glass, entering water gives
 /// 1.5 → 1.33, and the glass wall met later inside the water is a false interface.
 /// Glass whose inner wall coincides with the water's outer wall gives 1.5 → 1.33 in one
-/// step; two touching prisms of one glass give 1.5 → 1.5 (no interface). A medium exited
-/// but never entered (open meshes, a camera inside) is taken as the incident one.
+/// step; two touching prisms of one glass give 1.5 → 1.5 (no interface); both faces of a
+/// glass sheet thinner than the merge distance, met from outside, are no interface either.
+/// A medium exited but never entered (open meshes, a camera inside) is taken as the
+/// incident one.
 pub fn interface_merged(
     stack: MediumStack,
     crossings: &[(u32, bool, i32)],
     ior: impl Fn(u32) -> f32,
 ) -> (f32, f32, MediumStack) {
     let ior_of = |id: Option<u32>| id.map_or(1.0, &ior);
-    let unknown_exit = crossings
-        .iter()
-        .find(|&&(m, entering, _)| !entering && !stack.contains(m));
+    // Both sides of a sheet of `m` thinner than the merge distance, met from outside it:
+    // entered and left in one step, so it changes nothing.
+    let through = |m: u32| {
+        !stack.contains(m)
+            && crossings.iter().any(|c| c.0 == m && c.1)
+            && crossings.iter().any(|c| c.0 == m && !c.1)
+    };
+    let kept = || crossings.iter().filter(|c| !through(c.0));
+    let unknown_exit = kept().find(|&&(m, entering, _)| !entering && !stack.contains(m));
     let n_i = match unknown_exit {
         Some(&(m, _, _)) => ior(m),
         None => ior_of(stack.current()),
     };
     let mut after = stack;
-    for &(m, entering, _) in crossings {
+    for &(m, entering, _) in kept() {
         if !entering {
             after = after.left(m);
         }
     }
-    for &(m, entering, priority) in crossings {
+    for &(m, entering, priority) in kept() {
         if entering {
             after = after.entered(m, priority);
         }
@@ -190,6 +198,16 @@ mod tests {
         // Two touching prisms of the same glass: no interface, still inside glass.
         let (ni, nt, s) = interface_merged(in_glass, &[(glass, false, 0), (glass, true, 0)], ior);
         assert_eq!((ni, nt, s), (1.5, 1.5, in_glass));
+        // Both faces of a glass sheet thinner than the merge distance, met from air or from
+        // inside water: no interface, and the sheet is not left on the stack.
+        let air = MediumStack::new();
+        let sheet = [(glass, true, 0), (glass, false, 0)];
+        assert_eq!(interface_merged(air, &sheet, ior), (1.0, 1.0, air));
+        let in_water = air.entered(water, 0);
+        assert_eq!(
+            interface_merged(in_water, &sheet, ior),
+            (1.33, 1.33, in_water)
+        );
         // Exiting glass never entered, into water: 1.5 → 1.33.
         let (ni, nt, _) = interface_merged(
             MediumStack::new(),

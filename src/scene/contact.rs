@@ -2,7 +2,9 @@
 //! layer's coincident-surface probe ([`Scene::coincident`]), so that only hits where two
 //! objects really share a face pay for it.
 //!
-//! A triangle is marked [`TriangleData::TOUCHES`] when a face of a *different mesh* crosses
+//! A triangle is marked [`TriangleData::TOUCHES`] when a face of a *different mesh* — or of
+//! its own mesh facing the other way, the two sides of a sheet thinner than the merge
+//! distance (candidates from [`super::thin`]) — crosses
 //! the normal segment `q ± MERGE_SCALE·mag·ng` through one of four points `q` of it (the
 //! centroid and the points at barycentrics (2/3, 1/6, 1/6) and permutations), where `mag` is
 //! its largest vertex coordinate magnitude — the same probe and distance the intersection
@@ -61,12 +63,15 @@ impl Aabb {
     }
 }
 
-/// Marks [`TriangleData::TOUCHES`] on every triangle that shares a face with another mesh.
+/// Marks [`TriangleData::TOUCHES`] on every triangle that shares a face with another mesh
+/// or lies on the other side of a thin sheet of its own mesh.
 pub(super) fn mark_touching(scene: &mut Scene) {
     let n_mesh = scene.meshes.len();
-    if n_mesh < 2 {
-        return;
-    }
+    let volume = |i: usize| {
+        let m = scene.triangle_data[i].material() as usize;
+        scene.materials[m].is_volume()
+    };
+    let thin = super::thin::sheet_candidates(&scene.triangle_data, &scene.triangle_mesh, volume);
     let mut boxes = vec![Aabb::empty(); n_mesh];
     for (td, &m) in scene.triangle_data.iter().zip(&scene.triangle_mesh) {
         boxes[m as usize] = boxes[m as usize].union(Aabb::of(&td.p));
@@ -87,7 +92,7 @@ pub(super) fn mark_touching(scene: &mut Scene) {
             .enumerate()
             .any(|(k, b)| k as u32 != mesh && b.overlaps(&bb));
         let ng = (p1 - p0).cross(p2 - p0).normalize_or_zero();
-        if !near_other || ng == Vec3::ZERO {
+        if (!near_other && !thin[i]) || ng == Vec3::ZERO {
             return Vec::new();
         }
         let (a, b) = (2.0 / 3.0, 1.0 / 6.0);
@@ -101,7 +106,9 @@ pub(super) fn mark_touching(scene: &mut Scene) {
         for q in points {
             let (_, hits) = s.probe(q, ng, half);
             for h in hits.as_slice() {
-                if s.triangle_mesh[h.prim as usize] != mesh {
+                let [o0, o1, o2] = s.triangle_data[h.prim as usize].p;
+                let facing_back = (o1 - o0).cross(o2 - o0).dot(ng) < 0.0;
+                if s.triangle_mesh[h.prim as usize] != mesh || facing_back {
                     found.push(h.prim);
                 }
             }

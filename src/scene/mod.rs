@@ -9,7 +9,9 @@
 
 pub mod contact;
 pub mod desc;
+mod thin;
 pub mod validate;
+pub mod winding;
 
 use crate::accel::{Accel, Backend};
 use crate::area_light::AreaLights;

@@ -5,23 +5,26 @@
 //! Every error names `desc.source` and the element by the name the loader stored
 //! (`MeshDesc::name`, `MaterialDesc::name`, light/camera names; `mesh 3` etc. when empty).
 //! Harmless problems are repaired and reported in `desc.warnings`:
-//! non-finite or zero-length shading normals are dropped (geometric normals are used),
-//! non-finite UVs become (0, 0), degenerate triangles (repeated vertex or zero area) are
-//! dropped and a mesh left without triangles is removed, out-of-range unit-interval
-//! material factors are clamped, and a spot light with `inner ≥ outer` gets a hard edge.
+//! non-finite UVs become (0, 0); out-of-range unit-interval material factors are clamped;
+//! a spot light with `inner ≥ outer` gets a hard edge; and each mesh is cleaned by
+//! `repair` (triangles on non-finite positions and degenerate triangles dropped, winding
+//! made consistent and outward per connected component, bad or inward shading normals
+//! replaced or reversed), one warning per kind of repair naming the file and the mesh. A
+//! mesh left without triangles is removed with a warning.
 //!
-//! Order: sizes ([`MAX_ELEMENTS`], before anything else allocates) → meshes → images and
-//! materials (`material`) → lights and cameras (`light`) → degenerate triangles →
+//! Order: sizes ([`MAX_ELEMENTS`], before anything else allocates) → mesh structure →
+//! images and materials (`material`) → lights and cameras (`light`) → mesh repair →
 //! `NoTriangles` if nothing is left.
 
 mod light;
 mod material;
+mod repair;
 #[cfg(test)]
 mod tests;
 
 use crate::error::{LoadError, LoadErrorKind};
 use crate::scene::desc::{MeshDesc, SceneDesc};
-use glam::{DVec3, Vec2};
+use glam::Vec2;
 use std::path::Path;
 
 /// Most triangles, and most vertices, a scene may have (2^28 each).
@@ -48,7 +51,7 @@ pub fn validate(mut desc: SceneDesc) -> Result<SceneDesc, LoadError> {
     for (i, c) in desc.cameras.iter().enumerate() {
         light::check_camera(&src, i, c)?;
     }
-    drop_degenerate(&mut desc.meshes, &mut warnings);
+    repair_meshes(&src, &mut desc.meshes, &mut warnings);
     if desc.meshes.is_empty() {
         return Err(LoadError::new(
             &src,
@@ -137,26 +140,6 @@ fn check_mesh(
             ));
         }
     }
-    if let Some((v, p)) = mesh
-        .positions
-        .iter()
-        .enumerate()
-        .find(|(_, p)| !p.is_finite())
-    {
-        return Err(fail(
-            src,
-            &format!("{name} vertex {v}"),
-            LoadErrorKind::NonFinite,
-            format!("position {p} is not finite"),
-        ));
-    }
-    let unusable = |v: &glam::Vec3| !v.is_finite() || v.length_squared() == 0.0;
-    if mesh.normals.iter().any(unusable) {
-        mesh.normals.clear();
-        warnings.push(format!(
-            "{name}: non-finite or zero-length shading normals; normals dropped (geometric normals used)"
-        ));
-    }
     let mut bad_uvs = 0usize;
     for uv in mesh.uvs.iter_mut().filter(|uv| !uv.is_finite()) {
         *uv = Vec2::ZERO;
@@ -170,26 +153,10 @@ fn check_mesh(
     Ok(())
 }
 
-/// True when the triangle repeats a vertex or has zero area (computed in f64 so tiny but
-/// valid triangles do not underflow).
-fn degenerate(positions: &[glam::Vec3], [a, b, c]: [u32; 3]) -> bool {
-    if a == b || b == c || a == c {
-        return true;
-    }
-    let p = |i: u32| positions.get(i as usize).map(|v| v.as_dvec3());
-    match (p(a), p(b), p(c)) {
-        (Some(p0), Some(p1), Some(p2)) => (p1 - p0).cross(p2 - p0) == DVec3::ZERO,
-        _ => true,
-    }
-}
-
-fn drop_degenerate(meshes: &mut Vec<MeshDesc>, warnings: &mut Vec<String>) {
-    let mut dropped = 0usize;
-    for mesh in meshes.iter_mut() {
-        let before = mesh.indices.len();
-        let positions = &mesh.positions;
-        mesh.indices.retain(|&tri| !degenerate(positions, tri));
-        dropped += before - mesh.indices.len();
+fn repair_meshes(src: &Path, meshes: &mut Vec<MeshDesc>, warnings: &mut Vec<String>) {
+    for (i, mesh) in meshes.iter_mut().enumerate() {
+        let name = element(&mesh.name, "mesh", i);
+        repair::repair_mesh(src, &name, mesh, warnings);
     }
     let mut removed = Vec::new();
     meshes.retain(|m| {
@@ -202,16 +169,12 @@ fn drop_degenerate(meshes: &mut Vec<MeshDesc>, warnings: &mut Vec<String>) {
         }
         !m.indices.is_empty()
     });
-    if dropped > 0 || !removed.is_empty() {
-        let mut note =
-            format!("dropped {dropped} degenerate triangle(s) (repeated vertex or zero area)");
-        if !removed.is_empty() {
-            note.push_str(&format!(
-                "; {} mesh(es) without triangles removed: {}",
-                removed.len(),
-                removed.join(", ")
-            ));
-        }
-        warnings.push(note);
+    if !removed.is_empty() {
+        warnings.push(format!(
+            "{}: {} mesh(es) left without triangles removed: {}",
+            src.display(),
+            removed.len(),
+            removed.join(", ")
+        ));
     }
 }

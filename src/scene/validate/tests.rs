@@ -104,12 +104,27 @@ fn image_size_must_match() {
 }
 
 #[test]
-fn non_finite_position_is_fatal() {
+fn non_finite_positions_drop_their_triangles() {
+    let mut d = scene();
+    // A second triangle on a NaN vertex and a third on an infinite one.
+    d.meshes[0].positions.push(Vec3::new(0.0, f32::NAN, 0.0));
+    d.meshes[0]
+        .positions
+        .push(Vec3::new(f32::INFINITY, 0.0, 0.0));
+    d.meshes[0].indices.extend([[0, 3, 1], [1, 4, 2]]);
+    let (d, w) = warnings(d);
+    assert_eq!(d.meshes[0].indices, vec![[0, 1, 2]]);
+    assert!(d.meshes[0].positions.iter().all(|p| p.is_finite()));
+    assert!(
+        w.contains("scene.test: mesh 0 \"tri\": 2 non-finite vertex position(s); 2 triangle(s)"),
+        "{w}"
+    );
+    // Every triangle bad: the mesh is removed, and with nothing left that is an error.
     let mut d = scene();
     d.meshes[0].positions[2] = Vec3::new(0.0, f32::NAN, 0.0);
     let (k, msg) = err_kind(d);
-    assert_eq!(k, LoadErrorKind::NonFinite);
-    assert!(msg.contains("\"tri\" vertex 2"), "{msg}");
+    assert_eq!(k, LoadErrorKind::NoTriangles);
+    assert!(msg.contains("scene.test"), "{msg}");
 }
 
 #[test]
@@ -118,7 +133,8 @@ fn bad_normals_and_uvs_are_repaired() {
     d.meshes[0].normals = vec![Vec3::Z, Vec3::new(f32::INFINITY, 0.0, 0.0), Vec3::Z];
     d.meshes[0].uvs = vec![Vec2::ZERO, Vec2::new(f32::NAN, 1.0), Vec2::ONE];
     let (d, w) = warnings(d);
-    assert!(d.meshes[0].normals.is_empty());
+    // The bad normal is replaced by the face normal (+z for the CCW triangle in z = 0).
+    assert_eq!(d.meshes[0].normals, vec![Vec3::Z; 3]);
     assert_eq!(d.meshes[0].uvs[1], Vec2::ZERO);
     assert!(
         w.contains("normals") && w.contains("texture coordinate"),
@@ -142,7 +158,9 @@ fn degenerate_triangles_dropped_and_empty_meshes_removed() {
     assert_eq!(d.meshes.len(), 1);
     assert_eq!(d.meshes[0].indices, vec![[0, 1, 2]]);
     assert!(
-        w.contains("dropped 3 degenerate") && w.contains("flat"),
+        w.contains("mesh 0 \"tri\": dropped 2 degenerate")
+            && w.contains("flat: dropped 1 degenerate")
+            && w.contains("removed: flat"),
         "{w}"
     );
     // Tiny but valid triangles survive (area computed in f64).
