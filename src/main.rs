@@ -55,8 +55,8 @@ enum Command {
     /// first (SPPM for caustic scenes, the path tracer otherwise) for 4× the budget and
     /// written to DIR/reference.exr.
     Converge(ConvergeArgs),
-    /// Regenerate the project's own scenes into DIR/paper (the paper's figures) and
-    /// DIR/scenes (glass of water, ruby, prism under the sky + sky.hdr).
+    /// Regenerate the project's own scenes into DIR/paper (the paper's figures),
+    /// DIR/scenes (glass of water, ruby, prism under the sky + sky.hdr) and DIR/gems.
     GenAssets {
         /// Asset root, e.g. `assets`.
         dir: PathBuf,
