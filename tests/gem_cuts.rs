@@ -77,7 +77,7 @@ fn check_solid(label: &str, m: &MeshDesc) -> f64 {
             n.dot((a + b + c) / 3.0 - centroid) > 0.0,
             "{label}: inward triangle"
         );
-        // Convex: no vertex in front of any triangle's plane. 1e-6 of the size: f32
+        // Convex: no vertex in front of any triangle's plane. 3e-6 of the size: f32
         // positions are rounded by ≤ 6e-8 relative, which tilts a plane through a
         // triangle ≥ 1/50 of the size by ≤ ~3e-6 rad, i.e. ≤ 3e-6 of the size at worst;
         // a real dent (a wrong step angle) is ≥ 1e-3 of the size.
