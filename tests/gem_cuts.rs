@@ -386,6 +386,24 @@ fn bad_arguments_fail_and_write_nothing() {
         "{}",
         common::stderr(&o)
     );
+    let o = common::iris(
+        &[
+            "gem",
+            "--cut",
+            "oval",
+            "--stone",
+            "ruby",
+            "-o",
+            "missing/out.glb",
+        ],
+        &dir,
+    );
+    assert!(!o.status.success());
+    assert!(
+        common::stderr(&o).contains("missing"),
+        "{}",
+        common::stderr(&o)
+    );
     // Nothing written, no temporary left.
     assert!(
         common::entries(&dir).is_empty(),
