@@ -55,12 +55,34 @@ enum Command {
     /// first (SPPM for caustic scenes, the path tracer otherwise) for 4× the budget and
     /// written to DIR/reference.exr.
     Converge(ConvergeArgs),
-    /// Regenerate the project's own scenes into DIR/paper (the paper's figures) and
-    /// DIR/scenes (glass of water, ruby, prism under the sky + sky.hdr).
+    /// Regenerate the project's own scenes into DIR/paper (the paper's figures),
+    /// DIR/scenes (glass of water, ruby, prism under the sky + sky.hdr) and DIR/gems.
     GenAssets {
         /// Asset root, e.g. `assets`.
         dir: PathBuf,
     },
+    /// Write a gem in a standard cut as .glb (KHR ior, transmission, volume, dispersion),
+    /// in a preview scene (camera, lights, white floor) unless --bare.
+    Gem(GemArgs),
+}
+
+#[derive(clap::Args)]
+struct GemArgs {
+    /// Cut: round (Tolkowsky brilliant), emerald (step cut), oval (brilliant, L/W 1.4).
+    #[arg(long, value_parser = iris::gen::cuts::Cut::parse)]
+    cut: iris::gen::cuts::Cut,
+    /// Stone: diamond, sapphire, ruby, cubic-zirconia, quartz, crown-glass.
+    #[arg(long, value_parser = iris::gen::stones::Stone::parse)]
+    stone: iris::gen::stones::Stone,
+    /// Girdle diameter (round) or length (emerald, oval) in millimetres.
+    #[arg(long, default_value_t = iris::gen::cuts::DEFAULT_SIZE_MM, allow_hyphen_values = true)]
+    size: f64,
+    /// Only the stone: no camera, lights or floor.
+    #[arg(long)]
+    bare: bool,
+    /// Output .glb file.
+    #[arg(short, long)]
+    output: PathBuf,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -461,6 +483,17 @@ fn run(cli: Cli) -> iris::Result<()> {
                 "rmse {:.6e} relative {:.6e} mean {:.6e} reference mean {:.6e}",
                 d.rmse, d.relative_rmse, d.mean, d.reference_mean
             );
+            Ok(())
+        }
+        Command::Gem(a) => {
+            let spec = iris::gen::cuts::preview::GemSpec {
+                cut: a.cut,
+                stone: a.stone,
+                size_mm: a.size,
+                bare: a.bare,
+            };
+            iris::gen::cuts::preview::write_gem(&a.output, &spec)?;
+            eprintln!("wrote {}", a.output.display());
             Ok(())
         }
         Command::GenAssets { dir } => {

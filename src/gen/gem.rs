@@ -3,8 +3,9 @@
 //! Frame: metres, +Y up, the girdle plane is y = 0 before [`Brilliant::resting`] turns the
 //! stone onto a pavilion facet. Angles are measured in each facet's plane of symmetry
 //! (the plane through the Y axis and the facet's apex), as for the Tolkowsky proportions
-//! (crown 34.5°, pavilion 40.75°, table ≈ 56 % of the diameter; GIA, "Round Brilliant
-//! Cut Diamond Anatomy").
+//! (crown 34.5°, pavilion 40.75°, table 53 % of the diameter: [`Brilliant::tolkowsky`];
+//! GIA, "Round Brilliant Cut Diamond Anatomy"). Every proportion is a field, so other
+//! cuts (e.g. [`super::cuts`]' oval) reuse the facet layout.
 //!
 //! Facets (k = 0…7, θₖ = k·45°; rings of vertices at θₖ or θₖ + 22.5°):
 //! - table: octagon Tₖ (θₖ);
@@ -52,7 +53,19 @@ pub struct Brilliant {
 }
 
 impl Brilliant {
-    /// Tolkowsky-like proportions for a stone of the given girdle diameter.
+    /// Marcel Tolkowsky's proportions ("Diamond Design", 1919, as tabulated by GIA): table
+    /// 53 % of the girdle diameter (corner to corner), crown 34.5°, pavilion 40.75°, girdle
+    /// 2 % of the diameter; stars half-way down the bezels, lower girdles 77 % of the way to
+    /// the culet (typical modern values, GIA "Round Brilliant Cut Diamond Anatomy").
+    pub fn tolkowsky(diameter: f64) -> Self {
+        Brilliant {
+            table: 0.53,
+            ..Brilliant::ideal(diameter)
+        }
+    }
+
+    /// Tolkowsky-like proportions with a slightly larger (56 %) table, as used by the
+    /// ruby demonstration scene.
     pub fn ideal(diameter: f64) -> Self {
         Brilliant {
             diameter,
@@ -86,10 +99,9 @@ impl Brilliant {
         self.facets(&|p| rotate(p) + DVec3::Y * lift).0
     }
 
-    /// Builds the facets with every vertex (and normal, by its linear part) mapped by
-    /// `map`, a rigid motion; returns the mesh and each facet's unit outward normal
-    /// (before mapping), in the order of the module docs.
-    fn facets(&self, map: &dyn Fn(DVec3) -> DVec3) -> (TriMesh, Vec<DVec3>) {
+    /// The facets as planar polygons (girdle plane y = 0, table up, centred on the Y
+    /// axis), in the order of the module docs, each wound either way (callers orient them).
+    pub fn polygons(&self) -> Vec<Vec<DVec3>> {
         let rg = self.diameter / 2.0;
         let rt = self.table * rg;
         let half_girdle = self.girdle * self.diameter / 2.0;
@@ -129,7 +141,14 @@ impl Brilliant {
             polys.push(vec![l(k), b(2 * k + 1), b(2 * k + 2)]);
         }
         polys.extend((0..8).map(|k| vec![culet, l(k + 7), b(2 * k), l(k)]));
+        polys
+    }
 
+    /// Builds the facets with every vertex (and normal, by its linear part) mapped by
+    /// `map`, a rigid motion; returns the mesh and each facet's unit outward normal
+    /// (before mapping), in the order of the module docs.
+    fn facets(&self, map: &dyn Fn(DVec3) -> DVec3) -> (TriMesh, Vec<DVec3>) {
+        let polys = self.polygons();
         let mut mesh = TriMesh::default();
         let mut normals = Vec::with_capacity(polys.len());
         let origin = map(DVec3::ZERO);
@@ -156,14 +175,14 @@ impl Brilliant {
 }
 
 /// tan of an angle in degrees, from [`sin_cos`].
-fn tan_deg(degrees: f64) -> f64 {
+pub(crate) fn tan_deg(degrees: f64) -> f64 {
     let (s, c) = sin_cos(degrees.to_radians());
     s / c
 }
 
 /// Unit normal of a planar polygon by Newell's method (robust for near-degenerate ones;
 /// M. Newell, see F. S. Hill, "Computer Graphics", 1990, §4.5.2).
-fn newell(poly: &[DVec3]) -> DVec3 {
+pub(crate) fn newell(poly: &[DVec3]) -> DVec3 {
     let mut n = DVec3::ZERO;
     for (i, p) in poly.iter().enumerate() {
         let q = poly[(i + 1) % poly.len()];
@@ -179,7 +198,7 @@ fn newell(poly: &[DVec3]) -> DVec3 {
 /// Rotates `v` by the rotation taking unit `from` to unit `to` about `from × to`
 /// (Rodrigues' formula v cos θ + (k×v) sin θ + k (k·v)(1 − cos θ); no trigonometry needed:
 /// cos θ = from·to, sin θ = |from × to|). `from` must not be ±`to`.
-fn rotate_onto(v: DVec3, from: DVec3, to: DVec3) -> DVec3 {
+pub(crate) fn rotate_onto(v: DVec3, from: DVec3, to: DVec3) -> DVec3 {
     let axis = from.cross(to);
     let (sin, cos) = (axis.length(), from.dot(to));
     let k = axis / sin;

@@ -3,7 +3,8 @@
 //! - [`shapes`]: mesh builders (sphere, box, prism, plane, checkerboard), CCW-outward.
 //! - [`lathe`]: surfaces of revolution; the glass of water (glass and water sharing their
 //!   interface vertices exactly).
-//! - [`gem`]: the round brilliant cut.
+//! - [`gem`]: the round brilliant cut; [`cuts`]: the cuts of `iris gem` (round
+//!   brilliant, emerald, oval) and their preview scenes; [`stones`]: named gem materials.
 //! - [`sky`]: the procedural sky map and its `.hdr` (RGBE) encoder.
 //! - [`model`]: the in-memory scene model ([`GenScene`]) in Iris's conventions (metres,
 //!   +Y up, linear colours, candela/lux lights).
@@ -16,11 +17,12 @@
 //!   sphere and prism caustics, a diamond's caustics); [`rainbow`]: the sun-through-a-slit
 //!   prism rainbow; [`focus_bench`]: the ball-lens test scene (not an asset).
 //!
-//! [`write_all_assets`]`(root)` regenerates both into `root/paper/` and `root/scenes/`
-//! (`iris gen-assets assets`).
+//! [`write_all_assets`]`(root)` regenerates them into `root/paper/`, `root/scenes/` and
+//! `root/gems/` (`iris gen-assets assets`).
 
 pub mod bench_scenes;
 pub mod caustic_scenes;
+pub mod cuts;
 pub mod focus_bench;
 pub mod gem;
 pub mod glb;
@@ -33,6 +35,7 @@ pub mod scenes;
 pub mod shapes;
 pub mod sky;
 pub mod spectral_scenes;
+pub mod stones;
 
 pub use glb::{encode_glb, write_glb};
 pub use model::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene, GenVolume};
@@ -46,11 +49,14 @@ use std::path::{Path, PathBuf};
 pub const PAPER_DIR: &str = "paper";
 /// Sub-directory of the asset root holding the demonstration scenes and their sky map.
 pub const SCENES_DIR: &str = "scenes";
+/// Sub-directory of the asset root holding the `iris gem` preview scenes.
+pub const GEMS_DIR: &str = "gems";
 
-/// Writes every generated asset under `root`: [`PAPER_DIR`] and [`SCENES_DIR`]
+/// Writes every generated asset under `root`: [`PAPER_DIR`], [`SCENES_DIR`] and [`GEMS_DIR`]
 /// (directories created as needed, files written atomically); returns the paths written.
 pub fn write_all_assets(root: &Path) -> Result<Vec<PathBuf>> {
     let mut written = write_paper_scenes(&root.join(PAPER_DIR))?;
     written.extend(write_scene_assets(&root.join(SCENES_DIR))?);
+    written.extend(cuts::preview::write_gem_assets(&root.join(GEMS_DIR))?);
     Ok(written)
 }

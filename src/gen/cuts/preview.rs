@@ -1,0 +1,246 @@
+//! `iris gem`: a named stone in a standard cut, written as .glb, bare or in a preview
+//! scene; and the shipped `assets/gems/`.
+//!
+//! Units: metres, +Y up, linear RGB; emitters are black diffuse quads emitting their
+//! radiance from the face turned to the stone (as in [`super::super::scenes`]).
+//!
+//! - **bare** (`--bare`): one mesh, the stone in the frame of [`super::Cut`] (girdle
+//!   plane y = 0, table up), the stone's material ([`Stone::material`]); no camera, light,
+//!   floor or environment (a renderer frames and lights it itself).
+//! - **preview** (default): the stone table up, its lowest point 2 % of the size above a
+//!   white (0.85) floor 20 sizes square; a key panel (1.6 × 1.6 sizes, radiance
+//!   [`KEY_RADIANCE`]) 15 sizes from the stone, 55° up, front-left; a rim panel (1 × 1
+//!   size, radiance [`RIM_RADIANCE`]) 15 sizes away, 40° up, behind-right; a faint uniform
+//!   environment (`iris_environment` [`AMBIENT`]); a camera 35° above the horizon, 25°
+//!   round from +Z towards +X, yfov 25°, 4:3, at the distance that fits the stone's
+//!   bounding sphere in the vertical field with 10 % margin. Everything scales with the
+//!   size, so the picture is the same for any `--size`.
+
+use super::super::glb::write_glb;
+use super::super::lathe::sin_cos;
+use super::super::model::{GenCamera, GenMaterial, GenMesh, GenScene};
+use super::super::shapes::{ground_plane, TriMesh};
+use super::super::stones::Stone;
+use super::{size_metres, Cut};
+use crate::error::{Error, Result};
+use glam::{DVec3, Vec3};
+use std::path::{Path, PathBuf};
+
+/// Radiance of the preview's key panel.
+pub const KEY_RADIANCE: f32 = 80.0;
+/// Radiance of the preview's rim panel.
+pub const RIM_RADIANCE: f32 = 40.0;
+/// Uniform environment radiance of the preview.
+pub const AMBIENT: f32 = 0.03;
+
+/// What `iris gem` writes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GemSpec {
+    /// The cut.
+    pub cut: Cut,
+    /// The material.
+    pub stone: Stone,
+    /// Girdle diameter (round) or length (emerald, oval), millimetres.
+    pub size_mm: f64,
+    /// Only the stone (no camera, lights, floor).
+    pub bare: bool,
+}
+
+/// The stones shipped in `assets/gems/`: file name, cut, stone, size in mm.
+pub const GEM_ASSETS: [(&str, Cut, Stone, f64); 3] = [
+    ("round_diamond.glb", Cut::Round, Stone::Diamond, 6.5),
+    ("emerald_sapphire.glb", Cut::Emerald, Stone::Sapphire, 8.0),
+    ("oval_ruby.glb", Cut::Oval, Stone::Ruby, 8.0),
+];
+
+fn cut_title(cut: Cut) -> &'static str {
+    match cut {
+        Cut::Round => "Round brilliant",
+        Cut::Emerald => "Emerald cut",
+        Cut::Oval => "Oval brilliant",
+    }
+}
+
+/// The scene of `spec` (see the module docs); `--size` out of range is a usage error.
+pub fn gem_scene(spec: &GemSpec) -> Result<GenScene> {
+    let size = size_metres(spec.size_mm)?;
+    let stone = spec.cut.mesh(size);
+    let (lo, hi) = bounds(&stone);
+    let mut s = GenScene {
+        name: format!(
+            "{}, {}, {} mm",
+            cut_title(spec.cut),
+            spec.stone.title(),
+            spec.size_mm
+        ),
+        ..GenScene::default()
+    };
+    s.materials.push(spec.stone.material((hi.y - lo.y) as f32));
+    let name = format!("{} {}", cut_title(spec.cut), spec.stone.name());
+    if spec.bare {
+        s.meshes.push(GenMesh {
+            name,
+            geometry: stone,
+            material: 0,
+            translation: None,
+        });
+        return Ok(s);
+    }
+    let lift = 0.02 * size - lo.y;
+    s.meshes.push(GenMesh {
+        name,
+        geometry: stone,
+        material: 0,
+        translation: Some(DVec3::new(0.0, lift, 0.0).as_vec3()),
+    });
+    s.extras = Some(serde_json::json!({ "iris_environment": AMBIENT }));
+    s.materials
+        .push(GenMaterial::diffuse("Floor", Vec3::splat(0.85)));
+    let half = (10.0 * size) as f32;
+    s.meshes.push(GenMesh {
+        name: "Floor".into(),
+        geometry: ground_plane(half, half),
+        material: 1,
+        translation: None,
+    });
+    let centre = 0.5 * (lo + hi) + DVec3::new(0.0, lift, 0.0);
+    let key = direction(55.0, -40.0);
+    let rim = direction(40.0, 150.0);
+    add_panel(
+        &mut s,
+        "Key light",
+        KEY_RADIANCE,
+        centre + 15.0 * size * key,
+        key,
+        0.8 * size,
+    );
+    add_panel(
+        &mut s,
+        "Rim light",
+        RIM_RADIANCE,
+        centre + 15.0 * size * rim,
+        rim,
+        0.5 * size,
+    );
+    let radius = 0.5 * (hi - lo).length();
+    let yfov = 25.0f64;
+    let (half_sin, _) = sin_cos((0.5 * yfov).to_radians());
+    let eye = centre + 1.1 * radius / half_sin * direction(35.0, 25.0);
+    s.camera = Some(GenCamera {
+        name: "Preview".into(),
+        eye: eye.as_vec3(),
+        target: centre.as_vec3(),
+        up: Vec3::Y,
+        yfov: yfov.to_radians() as f32,
+        aspect: Some(4.0 / 3.0),
+    });
+    Ok(s)
+}
+
+/// Unit vector `elevation` degrees above the horizon, `azimuth` degrees round from +Z
+/// towards +X.
+fn direction(elevation: f64, azimuth: f64) -> DVec3 {
+    let (se, ce) = sin_cos(elevation.to_radians());
+    let (sa, ca) = sin_cos(azimuth.to_radians());
+    DVec3::new(ce * sa, se, ce * ca)
+}
+
+/// Axis-aligned bounds of a mesh, f64.
+fn bounds(m: &TriMesh) -> (DVec3, DVec3) {
+    m.positions.iter().fold(
+        (DVec3::splat(f64::MAX), DVec3::splat(f64::MIN)),
+        |(lo, hi), p| (lo.min(p.as_dvec3()), hi.max(p.as_dvec3())),
+    )
+}
+
+/// Adds a square emitter of half side `half` centred at `at`, facing −`dir` (towards
+/// the stone when `dir` points from the stone to `at`).
+fn add_panel(s: &mut GenScene, name: &str, radiance: f32, at: DVec3, dir: DVec3, half: f64) {
+    let u = DVec3::Y.cross(dir).normalize() * half;
+    // u × v = −dir, so the corners below run counter-clockwise seen from the stone.
+    let v = u.cross(dir);
+    let corners = [at - u - v, at + u - v, at + u + v, at - u + v];
+    let n = -dir;
+    let mut quad = TriMesh::default();
+    for c in corners {
+        quad.positions.push(c.as_vec3());
+        quad.normals.push(n.as_vec3());
+    }
+    quad.indices = vec![[0, 1, 2], [0, 2, 3]];
+    s.materials
+        .push(GenMaterial::emitter(name, Vec3::splat(radiance)));
+    s.meshes.push(GenMesh {
+        name: name.into(),
+        geometry: quad,
+        material: s.materials.len() - 1,
+        translation: None,
+    });
+}
+
+/// `iris gem`: checks the output name (must end in `.glb`) and `--size`, builds the scene
+/// and writes it atomically; nothing is written on error.
+pub fn write_gem(path: &Path, spec: &GemSpec) -> Result<()> {
+    let is_glb = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("glb"));
+    if !is_glb {
+        return Err(Error::Usage(format!(
+            "-o {}: `iris gem` writes binary glTF: the output name must end in .glb",
+            path.display()
+        )));
+    }
+    write_glb(path, &gem_scene(spec)?)
+}
+
+/// Writes [`GEM_ASSETS`] (preview scenes) into `dir` (created if missing), each
+/// atomically; returns their paths in order.
+pub fn write_gem_assets(dir: &Path) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::Output {
+        path: dir.to_path_buf(),
+        reason: format!("cannot create directory: {e}"),
+    })?;
+    let mut written = Vec::with_capacity(GEM_ASSETS.len());
+    for (name, cut, stone, size_mm) in GEM_ASSETS {
+        let path = dir.join(name);
+        let spec = GemSpec {
+            cut,
+            stone,
+            size_mm,
+            bare: false,
+        };
+        write_glb(&path, &gem_scene(&spec)?)?;
+        written.push(path);
+    }
+    Ok(written)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn preview_has_camera_lights_floor_and_the_stone_above_it() {
+        let spec = GemSpec {
+            cut: Cut::Emerald,
+            stone: Stone::Sapphire,
+            size_mm: 8.0,
+            bare: false,
+        };
+        let s = gem_scene(&spec).expect("scene");
+        assert_eq!(s.meshes.len(), 4);
+        assert!(s.camera.is_some() && s.extras.is_some());
+        let lift = s.meshes[0].translation.expect("lift").y;
+        let lowest = s.meshes[0]
+            .geometry
+            .positions
+            .iter()
+            .map(|p| p.y + lift)
+            .fold(f32::MAX, f32::min);
+        // 2 % of 8 mm = 0.16 mm above the floor (f32 rounding ~1e-9 m).
+        assert!((lowest - 0.00016).abs() < 1e-8, "{lowest}");
+        let bare = gem_scene(&GemSpec { bare: true, ..spec }).expect("bare");
+        assert_eq!(bare.meshes.len(), 1);
+        assert!(bare.camera.is_none() && bare.lights.is_empty() && bare.extras.is_none());
+    }
+}

@@ -1,0 +1,184 @@
+//! Named gem materials for `iris gem`: refractive index at the sodium d line (n_d,
+//! 587.6 nm), Abbe number V_d = (n_d − 1)/(n_F − n_C) and, for coloured stones, a
+//! KHR_materials_volume absorption.
+//!
+//! The glTF material is smooth (roughness 0), fully transmissive (KHR_materials_transmission
+//! 1), with KHR_materials_ior = n_d and KHR_materials_dispersion = 20 / V_d (the extension's
+//! definition). Birefringent stones (corundum, quartz) use their ordinary index: Iris's
+//! dielectrics are isotropic.
+//!
+//! | stone | n_d | V_d | source |
+//! |---|---|---|---|
+//! | diamond | 2.417 | 55 | GIA Gem Reference Guide (RI 2.417); refractiveindex.info, C (diamond), Phillip & Taft 1964: V_d ≈ 55 |
+//! | sapphire, ruby (corundum) | 1.770 | 72 | GIA Gem Reference Guide (RI 1.762–1.770); refractiveindex.info, Al₂O₃ ordinary ray, Malitson 1962: V_d ≈ 72 |
+//! | cubic zirconia | 2.16 | 28 | GIA Gem Reference Guide (RI 2.15–2.18); refractiveindex.info, ZrO₂:Y₂O₃, Wood & Nassau 1982: V_d ≈ 28 |
+//! | quartz | 1.544 | 70 | GIA Gem Reference Guide (RI 1.544–1.553, ordinary 1.544); refractiveindex.info, SiO₂ ordinary ray, Ghosh 1999: V_d ≈ 70 |
+//! | crown glass (N-BK7) | 1.5168 | 64.17 | SCHOTT N-BK7 data sheet |
+//!
+//! Colours (linear RGB `attenuationColor` reached after `attenuationDistance`) are visual
+//! choices, not measured spectra: ruby (0.9, 0.08, 0.16) and sapphire (0.12, 0.25, 0.9),
+//! both over 4 mm, so a 6.5 mm stone is saturated but not black.
+
+use super::model::{GenMaterial, GenVolume};
+use crate::error::{Error, Result};
+use glam::Vec3;
+
+/// A named gem material.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Stone {
+    /// Colourless diamond.
+    Diamond,
+    /// Blue corundum.
+    Sapphire,
+    /// Red corundum.
+    Ruby,
+    /// Cubic zirconia (yttria-stabilised ZrO₂), colourless.
+    CubicZirconia,
+    /// Colourless (rock crystal) quartz.
+    Quartz,
+    /// SCHOTT N-BK7 crown glass.
+    CrownGlass,
+}
+
+/// Every stone, in the order the CLI lists them.
+pub const STONES: [Stone; 6] = [
+    Stone::Diamond,
+    Stone::Sapphire,
+    Stone::Ruby,
+    Stone::CubicZirconia,
+    Stone::Quartz,
+    Stone::CrownGlass,
+];
+
+/// Distance over which the coloured stones reach their attenuation colour, metres.
+pub const COLOUR_DISTANCE: f32 = 0.004;
+
+impl Stone {
+    /// The CLI name (`--stone`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Stone::Diamond => "diamond",
+            Stone::Sapphire => "sapphire",
+            Stone::Ruby => "ruby",
+            Stone::CubicZirconia => "cubic-zirconia",
+            Stone::Quartz => "quartz",
+            Stone::CrownGlass => "crown-glass",
+        }
+    }
+
+    /// Parses a CLI name (case-insensitive; `_` and `-` alike); the error lists the names.
+    pub fn parse(s: &str) -> Result<Stone> {
+        let key = s.trim().to_ascii_lowercase().replace('_', "-");
+        STONES
+            .into_iter()
+            .find(|st| st.name() == key)
+            .ok_or_else(|| {
+                let names: Vec<&str> = STONES.iter().map(|st| st.name()).collect();
+                Error::Usage(format!(
+                    "--stone {s:?}: unknown stone (expected one of: {})",
+                    names.join(", ")
+                ))
+            })
+    }
+
+    /// Refractive index at 587.6 nm (see the module table).
+    pub fn n_d(self) -> f32 {
+        match self {
+            Stone::Diamond => 2.417,
+            Stone::Sapphire | Stone::Ruby => 1.770,
+            Stone::CubicZirconia => 2.16,
+            Stone::Quartz => 1.544,
+            Stone::CrownGlass => 1.5168,
+        }
+    }
+
+    /// Abbe number V_d (see the module table).
+    pub fn abbe(self) -> f32 {
+        match self {
+            Stone::Diamond => 55.0,
+            Stone::Sapphire | Stone::Ruby => 72.0,
+            Stone::CubicZirconia => 28.0,
+            Stone::Quartz => 70.0,
+            Stone::CrownGlass => 64.17,
+        }
+    }
+
+    /// KHR_materials_dispersion `dispersion` = 20 / V_d.
+    pub fn dispersion(self) -> f32 {
+        20.0 / self.abbe()
+    }
+
+    /// Linear RGB colour reached after [`COLOUR_DISTANCE`], `None` for colourless stones.
+    pub fn attenuation(self) -> Option<Vec3> {
+        match self {
+            Stone::Ruby => Some(Vec3::new(0.9, 0.08, 0.16)),
+            Stone::Sapphire => Some(Vec3::new(0.12, 0.25, 0.9)),
+            _ => None,
+        }
+    }
+
+    /// Display name used for the glTF material, e.g. `Diamond (n_d 2.417, Abbe 55)`.
+    pub fn title(self) -> String {
+        let name = match self {
+            Stone::Diamond => "Diamond",
+            Stone::Sapphire => "Sapphire",
+            Stone::Ruby => "Ruby",
+            Stone::CubicZirconia => "Cubic zirconia",
+            Stone::Quartz => "Quartz",
+            Stone::CrownGlass => "Crown glass N-BK7",
+        };
+        format!("{name} (n_d {}, Abbe {})", self.n_d(), self.abbe())
+    }
+
+    /// The glTF material for a stone whose typical thickness (KHR_materials_volume
+    /// `thicknessFactor`, used by rasterisers only) is `thickness` metres.
+    pub fn material(self, thickness: f32) -> GenMaterial {
+        let mut m = GenMaterial::clear_glass(&self.title(), self.n_d(), thickness);
+        m.dispersion = Some(self.dispersion());
+        if let Some(colour) = self.attenuation() {
+            m.volume = Some(GenVolume {
+                thickness,
+                attenuation_color: colour,
+                attenuation_distance: Some(COLOUR_DISTANCE),
+            });
+        }
+        m
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_and_bad_names_list_the_choices() {
+        for st in STONES {
+            assert_eq!(Stone::parse(st.name()).ok(), Some(st));
+        }
+        assert_eq!(
+            Stone::parse("Cubic_Zirconia").ok(),
+            Some(Stone::CubicZirconia)
+        );
+        let err = Stone::parse("glass").expect_err("unknown").to_string();
+        assert!(
+            err.contains("crown-glass") && err.contains("glass"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn materials_carry_ior_dispersion_and_colour() {
+        let d = Stone::Diamond.material(0.004);
+        assert_eq!(d.ior, Some(2.417));
+        // 20/55 = 0.363636…, exact to f32 rounding.
+        assert!((d.dispersion.unwrap_or(0.0) - 20.0 / 55.0).abs() < 1e-7);
+        assert_eq!(d.transmission, Some(1.0));
+        assert_eq!(d.volume.and_then(|v| v.attenuation_distance), None);
+        let r = Stone::Ruby.material(0.004);
+        let v = r.volume.expect("volume");
+        assert!(v.attenuation_color.x > v.attenuation_color.y);
+        assert_eq!(v.attenuation_distance, Some(COLOUR_DISTANCE));
+        let s = Stone::Sapphire.material(0.004).volume.expect("volume");
+        assert!(s.attenuation_color.z > s.attenuation_color.x);
+    }
+}
