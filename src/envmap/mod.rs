@@ -210,7 +210,7 @@ fn read_hdr(path: &Path) -> Result<ImageRgb> {
     if w as u64 * h as u64 > MAX_TEXELS || w == 0 || h == 0 {
         return Err(LoadError::new(
             path,
-            "",
+            "header",
             if w == 0 || h == 0 {
                 LoadErrorKind::InvalidValue
             } else {
