@@ -419,3 +419,22 @@ fn huge_environment_maps_are_rejected_before_allocating() {
         assert!(peak < PEAK_LIMIT, "peak heap {peak} bytes for {text}");
     }
 }
+
+#[test]
+fn device_files_are_not_read_as_buffers() {
+    // `file:///dev/zero` never ends: reading it whole would exhaust memory. The loader reads
+    // only regular files, so this is a quick `MissingBuffer` error naming the buffer.
+    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = common::scratch_dir("huge_counts_device");
+    if !Path::new("/dev/zero").exists() {
+        eprintln!("SKIPPED: no /dev/zero on this system");
+        return;
+    }
+    let doc = triangle_gltf(|d| d["buffers"][0]["uri"] = json!("file:///dev/zero"));
+    let path = write_gltf(&dir, "dev_zero.gltf", &doc);
+    assert_rejected(
+        &path,
+        LoadErrorKind::MissingBuffer,
+        &["buffer 0", "not a regular file"],
+    );
+}

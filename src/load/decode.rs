@@ -50,7 +50,13 @@ pub fn decode_rgba8(bytes: &[u8], name: String) -> Result<ImageDesc, (LoadErrorK
             "the image header declares {w}×{h} pixels (empty)"
         )));
     }
-    let decoded = image::DynamicImage::from_decoder(decoder).map_err(unsupported)?;
+    // A decoder bug must not take Iris down: png 0.18.1 panics on some palette images
+    // (`range end index 3 out of range`, fuzz/regressions/image/png-palette-panic.png).
+    let decoded = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        image::DynamicImage::from_decoder(decoder)
+    }))
+    .map_err(|_| bad("the image decoder failed on this data (internal error)".into()))?
+    .map_err(unsupported)?;
     let rgba = decoded.into_rgba8();
     Ok(ImageDesc {
         name,
