@@ -30,6 +30,7 @@ mod scene;
 mod source;
 mod uri;
 
+use super::files::Files;
 use crate::error::{LoadError, LoadErrorKind};
 use crate::scene::desc::SceneDesc;
 use std::collections::BTreeSet;
@@ -56,7 +57,7 @@ const MAX_TRIANGLES: usize = 1 << 27;
 
 /// Loads a glTF/GLB file into a world-space scene description (not yet validated).
 pub fn load_gltf(path: &Path) -> Result<SceneDesc, LoadError> {
-    let bytes = std::fs::read(path).map_err(|e| {
+    let bytes = Files::Disk.read(path).map_err(|e| {
         LoadError::new(
             path,
             "",
@@ -64,7 +65,17 @@ pub fn load_gltf(path: &Path) -> Result<SceneDesc, LoadError> {
             format!("cannot read file: {e}"),
         )
     })?;
-    let parsed = parse(path, &bytes)?;
+    load_gltf_bytes(path, &bytes, Files::Disk)
+}
+
+/// Loads glTF/GLB `bytes` that were read from `path`; buffers, images and environment
+/// maps referenced by relative URIs are looked up next to `path` through `files`.
+pub fn load_gltf_bytes(
+    path: &Path,
+    bytes: &[u8],
+    files: Files<'_>,
+) -> Result<SceneDesc, LoadError> {
+    let parsed = parse(path, bytes)?;
     let mut warnings = Warnings::default();
     check_extensions(path, &parsed.document, &mut warnings)?;
     validate_document(path, &parsed.document)?;
@@ -73,10 +84,11 @@ pub fn load_gltf(path: &Path) -> Result<SceneDesc, LoadError> {
         .parent()
         .map(Path::to_path_buf)
         .unwrap_or_else(|| PathBuf::from("."));
-    let buffers = source::load_buffers(path, &base_dir, &parsed.document, parsed.blob)?;
+    let buffers = source::load_buffers(path, &base_dir, files, &parsed.document, parsed.blob)?;
     let ctx = Ctx {
         path,
         base_dir,
+        files,
         doc: &parsed.document,
         buffers,
     };
@@ -93,11 +105,13 @@ pub fn load_gltf(path: &Path) -> Result<SceneDesc, LoadError> {
     Ok(desc)
 }
 
-/// What every reader needs: the file (for errors), where relative URIs start, the
-/// document, and the loaded buffer bytes (index = glTF buffer index).
+/// What every reader needs: the file (for errors), where relative URIs start, where
+/// referenced files are read from, the document, and the loaded buffer bytes (index =
+/// glTF buffer index).
 struct Ctx<'a> {
     path: &'a Path,
     base_dir: PathBuf,
+    files: Files<'a>,
     doc: &'a gltf::Document,
     buffers: Vec<Vec<u8>>,
 }

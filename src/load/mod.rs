@@ -1,6 +1,10 @@
 //! Scene loaders: file → plain [`SceneDesc`] → [`validate`](crate::scene::validate).
-//! The format is chosen by the file extension (`.gltf`, `.glb`, `.obj`).
+//! The format is chosen by the file extension (`.gltf`, `.glb`, `.obj`). Referenced files
+//! are read through [`files::Files`]; [`fuzz_entry`] runs the same loaders from memory.
 
+pub mod decode;
+pub mod files;
+pub mod fuzz_entry;
 pub mod gltf;
 pub mod obj;
 

@@ -23,6 +23,7 @@ mod material;
 mod mtl;
 mod scan;
 
+use super::files::Files;
 use crate::error::{LoadError, LoadErrorKind};
 use crate::scene::desc::{MaterialDesc, MeshDesc, SceneDesc};
 use glam::{Vec2, Vec3};
@@ -39,12 +40,26 @@ struct Libraries {
     warnings: Vec<String>,
     /// The first MTL error (tobj only sees a generic failure).
     error: Option<LoadError>,
+    /// Libraries already parsed: a repeated `mtllib` adds nothing (and costs nothing, so
+    /// a file repeating one line 10⁵ times cannot make loading quadratic).
+    loaded: std::collections::HashSet<PathBuf>,
 }
 
 /// Loads an OBJ file (and its MTL libraries) into a world-space scene description.
 pub fn load_obj(path: &Path) -> Result<SceneDesc, LoadError> {
-    let bytes = read_regular_file(path)
+    let bytes = Files::Disk
+        .read(path)
         .map_err(|e| LoadError::new(path, "", LoadErrorKind::Io, e.to_string()))?;
+    load_obj_bytes(path, bytes, Files::Disk)
+}
+
+/// Loads OBJ `bytes` that were read from `path`; `mtllib` libraries and their texture
+/// maps are looked up next to `path` through `files`.
+pub fn load_obj_bytes(
+    path: &Path,
+    bytes: Vec<u8>,
+    files: Files<'_>,
+) -> Result<SceneDesc, LoadError> {
     let mut warnings = Vec::new();
     let text = utf8_lossy(path, bytes, &mut warnings);
     let scanned = scan::scan(path, &text)?;
@@ -55,7 +70,7 @@ pub fn load_obj(path: &Path) -> Result<SceneDesc, LoadError> {
     // triangulate + single_index, points and 2-vertex lines ignored.
     let options = tobj::GPU_LOAD_OPTIONS;
     let result = tobj::load_obj_buf(&mut scanned.text.as_bytes(), &options, |lib| {
-        load_library(&dir, lib, &libs)
+        load_library(&dir, lib, &libs, files)
     });
     let libs = libs.into_inner();
     if let Some(e) = libs.error {
@@ -79,7 +94,7 @@ pub fn load_obj(path: &Path) -> Result<SceneDesc, LoadError> {
     let mut images = material::Images::default();
     let mut unsupported = Vec::new();
     for (index, (lib, raw)) in libs.materials.iter().enumerate() {
-        let m = material::to_material(index, raw, lib, &mut images, &mut unsupported)?;
+        let m = material::to_material(index, raw, lib, files, &mut images, &mut unsupported)?;
         desc.materials.push(m);
     }
     desc.images = images.images;
@@ -180,15 +195,6 @@ fn to_meshes(
     meshes
 }
 
-/// Reads a whole file, refusing devices and pipes (`mtllib /dev/zero` must not hang or
-/// exhaust memory).
-fn read_regular_file(path: &Path) -> std::io::Result<Vec<u8>> {
-    if !std::fs::metadata(path)?.is_file() {
-        return Err(std::io::Error::other("not a regular file"));
-    }
-    std::fs::read(path)
-}
-
 /// Decodes UTF-8, replacing invalid bytes (e.g. Latin-1 comments) with a warning.
 fn utf8_lossy(path: &Path, bytes: Vec<u8>, warnings: &mut Vec<String>) -> String {
     match String::from_utf8(bytes) {
@@ -214,21 +220,31 @@ fn vec3s(flat: &[f32]) -> Vec<Vec3> {
 
 /// tobj's material loader: parses `lib` (relative to the OBJ's folder) with `mtl`.
 /// `mtllib a.mtl b.mtl` (several files on one line) is split when no file has the whole name.
-fn load_library(dir: &Path, lib: &Path, state: &RefCell<Libraries>) -> tobj::MTLLoadResult {
+fn load_library(
+    dir: &Path,
+    lib: &Path,
+    state: &RefCell<Libraries>,
+    files: Files<'_>,
+) -> tobj::MTLLoadResult {
     let mut state = state.borrow_mut();
     if state.error.is_some() {
         return Err(tobj::LoadError::GenericFailure);
     }
     let whole = dir.join(lib);
     let spelled = lib.to_string_lossy().into_owned();
-    let files: Vec<PathBuf> = if whole.is_file() || !spelled.contains(' ') {
+    let paths: Vec<PathBuf> = if files.is_file(&whole) || !spelled.contains(' ') {
         vec![whole]
     } else {
         spelled.split_whitespace().map(|f| dir.join(f)).collect()
     };
     let mut names = Vec::new();
-    for file in files {
-        let text = match read_regular_file(&file) {
+    let mut repeated = false;
+    for file in paths {
+        if !state.loaded.insert(file.clone()) {
+            repeated = true;
+            continue;
+        }
+        let text = match files.read(&file) {
             Ok(bytes) => utf8_lossy(&file, bytes, &mut state.warnings),
             Err(e) => {
                 state.warnings.push(format!(
@@ -253,6 +269,10 @@ fn load_library(dir: &Path, lib: &Path, state: &RefCell<Libraries>) -> tobj::MTL
         }
     }
     if names.is_empty() {
+        if repeated {
+            // Its materials are already in tobj's table.
+            return Ok((Vec::new(), Default::default()));
+        }
         return Err(tobj::LoadError::OpenFileFailed);
     }
     // tobj offsets these ids by the materials of earlier libraries, like `state.materials`.

@@ -13,8 +13,10 @@ use super::Ctx;
 use crate::error::LoadErrorKind;
 use gltf::accessor::{DataType, Dimensions};
 
-/// Largest element count of an accessor that has no buffer view (all zeros + sparse).
-const MAX_ZERO_FILLED: usize = 1 << 26;
+/// Largest element count of an accessor that has no buffer view (all zeros + sparse):
+/// 4 Mi elements (48 MiB of VEC3). Such an accessor costs a few bytes of JSON, so the
+/// bound keeps a tiny file from allocating gigabytes; real files store big meshes densely.
+const MAX_ZERO_FILLED: usize = 1 << 22;
 
 /// Why an accessor could not be read; the caller names the element.
 #[derive(Debug)]

@@ -177,7 +177,7 @@ fn read_environment(ctx: &Ctx<'_>) -> Result<Option<EnvironmentDesc>, LoadError>
                     format!("{file:?}: environment maps must be .exr or .hdr (equirectangular)"),
                 ));
             }
-            if !path.is_file() {
+            if !ctx.files.is_file(&path) {
                 return Err(err(
                     LoadErrorKind::Io,
                     format!("file not found: {}", path.display()),

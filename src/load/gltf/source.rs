@@ -4,22 +4,25 @@
 //! Buffers are loaded one by one so that a missing or short buffer is reported as
 //! `buffer N "name"` with the file it should have come from. A buffer keeps exactly
 //! `byteLength` bytes. Images are decoded lazily (only those a material uses) with the
-//! `image` crate (PNG, JPEG) into RGBA8, **as stored** (no sRGB decoding here).
+//! `image` crate (PNG, JPEG) into RGBA8, **as stored** (no sRGB decoding here), with the
+//! size limits of [`crate::load::decode`]. External files are read through
+//! [`Files`] (regular files only).
 
 use super::uri::{self, UriSource};
 use super::{label, Ctx};
 use crate::error::{LoadError, LoadErrorKind};
+use crate::load::decode::decode_rgba8;
+use crate::load::files::Files;
 use crate::scene::desc::ImageDesc;
 use gltf::buffer::Source;
 use std::collections::HashMap;
-use std::io::Cursor;
 use std::path::Path;
-use std::sync::Arc;
 
 /// Loads every buffer of `doc`; index `i` of the result is glTF buffer `i`.
 pub(super) fn load_buffers(
     path: &Path,
     base_dir: &Path,
+    files: Files<'_>,
     doc: &gltf::Document,
     mut blob: Option<Vec<u8>>,
 ) -> Result<Vec<Vec<u8>>, LoadError> {
@@ -41,7 +44,8 @@ pub(super) fn load_buffers(
             Source::Uri(text) => match uri::resolve(text, base_dir).map_err(missing)? {
                 UriSource::Embedded(bytes) => (bytes, "its data URI".to_string()),
                 UriSource::File(file) => {
-                    let data = std::fs::read(&file)
+                    let data = files
+                        .read(&file)
                         .map_err(|e| missing(format!("cannot read {}: {e}", file.display())))?;
                     (data, file.display().to_string())
                 }
@@ -138,7 +142,9 @@ fn decode_image(ctx: &Ctx<'_>, index: usize) -> Result<ImageDesc, LoadError> {
     } else if let Some(text) = json.uri.as_deref() {
         owned = match uri::resolve(text, &ctx.base_dir).map_err(missing)? {
             UriSource::Embedded(bytes) => bytes,
-            UriSource::File(file) => std::fs::read(&file)
+            UriSource::File(file) => ctx
+                .files
+                .read(&file)
                 .map_err(|e| missing(format!("cannot read {}: {e}", file.display())))?,
         };
         &owned
@@ -146,20 +152,6 @@ fn decode_image(ctx: &Ctx<'_>, index: usize) -> Result<ImageDesc, LoadError> {
         return Err(missing("has neither a uri nor a bufferView".into()));
     };
 
-    let decoded = image::ImageReader::new(Cursor::new(bytes))
-        .with_guessed_format()
-        .map_err(|e| missing(format!("cannot read image data: {e}")))?
-        .decode()
-        .map_err(|e| {
-            missing(format!(
-                "cannot decode image (PNG and JPEG are supported): {e}"
-            ))
-        })?;
-    let rgba = decoded.into_rgba8();
-    Ok(ImageDesc {
-        name: element,
-        width: rgba.width(),
-        height: rgba.height(),
-        rgba8: Arc::new(rgba.into_raw()),
-    })
+    decode_rgba8(bytes, element.clone())
+        .map_err(|(kind, detail)| ctx.error(element.clone(), kind, detail))
 }

@@ -35,11 +35,12 @@
 
 use super::mtl::RawMtl;
 use crate::error::{LoadError, LoadErrorKind};
+use crate::load::decode::decode_rgba8;
+use crate::load::files::Files;
 use crate::scene::desc::{AlphaMode, ExplicitIor, ImageDesc, MaterialDesc, TextureRef};
 use glam::{Vec3, Vec4};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
 /// Sodium D line in µm: where a Cauchy model is evaluated for `ior` when `Ni` is absent.
 const SODIUM_D_UM: f32 = 0.5893;
@@ -56,32 +57,22 @@ pub(super) struct Images {
 
 impl Images {
     /// Index of the decoded image at `path`, or `None` (with a warning, once) if unreadable.
-    fn get(&mut self, path: &Path, material: &str) -> Option<usize> {
+    fn get(&mut self, path: &Path, files: Files<'_>, material: &str) -> Option<usize> {
         if let Some(found) = self.by_path.get(path) {
             return *found;
         }
-        let decoded = std::fs::metadata(path)
+        let name = format!(
+            "image {} \"{}\"",
+            self.images.len(),
+            path.file_name().unwrap_or_default().to_string_lossy()
+        );
+        let decoded = files
+            .read(path)
             .map_err(|e| e.to_string())
-            .and_then(|m| match m.is_file() {
-                true => Ok(()),
-                false => Err("not a regular file".to_string()),
-            })
-            .and_then(|()| image::ImageReader::open(path).map_err(|e| e.to_string()))
-            .and_then(|r| r.with_guessed_format().map_err(|e| e.to_string()))
-            .and_then(|r| r.decode().map_err(|e| e.to_string()));
+            .and_then(|bytes| decode_rgba8(&bytes, name).map_err(|(_, e)| e));
         let index = match decoded {
-            Ok(img) => {
-                let rgba = img.to_rgba8();
-                self.images.push(ImageDesc {
-                    name: format!(
-                        "image {} \"{}\"",
-                        self.images.len(),
-                        path.file_name().unwrap_or_default().to_string_lossy()
-                    ),
-                    width: rgba.width(),
-                    height: rgba.height(),
-                    rgba8: Arc::new(rgba.into_raw()),
-                });
+            Ok(image) => {
+                self.images.push(image);
                 Some(self.images.len() - 1)
             }
             Err(e) => {
@@ -115,6 +106,7 @@ pub(super) fn to_material(
     index: usize,
     raw: &RawMtl,
     lib: &Path,
+    files: Files<'_>,
     images: &mut Images,
     unsupported: &mut Vec<(String, String)>,
 ) -> Result<MaterialDesc, LoadError> {
@@ -208,7 +200,7 @@ pub(super) fn to_material(
     if let Some(file) = &raw.map_kd {
         let path = lib.parent().unwrap_or(Path::new("")).join(file);
         m.base_color_texture = images
-            .get(&path, &m.name)
+            .get(&path, files, &m.name)
             .map(|image| TextureRef { image, texcoord: 0 });
     }
     Ok(m)

@@ -1,0 +1,82 @@
+//! Texture decoding shared by the glTF and OBJ/MTL loaders: PNG, JPEG (and Radiance HDR,
+//! which the `image` crate also recognises) → row-major RGBA8, top row first, **as
+//! stored** (no sRGB decoding; see [`crate::texture`]).
+//!
+//! Sizes are checked from the header before any pixel is decoded: at most
+//! [`MAX_TEXTURE_TEXELS`] texels, and the decoder's own allocation limit
+//! [`MAX_DECODE_BYTES`] (which covers its intermediate buffers, e.g. 16-bit or float
+//! samples), so a header claiming 10⁵ × 10⁵ pixels is an error, not an allocation.
+
+use crate::error::LoadErrorKind;
+use crate::scene::desc::ImageDesc;
+use image::ImageDecoder;
+use std::io::Cursor;
+use std::sync::Arc;
+
+/// Largest texture accepted, in texels (8192 × 8192: 256 MiB as RGBA8).
+pub const MAX_TEXTURE_TEXELS: u64 = 1 << 26;
+
+/// Most bytes the image decoder may allocate for one texture.
+pub const MAX_DECODE_BYTES: u64 = 512 << 20;
+
+/// Decodes `bytes` (format recognised from its magic bytes) into RGBA8 named `name`.
+/// The error is a kind ([`LoadErrorKind::TooLarge`] for the size limits,
+/// [`LoadErrorKind::MissingBuffer`] for unreadable data) and a sentence for the caller to
+/// wrap with the file and the element.
+pub fn decode_rgba8(bytes: &[u8], name: String) -> Result<ImageDesc, (LoadErrorKind, String)> {
+    let bad = |detail: String| (LoadErrorKind::MissingBuffer, detail);
+    let mut reader = image::ImageReader::new(Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| bad(format!("cannot read image data: {e}")))?;
+    let mut limits = image::Limits::default();
+    limits.max_alloc = Some(MAX_DECODE_BYTES);
+    reader.limits(limits);
+    let decoder = reader.into_decoder().map_err(unsupported)?;
+    let (w, h) = decoder.dimensions();
+    let texels = u64::from(w) * u64::from(h);
+    if texels > MAX_TEXTURE_TEXELS {
+        return Err(too_large(format!(
+            "the image header declares {w}×{h} pixels, over the limit of {MAX_TEXTURE_TEXELS} texels"
+        )));
+    }
+    if decoder.total_bytes() > MAX_DECODE_BYTES {
+        return Err(too_large(format!(
+            "decoding the {w}×{h} image needs {} bytes, over the limit of {MAX_DECODE_BYTES}",
+            decoder.total_bytes()
+        )));
+    }
+    if texels == 0 {
+        return Err(bad(format!(
+            "the image header declares {w}×{h} pixels (empty)"
+        )));
+    }
+    // A decoder bug must not take Iris down: png 0.18.1 panics on some palette images
+    // (`range end index 3 out of range`, fuzz/regressions/image/png-palette-panic.png).
+    let decoded = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        image::DynamicImage::from_decoder(decoder)
+    }))
+    .map_err(|_| bad("the image decoder failed on this data (internal error)".into()))?
+    .map_err(unsupported)?;
+    let rgba = decoded.into_rgba8();
+    Ok(ImageDesc {
+        name,
+        width: rgba.width(),
+        height: rgba.height(),
+        rgba8: Arc::new(rgba.into_raw()),
+    })
+}
+
+fn too_large(detail: String) -> (LoadErrorKind, String) {
+    (LoadErrorKind::TooLarge, detail)
+}
+
+/// A decoder error; a limit the `image` crate enforces itself is still `TooLarge`.
+fn unsupported(e: image::ImageError) -> (LoadErrorKind, String) {
+    match e {
+        image::ImageError::Limits(_) => too_large(format!("image too large: {e}")),
+        e => (
+            LoadErrorKind::MissingBuffer,
+            format!("cannot decode image (PNG and JPEG are supported): {e}"),
+        ),
+    }
+}

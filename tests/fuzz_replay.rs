@@ -1,0 +1,427 @@
+//! Stable-toolchain companion of the cargo-fuzz targets in `fuzz/` (see FUZZING.md).
+//!
+//! 1. Replays the committed inputs (`fuzz/seeds/<target>/`, `fuzz/regressions/<target>/`)
+//!    through the same entry points as the fuzzers (`iris::load::fuzz_entry`).
+//! 2. Runs a deterministic, time-bounded mutation pass (seeded xorshift: bit flips, byte
+//!    sets, truncations, chunk duplication, JSON numbers replaced with huge, negative or
+//!    non-finite values) over those seeds, the repo's `assets/` and `../shared/assets`.
+//!
+//! Every input must end in `Ok` or an `Err` that names the input file (or its MTL) and
+//! says what is wrong; it must not panic, take longer than [`PER_INPUT`], or grow the
+//! heap by more than [`PEAK_LIMIT`] (counting global allocator below). A failing input is
+//! written to `target/tmp/fuzz-replay-failures/` and named in the failure message, for
+//! `cargo +nightly fuzz run <target> <file>`.
+
+use iris::load::fuzz_entry;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{mpsc, Mutex};
+use std::time::{Duration, Instant};
+
+mod common;
+
+static CURRENT: AtomicUsize = AtomicUsize::new(0);
+static PEAK: AtomicUsize = AtomicUsize::new(0);
+
+/// `System`, counting live bytes and their peak.
+struct Counting;
+
+// SAFETY: forwards to `System` unchanged; only updates counters.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let p = System.alloc(layout);
+        if !p.is_null() {
+            let now = CURRENT.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
+            PEAK.fetch_max(now, Ordering::Relaxed);
+        }
+        p
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        System.dealloc(ptr, layout);
+        CURRENT.fetch_sub(layout.size(), Ordering::Relaxed);
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        let p = System.realloc(ptr, layout, new_size);
+        if !p.is_null() {
+            if new_size >= layout.size() {
+                let grow = new_size - layout.size();
+                let now = CURRENT.fetch_add(grow, Ordering::Relaxed) + grow;
+                PEAK.fetch_max(now, Ordering::Relaxed);
+            } else {
+                CURRENT.fetch_sub(layout.size() - new_size, Ordering::Relaxed);
+            }
+        }
+        p
+    }
+}
+
+#[global_allocator]
+static ALLOC: Counting = Counting;
+
+/// Most heap growth one input may cause. The loaders' own limits (2^22 zero-filled
+/// accessor elements, 2^26-texel textures, 2^26-texel environment maps) allow a few
+/// hundred MiB at most; the inputs here are ≤ 512 KiB, so 1 GiB means a missing bound.
+const PEAK_LIMIT: usize = 1 << 30;
+
+/// Longest one input may take. The slowest seeds load in tens of milliseconds in
+/// release; 10 s (the fuzzers' `-timeout`) means a hang or a quadratic blow-up.
+const PER_INPUT: Duration = Duration::from_secs(10);
+
+/// Wall-clock budget of the mutation pass, per target (three targets: ~45 s in all in
+/// release on 2 cores, within the suite's ~60 s allowance for this file).
+const MUTATION_BUDGET: Duration = Duration::from_secs(15);
+
+/// Largest seed used (bigger shared assets would make each mutant slow to load).
+const MAX_SEED: u64 = 512 << 10;
+
+/// The two tests share the allocation counters, so they run one at a time.
+static SERIAL: Mutex<()> = Mutex::new(());
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Target {
+    Gltf,
+    Obj,
+    Image,
+}
+
+impl Target {
+    const ALL: [Target; 3] = [Target::Gltf, Target::Obj, Target::Image];
+
+    fn name(self) -> &'static str {
+        match self {
+            Target::Gltf => "gltf",
+            Target::Obj => "obj",
+            Target::Image => "image",
+        }
+    }
+
+    /// Runs the input; `Err` describes a violated contract (not a load error).
+    fn run(self, data: &[u8]) -> Result<(), String> {
+        match self {
+            Target::Gltf => check_load(fuzz_entry::load_gltf_bytes(data), &["fuzz-input.gl"]),
+            Target::Obj => check_load(
+                fuzz_entry::load_obj_mtl_bytes(data),
+                &["fuzz-input.obj", ".mtl"],
+            ),
+            Target::Image => {
+                let out = fuzz_entry::decode_image_bytes(data);
+                if let Err((_, detail)) = &out.texture {
+                    if detail.trim().is_empty() {
+                        return Err("texture error without a message".into());
+                    }
+                }
+                match out.environment {
+                    Some(Err(iris::Error::Load(e))) => check_load::<()>(Err(e), &["iris-fuzz-env"]),
+                    Some(Err(e)) => Err(format!("environment map: unexpected error kind: {e}")),
+                    _ => Ok(()),
+                }
+            }
+        }
+    }
+}
+
+/// A load error must name the input (`file` contains one of `files`) and say what is wrong.
+fn check_load<T>(r: Result<T, iris::LoadError>, files: &[&str]) -> Result<(), String> {
+    match r {
+        Ok(_) => Ok(()),
+        Err(e) => {
+            let file = e.file.to_string_lossy();
+            if !files.iter().any(|f| file.contains(f)) {
+                return Err(format!("error does not name the input: {e}"));
+            }
+            if e.detail.trim().is_empty() {
+                return Err(format!("error without details: {e}"));
+            }
+            Ok(())
+        }
+    }
+}
+
+/// Runs one input on a worker thread under `catch_unwind`, checking time and heap.
+fn run_guarded(target: Target, data: &[u8]) -> Result<(), String> {
+    let (tx, rx) = mpsc::channel();
+    let owned = data.to_vec();
+    let base = CURRENT.load(Ordering::Relaxed);
+    PEAK.store(base, Ordering::Relaxed);
+    let start = Instant::now();
+    std::thread::spawn(move || {
+        let r = std::panic::catch_unwind(|| target.run(&owned))
+            .unwrap_or_else(|p| Err(format!("panic: {}", panic_text(&p))));
+        let _ = tx.send(r);
+    });
+    let r = match rx.recv_timeout(PER_INPUT) {
+        Ok(r) => r,
+        Err(_) => return Err(format!("no result after {PER_INPUT:?} (hang)")),
+    };
+    let peak = PEAK.load(Ordering::Relaxed).saturating_sub(base);
+    if peak > PEAK_LIMIT {
+        return Err(format!("heap grew by {peak} bytes"));
+    }
+    let took = start.elapsed();
+    if took > PER_INPUT {
+        return Err(format!("took {took:?}"));
+    }
+    r
+}
+
+fn panic_text(p: &Box<dyn std::any::Any + Send>) -> String {
+    p.downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| p.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "non-string payload".into())
+}
+
+/// Saves a failing input and returns a line for the failure report.
+fn record_failure(target: Target, data: &[u8], why: &str) -> String {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fuzz-replay-failures");
+    let _ = std::fs::create_dir_all(&dir);
+    let hash = data.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3)
+    });
+    let path = dir.join(format!("{}-{hash:016x}", target.name()));
+    let _ = std::fs::write(&path, data);
+    format!(
+        "{}: {why} (input saved to {})",
+        target.name(),
+        path.display()
+    )
+}
+
+fn files_in(dir: &Path) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map(|rd| rd.filter_map(|e| e.ok().map(|e| e.path())).collect())
+        .unwrap_or_default();
+    v.retain(|p| p.is_file());
+    v.sort();
+    v
+}
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The committed inputs of `target`: seeds and minimized crash reproducers.
+fn committed(target: Target) -> Vec<PathBuf> {
+    let mut v = files_in(&repo().join("fuzz/seeds").join(target.name()));
+    v.extend(files_in(
+        &repo().join("fuzz/regressions").join(target.name()),
+    ));
+    v
+}
+
+#[test]
+fn committed_corpus_replays_cleanly() {
+    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let mut failures = Vec::new();
+    let mut count = 0;
+    for target in Target::ALL {
+        let inputs = committed(target);
+        assert!(!inputs.is_empty(), "no committed {} inputs", target.name());
+        for path in inputs {
+            let data = std::fs::read(&path).unwrap();
+            count += 1;
+            if let Err(why) = run_guarded(target, &data) {
+                failures.push(format!(
+                    "{}: {}",
+                    path.display(),
+                    record_failure(target, &data, &why)
+                ));
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {count} inputs failed:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+    eprintln!("replayed {count} committed inputs");
+}
+
+/// Seeds for the mutation pass: committed inputs, repo assets and shared assets.
+fn mutation_seeds(target: Target) -> Vec<Vec<u8>> {
+    let mut paths = committed(target);
+    let mut roots = vec![repo().join("assets")];
+    roots.extend(common::shared_assets());
+    let wanted: &[&str] = match target {
+        Target::Gltf => &["glb", "gltf"],
+        Target::Obj => &["obj"],
+        Target::Image => &["png", "jpg", "jpeg", "hdr", "exr"],
+    };
+    for root in roots {
+        walk(&root, &mut |p| {
+            let ext = p
+                .extension()
+                .and_then(|e| e.to_str())
+                .map(str::to_ascii_lowercase)
+                .unwrap_or_default();
+            let small = std::fs::metadata(p).is_ok_and(|m| m.len() <= MAX_SEED);
+            if small && wanted.contains(&ext.as_str()) {
+                paths.push(p.to_path_buf());
+            }
+        });
+    }
+    paths
+        .iter()
+        .filter_map(|p| {
+            let bytes = std::fs::read(p).ok()?;
+            if target == Target::Obj && p.extension().is_some_and(|e| e == "obj") {
+                // Pair an OBJ with the first MTL next to it, as the `obj` fuzzer expects.
+                let mtl = files_in(p.parent()?)
+                    .into_iter()
+                    .find(|m| m.extension().is_some_and(|e| e == "mtl"))
+                    .and_then(|m| std::fs::read(m).ok())
+                    .unwrap_or_default();
+                let mut joined = bytes;
+                joined.extend_from_slice(fuzz_entry::OBJ_MTL_SEPARATOR);
+                joined.extend_from_slice(&mtl);
+                return Some(joined);
+            }
+            Some(bytes)
+        })
+        .collect()
+}
+
+fn walk(dir: &Path, f: &mut impl FnMut(&Path)) {
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        return;
+    };
+    let mut entries: Vec<PathBuf> = rd.filter_map(|e| e.ok().map(|e| e.path())).collect();
+    entries.sort();
+    for p in entries {
+        if p.is_dir() {
+            walk(&p, f);
+        } else {
+            f(&p);
+        }
+    }
+}
+
+/// xorshift64* (Vigna 2016), deterministic per seed.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+}
+
+/// Values that break naive count and size arithmetic.
+const NASTY_NUMBERS: &[&str] = &[
+    "4294967295",
+    "4294967296",
+    "2147483648",
+    "18446744073709551615",
+    "-1",
+    "-2147483649",
+    "0",
+    "1e309",
+    "-1e309",
+    "NaN",
+    "1e-320",
+    "999999999999",
+];
+
+/// Applies 1–4 random mutations to `data`.
+fn mutate(rng: &mut Rng, data: &[u8]) -> Vec<u8> {
+    let mut d = data.to_vec();
+    for _ in 0..1 + rng.below(4) {
+        if d.is_empty() {
+            d.push(rng.next() as u8);
+        }
+        match rng.below(6) {
+            0 => {
+                let i = rng.below(d.len());
+                d[i] ^= 1 << rng.below(8);
+            }
+            1 => {
+                let i = rng.below(d.len());
+                d[i] = [0u8, 0xff, 0x7f, 0x80, rng.next() as u8][rng.below(5)];
+            }
+            2 => {
+                let keep = rng.below(d.len());
+                d.truncate(keep);
+            }
+            3 => {
+                let a = rng.below(d.len());
+                let len = rng.below((d.len() - a).min(4096)) + 1;
+                let chunk = d[a..a + len].to_vec();
+                let at = rng.below(d.len());
+                d.splice(
+                    at..at,
+                    chunk.iter().copied().cycle().take(len * (1 + rng.below(4))),
+                );
+            }
+            4 => {
+                // Four little-endian bytes set to a nasty 32-bit value (GLB/EXR/PNG fields).
+                if d.len() >= 4 {
+                    let i = rng.below(d.len() - 3);
+                    let v = [u32::MAX, 0x8000_0000, 0x7fff_ffff, 0, 0x0100_0000][rng.below(5)];
+                    d[i..i + 4].copy_from_slice(&v.to_le_bytes());
+                }
+            }
+            _ => replace_number(rng, &mut d),
+        }
+    }
+    d
+}
+
+/// Replaces one run of ASCII digits (a JSON/OBJ/MTL number) with a nasty value.
+fn replace_number(rng: &mut Rng, d: &mut Vec<u8>) {
+    let starts: Vec<usize> = (0..d.len())
+        .filter(|&i| d[i].is_ascii_digit() && (i == 0 || !d[i - 1].is_ascii_digit()))
+        .collect();
+    if starts.is_empty() {
+        return;
+    }
+    let s = starts[rng.below(starts.len())];
+    let e = (s..d.len())
+        .find(|&i| !d[i].is_ascii_digit())
+        .unwrap_or(d.len());
+    let value = NASTY_NUMBERS[rng.below(NASTY_NUMBERS.len())].as_bytes();
+    d.splice(s..e, value.iter().copied());
+}
+
+#[test]
+fn bounded_mutation_pass() {
+    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let mut failures = Vec::new();
+    for (k, target) in Target::ALL.into_iter().enumerate() {
+        let seeds = mutation_seeds(target);
+        assert!(!seeds.is_empty(), "no {} seeds", target.name());
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15 ^ (k as u64 + 1));
+        let start = Instant::now();
+        let mut runs = 0usize;
+        while start.elapsed() < MUTATION_BUDGET && failures.len() < 10 {
+            let seed = &seeds[runs % seeds.len()];
+            let input = mutate(&mut rng, seed);
+            runs += 1;
+            if let Err(why) = run_guarded(target, &input) {
+                failures.push(record_failure(target, &input, &why));
+            }
+        }
+        eprintln!(
+            "{}: {runs} mutants of {} seeds in {:.1} s",
+            target.name(),
+            seeds.len(),
+            start.elapsed().as_secs_f64()
+        );
+        assert!(
+            runs >= seeds.len(),
+            "{}: budget too small for one pass",
+            target.name()
+        );
+    }
+    assert!(
+        failures.is_empty(),
+        "mutants failed:\n{}",
+        failures.join("\n")
+    );
+}
