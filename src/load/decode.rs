@@ -25,6 +25,7 @@ pub const MAX_DECODE_BYTES: u64 = 512 << 20;
 /// wrap with the file and the element.
 pub fn decode_rgba8(bytes: &[u8], name: String) -> Result<ImageDesc, (LoadErrorKind, String)> {
     let bad = |detail: String| (LoadErrorKind::MissingBuffer, detail);
+    check_png_palette(bytes).map_err(bad)?;
     let mut reader = image::ImageReader::new(Cursor::new(bytes))
         .with_guessed_format()
         .map_err(|e| bad(format!("cannot read image data: {e}")))?;
@@ -50,8 +51,10 @@ pub fn decode_rgba8(bytes: &[u8], name: String) -> Result<ImageDesc, (LoadErrorK
             "the image header declares {w}×{h} pixels (empty)"
         )));
     }
-    // A decoder bug must not take Iris down: png 0.18.1 panics on some palette images
-    // (`range end index 3 out of range`, fuzz/regressions/image/png-palette-panic.png).
+    // A decoder bug must not take Iris down: png 0.18.1 panics on a PLTE chunk whose length
+    // is not a multiple of 3 (`range end index 3 out of range`,
+    // fuzz/regressions/image/png-palette-panic.png). `check_png_palette` rejects those
+    // first (so no panic message is printed); this guard stays for bugs not yet known.
     let decoded = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         image::DynamicImage::from_decoder(decoder)
     }))
@@ -66,6 +69,30 @@ pub fn decode_rgba8(bytes: &[u8], name: String) -> Result<ImageDesc, (LoadErrorK
     })
 }
 
+/// PNG only: every PLTE chunk must hold 1–256 RGB entries (length a multiple of 3, at most
+/// 768 bytes; PNG spec §11.2.3). Other data passes.
+fn check_png_palette(bytes: &[u8]) -> Result<(), String> {
+    const SIGNATURE: &[u8] = b"\x89PNG\r\n\x1a\n";
+    let Some(mut rest) = bytes.strip_prefix(SIGNATURE) else {
+        return Ok(());
+    };
+    // Chunks: length (4 bytes, big-endian), type (4), data, CRC (4).
+    while rest.len() >= 8 {
+        let len = u32::from_be_bytes([rest[0], rest[1], rest[2], rest[3]]) as usize;
+        let kind = &rest[4..8];
+        if kind == b"PLTE" && (len == 0 || len % 3 != 0 || len > 768) {
+            return Err(format!(
+                "invalid PNG: its PLTE chunk is {len} bytes (1 to 256 RGB entries of 3 bytes)"
+            ));
+        }
+        if kind == b"IDAT" || kind == b"IEND" {
+            break; // PLTE must come before the image data
+        }
+        rest = rest.get(12usize.saturating_add(len)..).unwrap_or(&[]);
+    }
+    Ok(())
+}
+
 fn too_large(detail: String) -> (LoadErrorKind, String) {
     (LoadErrorKind::TooLarge, detail)
 }
@@ -78,5 +105,26 @@ fn unsupported(e: image::ImageError) -> (LoadErrorKind, String) {
             LoadErrorKind::MissingBuffer,
             format!("cannot decode image (PNG and JPEG are supported): {e}"),
         ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn read(rel: &str) -> Vec<u8> {
+        std::fs::read(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(rel)).unwrap()
+    }
+
+    #[test]
+    fn a_bad_palette_is_an_error_before_the_decoder_sees_it() {
+        // PLTE of 38 bytes: png 0.18.1 panics on it.
+        let bad = read("fuzz/regressions/image/png-palette-panic.png");
+        let err = decode_rgba8(&bad, "t".into()).unwrap_err();
+        assert!(err.1.contains("PLTE chunk is 38 bytes"), "{}", err.1);
+        // A valid palette image still decodes.
+        let ok = read("fuzz/seeds/image/seed_P.png");
+        let img = decode_rgba8(&ok, "t".into()).expect("valid palette PNG");
+        assert!(img.width > 0 && img.height > 0);
     }
 }
