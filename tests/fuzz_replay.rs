@@ -13,51 +13,14 @@
 //! `cargo +nightly fuzz run <target> <file>`.
 
 use iris::load::fuzz_entry;
-use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{mpsc, Mutex};
 use std::time::{Duration, Instant};
 
 mod common;
 
-static CURRENT: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-/// `System`, counting live bytes and their peak.
-struct Counting;
-
-// SAFETY: forwards to `System` unchanged; only updates counters.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let p = System.alloc(layout);
-        if !p.is_null() {
-            let now = CURRENT.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
-            PEAK.fetch_max(now, Ordering::Relaxed);
-        }
-        p
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout);
-        CURRENT.fetch_sub(layout.size(), Ordering::Relaxed);
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        let p = System.realloc(ptr, layout, new_size);
-        if !p.is_null() {
-            if new_size >= layout.size() {
-                let grow = new_size - layout.size();
-                let now = CURRENT.fetch_add(grow, Ordering::Relaxed) + grow;
-                PEAK.fetch_max(now, Ordering::Relaxed);
-            } else {
-                CURRENT.fetch_sub(layout.size() - new_size, Ordering::Relaxed);
-            }
-        }
-        p
-    }
-}
-
 #[global_allocator]
-static ALLOC: Counting = Counting;
+static ALLOC: common::alloc::Counting = common::alloc::Counting;
 
 /// Most heap growth one input may cause. The loaders' own limits (2^22 zero-filled
 /// accessor elements, 2^26-texel textures, 2^26-texel environment maps) allow a few
@@ -142,8 +105,7 @@ fn check_load<T>(r: Result<T, iris::LoadError>, files: &[&str]) -> Result<(), St
 fn run_guarded(target: Target, data: &[u8]) -> Result<(), String> {
     let (tx, rx) = mpsc::channel();
     let owned = data.to_vec();
-    let base = CURRENT.load(Ordering::Relaxed);
-    PEAK.store(base, Ordering::Relaxed);
+    let base = common::alloc::start_peak();
     let start = Instant::now();
     std::thread::spawn(move || {
         let r = std::panic::catch_unwind(|| target.run(&owned))
@@ -154,7 +116,7 @@ fn run_guarded(target: Target, data: &[u8]) -> Result<(), String> {
         Ok(r) => r,
         Err(_) => return Err(format!("no result after {PER_INPUT:?} (hang)")),
     };
-    let peak = PEAK.load(Ordering::Relaxed).saturating_sub(base);
+    let peak = common::alloc::peak_growth(base);
     if peak > PEAK_LIMIT {
         return Err(format!("heap grew by {peak} bytes"));
     }

@@ -9,51 +9,13 @@
 
 use iris::LoadErrorKind;
 use serde_json::json;
-use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 mod common;
 
-/// Heap held right now and the most held since the last reset, in bytes.
-static CURRENT: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-/// `System`, counting live bytes (so a test can see its peak heap use).
-struct Counting;
-
-// SAFETY: forwards to `System` unchanged; only updates counters.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let p = System.alloc(layout);
-        if !p.is_null() {
-            let now = CURRENT.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
-            PEAK.fetch_max(now, Ordering::Relaxed);
-        }
-        p
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout);
-        CURRENT.fetch_sub(layout.size(), Ordering::Relaxed);
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        let p = System.realloc(ptr, layout, new_size);
-        if !p.is_null() {
-            if new_size >= layout.size() {
-                let grow = new_size - layout.size();
-                let now = CURRENT.fetch_add(grow, Ordering::Relaxed) + grow;
-                PEAK.fetch_max(now, Ordering::Relaxed);
-            } else {
-                CURRENT.fetch_sub(layout.size() - new_size, Ordering::Relaxed);
-            }
-        }
-        p
-    }
-}
-
 #[global_allocator]
-static ALLOC: Counting = Counting;
+static ALLOC: common::alloc::Counting = common::alloc::Counting;
 
 /// Most heap a rejected file may make the loader allocate: generous next to the few KiB
 /// these files hold, and far below the GiBs their counts declare (2^31 VEC3 floats would
@@ -66,10 +28,9 @@ static SERIAL: Mutex<()> = Mutex::new(());
 
 /// Runs `f`, returning its result and the peak heap growth while it ran.
 fn peak_during<R>(f: impl FnOnce() -> R) -> (R, usize) {
-    let base = CURRENT.load(Ordering::Relaxed);
-    PEAK.store(base, Ordering::Relaxed);
+    let base = common::alloc::start_peak();
     let r = f();
-    let peak = PEAK.load(Ordering::Relaxed).saturating_sub(base);
+    let peak = common::alloc::peak_growth(base);
     (r, peak)
 }
 

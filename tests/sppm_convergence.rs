@@ -13,27 +13,11 @@ use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::output::ImageRgb;
 use iris::render::{render, render_progressive, Control, Progress, RenderSettings};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicIsize, Ordering};
 
-/// Counts live heap bytes (the test binary's allocator; the renderer's buffers are what
-/// changes between checkpoints, as the test thread holds its images still).
-struct Counting;
-static LIVE: AtomicIsize = AtomicIsize::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
-        LIVE.fetch_add(l.size() as isize, Ordering::Relaxed);
-        System.alloc(l)
-    }
-    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
-        LIVE.fetch_sub(l.size() as isize, Ordering::Relaxed);
-        System.dealloc(p, l)
-    }
-}
-
+/// Counts live heap bytes (the renderer's buffers are what changes between checkpoints, as
+/// the test thread holds its images still).
 #[global_allocator]
-static GLOBAL: Counting = Counting;
+static ALLOC: common::alloc::Counting = common::alloc::Counting;
 
 const W: u32 = 40;
 const H: u32 = 30;
@@ -93,7 +77,7 @@ fn sppm_error_falls_with_passes_and_memory_stays_flat() {
                 at8 = Some(p.image.clone());
             }
             if seed == 1 {
-                live.push((p.passes, LIVE.load(Ordering::Relaxed)));
+                live.push((p.passes, common::alloc::live() as isize));
             }
             Ok(Control::Continue)
         };

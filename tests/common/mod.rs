@@ -3,6 +3,8 @@
 
 use std::path::PathBuf;
 
+pub mod alloc;
+
 /// The third-party test scenes in `../shared/assets` (override with `IRIS_SHARED_ASSETS`).
 ///
 /// Outside the project's workplace that folder is absent: the calling test then prints
