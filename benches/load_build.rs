@@ -19,27 +19,12 @@
 //! assets the shared scenes are SKIPPED (said on stderr) and only the paper scene is timed.
 
 use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion};
-use iris::accel::{Accel, Backend};
+use iris::accel::Accel;
 use iris::scene::Scene;
 use std::path::PathBuf;
 use std::time::Duration;
 
-/// `../shared/assets` (or `IRIS_SHARED_ASSETS`) if present.
-fn shared_assets() -> Option<PathBuf> {
-    let dir = std::env::var_os("IRIS_SHARED_ASSETS")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/assets"));
-    dir.is_dir().then_some(dir)
-}
-
-/// The backends compiled in, Embree first.
-fn backends() -> Vec<(&'static str, Backend)> {
-    let mut v = vec![("bvh", Backend::Bvh)];
-    if cfg!(feature = "embree") {
-        v.insert(0, ("embree", Backend::Embree));
-    }
-    v
-}
+mod common;
 
 /// (name, file) of every scene timed.
 fn scenes() -> Vec<(&'static str, PathBuf)> {
@@ -47,7 +32,7 @@ fn scenes() -> Vec<(&'static str, PathBuf)> {
         "fig4_5_1_caustics",
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/paper/fig4_5_1_caustics.glb"),
     )];
-    match shared_assets() {
+    match common::shared_assets() {
         Some(a) => v.extend([
             (
                 "CornellBox-Water",
@@ -95,7 +80,7 @@ fn load_build(c: &mut Criterion) {
         group.bench_function(BenchmarkId::new("load", name), |b| {
             b.iter(|| iris::load::load_scene(&path).expect("loads"))
         });
-        for (bname, backend) in backends() {
+        for (bname, backend) in common::backends() {
             group.bench_function(
                 BenchmarkId::new(format!("scene_build/{name}"), bname),
                 |b| {

@@ -14,7 +14,6 @@
 //! shared assets the bench says so and measures nothing.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use iris::accel::Backend;
 use iris::app::{choose_camera, load};
 use iris::camera::Camera;
 use iris::envmap::Environment;
@@ -23,25 +22,12 @@ use iris::render::{render, RenderSettings};
 use std::path::PathBuf;
 use std::time::Duration;
 
+mod common;
+
 const SIZE: u32 = 512;
 
-fn shared_assets() -> Option<PathBuf> {
-    let dir = std::env::var_os("IRIS_SHARED_ASSETS")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/assets"));
-    dir.is_dir().then_some(dir)
-}
-
-fn backends() -> Vec<(&'static str, Backend)> {
-    let mut v = vec![("bvh", Backend::Bvh)];
-    if cfg!(feature = "embree") {
-        v.insert(0, ("embree", Backend::Embree));
-    }
-    v
-}
-
 fn path_tracer(c: &mut Criterion) {
-    let Some(assets) = shared_assets() else {
+    let Some(assets) = common::shared_assets() else {
         eprintln!("SKIPPED: ../shared/assets not found (set IRIS_SHARED_ASSETS)");
         return;
     };
@@ -78,7 +64,7 @@ fn path_tracer(c: &mut Criterion) {
     group.measurement_time(Duration::from_secs(15));
     group.throughput(Throughput::Elements(u64::from(SIZE * SIZE)));
     for (name, path, env) in &scenes {
-        for (bname, backend) in backends() {
+        for (bname, backend) in common::backends() {
             let (scene, _) = load(path, backend).expect("scene loads");
             let scene = scene.with_environment(env.map(|g| Environment::Uniform {
                 radiance: glam::Vec3::splat(g),
@@ -108,7 +94,7 @@ fn spectral_overhead(c: &mut Criterion) {
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/paper/fig7_1_spheres.glb"),
         None,
     )];
-    if let Some(assets) = shared_assets() {
+    if let Some(assets) = common::shared_assets() {
         scenes.push((
             "TransmissionTest",
             assets.join("khronos/TransmissionTest/TransmissionTest.glb"),
@@ -126,7 +112,7 @@ fn spectral_overhead(c: &mut Criterion) {
     group.measurement_time(Duration::from_secs(8));
     group.throughput(Throughput::Elements(256 * 256 * 2));
     for (name, path, env) in &scenes {
-        let (scene, _) = load(path, backends()[0].1).expect("scene loads");
+        let (scene, _) = load(path, common::backends()[0].1).expect("scene loads");
         let scene = scene.with_environment(env.map(|g| Environment::Uniform {
             radiance: glam::Vec3::splat(g),
         }));

@@ -43,6 +43,8 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+mod common;
+
 const W: u32 = 128;
 const H: u32 = 96;
 /// Relative-MSE levels; the series stop at the last (strictest).
@@ -51,21 +53,6 @@ const LEVELS: [f64; 3] = [1e-1, 3e-2, 1e-2];
 const REFERENCE_SECONDS: f64 = 30.0;
 /// Most wall time one (scene, method, backend) series may take.
 const SERIES_CAP_SECONDS: f64 = 20.0;
-
-fn shared_assets() -> Option<PathBuf> {
-    let dir = std::env::var_os("IRIS_SHARED_ASSETS")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/assets"));
-    dir.is_dir().then_some(dir)
-}
-
-fn backends() -> Vec<(&'static str, Backend)> {
-    let mut v = vec![("bvh", Backend::Bvh)];
-    if cfg!(feature = "embree") {
-        v.insert(0, ("embree", Backend::Embree));
-    }
-    v
-}
 
 fn settings(spp: u32, seed: u64, time_limit: Option<Duration>) -> RenderSettings {
     RenderSettings {
@@ -187,7 +174,7 @@ fn main() {
         paper.join("fig4_5_1_caustics.glb"),
         None,
     )];
-    match shared_assets() {
+    match common::shared_assets() {
         Some(a) => scenes.extend([
             (
                 "TransmissionTest",
@@ -228,7 +215,7 @@ fn main() {
         );
         let _ = writeln!(summary, "{name}: reference {ref_what}");
         drop(scene);
-        for (bname, backend) in backends() {
+        for (bname, backend) in common::backends() {
             let Some((scene, camera)) = open(path, *env, backend) else {
                 continue;
             };
