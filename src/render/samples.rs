@@ -86,12 +86,11 @@ impl Accum {
 
     /// Pixel samples taken over the image.
     fn pixel_samples(&self) -> u64 {
-        let tiles_y = self.height.div_ceil(TILE);
         (0..self.counts.len())
             .map(|t| {
                 let (tx, ty) = (t as u32 % self.tiles_x, t as u32 / self.tiles_x);
                 let tw = TILE.min(self.width - tx * TILE) as u64;
-                let th = TILE.min(self.height - ty.min(tiles_y - 1) * TILE) as u64;
+                let th = TILE.min(self.height - ty * TILE) as u64;
                 tw * th * self.counts[t]
             })
             .sum()
