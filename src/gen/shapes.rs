@@ -70,6 +70,25 @@ impl TriMesh {
     }
 }
 
+/// Pushes the planar convex polygon `pts` (any winding) with the unit normal `n` of its
+/// plane (either sign), turned to face away from the point `inside`: the polygon gets its
+/// own vertices with that flat normal and is fanned from its first vertex.
+pub fn push_flat_facing_away(mesh: &mut TriMesh, mut pts: Vec<DVec3>, mut n: DVec3, inside: DVec3) {
+    let centre = pts.iter().sum::<DVec3>() / pts.len() as f64;
+    if n.dot(centre - inside) < 0.0 {
+        pts.reverse();
+        n = -n;
+    }
+    let base = mesh.positions.len() as u32;
+    for p in &pts {
+        mesh.positions.push(p.as_vec3());
+        mesh.normals.push(n.as_vec3());
+    }
+    for i in 1..pts.len() as u32 - 1 {
+        mesh.indices.push([base, base + i, base + i + 1]);
+    }
+}
+
 /// The regular icosahedron: 12 unit vertices (0, ±1, ±φ) and cyclic permutations,
 /// φ = (1+√5)/2, and 20 faces counter-clockwise seen from outside (A. Kahler, "Creating an
 /// icosphere mesh in code", 2009). Orientation is asserted by the unit tests below.

@@ -44,7 +44,7 @@ use super::gem::Brilliant;
 use super::lathe::sin_cos;
 use super::model::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
 use super::paper::push_material;
-use super::shapes::{cuboid, ground_plane, TriMesh};
+use super::shapes::{cuboid, ground_plane, push_flat_facing_away, TriMesh};
 use glam::{DVec3, Vec3};
 
 /// Side of the prism's equilateral cross-section, metres.
@@ -65,21 +65,9 @@ pub const GEM_LIGHT_RADIANCE: f32 = 300.0;
 
 /// Pushes the planar convex polygon `pts` (any winding) facing away from `inside`, with
 /// its flat normal; fanned from the first vertex.
-fn push_facing_away(mesh: &mut TriMesh, mut pts: Vec<DVec3>, inside: DVec3) {
-    let mut n = (pts[1] - pts[0]).cross(pts[2] - pts[0]).normalize();
-    let centre = pts.iter().sum::<DVec3>() / pts.len() as f64;
-    if n.dot(centre - inside) < 0.0 {
-        pts.reverse();
-        n = -n;
-    }
-    let base = mesh.positions.len() as u32;
-    for p in &pts {
-        mesh.positions.push(p.as_vec3());
-        mesh.normals.push(n.as_vec3());
-    }
-    for i in 1..pts.len() as u32 - 1 {
-        mesh.indices.push([base, base + i, base + i + 1]);
-    }
+fn push_facing_away(mesh: &mut TriMesh, pts: Vec<DVec3>, inside: DVec3) {
+    let n = (pts[1] - pts[0]).cross(pts[2] - pts[0]).normalize();
+    push_flat_facing_away(mesh, pts, n, inside);
 }
 
 /// Pushes the rectangle centred at `c` with half axes `u`, `v`, facing `u × v`.

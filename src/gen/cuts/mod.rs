@@ -21,7 +21,7 @@ pub mod preview;
 pub mod step;
 
 use super::gem::{newell, Brilliant};
-use super::shapes::TriMesh;
+use super::shapes::{push_flat_facing_away, TriMesh};
 use crate::error::{Error, Result};
 use glam::DVec3;
 
@@ -103,21 +103,9 @@ pub fn polyhedron(polys: Vec<Vec<DVec3>>) -> TriMesh {
     let count: usize = polys.iter().map(Vec::len).sum();
     let inside = polys.iter().flatten().sum::<DVec3>() / count.max(1) as f64;
     let mut mesh = TriMesh::default();
-    for mut poly in polys.into_iter().filter(|p| p.len() >= 3) {
-        let mut n = newell(&poly);
-        let centre = poly.iter().sum::<DVec3>() / poly.len() as f64;
-        if n.dot(centre - inside) < 0.0 {
-            poly.reverse();
-            n = -n;
-        }
-        let base = mesh.positions.len() as u32;
-        for p in &poly {
-            mesh.positions.push(p.as_vec3());
-            mesh.normals.push(n.as_vec3());
-        }
-        for i in 1..poly.len() as u32 - 1 {
-            mesh.indices.push([base, base + i, base + i + 1]);
-        }
+    for poly in polys.into_iter().filter(|p| p.len() >= 3) {
+        let n = newell(&poly);
+        push_flat_facing_away(&mut mesh, poly, n, inside);
     }
     mesh
 }
