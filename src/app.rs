@@ -502,7 +502,7 @@ pub fn info_command(path: &Path) -> Result<String> {
     if desc.lights.is_empty() && emitters == 0 && desc.environment.is_none() {
         let _ = writeln!(
             s,
-            "  none (renders use the default key and fill lights, or --env)"
+            "  none (renders use the studio lighting of --studio, default soft, or --env)"
         );
     }
     for l in &desc.lights {
