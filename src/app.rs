@@ -121,6 +121,38 @@ pub fn load_with_environment(
     Ok((scene, env, start.elapsed()))
 }
 
+/// Drop-in preview choices (`--studio`, `--ground`), see [`crate::studio`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct PreviewOptions {
+    /// Studio preset used when the file has no light and no environment is given.
+    pub studio: crate::studio::Studio,
+    /// Whether to add a white floor under the model.
+    pub ground: crate::studio::GroundMode,
+}
+
+/// Like [`load_with_environment`], adding the `--ground` floor between validation and the
+/// acceleration build; the scene's `subject_bounds` stay those of the file's geometry.
+/// Returns the note saying whether a floor was added.
+pub fn load_for_preview(
+    path: &Path,
+    accel: Backend,
+    ground: crate::studio::GroundMode,
+) -> Result<(Scene, Option<EnvironmentDesc>, Duration, String)> {
+    let start = Instant::now();
+    let mut desc = crate::load::load_scene(path)?;
+    let env = desc.environment.take();
+    let model = crate::studio::ground::desc_bounds(&desc);
+    let (add, note) = crate::studio::ground::decide(&desc, ground);
+    if add {
+        crate::studio::ground::add_ground(&mut desc, model);
+    }
+    let mut scene = Scene::build(desc, accel)?;
+    if add {
+        scene.subject_bounds = model;
+    }
+    Ok((scene, env, start.elapsed(), note))
+}
+
 /// The environment to render with: the `--env` choice if given, else the file's
 /// (a map is decoded here; errors name the map file).
 pub fn resolve_environment(
@@ -176,7 +208,7 @@ pub fn choose_camera(
         None => match scene.cameras.first() {
             Some(cam) => Ok((cam.clone(), None)),
             None => Ok((
-                frame_bounds(scene.bounds.0, scene.bounds.1, aspect),
+                frame_bounds(scene.subject_bounds.0, scene.subject_bounds.1, aspect),
                 Some(
                     "no camera in the file: framing the bounding box from the front-right-above"
                         .into(),
@@ -259,6 +291,15 @@ pub fn render_command_measured(
     opts: &RenderOptions,
     measure: &MeasureOptions,
 ) -> Result<RenderSummary> {
+    render_command_preview(opts, measure, &PreviewOptions::default())
+}
+
+/// [`render_command_measured`] with the drop-in preview choices `--studio` and `--ground`.
+pub fn render_command_preview(
+    opts: &RenderOptions,
+    measure: &MeasureOptions,
+    preview: &PreviewOptions,
+) -> Result<RenderSummary> {
     if let Some((w, h)) = opts.size {
         check_size(w, h)?;
     }
@@ -279,8 +320,9 @@ pub fn render_command_measured(
         .as_deref()
         .map(crate::converge::measure::read_reference_file)
         .transpose()?;
-    let (scene, file_env, load_time) = load_with_environment(&opts.scene, opts.accel)?;
-    let scene = scene.with_environment(resolve_environment(opts.env.clone(), file_env)?);
+    let (scene, file_env, load_time, ground_note) =
+        load_for_preview(&opts.scene, opts.accel, preview.ground)?;
+    let mut scene = scene.with_environment(resolve_environment(opts.env.clone(), file_env)?);
     let (w, h) = match (&reference, opts.size) {
         (Some(r), None) => (r.width, r.height),
         _ => image_size(opts, &scene)?,
@@ -296,6 +338,10 @@ pub fn render_command_measured(
     }
     let (cam_desc, cam_note) = choose_camera(&scene, opts.camera.as_deref(), w as f32 / h as f32)?;
     let camera = Camera::new(&cam_desc, w, h);
+    if opts.env.is_none() {
+        let bounds = scene.subject_bounds;
+        crate::studio::apply(&mut scene, preview.studio, bounds, &cam_desc);
+    }
     let (method, method_note) = opts.method.resolve(&scene);
     measure.check_checkpoints(if method == Method::Sppm {
         opts.photon.passes
@@ -344,6 +390,9 @@ pub fn render_command_measured(
     rows.append(&mut recorder.rows);
     let measure_notes = measure.write_outputs(&rows, &opts.scene)?;
     let mut notes = scene.notes.clone();
+    if !ground_note.is_empty() {
+        notes.push(ground_note);
+    }
     notes.extend(method_note);
     if settings.spectral {
         notes.push(match opts.spectral {
@@ -453,7 +502,7 @@ pub fn info_command(path: &Path) -> Result<String> {
     if desc.lights.is_empty() && emitters == 0 && desc.environment.is_none() {
         let _ = writeln!(
             s,
-            "  none (renders use the default key and fill lights, or --env)"
+            "  none (renders use the studio lighting of --studio, default soft, or --env)"
         );
     }
     for l in &desc.lights {

@@ -45,6 +45,7 @@ pub mod render;
 pub mod report;
 pub mod scene;
 pub mod spectrum;
+pub mod studio;
 pub mod texture;
 
 pub use error::{Error, LoadError, LoadErrorKind, Result};

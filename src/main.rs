@@ -176,6 +176,15 @@ struct RenderArgs {
     /// materials use n_d).
     #[arg(long, value_enum, default_value_t = SpectralArg::Auto)]
     spectral: SpectralArg,
+    /// Studio lighting for a file with no light (and no `--env`): `soft` (grey, broad
+    /// softboxes), `jeweller` (dark, small bright strips: fire), `bright` (white high-key),
+    /// or `none` (plain directional key and fill).
+    #[arg(long, default_value = "soft", value_parser = parse_studio)]
+    studio: iris::studio::Studio,
+    /// White floor under the model: `auto` (for a transmissive model with nothing under
+    /// it), `on` or `off`.
+    #[arg(long, default_value = "auto", value_parser = parse_ground)]
+    ground: iris::studio::GroundMode,
     /// SPPM passes (`--method sppm`; with `--time`, whichever comes first).
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=10_000_000))]
     passes: u32,
@@ -309,6 +318,14 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     Ok((w, h))
 }
 
+fn parse_studio(s: &str) -> Result<iris::studio::Studio, String> {
+    iris::studio::Studio::parse(s).map_err(|e| e.to_string())
+}
+
+fn parse_ground(s: &str) -> Result<iris::studio::GroundMode, String> {
+    iris::studio::GroundMode::parse(s).map_err(|e| e.to_string())
+}
+
 fn parse_exposure(s: &str) -> Result<Exposure, String> {
     if s.eq_ignore_ascii_case("auto") {
         return Ok(Exposure::Auto);
@@ -378,7 +395,11 @@ fn run(cli: Cli) -> iris::Result<()> {
                 plot: a.plot,
                 target_error: a.target_error,
             };
-            let s = app::render_command_measured(&opts, &measure)?;
+            let preview = app::PreviewOptions {
+                studio: a.studio,
+                ground: a.ground,
+            };
+            let s = app::render_command_preview(&opts, &measure, &preview)?;
             for n in &s.notes {
                 eprintln!("note: {n}");
             }

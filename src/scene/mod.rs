@@ -107,6 +107,9 @@ pub struct Scene {
     pub cameras: Vec<CameraDesc>,
     /// World bounding box (min, max).
     pub bounds: (Vec3, Vec3),
+    /// Bounds of the file's own geometry, which cameras frame and the studio lights: equal
+    /// to `bounds` unless a floor was added ([`crate::studio::ground`]).
+    pub subject_bounds: (Vec3, Vec3),
     /// Loader and validation warnings.
     pub warnings: Vec<String>,
     /// Decisions taken for the user (e.g. "no light in the file: default key light").
@@ -225,6 +228,7 @@ impl Scene {
             default_lights,
             cameras: desc.cameras,
             bounds,
+            subject_bounds: bounds,
             warnings: desc.warnings,
             notes,
             has_cutouts,
