@@ -3,13 +3,14 @@
 //! return a summary; `main.rs` only parses flags and prints.
 
 use crate::accel::Backend;
-use crate::camera::{frame_bounds, Camera};
+use crate::camera::Camera;
 use crate::converge::{measure::Recorder, MeasureOptions};
 use crate::envmap::Environment;
 use crate::error::{Error, Result};
+use crate::framing::{frame_points, View};
 use crate::integrator::{Integrator, Method};
 use crate::metrics::ErrorMetrics;
-use crate::output::{self, DisplayOptions, ImageRgb};
+use crate::output::{self, Background, DisplayOptions, ImageRgb};
 use crate::render::{render_progressive, Control, Progress, RenderSettings, RenderStats};
 use crate::report::ReportRow;
 use crate::scene::desc::{CameraDesc, EnvironmentDesc, LightDesc, Projection};
@@ -145,6 +146,38 @@ pub fn choose_camera(
     choice: Option<&str>,
     aspect: f32,
 ) -> Result<(CameraDesc, Option<String>)> {
+    choose_camera_view(scene, choice, None, aspect)
+}
+
+/// [`choose_camera`] with `--view`: a view frames the model automatically
+/// ([`crate::framing`]) even when the file has cameras; it cannot be combined with
+/// `--camera`.
+pub fn choose_camera_view(
+    scene: &Scene,
+    choice: Option<&str>,
+    view: Option<View>,
+    aspect: f32,
+) -> Result<(CameraDesc, Option<String>)> {
+    if let (Some(v), Some(c)) = (view, choice) {
+        return Err(Error::Usage(format!(
+            "--view {} and --camera {c}: choose one (--view frames the model automatically)",
+            v.name()
+        )));
+    }
+    if let Some(v) = view {
+        return Ok((
+            frame_points(&scene.positions, v, aspect),
+            Some(format!(
+                "--view {}: framing the model automatically{}",
+                v.name(),
+                if scene.cameras.is_empty() {
+                    ""
+                } else {
+                    " instead of the file's camera"
+                }
+            )),
+        ));
+    }
     match choice {
         Some(c) => {
             let found = scene
@@ -176,9 +209,10 @@ pub fn choose_camera(
         None => match scene.cameras.first() {
             Some(cam) => Ok((cam.clone(), None)),
             None => Ok((
-                frame_bounds(scene.bounds.0, scene.bounds.1, aspect),
+                frame_points(&scene.positions, View::default(), aspect),
                 Some(
-                    "no camera in the file: framing the bounding box from the front-right-above"
+                    "no camera in the file: framing the model from the front-right, 35° above \
+                     (--view front|top|side|threequarter)"
                         .into(),
                 ),
             )),
@@ -247,6 +281,16 @@ impl SpectralMode {
     }
 }
 
+/// `iris render` options for drop-in previews: the automatic view and the background.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PreviewOptions {
+    /// `--view`: frame the model automatically from this view (else the file's first
+    /// camera, or the three-quarter view when it has none).
+    pub view: Option<View>,
+    /// `--background`: what escaped camera rays show ([`crate::output::background`]).
+    pub background: Background,
+}
+
 /// `iris render`.
 pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
     render_command_measured(opts, &MeasureOptions::default())
@@ -258,6 +302,18 @@ pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
 pub fn render_command_measured(
     opts: &RenderOptions,
     measure: &MeasureOptions,
+) -> Result<RenderSummary> {
+    render_command_preview(opts, measure, &PreviewOptions::default())
+}
+
+/// [`render_command_measured`] with `--view` and `--background` ([`PreviewOptions`]).
+/// With a background other than the environment, a coverage pass
+/// ([`crate::render::coverage`]) precedes the render and the image is composited when
+/// written (checkpoints too); the returned `image` stays the linear render.
+pub fn render_command_preview(
+    opts: &RenderOptions,
+    measure: &MeasureOptions,
+    preview: &PreviewOptions,
 ) -> Result<RenderSummary> {
     if let Some((w, h)) = opts.size {
         check_size(w, h)?;
@@ -294,7 +350,12 @@ pub fn render_command_measured(
             &format!("the render of {}", opts.scene.display()),
         )?;
     }
-    let (cam_desc, cam_note) = choose_camera(&scene, opts.camera.as_deref(), w as f32 / h as f32)?;
+    let (cam_desc, cam_note) = choose_camera_view(
+        &scene,
+        opts.camera.as_deref(),
+        preview.view,
+        w as f32 / h as f32,
+    )?;
     let camera = Camera::new(&cam_desc, w, h);
     let (method, method_note) = opts.method.resolve(&scene);
     measure.check_checkpoints(if method == Method::Sppm {
@@ -321,6 +382,28 @@ pub fn render_command_measured(
     let mut rows = crate::converge::setup_rows(run, load_time, scene.accel_build_time);
     let mut recorder = Recorder::new(run, reference.as_ref(), measure.target_error);
     recorder.verbose = !opts.quiet && measure.any();
+    // `--background`: the coverage of the camera samples (as many as the render will take
+    // at most, up to the pass's cap), computed once before rendering.
+    let coverage = (preview.background != Background::Environment)
+        .then(|| -> Result<_> {
+            let n = u64::from(if method == Method::Sppm {
+                opts.photon.passes
+            } else {
+                opts.spp
+            });
+            Ok(crate::render::thread_pool(&settings)?
+                .install(|| crate::render::coverage::coverage(&scene, &camera, &settings, n)))
+        })
+        .transpose()?;
+    let write = |img: &ImageRgb| {
+        output::write_image_with_background(
+            &output,
+            img,
+            coverage.as_ref(),
+            preview.background,
+            &opts.display,
+        )
+    };
     // `--checkpoint K`: write the image whenever K more samples (passes for SPPM) are done.
     let mut last_written = 0u64;
     let mut observe = |p: &Progress| -> Result<Control> {
@@ -331,7 +414,7 @@ pub fn render_command_measured(
                 p.samples
             };
             if !p.done && units >= last_written + u64::from(k) {
-                output::write_image(&output, p.image, &opts.display)?;
+                write(p.image)?;
                 last_written = units;
             }
         }
@@ -339,7 +422,7 @@ pub fn render_command_measured(
     };
     let (image, stats) =
         render_progressive(&scene, &camera, &integrator, &settings, Some(&mut observe))?;
-    output::write_image(&output, &image, &opts.display)?;
+    write(&image)?;
     let reached_target = recorder.reached_target;
     rows.append(&mut recorder.rows);
     let measure_notes = measure.write_outputs(&rows, &opts.scene)?;
