@@ -315,7 +315,11 @@ mod tests {
         assert!(eye(View::Front).z > 1.0 && eye(View::Front).x.abs() < 1e-4);
         assert!(eye(View::Side).x > 1.0 && eye(View::Side).z.abs() < 1e-4);
         assert!(eye(View::Top).y > 1.0);
-        let e = eye(View::ThreeQuarter);
+        // The view direction (camera +Z, towards the camera), not the eye position: the aim
+        // point is re-centred on the projected box, off the box centre.
+        let e = frame_points(&pts, View::ThreeQuarter, 1.0)
+            .world_from_camera
+            .transform_vector3(Vec3::Z);
         let elevation = (e.y / e.length()).asin().to_degrees();
         assert!((elevation - 35.0).abs() < 0.1, "elevation {elevation}");
         assert!(e.x > 0.0 && e.z > e.x);

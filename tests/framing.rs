@@ -44,8 +44,11 @@ fn cuboid(s: [f32; 3], c: [f32; 3]) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
     (p, t)
 }
 
-/// The test models at `scale` metres: (name, positions, triangles).
-fn models(scale: f32) -> Vec<(String, Vec<[f32; 3]>, Vec<[u32; 3]>)> {
+/// A named test model: (name, positions, triangles).
+type Model = (String, Vec<[f32; 3]>, Vec<[u32; 3]>);
+
+/// The test models at `scale` metres.
+fn models(scale: f32) -> Vec<Model> {
     let gem = iris::gen::cuts::Cut::Round.mesh(f64::from(scale));
     let off = [0.3 * scale, -0.2 * scale, 0.1 * scale];
     let mut out = vec![(
