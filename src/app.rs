@@ -599,7 +599,10 @@ pub fn info_command(path: &Path) -> Result<String> {
     }
     let _ = writeln!(s, "cameras:");
     if desc.cameras.is_empty() {
-        let _ = writeln!(s, "  none (renders frame the bounding box)");
+        let _ = writeln!(
+            s,
+            "  none (renders frame the model automatically; --view front|top|side|threequarter)"
+        );
     }
     for (i, c) in desc.cameras.iter().enumerate() {
         let p = match c.projection {
