@@ -3,13 +3,14 @@
 //! return a summary; `main.rs` only parses flags and prints.
 
 use crate::accel::Backend;
-use crate::camera::{frame_bounds, Camera};
+use crate::camera::Camera;
 use crate::converge::{measure::Recorder, MeasureOptions};
 use crate::envmap::Environment;
 use crate::error::{Error, Result};
+use crate::framing::{frame_points, View};
 use crate::integrator::{Integrator, Method};
 use crate::metrics::ErrorMetrics;
-use crate::output::{self, DisplayOptions, ImageRgb};
+use crate::output::{self, Background, DisplayOptions, ImageRgb};
 use crate::render::{render_progressive, Control, Progress, RenderSettings, RenderStats};
 use crate::report::ReportRow;
 use crate::scene::desc::{CameraDesc, EnvironmentDesc, LightDesc, Projection};
@@ -121,15 +122,6 @@ pub fn load_with_environment(
     Ok((scene, env, start.elapsed()))
 }
 
-/// Drop-in preview choices (`--studio`, `--ground`), see [`crate::studio`].
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct PreviewOptions {
-    /// Studio preset used when the file has no light and no environment is given.
-    pub studio: crate::studio::Studio,
-    /// Whether to add a white floor under the model.
-    pub ground: crate::studio::GroundMode,
-}
-
 /// Like [`load_with_environment`], adding the `--ground` floor between validation and the
 /// acceleration build; the scene's `subject_bounds` stay those of the file's geometry.
 /// Returns the note saying whether a floor was added.
@@ -171,12 +163,65 @@ pub fn resolve_environment(
     }
 }
 
+/// The vertices automatic framing fits: the file's own, without a `--ground` floor
+/// ([`crate::studio::ground::GROUND_MESH`]).
+fn subject_points(scene: &Scene) -> std::borrow::Cow<'_, [glam::Vec3]> {
+    let ground = scene
+        .meshes
+        .iter()
+        .position(|m| m.name == crate::studio::ground::GROUND_MESH);
+    match ground {
+        None => std::borrow::Cow::Borrowed(&scene.positions),
+        Some(g) => std::borrow::Cow::Owned(
+            scene
+                .triangles
+                .iter()
+                .zip(&scene.triangle_mesh)
+                .filter(|(_, &m)| m as usize != g)
+                .flat_map(|(t, _)| t.iter().map(|&i| scene.positions[i as usize]))
+                .collect(),
+        ),
+    }
+}
+
 /// Picks the camera by name or index, or frames the scene when the file has none.
 pub fn choose_camera(
     scene: &Scene,
     choice: Option<&str>,
     aspect: f32,
 ) -> Result<(CameraDesc, Option<String>)> {
+    choose_camera_view(scene, choice, None, aspect)
+}
+
+/// [`choose_camera`] with `--view`: a view frames the model automatically
+/// ([`crate::framing`]) even when the file has cameras; it cannot be combined with
+/// `--camera`.
+pub fn choose_camera_view(
+    scene: &Scene,
+    choice: Option<&str>,
+    view: Option<View>,
+    aspect: f32,
+) -> Result<(CameraDesc, Option<String>)> {
+    if let (Some(v), Some(c)) = (view, choice) {
+        return Err(Error::Usage(format!(
+            "--view {} and --camera {c}: choose one (--view frames the model automatically)",
+            v.name()
+        )));
+    }
+    if let Some(v) = view {
+        return Ok((
+            frame_points(&subject_points(scene), v, aspect),
+            Some(format!(
+                "--view {}: framing the model automatically{}",
+                v.name(),
+                if scene.cameras.is_empty() {
+                    ""
+                } else {
+                    " instead of the file's camera"
+                }
+            )),
+        ));
+    }
     match choice {
         Some(c) => {
             let found = scene
@@ -208,9 +253,10 @@ pub fn choose_camera(
         None => match scene.cameras.first() {
             Some(cam) => Ok((cam.clone(), None)),
             None => Ok((
-                frame_bounds(scene.subject_bounds.0, scene.subject_bounds.1, aspect),
+                frame_points(&subject_points(scene), View::default(), aspect),
                 Some(
-                    "no camera in the file: framing the bounding box from the front-right-above"
+                    "no camera in the file: framing the model from the front-right, 35° above \
+                     (--view front|top|side|threequarter)"
                         .into(),
                 ),
             )),
@@ -279,6 +325,21 @@ impl SpectralMode {
     }
 }
 
+/// `iris render` options for drop-in previews ([`crate::studio`], [`crate::framing`],
+/// [`crate::output::background`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PreviewOptions {
+    /// Studio preset used when the file has no light and no environment is given.
+    pub studio: crate::studio::Studio,
+    /// Whether to add a white floor under the model.
+    pub ground: crate::studio::GroundMode,
+    /// `--view`: frame the model automatically from this view (else the file's first
+    /// camera, or the three-quarter view when it has none).
+    pub view: Option<View>,
+    /// `--background`: what escaped camera rays show ([`crate::output::background`]).
+    pub background: Background,
+}
+
 /// `iris render`.
 pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
     render_command_measured(opts, &MeasureOptions::default())
@@ -294,7 +355,11 @@ pub fn render_command_measured(
     render_command_preview(opts, measure, &PreviewOptions::default())
 }
 
-/// [`render_command_measured`] with the drop-in preview choices `--studio` and `--ground`.
+/// [`render_command_measured`] with the drop-in preview choices ([`PreviewOptions`]:
+/// `--studio`, `--ground`, `--view`, `--background`). With a background other than the
+/// environment, a coverage pass ([`crate::render::coverage`]) precedes the render and the
+/// image is composited when written (checkpoints too); the returned `image` stays the
+/// linear render.
 pub fn render_command_preview(
     opts: &RenderOptions,
     measure: &MeasureOptions,
@@ -336,7 +401,12 @@ pub fn render_command_preview(
             &format!("the render of {}", opts.scene.display()),
         )?;
     }
-    let (cam_desc, cam_note) = choose_camera(&scene, opts.camera.as_deref(), w as f32 / h as f32)?;
+    let (cam_desc, cam_note) = choose_camera_view(
+        &scene,
+        opts.camera.as_deref(),
+        preview.view,
+        w as f32 / h as f32,
+    )?;
     let camera = Camera::new(&cam_desc, w, h);
     if opts.env.is_none() {
         let bounds = scene.subject_bounds;
@@ -367,6 +437,28 @@ pub fn render_command_preview(
     let mut rows = crate::converge::setup_rows(run, load_time, scene.accel_build_time);
     let mut recorder = Recorder::new(run, reference.as_ref(), measure.target_error);
     recorder.verbose = !opts.quiet && measure.any();
+    // `--background`: the coverage of the camera samples (as many as the render will take
+    // at most, up to the pass's cap), computed once before rendering.
+    let coverage = (preview.background != Background::Environment)
+        .then(|| -> Result<_> {
+            let n = u64::from(if method == Method::Sppm {
+                opts.photon.passes
+            } else {
+                opts.spp
+            });
+            Ok(crate::render::thread_pool(&settings)?
+                .install(|| crate::render::coverage::coverage(&scene, &camera, &settings, n)))
+        })
+        .transpose()?;
+    let write = |img: &ImageRgb| {
+        output::write_image_with_background(
+            &output,
+            img,
+            coverage.as_ref(),
+            preview.background,
+            &opts.display,
+        )
+    };
     // `--checkpoint K`: write the image whenever K more samples (passes for SPPM) are done.
     let mut last_written = 0u64;
     let mut observe = |p: &Progress| -> Result<Control> {
@@ -377,7 +469,7 @@ pub fn render_command_preview(
                 p.samples
             };
             if !p.done && units >= last_written + u64::from(k) {
-                output::write_image(&output, p.image, &opts.display)?;
+                write(p.image)?;
                 last_written = units;
             }
         }
@@ -385,7 +477,7 @@ pub fn render_command_preview(
     };
     let (image, stats) =
         render_progressive(&scene, &camera, &integrator, &settings, Some(&mut observe))?;
-    output::write_image(&output, &image, &opts.display)?;
+    write(&image)?;
     let reached_target = recorder.reached_target;
     rows.append(&mut recorder.rows);
     let measure_notes = measure.write_outputs(&rows, &opts.scene)?;
@@ -565,7 +657,10 @@ pub fn info_command(path: &Path) -> Result<String> {
     }
     let _ = writeln!(s, "cameras:");
     if desc.cameras.is_empty() {
-        let _ = writeln!(s, "  none (renders frame the bounding box)");
+        let _ = writeln!(
+            s,
+            "  none (renders frame the model automatically; --view front|top|side|threequarter)"
+        );
     }
     for (i, c) in desc.cameras.iter().enumerate() {
         let p = match c.projection {

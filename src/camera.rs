@@ -1,6 +1,7 @@
-//! Cameras: glTF perspective and orthographic projections, and automatic framing for files
-//! without a camera. Camera space is glTF's: looking down −Z, +Y up. Raster coordinates
-//! have (0,0) at the top-left corner of the image, x right, y down, in pixels.
+//! Cameras: glTF perspective and orthographic projections. Automatic framing for files
+//! without a camera is [`crate::framing`] (this module keeps the older [`frame_bounds`]).
+//! Camera space is glTF's: looking down −Z, +Y up. Raster coordinates have (0,0) at the top-left
+//! corner of the image, x right, y down, in pixels.
 
 use crate::math::Ray;
 use crate::scene::desc::{CameraDesc, Projection};
@@ -79,7 +80,8 @@ pub fn look_at(eye: Vec3, target: Vec3, up: Vec3) -> Mat4 {
 
 /// A perspective camera that frames the bounding box `[lo, hi]` from the front-right-above
 /// (+Z is the glTF front), with a 40° vertical field of view, fitting the bounding sphere
-/// for the given image aspect.
+/// for the given image aspect. `iris render` uses [`crate::framing::frame_points`] instead,
+/// which fits the projected vertices so flat and elongated models fill the frame.
 pub fn frame_bounds(lo: Vec3, hi: Vec3, aspect: f32) -> CameraDesc {
     let center = 0.5 * (lo + hi);
     let radius = (0.5 * (hi - lo).length()).max(f32::MIN_POSITIVE);

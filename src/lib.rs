@@ -28,6 +28,7 @@ pub mod camera;
 pub mod converge;
 pub mod envmap;
 pub mod error;
+pub mod framing;
 pub mod gen;
 pub mod integrator;
 pub mod interaction;

@@ -229,6 +229,17 @@ struct RenderArgs {
     /// No progress bar.
     #[arg(short, long)]
     quiet: bool,
+    /// Frame the model automatically from this view: threequarter (front-right, 35° above;
+    /// the default for files without a camera), front, top, side. Replaces the file's
+    /// camera; not with --camera.
+    #[arg(long, value_parser = iris::framing::View::parse)]
+    view: Option<iris::framing::View>,
+    /// What camera rays that see no surface show: `env` (the default: the environment, or
+    /// black), a colour (white, black, grey, #rrggbb, or R,G,B sRGB values in [0, 1]), or
+    /// `transparent` (PNG with alpha, EXR with an A channel). The environment still lights
+    /// the model; pixels count as covered when the camera ray hits a surface (glass too).
+    #[arg(long, value_parser = iris::output::Background::parse)]
+    background: Option<iris::output::Background>,
 }
 
 #[derive(clap::Args)]
@@ -398,6 +409,8 @@ fn run(cli: Cli) -> iris::Result<()> {
             let preview = app::PreviewOptions {
                 studio: a.studio,
                 ground: a.ground,
+                view: a.view,
+                background: a.background.unwrap_or_default(),
             };
             let s = app::render_command_preview(&opts, &measure, &preview)?;
             for n in &s.notes {

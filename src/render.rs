@@ -30,6 +30,7 @@ use glam::Vec3;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::time::{Duration, Instant};
 
+pub mod coverage;
 pub mod guard;
 mod samples;
 pub use samples::render_samples;

@@ -62,7 +62,11 @@ fn render(
         env: None,
         spectral: Default::default(),
     };
-    let preview = PreviewOptions { studio, ground };
+    let preview = PreviewOptions {
+        studio,
+        ground,
+        ..Default::default()
+    };
     let s = render_command_preview(&opts, &MeasureOptions::default(), &preview).expect("render");
     (read_exr(out).expect("read exr"), s)
 }

@@ -36,6 +36,30 @@ pub fn encode(img: &ImageRgb) -> std::result::Result<Vec<u8>, String> {
     Ok(bytes)
 }
 
+/// Encodes an image with an alpha channel (`alpha[i]` for pixel i; colour premultiplied,
+/// as OpenEXR's associated alpha requires) as RGBA EXR bytes. Lengths were checked.
+pub fn encode_rgba(img: &ImageRgb, alpha: &[f32]) -> std::result::Result<Vec<u8>, String> {
+    let w = img.width as usize;
+    let data = &img.data;
+    let channels = SpecificChannels::rgba(|pos: Vec2<usize>| {
+        let i = pos.y() * w + pos.x();
+        let c = data.get(i).copied().unwrap_or_default();
+        (c.x, c.y, c.z, alpha.get(i).copied().unwrap_or(0.0))
+    });
+    let layer = Layer::new(
+        (w, img.height as usize),
+        LayerAttributes::named("rgba"),
+        Encoding::SMALL_LOSSLESS,
+        channels,
+    );
+    let mut bytes = Vec::new();
+    Image::from_layer(layer)
+        .write()
+        .to_buffered(Cursor::new(&mut bytes))
+        .map_err(|e| e.to_string())?;
+    Ok(bytes)
+}
+
 /// Reads the first RGB layer of an EXR file at its full resolution.
 pub fn decode(path: &Path) -> std::result::Result<ImageRgb, LoadError> {
     let bytes = std::fs::read(path)

@@ -5,15 +5,20 @@
 //! - `.png`: 8-bit sRGB after exposure and tone mapping ([`tonemap`] documents the formulas).
 //! - `.exr`: 32-bit float linear RGB, the numbers as rendered (no exposure, no tone map).
 //!
+//! - With `--background` ([`background`]): a flat colour or alpha (PNG RGBA8 with straight
+//!   alpha, EXR RGBA with premultiplied colour) from the image's coverage.
+//!
 //! The format is chosen by the extension (case-insensitive). Every file is written
 //! atomically ([`atomic`]): temporary file in the same directory, fsync, rename; a failed
 //! write leaves neither a partial output nor a temporary file. Errors name the path.
 
 pub mod atomic;
+pub mod background;
 pub mod exr_io;
 pub mod tonemap;
 
 use crate::error::{Error, Result};
+pub use background::{Background, Coverage};
 use glam::Vec3;
 use std::io::Cursor;
 use std::path::Path;
@@ -116,6 +121,19 @@ pub fn check_extension(path: &Path) -> Result<()> {
 /// Errors: [`Error::Usage`] for an unknown extension or a non-finite `Ev`;
 /// [`Error::Output`] for an inconsistent or empty image and for any encoding or I/O failure.
 pub fn write_image(path: &Path, img: &ImageRgb, opts: &DisplayOptions) -> Result<()> {
+    write_image_with_background(path, img, None, Background::Environment, opts)
+}
+
+/// [`write_image`] with a background ([`background`] documents the compositing). `coverage`
+/// is required for any background but [`Background::Environment`] and must match the
+/// image's size ([`Error::Output`] otherwise).
+pub fn write_image_with_background(
+    path: &Path,
+    img: &ImageRgb,
+    coverage: Option<&Coverage>,
+    bg: Background,
+    opts: &DisplayOptions,
+) -> Result<()> {
     let format = format_of(path)?;
     let output_err = |reason: String| Error::Output {
         path: path.to_path_buf(),
@@ -143,9 +161,32 @@ pub fn write_image(path: &Path, img: &ImageRgb, opts: &DisplayOptions) -> Result
             img.data.len()
         )));
     }
-    let bytes = match format {
-        Format::Png => encode_png(img, opts).map_err(output_err)?,
-        Format::Exr => exr_io::encode(img).map_err(output_err)?,
+    let cov = match (bg, coverage) {
+        (Background::Environment, _) => None,
+        (_, Some(c))
+            if (c.width, c.height) == (img.width, img.height)
+                && c.alpha.len() as u64 == expected
+                && c.escaped.len() as u64 == expected =>
+        {
+            Some(c)
+        }
+        _ => {
+            return Err(output_err(
+                "a background needs the image's coverage at the image's size".into(),
+            ))
+        }
+    };
+    let bytes = match (format, cov) {
+        (Format::Png, None) => encode_png(img, opts).map_err(output_err)?,
+        (Format::Exr, None) => exr_io::encode(img).map_err(output_err)?,
+        (Format::Png, Some(c)) => {
+            let (bytes, rgba) = background::display_bytes(img, c, bg, opts);
+            png_bytes(&bytes, img.width, img.height, rgba).map_err(output_err)?
+        }
+        (Format::Exr, Some(c)) => match background::composite_linear(img, c, bg) {
+            (out, Some(alpha)) => exr_io::encode_rgba(&out, &alpha).map_err(output_err)?,
+            (out, None) => exr_io::encode(&out).map_err(output_err)?,
+        },
     };
     atomic::write_file_atomic(path, &bytes)
 }
@@ -161,11 +202,21 @@ pub fn read_exr(path: &Path) -> Result<ImageRgb> {
 
 /// Display-transforms and PNG-encodes the image in memory.
 fn encode_png(img: &ImageRgb, opts: &DisplayOptions) -> std::result::Result<Vec<u8>, String> {
-    use image::ImageEncoder;
     let rgb8 = tonemap::to_srgb8(img, opts.exposure, opts.tonemap);
+    png_bytes(&rgb8, img.width, img.height, false)
+}
+
+/// PNG-encodes 8-bit RGB (or RGBA with `alpha`) bytes in memory.
+fn png_bytes(px: &[u8], w: u32, h: u32, alpha: bool) -> std::result::Result<Vec<u8>, String> {
+    use image::ImageEncoder;
+    let color = if alpha {
+        image::ExtendedColorType::Rgba8
+    } else {
+        image::ExtendedColorType::Rgb8
+    };
     let mut bytes = Vec::new();
     image::codecs::png::PngEncoder::new(Cursor::new(&mut bytes))
-        .write_image(&rgb8, img.width, img.height, image::ExtendedColorType::Rgb8)
+        .write_image(px, w, h, color)
         .map_err(|e| e.to_string())?;
     Ok(bytes)
 }
