@@ -89,6 +89,8 @@ pub struct RenderSummary {
     pub reached_target: bool,
     /// The method that rendered (`--method auto` resolved).
     pub method: Method,
+    /// The render plan the render followed (costs measured with `--explain`).
+    pub plan: crate::plan::Plan,
 }
 
 impl RenderSummary {
@@ -259,6 +261,18 @@ pub fn render_command_measured(
     opts: &RenderOptions,
     measure: &MeasureOptions,
 ) -> Result<RenderSummary> {
+    render_command_planned(opts, measure, false, &mut |_| {})
+}
+
+/// [`render_command_measured`] that hands the render plan to `on_plan` before rendering;
+/// with `explain` (`--explain`) the plan's costs are measured first (a 32×24 probe render
+/// each way and 10 000 photons, see [`crate::plan::Plan::measure_costs`]).
+pub fn render_command_planned(
+    opts: &RenderOptions,
+    measure: &MeasureOptions,
+    explain: bool,
+    on_plan: &mut dyn FnMut(&crate::plan::Plan),
+) -> Result<RenderSummary> {
     if let Some((w, h)) = opts.size {
         check_size(w, h)?;
     }
@@ -296,7 +310,14 @@ pub fn render_command_measured(
     }
     let (cam_desc, cam_note) = choose_camera(&scene, opts.camera.as_deref(), w as f32 / h as f32)?;
     let camera = Camera::new(&cam_desc, w, h);
-    let (method, method_note) = opts.method.resolve(&scene);
+    let mut plan = crate::plan::Plan::new(&scene, opts.method, opts.spectral);
+    if explain {
+        plan.add_file_counts(&opts.scene);
+        let (pw, ph) = crate::plan::PROBE_SIZE;
+        plan.measure_costs(&scene, &Camera::new(&cam_desc, pw, ph), opts.threads)?;
+    }
+    on_plan(&plan);
+    let (method, method_note) = (plan.method, plan.method_note.clone());
     measure.check_checkpoints(if method == Method::Sppm {
         opts.photon.passes
     } else {
@@ -314,7 +335,7 @@ pub fn render_command_measured(
         seed: opts.seed,
         threads: opts.threads,
         quiet: opts.quiet,
-        spectral: opts.spectral.resolve(&scene),
+        spectral: plan.spectral,
         time_limit: opts.time_limit,
     };
     let run = crate::converge::method_name(method);
@@ -368,6 +389,7 @@ pub fn render_command_measured(
         rows,
         reached_target,
         method,
+        plan,
     })
 }
 
@@ -533,7 +555,29 @@ pub fn info_command(path: &Path) -> Result<String> {
             let _ = writeln!(s, "  {w}");
         }
     }
+    match info_plan(path) {
+        Ok(plan) => s.push_str(&plan),
+        Err(e) => {
+            let _ = writeln!(s, "render plan: unavailable ({e})");
+        }
+    }
     Ok(s)
+}
+
+/// The render plan of `iris render SCENE` with default flags (auto method, auto spectral,
+/// the file's environment), with its costs measured, for `iris info`.
+fn info_plan(path: &Path) -> Result<String> {
+    let (scene, file_env, _) = load_with_environment(path, Backend::Auto)?;
+    let scene = scene.with_environment(resolve_environment(None, file_env)?);
+    let mut plan = crate::plan::Plan::new(&scene, Method::Auto, SpectralMode::Auto);
+    plan.add_file_counts(path);
+    let (w, h) = crate::plan::PROBE_SIZE;
+    let (cam, _) = choose_camera(&scene, None, w as f32 / h as f32)?;
+    plan.measure_costs(&scene, &Camera::new(&cam, w, h), 0)?;
+    Ok(format!(
+        "{}  (the plan for --method auto; `iris render` defaults to --method whitted)\n",
+        plan.text_with_costs()
+    ))
 }
 
 /// `spectrum D65 (sRGB [1.000 1.000 1.000])`: an emitter's `iris_spectrum` and the colour
