@@ -192,7 +192,10 @@ fn measured_costs_name_their_measurements() {
         .expect("measure");
     let text = plan.text_with_costs();
     assert!(text.contains("probe 32x24, 1 spp"), "{text}");
-    assert!(text.contains("tracing 10000 photons"), "{text}");
+    assert!(
+        text.contains("tracing 10000 photons on one thread"),
+        "{text}"
+    );
     // The timing-free text is unchanged by measuring.
     assert!(!plan.text().contains("cost:"));
 }
