@@ -407,7 +407,7 @@ impl Plan {
                     None => "no light emits: no photons to trace".into(),
                 },
                 "volumes" => "not measured (one colour power per segment inside a medium)".into(),
-                "textures" => "not measured; BENCHMARKS.md 'Scene load and build': texture \
+                "textures" => "not measured; BENCHMARKS.md 'Scene load and acceleration-structure build': texture \
                                decoding dominates loading where there are textures \
                                (GlassHurricaneCandleHolder: 3.4 MB of images, 158 ms)"
                     .into(),
