@@ -90,6 +90,8 @@ pub struct RenderSummary {
     pub reached_target: bool,
     /// The method that rendered (`--method auto` resolved).
     pub method: Method,
+    /// The render plan the render followed (costs measured with `--explain`).
+    pub plan: crate::plan::Plan,
 }
 
 impl RenderSummary {
@@ -365,6 +367,20 @@ pub fn render_command_preview(
     measure: &MeasureOptions,
     preview: &PreviewOptions,
 ) -> Result<RenderSummary> {
+    render_command_planned(opts, measure, preview, false, &mut |_| {})
+}
+
+/// [`render_command_preview`] that hands the render plan to `on_plan` before rendering;
+/// the plan is made after the preview's studio and floor are in the scene. With `explain`
+/// (`--explain`) the plan's costs are measured first (a 32×24 probe render each way and
+/// 10 000 photons, see [`crate::plan::Plan::measure_costs`]).
+pub fn render_command_planned(
+    opts: &RenderOptions,
+    measure: &MeasureOptions,
+    preview: &PreviewOptions,
+    explain: bool,
+    on_plan: &mut dyn FnMut(&crate::plan::Plan),
+) -> Result<RenderSummary> {
     if let Some((w, h)) = opts.size {
         check_size(w, h)?;
     }
@@ -412,7 +428,14 @@ pub fn render_command_preview(
         let bounds = scene.subject_bounds;
         crate::studio::apply(&mut scene, preview.studio, bounds, &cam_desc);
     }
-    let (method, method_note) = opts.method.resolve(&scene);
+    let mut plan = crate::plan::Plan::new(&scene, opts.method, opts.spectral);
+    if explain {
+        plan.add_file_counts(&opts.scene);
+        let (pw, ph) = crate::plan::PROBE_SIZE;
+        plan.measure_costs(&scene, &Camera::new(&cam_desc, pw, ph), opts.threads)?;
+    }
+    on_plan(&plan);
+    let (method, method_note) = (plan.method, plan.method_note.clone());
     measure.check_checkpoints(if method == Method::Sppm {
         opts.photon.passes
     } else {
@@ -430,7 +453,7 @@ pub fn render_command_preview(
         seed: opts.seed,
         threads: opts.threads,
         quiet: opts.quiet,
-        spectral: opts.spectral.resolve(&scene),
+        spectral: plan.spectral,
         time_limit: opts.time_limit,
     };
     let run = crate::converge::method_name(method);
@@ -509,6 +532,7 @@ pub fn render_command_preview(
         rows,
         reached_target,
         method,
+        plan,
     })
 }
 
@@ -677,7 +701,32 @@ pub fn info_command(path: &Path) -> Result<String> {
             let _ = writeln!(s, "  {w}");
         }
     }
+    match info_plan(path) {
+        Ok(plan) => s.push_str(&plan),
+        Err(e) => {
+            let _ = writeln!(s, "render plan: unavailable ({e})");
+        }
+    }
     Ok(s)
+}
+
+/// The render plan of `iris render SCENE` with default flags (auto method, auto spectral,
+/// the file's environment), with its costs measured, for `iris info`.
+fn info_plan(path: &Path) -> Result<String> {
+    let preview = PreviewOptions::default();
+    let (scene, file_env, _, _) = load_for_preview(path, Backend::Auto, preview.ground)?;
+    let mut scene = scene.with_environment(resolve_environment(None, file_env)?);
+    let (w, h) = crate::plan::PROBE_SIZE;
+    let (cam, _) = choose_camera_view(&scene, None, preview.view, w as f32 / h as f32)?;
+    let bounds = scene.subject_bounds;
+    crate::studio::apply(&mut scene, preview.studio, bounds, &cam);
+    let mut plan = crate::plan::Plan::new(&scene, Method::Auto, SpectralMode::Auto);
+    plan.add_file_counts(path);
+    plan.measure_costs(&scene, &Camera::new(&cam, w, h), 0)?;
+    Ok(format!(
+        "{}  (the plan for --method auto; `iris render` defaults to --method whitted)\n",
+        plan.text_with_costs()
+    ))
 }
 
 /// `spectrum D65 (sRGB [1.000 1.000 1.000])`: an emitter's `iris_spectrum` and the colour

@@ -41,6 +41,7 @@ pub mod metrics;
 pub mod optics;
 pub mod output;
 pub mod photon;
+pub mod plan;
 pub mod plot;
 pub mod render;
 pub mod report;
