@@ -342,6 +342,19 @@ pub struct PreviewOptions {
     pub background: Background,
 }
 
+impl PreviewOptions {
+    /// The floor rule in effect: `--ground auto` adds none when `--background` is not the
+    /// environment (a floor filling the frame would hide the background asked for).
+    pub fn ground_mode(&self) -> crate::studio::GroundMode {
+        use crate::studio::GroundMode;
+        match (self.ground, self.background) {
+            (GroundMode::Auto, Background::Environment) => GroundMode::Auto,
+            (GroundMode::Auto, _) => GroundMode::Off,
+            (g, _) => g,
+        }
+    }
+}
+
 /// `iris render`.
 pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
     render_command_measured(opts, &MeasureOptions::default())
@@ -401,8 +414,13 @@ pub fn render_command_planned(
         .as_deref()
         .map(crate::converge::measure::read_reference_file)
         .transpose()?;
-    let (scene, file_env, load_time, ground_note) =
-        load_for_preview(&opts.scene, opts.accel, preview.ground)?;
+    let (scene, file_env, load_time, mut ground_note) =
+        load_for_preview(&opts.scene, opts.accel, preview.ground_mode())?;
+    if preview.ground_mode() != preview.ground {
+        ground_note = "--ground auto: no floor, since it would cover the --background \
+                       (--ground on to add it)"
+            .into();
+    }
     let mut scene = scene.with_environment(resolve_environment(opts.env.clone(), file_env)?);
     let (w, h) = match (&reference, opts.size) {
         (Some(r), None) => (r.width, r.height),
@@ -713,13 +731,8 @@ pub fn info_command(path: &Path) -> Result<String> {
 /// The render plan of `iris render SCENE` with default flags (auto method, auto spectral,
 /// the file's environment), with its costs measured, for `iris info`.
 fn info_plan(path: &Path) -> Result<String> {
-    let preview = PreviewOptions::default();
-    let (scene, file_env, _, _) = load_for_preview(path, Backend::Auto, preview.ground)?;
-    let mut scene = scene.with_environment(resolve_environment(None, file_env)?);
     let (w, h) = crate::plan::PROBE_SIZE;
-    let (cam, _) = choose_camera_view(&scene, None, preview.view, w as f32 / h as f32)?;
-    let bounds = scene.subject_bounds;
-    crate::studio::apply(&mut scene, preview.studio, bounds, &cam);
+    let (scene, cam) = default_preview_scene(path, Backend::Auto, w as f32 / h as f32)?;
     let mut plan = crate::plan::Plan::new(&scene, Method::Auto, SpectralMode::Auto);
     plan.add_file_counts(path);
     plan.measure_costs(&scene, &Camera::new(&cam, w, h), 0)?;
@@ -727,6 +740,23 @@ fn info_plan(path: &Path) -> Result<String> {
         "{}  (the plan for --method auto; `iris render` defaults to --method whitted)\n",
         plan.text_with_costs()
     ))
+}
+
+/// The scene and camera `iris render FILE` renders with default flags: the file's
+/// environment, the `--ground auto` floor, the file's first camera or the automatic view,
+/// and the default studio when the file has no light.
+pub fn default_preview_scene(
+    path: &Path,
+    accel: Backend,
+    aspect: f32,
+) -> Result<(Scene, CameraDesc)> {
+    let preview = PreviewOptions::default();
+    let (scene, file_env, _, _) = load_for_preview(path, accel, preview.ground_mode())?;
+    let mut scene = scene.with_environment(resolve_environment(None, file_env)?);
+    let (cam, _) = choose_camera_view(&scene, None, preview.view, aspect)?;
+    let bounds = scene.subject_bounds;
+    crate::studio::apply(&mut scene, preview.studio, bounds, &cam);
+    Ok((scene, cam))
 }
 
 /// `spectrum D65 (sRGB [1.000 1.000 1.000])`: an emitter's `iris_spectrum` and the colour

@@ -234,13 +234,13 @@ fn plan_of_every_shared_asset_matches_the_snapshot() {
         let path = dir.join(&rel);
         text.push_str(&format!("== {}\n", rel.display()));
         // The BVH so that the text (backend name, caustic probe hits) is the same with and
-        // without the embree feature.
+        // without the embree feature. The scene as `iris render FILE` sees it (studio,
+        // floor, automatic view at the default 16:9).
         let planned =
-            iris::app::load_with_environment(&path, Backend::Bvh).and_then(|(s, env, _)| {
-                let scene = s.with_environment(iris::app::resolve_environment(None, env)?);
+            iris::app::default_preview_scene(&path, Backend::Bvh, 16.0 / 9.0).map(|(scene, _)| {
                 let mut plan = Plan::new(&scene, Method::Auto, SpectralMode::Auto);
                 plan.add_file_counts(&path);
-                Ok(plan.text())
+                plan.text()
             });
         match planned {
             Ok(t) => text.push_str(&t),
