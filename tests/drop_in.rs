@@ -119,21 +119,7 @@ fn files_without_camera_or_light_render_framed_and_lit() {
         check(&dir, file, true);
     }
     // An opaque box (OBJ, default material), 2 × 1 × 1 units, off the origin.
-    let mut obj = String::new();
-    for i in 0..8 {
-        let (x, y, z) = (i & 1, (i >> 1) & 1, (i >> 2) & 1);
-        obj += &format!("v {} {} {}\n", 10.0 + 2.0 * x as f32, 5.0 + y as f32, z);
-    }
-    for f in [
-        [1, 3, 4, 2],
-        [5, 6, 8, 7],
-        [1, 2, 6, 5],
-        [3, 7, 8, 4],
-        [1, 5, 7, 3],
-        [2, 4, 8, 6],
-    ] {
-        obj += &format!("f {} {} {} {}\n", f[0], f[1], f[2], f[3]);
-    }
-    std::fs::write(dir.join("box.obj"), obj).expect("write obj");
+    let (p, t) = common::cuboid([2.0, 1.0, 1.0], [11.0, 5.5, 0.5]);
+    common::write_obj(&dir, "box", &p, &t);
     check(&dir, "box.obj", false);
 }

@@ -14,35 +14,7 @@ use iris::integrator::Method;
 use iris::output::{Background, DisplayOptions};
 use iris::render::RenderSettings;
 use iris::scene::Scene;
-use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
-
-/// A box of size `s` centred at `c` as (positions, triangles), outward-wound.
-fn cuboid(s: [f32; 3], c: [f32; 3]) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
-    let p = (0..8)
-        .map(|i| {
-            let sign = |bit: u32| if i & bit == 0 { -0.5 } else { 0.5 };
-            [
-                c[0] + sign(1) * s[0],
-                c[1] + sign(2) * s[1],
-                c[2] + sign(4) * s[2],
-            ]
-        })
-        .collect();
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    let t = quads
-        .iter()
-        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-        .collect();
-    (p, t)
-}
+use std::path::Path;
 
 /// A named test model: (name, positions, triangles).
 type Model = (String, Vec<[f32; 3]>, Vec<[u32; 3]>);
@@ -59,24 +31,11 @@ fn models(scale: f32) -> Vec<Model> {
             .collect(),
         gem.indices.clone(),
     )];
-    let (p, t) = cuboid([scale, 0.02 * scale, 0.7 * scale], off);
+    let (p, t) = common::cuboid([scale, 0.02 * scale, 0.7 * scale], off);
     out.push((format!("plate@{scale}"), p, t));
-    let (p, t) = cuboid([2.0 * scale, 0.04 * scale, 0.04 * scale], off);
+    let (p, t) = common::cuboid([2.0 * scale, 0.04 * scale, 0.04 * scale], off);
     out.push((format!("rod@{scale}"), p, t));
     out
-}
-
-fn write_obj(dir: &Path, name: &str, p: &[[f32; 3]], t: &[[u32; 3]]) -> PathBuf {
-    let mut s = String::new();
-    for v in p {
-        let _ = writeln!(s, "v {:e} {:e} {:e}", v[0], v[1], v[2]);
-    }
-    for f in t {
-        let _ = writeln!(s, "f {} {} {}", f[0] + 1, f[1] + 1, f[2] + 1);
-    }
-    let path = dir.join(format!("{}.obj", name.replace('@', "_")));
-    std::fs::write(&path, s).expect("write obj");
-    path
 }
 
 fn settings(w: u32, h: u32) -> RenderSettings {
@@ -125,7 +84,7 @@ fn every_view_frames_gems_plates_and_rods_at_every_scale() {
     let (w, h) = (120u32, 90u32);
     for scale in [1e-4f32, 1.0, 1e4] {
         for (name, p, t) in models(scale) {
-            let path = write_obj(&dir, &name, &p, &t);
+            let path = common::write_obj(&dir, &name, &p, &t);
             let (scene, _) = app::load(&path, Backend::Auto).expect("load");
             assert!(scene.cameras.is_empty());
             for view in [None].into_iter().chain(VIEWS.map(Some)) {
@@ -185,8 +144,8 @@ fn a_file_with_no_camera_and_no_light_renders_a_lit_framed_model() {
     // A diffuse plate (the OBJ default material) with no camera and no light: the default
     // lights light it, the automatic camera frames it.
     let dir = common::scratch_dir("framing_render");
-    let (p, t) = cuboid([1.0, 0.02, 0.7], [0.0, 0.0, 0.0]);
-    let scene = write_obj(&dir, "plate", &p, &t);
+    let (p, t) = common::cuboid([1.0, 0.02, 0.7], [0.0, 0.0, 0.0]);
+    let scene = common::write_obj(&dir, "plate", &p, &t);
     let out = dir.join("plate.png");
     let preview = PreviewOptions {
         view: None,
@@ -222,7 +181,7 @@ fn framed_renders_are_deterministic() {
     let gem = iris::gen::cuts::Cut::Round.mesh(1.0);
     let p: Vec<[f32; 3]> = gem.positions.iter().map(|v| v.to_array()).collect();
     let tris = gem.indices.clone();
-    let scene = write_obj(&dir, "gem", &p, &tris);
+    let scene = common::write_obj(&dir, "gem", &p, &tris);
     let mut bytes = Vec::new();
     for (i, threads) in [1usize, 2].into_iter().enumerate() {
         let out = dir.join(format!("gem{i}.png"));
@@ -248,8 +207,8 @@ fn framed_renders_are_deterministic() {
 #[test]
 fn view_and_camera_together_are_a_usage_error() {
     let dir = common::scratch_dir("framing_conflict");
-    let (p, t) = cuboid([1.0, 1.0, 1.0], [0.0, 0.0, 0.0]);
-    let scene = write_obj(&dir, "cube", &p, &t);
+    let (p, t) = common::cuboid([1.0, 1.0, 1.0], [0.0, 0.0, 0.0]);
+    let scene = common::write_obj(&dir, "cube", &p, &t);
     let (scene, _) = app::load(&scene, Backend::Auto).unwrap();
     let e = app::choose_camera_view(&scene, Some("0"), Some(View::Front), 1.0).unwrap_err();
     assert!(e.to_string().contains("--view front"), "{e}");

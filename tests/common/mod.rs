@@ -132,3 +132,50 @@ pub fn entries(dir: &std::path::Path) -> Vec<String> {
     v.sort();
     v
 }
+
+/// A box of size `s` centred at `c` as (positions, triangles), outward-wound.
+pub fn cuboid(s: [f32; 3], c: [f32; 3]) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+    let p = (0..8)
+        .map(|i| {
+            let sign = |bit: u32| if i & bit == 0 { -0.5 } else { 0.5 };
+            [
+                c[0] + sign(1) * s[0],
+                c[1] + sign(2) * s[1],
+                c[2] + sign(4) * s[2],
+            ]
+        })
+        .collect();
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    let t = quads
+        .iter()
+        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+        .collect();
+    (p, t)
+}
+
+/// Writes an OBJ of `p` and `t` (0-based) as `dir/<name>.obj` (`@` → `_`).
+pub fn write_obj(
+    dir: &std::path::Path,
+    name: &str,
+    p: &[[f32; 3]],
+    t: &[[u32; 3]],
+) -> std::path::PathBuf {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    for v in p {
+        let _ = writeln!(s, "v {:e} {:e} {:e}", v[0], v[1], v[2]);
+    }
+    for f in t {
+        let _ = writeln!(s, "f {} {} {}", f[0] + 1, f[1] + 1, f[2] + 1);
+    }
+    let path = dir.join(format!("{}.obj", name.replace('@', "_")));
+    std::fs::write(&path, s).expect("write obj");
+    path
+}
