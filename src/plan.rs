@@ -229,9 +229,15 @@ impl Plan {
         if decoded > referenced.len() {
             let _ = write!(
                 reason,
-                "; {} decoded for materials no triangle uses (left out: not yet, the loader \
-                 decodes every material's textures)",
+                "; {} decoded for materials whose triangles validation removed",
                 decoded - referenced.len()
+            );
+        }
+        if scene.skipped_textures > 0 {
+            let _ = write!(
+                reason,
+                "; {} texture slots of materials on no mesh left undecoded",
+                scene.skipped_textures
             );
         }
         stages.push(Stage {

@@ -248,6 +248,65 @@ fn embedded_image_claiming_1e5_squared_pixels_is_rejected_before_decoding() {
     );
 }
 
+/// The render plan's "textures" stage: a material no mesh uses keeps its factors but its
+/// texture is never decoded, so even the 10⁵×10⁵ image above costs nothing there; the
+/// plan counts the slot. (The same image on a used material is rejected, above.)
+#[test]
+fn textures_of_materials_no_mesh_uses_are_not_decoded() {
+    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = common::scratch_dir("huge_counts_unused_texture");
+    let png = png_header(100_000, 100_000);
+    let doc = triangle_gltf(|d| {
+        d["images"] = json!([{"name": "huge", "uri": data_uri(&png)}]);
+        d["textures"] = json!([{"source": 0}]);
+        d["materials"] = json!([
+            {"name": "used", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1]}},
+            {"name": "unused", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}},
+             "emissiveTexture": {"index": 0}}
+        ]);
+        d["meshes"][0]["primitives"][0]["material"] = json!(0);
+    });
+    let path = write_gltf(&dir, "unused_texture.gltf", &doc);
+    let (desc, peak) = peak_during(|| iris::load::load_scene(&path).expect("loads"));
+    assert!(peak < 64 << 20, "peak heap {peak} bytes");
+    assert!(desc.images.is_empty());
+    assert_eq!(desc.skipped_textures, 2);
+    assert_eq!(desc.materials.len(), 2);
+    assert!(desc.materials[1].base_color_texture.is_none());
+    let plan = iris::app::load(&path, iris::accel::Backend::Bvh)
+        .map(|(scene, _)| {
+            iris::plan::Plan::new(
+                &scene,
+                iris::integrator::Method::Whitted,
+                iris::app::SpectralMode::Auto,
+            )
+            .text()
+        })
+        .expect("plan");
+    assert!(
+        plan.contains("2 texture slots of materials on no mesh left undecoded"),
+        "{plan}"
+    );
+    // OBJ: `map_kd` of a material no face uses is not even opened (a missing file there
+    // gives no warning); on the used material it is (a warning naming the file).
+    std::fs::write(
+        dir.join("m.mtl"),
+        "newmtl used\nKd 0.5 0.5 0.5\nmap_Kd missing_a.png\n\
+         newmtl unused\nKd 1 0 0\nmap_Kd missing_b.png\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("t.obj"),
+        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl used\nf 1 2 3\n",
+    )
+    .unwrap();
+    let desc = iris::load::load_scene(&dir.join("t.obj")).expect("obj loads");
+    assert_eq!(desc.skipped_textures, 1);
+    let warnings = desc.warnings.join("\n");
+    assert!(warnings.contains("missing_a.png"), "{warnings}");
+    assert!(!warnings.contains("missing_b.png"), "{warnings}");
+}
+
 #[test]
 fn obj_with_absurd_indices_is_rejected() {
     let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());

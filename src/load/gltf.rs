@@ -97,10 +97,15 @@ pub fn load_gltf_bytes(
         source: path.to_path_buf(),
         ..SceneDesc::default()
     };
-    let (materials, images) = material::read_materials(&ctx, &mut warnings)?;
+    // The scene graph first: only materials some mesh instance uses get their textures
+    // decoded (the render plan's "textures" stage).
+    scene::read_scene_graph(&ctx, &mut desc, &mut warnings)?;
+    let used: std::collections::BTreeSet<usize> =
+        desc.meshes.iter().filter_map(|m| m.material).collect();
+    let (materials, images, skipped) = material::read_materials(&ctx, &used, &mut warnings)?;
     desc.materials = materials;
     desc.images = images;
-    scene::read_scene_graph(&ctx, &mut desc, &mut warnings)?;
+    desc.skipped_textures = skipped;
     desc.warnings = warnings.finish();
     Ok(desc)
 }

@@ -93,8 +93,21 @@ pub fn load_obj_bytes(
     };
     let mut images = material::Images::default();
     let mut unsupported = Vec::new();
+    // Only materials some face uses get their textures decoded (the render plan's
+    // "textures" stage).
+    let used: std::collections::BTreeSet<usize> = models
+        .iter()
+        .filter(|m| !m.mesh.indices.is_empty())
+        .filter_map(|m| m.mesh.material_id)
+        .collect();
     for (index, (lib, raw)) in libs.materials.iter().enumerate() {
-        let m = material::to_material(index, raw, lib, files, &mut images, &mut unsupported)?;
+        let textures = if used.contains(&index) {
+            Some(&mut images)
+        } else {
+            desc.skipped_textures += usize::from(raw.map_kd.is_some());
+            None
+        };
+        let m = material::to_material(index, raw, lib, files, textures, &mut unsupported)?;
         desc.materials.push(m);
     }
     desc.images = images.images;

@@ -47,6 +47,9 @@ pub struct SceneDesc {
     /// Things the loader saw and did not use (unsupported extensions, MTL keys, primitive
     /// modes), each listed once.
     pub warnings: Vec<String>,
+    /// Texture slots the loader left undecoded because their material is on no mesh (the
+    /// render plan reports them).
+    pub skipped_textures: usize,
 }
 
 /// An environment light named by the scene file (glTF scene `extras.iris_environment`).

@@ -92,6 +92,8 @@ pub struct Scene {
     pub materials: Vec<Material>,
     /// Texture images.
     pub images: Vec<ImageDesc>,
+    /// Texture slots the loader did not decode: their material is on no mesh.
+    pub skipped_textures: usize,
     /// Lights (the default key/fill lights when the file has no light and no emitter).
     pub lights: Vec<Light>,
     /// The exact spectral shape of each light that names one (`iris_spectrum`), for
@@ -221,6 +223,7 @@ impl Scene {
             meshes,
             materials,
             images: desc.images,
+            skipped_textures: desc.skipped_textures,
             lights,
             light_shapes,
             area_lights,

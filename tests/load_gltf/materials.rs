@@ -27,6 +27,14 @@ fn cauchy_ior_and_texture_values_pass_through() {
          "emissiveFactor": [1.0, 0.5, 0.25], "alphaMode": "MASK", "doubleSided": true,
          "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}
     ]);
+    // Glass and Infinite on the cube (textures are decoded only for materials in use).
+    let mut second = doc["meshes"][0]["primitives"][0].clone();
+    doc["meshes"][0]["primitives"][0]["material"] = json!(0);
+    second["material"] = json!(2);
+    doc["meshes"][0]["primitives"]
+        .as_array_mut()
+        .unwrap()
+        .push(second);
     let desc = load(&write_json(&dir, "materials.gltf", &doc));
     let glass = material(&desc, "Glass");
     assert_eq!(

@@ -38,28 +38,44 @@ use serde_json::Value;
 /// images their base colour, metallic-roughness, emissive and transmission textures use.
 pub(super) fn read_materials(
     ctx: &Ctx<'_>,
+    used: &std::collections::BTreeSet<usize>,
     warnings: &mut Warnings,
-) -> Result<(Vec<MaterialDesc>, Vec<ImageDesc>), LoadError> {
+) -> Result<(Vec<MaterialDesc>, Vec<ImageDesc>, usize), LoadError> {
     let mut images = ImageCache::default();
     let mut materials = Vec::new();
+    let mut skipped = 0;
     for (index, material) in ctx.doc.materials().enumerate() {
-        materials.push(read_material(ctx, index, &material, &mut images, warnings)?);
+        let textures = if used.contains(&index) {
+            Some(&mut images)
+        } else {
+            None
+        };
+        let (m, s) = read_material(ctx, index, &material, textures, warnings)?;
+        materials.push(m);
+        skipped += s;
     }
-    Ok((materials, images.into_images()))
+    Ok((materials, images.into_images(), skipped))
 }
 
+/// Reads material `index`; with `images` `None` (no mesh uses the material) its textures
+/// are not decoded, and their count is returned beside the material.
 fn read_material(
     ctx: &Ctx<'_>,
     index: usize,
     m: &gltf::Material<'_>,
-    images: &mut ImageCache,
+    mut images: Option<&mut ImageCache>,
     warnings: &mut Warnings,
-) -> Result<MaterialDesc, LoadError> {
+) -> Result<(MaterialDesc, usize), LoadError> {
     let element = label("material", index, m.name());
+    let mut skipped = 0;
     let mut texture = |slot: &str,
                        info: Option<gltf::texture::Info<'_>>|
      -> Result<Option<TextureRef>, LoadError> {
         let Some(info) = info else { return Ok(None) };
+        let Some(images) = images.as_deref_mut() else {
+            skipped += 1;
+            return Ok(None);
+        };
         let image = images.get(ctx, info.texture().source().index())?;
         let texcoord = info.tex_coord();
         if texcoord != 0 {
@@ -90,7 +106,7 @@ fn read_material(
         gltf::material::AlphaMode::Mask => AlphaMode::Mask(m.alpha_cutoff().unwrap_or(0.5)),
         gltf::material::AlphaMode::Blend => AlphaMode::Blend,
     };
-    Ok(MaterialDesc {
+    let material = MaterialDesc {
         base_color: Vec4::from(pbr.base_color_factor()),
         base_color_texture,
         metallic: pbr.metallic_factor(),
@@ -125,7 +141,8 @@ fn read_material(
         double_sided: m.double_sided(),
         alpha_mode,
         name: element,
-    })
+    };
+    Ok((material, skipped))
 }
 
 /// `KHR_materials_dispersion.dispersion` (default 0).

@@ -101,13 +101,14 @@ pub(super) fn default_material(index: usize) -> MaterialDesc {
 }
 
 /// Maps one MTL material (from library `lib`) to material number `index`. Unused keys and
-/// unsupported illum values are appended to `unsupported` as `key` → material names.
+/// unsupported illum values are appended to `unsupported` as `key` → material names. With
+/// `images` `None` (no face uses the material) its texture is not decoded.
 pub(super) fn to_material(
     index: usize,
     raw: &RawMtl,
     lib: &Path,
     files: Files<'_>,
-    images: &mut Images,
+    images: Option<&mut Images>,
     unsupported: &mut Vec<(String, String)>,
 ) -> Result<MaterialDesc, LoadError> {
     let lib_name = lib.file_name().unwrap_or_default().to_string_lossy();
@@ -197,7 +198,7 @@ pub(super) fn to_material(
     if alpha < 1.0 {
         m.alpha_mode = AlphaMode::Blend;
     }
-    if let Some(file) = &raw.map_kd {
+    if let (Some(file), Some(images)) = (&raw.map_kd, images) {
         let path = lib.parent().unwrap_or(Path::new("")).join(file);
         m.base_color_texture = images
             .get(&path, files, &m.name)
