@@ -28,6 +28,7 @@ pub mod camera;
 pub mod converge;
 pub mod envmap;
 pub mod error;
+pub mod gallery;
 pub mod gen;
 pub mod integrator;
 pub mod interaction;
