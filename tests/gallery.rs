@@ -116,3 +116,49 @@ fn unknown_only_pattern_is_a_clear_error() {
     );
     assert!(common::entries(&out).is_empty(), "nothing written");
 }
+
+/// Runs the gallery binary from the project root with extra environment variables.
+fn gallery_with_env(args: &[&str], env: &[(&str, &str)]) -> std::process::Output {
+    let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_iris"));
+    cmd.arg("gallery").args(args).current_dir(root());
+    cmd.env_remove("IRIS_REQUIRE_SHARED");
+    for (k, v) in env {
+        cmd.env(k, v);
+    }
+    cmd.output().expect("run iris")
+}
+
+#[test]
+fn missing_shared_assets_are_noted_unless_required() {
+    let out = scratch_dir("gallery_no_shared");
+    let out_s = out.to_string_lossy().into_owned();
+    let missing = out.join("no_shared_assets_here");
+    let missing_s = missing.to_string_lossy().into_owned();
+    let args = [
+        "--out",
+        out_s.as_str(),
+        "--only",
+        "compare_dispersion",
+        "-q",
+    ];
+    // Absent and not required: said on stderr and on the page, nothing rendered, exit 0.
+    let o = gallery_with_env(&args, &[("IRIS_SHARED_ASSETS", missing_s.as_str())]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("shared assets"), "{}", stderr(&o));
+    let page = std::fs::read_to_string(out.join("README.md")).expect("page written");
+    assert!(
+        page.contains("shared assets folder was not found"),
+        "{page}"
+    );
+    assert!(!out.join("compare_dispersion.png").exists());
+    // Required: an error.
+    let o = gallery_with_env(
+        &args,
+        &[
+            ("IRIS_SHARED_ASSETS", missing_s.as_str()),
+            ("IRIS_REQUIRE_SHARED", "1"),
+        ],
+    );
+    assert!(!o.status.success(), "IRIS_REQUIRE_SHARED=1 must fail");
+    assert!(stderr(&o).contains("IRIS_REQUIRE_SHARED"), "{}", stderr(&o));
+}
