@@ -29,6 +29,7 @@ pub mod converge;
 pub mod envmap;
 pub mod error;
 pub mod framing;
+pub mod gallery;
 pub mod gen;
 pub mod integrator;
 pub mod interaction;

@@ -64,6 +64,28 @@ enum Command {
     /// Write a gem in a standard cut as .glb (KHR ior, transmission, volume, dispersion),
     /// in a preview scene (camera, lights, white floor) unless --bare.
     Gem(GemArgs),
+    /// Render the gallery (the paper's figure scenes, the gems, the Khronos dispersion
+    /// samples) into DIR/<name>.png with a Markdown page DIR/README.md (plan, method, time).
+    Gallery(GalleryArgs),
+}
+
+#[derive(clap::Args)]
+struct GalleryArgs {
+    /// Output directory (created if missing).
+    #[arg(long, default_value = "docs/gallery")]
+    out: PathBuf,
+    /// Image size WxH (576x324 keeps the committed gallery under 4 MB of PNG).
+    #[arg(long, default_value = "576x324", value_parser = parse_size)]
+    size: (u32, u32),
+    /// Time limit of each image's render, seconds.
+    #[arg(long, default_value_t = 20.0, value_parser = parse_seconds)]
+    time: f64,
+    /// Render only the entries whose name contains SUBSTR (repeatable).
+    #[arg(long, value_name = "SUBSTR")]
+    only: Vec<String>,
+    /// No progress output.
+    #[arg(short, long)]
+    quiet: bool,
 }
 
 #[derive(clap::Args)]
@@ -538,6 +560,35 @@ fn run(cli: Cli) -> iris::Result<()> {
             };
             iris::gen::cuts::preview::write_gem(&a.output, &spec)?;
             eprintln!("wrote {}", a.output.display());
+            Ok(())
+        }
+        Command::Gallery(a) => {
+            // The command for the page: `iris` and the flags, after the shared-assets
+            // override when one was set (it decides which entries render).
+            let mut args = std::env::args().skip(1).collect::<Vec<_>>();
+            args.insert(0, "iris".into());
+            if let Some(dir) = std::env::var_os("IRIS_SHARED_ASSETS") {
+                args.insert(0, format!("IRIS_SHARED_ASSETS={}", dir.to_string_lossy()));
+            }
+            let s = iris::gallery::run(&iris::gallery::GalleryOptions {
+                out: a.out,
+                size: a.size,
+                time: std::time::Duration::from_secs_f64(a.time),
+                only: a.only,
+                quiet: a.quiet,
+                command: args.join(" "),
+            })?;
+            for r in &s.rendered {
+                eprintln!(
+                    "{}: {}, {}, render {:.2} s -> {}",
+                    r.entry.name,
+                    method_name(r.summary.method),
+                    iris::gallery::work_done(&r.summary),
+                    r.summary.stats.time.as_secs_f64(),
+                    r.summary.output.display()
+                );
+            }
+            eprintln!("wrote {}", s.page.display());
             Ok(())
         }
         Command::GenAssets { dir } => {
