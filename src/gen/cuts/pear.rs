@@ -45,12 +45,14 @@
 //! lies in front of any facet's plane, and that no edge is shorter than 1 % of the width,
 //! for L/W from 1 to 2.
 //!
-//! [`Pear::standard`]: L/W 1.6 (the middle of the 1.45–1.75 range quoted by grading guides,
-//! e.g. GIA's "Pear Shape Diamonds" buying guide and Blue Nile's pear-cut guide, which both
-//! call 1.5–1.7 the classic look), with Tolkowsky's proportions across the width (table 53 %
-//! of the width, crown 34.5°, pavilion 40.75° at the round end, girdle 2 %): total depth
-//! 0.02 + 0.47·tan 34.5°/2 + tan 40.75°/2 = 61.2 % of the width, inside the 58–64 % the same
-//! guides recommend for pears.
+//! [`Pear::standard`]: L/W 1.6, inside the ranges retail grading guides give for pears
+//! (1.45–1.75 "traditional", waldemarjewellers.com.au pear-cut guide; 1.40–1.60 "very
+//! good", beyond4cs.com/shapes/pear/recommended-proportions; 1.50–1.60 preferred,
+//! caratsmart.com.au pear guide; no lab publishes a pear standard), with Tolkowsky's
+//! proportions across the width (table 53 % of the width, crown 34.5°, pavilion 40.75° at
+//! the round end, girdle 2 %): total depth 0.02 + 0.47·tan 34.5°/2 + tan 40.75°/2 = 61.2 %
+//! of the width, inside the 58–64 % beyond4cs calls excellent; the table is at the low end
+//! of its 53–64 % "good" range (b-miners.com: 53–63 % excellent).
 
 use super::super::gem::{tan_deg, Brilliant};
 use super::super::lathe::sin_cos;
@@ -143,7 +145,7 @@ impl Pear {
         let y_m = y_t + b.star_depth * (y_g - y_t);
         let pavilion_h = r * tan_deg(b.pavilion_angle);
         let y_c = -y_g - pavilion_h;
-        let y_l = -y_g + b.lower_girdle_depth * (y_c - (-y_g));
+        let y_l = -y_g + b.lower_girdle_depth * (y_c + y_g);
         let axis = DVec2::new(x0, 0.0);
         let main = |k: usize| rims[(2 * k) % 16];
         // Offset of main facet k's line at height y (uₖ·p = offset) for a facet through the
