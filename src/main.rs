@@ -90,13 +90,14 @@ struct GalleryArgs {
 
 #[derive(clap::Args)]
 struct GemArgs {
-    /// Cut: round (Tolkowsky brilliant), emerald (step cut), oval (brilliant, L/W 1.4).
+    /// Cut: round (Tolkowsky brilliant), emerald (step cut), oval (brilliant, L/W 1.4),
+    /// pear (brilliant, L/W 1.6).
     #[arg(long, value_parser = iris::gen::cuts::Cut::parse)]
     cut: iris::gen::cuts::Cut,
     /// Stone: diamond, sapphire, ruby, cubic-zirconia, quartz, crown-glass.
     #[arg(long, value_parser = iris::gen::stones::Stone::parse)]
     stone: iris::gen::stones::Stone,
-    /// Girdle diameter (round) or length (emerald, oval) in millimetres.
+    /// Girdle diameter (round) or length (emerald, oval, pear) in millimetres.
     #[arg(long, default_value_t = iris::gen::cuts::DEFAULT_SIZE_MM, allow_hyphen_values = true)]
     size: f64,
     /// Only the stone: no camera, lights or floor.

@@ -139,7 +139,7 @@ fn bare(dir: &Path, cut: &str) -> SceneDesc {
 #[test]
 fn every_cut_is_closed_outward_convex_and_flat_shaded() {
     let dir = common::scratch_dir("gem_cuts_solids");
-    for cut in ["round", "emerald", "oval"] {
+    for cut in ["round", "emerald", "oval", "pear"] {
         for size in ["0.5", "6.5", "30"] {
             let s = gem(
                 &dir,
@@ -268,6 +268,91 @@ fn oval_is_the_brilliant_stretched_to_length_width_1_4() {
     assert_eq!(count_at(&normals, false, flat(40.75), major), 2);
 }
 
+/// Interior angle of the polygon `ring` (in order round it) at vertex `i`, degrees.
+fn corner_angle(ring: &[DVec3], i: usize) -> f64 {
+    let n = ring.len();
+    let (a, b) = (ring[(i + n - 1) % n] - ring[i], ring[(i + 1) % n] - ring[i]);
+    a.angle_between(b).to_degrees()
+}
+
+#[test]
+fn pear_has_a_point_a_round_end_and_stated_angles() {
+    let dir = common::scratch_dir("gem_cuts_pear");
+    let s = bare(&dir, "pear");
+    let m = &s.meshes[0];
+    let normals = facet_normals(m);
+    assert_eq!(normals.len(), 73);
+    let lo = m.positions.iter().fold(Vec3::MAX, |a, &p| a.min(p));
+    let hi = m.positions.iter().fold(Vec3::MIN, |a, &p| a.max(p));
+    let (length, width) = (f64::from(hi.x - lo.x), f64::from(hi.z - lo.z));
+    // L/W 1.6 (f32 rounding: 1e-5).
+    assert!((length / width - 1.6).abs() < 1e-5, "{}", length / width);
+    // The girdle's top ring (y = +1 % of the width), in order round the Y axis.
+    let y_g = 0.01 * width;
+    let mut ring: Vec<DVec3> = m
+        .positions
+        .iter()
+        .map(|p| p.as_dvec3())
+        .filter(|p| (p.y - y_g).abs() < 1e-9)
+        .collect();
+    ring.sort_by(|a, b| a.z.atan2(a.x).total_cmp(&b.z.atan2(b.x)));
+    ring.dedup();
+    assert_eq!(ring.len(), 16);
+    let tip = (0..16).max_by(|&i, &j| ring[i].x.total_cmp(&ring[j].x));
+    let end = (0..16).min_by(|&i, &j| ring[i].x.total_cmp(&ring[j].x));
+    let (tip, end) = (tip.unwrap_or(0), end.unwrap_or(0));
+    // One point, on the long axis at +X: the round end's outline is a half circle of
+    // radius W/2 centred at x₀ = −L/2 + W/2, each wing an arc of radius
+    // ρ = (a² + R²)/(2R) (a = L − R) tangent to it at the widest point and through the
+    // point; the ring's corner at the point is 180° − (φ_w + φ₁), φ_w = atan((ρ − R)/a)
+    // the wing's normal at the point and φ₁ = φ_w + (90° − φ_w)/4 at the next vertex.
+    let (r, a) = (0.5 * width, length - 0.5 * width);
+    let rho = (a * a + r * r) / (2.0 * r);
+    let phi_w = ((rho - r) / a).atan().to_degrees();
+    let point = 180.0 - (2.0 * phi_w + (90.0 - phi_w) / 4.0);
+    assert!(ring[tip].z.abs() < 1e-9 && (ring[tip].x - 0.5 * length).abs() < 1e-8);
+    // 0.1°: the tolerance (f32 rounding of the corners: ~1e-5°).
+    assert!(
+        (corner_angle(&ring, tip) - point).abs() < 0.1,
+        "point {} vs {point}",
+        corner_angle(&ring, tip)
+    );
+    assert!(point < 90.0, "{point}");
+    // The round end: a regular 16-gon's corner, 157.5°.
+    assert!(ring[end].z.abs() < 1e-9 && (ring[end].x + 0.5 * length).abs() < 1e-8);
+    assert!((corner_angle(&ring, end) - 157.5).abs() < 0.1);
+    // Crown and pavilion: the five bezels and mains of the round end keep Tolkowsky's
+    // 34.5° and 40.75°; the point's (normal in the XY plane, towards +X) are flattened to
+    // atan(R tan α / a) (the apex and culet lie over the round end's centre).
+    assert_eq!(count_at(&normals, true, 34.5, |_| true), 5);
+    assert_eq!(count_at(&normals, false, 40.75, |_| true), 5);
+    let at_point = |n: DVec3| n.z.abs() < 1e-5 && n.x > 0.0;
+    let flat = |alpha: f64| (r * alpha.to_radians().tan() / a).atan().to_degrees();
+    assert_eq!(count_at(&normals, true, flat(34.5), at_point), 1);
+    assert_eq!(count_at(&normals, false, flat(40.75), at_point), 1);
+    // Table: 53 % of the width and of the length (f32 rounding: 1e-5).
+    let table: Vec<&Vec3> = m.positions.iter().filter(|p| p.y == hi.y).collect();
+    let extent = |f: fn(&Vec3) -> f32| {
+        let (a, b) = table
+            .iter()
+            .map(|p| f(p))
+            .fold((f32::MAX, f32::MIN), |(a, b), v| (a.min(v), b.max(v)));
+        f64::from(b - a)
+    };
+    assert!((extent(|p| p.z) / width - 0.53).abs() < 1e-5);
+    assert!((extent(|p| p.x) / length - 0.53).abs() < 1e-5);
+    // The culet: one vertex, under the round end's centre; total depth
+    // 0.02 + 0.47·tan 34.5°/2 + tan 40.75°/2 = 61.21 % of the width.
+    let culet: Vec<&Vec3> = m.positions.iter().filter(|p| p.y == lo.y).collect();
+    let x0 = f64::from(lo.x) + r;
+    assert!(culet
+        .iter()
+        .all(|p| (f64::from(p.x) - x0).abs() < 1e-8 && p.z.abs() < 1e-8));
+    let depth = f64::from(hi.y - lo.y) / width;
+    let stated = 0.02 + 0.235 * 34.5f64.to_radians().tan() + 0.5 * 40.75f64.to_radians().tan();
+    assert!((depth - stated).abs() < 1e-5, "{depth} vs {stated}");
+}
+
 /// Stated values: (name, n_d, Abbe number, coloured).
 const STONES: [(&str, f32, f32, bool); 6] = [
     ("diamond", 2.417, 55.0, false),
@@ -343,7 +428,7 @@ fn bad_arguments_fail_and_write_nothing() {
     let cases: [(&[&str], &str); 7] = [
         (
             &["--cut", "pear-ish", "--stone", "diamond"],
-            "round, emerald, oval",
+            "round, emerald, oval, pear",
         ),
         (&["--cut", "round", "--stone", "glass"], "crown-glass"),
         (

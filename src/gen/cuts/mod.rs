@@ -3,7 +3,9 @@
 //! - [`Cut::Round`]: the round brilliant with Tolkowsky's proportions
 //!   ([`Brilliant::tolkowsky`], in [`super::gem`]);
 //! - [`Cut::Emerald`]: a rectangular step cut with cut corners ([`step::StepCut`]);
-//! - [`Cut::Oval`]: the round brilliant's facets stretched to an ellipse ([`oval::Oval`]).
+//! - [`Cut::Oval`]: the round brilliant's facets stretched to an ellipse ([`oval::Oval`]);
+//! - [`Cut::Pear`]: a teardrop brilliant, the round brilliant's layout on a pear outline
+//!   ([`pear::Pear`]).
 //!
 //! Frame of every cut: metres, +Y up, girdle plane y = 0 (the girdle band straddles it),
 //! table up, centred on the Y axis; the length (if any) along X. Every cut is a convex
@@ -17,6 +19,7 @@
 //! writes it as .glb.
 
 pub mod oval;
+pub mod pear;
 pub mod preview;
 pub mod step;
 
@@ -34,10 +37,12 @@ pub enum Cut {
     Emerald,
     /// Oval brilliant, length/width 1.4; size = length.
     Oval,
+    /// Pear brilliant, length/width 1.6, point at +X; size = length.
+    Pear,
 }
 
 /// Every cut, in the order the CLI lists them.
-pub const CUTS: [Cut; 3] = [Cut::Round, Cut::Emerald, Cut::Oval];
+pub const CUTS: [Cut; 4] = [Cut::Round, Cut::Emerald, Cut::Oval, Cut::Pear];
 
 /// Default `--size`: 6.5 mm (a round diamond of about one carat).
 pub const DEFAULT_SIZE_MM: f64 = 6.5;
@@ -53,6 +58,7 @@ impl Cut {
             Cut::Round => "round",
             Cut::Emerald => "emerald",
             Cut::Oval => "oval",
+            Cut::Pear => "pear",
         }
     }
 
@@ -75,6 +81,7 @@ impl Cut {
             Cut::Round => Brilliant::tolkowsky(size).polygons(),
             Cut::Emerald => step::StepCut::emerald(size).polygons(),
             Cut::Oval => oval::Oval::standard(size).polygons(),
+            Cut::Pear => pear::Pear::standard(size).polygons(),
         }
     }
 
@@ -121,7 +128,7 @@ mod tests {
         }
         assert_eq!(Cut::parse(" Oval ").ok(), Some(Cut::Oval));
         let err = Cut::parse("pear-shaped").expect_err("unknown").to_string();
-        assert!(err.contains("round, emerald, oval"), "{err}");
+        assert!(err.contains("round, emerald, oval, pear"), "{err}");
         assert_eq!(size_metres(6.5).ok(), Some(0.0065));
         for bad in [0.0, -1.0, f64::NAN, f64::INFINITY, 2000.0] {
             assert!(size_metres(bad).is_err(), "{bad}");

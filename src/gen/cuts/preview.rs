@@ -40,17 +40,23 @@ pub struct GemSpec {
     pub cut: Cut,
     /// The material.
     pub stone: Stone,
-    /// Girdle diameter (round) or length (emerald, oval), millimetres.
+    /// Girdle diameter (round) or length (emerald, oval, pear), millimetres.
     pub size_mm: f64,
     /// Only the stone (no camera, lights, floor).
     pub bare: bool,
 }
 
 /// The stones shipped in `assets/gems/`: file name, cut, stone, size in mm.
-pub const GEM_ASSETS: [(&str, Cut, Stone, f64); 3] = [
+pub const GEM_ASSETS: [(&str, Cut, Stone, f64); 4] = [
     ("round_diamond.glb", Cut::Round, Stone::Diamond, 6.5),
     ("emerald_sapphire.glb", Cut::Emerald, Stone::Sapphire, 8.0),
     ("oval_ruby.glb", Cut::Oval, Stone::Ruby, 8.0),
+    (
+        "pear_cubic_zirconia.glb",
+        Cut::Pear,
+        Stone::CubicZirconia,
+        8.0,
+    ),
 ];
 
 fn cut_title(cut: Cut) -> &'static str {
@@ -58,6 +64,7 @@ fn cut_title(cut: Cut) -> &'static str {
         Cut::Round => "Round brilliant",
         Cut::Emerald => "Emerald cut",
         Cut::Oval => "Oval brilliant",
+        Cut::Pear => "Pear brilliant",
     }
 }
 
