@@ -113,6 +113,12 @@ pub const ENTRIES: &[Entry] = &[
         about: "An emerald-cut sapphire (`iris gem --cut emerald --stone sapphire`) in the preview scene.",
     },
     Entry {
+        name: "pear_cubic_zirconia",
+        path: "assets/gems/pear_cubic_zirconia.glb",
+        origin: Origin::Project,
+        about: "A pear brilliant in cubic zirconia (`iris gem --cut pear --stone cubic-zirconia`) in the preview scene.",
+    },
+    Entry {
         name: "dispersion_test",
         path: "khronos/DispersionTest/DispersionTest.glb",
         origin: Origin::Shared,

@@ -4,7 +4,7 @@
 //! - [`lathe`]: surfaces of revolution; the glass of water (glass and water sharing their
 //!   interface vertices exactly).
 //! - [`gem`]: the round brilliant cut; [`cuts`]: the cuts of `iris gem` (round
-//!   brilliant, emerald, oval) and their preview scenes; [`stones`]: named gem materials.
+//!   brilliant, emerald, oval, pear) and their preview scenes; [`stones`]: named gem materials.
 //! - [`sky`]: the procedural sky map and its `.hdr` (RGBE) encoder.
 //! - [`model`]: the in-memory scene model ([`GenScene`]) in Iris's conventions (metres,
 //!   +Y up, linear colours, candela/lux lights).
