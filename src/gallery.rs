@@ -175,8 +175,14 @@ pub struct GallerySummary {
 /// (relative to the current directory). `Ok(None)` when it is not a directory, unless
 /// `IRIS_REQUIRE_SHARED=1`, which makes that an [`Error::Usage`].
 pub fn shared_assets_dir() -> Result<Option<PathBuf>> {
+    shared_assets_dir_in(Path::new(""))
+}
+
+/// [`shared_assets_dir`] for a project at `root` (the tests and benches pass their
+/// manifest directory): `IRIS_SHARED_ASSETS`, else `root/../shared/assets`.
+pub fn shared_assets_dir_in(root: &Path) -> Result<Option<PathBuf>> {
     let dir = std::env::var_os("IRIS_SHARED_ASSETS")
-        .map_or_else(|| PathBuf::from("../shared/assets"), PathBuf::from);
+        .map_or_else(|| root.join("../shared/assets"), PathBuf::from);
     if dir.is_dir() {
         return Ok(Some(dir));
     }

@@ -6,10 +6,8 @@ use std::path::PathBuf;
 
 /// `../shared/assets` (or `IRIS_SHARED_ASSETS`) if present; the bench says SKIPPED otherwise.
 pub fn shared_assets() -> Option<PathBuf> {
-    let dir = std::env::var_os("IRIS_SHARED_ASSETS")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/assets"));
-    dir.is_dir().then_some(dir)
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    iris::gallery::shared_assets_dir_in(root).ok().flatten()
 }
 
 /// The backends compiled in, Embree first.

@@ -11,23 +11,17 @@ pub mod alloc;
 /// why it skips and returns `None`. CI sets `IRIS_REQUIRE_SHARED=1`, which turns the
 /// absence into a failure so CI never skips these tests.
 pub fn shared_assets() -> Option<PathBuf> {
-    let dir = std::env::var_os("IRIS_SHARED_ASSETS")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/assets"));
-    if dir.is_dir() {
-        return Some(dir);
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    // The rule is the gallery's (`iris::gallery::shared_assets_dir_in`); an error here
+    // is IRIS_REQUIRE_SHARED=1 with the folder missing.
+    let found = iris::gallery::shared_assets_dir_in(root).unwrap_or_else(|e| panic!("{e}"));
+    if found.is_none() {
+        eprintln!(
+            "SKIPPED: shared test assets not found at {} (set IRIS_SHARED_ASSETS, or IRIS_REQUIRE_SHARED=1 to fail)",
+            root.join("../shared/assets").display()
+        );
     }
-    let required = std::env::var("IRIS_REQUIRE_SHARED").is_ok_and(|v| v == "1");
-    assert!(
-        !required,
-        "IRIS_REQUIRE_SHARED=1 but the shared test assets are missing at {}",
-        dir.display()
-    );
-    eprintln!(
-        "SKIPPED: shared test assets not found at {} (set IRIS_SHARED_ASSETS, or IRIS_REQUIRE_SHARED=1 to fail)",
-        dir.display()
-    );
-    None
+    found
 }
 
 /// A scratch directory unique to one test, emptied first.
