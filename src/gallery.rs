@@ -119,6 +119,12 @@ pub const ENTRIES: &[Entry] = &[
         about: "A pear brilliant in cubic zirconia (`iris gem --cut pear --stone cubic-zirconia`) in the preview scene.",
     },
     Entry {
+        name: "round_diamond_bare",
+        path: "assets/gems/round_diamond_bare.glb",
+        origin: Origin::Project,
+        about: "The drop-in preview: `iris gem --cut round --stone diamond --bare` writes the stone alone (no camera, light or floor, like most artists' files); Iris frames it from the three-quarter view, lights it with studio `soft` and adds the white floor.",
+    },
+    Entry {
         name: "dispersion_test",
         path: "khronos/DispersionTest/DispersionTest.glb",
         origin: Origin::Shared,

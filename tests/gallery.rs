@@ -37,14 +37,14 @@ fn gallery_renders_selected_entries_and_writes_the_page() {
             "--only",
             "fig4_4_1",
             "--only",
-            "round_diamond",
+            "round_diamond_bare",
             "-q",
         ],
         root(),
     );
     assert!(o.status.success(), "gallery failed: {}", stderr(&o));
     let page = std::fs::read_to_string(out.join("README.md")).expect("page written");
-    for name in ["fig4_4_1_prism", "round_diamond"] {
+    for name in ["fig4_4_1_prism", "round_diamond_bare"] {
         let png = out.join(format!("{name}.png"));
         assert_eq!(
             image::image_dimensions(&png).expect("png header"),

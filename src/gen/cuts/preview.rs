@@ -46,18 +46,37 @@ pub struct GemSpec {
     pub bare: bool,
 }
 
-/// The stones shipped in `assets/gems/`: file name, cut, stone, size in mm.
-pub const GEM_ASSETS: [(&str, Cut, Stone, f64); 4] = [
-    ("round_diamond.glb", Cut::Round, Stone::Diamond, 6.5),
-    ("emerald_sapphire.glb", Cut::Emerald, Stone::Sapphire, 8.0),
-    ("oval_ruby.glb", Cut::Oval, Stone::Ruby, 8.0),
+/// The stones shipped in `assets/gems/`: file name and what it holds. The four previews
+/// carry camera, lights and floor; `round_diamond_bare.glb` is the stone alone (what an
+/// artist's file usually is), for the drop-in preview.
+pub const GEM_ASSETS: [(&str, GemSpec); 5] = [
+    (
+        "round_diamond.glb",
+        spec(Cut::Round, Stone::Diamond, 6.5, false),
+    ),
+    (
+        "emerald_sapphire.glb",
+        spec(Cut::Emerald, Stone::Sapphire, 8.0, false),
+    ),
+    ("oval_ruby.glb", spec(Cut::Oval, Stone::Ruby, 8.0, false)),
     (
         "pear_cubic_zirconia.glb",
-        Cut::Pear,
-        Stone::CubicZirconia,
-        8.0,
+        spec(Cut::Pear, Stone::CubicZirconia, 8.0, false),
+    ),
+    (
+        "round_diamond_bare.glb",
+        spec(Cut::Round, Stone::Diamond, 6.5, true),
     ),
 ];
+
+const fn spec(cut: Cut, stone: Stone, size_mm: f64, bare: bool) -> GemSpec {
+    GemSpec {
+        cut,
+        stone,
+        size_mm,
+        bare,
+    }
+}
 
 fn cut_title(cut: Cut) -> &'static str {
     match cut {
@@ -208,14 +227,8 @@ pub fn write_gem_assets(dir: &Path) -> Result<Vec<PathBuf>> {
         reason: format!("cannot create directory: {e}"),
     })?;
     let mut written = Vec::with_capacity(GEM_ASSETS.len());
-    for (name, cut, stone, size_mm) in GEM_ASSETS {
+    for (name, spec) in GEM_ASSETS {
         let path = dir.join(name);
-        let spec = GemSpec {
-            cut,
-            stone,
-            size_mm,
-            bare: false,
-        };
         write_glb(&path, &gem_scene(&spec)?)?;
         written.push(path);
     }
