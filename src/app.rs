@@ -7,15 +7,17 @@ use crate::camera::Camera;
 use crate::converge::{measure::Recorder, MeasureOptions};
 use crate::envmap::Environment;
 use crate::error::{Error, Result};
-use crate::framing::{frame_points, View};
+pub use crate::info::info_command;
 use crate::integrator::{Integrator, Method};
 use crate::metrics::ErrorMetrics;
 use crate::output::{self, Background, DisplayOptions, ImageRgb};
+pub use crate::preview::{
+    choose_camera, choose_camera_view, default_preview_scene, load_for_preview, PreviewOptions,
+};
 use crate::render::{render_progressive, Control, Progress, RenderSettings, RenderStats};
 use crate::report::ReportRow;
-use crate::scene::desc::{CameraDesc, EnvironmentDesc, LightDesc, Projection};
+use crate::scene::desc::{EnvironmentDesc, Projection};
 use crate::scene::Scene;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -124,29 +126,6 @@ pub fn load_with_environment(
     Ok((scene, env, start.elapsed()))
 }
 
-/// Like [`load_with_environment`], adding the `--ground` floor between validation and the
-/// acceleration build; the scene's `subject_bounds` stay those of the file's geometry.
-/// Returns the note saying whether a floor was added.
-pub fn load_for_preview(
-    path: &Path,
-    accel: Backend,
-    ground: crate::studio::GroundMode,
-) -> Result<(Scene, Option<EnvironmentDesc>, Duration, String)> {
-    let start = Instant::now();
-    let mut desc = crate::load::load_scene(path)?;
-    let env = desc.environment.take();
-    let model = crate::studio::ground::desc_bounds(&desc);
-    let (add, note) = crate::studio::ground::decide(&desc, ground);
-    if add {
-        crate::studio::ground::add_ground(&mut desc, model);
-    }
-    let mut scene = Scene::build(desc, accel)?;
-    if add {
-        scene.subject_bounds = model;
-    }
-    Ok((scene, env, start.elapsed(), note))
-}
-
 /// The environment to render with: the `--env` choice if given, else the file's
 /// (a map is decoded here; errors name the map file).
 pub fn resolve_environment(
@@ -162,107 +141,6 @@ pub fn resolve_environment(
         (None, Some(EnvironmentDesc::Map(path))) => {
             Ok(Some(Environment::Map(crate::envmap::load(&path)?)))
         }
-    }
-}
-
-/// The vertices automatic framing fits: the file's own, without a `--ground` floor
-/// ([`crate::studio::ground::GROUND_MESH`]).
-fn subject_points(scene: &Scene) -> std::borrow::Cow<'_, [glam::Vec3]> {
-    let ground = scene
-        .meshes
-        .iter()
-        .position(|m| m.name == crate::studio::ground::GROUND_MESH);
-    match ground {
-        None => std::borrow::Cow::Borrowed(&scene.positions),
-        Some(g) => std::borrow::Cow::Owned(
-            scene
-                .triangles
-                .iter()
-                .zip(&scene.triangle_mesh)
-                .filter(|(_, &m)| m as usize != g)
-                .flat_map(|(t, _)| t.iter().map(|&i| scene.positions[i as usize]))
-                .collect(),
-        ),
-    }
-}
-
-/// Picks the camera by name or index, or frames the scene when the file has none.
-pub fn choose_camera(
-    scene: &Scene,
-    choice: Option<&str>,
-    aspect: f32,
-) -> Result<(CameraDesc, Option<String>)> {
-    choose_camera_view(scene, choice, None, aspect)
-}
-
-/// [`choose_camera`] with `--view`: a view frames the model automatically
-/// ([`crate::framing`]) even when the file has cameras; it cannot be combined with
-/// `--camera`.
-pub fn choose_camera_view(
-    scene: &Scene,
-    choice: Option<&str>,
-    view: Option<View>,
-    aspect: f32,
-) -> Result<(CameraDesc, Option<String>)> {
-    if let (Some(v), Some(c)) = (view, choice) {
-        return Err(Error::Usage(format!(
-            "--view {} and --camera {c}: choose one (--view frames the model automatically)",
-            v.name()
-        )));
-    }
-    if let Some(v) = view {
-        return Ok((
-            frame_points(&subject_points(scene), v, aspect),
-            Some(format!(
-                "--view {}: framing the model automatically{}",
-                v.name(),
-                if scene.cameras.is_empty() {
-                    ""
-                } else {
-                    " instead of the file's camera"
-                }
-            )),
-        ));
-    }
-    match choice {
-        Some(c) => {
-            let found = scene
-                .cameras
-                .iter()
-                .find(|cam| cam.name == c)
-                .or_else(|| c.parse::<usize>().ok().and_then(|i| scene.cameras.get(i)));
-            match found {
-                Some(cam) => Ok((cam.clone(), None)),
-                None => {
-                    let names: Vec<String> = scene
-                        .cameras
-                        .iter()
-                        .enumerate()
-                        .map(|(i, c)| format!("{i} \"{}\"", c.name))
-                        .collect();
-                    Err(Error::Usage(format!(
-                        "--camera {c}: no such camera in {} (available: {})",
-                        scene.source.display(),
-                        if names.is_empty() {
-                            "none".into()
-                        } else {
-                            names.join(", ")
-                        }
-                    )))
-                }
-            }
-        }
-        None => match scene.cameras.first() {
-            Some(cam) => Ok((cam.clone(), None)),
-            None => Ok((
-                frame_points(&subject_points(scene), View::default(), aspect),
-                Some(
-                    "no camera in the file: framing the model from the front-right, 35° above \
-                     (--view front|top|side|threequarter)"
-                        .into(),
-                ),
-            )),
-        },
     }
 }
 
@@ -323,34 +201,6 @@ impl SpectralMode {
                     .any(|m| m.is_dispersive() || m.emitter_shape().is_some())
                     || scene.light_shapes.iter().any(Option::is_some)
             }
-        }
-    }
-}
-
-/// `iris render` options for drop-in previews ([`crate::studio`], [`crate::framing`],
-/// [`crate::output::background`]).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct PreviewOptions {
-    /// Studio preset used when the file has no light and no environment is given.
-    pub studio: crate::studio::Studio,
-    /// Whether to add a white floor under the model.
-    pub ground: crate::studio::GroundMode,
-    /// `--view`: frame the model automatically from this view (else the file's first
-    /// camera, or the three-quarter view when it has none).
-    pub view: Option<View>,
-    /// `--background`: what escaped camera rays show ([`crate::output::background`]).
-    pub background: Background,
-}
-
-impl PreviewOptions {
-    /// The floor rule in effect: `--ground auto` adds none when `--background` is not the
-    /// environment (a floor filling the frame would hide the background asked for).
-    pub fn ground_mode(&self) -> crate::studio::GroundMode {
-        use crate::studio::GroundMode;
-        match (self.ground, self.background) {
-            (GroundMode::Auto, Background::Environment) => GroundMode::Auto,
-            (GroundMode::Auto, _) => GroundMode::Off,
-            (g, _) => g,
         }
     }
 }
@@ -552,221 +402,6 @@ pub fn render_command_planned(
         method,
         plan,
     })
-}
-
-/// `iris info`: a human-readable description of the scene.
-pub fn info_command(path: &Path) -> Result<String> {
-    let desc = crate::load::load_scene(path)?;
-    let mut s = String::new();
-    let tris: usize = desc.meshes.iter().map(|m| m.indices.len()).sum();
-    let _ = writeln!(
-        s,
-        "{}: {} meshes, {} triangles",
-        path.display(),
-        desc.meshes.len(),
-        tris
-    );
-    let _ = writeln!(s, "meshes:");
-    for m in &desc.meshes {
-        let mat = m
-            .material
-            .and_then(|i| desc.materials.get(i))
-            .map_or("default material", |x| &x.name);
-        let _ = writeln!(s, "  {}: {} triangles, {}", m.name, m.indices.len(), mat);
-    }
-    let _ = writeln!(s, "materials:");
-    for m in &desc.materials {
-        let ior = crate::material::describe_ior(m);
-        let _ = write!(
-            s,
-            "  {}: base [{:.3} {:.3} {:.3} {:.3}] metallic {} roughness {} ior {} transmission {}",
-            m.name,
-            m.base_color.x,
-            m.base_color.y,
-            m.base_color.z,
-            m.base_color.w,
-            m.metallic,
-            m.roughness,
-            ior,
-            m.transmission
-        );
-        if m.thickness > 0.0 || m.attenuation_distance.is_finite() {
-            let _ = write!(
-                s,
-                " volume(thickness {} attenuation [{:.3} {:.3} {:.3}] over {})",
-                m.thickness,
-                m.attenuation_color.x,
-                m.attenuation_color.y,
-                m.attenuation_color.z,
-                m.attenuation_distance
-            );
-        }
-        if m.priority != 0 {
-            let _ = write!(s, " priority {}", m.priority);
-        }
-        if m.specular != 1.0 || m.specular_color != glam::Vec3::ONE {
-            let _ = write!(
-                s,
-                " specular {} color {:?}",
-                m.specular,
-                m.specular_color.to_array()
-            );
-        }
-        if m.emissive != glam::Vec3::ZERO {
-            let _ = write!(s, " emissive {:?}", m.emissive.to_array());
-        }
-        if let Some(spectrum) = m.emission_spectrum {
-            let _ = write!(s, " {}", spectrum_note(spectrum));
-        }
-        let _ = writeln!(s);
-    }
-    let _ = writeln!(s, "lights:");
-    let emitters = desc
-        .meshes
-        .iter()
-        .filter(|m| {
-            m.material
-                .and_then(|i| desc.materials.get(i))
-                .is_some_and(|x| x.emissive.max_element() > 0.0)
-        })
-        .count();
-    if emitters > 0 {
-        let _ = writeln!(s, "  {emitters} emissive meshes (sampled as area lights)");
-    }
-    if desc.lights.is_empty() && emitters == 0 && desc.environment.is_none() {
-        let _ = writeln!(
-            s,
-            "  none (renders use the studio lighting of --studio, default soft, or --env)"
-        );
-    }
-    for l in &desc.lights {
-        let line = match l {
-            LightDesc::Point {
-                name,
-                position,
-                intensity,
-                ..
-            } => format!(
-                "point \"{name}\" {intensity} cd at {:?}",
-                position.to_array()
-            ),
-            LightDesc::Spot {
-                name,
-                position,
-                intensity,
-                outer_cone,
-                ..
-            } => format!(
-                "spot \"{name}\" {intensity} cd at {:?}, outer cone {:.1}°",
-                position.to_array(),
-                outer_cone.to_degrees()
-            ),
-            LightDesc::Directional {
-                name,
-                direction,
-                intensity,
-                ..
-            } => format!(
-                "directional \"{name}\" {intensity} lx toward {:?}",
-                direction.to_array()
-            ),
-        };
-        match l.spectrum() {
-            Some(spectrum) => {
-                let _ = writeln!(s, "  {line}, {}", spectrum_note(spectrum));
-            }
-            None => {
-                let _ = writeln!(s, "  {line}");
-            }
-        }
-    }
-    match &desc.environment {
-        Some(EnvironmentDesc::Uniform(c)) => {
-            let _ = writeln!(
-                s,
-                "  environment (file): uniform {:?} (--env overrides)",
-                c.to_array()
-            );
-        }
-        Some(EnvironmentDesc::Map(p)) => {
-            let _ = writeln!(
-                s,
-                "  environment (file): map {} (--env overrides)",
-                p.display()
-            );
-        }
-        None => {}
-    }
-    let _ = writeln!(s, "cameras:");
-    if desc.cameras.is_empty() {
-        let _ = writeln!(
-            s,
-            "  none (renders frame the model automatically; --view front|top|side|threequarter)"
-        );
-    }
-    for (i, c) in desc.cameras.iter().enumerate() {
-        let p = match c.projection {
-            Projection::Perspective { yfov, .. } => {
-                format!("perspective yfov {:.1}°", yfov.to_degrees())
-            }
-            Projection::Orthographic { xmag, ymag } => format!("orthographic {xmag}×{ymag}"),
-        };
-        let _ = writeln!(s, "  {i} \"{}\": {p}", c.name);
-    }
-    if !desc.warnings.is_empty() {
-        let _ = writeln!(s, "warnings:");
-        for w in &desc.warnings {
-            let _ = writeln!(s, "  {w}");
-        }
-    }
-    match info_plan(path) {
-        Ok(plan) => s.push_str(&plan),
-        Err(e) => {
-            let _ = writeln!(s, "render plan: unavailable ({e})");
-        }
-    }
-    Ok(s)
-}
-
-/// The render plan of `iris render SCENE` with default flags (auto method, auto spectral,
-/// the file's environment), with its costs measured, for `iris info`.
-fn info_plan(path: &Path) -> Result<String> {
-    let (w, h) = crate::plan::PROBE_SIZE;
-    let (scene, cam) = default_preview_scene(path, Backend::Auto, w as f32 / h as f32)?;
-    let mut plan = crate::plan::Plan::new(&scene, Method::Auto, SpectralMode::Auto);
-    plan.add_file_counts(path);
-    plan.measure_costs(&scene, &Camera::new(&cam, w, h), 0)?;
-    Ok(format!(
-        "{}  (the plan for --method auto; `iris render` defaults to --method whitted)\n",
-        plan.text_with_costs()
-    ))
-}
-
-/// The scene and camera `iris render FILE` renders with default flags: the file's
-/// environment, the `--ground auto` floor, the file's first camera or the automatic view,
-/// and the default studio when the file has no light.
-pub fn default_preview_scene(
-    path: &Path,
-    accel: Backend,
-    aspect: f32,
-) -> Result<(Scene, CameraDesc)> {
-    let preview = PreviewOptions::default();
-    let (scene, file_env, _, _) = load_for_preview(path, accel, preview.ground_mode())?;
-    let mut scene = scene.with_environment(resolve_environment(None, file_env)?);
-    let (cam, _) = choose_camera_view(&scene, None, preview.view, aspect)?;
-    let bounds = scene.subject_bounds;
-    crate::studio::apply(&mut scene, preview.studio, bounds, &cam);
-    Ok((scene, cam))
-}
-
-/// `spectrum D65 (sRGB [1.000 1.000 1.000])`: an emitter's `iris_spectrum` and the colour
-/// the RGB renderer gives it (luminance 1, before the file's colour filter).
-fn spectrum_note(spectrum: crate::scene::desc::EmissionSpectrum) -> String {
-    let c = spectrum.linear_srgb();
-    format!(
-        "spectrum {spectrum} (sRGB [{:.3} {:.3} {:.3}])",
-        c.x, c.y, c.z
-    )
 }
 
 /// What `iris diff` measures.

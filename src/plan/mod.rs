@@ -25,30 +25,20 @@
 //! compares); [`Plan::text_with_costs`] adds them.
 
 use crate::app::SpectralMode;
-use crate::camera::Camera;
 use crate::converge::method_name;
 use crate::envmap::Environment;
-use crate::error::Result;
-use crate::integrator::{Integrator, Method};
+use crate::integrator::Method;
 use crate::photon::emit::PhotonEmitter;
-use crate::photon::trace::{has_caustic_paths, trace, Roulette, TraceSettings};
-use crate::render::{render_progressive, RenderSettings};
+use crate::photon::trace::has_caustic_paths;
 use crate::scene::{Scene, TriangleData};
-use glam::Vec3;
 use std::collections::BTreeSet;
+
+mod costs;
+pub use costs::{COST_PHOTONS, PROBE_REPEATS, PROBE_SIZE};
 use std::fmt::Write as _;
-use std::path::Path;
-use std::time::Instant;
 
 /// Probe photons behind the caustic decision (the number `Method::resolve` uses).
 pub const CAUSTIC_PROBE_PHOTONS: u32 = 4096;
-/// Photons traced to time a photon pass.
-pub const COST_PHOTONS: u32 = 10_000;
-/// Timed probe renders per transport (the fastest counts).
-pub const PROBE_REPEATS: u32 = 3;
-/// Probe render size for the transport cost.
-pub const PROBE_SIZE: (u32, u32) = (32, 24);
-
 /// One stage of the pipeline.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Stage {
@@ -335,101 +325,6 @@ impl Plan {
         self.stages.iter().find(|s| s.name == name)
     }
 
-    /// Adds the glTF file's own counts (images, meshes) to the textures and acceleration
-    /// reasons, parsing only the JSON (no buffers, no images). Other formats: unchanged.
-    pub fn add_file_counts(&mut self, path: &Path) {
-        let Some((images, meshes)) = gltf_counts(path) else {
-            return;
-        };
-        if let Some(s) = self.stages.iter_mut().find(|s| s.name == "textures") {
-            let _ = write!(s.reason, "; {images} images in the file");
-        }
-        if let Some(s) = self.stages.iter_mut().find(|s| s.name == "acceleration") {
-            let _ = write!(
-                s.reason,
-                "; {meshes} meshes in the file (meshes no node instances are not loaded)"
-            );
-        }
-    }
-
-    /// Measures (or quotes, with the source) what each stage costs on this scene: a 32×24,
-    /// 1 spp probe render with RGB and with spectral transport (path tracer, or the plan's
-    /// method when it is Whitted; fastest of [`PROBE_REPEATS`] each), and 10 000 traced
-    /// photons.
-    pub fn measure_costs(&mut self, scene: &Scene, camera: &Camera, threads: usize) -> Result<()> {
-        let method = if self.method == Method::Whitted {
-            Method::Whitted
-        } else {
-            Method::Path
-        };
-        let probe = |spectral: bool| -> Result<f64> {
-            let (w, h) = PROBE_SIZE;
-            let integrator = Integrator {
-                method,
-                max_depth: 64,
-                photon: Default::default(),
-            };
-            let settings = RenderSettings {
-                width: w,
-                height: h,
-                spp: 1,
-                seed: 0,
-                threads,
-                quiet: true,
-                spectral,
-                time_limit: None,
-            };
-            let start = Instant::now();
-            render_progressive(scene, camera, &integrator, &settings, None)?;
-            Ok(start.elapsed().as_secs_f64() * 1e3)
-        };
-        // Warm-up of both (thread pool, caches), then the fastest of three alternating runs
-        // each: single millisecond-scale runs on a shared machine vary by 2x and more.
-        probe(false)?;
-        probe(true)?;
-        let (mut rgb, mut spectral) = (f64::INFINITY, f64::INFINITY);
-        for _ in 0..PROBE_REPEATS {
-            rgb = rgb.min(probe(false)?);
-            spectral = spectral.min(probe(true)?);
-        }
-        let emitter = PhotonEmitter::new(scene);
-        let photons = (!emitter.is_empty()).then(|| time_photons(scene, &emitter));
-        let backend = scene.backend_name();
-        for s in &mut self.stages {
-            s.cost = Some(match s.name {
-                "transport" => format!(
-                    "probe {}x{}, 1 spp, {}, fastest of {PROBE_REPEATS}: RGB {rgb:.1} ms, \
-                     spectral {spectral:.1} ms (x{:.2})",
-                    PROBE_SIZE.0,
-                    PROBE_SIZE.1,
-                    method_name(method),
-                    spectral / rgb.max(1e-6)
-                ),
-                "photons" => match photons {
-                    Some(ms) => format!(
-                        "tracing {COST_PHOTONS} photons on one thread: {ms:.1} ms (a pass; SPPM also builds \
-                         and gathers its map)"
-                    ),
-                    None => "no light emits: no photons to trace".into(),
-                },
-                "volumes" => "not measured (one colour power per segment inside a medium)".into(),
-                "textures" => "not measured; BENCHMARKS.md 'Scene load and acceleration-structure build': texture \
-                               decoding dominates loading where there are textures \
-                               (GlassHurricaneCandleHolder: 3.4 MB of images, 158 ms)"
-                    .into(),
-                "acceleration" => format!(
-                    "built in {:.1} ms ({backend})",
-                    scene.accel_build_time.as_secs_f64() * 1e3
-                ),
-                "environment" => "not measured".into(),
-                _ => "BENCHMARKS.md 'Path tracer on real scenes': 0.45 us per probe on Embree, \
-                      8.4 us on the BVH, at each hit on a marked triangle"
-                    .into(),
-            });
-        }
-        Ok(())
-    }
-
     /// The plan without timings (what the snapshot test compares).
     pub fn text(&self) -> String {
         self.render_text(false)
@@ -457,35 +352,4 @@ impl Plan {
         }
         s
     }
-}
-
-/// Milliseconds to trace [`COST_PHOTONS`] photons (fixed seed, depth 8, the caustic probe's
-/// settings).
-fn time_photons(scene: &Scene, emitter: &PhotonEmitter) -> f64 {
-    let settings = TraceSettings {
-        max_depth: 8,
-        roulette: Roulette::Throughput,
-    };
-    let start = Instant::now();
-    let mut vertices = 0u64;
-    for i in 0..COST_PHOTONS {
-        let mut rng = crate::math::Rng::new(&[0x0C05_7000, i as u64]);
-        if let Some(ph) = emitter.emit_from(scene, &mut rng) {
-            trace::<Vec3>(scene, &ph, (), &settings, &mut rng, |_, _| vertices += 1);
-        }
-    }
-    std::hint::black_box(vertices);
-    start.elapsed().as_secs_f64() * 1e3
-}
-
-/// (images, meshes) declared in a .gltf/.glb file's JSON, or `None` for other formats or a
-/// file the glTF parser rejects.
-fn gltf_counts(path: &Path) -> Option<(usize, usize)> {
-    let ext = path.extension()?.to_string_lossy().to_ascii_lowercase();
-    if ext != "gltf" && ext != "glb" {
-        return None;
-    }
-    let bytes = std::fs::read(path).ok()?;
-    let g = gltf::Gltf::from_slice_without_validation(&bytes).ok()?;
-    Some((g.document.images().len(), g.document.meshes().len()))
 }

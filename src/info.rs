@@ -1,0 +1,211 @@
+//! `iris info`: what Iris reads from a scene file (meshes, triangles, materials with their
+//! KHR values, lights, cameras, the environment, warnings) and the render plan that
+//! `iris render FILE` would follow with default flags, with its costs measured. Values are
+//! printed in the file's units (lights: candela / lux, as KHR_lights_punctual).
+
+use crate::accel::Backend;
+use crate::app::{default_preview_scene, SpectralMode};
+use crate::camera::Camera;
+use crate::error::Result;
+use crate::integrator::Method;
+use crate::scene::desc::{EnvironmentDesc, LightDesc, Projection};
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// `iris info`: a human-readable description of the scene.
+pub fn info_command(path: &Path) -> Result<String> {
+    let desc = crate::load::load_scene(path)?;
+    let mut s = String::new();
+    let tris: usize = desc.meshes.iter().map(|m| m.indices.len()).sum();
+    let _ = writeln!(
+        s,
+        "{}: {} meshes, {} triangles",
+        path.display(),
+        desc.meshes.len(),
+        tris
+    );
+    let _ = writeln!(s, "meshes:");
+    for m in &desc.meshes {
+        let mat = m
+            .material
+            .and_then(|i| desc.materials.get(i))
+            .map_or("default material", |x| &x.name);
+        let _ = writeln!(s, "  {}: {} triangles, {}", m.name, m.indices.len(), mat);
+    }
+    let _ = writeln!(s, "materials:");
+    for m in &desc.materials {
+        let ior = crate::material::describe_ior(m);
+        let _ = write!(
+            s,
+            "  {}: base [{:.3} {:.3} {:.3} {:.3}] metallic {} roughness {} ior {} transmission {}",
+            m.name,
+            m.base_color.x,
+            m.base_color.y,
+            m.base_color.z,
+            m.base_color.w,
+            m.metallic,
+            m.roughness,
+            ior,
+            m.transmission
+        );
+        if m.thickness > 0.0 || m.attenuation_distance.is_finite() {
+            let _ = write!(
+                s,
+                " volume(thickness {} attenuation [{:.3} {:.3} {:.3}] over {})",
+                m.thickness,
+                m.attenuation_color.x,
+                m.attenuation_color.y,
+                m.attenuation_color.z,
+                m.attenuation_distance
+            );
+        }
+        if m.priority != 0 {
+            let _ = write!(s, " priority {}", m.priority);
+        }
+        if m.specular != 1.0 || m.specular_color != glam::Vec3::ONE {
+            let _ = write!(
+                s,
+                " specular {} color {:?}",
+                m.specular,
+                m.specular_color.to_array()
+            );
+        }
+        if m.emissive != glam::Vec3::ZERO {
+            let _ = write!(s, " emissive {:?}", m.emissive.to_array());
+        }
+        if let Some(spectrum) = m.emission_spectrum {
+            let _ = write!(s, " {}", spectrum_note(spectrum));
+        }
+        let _ = writeln!(s);
+    }
+    let _ = writeln!(s, "lights:");
+    let emitters = desc
+        .meshes
+        .iter()
+        .filter(|m| {
+            m.material
+                .and_then(|i| desc.materials.get(i))
+                .is_some_and(|x| x.emissive.max_element() > 0.0)
+        })
+        .count();
+    if emitters > 0 {
+        let _ = writeln!(s, "  {emitters} emissive meshes (sampled as area lights)");
+    }
+    if desc.lights.is_empty() && emitters == 0 && desc.environment.is_none() {
+        let _ = writeln!(
+            s,
+            "  none (renders use the studio lighting of --studio, default soft, or --env)"
+        );
+    }
+    for l in &desc.lights {
+        let line = match l {
+            LightDesc::Point {
+                name,
+                position,
+                intensity,
+                ..
+            } => format!(
+                "point \"{name}\" {intensity} cd at {:?}",
+                position.to_array()
+            ),
+            LightDesc::Spot {
+                name,
+                position,
+                intensity,
+                outer_cone,
+                ..
+            } => format!(
+                "spot \"{name}\" {intensity} cd at {:?}, outer cone {:.1}°",
+                position.to_array(),
+                outer_cone.to_degrees()
+            ),
+            LightDesc::Directional {
+                name,
+                direction,
+                intensity,
+                ..
+            } => format!(
+                "directional \"{name}\" {intensity} lx toward {:?}",
+                direction.to_array()
+            ),
+        };
+        match l.spectrum() {
+            Some(spectrum) => {
+                let _ = writeln!(s, "  {line}, {}", spectrum_note(spectrum));
+            }
+            None => {
+                let _ = writeln!(s, "  {line}");
+            }
+        }
+    }
+    match &desc.environment {
+        Some(EnvironmentDesc::Uniform(c)) => {
+            let _ = writeln!(
+                s,
+                "  environment (file): uniform {:?} (--env overrides)",
+                c.to_array()
+            );
+        }
+        Some(EnvironmentDesc::Map(p)) => {
+            let _ = writeln!(
+                s,
+                "  environment (file): map {} (--env overrides)",
+                p.display()
+            );
+        }
+        None => {}
+    }
+    let _ = writeln!(s, "cameras:");
+    if desc.cameras.is_empty() {
+        let _ = writeln!(
+            s,
+            "  none (renders frame the model automatically; --view front|top|side|threequarter)"
+        );
+    }
+    for (i, c) in desc.cameras.iter().enumerate() {
+        let p = match c.projection {
+            Projection::Perspective { yfov, .. } => {
+                format!("perspective yfov {:.1}°", yfov.to_degrees())
+            }
+            Projection::Orthographic { xmag, ymag } => format!("orthographic {xmag}×{ymag}"),
+        };
+        let _ = writeln!(s, "  {i} \"{}\": {p}", c.name);
+    }
+    if !desc.warnings.is_empty() {
+        let _ = writeln!(s, "warnings:");
+        for w in &desc.warnings {
+            let _ = writeln!(s, "  {w}");
+        }
+    }
+    match info_plan(path) {
+        Ok(plan) => s.push_str(&plan),
+        Err(e) => {
+            let _ = writeln!(s, "render plan: unavailable ({e})");
+        }
+    }
+    Ok(s)
+}
+
+/// The render plan of `iris render SCENE` with default flags (auto method, auto spectral,
+/// the file's environment), with its costs measured, for `iris info`.
+fn info_plan(path: &Path) -> Result<String> {
+    let (w, h) = crate::plan::PROBE_SIZE;
+    let (scene, cam) = default_preview_scene(path, Backend::Auto, w as f32 / h as f32)?;
+    let mut plan = crate::plan::Plan::new(&scene, Method::Auto, SpectralMode::Auto);
+    plan.add_file_counts(path);
+    plan.measure_costs(&scene, &Camera::new(&cam, w, h), 0)?;
+    Ok(format!(
+        "{}  (the plan for --method auto; `iris render` defaults to --method whitted)\n",
+        plan.text_with_costs()
+    ))
+}
+
+/// `spectrum D65 (sRGB [1.000 1.000 1.000])`: an emitter's `iris_spectrum` and the colour
+/// the RGB renderer gives it (luminance 1, before the file's colour filter).
+fn spectrum_note(spectrum: crate::scene::desc::EmissionSpectrum) -> String {
+    let c = spectrum.linear_srgb();
+    format!(
+        "spectrum {spectrum} (sRGB [{:.3} {:.3} {:.3}])",
+        c.x, c.y, c.z
+    )
+}
