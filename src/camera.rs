@@ -1,5 +1,5 @@
 //! Cameras: glTF perspective and orthographic projections. Automatic framing for files
-//! without a camera is [`crate::framing`] (this module keeps the older [`frame_bounds`]).
+//! without a camera is [`crate::framing`].
 //! Camera space is glTF's: looking down −Z, +Y up. Raster coordinates have (0,0) at the top-left
 //! corner of the image, x right, y down, in pixels.
 
@@ -76,57 +76,4 @@ pub fn look_at(eye: Vec3, target: Vec3, up: Vec3) -> Mat4 {
         (-f).extend(0.0),
         eye.extend(1.0),
     )
-}
-
-/// A perspective camera that frames the bounding box `[lo, hi]` from the front-right-above
-/// (+Z is the glTF front), with a 40° vertical field of view, fitting the bounding sphere
-/// for the given image aspect. `iris render` uses [`crate::framing::frame_points`] instead,
-/// which fits the projected vertices so flat and elongated models fill the frame.
-pub fn frame_bounds(lo: Vec3, hi: Vec3, aspect: f32) -> CameraDesc {
-    let center = 0.5 * (lo + hi);
-    let radius = (0.5 * (hi - lo).length()).max(f32::MIN_POSITIVE);
-    let yfov = 40f32.to_radians();
-    // Fit the sphere in the narrower of the two fields of view.
-    let half = (0.5 * yfov)
-        .tan()
-        .min((0.5 * yfov).tan() * aspect.max(1e-3));
-    let dist = radius * (1.0 + half * half).sqrt() / half * 1.05;
-    let dir = Vec3::new(0.6, 0.45, 1.0).normalize();
-    let eye = center + dir * dist;
-    CameraDesc {
-        name: "auto-framed".into(),
-        projection: Projection::Perspective {
-            yfov,
-            aspect: Some(aspect),
-        },
-        world_from_camera: look_at(eye, center, Vec3::Y),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn centre_ray_looks_at_target_and_frame_contains_box() {
-        let lo = Vec3::new(-1.0, 0.0, -2.0);
-        let hi = Vec3::new(3.0, 1.0, 0.5);
-        let desc = frame_bounds(lo, hi, 1.5);
-        let cam = Camera::new(&desc, 300, 200);
-        let r = cam.generate_ray(Vec2::new(150.0, 100.0));
-        let to_c = (0.5 * (lo + hi) - r.origin).normalize();
-        assert!(r.dir.dot(to_c) > 0.9999);
-        // Every box corner projects inside the image: its angle from the axis is within
-        // the half field of view.
-        let half_fov = 20f32.to_radians();
-        for i in 0..8 {
-            let c = Vec3::new(
-                if i & 1 == 0 { lo.x } else { hi.x },
-                if i & 2 == 0 { lo.y } else { hi.y },
-                if i & 4 == 0 { lo.z } else { hi.z },
-            );
-            let ang = r.dir.angle_between((c - r.origin).normalize());
-            assert!(ang < half_fov, "corner {i} at {ang}");
-        }
-    }
 }

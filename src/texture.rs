@@ -22,12 +22,7 @@ fn srgb_lut() -> &'static [f32; 256] {
     LUT.get_or_init(|| {
         let mut t = [0f32; 256];
         for (i, v) in t.iter_mut().enumerate() {
-            let c = i as f32 / 255.0;
-            *v = if c <= 0.04045 {
-                c / 12.92
-            } else {
-                ((c + 0.055) / 1.055).powf(2.4)
-            };
+            *v = crate::output::tonemap::srgb_eotf(i as f32 / 255.0);
         }
         t
     })

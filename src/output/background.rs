@@ -103,15 +103,6 @@ pub struct Coverage {
     pub escaped: Vec<Vec3>,
 }
 
-/// sRGB EOTF (IEC 61966-2-1 §5.2, the inverse of [`super::tonemap::srgb_oetf`]).
-pub fn srgb_to_linear(v: f32) -> f32 {
-    if v <= 0.040_45 {
-        v / 12.92
-    } else {
-        ((v + 0.055) / 1.055).powf(2.4)
-    }
-}
-
 /// `M`, the model's premultiplied part of each pixel, `max(I − E, 0)` (0 where α = 0).
 fn model_part(img: &ImageRgb, cov: &Coverage) -> Vec<Vec3> {
     img.data
@@ -140,9 +131,9 @@ pub fn composite_linear(
         Background::Transparent => model,
         Background::Color(c) => {
             let lin = Vec3::new(
-                srgb_to_linear(c.x),
-                srgb_to_linear(c.y),
-                srgb_to_linear(c.z),
+                super::tonemap::srgb_eotf(c.x),
+                super::tonemap::srgb_eotf(c.y),
+                super::tonemap::srgb_eotf(c.z),
             );
             model
                 .iter()

@@ -121,6 +121,17 @@ pub fn srgb_oetf(l: f32) -> f32 {
     }
 }
 
+/// The sRGB electro-optical transfer function (IEC 61966-2-1 §5.2): an encoded value in
+/// [0, 1] to linear, the inverse of [`srgb_oetf`]. Textures and `--background` colours
+/// decode with it.
+pub fn srgb_eotf(v: f32) -> f32 {
+    if v <= 0.040_45 {
+        v / 12.92
+    } else {
+        ((v + 0.055) / 1.055).powf(2.4)
+    }
+}
+
 /// Quantises an encoded value in [0, 1] to a byte, rounding to nearest.
 pub fn to_u8(v: f32) -> u8 {
     // In range by the clamp, so the cast cannot truncate meaningfully.

@@ -4,17 +4,19 @@
 //!
 //! It replays the per-sample methods' camera rays exactly: sample k of pixel (x, y) is
 //! jittered by the first two numbers of the stream `Rng::new(&[seed, x, y, k])` (the pixel
-//! centre when `spp` = 1), as in [`super::render_samples`], so α and the escaped radiance
-//! are those of the rendered samples (SPPM jitters its own rays: same distribution). One
+//! centre when `spp` = 1), as [`super::render_samples`] does (one [`primary_ray`]), so α
+//! and the escaped radiance are those of the rendered samples (SPPM jitters its own rays:
+//! same distribution). One
 //! closest-hit query per sample; parallel over rows on the current rayon pool. Units:
 //! linear RGB radiance.
 
+use super::samples::primary_ray;
 use super::RenderSettings;
 use crate::camera::Camera;
 use crate::math::Rng;
 use crate::output::Coverage;
 use crate::scene::Scene;
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use rayon::prelude::*;
 
 /// Most samples per pixel the pass takes (beyond this α is exact to < 0.4 %, under one
@@ -40,12 +42,7 @@ pub fn coverage(
                 let (mut hits, mut env) = (0u64, Vec3::ZERO);
                 for k in 0..n {
                     let mut rng = Rng::new(&[settings.seed, x as u64, y as u64, k]);
-                    let jitter = if settings.spp <= 1 {
-                        Vec2::splat(0.5)
-                    } else {
-                        Vec2::new(rng.next_f32(), rng.next_f32())
-                    };
-                    let ray = camera.generate_ray(Vec2::new(x as f32, y as f32) + jitter);
+                    let ray = primary_ray(camera, x, y, settings.spp <= 1, &mut rng);
                     if scene.intersect(&ray).is_some() {
                         hits += 1;
                     } else if let Some(e) = &scene.environment {

@@ -104,6 +104,19 @@ const LAMBDA_KEY: u64 = 0x1A4B_DA00;
 /// 1/φ, the golden ratio's fractional part: the rank-1 lattice generator.
 const INV_PHI: f64 = 0.618_033_988_749_894_9;
 
+/// The camera ray of one sample of pixel (x, y): through the pixel centre when the render
+/// takes one sample per pixel (`centre`), else jittered by the first two numbers of `rng`,
+/// the sample's stream `Rng::new(&[seed, x, y, k])`. The coverage pass
+/// ([`super::coverage`]) replays it.
+pub(super) fn primary_ray(camera: &Camera, x: u32, y: u32, centre: bool, rng: &mut Rng) -> Ray {
+    let jitter = if centre {
+        Vec2::splat(0.5)
+    } else {
+        Vec2::new(rng.next_f32(), rng.next_f32())
+    };
+    camera.generate_ray(Vec2::new(x as f32, y as f32) + jitter)
+}
+
 /// The sample loop of the per-sample methods: samples k = 0, 1, … per pixel, each a jittered
 /// camera ray (the pixel centre when `spp` = 1) estimated by `estimate(ray, u_lambda, ctx)`
 /// (linear RGB), in rounds to checkpoints 1, 2, 4, … (see the module docs). `setup` is the
@@ -183,12 +196,7 @@ fn sample_rounds(
                             rng: Rng::new(&[settings.seed, xk, yk, k]),
                             rays: 0,
                         };
-                        let jitter = if target == 1 {
-                            Vec2::splat(0.5)
-                        } else {
-                            Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32())
-                        };
-                        let ray = camera.generate_ray(Vec2::new(x as f32, y as f32) + jitter);
+                        let ray = primary_ray(camera, x, y, target == 1, &mut ctx.rng);
                         let u_lambda =
                             ((offset + k as f64 * INV_PHI).fract() as f32).min(1.0 - f32::EPSILON);
                         let l = guard::admit(estimate(&ray, u_lambda, &mut ctx), &mut bad);

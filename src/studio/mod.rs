@@ -248,7 +248,21 @@ pub fn apply(scene: &mut Scene, preset: Studio, bounds: (Vec3, Vec3), camera: &C
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::camera::frame_bounds;
+    use crate::framing::{frame_points, View};
+
+    /// The automatic camera for the box `bounds` (its 8 corners).
+    fn frame_bounds(bounds: (Vec3, Vec3), aspect: f32) -> CameraDesc {
+        let corners: Vec<Vec3> = (0..8)
+            .map(|i| {
+                Vec3::select(
+                    glam::BVec3::new(i & 1 != 0, i & 2 != 0, i & 4 != 0),
+                    bounds.1,
+                    bounds.0,
+                )
+            })
+            .collect();
+        frame_points(&corners, View::default(), aspect)
+    }
 
     #[test]
     fn parses_names_and_rejects_others() {
@@ -265,7 +279,7 @@ mod tests {
     #[test]
     fn keys_give_the_stated_illuminance_at_the_centre() {
         let bounds = (Vec3::new(-1.0, 0.0, -1.0), Vec3::new(1.0, 0.5, 1.0));
-        let cam = frame_bounds(bounds.0, bounds.1, 4.0 / 3.0);
+        let cam = frame_bounds(bounds, 4.0 / 3.0);
         for preset in [Studio::Soft, Studio::Jeweller, Studio::Bright] {
             let s = setup(preset, bounds, &cam).unwrap();
             let spec = preset.spec().unwrap();
@@ -287,7 +301,7 @@ mod tests {
     #[test]
     fn azimuth_zero_points_at_the_camera() {
         let bounds = (Vec3::splat(-1.0), Vec3::splat(1.0));
-        let cam = frame_bounds(bounds.0, bounds.1, 1.0);
+        let cam = frame_bounds(bounds, 1.0);
         let eye = cam.world_from_camera.transform_point3(Vec3::ZERO);
         let a = camera_azimuth(&cam, Vec3::ZERO);
         let d = studio_direction(0.0, 0.0, a);
