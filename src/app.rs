@@ -102,6 +102,21 @@ impl RenderSummary {
         self.rows.last().and_then(|r| r.error)
     }
 
+    /// "12 spp" or "40 passes, 9216000 photons": the work the render did, as `iris render`
+    /// and the gallery print it.
+    pub fn work_done(&self) -> String {
+        let pixels = u64::from(self.image.width) * u64::from(self.image.height);
+        let spp = self.stats.samples / pixels.max(1);
+        match self.method {
+            Method::Sppm => format!(
+                "{} passes, {} photons",
+                self.stats.passes, self.stats.photons
+            ),
+            Method::Photon => format!("{spp} spp, {} photons", self.stats.photons),
+            _ => format!("{spp} spp"),
+        }
+    }
+
     /// The last checkpoint's half-buffer error estimate.
     pub fn final_estimate(&self) -> Option<ErrorMetrics> {
         self.rows.last().and_then(|r| r.estimate)

@@ -202,11 +202,11 @@ struct RenderArgs {
     /// Studio lighting for a file with no light (and no `--env`): `soft` (grey, broad
     /// softboxes), `jeweller` (dark, small bright strips: fire), `bright` (white high-key),
     /// or `none` (plain directional key and fill).
-    #[arg(long, default_value = "soft", value_parser = parse_studio)]
+    #[arg(long, default_value = "soft", value_parser = iris::studio::Studio::parse)]
     studio: iris::studio::Studio,
     /// White floor under the model: `auto` (for a transmissive model with nothing under
     /// it), `on` or `off`.
-    #[arg(long, default_value = "auto", value_parser = parse_ground)]
+    #[arg(long, default_value = "auto", value_parser = iris::studio::GroundMode::parse)]
     ground: iris::studio::GroundMode,
     /// SPPM passes (`--method sppm`; with `--time`, whichever comes first).
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=10_000_000))]
@@ -357,14 +357,6 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     Ok((w, h))
 }
 
-fn parse_studio(s: &str) -> Result<iris::studio::Studio, String> {
-    iris::studio::Studio::parse(s).map_err(|e| e.to_string())
-}
-
-fn parse_ground(s: &str) -> Result<iris::studio::GroundMode, String> {
-    iris::studio::GroundMode::parse(s).map_err(|e| e.to_string())
-}
-
 fn parse_exposure(s: &str) -> Result<Exposure, String> {
     if s.eq_ignore_ascii_case("auto") {
         return Ok(Exposure::Auto);
@@ -459,13 +451,7 @@ fn run(cli: Cli) -> iris::Result<()> {
                 eprintln!("iris: interrupted: the image has the samples taken so far");
             }
             let secs = s.stats.time.as_secs_f64();
-            let pixels = u64::from(s.image.width) * u64::from(s.image.height);
-            let spp_done = s.stats.samples / pixels.max(1);
-            let work = match s.method {
-                Method::Sppm => format!("{} passes, {} photons", s.stats.passes, s.stats.photons),
-                Method::Photon => format!("{spp_done} spp, {} photons", s.stats.photons),
-                _ => format!("{spp_done} spp"),
-            };
+            let work = s.work_done();
             eprintln!(
                 "iris: {} -> {}: {}x{}, {}, {} triangles, {}, render {:.2} s (load {:.2} s, build {:.2} s), {:.2} Mrays/s",
                 opts.scene.display(),
@@ -584,7 +570,7 @@ fn run(cli: Cli) -> iris::Result<()> {
                     "{}: {}, {}, render {:.2} s -> {}",
                     r.entry.name,
                     method_name(r.summary.method),
-                    iris::gallery::work_done(&r.summary),
+                    r.summary.work_done(),
                     r.summary.stats.time.as_secs_f64(),
                     r.summary.output.display()
                 );

@@ -213,17 +213,6 @@ pub fn run(opts: &GalleryOptions) -> Result<GallerySummary> {
     })
 }
 
-/// "12 spp" or "40 passes, 9216000 photons", as `iris render` prints it.
-pub fn work_done(s: &RenderSummary) -> String {
-    let pixels = u64::from(s.image.width) * u64::from(s.image.height);
-    let spp = s.stats.samples / pixels.max(1);
-    match s.method {
-        Method::Sppm => format!("{} passes, {} photons", s.stats.passes, s.stats.photons),
-        Method::Photon => format!("{spp} spp, {} photons", s.stats.photons),
-        _ => format!("{spp} spp"),
-    }
-}
-
 /// The licence / attribution cell of `MANIFEST.md`'s table row for `path` (relative to the
 /// shared folder's parent, i.e. `assets/<path>`), if the manifest has one.
 pub fn manifest_licence(manifest: &str, path: &str) -> Option<String> {
@@ -307,7 +296,7 @@ fn page_text(
         let _ = writeln!(
             s,
             "- work: {} at {}x{}, {} triangles",
-            work_done(sum),
+            sum.work_done(),
             sum.image.width,
             sum.image.height,
             sum.triangles
