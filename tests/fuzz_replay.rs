@@ -212,17 +212,11 @@ fn mutation_seeds(target: Target) -> Vec<Vec<u8>> {
         Target::Image => &["png", "jpg", "jpeg", "hdr", "exr"],
     };
     for root in roots {
-        walk(&root, &mut |p| {
-            let ext = p
-                .extension()
-                .and_then(|e| e.to_str())
-                .map(str::to_ascii_lowercase)
-                .unwrap_or_default();
-            let small = std::fs::metadata(p).is_ok_and(|m| m.len() <= MAX_SEED);
-            if small && wanted.contains(&ext.as_str()) {
-                paths.push(p.to_path_buf());
-            }
-        });
+        paths.extend(
+            common::files_with_ext(&root, wanted)
+                .into_iter()
+                .filter(|p| std::fs::metadata(p).is_ok_and(|m| m.len() <= MAX_SEED)),
+        );
     }
     paths
         .iter()
@@ -243,21 +237,6 @@ fn mutation_seeds(target: Target) -> Vec<Vec<u8>> {
             Some(bytes)
         })
         .collect()
-}
-
-fn walk(dir: &Path, f: &mut impl FnMut(&Path)) {
-    let Ok(rd) = std::fs::read_dir(dir) else {
-        return;
-    };
-    let mut entries: Vec<PathBuf> = rd.filter_map(|e| e.ok().map(|e| e.path())).collect();
-    entries.sort();
-    for p in entries {
-        if p.is_dir() {
-            walk(&p, f);
-        } else {
-            f(&p);
-        }
-    }
 }
 
 /// xorshift64* (Vigna 2016), deterministic per seed.

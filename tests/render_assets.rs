@@ -16,41 +16,21 @@ use iris::integrator::{Method, PhotonSettings};
 use iris::output::{read_exr, DisplayOptions};
 use std::path::{Path, PathBuf};
 
-fn scenes(dir: &Path, out: &mut Vec<PathBuf>) {
-    let Ok(rd) = std::fs::read_dir(dir) else {
-        return;
-    };
-    let mut entries: Vec<PathBuf> = rd.filter_map(|e| e.ok().map(|e| e.path())).collect();
-    entries.sort();
-    for p in entries {
-        if p.is_dir() {
-            scenes(&p, out);
-        } else if matches!(
-            p.extension().and_then(|e| e.to_str()),
-            Some("glb" | "gltf" | "obj")
-        ) {
-            out.push(p);
-        }
-    }
-}
-
 #[test]
 fn every_shared_scene_renders_finite_pixels() {
     let Some(shared) = common::shared_assets() else {
         return;
     };
-    let mut files = Vec::new();
-    scenes(&shared, &mut files);
+    let files = common::files_with_ext(&shared, &common::SCENE_EXTS);
     assert!(files.len() >= 20, "found only {} scenes", files.len());
     render_all(&files, "render_assets");
 }
 
 #[test]
 fn every_project_asset_renders_finite_pixels() {
-    let mut files = Vec::new();
-    scenes(
+    let files = common::files_with_ext(
         &Path::new(env!("CARGO_MANIFEST_DIR")).join("assets"),
-        &mut files,
+        &common::SCENE_EXTS,
     );
     assert!(files.len() >= 8, "found only {} scenes", files.len());
     render_all(&files, "render_project_assets");

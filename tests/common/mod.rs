@@ -173,3 +173,31 @@ pub fn write_obj(
     std::fs::write(&path, s).expect("write obj");
     path
 }
+
+/// The scene formats Iris reads (file extensions, lower case).
+pub const SCENE_EXTS: [&str; 3] = ["glb", "gltf", "obj"];
+
+/// Files under `dir`, recursively, whose extension (any case) is one of `exts`, sorted by
+/// path; an unreadable directory contributes nothing.
+pub fn files_with_ext(dir: &std::path::Path, exts: &[&str]) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        let Ok(rd) = std::fs::read_dir(&d) else {
+            continue;
+        };
+        for p in rd.filter_map(|e| e.ok().map(|e| e.path())) {
+            if p.is_dir() {
+                stack.push(p);
+            } else if p
+                .extension()
+                .and_then(|e| e.to_str())
+                .is_some_and(|e| exts.contains(&e.to_ascii_lowercase().as_str()))
+            {
+                out.push(p);
+            }
+        }
+    }
+    out.sort();
+    out
+}
