@@ -67,6 +67,33 @@ pub struct RenderOptions {
     pub spectral: SpectralMode,
 }
 
+impl RenderOptions {
+    /// `iris render SCENE -o OUTPUT` with every other flag at the CLI's default (4 spp,
+    /// Whitted, depth 64, no time limit, automatic backend, seed 0, all threads, the
+    /// file's first camera and environment, automatic spectral transport).
+    pub fn new(scene: &Path, output: Option<&Path>) -> RenderOptions {
+        RenderOptions {
+            scene: scene.to_path_buf(),
+            output: output.map(Path::to_path_buf),
+            size: None,
+            spp: 4,
+            method: Method::Whitted,
+            max_depth: 64,
+            time_limit: None,
+            checkpoint: None,
+            photon: crate::integrator::PhotonSettings::default(),
+            accel: Backend::Auto,
+            seed: 0,
+            threads: 0,
+            camera: None,
+            display: DisplayOptions::default(),
+            quiet: false,
+            env: None,
+            spectral: SpectralMode::Auto,
+        }
+    }
+}
+
 /// What a render did, for the one-line summary.
 #[derive(Debug, Clone)]
 pub struct RenderSummary {

@@ -10,8 +10,7 @@ use iris::accel::Backend;
 use iris::app::{self, PreviewOptions, RenderOptions};
 use iris::camera::Camera;
 use iris::framing::{projected_box, View, FILL, VIEWS};
-use iris::integrator::Method;
-use iris::output::{Background, DisplayOptions};
+use iris::output::Background;
 use iris::render::RenderSettings;
 use iris::scene::Scene;
 use std::path::Path;
@@ -119,23 +118,13 @@ fn every_view_frames_gems_plates_and_rods_at_every_scale() {
 
 fn render_opts(scene: &Path, out: &Path) -> RenderOptions {
     RenderOptions {
-        scene: scene.to_path_buf(),
-        output: Some(out.to_path_buf()),
         size: Some((80, 60)),
         spp: 2,
-        method: Method::Whitted,
         max_depth: 16,
-        time_limit: None,
-        checkpoint: None,
-        photon: Default::default(),
-        accel: Backend::Auto,
         seed: 3,
         threads: 2,
-        camera: None,
-        display: DisplayOptions::default(),
         quiet: true,
-        spectral: Default::default(),
-        env: None,
+        ..RenderOptions::new(scene, Some(out))
     }
 }
 

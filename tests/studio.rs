@@ -11,8 +11,7 @@ use iris::converge::MeasureOptions;
 use iris::gen::cuts::preview::{write_gem, GemSpec};
 use iris::gen::cuts::Cut;
 use iris::gen::stones::Stone;
-use iris::integrator::Method;
-use iris::output::{read_exr, DisplayOptions, ImageRgb};
+use iris::output::{read_exr, ImageRgb};
 use iris::studio::{ground, GroundMode, Studio};
 use std::path::{Path, PathBuf};
 
@@ -44,23 +43,14 @@ fn render(
     seed: u64,
 ) -> (ImageRgb, RenderSummary) {
     let opts = RenderOptions {
-        scene: scene.to_path_buf(),
-        output: Some(out.to_path_buf()),
         size: Some((W, H)),
         spp: 2,
-        method: Method::Whitted,
         max_depth: 16,
-        time_limit: None,
-        checkpoint: None,
-        photon: Default::default(),
         accel,
         seed,
         threads: 2,
-        camera: None,
-        display: DisplayOptions::default(),
         quiet: true,
-        env: None,
-        spectral: Default::default(),
+        ..RenderOptions::new(scene, Some(out))
     };
     let preview = PreviewOptions {
         studio,

@@ -116,36 +116,26 @@ pub fn select(only: &[String]) -> Result<Vec<Entry>> {
         .collect())
 }
 
-/// Renders `scene` to `output` as `iris render SCENE --method auto --size WxH --time SECS
-/// --spp 4096 --passes 4096 -o OUTPUT` would (every other flag at its CLI default, so the
-/// drop-in preview's studio, floor and framing apply): the time limit, not the sample
-/// count, ends each render. The one call of the app-level render in this module.
 /// Samples per pixel (or SPPM passes) a gallery render may take: high enough that the time
 /// limit ends it.
 const SAMPLE_CAP: u32 = 4096;
 
+/// Renders `scene` to `output` as `iris render SCENE --method auto --size WxH --time SECS
+/// --spp 4096 --passes 4096 -o OUTPUT` would (every other flag at its CLI default, so the
+/// drop-in preview's studio, floor and framing apply): the time limit, not the sample
+/// count, ends each render. The one call of the app-level render in this module.
 fn render_entry(scene: &Path, output: &Path, opts: &GalleryOptions) -> Result<RenderSummary> {
     let render = RenderOptions {
-        scene: scene.to_path_buf(),
-        output: Some(output.to_path_buf()),
         size: Some(opts.size),
         spp: SAMPLE_CAP,
         method: Method::Auto,
-        max_depth: 64,
         time_limit: Some(opts.time),
-        checkpoint: None,
         photon: PhotonSettings {
             passes: SAMPLE_CAP,
             ..PhotonSettings::default()
         },
-        accel: crate::accel::Backend::Auto,
-        seed: 0,
-        threads: 0,
-        camera: None,
-        display: crate::output::DisplayOptions::default(),
         quiet: opts.quiet,
-        env: None,
-        spectral: app::SpectralMode::Auto,
+        ..RenderOptions::new(scene, Some(output))
     };
     app::render_command_planned(
         &render,
