@@ -21,8 +21,9 @@ use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-/// Largest accepted image: 2^28 pixels (16384 × 16384), checked before allocating.
-pub const MAX_PIXELS: u64 = 1 << 28;
+/// Largest accepted image: 2^26 pixels (8192 × 8192, or 8K UHD 7680 × 4320), checked before
+/// allocating; SPPM is further limited by [`crate::render::check_memory`].
+pub const MAX_PIXELS: u64 = 1 << 26;
 
 /// Everything `iris render` needs.
 #[derive(Debug, Clone)]
@@ -51,7 +52,7 @@ pub struct RenderOptions {
     pub accel: Backend,
     /// Seed.
     pub seed: u64,
-    /// Threads (0 = all).
+    /// Threads (0 = all), at most [`crate::render::MAX_THREADS`].
     pub threads: usize,
     /// Camera name or index.
     pub camera: Option<String>,
@@ -211,7 +212,7 @@ pub fn default_size(scene: &Scene) -> (u32, u32) {
 pub fn check_size(w: u32, h: u32) -> Result<()> {
     if w == 0 || h == 0 || w as u64 * h as u64 > MAX_PIXELS {
         return Err(Error::Usage(format!(
-            "--size {w}x{h}: width and height must be at least 1 and the image at most {MAX_PIXELS} pixels"
+            "--size {w}x{h}: width and height must be at least 1 and the image at most {MAX_PIXELS} pixels (8192x8192)"
         )));
     }
     Ok(())
@@ -289,6 +290,13 @@ pub fn render_command_planned(
     if let Some((w, h)) = opts.size {
         check_size(w, h)?;
     }
+    crate::render::check_threads(opts.threads)?;
+    Integrator {
+        method: opts.method,
+        max_depth: opts.max_depth,
+        photon: opts.photon,
+    }
+    .check()?;
     let output = match &opts.output {
         Some(o) => o.clone(),
         None => {
@@ -346,6 +354,7 @@ pub fn render_command_planned(
     }
     on_plan(&plan);
     let (method, method_note) = (plan.method, plan.method_note.clone());
+    crate::render::check_memory(w, h, method)?;
     measure.check_checkpoints(if method == Method::Sppm {
         opts.photon.passes
     } else {

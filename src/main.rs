@@ -74,10 +74,11 @@ struct GalleryArgs {
     /// Output directory (created if missing).
     #[arg(long, default_value = "docs/gallery")]
     out: PathBuf,
-    /// Image size WxH (576x324 keeps the committed gallery under 4 MB of PNG).
+    /// Image size WxH (576x324 keeps the committed gallery under 4 MB of PNG); at most
+    /// 2^26 pixels (8192x8192).
     #[arg(long, default_value = "576x324", value_parser = parse_size)]
     size: (u32, u32),
-    /// Time limit of each image's render, seconds.
+    /// Time limit of each image's render, seconds: more than 0, at most 10000000.
     #[arg(long, default_value_t = 20.0, value_parser = parse_seconds)]
     time: f64,
     /// Render only the entries whose name contains SUBSTR (repeatable).
@@ -97,8 +98,9 @@ struct GemArgs {
     /// Stone: diamond, sapphire, ruby, cubic-zirconia, quartz, crown-glass.
     #[arg(long, value_parser = iris::gen::stones::Stone::parse)]
     stone: iris::gen::stones::Stone,
-    /// Girdle diameter (round) or length (emerald, oval, pear) in millimetres.
-    #[arg(long, default_value_t = iris::gen::cuts::DEFAULT_SIZE_MM, allow_hyphen_values = true)]
+    /// Girdle diameter (round) or length (emerald, oval, pear) in millimetres, from 0.1 to
+    /// 1000.
+    #[arg(long, default_value_t = iris::gen::cuts::DEFAULT_SIZE_MM, value_parser = parse_gem_size, allow_hyphen_values = true)]
     size: f64,
     /// Only the stone: no camera, lights or floor.
     #[arg(long)]
@@ -159,17 +161,20 @@ struct RenderArgs {
     /// Output image (.png or .exr); default `<scene stem>.png` here.
     #[arg(short, long)]
     output: Option<PathBuf>,
-    /// Image size WxH, e.g. 800x600 (default 800 wide at the camera's aspect).
+    /// Image size WxH, e.g. 800x600 (default 800 wide at the camera's aspect): at most 2^26
+    /// pixels (8192x8192), and for `--method sppm` at most 8 GiB of per-pixel buffers
+    /// (about 18 M pixels, e.g. 4096x4096).
     #[arg(long, value_parser = parse_size)]
     size: Option<(u32, u32)>,
-    /// Samples per pixel.
+    /// Samples per pixel, 1 to 1000000.
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     spp: u32,
     /// Rendering method.
     #[arg(long, value_enum, default_value_t = MethodArg::Whitted)]
     method: MethodArg,
-    /// Maximum number of bounces (reflections and refractions) per path.
-    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    /// Maximum number of bounces (reflections and refractions) per path, 1 to 1024 (also
+    /// the Whitted tracer's recursion depth and the photons stored per photon path).
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=i64::from(iris::integrator::MAX_DEPTH)))]
     max_depth: u32,
     /// Intersection backend.
     #[arg(long, value_enum, default_value_t = AccelArg::Auto)]
@@ -177,13 +182,13 @@ struct RenderArgs {
     /// Random seed (same seed, scene and backend → same image).
     #[arg(long, default_value_t = 0)]
     seed: u64,
-    /// Worker threads (0 = all cores).
-    #[arg(long, default_value_t = 0)]
+    /// Worker threads, 0 to 1024 (0 = one per core).
+    #[arg(long, default_value_t = 0, value_parser = parse_threads())]
     threads: usize,
     /// Camera name or index from the file.
     #[arg(long)]
     camera: Option<String>,
-    /// PNG exposure: `auto` (log-average luminance to 0.18) or stops, e.g. -1.5.
+    /// PNG exposure: `auto` (log-average luminance to 0.18) or stops in [-64, 64], e.g. -1.5.
     #[arg(long, default_value = "auto", value_parser = parse_exposure, allow_hyphen_values = true)]
     exposure: Exposure,
     /// PNG tone map.
@@ -208,27 +213,29 @@ struct RenderArgs {
     /// it), `on` or `off`.
     #[arg(long, default_value = "auto", value_parser = iris::studio::GroundMode::parse)]
     ground: iris::studio::GroundMode,
-    /// SPPM passes (`--method sppm`; with `--time`, whichever comes first).
+    /// SPPM passes, 1 to 10000000 (`--method sppm`; with `--time`, whichever comes first).
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=10_000_000))]
     passes: u32,
-    /// Time budget in seconds: every method stops after the round of samples (SPPM: the
-    /// pass) that crosses it, with at least one sample per pixel.
+    /// Time budget in seconds (more than 0, at most 10000000): every method stops after the
+    /// round of samples (SPPM: the pass) that crosses it, with at least one sample per pixel.
     #[arg(long, value_parser = parse_seconds, allow_hyphen_values = true)]
     time: Option<f64>,
     /// Photons per SPPM pass (default: one per pixel) or in total for `--method photon`
-    /// (default 500000).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4_000_000_000))]
+    /// (default 500000), 1 to 16777216 (2^24). A pass or map that would store more than
+    /// 2^26 photons (2 GiB) stops with an error.
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=iris::integrator::MAX_PHOTONS))]
     photons: Option<u64>,
     /// Initial SPPM gather radius / largest photon-map radius, in scene units (default: from
-    /// the pixel footprint).
+    /// the pixel footprint): finite and > 0 (no memory depends on it).
     #[arg(long, value_parser = parse_radius, allow_hyphen_values = true)]
     radius: Option<f32>,
     /// SPPM radius reduction α in (0, 1): r²ᵢ₊₁ = r²ᵢ (i+α)/(i+1) (Knaus & Zwicker 2011).
     #[arg(long, default_value_t = 2.0 / 3.0, value_parser = parse_alpha, allow_hyphen_values = true)]
     alpha: f32,
     /// Write the image so far at the checkpoints (1, 2, 4, … samples, or passes for SPPM)
-    /// that are at least K samples or passes after the last one written.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    /// that are at least K samples or passes after the last one written; K from 1 to
+    /// 10000000.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=10_000_000))]
     checkpoint: Option<u32>,
     /// Photon Russian roulette rule.
     #[arg(long, value_enum, default_value_t = RouletteArg::Throughput)]
@@ -245,8 +252,8 @@ struct RenderArgs {
     /// the half-buffer estimate.
     #[arg(long)]
     plot: Option<PathBuf>,
-    /// Stop once the estimated relative RMSE is at or below E (upper bound: --time, --spp or
-    /// --passes, whichever comes first).
+    /// Stop once the estimated relative RMSE is at or below E, finite and > 0 (upper bound:
+    /// --time, --spp or --passes, whichever comes first).
     #[arg(long, value_parser = parse_target, allow_hyphen_values = true)]
     target_error: Option<f64>,
     /// No progress bar.
@@ -277,7 +284,7 @@ struct ConvergeArgs {
     /// Methods to compare, comma-separated: whitted, path, photon, sppm.
     #[arg(long, default_value = "path,photon,sppm")]
     methods: String,
-    /// Time budget of each method in seconds.
+    /// Time budget of each method in seconds (more than 0, at most 10000000).
     #[arg(long, value_parser = parse_seconds, allow_hyphen_values = true)]
     time: f64,
     /// Reference EXR; without it one is rendered for 4× --time (DIR/reference.exr).
@@ -286,14 +293,15 @@ struct ConvergeArgs {
     /// Output directory (created if missing).
     #[arg(short, long)]
     output: PathBuf,
-    /// Image size WxH (default: the reference's, else 800 wide at the camera's aspect).
+    /// Image size WxH (default: the reference's, else 800 wide at the camera's aspect); at
+    /// most 2^26 pixels (8192x8192), SPPM at most 8 GiB of per-pixel buffers.
     #[arg(long, value_parser = parse_size)]
     size: Option<(u32, u32)>,
     /// Random seed of the runs.
     #[arg(long, default_value_t = 0)]
     seed: u64,
-    /// Worker threads (0 = all cores).
-    #[arg(long, default_value_t = 0)]
+    /// Worker threads, 0 to 1024 (0 = one per core).
+    #[arg(long, default_value_t = 0, value_parser = parse_threads())]
     threads: usize,
     /// Intersection backend.
     #[arg(long, value_enum, default_value_t = AccelArg::Auto)]
@@ -320,10 +328,31 @@ fn accel_of(a: AccelArg) -> Backend {
     }
 }
 
+/// Largest `--time`, seconds (about 116 days).
+const MAX_SECONDS: f64 = 1e7;
+
 fn parse_seconds(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
-        Ok(v) if v.is_finite() && v > 0.0 && v <= 1e7 => Ok(v),
-        _ => Err(format!("expected seconds > 0, got {s:?}")),
+        Ok(v) if v.is_finite() && v > 0.0 && v <= MAX_SECONDS => Ok(v),
+        _ => Err(format!(
+            "expected seconds > 0 and at most {MAX_SECONDS}, got {s:?}"
+        )),
+    }
+}
+
+/// `--threads`: 0 to [`iris::render::MAX_THREADS`], checked before any thread is spawned.
+fn parse_threads() -> clap::builder::RangedU64ValueParser<usize> {
+    clap::builder::RangedU64ValueParser::new().range(0..=iris::render::MAX_THREADS as u64)
+}
+
+/// `gem --size`: millimetres in [0.1, 1000] ([`iris::gen::cuts::size_metres`]).
+fn parse_gem_size(s: &str) -> Result<f64, String> {
+    use iris::gen::cuts::{size_metres, MAX_SIZE_MM, MIN_SIZE_MM};
+    match s.parse::<f64>() {
+        Ok(v) if size_metres(v).is_ok() => Ok(v),
+        _ => Err(format!(
+            "expected millimetres from {MIN_SIZE_MM} to {MAX_SIZE_MM}, got {s:?}"
+        )),
     }
 }
 

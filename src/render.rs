@@ -49,7 +49,7 @@ pub struct RenderSettings {
     pub spp: u32,
     /// Base seed.
     pub seed: u64,
-    /// Worker threads (0 = all cores).
+    /// Worker threads (0 = all cores), at most [`MAX_THREADS`].
     pub threads: usize,
     /// Hide the progress bar.
     pub quiet: bool,
@@ -157,10 +157,75 @@ fn sample<C: Carrier>(
         .to_rgb(&lambda)
 }
 
-/// The worker pool for `settings.threads` (FTZ/DAZ on for Embree on every worker).
+/// Most worker threads (`--threads`); 0 asks for one per core. Far more threads than
+/// cores only add memory (a stack each) and scheduling, and a pool of 10⁵ threads would
+/// exhaust the process before the render began.
+pub const MAX_THREADS: usize = 1024;
+
+/// Rejects a thread count above [`MAX_THREADS`] (0 = all cores is fine) before any thread
+/// is spawned.
+pub fn check_threads(threads: usize) -> Result<()> {
+    if threads > MAX_THREADS {
+        return Err(Error::Usage(format!(
+            "--threads {threads}: at most {MAX_THREADS} worker threads (0 = one per core)"
+        )));
+    }
+    Ok(())
+}
+
+/// Memory the per-pixel buffers of a render may take: 8 GiB. [`check_memory`] compares
+/// it with the image's pixels times [`bytes_per_pixel`] before anything is allocated.
+pub const PIXEL_MEMORY_BUDGET: u64 = 8 << 30;
+
+/// Bytes each pixel costs `method` (the accumulation buffers, the images handed to
+/// observers and writers, coverage and the output's encoding; SPPM adds its per-pixel
+/// direct and photon sums and visible point).
+pub fn bytes_per_pixel(method: Method) -> u64 {
+    use std::mem::size_of;
+    let common = size_of::<[glam::DVec3; 2]>() + 3 * size_of::<Vec3>() + 16 + 8;
+    let extra = match method {
+        Method::Sppm => {
+            2 * size_of::<[glam::DVec3; 2]>()
+                + size_of::<Option<crate::integrator::path::VisiblePoint<SampledSpectrum>>>()
+        }
+        _ => 0,
+    };
+    (common + extra) as u64
+}
+
+/// Rejects a `width × height` image whose per-pixel buffers for `method` would exceed
+/// [`PIXEL_MEMORY_BUDGET`] (SPPM needs several times what the other methods need).
+pub fn check_memory(width: u32, height: u32, method: Method) -> Result<()> {
+    let per = bytes_per_pixel(method);
+    let pixels = u64::from(width) * u64::from(height);
+    if pixels.saturating_mul(per) > PIXEL_MEMORY_BUDGET {
+        return Err(Error::Usage(format!(
+            "--size {width}x{height}: --method {} needs {per} bytes per pixel, {:.1} GiB for \
+             this image, over the {} GiB budget (at most {} pixels)",
+            crate::converge::method_name(method),
+            (pixels * per) as f64 / (1u64 << 30) as f64,
+            PIXEL_MEMORY_BUDGET >> 30,
+            PIXEL_MEMORY_BUDGET / per
+        )));
+    }
+    Ok(())
+}
+
+/// Stack of each render worker: 8 MiB. The Whitted tracer recurses once per bounce, about
+/// 1–2 KiB a level in release: `--max-depth` 1024 ([`crate::integrator::MAX_DEPTH`]) fits
+/// the default 2 MiB with no margin, and 2048 overflowed it (measured in a closed mirror box,
+/// `tests/stiff_renders.rs`). 8 MiB gives 4× headroom; it is address space, committed only
+/// as it is touched.
+pub const WORKER_STACK: usize = 8 << 20;
+
+/// The worker pool for `settings.threads` (FTZ/DAZ on for Embree on every worker, stacks of
+/// [`WORKER_STACK`]); an error, not a panic, when the count is above [`MAX_THREADS`] or the
+/// threads cannot start.
 pub fn thread_pool(settings: &RenderSettings) -> Result<rayon::ThreadPool> {
+    check_threads(settings.threads)?;
     rayon::ThreadPoolBuilder::new()
         .num_threads(settings.threads)
+        .stack_size(WORKER_STACK)
         .start_handler(|_| {
             #[cfg(feature = "embree")]
             crate::accel::embree::enable_flush_to_zero();
@@ -219,6 +284,8 @@ pub fn render_progressive(
     settings: &RenderSettings,
     observer: Option<Observer>,
 ) -> Result<(ImageRgb, RenderStats)> {
+    integrator.check()?;
+    check_memory(settings.width, settings.height, integrator.method)?;
     let pool = thread_pool(settings)?;
     match integrator.method {
         Method::Whitted | Method::Path | Method::Auto => pool.install(|| {

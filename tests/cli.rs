@@ -214,3 +214,208 @@ fn diff_measures_rmse_and_rejects_size_mismatch() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("c.exr") && err.contains("a.exr"), "{err}");
 }
+
+/// Issue 15: every numeric flag has a documented bound (its `--help` text). An absurd value
+/// ends in a message naming the flag, the value and (for range flags) the bound, a non-zero
+/// exit and no output. `--threads 100000` used to spawn threads until the process died: it
+/// is now rejected while parsing, before any thread starts.
+#[test]
+fn absurd_numbers_are_rejected_before_anything_runs() {
+    let dir = common::scratch_dir("cli_bounds");
+    let prism = asset("fig4_4_1_prism.glb");
+    let render = |extra: &[&str]| -> Vec<String> {
+        let mut v = vec!["render".to_string(), prism.clone()];
+        v.extend(extra.iter().map(|s| s.to_string()));
+        v.extend(["-o".into(), "out.png".into()]);
+        v
+    };
+    let cases: Vec<(Vec<String>, Vec<&str>)> = vec![
+        (
+            render(&["--threads", "100000"]),
+            vec!["--threads", "100000", "1024"],
+        ),
+        (
+            vec![
+                "converge".into(),
+                prism.clone(),
+                "--time".into(),
+                "1".into(),
+                "--threads".into(),
+                "100000".into(),
+                "-o".into(),
+                "conv".into(),
+            ],
+            vec!["--threads", "100000", "1024"],
+        ),
+        (
+            render(&["--max-depth", "5000"]),
+            vec!["--max-depth", "5000", "1024"],
+        ),
+        (
+            render(&["--method", "photon", "--photons", "4000000000"]),
+            vec!["--photons", "4000000000", "16777216"],
+        ),
+        (
+            render(&["--spp", "2000000"]),
+            vec!["--spp", "2000000", "1000000"],
+        ),
+        (
+            render(&["--method", "sppm", "--passes", "20000000"]),
+            vec!["--passes", "20000000", "10000000"],
+        ),
+        (
+            render(&["--checkpoint", "20000000"]),
+            vec!["--checkpoint", "20000000", "10000000"],
+        ),
+        (
+            render(&["--size", "9000x9000"]),
+            vec!["--size", "9000x9000", "8192x8192"],
+        ),
+        // Under the pixel cap, but SPPM's per-pixel buffers would need 28 GiB: rejected
+        // after loading, before any buffer is allocated.
+        (
+            render(&["--method", "sppm", "--size", "8000x8000"]),
+            vec!["--size", "8000x8000", "sppm", "GiB"],
+        ),
+        (render(&["--radius", "1e39"]), vec!["--radius", "1e39"]),
+        (
+            render(&["--time", "1e9"]),
+            vec!["--time", "1e9", "10000000"],
+        ),
+        (
+            render(&["--target-error", "nan"]),
+            vec!["--target-error", "nan"],
+        ),
+        (
+            render(&["--exposure", "1000"]),
+            vec!["--exposure", "1000", "64"],
+        ),
+        (
+            vec![
+                "converge".into(),
+                prism.clone(),
+                "--time".into(),
+                "1e9".into(),
+                "-o".into(),
+                "conv".into(),
+            ],
+            vec!["--time", "1e9"],
+        ),
+        (
+            vec![
+                "gallery".into(),
+                "--out".into(),
+                "gal".into(),
+                "--size".into(),
+                "0x1".into(),
+            ],
+            vec!["--size", "0x1"],
+        ),
+        (
+            vec![
+                "gallery".into(),
+                "--out".into(),
+                "gal".into(),
+                "--time".into(),
+                "0".into(),
+            ],
+            vec!["--time", "0"],
+        ),
+    ];
+    let gem = |size: &str| -> Vec<String> {
+        [
+            "gem", "--cut", "round", "--stone", "diamond", "--size", size, "-o", "g.glb",
+        ]
+        .map(String::from)
+        .to_vec()
+    };
+    let gems = ["nan", "-3", "1e300", "0", "1001"].map(|s| (gem(s), vec!["--size", s, "1000"]));
+    for (args, needles) in cases.into_iter().chain(gems) {
+        let a: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = iris(&a, &dir);
+        let e = stderr(&o);
+        assert!(!o.status.success(), "{args:?} should fail: {e}");
+        for n in needles {
+            assert!(e.contains(n), "{args:?}: message should name {n:?}: {e}");
+        }
+        assert!(!e.contains("panicked"), "{args:?} panicked: {e}");
+        assert!(
+            entries(&dir).is_empty(),
+            "{args:?} wrote {:?}",
+            entries(&dir)
+        );
+    }
+}
+
+/// The largest accepted thread count and depth work (a tiny render, so 1024 threads cost
+/// little).
+#[test]
+fn largest_threads_and_depth_are_accepted() {
+    let dir = common::scratch_dir("cli_bounds_ok");
+    let o = iris(
+        &[
+            "render",
+            &asset("fig4_4_1_prism.glb"),
+            "--threads",
+            "1024",
+            "--max-depth",
+            "1024",
+            "--size",
+            "8x8",
+            "--spp",
+            "1",
+            "--quiet",
+            "-o",
+            "ok.png",
+        ],
+        &dir,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(entries(&dir), vec!["ok.png".to_string()]);
+}
+
+/// Library callers get the CLI's bounds as errors, not a crash: a thread count over
+/// [`iris::render::MAX_THREADS`] fails before the pool is built, and so do out-of-range
+/// depths and photon counts.
+#[test]
+fn library_rejects_absurd_threads_depth_and_photons() {
+    let dir = common::scratch_dir("cli_bounds_lib");
+    let out = dir.join("lib.png");
+    let scene = PathBuf::from(asset("fig4_4_1_prism.glb"));
+    let base = iris::app::RenderOptions {
+        size: Some((8, 8)),
+        spp: 1,
+        quiet: true,
+        ..iris::app::RenderOptions::new(&scene, Some(&out))
+    };
+    let mut threads = base.clone();
+    threads.threads = 100_000;
+    let mut depth = base.clone();
+    depth.max_depth = 100_000;
+    let mut photons = base.clone();
+    photons.method = iris::integrator::Method::Photon;
+    photons.photon.photons = 4_000_000_000;
+    for (opts, needle) in [
+        (threads, "--threads 100000"),
+        (depth, "--max-depth 100000"),
+        (photons, "--photons 4000000000"),
+    ] {
+        let e = iris::app::render_command(&opts)
+            .expect_err(needle)
+            .to_string();
+        assert!(e.contains(needle), "{e}");
+    }
+    let settings = iris::render::RenderSettings {
+        width: 8,
+        height: 8,
+        spp: 1,
+        seed: 0,
+        threads: 100_000,
+        quiet: true,
+        spectral: false,
+        time_limit: None,
+    };
+    let e = iris::render::thread_pool(&settings).expect_err("100000 threads");
+    assert!(e.to_string().contains("--threads 100000"), "{e}");
+    assert!(entries(&dir).is_empty());
+}

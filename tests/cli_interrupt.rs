@@ -9,21 +9,31 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-/// Starts a render that would take hours, lets it run for `after`, sends `signal` (by the
+/// Longest wait for anything in this file: a guard against hangs, not a speed test.
+const HANG: Duration = Duration::from_secs(120);
+
+/// Starts a render that would take hours, waits until it has written its first checkpoint
+/// (`--checkpoint 1`: the image at 1 sample or pass, so the signal handler is installed and
+/// the render is under way, however fast or loaded the machine), sends `signal` (by the
 /// `kill` command: the test crate has no libc) and returns its exit code and stderr.
-fn interrupt(dir: &Path, extra: &[&str], signal: &str, after: Duration) -> (Option<i32>, String) {
+fn interrupt(dir: &Path, extra: &[&str], signal: &str) -> (Option<i32>, String) {
     let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/paper/fig4_5_1_caustics.glb");
     let child = Command::new(env!("CARGO_BIN_EXE_iris"))
         .arg("render")
         .arg(&scene)
         .args(["--size", "64x48", "-o", "out.png", "--threads", "2"])
+        .args(["--checkpoint", "1"])
         .args(extra)
         .current_dir(dir)
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
         .expect("start iris");
-    std::thread::sleep(after);
+    let t = Instant::now();
+    while !dir.join("out.png").is_file() {
+        assert!(t.elapsed() < HANG, "no checkpoint written after {HANG:?}");
+        std::thread::sleep(Duration::from_millis(20));
+    }
     let status = Command::new("kill")
         .args([signal, &child.id().to_string()])
         .status()
@@ -31,13 +41,9 @@ fn interrupt(dir: &Path, extra: &[&str], signal: &str, after: Duration) -> (Opti
     assert!(status.success(), "kill {signal} failed");
     let t = Instant::now();
     let out = child.wait_with_output().expect("wait for iris");
-    // A stop at the next safe point: one 64×48 tile round or one SPPM pass, well under a
-    // minute even on a loaded 2-core machine.
-    assert!(
-        t.elapsed() < Duration::from_secs(60),
-        "took {:?} to stop",
-        t.elapsed()
-    );
+    // A stop at the next safe point: one 64×48 tile round or one SPPM pass. The bound only
+    // catches a render that ignores the signal (it would run for hours).
+    assert!(t.elapsed() < HANG, "took {:?} to stop", t.elapsed());
     (out.status.code(), common::stderr(&out))
 }
 
@@ -55,12 +61,7 @@ fn check_written(dir: &Path, stderr: &str) {
 #[test]
 fn sigint_writes_the_path_traced_image_so_far() {
     let dir = common::scratch_dir("interrupt_path");
-    let (code, err) = interrupt(
-        &dir,
-        &["--method", "path", "--spp", "1000000"],
-        "-INT",
-        Duration::from_millis(1500),
-    );
+    let (code, err) = interrupt(&dir, &["--method", "path", "--spp", "1000000"], "-INT");
     assert_eq!(code, Some(130), "{err}");
     check_written(&dir, &err);
 }
@@ -68,12 +69,7 @@ fn sigint_writes_the_path_traced_image_so_far() {
 #[test]
 fn sigterm_writes_the_sppm_image_so_far() {
     let dir = common::scratch_dir("interrupt_sppm");
-    let (code, err) = interrupt(
-        &dir,
-        &["--method", "sppm", "--passes", "10000000"],
-        "-TERM",
-        Duration::from_millis(1500),
-    );
+    let (code, err) = interrupt(&dir, &["--method", "sppm", "--passes", "10000000"], "-TERM");
     assert_eq!(code, Some(130), "{err}");
     check_written(&dir, &err);
 }

@@ -513,3 +513,60 @@ fn bubble_ring_starts_at_the_critical_impact_parameter() {
         );
     }
 }
+
+/// Issue 15: the deepest `--max-depth` ([`iris::integrator::MAX_DEPTH`]) in the worst case
+/// for the recursive Whitted tracer, a camera inside a closed box of perfect mirrors (glTF
+/// `ior: 0`, Fresnel 1 at every angle): every camera ray recurses to the full depth on the
+/// render pool's threads, in RGB and spectral (the larger frames), and must neither
+/// overflow a stack nor produce a non-finite pixel. The box is unlit, so the image is black.
+#[test]
+fn whitted_at_the_largest_depth_in_a_closed_mirror_box_keeps_its_stack() {
+    let dir = common::scratch_dir("stiff_mirror_box");
+    let mut doc = fixtures::cube_doc();
+    doc["materials"] = json!([{"name": "Mirror",
+        "pbrMetallicRoughness": {"metallicFactor": 1.0, "roughnessFactor": 0.0,
+                                 "baseColorFactor": [1.0, 1.0, 1.0, 1.0]}}]);
+    doc["meshes"][0]["primitives"][0]["material"] = json!(0);
+    let desc = iris::load::load_scene(&fixtures::write_json(&dir, "box.gltf", &doc))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let (lo, hi) = desc
+        .meshes
+        .iter()
+        .flat_map(|m| m.positions.iter())
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(*p), hi.max(*p))
+        });
+    let centre = (lo + hi) / 2.0;
+    let cam = perspective(centre, centre + Vec3::new(0.3, 0.2, -1.0));
+    let depth = iris::integrator::MAX_DEPTH;
+    for backend in common::backends() {
+        let scene = Scene::build(desc.clone(), backend).expect("build");
+        for spectral in [false, true] {
+            let settings = RenderSettings {
+                width: 8,
+                height: 8,
+                spp: 1,
+                seed: 3,
+                threads: 2,
+                quiet: true,
+                spectral,
+                time_limit: None,
+            };
+            let integrator = Integrator {
+                method: Method::Whitted,
+                max_depth: depth,
+                photon: Default::default(),
+            };
+            let (img, stats) =
+                render(&scene, &Camera::new(&cam, 8, 8), &integrator, &settings).expect("render");
+            eprintln!("{backend:?} spectral {spectral}: {} rays", stats.rays);
+            assert_finite(&img, &format!("{backend:?} spectral {spectral}"));
+            // Every camera ray went the whole way down (64 rays, `depth` segments each).
+            assert!(
+                stats.rays >= 64 * u64::from(depth),
+                "{backend:?} spectral {spectral}: {} rays for depth {depth}",
+                stats.rays
+            );
+        }
+    }
+}

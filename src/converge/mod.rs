@@ -207,7 +207,7 @@ pub struct ConvergeOptions {
     pub size: Option<(u32, u32)>,
     /// Seed of the runs (the rendered reference uses another stream).
     pub seed: u64,
-    /// Threads (0 = all).
+    /// Threads (0 = all), at most [`crate::render::MAX_THREADS`].
     pub threads: usize,
     /// Acceleration backend.
     pub accel: Backend,
@@ -262,6 +262,7 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
     if let Some((w, h)) = opts.size {
         app::check_size(w, h)?;
     }
+    crate::render::check_threads(opts.threads)?;
     let given_reference = opts
         .reference
         .as_deref()
@@ -276,6 +277,13 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
         (None, None) => app::default_size(&scene),
     };
     app::check_size(w, h)?;
+    // The reference's method (without --reference) and every run's fit in memory.
+    let reference_method = given_reference
+        .is_none()
+        .then(|| Method::Auto.resolve(&scene).0);
+    for m in opts.methods.iter().chain(reference_method.as_ref()) {
+        crate::render::check_memory(w, h, *m)?;
+    }
     if let (Some(r), Some(path)) = (&given_reference, &opts.reference) {
         measure::check_reference_size(
             r,
@@ -306,7 +314,8 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
     let reference = match given_reference {
         Some(r) => r,
         None => {
-            let (method, _) = Method::Auto.resolve(&scene);
+            // Always `Some` without a reference.
+            let method = reference_method.unwrap_or(Method::Sppm);
             if !opts.quiet {
                 eprintln!(
                     "iris converge: no --reference: rendering one with {} for {:.1} s (4× the budget)",

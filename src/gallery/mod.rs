@@ -75,18 +75,26 @@ pub struct GallerySummary {
 }
 
 /// The shared third-party asset folder: `IRIS_SHARED_ASSETS`, else `../shared/assets`
-/// (relative to the current directory). `Ok(None)` when it is not a directory, unless
-/// `IRIS_REQUIRE_SHARED=1`, which makes that an [`Error::Usage`].
+/// (relative to the current directory). The folder counts as present when it holds its
+/// index, `MANIFEST.md` (an empty folder is absent: CI runs the suite once with
+/// `IRIS_SHARED_ASSETS` pointing to one, to prove the skips). `Ok(None)` when absent,
+/// unless `IRIS_REQUIRE_SHARED=1`, which makes that an [`Error::Usage`].
 pub fn shared_assets_dir() -> Result<Option<PathBuf>> {
     shared_assets_dir_in(Path::new(""))
+}
+
+/// Where [`shared_assets_dir_in`] looks: `IRIS_SHARED_ASSETS`, else
+/// `root/../shared/assets`.
+pub fn shared_assets_candidate(root: &Path) -> PathBuf {
+    std::env::var_os("IRIS_SHARED_ASSETS")
+        .map_or_else(|| root.join("../shared/assets"), PathBuf::from)
 }
 
 /// [`shared_assets_dir`] for a project at `root` (the tests and benches pass their
 /// manifest directory): `IRIS_SHARED_ASSETS`, else `root/../shared/assets`.
 pub fn shared_assets_dir_in(root: &Path) -> Result<Option<PathBuf>> {
-    let dir = std::env::var_os("IRIS_SHARED_ASSETS")
-        .map_or_else(|| root.join("../shared/assets"), PathBuf::from);
-    if dir.is_dir() {
+    let dir = shared_assets_candidate(root);
+    if dir.join("MANIFEST.md").is_file() {
         return Ok(Some(dir));
     }
     if std::env::var("IRIS_REQUIRE_SHARED").is_ok_and(|v| v == "1") {

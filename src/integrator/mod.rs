@@ -58,10 +58,30 @@ impl Method {
     }
 }
 
+/// Most photons emitted per SPPM pass or in total for `--method photon` (`--photons`):
+/// 2^24 ≈ 16.8 M. Every emitted photon may be stored at several surfaces (32 bytes each),
+/// so this bounds the photon map's memory before anything is traced; SPPM's default of one
+/// photon per pixel is capped here too.
+pub const MAX_PHOTONS: u64 = 1 << 24;
+
+/// Most photons stored in one photon map or one SPPM pass (2^26 ≈ 67 M, 2 GiB at 32 bytes
+/// each): a scene whose photons bounce so often that `--photons` emitted photons would
+/// store more stops tracing and fails with an error naming `--photons` and `--max-depth`.
+pub const MAX_STORED_PHOTONS: u64 = 1 << 26;
+
+/// Largest `--max-depth`: bounces per path, recursion depth of the Whitted tracer and
+/// non-delta bounces (hence stored photons) per photon. Equal to the path tracer's delta
+/// bounce cap ([`path::MAX_DELTA_BOUNCES`]). The old bound, 100 000, crashed the Whitted
+/// tracer with a stack overflow in a closed mirror box (so did 2048 on a 2 MiB stack); the
+/// render workers' stacks ([`crate::render::WORKER_STACK`]) hold 4× this depth
+/// (`tests/stiff_renders.rs`).
+pub const MAX_DEPTH: u32 = 1024;
+
 /// Photon-mapping settings (`--method photon` and `sppm`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PhotonSettings {
-    /// Photons per pass (SPPM) or in total (photon); 0 = one per pixel (SPPM) or 500 000.
+    /// Photons per pass (SPPM) or in total (photon); 0 = one per pixel (SPPM, at most
+    /// [`MAX_PHOTONS`]) or 500 000. At most [`MAX_PHOTONS`].
     pub photons: u64,
     /// Initial (SPPM) or largest (photon) gather radius in scene units; `None` = from the
     /// pixel footprint at the visible points.
@@ -92,6 +112,68 @@ impl Default for PhotonSettings {
     }
 }
 
+impl PhotonSettings {
+    /// Rejects values the CLI's parsers reject too, for library callers: more than
+    /// [`MAX_PHOTONS`] photons, no pass, α outside (0, 1), a radius that is not finite and
+    /// positive. Errors name the flag and the value.
+    pub fn check(&self) -> crate::error::Result<()> {
+        let usage = |m: String| Err(crate::error::Error::Usage(m));
+        if self.photons > MAX_PHOTONS {
+            return usage(format!(
+                "--photons {}: at most {MAX_PHOTONS} photons (per SPPM pass, or in total for --method photon)",
+                self.photons
+            ));
+        }
+        if self.passes == 0 {
+            return usage("--passes 0: at least 1 pass".into());
+        }
+        if !(self.alpha > 0.0 && self.alpha < 1.0) {
+            return usage(format!(
+                "--alpha {}: expected α strictly between 0 and 1",
+                self.alpha
+            ));
+        }
+        if let Some(r) = self.radius.filter(|r| !(r.is_finite() && *r > 0.0)) {
+            return usage(format!("--radius {r}: expected a finite radius > 0"));
+        }
+        Ok(())
+    }
+}
+
+/// The photons stored by the parallel chunks of one SPPM pass or one photon map, counted
+/// against [`MAX_STORED_PHOTONS`]: chunks stop tracing once it is crossed and the pass
+/// fails ([`StoreBudget::check`]); under the budget nothing changes (the same photons, in
+/// the same order).
+#[derive(Debug, Default)]
+pub struct StoreBudget {
+    stored: std::sync::atomic::AtomicU64,
+}
+
+impl StoreBudget {
+    /// Counts `n` photons just stored; false once the total is over the budget.
+    pub fn add(&self, n: usize) -> bool {
+        let n = n as u64;
+        let total = self
+            .stored
+            .fetch_add(n, std::sync::atomic::Ordering::Relaxed)
+            .saturating_add(n);
+        total <= MAX_STORED_PHOTONS
+    }
+
+    /// An error naming `--photons` (the `emitted` count) and `--max-depth` if the budget
+    /// was crossed.
+    pub fn check(&self, emitted: u64, max_depth: u32) -> crate::error::Result<()> {
+        if self.stored.load(std::sync::atomic::Ordering::Relaxed) <= MAX_STORED_PHOTONS {
+            return Ok(());
+        }
+        Err(crate::error::Error::Usage(format!(
+            "--photons {emitted}: the photons would be stored more than {MAX_STORED_PHOTONS} \
+             times (2 GiB; they bounce often in this scene): use fewer --photons or a smaller \
+             --max-depth (now {max_depth})"
+        )))
+    }
+}
+
 /// Per-thread state an integrator carries along one camera sample.
 pub struct Context {
     /// Random numbers for this pixel sample.
@@ -105,13 +187,25 @@ pub struct Context {
 pub struct Integrator {
     /// Which method.
     pub method: Method,
-    /// Maximum recursion depth (specular bounces count too).
+    /// Maximum recursion depth (specular bounces count too); at most [`MAX_DEPTH`].
     pub max_depth: u32,
     /// Photon-mapping settings (ignored by Whitted and path).
     pub photon: PhotonSettings,
 }
 
 impl Integrator {
+    /// Rejects settings outside the CLI's bounds (`--max-depth` in 1..=[`MAX_DEPTH`], and
+    /// [`PhotonSettings::check`]) with an error naming the flag, for library callers.
+    pub fn check(&self) -> crate::error::Result<()> {
+        if !(1..=MAX_DEPTH).contains(&self.max_depth) {
+            return Err(crate::error::Error::Usage(format!(
+                "--max-depth {}: expected 1 to {MAX_DEPTH} bounces",
+                self.max_depth
+            )));
+        }
+        self.photon.check()
+    }
+
     /// Radiance arriving along `ray` at the sample's wavelengths `lambda` (linear RGB when
     /// `C` is [`Vec3`]), for the per-sample methods; the photon methods need their maps or
     /// passes ([`crate::render`]) and fall back to the path tracer here.

@@ -25,7 +25,7 @@
 //! Flux in the maps is per emitted photon (already divided by their number).
 
 use super::path::{self, StopAt, VisiblePoint};
-use super::{shading, Context, Integrator};
+use super::{shading, Context, Integrator, StoreBudget};
 use crate::bsdf::TransportMode;
 use crate::camera::Camera;
 use crate::error::Result;
@@ -75,17 +75,19 @@ pub struct PhotonMaps {
     pub emitted: u64,
 }
 
-/// Traces `n` photons and builds the maps (photon powers are per emitted photon).
+/// Traces `n` photons and builds the maps (photon powers are per emitted photon); an error
+/// if they would be stored more than [`super::MAX_STORED_PHOTONS`] times.
 pub fn build_maps(
     scene: &Scene,
     n: u64,
     settings: &TraceSettings,
     seed: u64,
     spectral: bool,
-) -> (Vec<Photon>, Vec<Photon>, u64) {
+) -> Result<(Vec<Photon>, Vec<Photon>, u64)> {
     let emitter = PhotonEmitter::new(scene);
     let inv_n = 1.0 / n.max(1) as f32;
     let chunks = n.div_ceil(CHUNK);
+    let budget = StoreBudget::default();
     let per_chunk: Vec<(Vec<Photon>, Vec<Photon>, u64)> = (0..chunks)
         .into_par_iter()
         .map(|c| {
@@ -95,6 +97,7 @@ pub fn build_maps(
                 let Some(ph) = emitter.emit_from(scene, &mut rng) else {
                     continue;
                 };
+                let before = caustic.len() + global.len();
                 let mut keep = |p: Vec3, wi: Vec3, rgb: Vec3, is_caustic: bool| {
                     let photon = Photon::new(p, wi, (rgb * inv_n).to_lanes(), 0);
                     if is_caustic {
@@ -117,17 +120,21 @@ pub fn build_maps(
                         keep(v.p, v.wi, v.power, v.caustic)
                     })
                 };
+                if !budget.add(caustic.len() + global.len() - before) {
+                    break;
+                }
             }
             (caustic, global, rays)
         })
         .collect();
+    budget.check(n, settings.max_depth)?;
     let (mut caustic, mut global, mut rays) = (Vec::new(), Vec::new(), 0);
     for (c, g, r) in per_chunk {
         caustic.extend(c);
         global.extend(g);
         rays += r;
     }
-    (caustic, global, rays)
+    Ok((caustic, global, rays))
 }
 
 impl PhotonMaps {
@@ -273,7 +280,7 @@ pub fn render(
         max_depth: integrator.max_depth,
         roulette: ps.roulette,
     };
-    let (caustic, global, rays) = build_maps(scene, n, &ts, settings.seed, settings.spectral);
+    let (caustic, global, rays) = build_maps(scene, n, &ts, settings.seed, settings.spectral)?;
     let max_r = ps.radius.unwrap_or_else(|| {
         // 16 pixel footprints at the distance of the scene's centre.
         let c = 0.5 * (scene.bounds.0 + scene.bounds.1);

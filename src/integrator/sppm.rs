@@ -32,7 +32,7 @@
 //! may stop the render; the time limit is checked between passes.
 
 use super::path::{self, StopAt, VisiblePoint};
-use super::{Context, Integrator};
+use super::{Context, Integrator, StoreBudget, MAX_PHOTONS};
 use crate::bsdf::TransportMode;
 use crate::camera::Camera;
 use crate::error::Result;
@@ -116,7 +116,7 @@ fn run<C: Carrier>(
     let n_photons = if ps.photons > 0 {
         ps.photons
     } else {
-        n_pix as u64
+        (n_pix as u64).min(MAX_PHOTONS)
     };
     let emitter = PhotonEmitter::new(scene);
     let trace_settings = TraceSettings {
@@ -193,6 +193,7 @@ fn run<C: Carrier>(
         let r = r2.map_or(0.0, f64::sqrt) as f32;
         // 3. Photons, in fixed chunks.
         let chunks = n_photons.div_ceil(CHUNK);
+        let budget = StoreBudget::default();
         let per_chunk: Vec<(Vec<Photon>, u64)> = (0..chunks)
             .into_par_iter()
             .map(|c| {
@@ -204,6 +205,7 @@ fn run<C: Carrier>(
                     let Some(ph) = emitter.emit_from(scene, &mut rng) else {
                         continue;
                     };
+                    let before = out.len();
                     rays +=
                         trace::trace::<C>(scene, &ph, lambda, &trace_settings, &mut rng, |v, l| {
                             if v.bounces > 0 {
@@ -220,10 +222,14 @@ fn run<C: Carrier>(
                                 ));
                             }
                         });
+                    if !budget.add(out.len() - before) {
+                        break;
+                    }
                 }
                 (out, rays)
             })
             .collect();
+        budget.check(n_photons, integrator.max_depth)?;
         photons.clear();
         // Exact reservation: the buffer's capacity is the largest pass's photon count, not
         // a doubling of it.

@@ -17,8 +17,8 @@ pub fn shared_assets() -> Option<PathBuf> {
     let found = iris::gallery::shared_assets_dir_in(root).unwrap_or_else(|e| panic!("{e}"));
     if found.is_none() {
         eprintln!(
-            "SKIPPED: shared test assets not found at {} (set IRIS_SHARED_ASSETS, or IRIS_REQUIRE_SHARED=1 to fail)",
-            root.join("../shared/assets").display()
+            "SKIPPED: shared test assets not found at {} (no MANIFEST.md there; set IRIS_SHARED_ASSETS, or IRIS_REQUIRE_SHARED=1 to fail)",
+            iris::gallery::shared_assets_candidate(root).display()
         );
     }
     found
