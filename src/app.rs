@@ -187,13 +187,6 @@ pub fn resolve_environment(
     }
 }
 
-/// The image size: the flag, else 800 wide at the first camera's aspect ratio (or 4:3).
-fn image_size(opts: &RenderOptions, scene: &Scene) -> Result<(u32, u32)> {
-    let (w, h) = opts.size.unwrap_or_else(|| default_size(scene));
-    check_size(w, h)?;
-    Ok((w, h))
-}
-
 /// The default image size: 800 wide at the first camera's aspect ratio (or 4:3).
 pub fn default_size(scene: &Scene) -> (u32, u32) {
     let aspect = scene
@@ -244,6 +237,24 @@ impl SpectralMode {
                     .any(|m| m.is_dispersive() || m.emitter_shape().is_some())
                     || scene.light_shapes.iter().any(Option::is_some)
             }
+        }
+    }
+}
+
+impl RenderOptions {
+    /// The scene preparation these options (and the drop-in `preview` choices) ask for;
+    /// `reference_size` is the `--reference` image's size, used when `--size` is not given.
+    pub fn prepare_options(
+        &self,
+        preview: &PreviewOptions,
+        reference_size: Option<(u32, u32)>,
+    ) -> crate::prepare::PrepareOptions {
+        crate::prepare::PrepareOptions {
+            accel: self.accel,
+            env: self.env.clone(),
+            camera: self.camera.clone(),
+            size: self.size.or(reference_size),
+            preview: *preview,
         }
     }
 }
@@ -314,18 +325,18 @@ pub fn render_command_planned(
         .as_deref()
         .map(crate::converge::measure::read_reference_file)
         .transpose()?;
-    let (scene, file_env, load_time, mut ground_note) =
-        load_for_preview(&opts.scene, opts.accel, preview.ground_mode())?;
-    if preview.ground_mode() != preview.ground {
-        ground_note = "--ground auto: no floor, since it would cover the --background \
-                       (--ground on to add it)"
-            .into();
-    }
-    let mut scene = scene.with_environment(resolve_environment(opts.env.clone(), file_env)?);
-    let (w, h) = match (&reference, opts.size) {
-        (Some(r), None) => (r.width, r.height),
-        _ => image_size(opts, &scene)?,
-    };
+    let prepared = crate::prepare::prepare(
+        &opts.scene,
+        &opts.prepare_options(preview, reference.as_ref().map(|r| (r.width, r.height))),
+    )?;
+    let crate::prepare::Prepared {
+        scene,
+        camera: cam_desc,
+        size: (w, h),
+        load_time,
+        ground_note,
+        camera_note: cam_note,
+    } = prepared;
     if let (Some(r), Some(path)) = (&reference, &measure.reference) {
         crate::converge::measure::check_reference_size(
             r,
@@ -335,17 +346,7 @@ pub fn render_command_planned(
             &format!("the render of {}", opts.scene.display()),
         )?;
     }
-    let (cam_desc, cam_note) = choose_camera_view(
-        &scene,
-        opts.camera.as_deref(),
-        preview.view,
-        w as f32 / h as f32,
-    )?;
     let camera = Camera::new(&cam_desc, w, h);
-    if opts.env.is_none() {
-        let bounds = scene.subject_bounds;
-        crate::studio::apply(&mut scene, preview.studio, bounds, &cam_desc);
-    }
     let mut plan = crate::plan::Plan::new(&scene, opts.method, opts.spectral);
     if explain {
         plan.add_file_counts(&opts.scene);

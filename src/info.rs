@@ -190,7 +190,7 @@ pub fn info_command(path: &Path) -> Result<String> {
 /// the file's environment), with its costs measured, for `iris info`.
 fn info_plan(path: &Path) -> Result<String> {
     let (w, h) = crate::plan::PROBE_SIZE;
-    let (scene, cam) = default_preview_scene(path, Backend::Auto, w as f32 / h as f32)?;
+    let (scene, cam) = default_preview_scene(path, Backend::Auto, (w, h))?;
     let mut plan = crate::plan::Plan::new(&scene, Method::Auto, SpectralMode::Auto);
     plan.add_file_counts(path);
     plan.measure_costs(&scene, &Camera::new(&cam, w, h), 0)?;

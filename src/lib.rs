@@ -45,6 +45,7 @@ pub mod output;
 pub mod photon;
 pub mod plan;
 pub mod plot;
+pub mod prepare;
 pub mod preview;
 pub mod render;
 pub mod report;

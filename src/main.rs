@@ -530,6 +530,9 @@ fn run(cli: Cli) -> iris::Result<()> {
                 quiet: a.quiet,
             };
             let s = converge_command(&opts)?;
+            for n in &s.notes {
+                eprintln!("note: {n}");
+            }
             if let Some((m, path)) = &s.rendered_reference {
                 println!(
                     "reference: rendered with {} for {:.1} s -> {}",

@@ -2,15 +2,15 @@
 //! for a file that lacks a camera, lights or a floor ([`PreviewOptions`]: `--view`,
 //! `--studio`, `--ground`, `--background`).
 //!
-//! Order (the render plan is made after all of it): load and validate the file; add the
-//! `--ground` floor ([`crate::studio::ground`]) before the acceleration build; pick the
-//! file's camera or frame the model ([`crate::framing`], fitting the file's own vertices,
-//! never the floor); then, when the file has no light and no environment is given, light
-//! it with the studio ([`crate::studio`]), placed relative to that camera. Units: the
-//! file's (metres for glTF); frames: world space, +Y up.
+//! The steps, in the order [`crate::prepare::prepare`] (the one scene preparation every
+//! command uses) runs them: load and validate the file; add the `--ground` floor
+//! ([`crate::studio::ground`]) before the acceleration build; pick the file's camera or
+//! frame the model ([`crate::framing`], fitting the file's own vertices, never the floor);
+//! then, when the file has no light and no environment is given, light it with the studio
+//! ([`crate::studio`]), placed relative to that camera. Units: the file's (metres for
+//! glTF); frames: world space, +Y up.
 
 use crate::accel::Backend;
-use crate::app::resolve_environment;
 use crate::error::{Error, Result};
 use crate::framing::{frame_points, View};
 use crate::output::Background;
@@ -171,19 +171,20 @@ impl PreviewOptions {
     }
 }
 
-/// The scene and camera `iris render FILE` renders with default flags: the file's
-/// environment, the `--ground auto` floor, the file's first camera or the automatic view,
-/// and the default studio when the file has no light.
+/// The scene and camera `iris render FILE --size WxH` renders with otherwise default flags
+/// (the one preparation, [`crate::prepare::prepare`], with default options).
 pub fn default_preview_scene(
     path: &Path,
     accel: Backend,
-    aspect: f32,
+    size: (u32, u32),
 ) -> Result<(Scene, CameraDesc)> {
-    let preview = PreviewOptions::default();
-    let (scene, file_env, _, _) = load_for_preview(path, accel, preview.ground_mode())?;
-    let mut scene = scene.with_environment(resolve_environment(None, file_env)?);
-    let (cam, _) = choose_camera_view(&scene, None, preview.view, aspect)?;
-    let bounds = scene.subject_bounds;
-    crate::studio::apply(&mut scene, preview.studio, bounds, &cam);
-    Ok((scene, cam))
+    let p = crate::prepare::prepare(
+        path,
+        &crate::prepare::PrepareOptions {
+            accel,
+            size: Some(size),
+            ..Default::default()
+        },
+    )?;
+    Ok((p.scene, p.camera))
 }

@@ -221,7 +221,7 @@ fn plan_of_every_shared_asset_matches_the_snapshot() {
         // without the embree feature. The scene as `iris render FILE` sees it (studio,
         // floor, automatic view at the default 16:9).
         let planned =
-            iris::app::default_preview_scene(&path, Backend::Bvh, 16.0 / 9.0).map(|(scene, _)| {
+            iris::app::default_preview_scene(&path, Backend::Bvh, (16, 9)).map(|(scene, _)| {
                 let mut plan = Plan::new(&scene, Method::Auto, SpectralMode::Auto);
                 plan.add_file_counts(&path);
                 plan.text()

@@ -215,9 +215,27 @@ pub struct ConvergeOptions {
     pub quiet: bool,
 }
 
+impl ConvergeOptions {
+    /// The preparation `iris render` would make of the same file and flags (no `--env`, no
+    /// `--camera`, the default drop-in preview); `reference_size` is the reference image's
+    /// size, used when `--size` is not given.
+    pub fn prepare_options(
+        &self,
+        reference_size: Option<(u32, u32)>,
+    ) -> crate::prepare::PrepareOptions {
+        crate::prepare::PrepareOptions {
+            accel: self.accel,
+            size: self.size.or(reference_size),
+            ..Default::default()
+        }
+    }
+}
+
 /// What `iris converge` did.
 #[derive(Debug, Clone)]
 pub struct ConvergeSummary {
+    /// What the scene preparation decided (lights, floor, camera), as `iris render` notes.
+    pub notes: Vec<String>,
     /// Every file written, in order.
     pub files: Vec<PathBuf>,
     /// The reference, when one was rendered: its method and file.
@@ -269,14 +287,17 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
         .map(crate::converge::measure::read_reference_file)
         .transpose()?;
     prepare_dir(&opts.out_dir)?;
-    let (scene, file_env, load_time) = app::load_with_environment(&opts.scene, opts.accel)?;
-    let scene = scene.with_environment(app::resolve_environment(None, file_env)?);
-    let (w, h) = match (opts.size, &given_reference) {
-        (Some(s), _) => s,
-        (None, Some(r)) => (r.width, r.height),
-        (None, None) => app::default_size(&scene),
-    };
-    app::check_size(w, h)?;
+    // The scene `iris render` renders for the same file and flags (the default drop-in
+    // preview: floor, studio, framing), from the one preparation.
+    let reference_size = given_reference.as_ref().map(|r| (r.width, r.height));
+    let prepared = crate::prepare::prepare(&opts.scene, &opts.prepare_options(reference_size))?;
+    let notes = prepared.notes();
+    let (scene, cam_desc, (w, h), load_time) = (
+        prepared.scene,
+        prepared.camera,
+        prepared.size,
+        prepared.load_time,
+    );
     // The reference's method (without --reference) and every run's fit in memory.
     let reference_method = given_reference
         .is_none()
@@ -293,7 +314,6 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
             &format!("--size of {}", opts.scene.display()),
         )?;
     }
-    let (cam_desc, _) = app::choose_camera(&scene, None, w as f32 / h as f32)?;
     let job = Job {
         scene: &scene,
         camera: Camera::new(&cam_desc, w, h),
@@ -381,6 +401,7 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
     )?;
     files.push(plot);
     Ok(ConvergeSummary {
+        notes,
         files,
         rendered_reference,
         runs,
