@@ -8,7 +8,7 @@
 //! Densities: `sample` returns the pdf with respect to **solid angle** at the receiving point:
 //! p_ω = p_A · d² / |cos θ_light| with p_A = P(triangle) / area (pbrt-v4 §12.2).
 
-use crate::scene::TriangleData;
+use crate::scene::triangle::TriangleData;
 use glam::{Vec2, Vec3};
 
 /// Luminance of linear Rec.709 RGB.

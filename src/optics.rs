@@ -51,6 +51,21 @@ fn cos_transmitted(cos_i: f64, eta: f64) -> Option<f64> {
     (k >= 0.0).then(|| k.sqrt() / eta)
 }
 
+/// [`fresnel_dielectric`] for a cosine on either side (pbrt-v4 `FrDielectric`): a negative
+/// `cos` means the incident direction is inside, so the relative index `eta` inverts;
+/// `eta` = +∞ gives 1. Shared by the dielectric BSDFs and their energy tables.
+#[inline]
+pub fn fresnel_either_side(cos: f32, eta: f32) -> f32 {
+    if eta.is_infinite() {
+        return 1.0;
+    }
+    if cos < 0.0 {
+        fresnel_dielectric(-cos, 1.0 / eta)
+    } else {
+        fresnel_dielectric(cos, eta)
+    }
+}
+
 /// Exact unpolarised Fresnel reflectance of a smooth dielectric interface
 /// (Born & Wolf; pbrt-v4 `FrDielectric`): the mean of the s- and p-polarised reflectances,
 /// `cos_i` = cosine of the incident angle (≥ 0), `eta` = n_t/n_i. Returns 1 under total

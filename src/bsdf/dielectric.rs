@@ -12,26 +12,12 @@
 //! single-scatter, reciprocal part.
 
 use super::{same_hemisphere, BsdfSample, TransportMode};
-use crate::optics::{fresnel_dielectric, reflect, refract};
+use crate::optics::{fresnel_either_side as fresnel, reflect, refract};
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
 
 use super::energy;
 use super::microfacet::Ggx;
-
-/// Fresnel reflectance for a cosine on either side (pbrt-v4 `FrDielectric`): a negative
-/// cosine means the incident direction is inside, so the relative index inverts.
-#[inline]
-pub(crate) fn fresnel(cos: f32, eta: f32) -> f32 {
-    if eta.is_infinite() {
-        return 1.0;
-    }
-    if cos < 0.0 {
-        fresnel_dielectric(-cos, 1.0 / eta)
-    } else {
-        fresnel_dielectric(cos, eta)
-    }
-}
 
 /// Refraction of `w` through a (micro)surface with normal `n` on either side, reusing
 /// [`crate::optics::refract`] after orienting the interface (pbrt-v4 `Refract`). Returns the

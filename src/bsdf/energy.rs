@@ -44,9 +44,8 @@
 //! glass). Measured for η 1.5, |cos| ≥ 0.1: E(wi)/E(wo) ∈ [0.91, 1.08] at α 0.1,
 //! [0.80, 1.10] at α 0.3, [0.58, 1.23] at α 0.8. Both modes conserve energy.
 
-use super::dielectric::fresnel;
 use super::microfacet::Ggx;
-use crate::optics::{reflect, refract};
+use crate::optics::{fresnel_either_side as fresnel, reflect, refract};
 use glam::{Vec2, Vec3};
 use std::sync::OnceLock;
 

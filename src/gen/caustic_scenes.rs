@@ -49,7 +49,7 @@
 use super::gem::Brilliant;
 use super::lathe::sin_cos;
 use super::model::{GenLight, GenMaterial, GenMesh, GenScene};
-use super::paper::{camera, push_material};
+use super::parts::{camera, push_material};
 use super::shapes::{ground_plane, icosphere, TriMesh};
 use super::spectral_scenes::upright_prism;
 use glam::{DVec3, Vec3};

@@ -13,7 +13,7 @@
 
 use super::lathe::sin_cos;
 use super::model::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
-use super::paper::{camera, push_material};
+use super::parts::{camera, push_material};
 use super::shapes::{ground_plane, icosphere, quarter_turn_x, TriMesh};
 use glam::{DVec3, Vec3};
 

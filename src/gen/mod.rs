@@ -30,6 +30,7 @@ mod gltf_json;
 pub mod lathe;
 pub mod model;
 pub mod paper;
+mod parts;
 pub mod rainbow;
 pub mod scenes;
 pub mod shapes;

@@ -23,7 +23,8 @@
 
 use super::caustic_scenes::fig4_5_1_caustics;
 use super::glb::write_glb;
-use super::model::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
+use super::model::{GenLight, GenMaterial, GenMesh, GenScene};
+use super::parts::{camera, push_material};
 use super::shapes::{checkerboard, ground_plane, icosphere, prism, quarter_turn_x, TriMesh};
 use crate::error::{Error, Result};
 use glam::{Mat3, Vec3};
@@ -224,11 +225,6 @@ pub(super) fn grey_pair() -> (Vec3, Vec3) {
     (Vec3::splat(0.8), Vec3::splat(0.05))
 }
 
-pub(super) fn push_material(s: &mut GenScene, m: GenMaterial) -> usize {
-    s.materials.push(m);
-    s.materials.len() - 1
-}
-
 /// Adds a two-colour checkerboard mapped by `rotation` then moved by `offset`.
 pub(super) fn add_checker(
     s: &mut GenScene,
@@ -265,17 +261,6 @@ fn add_lights(s: &mut GenScene, key_at: Vec3, fill_towards: Vec3) {
         color: Vec3::ONE,
         intensity: FILL_LUX,
     });
-}
-
-pub(super) fn camera(eye: Vec3, target: Vec3, yfov_degrees: f64, aspect: f32) -> GenCamera {
-    GenCamera {
-        name: "Camera".into(),
-        eye,
-        target,
-        up: Vec3::Y,
-        yfov: yfov_degrees.to_radians() as f32,
-        aspect: Some(aspect),
-    }
 }
 
 #[cfg(test)]

@@ -52,7 +52,7 @@
 //! by at most the slit's size over 4 m (< 0.6 mrad, less than the real sun's 9 mrad).
 
 use super::model::{GenLight, GenMaterial, GenMesh, GenScene};
-use super::paper::{camera, push_material};
+use super::parts::{camera, push_material};
 use super::shapes::TriMesh;
 use super::spectral_scenes::{upright_prism, BeamLayout, N_D_BK7};
 use glam::{DVec3, Vec3};

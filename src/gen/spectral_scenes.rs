@@ -43,7 +43,7 @@
 use super::gem::Brilliant;
 use super::lathe::sin_cos;
 use super::model::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
-use super::paper::push_material;
+use super::parts::push_material;
 use super::shapes::{cuboid, ground_plane, push_flat_facing_away, TriMesh};
 use glam::{DVec3, Vec3};
 
@@ -265,7 +265,7 @@ pub fn fig5_3_1_prism_beam() -> GenScene {
 
 /// A camera from `eye` to `target` (f64), vertical field `yfov` degrees.
 fn look(eye: DVec3, target: DVec3, yfov: f64, aspect: f32) -> GenCamera {
-    super::paper::camera(eye.as_vec3(), target.as_vec3(), yfov, aspect)
+    super::parts::camera(eye.as_vec3(), target.as_vec3(), yfov, aspect)
 }
 
 /// The diamond's cut: Tolkowsky ideal with a 53 % table, Ø 6.5 mm.

@@ -10,8 +10,11 @@
 pub mod contact;
 pub mod desc;
 mod thin;
+pub mod triangle;
 pub mod validate;
 pub mod winding;
+
+pub use triangle::TriangleData;
 
 use crate::accel::{Accel, Backend};
 use crate::area_light::AreaLights;
@@ -24,38 +27,6 @@ use desc::{CameraDesc, ImageDesc, MaterialDesc, SceneDesc};
 use glam::{Vec2, Vec3};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
-
-/// What the intersection layer reads for a hit triangle, packed so that one fetch brings
-/// the vertex positions and the material (the hot path on large meshes is memory-bound).
-/// Aligned to a 64-byte cache line so a fetch never straddles two lines.
-#[derive(Debug, Clone, Copy)]
-#[repr(C, align(64))]
-pub struct TriangleData {
-    /// World-space vertex positions.
-    pub p: [Vec3; 3],
-    /// Material index in the low 29 bits; [`TriangleData::HAS_NORMALS`] and
-    /// [`TriangleData::HAS_UVS`] say whether to interpolate vertex attributes,
-    /// [`TriangleData::TOUCHES`] whether another object's face may lie on it.
-    pub info: u32,
-}
-
-impl TriangleData {
-    /// The triangle's mesh has per-vertex shading normals.
-    pub const HAS_NORMALS: u32 = 1 << 30;
-    /// The triangle's mesh has texture coordinates.
-    pub const HAS_UVS: u32 = 1 << 31;
-    /// A face of another mesh lies on this triangle (within the merge distance) somewhere:
-    /// only such hits are probed for coincident surfaces (see [`contact`]).
-    pub const TOUCHES: u32 = 1 << 29;
-    /// Mask of the material index bits.
-    pub const MATERIAL_MASK: u32 = (1 << 29) - 1;
-
-    /// The material index.
-    #[inline]
-    pub fn material(&self) -> u32 {
-        self.info & Self::MATERIAL_MASK
-    }
-}
 
 /// Per-mesh bookkeeping.
 #[derive(Debug, Clone)]
