@@ -66,9 +66,6 @@ impl Prepared {
 
 /// Loads `path` and prepares it as described in the module docs.
 pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
-    if let Some((w, h)) = opts.size {
-        check_size(w, h)?;
-    }
     let preview = &opts.preview;
     let (scene, file_env, load_time, mut ground_note) =
         load_for_preview(path, opts.accel, preview.ground_mode())?;
