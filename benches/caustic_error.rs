@@ -18,7 +18,7 @@ use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::metrics::compare;
 use iris::output::ImageRgb;
-use iris::render::{render, RenderSettings};
+use iris::render::RenderSettings;
 use iris::scene::Scene;
 use std::fmt::Write as _;
 
@@ -39,15 +39,16 @@ fn settings(spp: u32, seed: u64) -> RenderSettings {
 }
 
 fn integrator(method: Method, photons: u64, passes: u32) -> Integrator {
-    Integrator {
+    Integrator::new(
         method,
-        max_depth: 32,
-        photon: PhotonSettings {
+        32,
+        &PhotonSettings {
             photons,
             passes,
             ..PhotonSettings::default()
         },
-    }
+    )
+    .expect("a resolved method")
 }
 
 fn rmse(a: &ImageRgb, b: &ImageRgb) -> f64 {
@@ -76,13 +77,9 @@ fn main() {
         let desc = iris::scene::validate::validate(desc).expect("valid");
         let scene = Scene::build(desc, iris::accel::Backend::Auto).expect("build");
         let camera = Camera::new(&cam, W, H);
-        let (reference, rs) = render(
-            &scene,
-            &camera,
-            &integrator(Method::Sppm, 32_768, 2048),
-            &settings(1, 1000),
-        )
-        .expect("reference");
+        let (reference, rs) = integrator(Method::Sppm, 32_768, 2048)
+            .render(&scene, &camera, &settings(1, 1000))
+            .expect("reference");
         let mean = reference
             .data
             .iter()
@@ -94,7 +91,9 @@ fn main() {
             rs.time.as_secs_f64()
         );
         let mut run = |method: &'static str, budget: String, integ: Integrator, spp: u32| {
-            let (img, st) = render(&scene, &camera, &integ, &settings(spp, 7)).expect("render");
+            let (img, st) = integ
+                .render(&scene, &camera, &settings(spp, 7))
+                .expect("render");
             let e = rmse(&img, &reference);
             let row = Row {
                 scene: name,

@@ -17,8 +17,8 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Through
 use iris::app::{choose_camera, load};
 use iris::camera::Camera;
 use iris::envmap::Environment;
-use iris::integrator::{Integrator, Method};
-use iris::render::{render, RenderSettings};
+use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::render::RenderSettings;
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -43,11 +43,8 @@ fn path_tracer(c: &mut Criterion) {
             None,
         ),
     ];
-    let integrator = Integrator {
-        method: Method::Path,
-        max_depth: 8,
-        photon: Default::default(),
-    };
+    let integrator =
+        Integrator::new(Method::Path, 8, &PhotonSettings::default()).expect("a resolved method");
     let settings = RenderSettings {
         width: SIZE,
         height: SIZE,
@@ -71,14 +68,20 @@ fn path_tracer(c: &mut Criterion) {
             }));
             let (cam, _) = choose_camera(&scene, None, 1.0).expect("camera");
             let camera = Camera::new(&cam, SIZE, SIZE);
-            let (_, stats) = render(&scene, &camera, &integrator, &settings).expect("renders");
+            let (_, stats) = integrator
+                .render(&scene, &camera, &settings)
+                .expect("renders");
             eprintln!(
                 "{name}/{bname}: {} rays per iteration ({:.2} rays per sample)",
                 stats.rays,
                 stats.rays as f64 / stats.samples as f64
             );
             group.bench_function(BenchmarkId::new(*name, bname), |b| {
-                b.iter(|| render(&scene, &camera, &integrator, &settings).expect("renders"))
+                b.iter(|| {
+                    integrator
+                        .render(&scene, &camera, &settings)
+                        .expect("renders")
+                })
             });
         }
     }
@@ -101,11 +104,8 @@ fn spectral_overhead(c: &mut Criterion) {
             Some(0.5f32),
         ));
     }
-    let integrator = Integrator {
-        method: Method::Path,
-        max_depth: 8,
-        photon: Default::default(),
-    };
+    let integrator =
+        Integrator::new(Method::Path, 8, &PhotonSettings::default()).expect("a resolved method");
     let mut group = c.benchmark_group("spectral_overhead_256");
     group.sample_size(10);
     group.warm_up_time(Duration::from_secs(2));
@@ -135,7 +135,11 @@ fn spectral_overhead(c: &mut Criterion) {
                 "spectral_off"
             };
             group.bench_function(BenchmarkId::new(*name, id), |b| {
-                b.iter(|| render(&scene, &camera, &integrator, &settings).expect("renders"))
+                b.iter(|| {
+                    integrator
+                        .render(&scene, &camera, &settings)
+                        .expect("renders")
+                })
             });
         }
     }

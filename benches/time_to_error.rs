@@ -38,7 +38,7 @@ use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::output::ImageRgb;
 use iris::prepare::{prepare, PrepareOptions};
 use iris::preview::PreviewOptions;
-use iris::render::{render, RenderSettings};
+use iris::render::RenderSettings;
 use iris::scene::Scene;
 use iris::studio::{GroundMode, Studio};
 use std::fmt::Write as _;
@@ -70,15 +70,16 @@ fn settings(spp: u32, seed: u64, time_limit: Option<Duration>) -> RenderSettings
 }
 
 fn integrator(method: Method, photons: u64, passes: u32) -> Integrator {
-    Integrator {
+    Integrator::new(
         method,
-        max_depth: 16,
-        photon: PhotonSettings {
+        16,
+        &PhotonSettings {
             photons,
             passes,
             ..PhotonSettings::default()
         },
-    }
+    )
+    .expect("a resolved method")
 }
 
 /// Integrator, samples per pixel and a label for budget step `k` (1, 2, 4, …).
@@ -137,24 +138,19 @@ fn open(path: &Path, env: Option<f32>, backend: Backend) -> Option<(Scene, Camer
 
 /// The long reference (see the module docs) and the method used.
 fn reference(scene: &Scene, camera: &Camera) -> iris::Result<(ImageRgb, Method, String)> {
-    let (method, _) = Method::Auto.resolve(scene);
+    let (method, _) = iris::plan::resolve_method(Method::Auto, scene);
     let start = Instant::now();
     if method == Method::Sppm {
         let integ = integrator(Method::Sppm, u64::from(W * H), 1_000_000);
         let limit = Duration::from_secs_f64(REFERENCE_SECONDS);
-        let (img, st) = render(scene, camera, &integ, &settings(1, 1000, Some(limit)))?;
+        let (img, st) = integ.render(scene, camera, &settings(1, 1000, Some(limit)))?;
         return Ok((img, method, format!("SPPM {} passes", st.passes)));
     }
     let integ = integrator(Method::Path, 0, 1);
     let mut sum: Option<ImageRgb> = None;
     let mut n = 0u32;
     while n == 0 || start.elapsed().as_secs_f64() < REFERENCE_SECONDS {
-        let (img, _) = render(
-            scene,
-            camera,
-            &integ,
-            &settings(64, 1000 + u64::from(n), None),
-        )?;
+        let (img, _) = integ.render(scene, camera, &settings(64, 1000 + u64::from(n), None))?;
         match &mut sum {
             None => sum = Some(img),
             Some(s) => s.data.iter_mut().zip(&img.data).for_each(|(a, b)| *a += *b),
@@ -237,7 +233,7 @@ fn main() {
                 while spent + 2.0 * last <= SERIES_CAP_SECONDS {
                     let (integ, spp, label) = budget(method, k);
                     let start = Instant::now();
-                    let img = match render(&scene, &camera, &integ, &settings(spp, 7, None)) {
+                    let img = match integ.render(&scene, &camera, &settings(spp, 7, None)) {
                         Ok((img, _)) => img,
                         Err(e) => {
                             eprintln!("{name} {mname} {bname}: {e}");

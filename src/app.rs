@@ -11,10 +11,11 @@ pub use crate::info::info_command;
 use crate::integrator::{Integrator, Method};
 use crate::metrics::ErrorMetrics;
 use crate::output::{self, Background, DisplayOptions, ImageRgb};
+pub use crate::plan::SpectralMode;
 pub use crate::preview::{
     choose_camera, choose_camera_view, default_preview_scene, load_for_preview, PreviewOptions,
 };
-use crate::render::{render_progressive, Control, Progress, RenderSettings, RenderStats};
+use crate::render::{Control, Progress, RenderSettings, RenderStats};
 use crate::report::ReportRow;
 use crate::scene::desc::{EnvironmentDesc, Projection};
 use crate::scene::Scene;
@@ -211,36 +212,6 @@ pub fn check_size(w: u32, h: u32) -> Result<()> {
     Ok(())
 }
 
-/// `--spectral auto|on|off`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum SpectralMode {
-    /// Spectral transport when a material is dispersive or a light or emissive material names
-    /// a spectrum (`iris_spectrum`), RGB otherwise.
-    #[default]
-    Auto,
-    /// Always spectral.
-    On,
-    /// Always RGB (dispersive materials use n_d).
-    Off,
-}
-
-impl SpectralMode {
-    /// Whether to render `scene` spectrally.
-    pub fn resolve(self, scene: &Scene) -> bool {
-        match self {
-            SpectralMode::On => true,
-            SpectralMode::Off => false,
-            SpectralMode::Auto => {
-                scene
-                    .materials
-                    .iter()
-                    .any(|m| m.is_dispersive() || m.emitter_shape().is_some())
-                    || scene.light_shapes.iter().any(Option::is_some)
-            }
-        }
-    }
-}
-
 impl RenderOptions {
     /// The scene preparation these options (and the drop-in `preview` choices) ask for;
     /// `reference_size` is the `--reference` image's size, used when `--size` is not given.
@@ -302,12 +273,8 @@ pub fn render_command_planned(
         check_size(w, h)?;
     }
     crate::render::check_threads(opts.threads)?;
-    Integrator {
-        method: opts.method,
-        max_depth: opts.max_depth,
-        photon: opts.photon,
-    }
-    .check()?;
+    crate::integrator::check_depth(opts.max_depth)?;
+    opts.photon.check()?;
     let output = match &opts.output {
         Some(o) => o.clone(),
         None => {
@@ -355,17 +322,13 @@ pub fn render_command_planned(
     }
     on_plan(&plan);
     let (method, method_note) = (plan.method, plan.method_note.clone());
-    crate::render::check_memory(w, h, method)?;
+    crate::integrator::check_memory(w, h, method)?;
     measure.check_checkpoints(if method == Method::Sppm {
         opts.photon.passes
     } else {
         opts.spp
     })?;
-    let integrator = Integrator {
-        method,
-        max_depth: opts.max_depth,
-        photon: opts.photon,
-    };
+    let integrator = Integrator::new(method, opts.max_depth, &opts.photon)?;
     let settings = RenderSettings {
         width: w,
         height: h,
@@ -376,7 +339,7 @@ pub fn render_command_planned(
         spectral: plan.spectral,
         time_limit: opts.time_limit,
     };
-    let run = crate::converge::method_name(method);
+    let run = method.name();
     let mut rows = crate::converge::setup_rows(run, load_time, scene.accel_build_time);
     let mut recorder = Recorder::new(run, reference.as_ref(), measure.target_error);
     recorder.verbose = !opts.quiet && measure.any();
@@ -419,7 +382,7 @@ pub fn render_command_planned(
         recorder.observe(p)
     };
     let (image, stats) =
-        render_progressive(&scene, &camera, &integrator, &settings, Some(&mut observe))?;
+        integrator.render_progressive(&scene, &camera, &settings, Some(&mut observe))?;
     write(&image)?;
     let reached_target = recorder.reached_target;
     rows.append(&mut recorder.rows);

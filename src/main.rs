@@ -12,9 +12,7 @@ use clap::{Parser, Subcommand, ValueEnum};
 use iris::accel::Backend;
 use iris::app::{self, RenderOptions};
 use iris::converge::measure::relative_rmse;
-use iris::converge::{
-    converge_command, method_name, parse_methods, ConvergeOptions, MeasureOptions,
-};
+use iris::converge::{converge_command, parse_methods, ConvergeOptions, MeasureOptions};
 use iris::integrator::{Method, PhotonSettings};
 use iris::output::{DisplayOptions, Exposure, ToneMap};
 use iris::photon::trace::Roulette;
@@ -536,7 +534,7 @@ fn run(cli: Cli) -> iris::Result<()> {
             if let Some((m, path)) = &s.rendered_reference {
                 println!(
                     "reference: rendered with {} for {:.1} s -> {}",
-                    method_name(*m),
+                    m.name(),
                     4.0 * a.time,
                     path.display()
                 );
@@ -601,7 +599,7 @@ fn run(cli: Cli) -> iris::Result<()> {
                 eprintln!(
                     "{}: {}, {}, render {:.2} s -> {}",
                     r.entry.name,
-                    method_name(r.summary.method),
+                    r.summary.method.name(),
                     r.summary.work_done(),
                     r.summary.stats.time.as_secs_f64(),
                     r.summary.output.display()

@@ -21,9 +21,9 @@ use iris::envmap::Environment;
 use iris::error::LoadErrorKind;
 use iris::gen::gem::Brilliant;
 use iris::gen::shapes::{cuboid, ground_plane, icosphere, TriMesh};
-use iris::integrator::{Integrator, Method};
+use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::math::Rng;
-use iris::render::{render, RenderSettings};
+use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, LightDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 use std::path::Path;
@@ -161,12 +161,10 @@ fn render_path(scene: &Scene, cam: &CameraDesc, size: u32, spp: u32) -> Vec<Vec3
         spectral: false,
         time_limit: None,
     };
-    let integrator = Integrator {
-        method: Method::Path,
-        max_depth: 64,
-        photon: Default::default(),
-    };
-    render(scene, &Camera::new(cam, size, size), &integrator, &settings)
+    let integrator =
+        Integrator::new(Method::Path, 64, &PhotonSettings::default()).expect("a resolved method");
+    integrator
+        .render(scene, &Camera::new(cam, size, size), &settings)
         .expect("render")
         .0
         .data

@@ -9,8 +9,8 @@ use glam::{Mat3, Vec3};
 use iris::accel::Backend;
 use iris::camera::{look_at, Camera};
 use iris::envmap::Environment;
-use iris::integrator::{Integrator, Method};
-use iris::render::{render, RenderSettings};
+use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 
@@ -62,12 +62,11 @@ fn transmitted(thickness: f32, distance: f32, color: Vec3, backend: Backend) -> 
         spectral: false,
         time_limit: None,
     };
-    let integrator = Integrator {
-        method: Method::Whitted,
-        max_depth: 16,
-        photon: Default::default(),
-    };
-    let (img, _) = render(&scene, &Camera::new(&cam, 8, 8), &integrator, &settings).unwrap();
+    let integrator = Integrator::new(Method::Whitted, 16, &PhotonSettings::default())
+        .expect("a resolved method");
+    let (img, _) = integrator
+        .render(&scene, &Camera::new(&cam, 8, 8), &settings)
+        .unwrap();
     let first = img.data[0];
     assert!(
         img.data

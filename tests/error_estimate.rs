@@ -12,7 +12,7 @@ use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::metrics::{compare, half_buffer_estimate};
 use iris::output::ImageRgb;
-use iris::render::{render, render_progressive, Control, Progress, RenderSettings};
+use iris::render::{Control, Progress, RenderSettings};
 
 const W: u32 = 32;
 const H: u32 = 24;
@@ -31,15 +31,16 @@ fn settings(spp: u32, seed: u64) -> RenderSettings {
 }
 
 fn integrator(method: Method, passes: u32) -> Integrator {
-    Integrator {
+    Integrator::new(
         method,
-        max_depth: 16,
-        photon: PhotonSettings {
+        16,
+        &PhotonSettings {
             photons: 8000,
             passes,
             ..PhotonSettings::default()
         },
-    }
+    )
+    .expect("a resolved method")
 }
 
 /// Final image and its two halves.
@@ -53,14 +54,9 @@ fn with_halves(method: Method, spp: u32, passes: u32, seed: u64) -> (ImageRgb, I
         }
         Ok(Control::Continue)
     };
-    render_progressive(
-        &scene,
-        &camera,
-        &integrator(method, passes),
-        &settings(spp, seed),
-        Some(&mut obs),
-    )
-    .unwrap();
+    integrator(method, passes)
+        .render_progressive(&scene, &camera, &settings(spp, seed), Some(&mut obs))
+        .unwrap();
     last.expect("final checkpoint")
 }
 
@@ -68,13 +64,9 @@ fn with_halves(method: Method, spp: u32, passes: u32, seed: u64) -> (ImageRgb, I
 fn half_buffer_estimate_tracks_the_true_error() {
     let (scene, cam) = common::caustic_sphere(Some(0.2));
     let camera = Camera::new(&cam, W, H);
-    let (reference, _) = render(
-        &scene,
-        &camera,
-        &integrator(Method::Path, 1),
-        &settings(4096, 99),
-    )
-    .unwrap();
+    let (reference, _) = integrator(Method::Path, 1)
+        .render(&scene, &camera, &settings(4096, 99))
+        .unwrap();
     let (img, a, b) = with_halves(Method::Path, 16, 1, 5);
     let truth = compare(&img, &reference).unwrap();
     let est = half_buffer_estimate(&a, &b).unwrap();

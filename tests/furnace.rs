@@ -19,8 +19,8 @@ mod common;
 
 use glam::Vec3;
 use iris::camera::{look_at, Camera};
-use iris::integrator::{Integrator, Method};
-use iris::render::{render, RenderSettings};
+use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, MaterialDesc, Projection};
 
 fn furnace(material: MaterialDesc, spp: u32) -> Vec<Vec3> {
@@ -59,20 +59,13 @@ fn furnace_render(
         spectral,
         time_limit: None,
     };
-    let integrator = Integrator {
-        method: Method::Path,
-        max_depth: 64,
-        photon: Default::default(),
-    };
-    render(
-        &scene,
-        &Camera::new(&cam, size, size),
-        &integrator,
-        &settings,
-    )
-    .unwrap()
-    .0
-    .data
+    let integrator =
+        Integrator::new(Method::Path, 64, &PhotonSettings::default()).expect("a resolved method");
+    integrator
+        .render(&scene, &Camera::new(&cam, size, size), &settings)
+        .unwrap()
+        .0
+        .data
 }
 
 #[test]

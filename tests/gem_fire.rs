@@ -42,9 +42,9 @@ mod common;
 use glam::{Vec2, Vec3};
 use iris::accel::Backend;
 use iris::camera::Camera;
-use iris::integrator::{Integrator, Method};
+use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::output::ImageRgb;
-use iris::render::{render_progressive, Control, Progress, RenderSettings};
+use iris::render::{Control, Progress, RenderSettings};
 use iris::scene::desc::EnvironmentDesc;
 use iris::scene::Scene;
 use std::path::PathBuf;
@@ -97,11 +97,8 @@ fn render(scene: &Scene, camera: &Camera) -> [ImageRgb; 3] {
     // Whitted (the CLI's default method): dielectrics split deterministically into the
     // reflected and refracted branches, so the only noise is the pixel position and the
     // wavelengths.
-    let integrator = Integrator {
-        method: Method::Whitted,
-        max_depth: 64,
-        photon: Default::default(),
-    };
+    let integrator = Integrator::new(Method::Whitted, 64, &PhotonSettings::default())
+        .expect("a resolved method");
     let mut shots = Vec::new();
     let mut observe = |p: &Progress| -> iris::Result<Control> {
         if p.samples == N || p.samples == 2 * N || (p.samples == 4 * N && p.done) {
@@ -109,7 +106,8 @@ fn render(scene: &Scene, camera: &Camera) -> [ImageRgb; 3] {
         }
         Ok(Control::Continue)
     };
-    let (_, stats) = render_progressive(scene, camera, &integrator, &settings, Some(&mut observe))
+    let (_, stats) = integrator
+        .render_progressive(scene, camera, &settings, Some(&mut observe))
         .expect("render");
     assert_eq!(stats.bad_samples, 0);
     shots

@@ -13,7 +13,7 @@ mod common;
 use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::output::ImageRgb;
-use iris::render::{render, RenderSettings};
+use iris::render::RenderSettings;
 
 const W: u32 = 48;
 const H: u32 = 36;
@@ -30,12 +30,9 @@ fn run(method: Method, spp: u32, photon: PhotonSettings, seed: u64) -> ImageRgb 
         spectral: false,
         time_limit: None,
     };
-    let integrator = Integrator {
-        method,
-        max_depth: 32,
-        photon,
-    };
-    render(&scene, &Camera::new(&cam, W, H), &integrator, &settings)
+    let integrator = Integrator::new(method, 32, &photon).expect("a resolved method");
+    integrator
+        .render(&scene, &Camera::new(&cam, W, H), &settings)
         .unwrap()
         .0
 }

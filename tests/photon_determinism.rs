@@ -7,7 +7,7 @@ mod common;
 
 use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
-use iris::render::{render, RenderSettings};
+use iris::render::RenderSettings;
 
 fn image(method: Method, threads: usize, seed: u64, spectral: bool) -> Vec<glam::Vec3> {
     let (scene, cam) = common::caustic_sphere(None);
@@ -21,16 +21,18 @@ fn image(method: Method, threads: usize, seed: u64, spectral: bool) -> Vec<glam:
         spectral,
         time_limit: None,
     };
-    let integrator = Integrator {
+    let integrator = Integrator::new(
         method,
-        max_depth: 16,
-        photon: PhotonSettings {
+        16,
+        &PhotonSettings {
             photons: 20_000,
             passes: 3,
             ..PhotonSettings::default()
         },
-    };
-    render(&scene, &Camera::new(&cam, 32, 24), &integrator, &settings)
+    )
+    .expect("a resolved method");
+    integrator
+        .render(&scene, &Camera::new(&cam, 32, 24), &settings)
         .unwrap()
         .0
         .data

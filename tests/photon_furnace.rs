@@ -16,7 +16,7 @@ use glam::{Vec2, Vec3};
 use iris::camera::{look_at, Camera};
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::photon::emit::PhotonEmitter;
-use iris::render::{render, RenderSettings};
+use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 
@@ -77,12 +77,10 @@ fn mean_radiance(scene: &Scene, method: Method, photon: PhotonSettings, spp: u32
         spectral: false,
         time_limit: None,
     };
-    let integrator = Integrator {
-        method,
-        max_depth: 64,
-        photon,
-    };
-    let (img, _) = render(scene, &Camera::new(&cam, w, h), &integrator, &settings).unwrap();
+    let integrator = Integrator::new(method, 64, &photon).expect("a resolved method");
+    let (img, _) = integrator
+        .render(scene, &Camera::new(&cam, w, h), &settings)
+        .unwrap();
     assert!(img.data.iter().all(|p| p.is_finite()));
     img.data.iter().map(|p| p.y as f64).sum::<f64>() / img.data.len() as f64
 }

@@ -12,7 +12,7 @@ use iris::app::SpectralMode;
 use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::plan::Plan;
-use iris::render::{render_progressive, RenderSettings};
+use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, ExplicitIor, MaterialDesc, SceneDesc};
 use iris::scene::Scene;
 use std::path::{Path, PathBuf};
@@ -52,15 +52,16 @@ fn used(plan: &Plan, name: &str) -> bool {
 /// Mean linear RGB of a 32×24 render.
 fn mean(scene: &Scene, cam: &CameraDesc, method: Method, spectral: bool, seed: u64) -> Vec3 {
     let (w, h) = (32, 24);
-    let integrator = Integrator {
+    let integrator = Integrator::new(
         method,
-        max_depth: 16,
-        photon: PhotonSettings {
+        16,
+        &PhotonSettings {
             passes: 32,
             photons: 20_000,
             ..PhotonSettings::default()
         },
-    };
+    )
+    .expect("a resolved method");
     let settings = RenderSettings {
         width: w,
         height: h,
@@ -71,7 +72,8 @@ fn mean(scene: &Scene, cam: &CameraDesc, method: Method, spectral: bool, seed: u
         spectral,
         time_limit: None,
     };
-    let (img, _) = render_progressive(scene, &Camera::new(cam, w, h), &integrator, &settings, None)
+    let (img, _) = integrator
+        .render_progressive(scene, &Camera::new(cam, w, h), &settings, None)
         .expect("render");
     img.data.iter().fold(Vec3::ZERO, |a, p| a + *p) / img.data.len() as f32
 }
@@ -148,7 +150,10 @@ fn glass_sphere_on_floor_needs_photons_and_auto_follows() {
     let plan = Plan::new(&scene, Method::Auto, SpectralMode::Auto);
     assert!(used(&plan, "photons"), "{}", plan.text());
     assert_eq!(plan.method, Method::Sppm);
-    assert_eq!(plan.method, Method::Auto.resolve(&scene).0);
+    assert_eq!(
+        plan.method,
+        iris::plan::resolve_method(Method::Auto, &scene).0
+    );
     assert!(!plan.spectral && !used(&plan, "volumes"), "{}", plan.text());
     let photons = &plan.stage("photons").unwrap().reason;
     assert!(photons.contains("glass") && photons.contains("--method auto -> sppm"));

@@ -10,7 +10,7 @@ use glam::Vec3;
 use iris::camera::{look_at, Camera};
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::output::ImageRgb;
-use iris::render::{render, render_progressive, Control, Progress, RenderSettings, RenderStats};
+use iris::render::{Control, Progress, RenderSettings, RenderStats};
 use iris::scene::desc::{CameraDesc, MaterialDesc, Projection};
 use iris::scene::Scene;
 use std::time::{Duration, Instant};
@@ -52,11 +52,7 @@ fn settings(spp: u32, seed: u64, threads: usize) -> RenderSettings {
 }
 
 fn path() -> Integrator {
-    Integrator {
-        method: Method::Path,
-        max_depth: 16,
-        photon: Default::default(),
-    }
+    Integrator::new(Method::Path, 16, &PhotonSettings::default()).expect("a resolved method")
 }
 
 /// Renders with an observer that records every call's (samples, done) and the images it saw,
@@ -88,7 +84,9 @@ fn observed(
             Control::Continue
         })
     };
-    let (img, stats) = render_progressive(scene, camera, integrator, s, Some(&mut obs)).unwrap();
+    let (img, stats) = (*integrator)
+        .render_progressive(scene, camera, s, Some(&mut obs))
+        .unwrap();
     (img, stats, seen)
 }
 
@@ -110,7 +108,7 @@ fn path_images_do_not_depend_on_rounds_threads_or_stopping() {
             spectral,
             ..settings(spp, 5, threads)
         };
-        let (one_shot, stats) = render(&scene, &camera, &path(), &s(8, 1)).unwrap();
+        let (one_shot, stats) = path().render(&scene, &camera, &s(8, 1)).unwrap();
         assert_eq!(stats.samples, (W * H * 8) as u64);
         // The same 8 spp on 2 threads, watched: checkpoints 1, 2, 4, 8 (done).
         let (img, _, seen) = observed(&scene, &camera, &path(), &s(8, 2), None);
@@ -155,7 +153,7 @@ fn path_image_does_not_depend_on_how_a_time_limit_split_the_rounds() {
         spectral: true,
         ..settings(1_000_000, 3, 2)
     };
-    let (timed, stats) = render(&scene, &camera, &path(), &s).unwrap();
+    let (timed, stats) = path().render(&scene, &camera, &s).unwrap();
     let n = stats.samples / (W * H) as u64;
     // How many samples fit in 300 ms depends on the machine and its load; the claim holds
     // for every n ≥ 1 (the time limit always lets the first sample finish), so nothing
@@ -166,7 +164,7 @@ fn path_image_does_not_depend_on_how_a_time_limit_split_the_rounds() {
         spectral: true,
         ..settings(n as u32, 3, 1)
     };
-    let (img, _) = render(&scene, &camera, &path(), &plain).unwrap();
+    let (img, _) = path().render(&scene, &camera, &plain).unwrap();
     assert_eq!(img.data, timed.data, "{n} spp");
 }
 
@@ -204,7 +202,9 @@ fn rmse_falls_with_samples() {
     // (1024 spp) adds its own error, ≈ 1/16 of the 4-spp error in quadrature (+0.4 % on the
     // ratio); averaged over 4 seeds the ratio's spread is a few %, so < 0.6 has margin.
     let (scene, camera) = grey_sphere();
-    let (reference, _) = render(&scene, &camera, &path(), &settings(1024, 1000, 2)).unwrap();
+    let (reference, _) = path()
+        .render(&scene, &camera, &settings(1024, 1000, 2))
+        .unwrap();
     let (mut e4, mut e16) = (0.0, 0.0);
     for seed in 1..=4 {
         let (img, _, seen) = observed(&scene, &camera, &path(), &settings(16, seed, 2), None);
@@ -225,16 +225,19 @@ fn rmse_falls_with_samples() {
 fn sppm_stopped_after_n_passes_equals_n_passes() {
     let (scene, cam) = common::caustic_sphere(None);
     let camera = Camera::new(&cam, W, H);
-    let sppm = |passes| Integrator {
-        method: Method::Sppm,
-        max_depth: 16,
-        photon: PhotonSettings {
-            photons: 2000,
-            passes,
-            ..PhotonSettings::default()
-        },
+    let sppm = |passes| {
+        Integrator::new(
+            Method::Sppm,
+            16,
+            &PhotonSettings {
+                photons: 2000,
+                passes,
+                ..PhotonSettings::default()
+            },
+        )
+        .expect("a resolved method")
     };
-    let (one_shot, stats) = render(&scene, &camera, &sppm(8), &settings(1, 9, 1)).unwrap();
+    let (one_shot, stats) = sppm(8).render(&scene, &camera, &settings(1, 9, 1)).unwrap();
     assert_eq!(stats.passes, 8);
     let (stopped, stats, seen) =
         observed(&scene, &camera, &sppm(1000), &settings(1, 9, 2), Some(8));
@@ -261,15 +264,16 @@ fn sppm_stopped_after_n_passes_equals_n_passes() {
 fn photon_method_builds_maps_once_and_renders_progressively() {
     let (scene, cam) = common::caustic_sphere(None);
     let camera = Camera::new(&cam, W, H);
-    let photon = Integrator {
-        method: Method::Photon,
-        max_depth: 16,
-        photon: PhotonSettings {
+    let photon = Integrator::new(
+        Method::Photon,
+        16,
+        &PhotonSettings {
             photons: 5000,
             ..PhotonSettings::default()
         },
-    };
-    let (one_shot, _) = render(&scene, &camera, &photon, &settings(4, 2, 1)).unwrap();
+    )
+    .expect("a resolved method");
+    let (one_shot, _) = photon.render(&scene, &camera, &settings(4, 2, 1)).unwrap();
     let (stopped, stats, seen) = observed(&scene, &camera, &photon, &settings(32, 2, 2), Some(4));
     assert_eq!(stopped.data, one_shot.data);
     assert_eq!(stats.photons, 5000);

@@ -8,7 +8,7 @@ mod common;
 use glam::{Mat3, Quat, Vec3};
 use iris::accel::Backend;
 use iris::app::{render_command, RenderOptions};
-use iris::integrator::Method;
+use iris::integrator::{Method, PhotonSettings};
 use iris::output::{read_exr, DisplayOptions, ImageRgb};
 use std::path::{Path, PathBuf};
 
@@ -286,11 +286,9 @@ fn lambertian_sphere_in_uniform_environment_has_albedo_radiance() {
         32,
         32,
     );
-    let integrator = iris::integrator::Integrator {
-        method: Method::Whitted,
-        max_depth: 8,
-        photon: Default::default(),
-    };
+    let integrator =
+        iris::integrator::Integrator::new(Method::Whitted, 8, &PhotonSettings::default())
+            .expect("a resolved method");
     let settings = iris::render::RenderSettings {
         width: 32,
         height: 32,
@@ -301,7 +299,7 @@ fn lambertian_sphere_in_uniform_environment_has_albedo_radiance() {
         spectral: false,
         time_limit: None,
     };
-    let (img, _) = iris::render::render(&scene, &cam, &integrator, &settings).unwrap();
+    let (img, _) = integrator.render(&scene, &cam, &settings).unwrap();
     // The sphere (radius 1 at distance 5, yfov 0.6) spans ~ ±0.2 rad: pixels within 6 of the
     // centre are on it; corners are background.
     let mut sum = 0.0f64;

@@ -12,7 +12,7 @@ mod common;
 use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::output::ImageRgb;
-use iris::render::{render, render_progressive, Control, Progress, RenderSettings};
+use iris::render::{Control, Progress, RenderSettings};
 
 /// Counts live heap bytes (the renderer's buffers are what changes between checkpoints, as
 /// the test thread holds its images still).
@@ -36,17 +36,18 @@ fn settings(seed: u64) -> RenderSettings {
 }
 
 fn sppm(passes: u32, photons: u64) -> Integrator {
-    Integrator {
-        method: Method::Sppm,
-        max_depth: 16,
-        photon: PhotonSettings {
+    Integrator::new(
+        Method::Sppm,
+        16,
+        &PhotonSettings {
             photons,
             passes,
             // The initial radius from the pixel footprint (2 pixels).
             radius: None,
             ..PhotonSettings::default()
         },
-    }
+    )
+    .expect("a resolved method")
 }
 
 fn rmse(a: &ImageRgb, b: &ImageRgb) -> f64 {
@@ -63,7 +64,9 @@ fn rmse(a: &ImageRgb, b: &ImageRgb) -> f64 {
 fn sppm_error_falls_with_passes_and_memory_stays_flat() {
     let (scene, cam) = common::caustic_sphere(None);
     let camera = Camera::new(&cam, W, H);
-    let (reference, _) = render(&scene, &camera, &sppm(512, 32_000), &settings(999)).unwrap();
+    let (reference, _) = sppm(512, 32_000)
+        .render(&scene, &camera, &settings(999))
+        .unwrap();
     let mean: f64 =
         reference.data.iter().map(|p| p.y as f64).sum::<f64>() / reference.data.len() as f64;
     assert!(mean > 0.0);
@@ -81,14 +84,9 @@ fn sppm_error_falls_with_passes_and_memory_stays_flat() {
             }
             Ok(Control::Continue)
         };
-        let (img64, stats) = render_progressive(
-            &scene,
-            &camera,
-            &sppm(64, 2000),
-            &settings(seed),
-            Some(&mut cb),
-        )
-        .unwrap();
+        let (img64, stats) = sppm(64, 2000)
+            .render_progressive(&scene, &camera, &settings(seed), Some(&mut cb))
+            .unwrap();
         assert_eq!(stats.passes, 64);
         e8 += rmse(&at8.expect("checkpoint at pass 8"), &reference);
         e64 += rmse(&img64, &reference);

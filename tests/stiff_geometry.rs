@@ -31,11 +31,11 @@ use iris::camera::{look_at, Camera};
 use iris::envmap::Environment;
 use iris::gen::gem::Brilliant;
 use iris::gen::shapes::{cuboid, ground_plane, TriMesh};
-use iris::integrator::{shading, Integrator, Method};
+use iris::integrator::{shading, Integrator, Method, PhotonSettings};
 use iris::math::{Frame, Ray, Rng};
 use iris::medium::MediumStack;
 use iris::optics::refract;
-use iris::render::{render, RenderSettings};
+use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::{Scene, TriangleData};
 
@@ -124,13 +124,11 @@ fn render_image(
         spectral: false,
         time_limit: None,
     };
-    let integrator = Integrator {
-        method: Method::Path,
-        max_depth,
-        photon: Default::default(),
-    };
-    let (img, stats) =
-        render(scene, &Camera::new(cam, size, size), &integrator, &settings).expect("render");
+    let integrator = Integrator::new(Method::Path, max_depth, &PhotonSettings::default())
+        .expect("a resolved method");
+    let (img, stats) = integrator
+        .render(scene, &Camera::new(cam, size, size), &settings)
+        .expect("render");
     (img.data, stats)
 }
 

@@ -37,9 +37,9 @@ use iris::accel::Backend;
 use iris::camera::{look_at, Camera};
 use iris::envmap::Environment;
 use iris::gen::shapes::{checkerboard, cuboid, ground_plane, icosphere, quarter_turn_x, TriMesh};
-use iris::integrator::{Integrator, Method};
+use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::output::ImageRgb;
-use iris::render::{render, RenderSettings};
+use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 use serde_json::json;
@@ -100,12 +100,10 @@ fn shoot(scene: &Scene, cam: &CameraDesc, method: Method, spp: u32, spectral: bo
         spectral,
         time_limit: None,
     };
-    let integrator = Integrator {
-        method,
-        max_depth: 64,
-        photon: Default::default(),
-    };
-    render(scene, &Camera::new(cam, SIZE, SIZE), &integrator, &settings)
+    let integrator =
+        Integrator::new(method, 64, &PhotonSettings::default()).expect("a resolved method");
+    integrator
+        .render(scene, &Camera::new(cam, SIZE, SIZE), &settings)
         .expect("render")
         .0
 }
@@ -446,15 +444,12 @@ fn bubble_ring_starts_at_the_critical_impact_parameter() {
         spectral: false,
         time_limit: None,
     };
-    let whitted = Integrator {
-        method: Method::Whitted,
-        max_depth: 16,
-        photon: Default::default(),
-    };
+    let whitted = Integrator::new(Method::Whitted, 16, &PhotonSettings::default())
+        .expect("a resolved method");
     for backend in common::backends() {
         let shot = |d: &SceneDesc| {
             let scene = Scene::build(d.clone(), backend).expect("build");
-            render(&scene, &cam, &whitted, &settings).expect("render").0
+            whitted.render(&scene, &cam, &settings).expect("render").0
         };
         let (a, b) = (shot(&desc), shot(&mirror));
         assert_finite(&a, "bubble");
@@ -552,13 +547,11 @@ fn whitted_at_the_largest_depth_in_a_closed_mirror_box_keeps_its_stack() {
                 spectral,
                 time_limit: None,
             };
-            let integrator = Integrator {
-                method: Method::Whitted,
-                max_depth: depth,
-                photon: Default::default(),
-            };
-            let (img, stats) =
-                render(&scene, &Camera::new(&cam, 8, 8), &integrator, &settings).expect("render");
+            let integrator = Integrator::new(Method::Whitted, depth, &PhotonSettings::default())
+                .expect("a resolved method");
+            let (img, stats) = integrator
+                .render(&scene, &Camera::new(&cam, 8, 8), &settings)
+                .expect("render");
             eprintln!("{backend:?} spectral {spectral}: {} rays", stats.rays);
             assert_finite(&img, &format!("{backend:?} spectral {spectral}"));
             // Every camera ray went the whole way down (64 rays, `depth` segments each).

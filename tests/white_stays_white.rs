@@ -17,8 +17,8 @@ mod common;
 use glam::Vec3;
 use iris::accel::Backend;
 use iris::camera::{look_at, Camera};
-use iris::integrator::{Integrator, Method};
-use iris::render::{render, RenderSettings};
+use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 use iris::spectrum::cie::{chromaticity, linear_srgb_to_xyz};
@@ -82,12 +82,10 @@ fn render_spectral(scene: &Scene, cam: &CameraDesc, size: u32, spp: u32) -> Vec<
         spectral: true,
         time_limit: None,
     };
-    let integrator = Integrator {
-        method: Method::Path,
-        max_depth: 16,
-        photon: Default::default(),
-    };
-    render(scene, &Camera::new(cam, size, size), &integrator, &settings)
+    let integrator =
+        Integrator::new(Method::Path, 16, &PhotonSettings::default()).expect("a resolved method");
+    integrator
+        .render(scene, &Camera::new(cam, size, size), &settings)
         .unwrap()
         .0
         .data

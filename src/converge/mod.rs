@@ -11,13 +11,14 @@
 pub mod measure;
 
 use crate::accel::Backend;
-use crate::app::{self, SpectralMode};
+use crate::app;
 use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::integrator::{Integrator, Method, PhotonSettings};
 use crate::output::{self, DisplayOptions, ImageRgb};
+use crate::plan::SpectralMode;
 use crate::plot::{plot_error_vs_time, Series};
-use crate::render::{render_progressive, Control, Progress, RenderSettings, RenderStats};
+use crate::render::{Control, Progress, RenderSettings, RenderStats};
 use crate::report::{write_csv, ReportRow};
 use crate::scene::Scene;
 use measure::Recorder;
@@ -132,17 +133,6 @@ fn file_name(path: &Path) -> String {
         || path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     )
-}
-
-/// The method's command-line name, used as the run name in reports and file names.
-pub fn method_name(method: Method) -> &'static str {
-    match method {
-        Method::Whitted => "whitted",
-        Method::Path => "path",
-        Method::Photon => "photon",
-        Method::Sppm => "sppm",
-        Method::Auto => "auto",
-    }
 }
 
 /// Parses `--methods path,photon,sppm`: names from whitted, path, photon, sppm, each at most
@@ -301,9 +291,9 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
     // The reference's method (without --reference) and every run's fit in memory.
     let reference_method = given_reference
         .is_none()
-        .then(|| Method::Auto.resolve(&scene).0);
+        .then(|| crate::plan::resolve_method(Method::Auto, &scene).0);
     for m in opts.methods.iter().chain(reference_method.as_ref()) {
-        crate::render::check_memory(w, h, *m)?;
+        crate::integrator::check_memory(w, h, *m)?;
     }
     if let (Some(r), Some(path)) = (&given_reference, &opts.reference) {
         measure::check_reference_size(
@@ -339,7 +329,7 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
             if !opts.quiet {
                 eprintln!(
                     "iris converge: no --reference: rendering one with {} for {:.1} s (4× the budget)",
-                    method_name(method),
+                    method.name(),
                     4.0 * opts.time.as_secs_f64()
                 );
             }
@@ -358,7 +348,7 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
     let mut runs = Vec::new();
     let mut curves = Vec::new();
     for &method in &opts.methods {
-        let name = method_name(method);
+        let name = method.name();
         let mut recorder = Recorder::new(name, Some(&reference), None);
         recorder.verbose = !opts.quiet;
         let mut observe = |p: &Progress| -> Result<Control> { recorder.observe(p) };
@@ -436,14 +426,15 @@ impl Job<'_> {
         settings: &RenderSettings,
         observer: Option<crate::render::Observer>,
     ) -> Result<(ImageRgb, RenderStats)> {
-        let integrator = Integrator {
-            method,
-            max_depth: 64,
-            photon: PhotonSettings {
-                passes: UNBOUNDED_PASSES,
-                ..PhotonSettings::default()
-            },
+        let photon = PhotonSettings {
+            passes: UNBOUNDED_PASSES,
+            ..PhotonSettings::default()
         };
-        render_progressive(self.scene, &self.camera, &integrator, settings, observer)
+        Integrator::new(method, 64, &photon)?.render_progressive(
+            self.scene,
+            &self.camera,
+            settings,
+            observer,
+        )
     }
 }

@@ -25,7 +25,7 @@
 //! is an error before anything renders; the page lists the entries in [`ENTRIES`] order.
 
 use crate::app::{self, RenderOptions, RenderSummary};
-use crate::converge::{method_name, MeasureOptions};
+use crate::converge::MeasureOptions;
 use crate::error::{Error, Result};
 use crate::integrator::{Method, PhotonSettings};
 use std::fmt::Write as _;
@@ -282,7 +282,7 @@ fn page_text(
                 let _ = writeln!(s, "- licence / attribution: {licence}");
             }
         }
-        let _ = writeln!(s, "- method: {}", method_name(sum.method));
+        let _ = writeln!(s, "- method: {}", sum.method.name());
         let _ = writeln!(
             s,
             "- render time: {:.2} s (load {:.2} s, build {:.2} s, {})",

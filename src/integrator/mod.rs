@@ -5,15 +5,24 @@
 pub mod lights;
 pub mod path;
 pub mod photon_map;
+mod settings;
 pub mod shading;
 pub mod sppm;
 pub mod whitted;
 
-use crate::math::{Ray, Rng};
+use crate::camera::Camera;
+use crate::error::{Error, Result};
+use crate::math::Ray;
+use crate::output::ImageRgb;
+pub use crate::render::Context;
+use crate::render::{render_samples, Observer, RenderSettings, RenderStats, Setup};
 use crate::scene::Scene;
-use crate::spectrum::Carrier;
-#[allow(unused_imports)]
+use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::Vec3;
+pub use settings::{
+    check_depth, PhotonMapSettings, PhotonSettings, SppmSettings, StoreBudget, MAX_DEPTH,
+    MAX_PHOTONS, MAX_STORED_PHOTONS,
+};
 
 /// The rendering method (`--method`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -29,198 +38,241 @@ pub enum Method {
     /// Stochastic progressive photon mapping in passes (Hachisuka & Jensen 2009, radius
     /// sequence of Knaus & Zwicker 2011).
     Sppm,
-    /// `Sppm` when the scene has caustic paths, `Path` otherwise ([`Method::resolve`]); an
-    /// unresolved `Auto` renders as `Path`.
+    /// `Sppm` when the scene has caustic paths, `Path` otherwise: a choice the render plan
+    /// makes ([`crate::plan::resolve_method`]) before an [`Integrator`] exists; [`Integrator::new`]
+    /// rejects it unresolved.
     Auto,
 }
 
 impl Method {
-    /// Resolves [`Method::Auto`] for `scene`: SPPM when light can reach a diffuse-like
-    /// surface through specular ones (found by tracing a few thousand photons:
-    /// [`crate::photon::trace::has_caustic_paths`]), the path tracer otherwise. Returns the
-    /// method and the reason.
-    pub fn resolve(self, scene: &Scene) -> (Method, Option<String>) {
-        if self != Method::Auto {
-            return (self, None);
+    /// Every method, in the order `--method` lists them.
+    pub const ALL: [Method; 5] = [
+        Method::Whitted,
+        Method::Path,
+        Method::Photon,
+        Method::Sppm,
+        Method::Auto,
+    ];
+
+    /// The method's command-line name, also the run name in reports and file names.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Whitted => "whitted",
+            Method::Path => "path",
+            Method::Photon => "photon",
+            Method::Sppm => "sppm",
+            Method::Auto => "auto",
         }
-        let emitter = crate::photon::emit::PhotonEmitter::new(scene);
-        if !emitter.is_empty() && crate::photon::trace::has_caustic_paths(scene, &emitter, 4096) {
-            (
-                Method::Sppm,
-                Some("--method auto: light reaches diffuse surfaces through specular ones (caustics): SPPM".into()),
-            )
-        } else {
-            (
-                Method::Path,
-                Some("--method auto: no caustic paths found: path tracer".into()),
-            )
-        }
+    }
+
+    /// Parses a method name (any case), or an error naming the accepted ones.
+    pub fn parse(s: &str) -> Result<Method> {
+        Method::ALL
+            .into_iter()
+            .find(|m| m.name().eq_ignore_ascii_case(s.trim()))
+            .ok_or_else(|| {
+                Error::Usage(format!(
+                    "--method {s}: unknown method (accepted: whitted, path, photon, sppm, auto)"
+                ))
+            })
     }
 }
 
-/// Most photons emitted per SPPM pass or in total for `--method photon` (`--photons`):
-/// 2^24 ≈ 16.8 M. Every emitted photon may be stored at several surfaces (32 bytes each),
-/// so this bounds the photon map's memory before anything is traced; SPPM's default of one
-/// photon per pixel is capped here too.
-pub const MAX_PHOTONS: u64 = 1 << 24;
-
-/// Most photons stored in one photon map or one SPPM pass (2^26 ≈ 67 M, 2 GiB at 32 bytes
-/// each): a scene whose photons bounce so often that `--photons` emitted photons would
-/// store more stops tracing and fails with an error naming `--photons` and `--max-depth`.
-pub const MAX_STORED_PHOTONS: u64 = 1 << 26;
-
-/// Largest `--max-depth`: bounces per path, recursion depth of the Whitted tracer and
-/// non-delta bounces (hence stored photons) per photon. Equal to the path tracer's delta
-/// bounce cap ([`path::MAX_DELTA_BOUNCES`]). The old bound, 100 000, crashed the Whitted
-/// tracer with a stack overflow in a closed mirror box (so did 2048 on a 2 MiB stack); the
-/// render workers' stacks ([`crate::render::WORKER_STACK`]) hold 4× this depth
-/// (`tests/stiff_renders.rs`).
-pub const MAX_DEPTH: u32 = 1024;
-
-/// Photon-mapping settings (`--method photon` and `sppm`).
+/// An integrator: the method and the settings it uses, and its own render. A closed enum;
+/// `auto` is not a variant (the plan resolves it first).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PhotonSettings {
-    /// Photons per pass (SPPM) or in total (photon); 0 = one per pixel (SPPM, at most
-    /// [`MAX_PHOTONS`]) or 500 000. At most [`MAX_PHOTONS`].
-    pub photons: u64,
-    /// Initial (SPPM) or largest (photon) gather radius in scene units; `None` = from the
-    /// pixel footprint at the visible points.
-    pub radius: Option<f32>,
-    /// SPPM radius-reduction parameter α ∈ (0, 1) (Knaus & Zwicker 2011: r²ᵢ₊₁ = r²ᵢ (i+α)/(i+1)).
-    pub alpha: f32,
-    /// SPPM passes.
-    pub passes: u32,
-    /// Photon Russian roulette rule.
-    pub roulette: crate::photon::trace::Roulette,
-    /// Photons in a caustic-map estimate (photon).
-    pub k_caustic: usize,
-    /// Photons in a global-map estimate (photon, at final-gather hits).
-    pub k_global: usize,
-}
-
-impl Default for PhotonSettings {
-    fn default() -> Self {
-        PhotonSettings {
-            photons: 0,
-            radius: None,
-            alpha: 2.0 / 3.0,
-            passes: 64,
-            roulette: crate::photon::trace::Roulette::Throughput,
-            k_caustic: 64,
-            k_global: 64,
-        }
-    }
-}
-
-impl PhotonSettings {
-    /// Rejects values the CLI's parsers reject too, for library callers: more than
-    /// [`MAX_PHOTONS`] photons, no pass, α outside (0, 1), a radius that is not finite and
-    /// positive. Errors name the flag and the value.
-    pub fn check(&self) -> crate::error::Result<()> {
-        let usage = |m: String| Err(crate::error::Error::Usage(m));
-        if self.photons > MAX_PHOTONS {
-            return usage(format!(
-                "--photons {}: at most {MAX_PHOTONS} photons (per SPPM pass, or in total for --method photon)",
-                self.photons
-            ));
-        }
-        if self.passes == 0 {
-            return usage("--passes 0: at least 1 pass".into());
-        }
-        if !(self.alpha > 0.0 && self.alpha < 1.0) {
-            return usage(format!(
-                "--alpha {}: expected α strictly between 0 and 1",
-                self.alpha
-            ));
-        }
-        if let Some(r) = self.radius.filter(|r| !(r.is_finite() && *r > 0.0)) {
-            return usage(format!("--radius {r}: expected a finite radius > 0"));
-        }
-        Ok(())
-    }
-}
-
-/// The photons stored by the parallel chunks of one SPPM pass or one photon map, counted
-/// against [`MAX_STORED_PHOTONS`]: chunks stop tracing once it is crossed and the pass
-/// fails ([`StoreBudget::check`]); under the budget nothing changes (the same photons, in
-/// the same order).
-#[derive(Debug, Default)]
-pub struct StoreBudget {
-    stored: std::sync::atomic::AtomicU64,
-}
-
-impl StoreBudget {
-    /// Counts `n` photons just stored; false once the total is over the budget.
-    pub fn add(&self, n: usize) -> bool {
-        let n = n as u64;
-        let total = self
-            .stored
-            .fetch_add(n, std::sync::atomic::Ordering::Relaxed)
-            .saturating_add(n);
-        total <= MAX_STORED_PHOTONS
-    }
-
-    /// An error naming `--photons` (the `emitted` count) and `--max-depth` if the budget
-    /// was crossed.
-    pub fn check(&self, emitted: u64, max_depth: u32) -> crate::error::Result<()> {
-        if self.stored.load(std::sync::atomic::Ordering::Relaxed) <= MAX_STORED_PHOTONS {
-            return Ok(());
-        }
-        Err(crate::error::Error::Usage(format!(
-            "--photons {emitted}: the photons would be stored more than {MAX_STORED_PHOTONS} \
-             times (2 GiB; they bounce often in this scene): use fewer --photons or a smaller \
-             --max-depth (now {max_depth})"
-        )))
-    }
-}
-
-/// Per-thread state an integrator carries along one camera sample.
-pub struct Context {
-    /// Random numbers for this pixel sample.
-    pub rng: Rng,
-    /// Rays traced so far (closest-hit and shadow).
-    pub rays: u64,
-}
-
-/// Integrator settings.
-#[derive(Debug, Clone, Copy)]
-pub struct Integrator {
-    /// Which method.
-    pub method: Method,
-    /// Maximum recursion depth (specular bounces count too); at most [`MAX_DEPTH`].
-    pub max_depth: u32,
-    /// Photon-mapping settings (ignored by Whitted and path).
-    pub photon: PhotonSettings,
+pub enum Integrator {
+    /// Recursive ray tracing ([`whitted`]).
+    Whitted {
+        /// Recursion depth, at most [`MAX_DEPTH`].
+        max_depth: u32,
+    },
+    /// Path tracing with next-event estimation and MIS ([`path`]).
+    Path {
+        /// Bounces per path, at most [`MAX_DEPTH`].
+        max_depth: u32,
+    },
+    /// Classic photon mapping with a final gather ([`photon_map`]).
+    PhotonMap {
+        /// Bounces per camera path and non-delta bounces per photon.
+        max_depth: u32,
+        /// Photons, radius, roulette and gather counts.
+        photons: PhotonMapSettings,
+    },
+    /// Stochastic progressive photon mapping ([`sppm`]).
+    Sppm {
+        /// Bounces per camera path and non-delta bounces per photon.
+        max_depth: u32,
+        /// Photons per pass, radius sequence, passes and roulette.
+        sppm: SppmSettings,
+    },
 }
 
 impl Integrator {
-    /// Rejects settings outside the CLI's bounds (`--max-depth` in 1..=[`MAX_DEPTH`], and
-    /// [`PhotonSettings::check`]) with an error naming the flag, for library callers.
-    pub fn check(&self) -> crate::error::Result<()> {
-        if !(1..=MAX_DEPTH).contains(&self.max_depth) {
-            return Err(crate::error::Error::Usage(format!(
-                "--max-depth {}: expected 1 to {MAX_DEPTH} bounces",
-                self.max_depth
-            )));
+    /// The integrator for a resolved `method`, taking from `photon` what it uses. An
+    /// unresolved [`Method::Auto`] is an error (resolve it with the plan,
+    /// [`crate::plan::resolve_method`]).
+    pub fn new(method: Method, max_depth: u32, photon: &PhotonSettings) -> Result<Integrator> {
+        Ok(match method {
+            Method::Whitted => Integrator::Whitted { max_depth },
+            Method::Path => Integrator::Path { max_depth },
+            Method::Photon => Integrator::PhotonMap {
+                max_depth,
+                photons: photon.photon_map(),
+            },
+            Method::Sppm => Integrator::Sppm {
+                max_depth,
+                sppm: photon.sppm(),
+            },
+            Method::Auto => {
+                return Err(Error::Usage(
+                    "--method auto must be resolved by the render plan before rendering".into(),
+                ))
+            }
+        })
+    }
+
+    /// The method this integrator implements.
+    pub fn method(&self) -> Method {
+        match self {
+            Integrator::Whitted { .. } => Method::Whitted,
+            Integrator::Path { .. } => Method::Path,
+            Integrator::PhotonMap { .. } => Method::Photon,
+            Integrator::Sppm { .. } => Method::Sppm,
         }
-        self.photon.check()
+    }
+
+    /// Bounces per path (recursion depth for Whitted).
+    pub fn max_depth(&self) -> u32 {
+        match *self {
+            Integrator::Whitted { max_depth }
+            | Integrator::Path { max_depth }
+            | Integrator::PhotonMap { max_depth, .. }
+            | Integrator::Sppm { max_depth, .. } => max_depth,
+        }
+    }
+
+    /// Rejects settings outside the CLI's bounds (`--max-depth` in 1..=[`MAX_DEPTH`], the
+    /// photon settings the variant uses) with an error naming the flag, for library
+    /// callers.
+    pub fn check(&self) -> Result<()> {
+        check_depth(self.max_depth())?;
+        match self {
+            Integrator::Whitted { .. } | Integrator::Path { .. } => Ok(()),
+            Integrator::PhotonMap { photons, .. } => photons.check(),
+            Integrator::Sppm { sppm, .. } => sppm.check(),
+        }
     }
 
     /// Radiance arriving along `ray` at the sample's wavelengths `lambda` (linear RGB when
-    /// `C` is [`Vec3`]), for the per-sample methods; the photon methods need their maps or
-    /// passes ([`crate::render`]) and fall back to the path tracer here.
+    /// `C` is [`Vec3`]) for the per-sample methods; `None` for the photon methods, whose
+    /// estimates need their maps or passes.
     pub fn radiance<C: Carrier>(
         &self,
         scene: &Scene,
         ray: &Ray,
         lambda: C::Lambda,
         ctx: &mut Context,
-    ) -> C {
-        match self.method {
-            Method::Whitted => whitted::radiance(scene, ray, self.max_depth, lambda, ctx),
-            Method::Path | Method::Photon | Method::Sppm | Method::Auto => {
-                path::radiance(scene, ray, self.max_depth, lambda, ctx)
+    ) -> Option<C> {
+        match *self {
+            Integrator::Whitted { max_depth } => {
+                Some(whitted::radiance(scene, ray, max_depth, lambda, ctx))
+            }
+            Integrator::Path { max_depth } => {
+                Some(path::radiance(scene, ray, max_depth, lambda, ctx))
+            }
+            Integrator::PhotonMap { .. } | Integrator::Sppm { .. } => None,
+        }
+    }
+
+    /// Renders `scene` through `camera` to the end (no observer).
+    pub fn render(
+        &self,
+        scene: &Scene,
+        camera: &Camera,
+        settings: &RenderSettings,
+    ) -> Result<(ImageRgb, RenderStats)> {
+        self.render_progressive(scene, camera, settings, None)
+    }
+
+    /// Renders progressively through the one driver ([`crate::render::drive`]), stopping at
+    /// `settings.spp` samples per pixel (path, Whitted, photon), the SPPM passes,
+    /// `settings.time_limit`, or when the observer says [`crate::render::Control::Stop`] —
+    /// whichever first. The observer is called at checkpoints 1, 2, 4, 8, … samples (or
+    /// passes) and at the end (`done`). Runs on its own pool of `settings.threads`.
+    pub fn render_progressive(
+        &self,
+        scene: &Scene,
+        camera: &Camera,
+        settings: &RenderSettings,
+        observer: Option<Observer>,
+    ) -> Result<(ImageRgb, RenderStats)> {
+        self.check()?;
+        check_memory(settings.width, settings.height, self.method())?;
+        let pool = crate::render::thread_pool(settings)?;
+        match self {
+            Integrator::Whitted { .. } | Integrator::Path { .. } => pool.install(|| {
+                render_samples(camera, settings, Setup::now(), observer, |ray, u, ctx| {
+                    if settings.spectral {
+                        self.sample::<SampledSpectrum>(scene, ray, u, ctx)
+                    } else {
+                        self.sample::<Vec3>(scene, ray, u, ctx)
+                    }
+                })
+            }),
+            Integrator::PhotonMap { max_depth, photons } => pool.install(|| {
+                photon_map::render(scene, camera, *max_depth, photons, settings, observer)
+            }),
+            Integrator::Sppm { max_depth, sppm } => {
+                pool.install(|| sppm::render(scene, camera, *max_depth, sppm, settings, observer))
             }
         }
     }
+
+    /// One camera sample's radiance as linear RGB: wavelengths drawn for spectral transport
+    /// from the hero variate `u_lambda` ∈ [0, 1), and the film's conversion
+    /// ([`Carrier::to_rgb`], spectrum → XYZ → sRGB) — the only place colour is converted.
+    fn sample<C: Carrier>(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        u_lambda: f32,
+        ctx: &mut Context,
+    ) -> Vec3 {
+        let lambda = C::sample_lambda(if C::SPECTRAL { u_lambda } else { 0.0 });
+        self.radiance::<C>(scene, ray, lambda, ctx)
+            .map_or(Vec3::ZERO, |l| l.to_rgb(&lambda))
+    }
+}
+
+/// Bytes each pixel costs `method` (the accumulation buffers, the images handed to
+/// observers and writers, coverage and the output's encoding; SPPM adds its per-pixel
+/// visible point).
+pub fn bytes_per_pixel(method: Method) -> u64 {
+    use std::mem::size_of;
+    let common = size_of::<[glam::DVec3; 2]>() + 3 * size_of::<Vec3>() + 16 + 8;
+    let extra = match method {
+        Method::Sppm => size_of::<Option<path::VisiblePoint<SampledSpectrum>>>(),
+        _ => 0,
+    };
+    (common + extra) as u64
+}
+
+/// Rejects a `width × height` image whose per-pixel buffers for `method` would exceed
+/// [`crate::render::PIXEL_MEMORY_BUDGET`] (SPPM needs several times what the other methods need).
+pub fn check_memory(width: u32, height: u32, method: Method) -> Result<()> {
+    let per = bytes_per_pixel(method);
+    let pixels = u64::from(width) * u64::from(height);
+    let budget = crate::render::PIXEL_MEMORY_BUDGET;
+    if pixels.saturating_mul(per) > budget {
+        return Err(Error::Usage(format!(
+            "--size {width}x{height}: --method {} needs {per} bytes per pixel, {:.1} GiB for \
+             this image, over the {} GiB budget (at most {} pixels)",
+            method.name(),
+            (pixels * per) as f64 / (1u64 << 30) as f64,
+            budget >> 30,
+            budget / per
+        )));
+    }
+    Ok(())
 }

@@ -25,7 +25,7 @@
 //! Flux in the maps is per emitted photon (already divided by their number).
 
 use super::path::{self, StopAt, VisiblePoint};
-use super::{shading, Context, Integrator, StoreBudget};
+use super::{shading, Context, PhotonMapSettings, StoreBudget};
 use crate::bsdf::TransportMode;
 use crate::camera::Camera;
 use crate::error::Result;
@@ -265,11 +265,11 @@ impl PhotonMaps {
 pub fn render(
     scene: &Scene,
     camera: &Camera,
-    integrator: &Integrator,
+    max_depth: u32,
+    ps: &PhotonMapSettings,
     settings: &RenderSettings,
     observer: Option<Observer>,
 ) -> Result<(ImageRgb, RenderStats)> {
-    let ps = &integrator.photon;
     let start = Instant::now();
     let n = if ps.photons > 0 {
         ps.photons
@@ -277,7 +277,7 @@ pub fn render(
         DEFAULT_PHOTONS
     };
     let ts = TraceSettings {
-        max_depth: integrator.max_depth,
+        max_depth,
         roulette: ps.roulette,
     };
     let (caustic, global, rays) = build_maps(scene, n, &ts, settings.seed, settings.spectral)?;
@@ -303,8 +303,7 @@ pub fn render(
         photons: maps.emitted,
     };
     render_samples(camera, settings, setup, observer, |ray, _u_lambda, ctx| {
-        let (ld, vp) =
-            path::camera_path::<Vec3>(scene, ray, integrator.max_depth, (), StopAt::Diffuse, ctx);
+        let (ld, vp) = path::camera_path::<Vec3>(scene, ray, max_depth, (), StopAt::Diffuse, ctx);
         let Some(vp) = vp else {
             return ld;
         };

@@ -26,13 +26,15 @@
 //! The initial radius, unless given, is 2 pixel footprints at the median visible point of
 //! the first pass.
 //!
-//! Progress: per pixel, the sums of the passes' estimates are kept apart for even and odd
-//! passes (two independent half images). After 1, 2, 4, … passes and at the end an
-//! observer ([`crate::render::Observer`]) sees the mean so far and the halves' means, and
-//! may stop the render; the time limit is checked between passes.
+//! Progress: each pass adds its per-pixel estimate (direct + photons) to the one film
+//! ([`crate::render::Film`], pass p in half p mod 2) through the one progressive driver
+//! ([`crate::render::drive`], one pass per round): checkpoints after 1, 2, 4, … passes, the
+//! observer, the time limit and stop requests between passes are the driver's. Camera rays
+//! are the per-sample methods' [`crate::render::primary_ray`] (jittered; stream
+//! `Rng::new(&[seed, pass, x, y])`). Visible points are kept per film slot.
 
 use super::path::{self, StopAt, VisiblePoint};
-use super::{Context, Integrator, StoreBudget, MAX_PHOTONS};
+use super::{Context, SppmSettings, StoreBudget, MAX_PHOTONS};
 use crate::bsdf::TransportMode;
 use crate::camera::Camera;
 use crate::error::Result;
@@ -43,13 +45,13 @@ use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
 use crate::render::{
-    guard, progress_bar, Control, Observer, Progress, RenderSettings, RenderStats,
+    drive, guard, primary_ray, Film, Observer, RenderSettings, RenderStats, Round, Schedule, Setup,
+    TILE_PIXELS,
 };
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
-use glam::{DVec3, Vec2, Vec3};
+use glam::{Vec2, Vec3};
 use rayon::prelude::*;
-use std::time::Instant;
 
 /// Photons traced per parallel work item (the split is fixed, so results are deterministic).
 const CHUNK: u64 = 4096;
@@ -58,14 +60,15 @@ const CHUNK: u64 = 4096;
 pub fn render(
     scene: &Scene,
     camera: &Camera,
-    integrator: &Integrator,
+    max_depth: u32,
+    sppm: &SppmSettings,
     settings: &RenderSettings,
     observer: Option<Observer>,
 ) -> Result<(ImageRgb, RenderStats)> {
     if settings.spectral {
-        run::<SampledSpectrum>(scene, camera, integrator, settings, observer)
+        run::<SampledSpectrum>(scene, camera, max_depth, sppm, settings, observer)
     } else {
-        run::<Vec3>(scene, camera, integrator, settings, observer)
+        run::<Vec3>(scene, camera, max_depth, sppm, settings, observer)
     }
 }
 
@@ -103,83 +106,213 @@ fn gather<C: Carrier>(vp: &VisiblePoint<C>, photons: &[Photon], grid: &HashGrid,
     phi
 }
 
+/// The state SPPM keeps across passes: per film slot the visible point of the current
+/// pass, the pass's photons and their grid, and the radius² of the next pass.
+struct Passes<C: Carrier> {
+    vps: Vec<Option<VisiblePoint<C>>>,
+    photons: Vec<Photon>,
+    grid: HashGrid,
+    r2: Option<f64>,
+}
+
 fn run<C: Carrier>(
     scene: &Scene,
     camera: &Camera,
-    integrator: &Integrator,
+    max_depth: u32,
+    ps: &SppmSettings,
     settings: &RenderSettings,
-    mut observer: Option<Observer>,
+    observer: Option<Observer>,
 ) -> Result<(ImageRgb, RenderStats)> {
-    let ps = &integrator.photon;
-    let (w, h) = (settings.width, settings.height);
-    let n_pix = (w as usize) * (h as usize);
+    let n_pix = settings.width as u64 * settings.height as u64;
     let n_photons = if ps.photons > 0 {
         ps.photons
     } else {
-        (n_pix as u64).min(MAX_PHOTONS)
+        n_pix.min(MAX_PHOTONS)
     };
     let emitter = PhotonEmitter::new(scene);
     let trace_settings = TraceSettings {
-        max_depth: integrator.max_depth,
+        max_depth,
         roulette: ps.roulette,
     };
-    let passes = ps.passes.max(1);
-    let bar = progress_bar(settings.quiet, passes as u64, "sppm passes");
-    let mut last_estimate: Option<f64> = None;
-    let start = Instant::now();
-    // Per-pixel sums over even [0] and odd [1] passes of the direct (camera) and photon
-    // estimates.
-    let mut ld = vec![[DVec3::ZERO; 2]; n_pix];
-    let mut tau = vec![[DVec3::ZERO; 2]; n_pix];
-    let mut vps: Vec<Option<VisiblePoint<C>>> = vec![None; n_pix];
-    let mut photons: Vec<Photon> = Vec::new();
-    let mut grid = HashGrid::new();
-    let mut r2: Option<f64> = ps.radius.map(|r| (r as f64) * (r as f64));
-    let (mut rays, mut emitted) = (0u64, 0u64);
-    let mut done = 0u32;
-    let (mut bad, mut interrupted) = (0u64, false);
-    for pass in 0..passes {
-        let half = (pass % 2) as usize;
-        // 1. The pass's wavelengths: a golden-ratio sequence over passes.
-        let u_l = (0.5 + pass as f64 * 0.618_033_988_749_895 + (settings.seed % 1024) as f64 * 0.1)
-            .fract() as f32;
-        let lambda = C::sample_lambda(u_l.min(1.0 - f32::EPSILON));
-        // 2. Camera paths.
-        let (cam_rays, cam_bad) = ld
-            .par_chunks_mut(w as usize)
-            .zip(vps.par_chunks_mut(w as usize))
-            .enumerate()
-            .map(|(y, (ld_row, vp_row))| {
-                let (mut rays, mut bad) = (0, 0);
-                for x in 0..w as usize {
-                    let mut ctx = Context {
-                        rng: Rng::new(&[settings.seed, pass as u64, x as u64, y as u64]),
-                        rays: 0,
-                    };
-                    let jitter = Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
-                    let ray = camera.generate_ray(Vec2::new(x as f32, y as f32) + jitter);
-                    let (l, vp) = path::camera_path::<C>(
-                        scene,
-                        &ray,
-                        integrator.max_depth,
-                        lambda,
-                        StopAt::Diffuse,
-                        &mut ctx,
-                    );
-                    ld_row[x][half] += guard::admit(l.to_rgb(&lambda), &mut bad).as_dvec3();
-                    vp_row[x] = vp;
-                    rays += ctx.rays;
+    let mut state = Passes::<C> {
+        vps: Vec::new(),
+        photons: Vec::new(),
+        grid: HashGrid::new(),
+        r2: ps.radius.map(|r| (r as f64) * (r as f64)),
+    };
+    let schedule = Schedule {
+        target: ps.passes.max(1) as u64,
+        max_round: 1,
+        passes: true,
+        label: "sppm passes",
+    };
+    let stop = &guard::stop_requested;
+    drive(
+        settings,
+        schedule,
+        Setup::now(),
+        observer,
+        stop,
+        |film, k0, _k1, env| {
+            if env.skip(k0) {
+                return Ok(Round::default());
+            }
+            let pass = k0 as u32;
+            let mut round = Round::default();
+            // 1. The pass's wavelengths: a golden-ratio sequence over passes.
+            let u_l =
+                (0.5 + pass as f64 * 0.618_033_988_749_895 + (settings.seed % 1024) as f64 * 0.1)
+                    .fract() as f32;
+            let lambda = C::sample_lambda(u_l.min(1.0 - f32::EPSILON));
+            // 2. Camera paths: direct light into the film, visible points per slot.
+            state.vps.resize(film.slots(), None);
+            let direct = camera_pass(
+                scene,
+                camera,
+                max_depth,
+                settings,
+                pass,
+                lambda,
+                film,
+                &mut state.vps,
+            );
+            round.rays += direct.0;
+            round.bad += direct.1;
+            let r = state.radius(scene, camera, settings);
+            // 3. Photons, in fixed chunks.
+            round.rays += photon_pass::<C>(
+                scene,
+                &emitter,
+                &trace_settings,
+                settings.seed,
+                pass,
+                n_photons,
+                lambda,
+                &mut state.photons,
+            )?;
+            round.photons = n_photons;
+            // 4. Gather into the same film half.
+            round.bad += state.gather_pass(film, pass, r);
+            state.r2 = state.r2.map(|x| x * radius2_factor(pass + 1, ps.alpha));
+            env.bar.inc(film.tiles() as u64);
+            round.note = format!(", r {r:.3e}, {} photons stored", state.photons.len());
+            Ok(round)
+        },
+    )
+}
+
+/// Traces one camera path per pixel through [`primary_ray`] (stream `[seed, pass, x, y]`),
+/// adds its direct light to the film's half `pass mod 2` and keeps its visible point in the
+/// pixel's slot. Returns the rays and bad samples.
+#[allow(clippy::too_many_arguments)]
+fn camera_pass<C: Carrier>(
+    scene: &Scene,
+    camera: &Camera,
+    max_depth: u32,
+    settings: &RenderSettings,
+    pass: u32,
+    lambda: C::Lambda,
+    film: &mut Film,
+    vps: &mut [Option<VisiblePoint<C>>],
+) -> (u64, u64) {
+    let half = (pass % 2) as usize;
+    film.par_tiles_mut()
+        .zip(vps.par_chunks_mut(TILE_PIXELS))
+        .map(|(tile, vp_tile)| {
+            let (mut rays, mut bad) = (0, 0);
+            for (i, slot) in vp_tile.iter_mut().enumerate() {
+                let Some((x, y)) = tile.pixel(i) else {
+                    continue;
+                };
+                let mut ctx = Context {
+                    rng: Rng::new(&[settings.seed, pass as u64, x as u64, y as u64]),
+                    rays: 0,
+                };
+                let ray = primary_ray(camera, x, y, false, &mut ctx.rng);
+                let (l, vp) = path::camera_path::<C>(
+                    scene,
+                    &ray,
+                    max_depth,
+                    lambda,
+                    StopAt::Diffuse,
+                    &mut ctx,
+                );
+                tile.sums[i][half] += guard::admit(l.to_rgb(&lambda), &mut bad).as_dvec3();
+                *slot = vp;
+                rays += ctx.rays;
+            }
+            (rays, bad)
+        })
+        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1))
+}
+
+/// Traces `n_photons` photons of pass `pass` in fixed chunks of [`CHUNK`] and keeps, in
+/// `photons`, every vertex after at least one bounce (powers divided by `n_photons`).
+/// Returns the rays traced; an error when the store budget is crossed.
+#[allow(clippy::too_many_arguments)]
+fn photon_pass<C: Carrier>(
+    scene: &Scene,
+    emitter: &PhotonEmitter,
+    trace_settings: &TraceSettings,
+    seed: u64,
+    pass: u32,
+    n_photons: u64,
+    lambda: C::Lambda,
+    photons: &mut Vec<Photon>,
+) -> Result<u64> {
+    let chunks = n_photons.div_ceil(CHUNK);
+    let budget = StoreBudget::default();
+    let per_chunk: Vec<(Vec<Photon>, u64)> = (0..chunks)
+        .into_par_iter()
+        .map(|c| {
+            let mut out = Vec::new();
+            let mut rays = 0;
+            let inv_n = 1.0 / n_photons as f32;
+            for i in c * CHUNK..((c + 1) * CHUNK).min(n_photons) {
+                let mut rng = Rng::new(&[seed, pass as u64, i, 0x9E07]);
+                let Some(ph) = emitter.emit_from(scene, &mut rng) else {
+                    continue;
+                };
+                let before = out.len();
+                rays += trace::trace::<C>(scene, &ph, lambda, trace_settings, &mut rng, |v, l| {
+                    if v.bounces > 0 {
+                        let flags = if C::is_hero_only(l) {
+                            Photon::HERO_ONLY
+                        } else {
+                            0
+                        };
+                        out.push(Photon::new(v.p, v.wi, (v.power * inv_n).to_lanes(), flags));
+                    }
+                });
+                if !budget.add(out.len() - before) {
+                    break;
                 }
-                (rays, bad)
-            })
-            .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
-        rays += cam_rays;
-        bad += cam_bad;
-        if r2.is_none() {
-            let o = camera
-                .generate_ray(Vec2::new(w as f32, h as f32) * 0.5)
-                .origin;
-            let mut d: Vec<f32> = vps.iter().flatten().map(|v| v.p.distance(o)).collect();
+            }
+            (out, rays)
+        })
+        .collect();
+    budget.check(n_photons, trace_settings.max_depth)?;
+    photons.clear();
+    // Exact reservation: the buffer's capacity is the largest pass's photon count, not a
+    // doubling of it.
+    photons.reserve_exact(per_chunk.iter().map(|c| c.0.len()).sum());
+    let mut rays = 0;
+    for (p, r) in per_chunk {
+        photons.extend_from_slice(&p);
+        rays += r;
+    }
+    Ok(rays)
+}
+
+impl<C: Carrier> Passes<C> {
+    /// The radius of the current pass; on the first pass without `--radius`, 2 pixel
+    /// footprints at the median visible point (1 % of the scene's diagonal when no pixel
+    /// has one).
+    fn radius(&mut self, scene: &Scene, camera: &Camera, settings: &RenderSettings) -> f32 {
+        if self.r2.is_none() {
+            let (w, h) = (settings.width as f32, settings.height as f32);
+            let o = camera.generate_ray(Vec2::new(w, h) * 0.5).origin;
+            let mut d: Vec<f32> = self.vps.iter().flatten().map(|v| v.p.distance(o)).collect();
             let r = if d.is_empty() {
                 0.01 * (scene.bounds.1 - scene.bounds.0).length()
             } else {
@@ -188,153 +321,33 @@ fn run<C: Carrier>(
                 2.0 * pixel_footprint(camera, settings, *m)
             };
             let r = if r.is_finite() && r > 0.0 { r } else { 1e-3 };
-            r2 = Some((r as f64) * (r as f64));
+            self.r2 = Some((r as f64) * (r as f64));
         }
-        let r = r2.map_or(0.0, f64::sqrt) as f32;
-        // 3. Photons, in fixed chunks.
-        let chunks = n_photons.div_ceil(CHUNK);
-        let budget = StoreBudget::default();
-        let per_chunk: Vec<(Vec<Photon>, u64)> = (0..chunks)
-            .into_par_iter()
-            .map(|c| {
-                let mut out = Vec::new();
-                let mut rays = 0;
-                let inv_n = 1.0 / n_photons as f32;
-                for i in c * CHUNK..((c + 1) * CHUNK).min(n_photons) {
-                    let mut rng = Rng::new(&[settings.seed, pass as u64, i, 0x9E07]);
-                    let Some(ph) = emitter.emit_from(scene, &mut rng) else {
-                        continue;
-                    };
-                    let before = out.len();
-                    rays +=
-                        trace::trace::<C>(scene, &ph, lambda, &trace_settings, &mut rng, |v, l| {
-                            if v.bounces > 0 {
-                                let flags = if C::is_hero_only(l) {
-                                    Photon::HERO_ONLY
-                                } else {
-                                    0
-                                };
-                                out.push(Photon::new(
-                                    v.p,
-                                    v.wi,
-                                    (v.power * inv_n).to_lanes(),
-                                    flags,
-                                ));
-                            }
-                        });
-                    if !budget.add(out.len() - before) {
-                        break;
+        self.r2.map_or(0.0, f64::sqrt) as f32
+    }
+
+    /// Gathers the pass's photons within `r` at every visible point into the film's half
+    /// `pass mod 2` (L = β Σ f Φ / (π r²)) and marks the pass done in every tile. Returns
+    /// the bad samples.
+    fn gather_pass(&mut self, film: &mut Film, pass: u32, r: f32) -> u64 {
+        let half = (pass % 2) as usize;
+        self.grid.rebuild(&self.photons, r);
+        let area = std::f64::consts::PI * self.r2.unwrap_or(0.0);
+        let (photons, grid) = (&self.photons, &self.grid);
+        film.par_tiles_mut()
+            .zip(self.vps.par_chunks(TILE_PIXELS))
+            .map(|(tile, vp_tile)| {
+                let mut bad = 0;
+                for (i, vp) in vp_tile.iter().enumerate() {
+                    if let (Some(vp), true) = (vp, area > 0.0) {
+                        let phi = gather(vp, photons, grid, r);
+                        let l = guard::admit((vp.beta * phi).to_rgb(&vp.lambda), &mut bad);
+                        tile.sums[i][half] += l.as_dvec3() / area;
                     }
                 }
-                (out, rays)
-            })
-            .collect();
-        budget.check(n_photons, integrator.max_depth)?;
-        photons.clear();
-        // Exact reservation: the buffer's capacity is the largest pass's photon count, not
-        // a doubling of it.
-        photons.reserve_exact(per_chunk.iter().map(|c| c.0.len()).sum());
-        for (p, r) in per_chunk {
-            photons.extend_from_slice(&p);
-            rays += r;
-        }
-        emitted += n_photons;
-        // 4. Gather.
-        grid.rebuild(&photons, r);
-        let area = std::f64::consts::PI * r2.unwrap_or(0.0);
-        bad += tau
-            .par_iter_mut()
-            .zip(vps.par_iter())
-            .map(|(t, vp)| {
-                let mut bad = 0;
-                if let (Some(vp), true) = (vp, area > 0.0) {
-                    let phi = gather(vp, &photons, &grid, r);
-                    let l = guard::admit((vp.beta * phi).to_rgb(&vp.lambda), &mut bad);
-                    t[half] += l.as_dvec3() / area;
-                }
+                *tile.count = pass as u64 + 1;
                 bad
             })
-            .sum::<u64>();
-        done = pass + 1;
-        r2 = r2.map(|x| x * radius2_factor(done, ps.alpha));
-        bar.inc(1);
-        bar.set_message(format!(
-            "{done} passes, {rays} rays, r {r:.3e}, {} photons stored{}",
-            photons.len(),
-            crate::render::estimate_note(last_estimate)
-        ));
-        interrupted = guard::stop_requested() && done < passes;
-        let finished = done == passes
-            || settings.time_limit.is_some_and(|t| start.elapsed() >= t)
-            || interrupted;
-        let checkpoint = finished || done.is_power_of_two();
-        // The two halves (even and odd passes), built once per checkpoint for the observer
-        // and the progress bar's error estimate.
-        let halves = (checkpoint && (observer.is_some() || !settings.quiet)).then(|| {
-            let (n0, n1) = (done.div_ceil(2), done / 2);
-            let a = image(&ld, &tau, n0, w, h, |s| s[0]);
-            let b = if n1 > 0 {
-                image(&ld, &tau, n1, w, h, |s| s[1])
-            } else {
-                a.clone()
-            };
-            (a, b)
-        });
-        if let (Some((a, b)), true) = (&halves, done >= 2) {
-            last_estimate = crate::render::relative_error_estimate(a, b);
-        }
-        if let (Some(obs), Some((a, b))) = (observer.as_mut(), &halves) {
-            let mean = image(&ld, &tau, done, w, h, |s| s[0] + s[1]);
-            let progress = Progress {
-                image: &mean,
-                halves: (a, b),
-                elapsed: start.elapsed(),
-                samples: done as u64,
-                passes: done,
-                rays,
-                photons: emitted,
-                done: finished,
-            };
-            if obs(&progress)? == Control::Stop {
-                break;
-            }
-        }
-        if finished {
-            break;
-        }
-    }
-    bar.finish_and_clear();
-    Ok((
-        image(&ld, &tau, done, w, h, |s| s[0] + s[1]),
-        RenderStats {
-            time: start.elapsed(),
-            rays,
-            samples: n_pix as u64 * done as u64,
-            photons: emitted,
-            passes: done,
-            bad_samples: bad,
-            interrupted,
-        },
-    ))
-}
-
-/// The mean over `passes` passes of `pick`(per-parity sums of direct + photon estimates).
-fn image(
-    ld: &[[DVec3; 2]],
-    tau: &[[DVec3; 2]],
-    passes: u32,
-    w: u32,
-    h: u32,
-    pick: impl Fn([DVec3; 2]) -> DVec3,
-) -> ImageRgb {
-    let inv = 1.0 / passes.max(1) as f64;
-    ImageRgb {
-        width: w,
-        height: h,
-        data: ld
-            .iter()
-            .zip(tau)
-            .map(|(a, b)| (pick([a[0] + b[0], a[1] + b[1]]) * inv).as_vec3())
-            .collect(),
+            .sum()
     }
 }

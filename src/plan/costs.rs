@@ -6,12 +6,11 @@
 
 use super::Plan;
 use crate::camera::Camera;
-use crate::converge::method_name;
 use crate::error::Result;
 use crate::integrator::{Integrator, Method};
 use crate::photon::emit::PhotonEmitter;
 use crate::photon::trace::{trace, Roulette, TraceSettings};
-use crate::render::{render_progressive, RenderSettings};
+use crate::render::RenderSettings;
 use crate::scene::Scene;
 use glam::Vec3;
 use std::fmt::Write as _;
@@ -55,11 +54,7 @@ impl Plan {
         };
         let probe = |spectral: bool| -> Result<f64> {
             let (w, h) = PROBE_SIZE;
-            let integrator = Integrator {
-                method,
-                max_depth: 64,
-                photon: Default::default(),
-            };
+            let integrator = Integrator::new(method, 64, &Default::default())?;
             let settings = RenderSettings {
                 width: w,
                 height: h,
@@ -71,7 +66,7 @@ impl Plan {
                 time_limit: None,
             };
             let start = Instant::now();
-            render_progressive(scene, camera, &integrator, &settings, None)?;
+            integrator.render(scene, camera, &settings)?;
             Ok(start.elapsed().as_secs_f64() * 1e3)
         };
         // Warm-up of both (thread pool, caches), then the fastest of three alternating runs
@@ -93,7 +88,7 @@ impl Plan {
                      spectral {spectral:.1} ms (x{:.2})",
                     PROBE_SIZE.0,
                     PROBE_SIZE.1,
-                    method_name(method),
+                    method.name(),
                     spectral / rgb.max(1e-6)
                 ),
                 "photons" => match photons {

@@ -24,8 +24,6 @@
 //! else is claimed. [`Plan::text`] leaves timings out (it is what the snapshot test
 //! compares); [`Plan::text_with_costs`] adds them.
 
-use crate::app::SpectralMode;
-use crate::converge::method_name;
 use crate::envmap::Environment;
 use crate::integrator::Method;
 use crate::photon::emit::PhotonEmitter;
@@ -36,6 +34,58 @@ use std::collections::BTreeSet;
 mod costs;
 pub use costs::{COST_PHOTONS, PROBE_REPEATS, PROBE_SIZE};
 use std::fmt::Write as _;
+
+/// `--spectral auto|on|off`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SpectralMode {
+    /// Spectral transport when a material is dispersive or a light or emissive material names
+    /// a spectrum (`iris_spectrum`), RGB otherwise.
+    #[default]
+    Auto,
+    /// Always spectral.
+    On,
+    /// Always RGB (dispersive materials use n_d).
+    Off,
+}
+
+impl SpectralMode {
+    /// Whether to render `scene` spectrally.
+    pub fn resolve(self, scene: &Scene) -> bool {
+        match self {
+            SpectralMode::On => true,
+            SpectralMode::Off => false,
+            SpectralMode::Auto => {
+                scene
+                    .materials
+                    .iter()
+                    .any(|m| m.is_dispersive() || m.emitter_shape().is_some())
+                    || scene.light_shapes.iter().any(Option::is_some)
+            }
+        }
+    }
+}
+
+/// Resolves [`Method::Auto`] for `scene`: SPPM when light can reach a diffuse-like
+/// surface through specular ones (found by tracing a few thousand photons:
+/// [`crate::photon::trace::has_caustic_paths`]), the path tracer otherwise. Returns the
+/// method and the reason.
+pub fn resolve_method(method: Method, scene: &Scene) -> (Method, Option<String>) {
+    if method != Method::Auto {
+        return (method, None);
+    }
+    let emitter = crate::photon::emit::PhotonEmitter::new(scene);
+    if !emitter.is_empty() && crate::photon::trace::has_caustic_paths(scene, &emitter, 4096) {
+        (
+            Method::Sppm,
+            Some("--method auto: light reaches diffuse surfaces through specular ones (caustics): SPPM".into()),
+        )
+    } else {
+        (
+            Method::Path,
+            Some("--method auto: no caustic paths found: path tracer".into()),
+        )
+    }
+}
 
 /// Probe photons behind the caustic decision (the number `Method::resolve` uses).
 pub const CAUSTIC_PROBE_PHOTONS: u32 = 4096;
@@ -97,7 +147,7 @@ impl Plan {
                 .collect()
         };
         let spectral_on = spectral.resolve(scene);
-        let (resolved, method_note) = method.resolve(scene);
+        let (resolved, method_note) = resolve_method(method, scene);
         let mut stages = Vec::with_capacity(7);
 
         // Transport.
@@ -157,9 +207,9 @@ impl Plan {
         };
         let photons_used = matches!(resolved, Method::Sppm | Method::Photon);
         let how = if method == Method::Auto {
-            format!("--method auto -> {}", method_name(resolved))
+            format!("--method auto -> {}", resolved.name())
         } else {
-            format!("--method {}", method_name(resolved))
+            format!("--method {}", resolved.name())
         };
         stages.push(Stage {
             name: "photons",
@@ -337,7 +387,7 @@ impl Plan {
 
     fn render_text(&self, costs: bool) -> String {
         let mut s = String::from("render plan:\n");
-        let _ = writeln!(s, "  {:<13} {}", "method", method_name(self.method));
+        let _ = writeln!(s, "  {:<13} {}", "method", self.method.name());
         for st in &self.stages {
             let _ = writeln!(
                 s,

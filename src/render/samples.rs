@@ -5,100 +5,16 @@
 //! N samples independent of the round split and the thread count. Units: linear RGB
 //! radiance; pixel (x, y) has its centre at (x + ½, y + ½) in raster space.
 
-use super::{
-    guard, progress_bar, Control, Observer, Progress, RenderSettings, RenderStats, Setup, TILE,
-};
+use super::driver::{drive, Round, RoundEnv, Schedule};
+use super::film::Film;
+use super::{guard, Context, Observer, RenderSettings, RenderStats, Setup};
 use crate::camera::Camera;
 use crate::error::Result;
-use crate::integrator::Context;
 use crate::math::{Ray, Rng};
 use crate::output::ImageRgb;
-use glam::{DVec3, Vec2, Vec3};
+use glam::{Vec2, Vec3};
 use rayon::prelude::*;
-use std::time::Instant;
 
-/// Per-pixel sums of the samples of each half (sample k in half k mod 2), stored tile by
-/// tile (`TILE²` slots per tile; slots outside the image stay zero) so each parallel tile
-/// owns one contiguous chunk, and the samples per pixel each tile has taken (equal for all
-/// tiles unless a round was interrupted).
-struct Accum {
-    width: u32,
-    height: u32,
-    tiles_x: u32,
-    sums: Vec<[DVec3; 2]>,
-    counts: Vec<u64>,
-}
-
-impl Accum {
-    fn new(width: u32, height: u32) -> Self {
-        let tiles_x = width.div_ceil(TILE);
-        let tiles = tiles_x as usize * height.div_ceil(TILE) as usize;
-        Accum {
-            width,
-            height,
-            tiles_x,
-            sums: vec![[DVec3::ZERO; 2]; tiles * TILE_PIXELS],
-            counts: vec![0; tiles],
-        }
-    }
-
-    /// The image `f(sums, samples of the pixel's tile)` in row-major order.
-    fn image(&self, f: impl Fn(&[DVec3; 2], u64) -> DVec3) -> ImageRgb {
-        let (w, h) = (self.width, self.height);
-        let mut data = vec![Vec3::ZERO; w as usize * h as usize];
-        for (t, tile) in self.sums.chunks(TILE_PIXELS).enumerate() {
-            let (tx, ty) = (t as u32 % self.tiles_x, t as u32 / self.tiles_x);
-            for (i, s) in tile.iter().enumerate() {
-                let (x, y) = (tx * TILE + i as u32 % TILE, ty * TILE + i as u32 / TILE);
-                if x < w && y < h {
-                    data[(y * w + x) as usize] = f(s, self.counts[t]).as_vec3();
-                }
-            }
-        }
-        ImageRgb {
-            width: w,
-            height: h,
-            data,
-        }
-    }
-
-    /// The mean of every pixel's samples.
-    fn mean(&self) -> ImageRgb {
-        self.image(|s, n| (s[0] + s[1]) / n.max(1) as f64)
-    }
-
-    /// The two halves' means (of n samples, half 0 has ⌈n/2⌉, half 1 ⌊n/2⌋; an empty half
-    /// 1 is a copy of half 0).
-    fn halves(&self) -> (ImageRgb, ImageRgb) {
-        let a = self.image(|s, n| s[0] / n.div_ceil(2).max(1) as f64);
-        let b = if self.counts.iter().all(|&n| n >= 2) {
-            self.image(|s, n| s[1] / (n / 2) as f64)
-        } else {
-            a.clone()
-        };
-        (a, b)
-    }
-
-    /// The samples per pixel every tile has reached.
-    fn done(&self) -> u64 {
-        self.counts.iter().copied().min().unwrap_or(0)
-    }
-
-    /// Pixel samples taken over the image.
-    fn pixel_samples(&self) -> u64 {
-        (0..self.counts.len())
-            .map(|t| {
-                let (tx, ty) = (t as u32 % self.tiles_x, t as u32 / self.tiles_x);
-                let tw = TILE.min(self.width - tx * TILE) as u64;
-                let th = TILE.min(self.height - ty * TILE) as u64;
-                tw * th * self.counts[t]
-            })
-            .sum()
-    }
-}
-
-/// Pixels per tile.
-const TILE_PIXELS: usize = (TILE * TILE) as usize;
 /// Stream key of the per-pixel offset of the hero-wavelength sequence.
 const LAMBDA_KEY: u64 = 0x1A4B_DA00;
 /// 1/φ, the golden ratio's fractional part: the rank-1 lattice generator.
@@ -108,7 +24,7 @@ const INV_PHI: f64 = 0.618_033_988_749_894_9;
 /// takes one sample per pixel (`centre`), else jittered by the first two numbers of `rng`,
 /// the sample's stream `Rng::new(&[seed, x, y, k])`. The coverage pass
 /// ([`super::coverage`]) replays it.
-pub(super) fn primary_ray(camera: &Camera, x: u32, y: u32, centre: bool, rng: &mut Rng) -> Ray {
+pub fn primary_ray(camera: &Camera, x: u32, y: u32, centre: bool, rng: &mut Rng) -> Ray {
     let jitter = if centre {
         Vec2::splat(0.5)
     } else {
@@ -148,140 +64,92 @@ fn sample_rounds(
     camera: &Camera,
     settings: &RenderSettings,
     setup: Setup,
-    mut observer: Option<Observer>,
+    observer: Option<Observer>,
     max_round: u64,
     stop: &(dyn Fn() -> bool + Sync),
     estimate: impl Fn(&Ray, f32, &mut Context) -> Vec3 + Sync,
 ) -> Result<(ImageRgb, RenderStats)> {
-    let (w, h) = (settings.width, settings.height);
     let target = settings.spp.max(1) as u64;
-    let mut acc = Accum::new(w, h);
-    let tiles_x = acc.tiles_x;
-    let n_tiles = acc.counts.len();
-    let bar = progress_bar(settings.quiet, target * n_tiles as u64, "rendering");
-    let mut last_estimate: Option<f64> = None;
-    let sampling_start = Instant::now();
-    let (mut done, mut rays, mut next_checkpoint) = (0u64, setup.rays, 1u64);
-    let mut bad = 0u64;
-    let mut interrupted;
-    loop {
-        // Samples to the next checkpoint, fewer if the time limit would be crossed.
-        let mut n = (next_checkpoint.min(target) - done).min(max_round.max(1));
-        if let (Some(limit), true) = (settings.time_limit, done > 0) {
-            let per_sample = sampling_start.elapsed().as_secs_f64() / done as f64;
-            let left = limit.saturating_sub(setup.start.elapsed()).as_secs_f64();
-            n = n.min(((left / per_sample.max(1e-12)) as u64).max(1));
-        }
-        let (k0, k1) = (done, done + n);
-        let (round_rays, round_bad) = acc
-            .sums
-            .par_chunks_mut(TILE_PIXELS)
-            .zip(acc.counts.par_iter_mut())
-            .enumerate()
-            .map(|(t, (tile, count))| {
-                if k0 > 0 && stop() {
-                    return (0, 0);
-                }
-                let (tx, ty) = (t as u32 % tiles_x, t as u32 / tiles_x);
-                let (mut rays, mut bad) = (0, 0);
-                for (i, sums) in tile.iter_mut().enumerate() {
-                    let (x, y) = (tx * TILE + i as u32 % TILE, ty * TILE + i as u32 / TILE);
-                    if x >= w || y >= h {
-                        continue;
-                    }
-                    let (xk, yk) = (x as u64, y as u64);
-                    let offset = Rng::new(&[settings.seed, xk, yk, LAMBDA_KEY]).next_f32() as f64;
-                    for k in k0..k1 {
-                        let mut ctx = Context {
-                            rng: Rng::new(&[settings.seed, xk, yk, k]),
-                            rays: 0,
-                        };
-                        let ray = primary_ray(camera, x, y, target == 1, &mut ctx.rng);
-                        let u_lambda =
-                            ((offset + k as f64 * INV_PHI).fract() as f32).min(1.0 - f32::EPSILON);
-                        let l = guard::admit(estimate(&ray, u_lambda, &mut ctx), &mut bad);
-                        sums[(k % 2) as usize] += l.as_dvec3();
-                        rays += ctx.rays;
-                    }
-                }
-                *count = k1;
-                bar.inc(n);
-                (rays, bad)
-            })
-            .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
-        rays += round_rays;
-        bad += round_bad;
-        interrupted = k0 > 0 && stop();
-        done = acc.done();
-        bar.set_message(format!(
-            "{done} spp, {rays} rays{}",
-            super::estimate_note(last_estimate)
-        ));
-        let out_of_time = settings
-            .time_limit
-            .is_some_and(|t| setup.start.elapsed() >= t);
-        let finished = done >= target || out_of_time || interrupted;
-        if done < next_checkpoint && !finished {
-            continue;
-        }
-        while next_checkpoint <= done {
-            next_checkpoint *= 2;
-        }
-        if !settings.quiet && observer.is_none() && done >= 2 {
-            let (a, b) = acc.halves();
-            last_estimate = super::relative_error_estimate(&a, &b);
-            bar.set_message(format!(
-                "{done} spp, {rays} rays{}",
-                super::estimate_note(last_estimate)
-            ));
-        }
-        if let Some(obs) = observer.as_mut() {
-            let image = acc.mean();
-            let (a, b) = acc.halves();
-            if done >= 2 {
-                last_estimate = super::relative_error_estimate(&a, &b);
-                bar.set_message(format!(
-                    "{done} spp, {rays} rays{}",
-                    super::estimate_note(last_estimate)
-                ));
-            }
-            let progress = Progress {
-                image: &image,
-                halves: (&a, &b),
-                elapsed: setup.start.elapsed(),
-                samples: done,
-                passes: 1,
-                rays,
-                photons: setup.photons,
-                done: finished,
-            };
-            if obs(&progress)? == Control::Stop {
-                break;
-            }
-        }
-        if finished {
-            break;
-        }
-    }
-    bar.finish_and_clear();
-    Ok((
-        acc.mean(),
-        RenderStats {
-            time: setup.start.elapsed(),
-            rays,
-            samples: acc.pixel_samples(),
-            photons: setup.photons,
-            passes: 1,
-            bad_samples: bad,
-            interrupted,
+    let schedule = Schedule {
+        target,
+        max_round,
+        passes: false,
+        label: "rendering",
+    };
+    drive(
+        settings,
+        schedule,
+        setup,
+        observer,
+        stop,
+        |film, k0, k1, env| {
+            Ok(round(
+                camera,
+                settings,
+                target == 1,
+                film,
+                (k0, k1),
+                env,
+                &estimate,
+            ))
         },
-    ))
+    )
+}
+
+/// Samples `k0..k1` of every pixel, tiles in parallel (a tile skipped on a stop request
+/// keeps its count).
+fn round(
+    camera: &Camera,
+    settings: &RenderSettings,
+    centre: bool,
+    film: &mut Film,
+    (k0, k1): (u64, u64),
+    env: &RoundEnv,
+    estimate: &(impl Fn(&Ray, f32, &mut Context) -> Vec3 + Sync),
+) -> Round {
+    let (rays, bad) = film
+        .par_tiles_mut()
+        .map(|tile| {
+            if env.skip(k0) {
+                return (0, 0);
+            }
+            let (mut rays, mut bad) = (0, 0);
+            for i in 0..tile.sums.len() {
+                let Some((x, y)) = tile.pixel(i) else {
+                    continue;
+                };
+                let (xk, yk) = (x as u64, y as u64);
+                let offset = Rng::new(&[settings.seed, xk, yk, LAMBDA_KEY]).next_f32() as f64;
+                for k in k0..k1 {
+                    let mut ctx = Context {
+                        rng: Rng::new(&[settings.seed, xk, yk, k]),
+                        rays: 0,
+                    };
+                    let ray = primary_ray(camera, x, y, centre, &mut ctx.rng);
+                    let u_lambda =
+                        ((offset + k as f64 * INV_PHI).fract() as f32).min(1.0 - f32::EPSILON);
+                    let l = guard::admit(estimate(&ray, u_lambda, &mut ctx), &mut bad);
+                    tile.sums[i][(k % 2) as usize] += l.as_dvec3();
+                    rays += ctx.rays;
+                }
+            }
+            *tile.count = k1;
+            env.bar.inc(k1 - k0);
+            (rays, bad)
+        })
+        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+    Round {
+        rays,
+        bad,
+        ..Round::default()
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::camera::look_at;
+    use crate::render::{Control, Progress};
     use crate::scene::desc::{CameraDesc, Projection};
 
     /// A synthetic estimate that uses every input: the sample's random stream, the hero

@@ -1,0 +1,159 @@
+//! The progressive driver: the one loop every method renders through. It advances a
+//! [`Film`] in rounds of units (camera samples per pixel, or SPPM passes) to checkpoints
+//! 1, 2, 4, 8, … units and the target, and owns what a long render needs around the maths:
+//! the time limit, the stop request (SIGINT, [`super::guard`]), the progress bar with the
+//! half-buffer error estimate, the observer called at checkpoints, and the stats.
+//!
+//! Invariants:
+//! - A round covers units `k0..k1`; the method's step adds exactly those units to every
+//!   tile it renders (a stop request may skip whole tiles of a round after the first, never
+//!   part of a tile), so the image after N units does not depend on how rounds were split.
+//! - At least one unit is always taken; the time limit shortens a round to the units that
+//!   fit the time left (from the mean time per unit so far) and ends the render after the
+//!   round that crosses it.
+//! - The observer sees every checkpoint and the end (`done`); [`Control::Stop`] ends the
+//!   render with the image it saw.
+//!
+//! Times are wall-clock from [`Setup::start`] (work before the first unit, such as photon
+//! maps, counts).
+
+use super::film::Film;
+use super::progress::{estimate_note, progress_bar, relative_error_estimate};
+use super::{Control, Observer, Progress, RenderSettings, RenderStats, Setup};
+use crate::error::Result;
+use indicatif::ProgressBar;
+use std::time::Instant;
+
+/// How a method's units are scheduled.
+#[derive(Debug, Clone, Copy)]
+pub struct Schedule {
+    /// Units to take (at least 1).
+    pub target: u64,
+    /// Most units per round (1 for SPPM: a pass is a round).
+    pub max_round: u64,
+    /// Whether units are passes (SPPM: `Progress::passes` counts them) or samples.
+    pub passes: bool,
+    /// The progress bar's title.
+    pub label: &'static str,
+}
+
+/// What one round did, beyond the units the film counts.
+#[derive(Debug, Default, Clone)]
+pub struct Round {
+    /// Rays traced.
+    pub rays: u64,
+    /// Samples dropped as NaN or infinite ([`super::guard::admit`]).
+    pub bad: u64,
+    /// Photons emitted.
+    pub photons: u64,
+    /// Extra text for the progress bar (e.g. SPPM's radius and stored photons).
+    pub note: String,
+}
+
+/// What a step may use during its round.
+pub struct RoundEnv<'a> {
+    /// Asked before each tile of a round after the first; `true` skips the rest of the
+    /// round's tiles and ends the render.
+    pub stop: &'a (dyn Fn() -> bool + Sync),
+    /// The progress bar; its length is `target · tiles`: a step adds 1 per tile and unit.
+    pub bar: &'a ProgressBar,
+}
+
+impl RoundEnv<'_> {
+    /// Whether a tile of round `k0..` should be skipped (never in the first round).
+    pub fn skip(&self, k0: u64) -> bool {
+        k0 > 0 && (self.stop)()
+    }
+}
+
+/// Renders progressively: calls `step(film, k0, k1, env)` for rounds of units until the
+/// schedule's target, the time limit, a stop request or the observer ends it.
+pub fn drive(
+    settings: &RenderSettings,
+    schedule: Schedule,
+    setup: Setup,
+    mut observer: Option<Observer>,
+    stop: &(dyn Fn() -> bool + Sync),
+    mut step: impl FnMut(&mut Film, u64, u64, &RoundEnv) -> Result<Round>,
+) -> Result<(crate::output::ImageRgb, RenderStats)> {
+    let target = schedule.target.max(1);
+    let mut film = Film::new(settings.width, settings.height);
+    let unit = if schedule.passes { "passes" } else { "spp" };
+    let bar = progress_bar(settings.quiet, target * film.tiles() as u64, schedule.label);
+    let env = RoundEnv { stop, bar: &bar };
+    let started = Instant::now();
+    let (mut done, mut next_checkpoint) = (0u64, 1u64);
+    let (mut rays, mut photons, mut bad) = (setup.rays, setup.photons, 0u64);
+    let (mut estimate, mut note, mut interrupted);
+    estimate = None;
+    loop {
+        // Units to the next checkpoint, fewer if the time limit would be crossed.
+        let mut n = (next_checkpoint.min(target) - done).min(schedule.max_round.max(1));
+        if let (Some(limit), true) = (settings.time_limit, done > 0) {
+            let per_unit = started.elapsed().as_secs_f64() / done as f64;
+            let left = limit.saturating_sub(setup.start.elapsed()).as_secs_f64();
+            n = n.min(((left / per_unit.max(1e-12)) as u64).max(1));
+        }
+        let k0 = done;
+        let round = step(&mut film, k0, k0 + n, &env)?;
+        rays += round.rays;
+        photons += round.photons;
+        bad += round.bad;
+        note = round.note;
+        // A stop request after the last unit is not an interruption: the image is whole.
+        let stop_asked = env.skip(k0);
+        done = film.done();
+        interrupted = stop_asked && done < target;
+        let message =
+            |e: Option<f64>| format!("{done} {unit}, {rays} rays{note}{}", estimate_note(e));
+        bar.set_message(message(estimate));
+        let out_of_time = settings
+            .time_limit
+            .is_some_and(|t| setup.start.elapsed() >= t);
+        let finished = done >= target || out_of_time || interrupted;
+        if done < next_checkpoint && !finished {
+            continue;
+        }
+        while next_checkpoint <= done {
+            next_checkpoint *= 2;
+        }
+        let want_halves = (observer.is_some() || !settings.quiet) && done >= 2;
+        let halves = (observer.is_some() || want_halves).then(|| film.halves());
+        if let (Some((a, b)), true) = (&halves, want_halves) {
+            estimate = relative_error_estimate(a, b);
+            bar.set_message(message(estimate));
+        }
+        if let (Some(obs), Some((a, b))) = (observer.as_mut(), &halves) {
+            let image = film.mean();
+            let progress = Progress {
+                image: &image,
+                halves: (a, b),
+                elapsed: setup.start.elapsed(),
+                samples: done,
+                passes: if schedule.passes { done as u32 } else { 1 },
+                rays,
+                photons,
+                done: finished,
+            };
+            if obs(&progress)? == Control::Stop {
+                break;
+            }
+        }
+        if finished {
+            break;
+        }
+    }
+    bar.finish_and_clear();
+    Ok((
+        film.mean(),
+        RenderStats {
+            time: setup.start.elapsed(),
+            rays,
+            samples: film.pixel_samples(),
+            photons,
+            passes: if schedule.passes { done as u32 } else { 1 },
+            bad_samples: bad,
+            interrupted,
+        },
+    ))
+}

@@ -1,0 +1,138 @@
+//! Rendering machinery shared by every integrator, below them: the [`Film`] (two half
+//! buffers), the progressive [`drive`]r (rounds to checkpoints 1, 2, 4, …, time limit, stop
+//! request, progress bar, observer), the per-sample loop ([`render_samples`], one
+//! [`primary_ray`]), the worker pool and the coverage pass. It knows nothing of how
+//! radiance is estimated: integrators ([`crate::integrator::Integrator::render`]) own their
+//! render and call into this module.
+//!
+//! Per-sample methods (path, Whitted, photon) take their samples in rounds that double the
+//! samples per pixel (1, 1, 2, 4, … capped by `spp`; a time limit may split a round); SPPM
+//! renders in passes, one per round. After 1, 2, 4, 8, … samples (passes) and at the end an
+//! optional [`Observer`] sees the image so far ([`Progress`]) and may stop the render.
+//!
+//! Invariants:
+//! - Sample k of pixel (x, y) draws only from the stream `Rng::new(&[seed, x, y, k])` and is
+//!   added to the pixel's running sums in the order k = 0, 1, 2, …, so the image after N
+//!   samples is bit-identical however the rounds were split and whatever the thread count.
+//! - The spectral hero wavelength of sample k uses the rank-1 lattice (golden-ratio)
+//!   sequence u_k = frac(o + k·φ⁻¹) with a per-pixel random offset o (a Cranley–Patterson
+//!   rotation; Owen, "Monte Carlo theory, methods and examples", §15.4): every prefix of
+//!   samples is well stratified, so stopping early (time limit, observer) keeps colour noise
+//!   low and unbiased.
+//! - Sample k goes to half k mod 2: the two half images are independent estimates used to
+//!   estimate the error without a reference.
+//!
+//! Images are linear RGB (radiance, W·sr⁻¹·m⁻² per channel); times are wall-clock.
+
+use crate::error::{Error, Result};
+use crate::math::Rng;
+use std::time::Duration;
+
+pub mod coverage;
+pub mod driver;
+pub mod film;
+pub mod guard;
+pub mod progress;
+mod samples;
+pub use driver::{drive, Round, RoundEnv, Schedule};
+pub use film::{Film, FilmTile, TILE, TILE_PIXELS};
+pub use progress::{
+    estimate_note, progress_bar, relative_error_estimate, Control, Observer, Progress, Setup,
+};
+pub use samples::{primary_ray, render_samples};
+
+/// What to render.
+#[derive(Debug, Clone)]
+pub struct RenderSettings {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Samples per pixel.
+    pub spp: u32,
+    /// Base seed.
+    pub seed: u64,
+    /// Worker threads (0 = all cores), at most [`MAX_THREADS`].
+    pub threads: usize,
+    /// Hide the progress bar.
+    pub quiet: bool,
+    /// Spectral transport (4 wavelengths per sample) instead of RGB.
+    pub spectral: bool,
+    /// Stop after the round (SPPM: pass) that crosses this wall time, counted from the start
+    /// of the render (photon map building included); at least one sample (pass) is taken.
+    pub time_limit: Option<Duration>,
+}
+
+/// Per-thread state an integrator carries along one camera sample (or photon).
+pub struct Context {
+    /// Random numbers for this pixel sample.
+    pub rng: Rng,
+    /// Rays traced so far (closest-hit and shadow).
+    pub rays: u64,
+}
+
+/// Figures from one render.
+#[derive(Debug, Clone, Copy)]
+pub struct RenderStats {
+    /// Wall time of the rendering loop.
+    pub time: Duration,
+    /// Rays traced (closest-hit + shadow).
+    pub rays: u64,
+    /// Pixel samples taken (all pixels; SPPM: one per pixel and pass).
+    pub samples: u64,
+    /// Photons emitted (photon methods).
+    pub photons: u64,
+    /// Passes done (SPPM; 1 otherwise).
+    pub passes: u32,
+    /// Samples (SPPM: per-pixel pass contributions) dropped because they were NaN or
+    /// infinite ([`guard::admit`]); 0 in a healthy render.
+    pub bad_samples: u64,
+    /// The render ended early on a stop request ([`guard::request_stop`], SIGINT); the image
+    /// is the mean of the samples taken so far (tiles of the last round may have one round
+    /// more than others).
+    pub interrupted: bool,
+}
+
+/// Most worker threads (`--threads`); 0 asks for one per core. Far more threads than
+/// cores only add memory (a stack each) and scheduling, and a pool of 10⁵ threads would
+/// exhaust the process before the render began.
+pub const MAX_THREADS: usize = 1024;
+
+/// Rejects a thread count above [`MAX_THREADS`] (0 = all cores is fine) before any thread
+/// is spawned.
+pub fn check_threads(threads: usize) -> Result<()> {
+    if threads > MAX_THREADS {
+        return Err(Error::Usage(format!(
+            "--threads {threads}: at most {MAX_THREADS} worker threads (0 = one per core)"
+        )));
+    }
+    Ok(())
+}
+
+/// Memory the per-pixel buffers of a render may take: 8 GiB; the integrator compares it
+/// with the image's pixels times its bytes per pixel before anything is allocated
+/// ([`crate::integrator::check_memory`]).
+pub const PIXEL_MEMORY_BUDGET: u64 = 8 << 30;
+
+/// Stack of each render worker: 8 MiB. The Whitted tracer recurses once per bounce, about
+/// 1–2 KiB a level in release: `--max-depth` 1024 ([`crate::integrator::MAX_DEPTH`]) fits
+/// the default 2 MiB with no margin, and 2048 overflowed it (measured in a closed mirror box,
+/// `tests/stiff_renders.rs`). 8 MiB gives 4× headroom; it is address space, committed only
+/// as it is touched.
+pub const WORKER_STACK: usize = 8 << 20;
+
+/// The worker pool for `settings.threads` (FTZ/DAZ on for Embree on every worker, stacks of
+/// [`WORKER_STACK`]); an error, not a panic, when the count is above [`MAX_THREADS`] or the
+/// threads cannot start.
+pub fn thread_pool(settings: &RenderSettings) -> Result<rayon::ThreadPool> {
+    check_threads(settings.threads)?;
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(settings.threads)
+        .stack_size(WORKER_STACK)
+        .start_handler(|_| {
+            #[cfg(feature = "embree")]
+            crate::accel::embree::enable_flush_to_zero();
+        })
+        .build()
+        .map_err(|e| Error::Usage(format!("cannot start {} threads: {e}", settings.threads)))
+}

@@ -1,0 +1,96 @@
+//! What a render shows while it runs: the [`Progress`] an observer sees at checkpoints, its
+//! answer ([`Control`]), the start of the clock ([`Setup`]) and the progress bar with the
+//! half-buffer error estimate. Images are linear RGB; times are wall-clock.
+
+use crate::error::Result;
+use crate::output::ImageRgb;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::time::{Duration, Instant};
+
+/// The state of a render at a checkpoint, shown to an [`Observer`].
+#[derive(Debug, Clone, Copy)]
+pub struct Progress<'a> {
+    /// The mean of all samples (passes) so far.
+    pub image: &'a ImageRgb,
+    /// The means of two independent halves of the samples (even and odd sample indices;
+    /// SPPM: even and odd passes). With a single sample (pass) the second half is empty and
+    /// both are that sample's image, so error estimates from them are 0 then.
+    pub halves: (&'a ImageRgb, &'a ImageRgb),
+    /// Wall time since the render started (photon map building included).
+    pub elapsed: Duration,
+    /// Samples per pixel so far (SPPM: passes).
+    pub samples: u64,
+    /// Passes done (SPPM; 1 for the other methods).
+    pub passes: u32,
+    /// Rays traced so far.
+    pub rays: u64,
+    /// Photons emitted so far.
+    pub photons: u64,
+    /// True on the last call of a render that ended by itself (sample, pass or time limit).
+    /// After an observer returns [`Control::Stop`] it is not called again.
+    pub done: bool,
+}
+
+/// An observer's answer: render on, or end the render with the image just shown.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Control {
+    /// Keep rendering.
+    Continue,
+    /// Stop now; the render returns the image the observer just saw.
+    Stop,
+}
+
+/// Called at checkpoints 1, 2, 4, 8, … samples per pixel (SPPM: passes) and at the end.
+/// An error aborts the render and is returned.
+pub type Observer<'a> = &'a mut (dyn FnMut(&Progress) -> Result<Control> + Send);
+
+/// Work done before the first camera sample (photon maps): its start time and counts.
+#[derive(Debug, Clone, Copy)]
+pub struct Setup {
+    /// When the render started.
+    pub start: Instant,
+    /// Rays traced building (photon maps).
+    pub rays: u64,
+    /// Photons emitted.
+    pub photons: u64,
+}
+
+impl Setup {
+    /// Nothing done yet: starts the clock now.
+    pub fn now() -> Self {
+        Setup {
+            start: Instant::now(),
+            rays: 0,
+            photons: 0,
+        }
+    }
+}
+
+/// The relative error of the full image estimated from its two halves
+/// ([`crate::metrics::half_buffer_estimate`], √ of the relative MSE), for the progress bar.
+pub fn relative_error_estimate(a: &ImageRgb, b: &ImageRgb) -> Option<f64> {
+    crate::metrics::half_buffer_estimate(a, b)
+        .ok()
+        .map(|e| e.rel_mse.sqrt())
+}
+
+/// ", est. rel. error 0.123" for the progress bar, or nothing before the first estimate.
+pub fn estimate_note(e: Option<f64>) -> String {
+    e.map_or(String::new(), |e| format!(", est. rel. error {e:.3}"))
+}
+
+/// A progress bar on stderr (hidden with `quiet`): elapsed time, the bar, and a message
+/// (samples or passes done, rays).
+pub fn progress_bar(quiet: bool, len: u64, what: &str) -> ProgressBar {
+    if quiet {
+        return ProgressBar::hidden();
+    }
+    let b = ProgressBar::new(len);
+    b.set_style(
+        ProgressStyle::with_template(&format!(
+            "{{spinner}} {what} [{{elapsed_precise}}] {{bar:40}} {{percent}}% {{msg}} eta {{eta}}"
+        ))
+        .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    b
+}
