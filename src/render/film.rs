@@ -171,12 +171,12 @@ mod tests {
     fn slots_map_to_every_pixel_once() {
         let mut film = Film::new(37, 20);
         let mut seen = vec![0u32; 37 * 20];
-        let tiles: Vec<(usize, Vec<Option<(u32, u32)>>)> = film
+        let tiles: Vec<Vec<Option<(u32, u32)>>> = film
             .par_tiles_mut()
-            .map(|t| (t.index, (0..TILE_PIXELS).map(|i| t.pixel(i)).collect()))
+            .map(|t| (0..TILE_PIXELS).map(|i| t.pixel(i)).collect())
             .collect();
         assert_eq!(tiles.len(), 3 * 2);
-        for (_, px) in tiles {
+        for px in tiles {
             for (x, y) in px.into_iter().flatten() {
                 seen[(y * 37 + x) as usize] += 1;
             }
