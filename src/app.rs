@@ -2,6 +2,8 @@
 //! can run them without a subprocess. They load, validate, build, render and write, and
 //! return a summary; `main.rs` only parses flags and prints.
 
+pub mod commands;
+
 use crate::accel::Backend;
 use crate::camera::Camera;
 use crate::converge::{measure::Recorder, MeasureOptions};

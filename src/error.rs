@@ -121,3 +121,20 @@ pub enum Error {
 
 /// Result alias used throughout the crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// Parses a command-line name among `names` (case-insensitive, surrounding blanks
+/// ignored): the one rule by which every enum the CLI reads is parsed. The error names
+/// `flag`, the value and the accepted names.
+pub fn parse_name<T: Copy>(flag: &str, s: &str, names: &[(&str, T)]) -> Result<T> {
+    names
+        .iter()
+        .find(|(n, _)| n.eq_ignore_ascii_case(s.trim()))
+        .map(|&(_, v)| v)
+        .ok_or_else(|| {
+            let accepted: Vec<&str> = names.iter().map(|(n, _)| *n).collect();
+            Error::Usage(format!(
+                "{flag} {s:?}: unknown value (accepted: {})",
+                accepted.join(", ")
+            ))
+        })
+}

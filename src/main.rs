@@ -8,11 +8,11 @@
 //! outputs are written to a temporary name and renamed, so no half-written file is left
 //! under the output's name.
 
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{Parser, Subcommand};
 use iris::accel::Backend;
+use iris::app::SpectralMode;
 use iris::app::{self, RenderOptions};
-use iris::converge::measure::relative_rmse;
-use iris::converge::{converge_command, parse_methods, ConvergeOptions, MeasureOptions};
+use iris::converge::{parse_methods, ConvergeOptions, MeasureOptions};
 use iris::integrator::{Method, PhotonSettings};
 use iris::output::{DisplayOptions, Exposure, ToneMap};
 use iris::photon::trace::Roulette;
@@ -108,51 +108,7 @@ struct GemArgs {
     output: PathBuf,
 }
 
-#[derive(Clone, Copy, ValueEnum)]
-enum MethodArg {
-    /// Recursive ray tracing (seed paper §4).
-    Whitted,
-    /// Path tracing with next-event estimation and MIS.
-    Path,
-    /// Classic photon mapping (caustic + global maps, final gather).
-    Photon,
-    /// Stochastic progressive photon mapping (passes; converges).
-    Sppm,
-    /// SPPM when light can reach a diffuse surface through specular ones (caustics), the
-    /// path tracer otherwise.
-    Auto,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum RouletteArg {
-    /// On the throughput: survivors keep their power.
-    Throughput,
-    /// The seed paper's rule: diffuse / reflect / refract by the material's colours.
-    Seed,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum AccelArg {
-    Auto,
-    Embree,
-    Bvh,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum SpectralArg {
-    Auto,
-    On,
-    Off,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum ToneMapArg {
-    Aces,
-    Reinhard,
-    Clamp,
-}
-
-#[derive(clap::Args)]
+#[derive(clap::Args, Clone)]
 struct RenderArgs {
     /// Scene file (.gltf, .glb, .obj).
     scene: PathBuf,
@@ -167,16 +123,20 @@ struct RenderArgs {
     /// Samples per pixel, 1 to 1000000.
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     spp: u32,
-    /// Rendering method.
-    #[arg(long, value_enum, default_value_t = MethodArg::Whitted)]
-    method: MethodArg,
+    /// Rendering method: whitted (recursive ray tracing, seed paper §4), path (path tracing
+    /// with next-event estimation and MIS), photon (classic photon mapping: caustic + global
+    /// maps, final gather), sppm (stochastic progressive photon mapping: passes, converges),
+    /// auto (SPPM when light can reach a diffuse surface through specular ones, the path
+    /// tracer otherwise).
+    #[arg(long, default_value = "whitted", value_parser = Method::parse)]
+    method: Method,
     /// Maximum number of bounces (reflections and refractions) per path, 1 to 1024 (also
     /// the Whitted tracer's recursion depth and the photons stored per photon path).
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=i64::from(iris::integrator::MAX_DEPTH)))]
     max_depth: u32,
-    /// Intersection backend.
-    #[arg(long, value_enum, default_value_t = AccelArg::Auto)]
-    accel: AccelArg,
+    /// Intersection backend: auto (Embree when compiled in), embree, bvh.
+    #[arg(long, default_value = "auto", value_parser = Backend::parse)]
+    accel: Backend,
     /// Random seed (same seed, scene and backend → same image).
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -189,9 +149,9 @@ struct RenderArgs {
     /// PNG exposure: `auto` (log-average luminance to 0.18) or stops in [-64, 64], e.g. -1.5.
     #[arg(long, default_value = "auto", value_parser = parse_exposure, allow_hyphen_values = true)]
     exposure: Exposure,
-    /// PNG tone map.
-    #[arg(long, value_enum, default_value_t = ToneMapArg::Aces)]
-    tonemap: ToneMapArg,
+    /// PNG tone map: aces, reinhard, clamp.
+    #[arg(long, default_value = "aces", value_parser = ToneMap::parse)]
+    tonemap: ToneMap,
     /// Environment light: `none`, a grey value or `R,G,B` radiance, or an equirectangular
     /// .exr/.hdr map (+Y up; the image centre looks along −Z). Default: the scene file's
     /// `iris_environment` (glTF scene extras), else none.
@@ -200,8 +160,8 @@ struct RenderArgs {
     /// Spectral transport (4 wavelengths per sample, CIE colour): `auto` when a material is
     /// dispersive or a light names a spectrum, `on` always, `off` never (RGB, dispersive
     /// materials use n_d).
-    #[arg(long, value_enum, default_value_t = SpectralArg::Auto)]
-    spectral: SpectralArg,
+    #[arg(long, default_value = "auto", value_parser = SpectralMode::parse)]
+    spectral: SpectralMode,
     /// Studio lighting for a file with no light (and no `--env`): `soft` (grey, broad
     /// softboxes), `jeweller` (dark, small bright strips: fire), `bright` (white high-key),
     /// or `none` (plain directional key and fill).
@@ -235,9 +195,10 @@ struct RenderArgs {
     /// 10000000.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=10_000_000))]
     checkpoint: Option<u32>,
-    /// Photon Russian roulette rule.
-    #[arg(long, value_enum, default_value_t = RouletteArg::Throughput)]
-    photon_rr: RouletteArg,
+    /// Photon Russian roulette rule: throughput (survivors keep their power), seed (the seed
+    /// paper's rule: diffuse / reflect / refract by the material's colours).
+    #[arg(long, default_value = "throughput", value_parser = Roulette::parse)]
+    photon_rr: Roulette,
     /// Reference EXR (same size as the render; sets the size if --size is not given): error
     /// against it at every checkpoint (1, 2, 4, … samples or passes).
     #[arg(long)]
@@ -301,9 +262,9 @@ struct ConvergeArgs {
     /// Worker threads, 0 to 1024 (0 = one per core).
     #[arg(long, default_value_t = 0, value_parser = parse_threads())]
     threads: usize,
-    /// Intersection backend.
-    #[arg(long, value_enum, default_value_t = AccelArg::Auto)]
-    accel: AccelArg,
+    /// Intersection backend: auto (Embree when compiled in), embree, bvh.
+    #[arg(long, default_value = "auto", value_parser = Backend::parse)]
+    accel: Backend,
     /// No progress output.
     #[arg(short, long)]
     quiet: bool,
@@ -315,14 +276,6 @@ fn parse_target(s: &str) -> Result<f64, String> {
         _ => Err(format!(
             "expected a relative error > 0, e.g. 0.05, got {s:?}"
         )),
-    }
-}
-
-fn accel_of(a: AccelArg) -> Backend {
-    match a {
-        AccelArg::Auto => Backend::Auto,
-        AccelArg::Embree => Backend::Embree,
-        AccelArg::Bvh => Backend::Bvh,
     }
 }
 
@@ -397,177 +350,12 @@ fn parse_exposure(s: &str) -> Result<Exposure, String> {
 fn run(cli: Cli) -> iris::Result<()> {
     match cli.command {
         Command::Render(a) => {
-            let opts = RenderOptions {
-                scene: a.scene,
-                output: a.output,
-                size: a.size,
-                spp: a.spp,
-                method: match a.method {
-                    MethodArg::Whitted => Method::Whitted,
-                    MethodArg::Path => Method::Path,
-                    MethodArg::Photon => Method::Photon,
-                    MethodArg::Sppm => Method::Sppm,
-                    MethodArg::Auto => Method::Auto,
-                },
-                max_depth: a.max_depth,
-                time_limit: a.time.map(std::time::Duration::from_secs_f64),
-                checkpoint: a.checkpoint,
-                photon: PhotonSettings {
-                    photons: a.photons.unwrap_or(0),
-                    radius: a.radius,
-                    alpha: a.alpha,
-                    passes: a.passes,
-                    roulette: match a.photon_rr {
-                        RouletteArg::Throughput => Roulette::Throughput,
-                        RouletteArg::Seed => Roulette::Seed,
-                    },
-                    ..PhotonSettings::default()
-                },
-                accel: accel_of(a.accel),
-                seed: a.seed,
-                threads: a.threads,
-                camera: a.camera,
-                display: DisplayOptions {
-                    exposure: a.exposure,
-                    tonemap: match a.tonemap {
-                        ToneMapArg::Aces => ToneMap::Aces,
-                        ToneMapArg::Reinhard => ToneMap::Reinhard,
-                        ToneMapArg::Clamp => ToneMap::Clamp,
-                    },
-                },
-                quiet: a.quiet,
-                env: a
-                    .env
-                    .as_deref()
-                    .map(iris::envmap::Environment::parse_arg)
-                    .transpose()?,
-                spectral: match a.spectral {
-                    SpectralArg::Auto => app::SpectralMode::Auto,
-                    SpectralArg::On => app::SpectralMode::On,
-                    SpectralArg::Off => app::SpectralMode::Off,
-                },
-            };
-            let measure = MeasureOptions {
-                reference: a.reference,
-                report: a.report,
-                plot: a.plot,
-                target_error: a.target_error,
-            };
-            let preview = app::PreviewOptions {
-                studio: a.studio,
-                ground: a.ground,
-                view: a.view,
-                background: a.background.unwrap_or_default(),
-            };
-            let s =
-                app::render_command_planned(&opts, &measure, &preview, a.explain, &mut |plan| {
-                    if a.explain {
-                        eprint!("{}", plan.text_with_costs());
-                    }
-                })?;
-            for n in &s.notes {
-                eprintln!("note: {n}");
-            }
-            if s.stats.bad_samples > 0 {
-                eprintln!(
-                    "warning: {} samples were NaN or infinite and were left out of the image (a numerical failure: please report it with the scene)",
-                    s.stats.bad_samples
-                );
-            }
-            if s.stats.interrupted {
-                eprintln!("iris: interrupted: the image has the samples taken so far");
-            }
-            let secs = s.stats.time.as_secs_f64();
-            let work = s.work_done();
-            eprintln!(
-                "iris: {} -> {}: {}x{}, {}, {} triangles, {}, render {:.2} s (load {:.2} s, build {:.2} s), {:.2} Mrays/s",
-                opts.scene.display(),
-                s.output.display(),
-                s.image.width,
-                s.image.height,
-                work,
-                s.triangles,
-                s.backend,
-                secs,
-                s.load_time.as_secs_f64(),
-                s.build_time.as_secs_f64(),
-                s.stats.rays as f64 / secs.max(1e-9) / 1e6
-            );
-            if let Some(e) = s.final_estimate() {
-                let mut line = format!("iris: estimated relative error {:.4}", relative_rmse(&e));
-                if let Some(r) = s.final_error() {
-                    line.push_str(&format!(
-                        ", against the reference {:.4} (rmse {:.4e}, mae {:.4e})",
-                        relative_rmse(&r),
-                        r.rmse,
-                        r.mae
-                    ));
-                }
-                if let Some(t) = measure.target_error {
-                    line.push_str(&if s.reached_target {
-                        format!(", target {t} reached")
-                    } else {
-                        format!(", target {t} not reached within the bound")
-                    });
-                }
-                eprintln!("{line}");
-            }
-            Ok(())
+            let (opts, measure, preview) = a.options()?;
+            app::commands::render(&opts, &measure, &preview, a.explain)
         }
-        Command::Converge(a) => {
-            let opts = ConvergeOptions {
-                scene: a.scene,
-                methods: parse_methods(&a.methods)?,
-                time: std::time::Duration::from_secs_f64(a.time),
-                reference: a.reference,
-                out_dir: a.output,
-                size: a.size,
-                seed: a.seed,
-                threads: a.threads,
-                accel: accel_of(a.accel),
-                quiet: a.quiet,
-            };
-            let s = converge_command(&opts)?;
-            for n in &s.notes {
-                eprintln!("note: {n}");
-            }
-            if let Some((m, path)) = &s.rendered_reference {
-                println!(
-                    "reference: rendered with {} for {:.1} s -> {}",
-                    m.name(),
-                    4.0 * a.time,
-                    path.display()
-                );
-            }
-            for r in &s.runs {
-                println!(
-                    "{}: {:.2} s, {} spp, {} passes, {} photons, relative error {:.4}",
-                    r.name,
-                    r.stats.time.as_secs_f64(),
-                    r.spp,
-                    r.stats.passes,
-                    r.stats.photons,
-                    r.relative_error
-                );
-            }
-            print!("{}", s.table);
-            for f in &s.files {
-                eprintln!("wrote {}", f.display());
-            }
-            Ok(())
-        }
-        Command::Info { scene } => {
-            print!("{}", app::info_command(&scene)?);
-            Ok(())
-        }
-        Command::Diff { image, reference } => {
-            let d = app::diff_command(&image, &reference)?;
-            println!(
-                "rmse {:.6e} relative {:.6e} mean {:.6e} reference mean {:.6e}",
-                d.rmse, d.relative_rmse, d.mean, d.reference_mean
-            );
-            Ok(())
-        }
+        Command::Converge(a) => app::commands::converge(&a.options()?),
+        Command::Info { scene } => app::commands::info(&scene),
+        Command::Diff { image, reference } => app::commands::diff(&image, &reference),
         Command::Gem(a) => {
             let spec = iris::gen::cuts::preview::GemSpec {
                 cut: a.cut,
@@ -575,44 +363,100 @@ fn run(cli: Cli) -> iris::Result<()> {
                 size_mm: a.size,
                 bare: a.bare,
             };
-            iris::gen::cuts::preview::write_gem(&a.output, &spec)?;
-            eprintln!("wrote {}", a.output.display());
-            Ok(())
+            app::commands::gem(&spec, &a.output)
         }
-        Command::Gallery(a) => {
-            // The command for the page: `iris` and the flags, after the shared-assets
-            // override when one was set (it decides which entries render).
-            let mut args = std::env::args().skip(1).collect::<Vec<_>>();
-            args.insert(0, "iris".into());
-            if let Some(dir) = std::env::var_os("IRIS_SHARED_ASSETS") {
-                args.insert(0, format!("IRIS_SHARED_ASSETS={}", dir.to_string_lossy()));
-            }
-            let s = iris::gallery::run(&iris::gallery::GalleryOptions {
-                out: a.out,
-                size: a.size,
-                time: std::time::Duration::from_secs_f64(a.time),
-                only: a.only,
-                quiet: a.quiet,
-                command: args.join(" "),
-            })?;
-            for r in &s.rendered {
-                eprintln!(
-                    "{}: {}, {}, render {:.2} s -> {}",
-                    r.entry.name,
-                    r.summary.method.name(),
-                    r.summary.work_done(),
-                    r.summary.stats.time.as_secs_f64(),
-                    r.summary.output.display()
-                );
-            }
-            eprintln!("wrote {}", s.page.display());
-            Ok(())
+        Command::Gallery(a) => app::commands::gallery(&a.options()),
+        Command::GenAssets { dir } => app::commands::gen_assets(&dir),
+    }
+}
+
+impl RenderArgs {
+    /// The render, measurement and drop-in preview options these flags ask for.
+    fn options(&self) -> iris::Result<(RenderOptions, MeasureOptions, app::PreviewOptions)> {
+        let a = self.clone();
+        let opts = RenderOptions {
+            scene: a.scene,
+            output: a.output,
+            size: a.size,
+            spp: a.spp,
+            method: a.method,
+            max_depth: a.max_depth,
+            time_limit: a.time.map(std::time::Duration::from_secs_f64),
+            checkpoint: a.checkpoint,
+            photon: PhotonSettings {
+                photons: a.photons.unwrap_or(0),
+                radius: a.radius,
+                alpha: a.alpha,
+                passes: a.passes,
+                roulette: a.photon_rr,
+                ..PhotonSettings::default()
+            },
+            accel: a.accel,
+            seed: a.seed,
+            threads: a.threads,
+            camera: a.camera,
+            display: DisplayOptions {
+                exposure: a.exposure,
+                tonemap: a.tonemap,
+            },
+            quiet: a.quiet,
+            env: a
+                .env
+                .as_deref()
+                .map(iris::envmap::Environment::parse_arg)
+                .transpose()?,
+            spectral: a.spectral,
+        };
+        let measure = MeasureOptions {
+            reference: a.reference,
+            report: a.report,
+            plot: a.plot,
+            target_error: a.target_error,
+        };
+        let preview = app::PreviewOptions {
+            studio: a.studio,
+            ground: a.ground,
+            view: a.view,
+            background: a.background.unwrap_or_default(),
+        };
+        Ok((opts, measure, preview))
+    }
+}
+
+impl ConvergeArgs {
+    /// The converge options these flags ask for.
+    fn options(&self) -> iris::Result<ConvergeOptions> {
+        Ok(ConvergeOptions {
+            scene: self.scene.clone(),
+            methods: parse_methods(&self.methods)?,
+            time: std::time::Duration::from_secs_f64(self.time),
+            reference: self.reference.clone(),
+            out_dir: self.output.clone(),
+            size: self.size,
+            seed: self.seed,
+            threads: self.threads,
+            accel: self.accel,
+            quiet: self.quiet,
+        })
+    }
+}
+
+impl GalleryArgs {
+    /// The gallery options, with the command line for the page: `iris` and the flags, after
+    /// the shared-assets override when one was set (it decides which entries render).
+    fn options(&self) -> iris::gallery::GalleryOptions {
+        let mut args = std::env::args().skip(1).collect::<Vec<_>>();
+        args.insert(0, "iris".into());
+        if let Some(dir) = std::env::var_os("IRIS_SHARED_ASSETS") {
+            args.insert(0, format!("IRIS_SHARED_ASSETS={}", dir.to_string_lossy()));
         }
-        Command::GenAssets { dir } => {
-            for p in iris::gen::write_all_assets(&dir)? {
-                eprintln!("wrote {}", p.display());
-            }
-            Ok(())
+        iris::gallery::GalleryOptions {
+            out: self.out.clone(),
+            size: self.size,
+            time: std::time::Duration::from_secs_f64(self.time),
+            only: self.only.clone(),
+            quiet: self.quiet,
+            command: args.join(" "),
         }
     }
 }

@@ -86,6 +86,18 @@ pub enum Backend {
     Bvh,
 }
 
+impl Backend {
+    /// Parses `--accel auto|embree|bvh` ([`crate::error::parse_name`]).
+    pub fn parse(s: &str) -> Result<Backend> {
+        let names = [
+            ("auto", Backend::Auto),
+            ("embree", Backend::Embree),
+            ("bvh", Backend::Bvh),
+        ];
+        crate::error::parse_name("--accel", s, &names)
+    }
+}
+
 /// A built acceleration structure over one triangle soup.
 pub enum Accel {
     /// Pure-Rust BVH.

@@ -65,16 +65,10 @@ impl Method {
         }
     }
 
-    /// Parses a method name (any case), or an error naming the accepted ones.
+    /// Parses `--method NAME` ([`crate::error::parse_name`]).
     pub fn parse(s: &str) -> Result<Method> {
-        Method::ALL
-            .into_iter()
-            .find(|m| m.name().eq_ignore_ascii_case(s.trim()))
-            .ok_or_else(|| {
-                Error::Usage(format!(
-                    "--method {s}: unknown method (accepted: whitted, path, photon, sppm, auto)"
-                ))
-            })
+        let names = Method::ALL.map(|m| (m.name(), m));
+        crate::error::parse_name("--method", s, &names)
     }
 }
 

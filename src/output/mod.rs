@@ -69,6 +69,18 @@ pub enum ToneMap {
     Aces,
 }
 
+impl ToneMap {
+    /// Parses `--tonemap aces|reinhard|clamp` ([`crate::error::parse_name`]).
+    pub fn parse(s: &str) -> Result<ToneMap> {
+        let names = [
+            ("aces", ToneMap::Aces),
+            ("reinhard", ToneMap::Reinhard),
+            ("clamp", ToneMap::Clamp),
+        ];
+        crate::error::parse_name("--tonemap", s, &names)
+    }
+}
+
 /// How the linear values are scaled before tone mapping.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Exposure {

@@ -43,6 +43,17 @@ pub enum Roulette {
     Seed,
 }
 
+impl Roulette {
+    /// Parses `--photon-rr throughput|seed` ([`crate::error::parse_name`]).
+    pub fn parse(s: &str) -> crate::error::Result<Roulette> {
+        let names = [
+            ("throughput", Roulette::Throughput),
+            ("seed", Roulette::Seed),
+        ];
+        crate::error::parse_name("--photon-rr", s, &names)
+    }
+}
+
 /// Photon tracing limits.
 #[derive(Debug, Clone, Copy)]
 pub struct TraceSettings {

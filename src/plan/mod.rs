@@ -49,6 +49,16 @@ pub enum SpectralMode {
 }
 
 impl SpectralMode {
+    /// Parses `--spectral auto|on|off` ([`crate::error::parse_name`]).
+    pub fn parse(s: &str) -> crate::error::Result<SpectralMode> {
+        let names = [
+            ("auto", SpectralMode::Auto),
+            ("on", SpectralMode::On),
+            ("off", SpectralMode::Off),
+        ];
+        crate::error::parse_name("--spectral", s, &names)
+    }
+
     /// Whether to render `scene` spectrally.
     pub fn resolve(self, scene: &Scene) -> bool {
         match self {

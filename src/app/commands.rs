@@ -1,0 +1,154 @@
+//! One function per `iris` command: each takes the options main.rs parsed from the flags,
+//! runs the command through the library, and prints what the command prints (summaries on
+//! stderr, tables on stdout). main.rs calls exactly one of these per command.
+
+use super::{PreviewOptions, RenderOptions};
+use crate::converge::measure::relative_rmse;
+use crate::converge::{converge_command, ConvergeOptions, MeasureOptions};
+use crate::error::Result;
+use std::path::Path;
+
+/// `iris render`: renders, prints the notes, warnings and a summary line, and the error
+/// estimate (against `--reference` and `--target-error` when given). With `explain` the
+/// plan and its measured costs go to stderr first.
+pub fn render(
+    opts: &RenderOptions,
+    measure: &MeasureOptions,
+    preview: &PreviewOptions,
+    explain: bool,
+) -> Result<()> {
+    let s = super::render_command_planned(opts, measure, preview, explain, &mut |plan| {
+        if explain {
+            eprint!("{}", plan.text_with_costs());
+        }
+    })?;
+    for n in &s.notes {
+        eprintln!("note: {n}");
+    }
+    if s.stats.bad_samples > 0 {
+        eprintln!(
+            "warning: {} samples were NaN or infinite and were left out of the image (a numerical failure: please report it with the scene)",
+            s.stats.bad_samples
+        );
+    }
+    if s.stats.interrupted {
+        eprintln!("iris: interrupted: the image has the samples taken so far");
+    }
+    let secs = s.stats.time.as_secs_f64();
+    let work = s.work_done();
+    eprintln!(
+        "iris: {} -> {}: {}x{}, {}, {} triangles, {}, render {:.2} s (load {:.2} s, build {:.2} s), {:.2} Mrays/s",
+        opts.scene.display(),
+        s.output.display(),
+        s.image.width,
+        s.image.height,
+        work,
+        s.triangles,
+        s.backend,
+        secs,
+        s.load_time.as_secs_f64(),
+        s.build_time.as_secs_f64(),
+        s.stats.rays as f64 / secs.max(1e-9) / 1e6
+    );
+    if let Some(e) = s.final_estimate() {
+        let mut line = format!("iris: estimated relative error {:.4}", relative_rmse(&e));
+        if let Some(r) = s.final_error() {
+            line.push_str(&format!(
+                ", against the reference {:.4} (rmse {:.4e}, mae {:.4e})",
+                relative_rmse(&r),
+                r.rmse,
+                r.mae
+            ));
+        }
+        if let Some(t) = measure.target_error {
+            line.push_str(&if s.reached_target {
+                format!(", target {t} reached")
+            } else {
+                format!(", target {t} not reached within the bound")
+            });
+        }
+        eprintln!("{line}");
+    }
+    Ok(())
+}
+
+/// `iris converge`: runs every method for the same time, prints one line per run, the
+/// table of who reached each error level first, and the files written.
+pub fn converge(opts: &ConvergeOptions) -> Result<()> {
+    let s = converge_command(opts)?;
+    for n in &s.notes {
+        eprintln!("note: {n}");
+    }
+    if let Some((m, path)) = &s.rendered_reference {
+        println!(
+            "reference: rendered with {} for {:.1} s -> {}",
+            m.name(),
+            4.0 * opts.time.as_secs_f64(),
+            path.display()
+        );
+    }
+    for r in &s.runs {
+        println!(
+            "{}: {:.2} s, {} spp, {} passes, {} photons, relative error {:.4}",
+            r.name,
+            r.stats.time.as_secs_f64(),
+            r.spp,
+            r.stats.passes,
+            r.stats.photons,
+            r.relative_error
+        );
+    }
+    print!("{}", s.table);
+    for f in &s.files {
+        eprintln!("wrote {}", f.display());
+    }
+    Ok(())
+}
+
+/// `iris info`: prints the scene's description and the render plan.
+pub fn info(scene: &Path) -> Result<()> {
+    print!("{}", super::info_command(scene)?);
+    Ok(())
+}
+
+/// `iris diff`: prints RMSE, relative RMSE and the means of an image and its reference.
+pub fn diff(image: &Path, reference: &Path) -> Result<()> {
+    let d = super::diff_command(image, reference)?;
+    println!(
+        "rmse {:.6e} relative {:.6e} mean {:.6e} reference mean {:.6e}",
+        d.rmse, d.relative_rmse, d.mean, d.reference_mean
+    );
+    Ok(())
+}
+
+/// `iris gem`: writes the gem's .glb and says so.
+pub fn gem(spec: &crate::gen::cuts::preview::GemSpec, output: &Path) -> Result<()> {
+    crate::gen::cuts::preview::write_gem(output, spec)?;
+    eprintln!("wrote {}", output.display());
+    Ok(())
+}
+
+/// `iris gallery`: renders the entries and writes the page, one line per image.
+pub fn gallery(opts: &crate::gallery::GalleryOptions) -> Result<()> {
+    let s = crate::gallery::run(opts)?;
+    for r in &s.rendered {
+        eprintln!(
+            "{}: {}, {}, render {:.2} s -> {}",
+            r.entry.name,
+            r.summary.method.name(),
+            r.summary.work_done(),
+            r.summary.stats.time.as_secs_f64(),
+            r.summary.output.display()
+        );
+    }
+    eprintln!("wrote {}", s.page.display());
+    Ok(())
+}
+
+/// `iris gen-assets`: regenerates the project's scenes under `dir`, one line per file.
+pub fn gen_assets(dir: &Path) -> Result<()> {
+    for p in crate::gen::write_all_assets(dir)? {
+        eprintln!("wrote {}", p.display());
+    }
+    Ok(())
+}
