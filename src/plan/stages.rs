@@ -1,0 +1,286 @@
+//! The stages of the render plan, one function each: what the scene holds that decides the
+//! stage, and the reason line naming that evidence (material and mesh names, counts). The
+//! order and meaning of the stages are the parent module's.
+
+use super::{SpectralMode, Stage, CAUSTIC_PROBE_PHOTONS};
+use crate::envmap::Environment;
+use crate::integrator::Method;
+use crate::material::Material;
+use crate::photon::emit::PhotonEmitter;
+use crate::photon::trace::has_caustic_paths;
+use crate::scene::{Scene, TriangleData};
+use std::collections::BTreeSet;
+use std::fmt::Write as _;
+
+/// The scene and the materials some triangle uses (ascending): what every stage looks at.
+pub(super) struct Evidence<'a> {
+    pub scene: &'a Scene,
+    used: BTreeSet<usize>,
+}
+
+impl<'a> Evidence<'a> {
+    pub fn new(scene: &'a Scene) -> Self {
+        let used = scene
+            .triangle_material
+            .iter()
+            .map(|&m| m as usize)
+            .collect();
+        Evidence { scene, used }
+    }
+
+    /// The materials some triangle uses.
+    fn materials(&self) -> impl Iterator<Item = &'a Material> + '_ {
+        self.used
+            .iter()
+            .filter_map(|&i| self.scene.materials.get(i))
+    }
+
+    /// Names of the used materials for which `f` holds.
+    fn mats(&self, f: impl Fn(&Material) -> bool) -> Vec<&'a str> {
+        self.materials()
+            .filter(|m| f(m))
+            .map(|m| m.desc.name.as_str())
+            .collect()
+    }
+}
+
+/// Up to three names (as the loader gives them), then "and N more".
+fn names<'a>(list: impl IntoIterator<Item = &'a str>) -> String {
+    let all: Vec<&str> = list.into_iter().collect();
+    let mut s: Vec<String> = all.iter().take(3).map(|n| n.to_string()).collect();
+    if all.len() > 3 {
+        s.push(format!("and {} more", all.len() - 3));
+    }
+    s.join(", ")
+}
+
+/// Transport: spectral or RGB, and the materials and lights that decide it.
+pub(super) fn transport(ev: &Evidence, spectral: SpectralMode, spectral_on: bool) -> Stage {
+    let (scene, mats) = (ev.scene, |f: &dyn Fn(&Material) -> bool| ev.mats(f));
+    let dispersive = mats(&|m: &Material| m.is_dispersive());
+    let spectral_emitters = mats(&|m: &Material| m.emitter_shape().is_some());
+    let spectral_lights = scene.light_shapes.iter().filter(|s| s.is_some()).count();
+    let mut evidence = Vec::new();
+    if !dispersive.is_empty() {
+        evidence.push(format!("dispersive materials {}", names(dispersive)));
+    }
+    if !spectral_emitters.is_empty() {
+        evidence.push(format!("spectral emitters {}", names(spectral_emitters)));
+    }
+    if spectral_lights > 0 {
+        evidence.push(format!("{spectral_lights} lights naming a spectrum"));
+    }
+    let evidence = if evidence.is_empty() {
+        "no dispersive material, spectral emitter or spectral light".to_string()
+    } else {
+        evidence.join("; ")
+    };
+    let reason = match (spectral, spectral_on) {
+        (SpectralMode::On, _) => format!("spectral (--spectral on); {evidence}"),
+        (SpectralMode::Off, _) => format!("RGB (--spectral off); {evidence}"),
+        (SpectralMode::Auto, true) => format!("spectral: {evidence}"),
+        (SpectralMode::Auto, false) => format!("RGB: {evidence}"),
+    };
+    Stage {
+        name: "transport",
+        used: spectral_on,
+        reason,
+        cost: None,
+    }
+}
+
+/// Photons: whether the method traces photons, and the caustic evidence.
+pub(super) fn photons(ev: &Evidence, method: Method, resolved: Method) -> Stage {
+    let (scene, mats) = (ev.scene, |f: &dyn Fn(&Material) -> bool| ev.mats(f));
+    let emitter = PhotonEmitter::new(scene);
+    let caustics = if method == Method::Auto {
+        resolved == Method::Sppm
+    } else {
+        !emitter.is_empty() && has_caustic_paths(scene, &emitter, CAUSTIC_PROBE_PHOTONS)
+    };
+    let specular = mats(&|m: &Material| m.is_transmissive() || m.desc.metallic >= 1.0);
+    let evidence = if caustics {
+        format!(
+            "caustic paths: probe photons ({CAUSTIC_PROBE_PHOTONS}) reach a diffuse \
+                     surface after specular bounces only; transmissive or metallic materials {}",
+            names(specular)
+        )
+    } else if specular.is_empty() {
+        "no transmissive or metallic material on any triangle: no caustic paths".to_string()
+    } else {
+        format!(
+            "no caustic path among {CAUSTIC_PROBE_PHOTONS} probe photons (transmissive or \
+                     metallic materials {})",
+            names(specular)
+        )
+    };
+    let photons_used = matches!(resolved, Method::Sppm | Method::Photon);
+    let how = if method == Method::Auto {
+        format!("--method auto -> {}", resolved.name())
+    } else {
+        format!("--method {}", resolved.name())
+    };
+    Stage {
+        name: "photons",
+        used: photons_used,
+        reason: format!("{how}: {evidence}"),
+        cost: None,
+    }
+}
+
+/// Volumes: the materials on triangles with Beer–Lambert attenuation.
+pub(super) fn volumes(ev: &Evidence) -> Stage {
+    let mats = |f: &dyn Fn(&Material) -> bool| ev.mats(f);
+    let attenuating: Vec<String> = ev
+        .materials()
+        .filter(|m| m.desc.attenuation_distance.is_finite())
+        .map(|m| format!("{} over {}", m.desc.name, m.desc.attenuation_distance))
+        .collect();
+    let clear =
+        mats(&|m: &Material| m.is_volume() && !m.desc.attenuation_distance.is_finite()).len();
+    Stage {
+        name: "volumes",
+        used: !attenuating.is_empty(),
+        reason: if attenuating.is_empty() {
+            format!(
+                "Beer-Lambert never evaluated: no material on a triangle has a finite \
+                         attenuation distance ({clear} clear volumetric materials)"
+            )
+        } else {
+            let n = attenuating.len();
+            let mut list: Vec<String> = attenuating.into_iter().take(3).collect();
+            if n > 3 {
+                list.push(format!("and {} more", n - 3));
+            }
+            format!("Beer-Lambert attenuation in {}", list.join(", "))
+        },
+        cost: None,
+    }
+}
+
+/// Textures: decoded images against the images materials on triangles reference.
+pub(super) fn textures(ev: &Evidence) -> Stage {
+    let scene = ev.scene;
+    let mut referenced = BTreeSet::new();
+    for m in ev.materials() {
+        let d = &m.desc;
+        for t in [
+            d.base_color_texture,
+            d.metallic_roughness_texture,
+            d.emissive_texture,
+            d.transmission_texture,
+        ]
+        .into_iter()
+        .flatten()
+        {
+            referenced.insert(t.image);
+        }
+    }
+    let decoded = scene.images.len();
+    let mut reason = format!(
+        "{} of {decoded} decoded images referenced by materials on triangles",
+        referenced.len()
+    );
+    if decoded > referenced.len() {
+        let _ = write!(
+            reason,
+            "; {} decoded for materials whose triangles validation removed",
+            decoded - referenced.len()
+        );
+    }
+    if scene.skipped_textures > 0 {
+        let _ = write!(
+            reason,
+            "; {} texture slots of materials on no mesh left undecoded",
+            scene.skipped_textures
+        );
+    }
+    Stage {
+        name: "textures",
+        used: !referenced.is_empty(),
+        reason,
+        cost: None,
+    }
+}
+
+/// Acceleration: triangles and meshes in the backend.
+pub(super) fn acceleration(scene: &Scene) -> Stage {
+    Stage {
+        name: "acceleration",
+        used: true,
+        reason: format!(
+            "{} triangles in {} meshes (one per node instance and primitive, or OBJ group), {}",
+            scene.triangle_count(),
+            scene.meshes.len(),
+            scene.backend_name()
+        ),
+        cost: None,
+    }
+}
+
+/// Environment: none, uniform or an importance-sampled map.
+pub(super) fn environment(scene: &Scene) -> Stage {
+    let (env_used, reason) = match &scene.environment {
+        None => (
+            false,
+            "none (no iris_environment in the file, no --env)".into(),
+        ),
+        Some(Environment::Uniform { radiance }) => (
+            true,
+            format!(
+                "uniform radiance [{:.3} {:.3} {:.3}], uniform sphere sampling",
+                radiance.x, radiance.y, radiance.z
+            ),
+        ),
+        Some(Environment::Map(m)) => (
+            true,
+            format!(
+                "map {}x{}, importance-sampled by luminance x solid angle",
+                m.width(),
+                m.height()
+            ),
+        ),
+    };
+    Stage {
+        name: "environment",
+        used: env_used,
+        reason,
+        cost: None,
+    }
+}
+
+/// Nested media: triangles marked for contact probes.
+pub(super) fn nested_media(ev: &Evidence) -> Stage {
+    let (scene, mats) = (ev.scene, |f: &dyn Fn(&Material) -> bool| ev.mats(f));
+    let mut touching = 0usize;
+    let mut touching_meshes = BTreeSet::new();
+    for (t, data) in scene.triangle_data.iter().enumerate() {
+        if data.info & TriangleData::TOUCHES != 0 {
+            touching += 1;
+            touching_meshes.insert(scene.triangle_mesh[t] as usize);
+        }
+    }
+    let volumetric = mats(&|m: &Material| m.is_volume()).len();
+    Stage {
+        name: "nested media",
+        used: touching > 0,
+        reason: if touching > 0 {
+            format!(
+                "contact probes on {touching} triangles of meshes {} (faces within the \
+                         merge distance of another surface)",
+                names(
+                    touching_meshes
+                        .iter()
+                        .filter_map(|&m| scene.meshes.get(m))
+                        .map(|m| m.name.as_str())
+                )
+            )
+        } else {
+            format!(
+                "no triangle touches another surface ({volumetric} volumetric materials \
+                         on triangles): no contact probes"
+            )
+        },
+        cost: None,
+    }
+}
