@@ -147,10 +147,7 @@ pub fn trace<C: Carrier>(
     let (mut bounces, mut depth, mut delta_depth) = (0u32, 0u32, 0u32);
     let mut all_specular = true;
     let mut rays = 0u64;
-    loop {
-        let Some(at) = shading::arrive::<C>(scene, &ray, &media, &lambda, &mut rays) else {
-            break;
-        };
+    while let Some(at) = shading::arrive::<C>(scene, &ray, &media, &lambda, &mut rays) {
         if bounces == 0 && photon.range.is_some() {
             beta *= crate::light::range_window(at.hit.t, photon.range);
         }

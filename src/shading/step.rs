@@ -98,6 +98,9 @@ pub fn arrive<'s, C: Carrier>(
 }
 
 /// What a path does at an [`Arrival`]: phase 2 of the step.
+// Returned by value and matched at once on every hit: boxing the large variant would cost
+// an allocation per hit.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, Copy)]
 pub enum Event<C: Carrier> {
     /// The uncovered part of an alpha-BLEND surface: the path continues along this ray
