@@ -50,6 +50,7 @@ pub mod preview;
 pub mod render;
 pub mod report;
 pub mod scene;
+pub mod shading;
 pub mod spectrum;
 pub mod studio;
 pub mod texture;

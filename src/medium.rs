@@ -130,7 +130,7 @@ pub fn interface_merged(
 /// surfaces coincident with it ([`Scene::coincident`]) merged in: n_incident,
 /// n_transmitted and the media beyond, with `ior(material)` the index of each medium and the
 /// materials' `iris_priority` for overlaps. Non-volumetric partners take no part (the caller
-/// lets an opaque partner replace the hit instead, see `integrator::shading::meet`).
+/// lets an opaque partner replace the hit instead, see `shading::meet`).
 pub fn crossing(
     scene: &Scene,
     hit: &SurfaceHit,

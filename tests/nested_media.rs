@@ -22,12 +22,12 @@ mod common;
 
 use glam::{Vec2, Vec3};
 use iris::accel::Backend;
-use iris::integrator::shading;
 use iris::math::Ray;
 use iris::medium::MediumStack;
 use iris::optics::refract;
 use iris::scene::desc::{MaterialDesc, MeshDesc, SceneDesc};
 use iris::scene::Scene;
+use iris::shading;
 
 const N_GLASS: f32 = 1.5;
 const N_WATER: f32 = 1.33;

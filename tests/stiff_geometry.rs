@@ -31,13 +31,14 @@ use iris::camera::{look_at, Camera};
 use iris::envmap::Environment;
 use iris::gen::gem::Brilliant;
 use iris::gen::shapes::{cuboid, ground_plane, TriMesh};
-use iris::integrator::{shading, Integrator, Method, PhotonSettings};
+use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::math::{Frame, Ray, Rng};
 use iris::medium::MediumStack;
 use iris::optics::refract;
 use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::{Scene, TriangleData};
+use iris::shading;
 
 const N_DIAMOND: f32 = 2.417;
 
@@ -496,7 +497,7 @@ fn brilliant_in_a_white_furnace_at_the_largest_depth_never_exceeds_the_sky() {
     // delta-bounce cap, so both limits are reached in this scene.
     assert_eq!(
         iris::integrator::MAX_DEPTH,
-        iris::integrator::path::MAX_DELTA_BOUNCES
+        iris::shading::MAX_DELTA_BOUNCES
     );
     for backend in backends() {
         let desc = SceneDesc {

@@ -20,12 +20,12 @@ mod common;
 use glam::{DVec3, Vec2, Vec3};
 use iris::accel::Backend;
 use iris::bsdf::{Bsdf, TransportMode};
-use iris::integrator::shading;
 use iris::math::{Frame, Ray};
 use iris::medium::MediumStack;
 use iris::optics::{critical_angle, fresnel_dielectric, refract};
 use iris::scene::desc::{MeshDesc, SceneDesc};
 use iris::scene::Scene;
+use iris::shading;
 
 /// Unit direction at polar angle θ (from +z) in the xz plane, from its cosine (f64, so the
 /// angles near 90° are not rounded to each other).

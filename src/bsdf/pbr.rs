@@ -12,7 +12,7 @@ use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
 use std::f32::consts::{FRAC_1_PI, PI};
 
-/// Smallest GGX α of the glTF lobe (the same floor as `integrator::shading`): the glTF
+/// Smallest GGX α of the glTF lobe (the same floor as `crate::shading`): the glTF
 /// material has no delta lobe.
 pub const GLTF_MIN_ALPHA: f32 = 1e-2;
 

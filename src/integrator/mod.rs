@@ -1,12 +1,10 @@
 //! Integrators: how radiance along camera rays is estimated. A closed enum; each variant's
-//! maths lives in its own module, and per-hit shading shared between them lives in
-//! [`shading`].
+//! maths lives in its own module, and the per-hit step shared between them (and with photon
+//! tracing) lives below them in [`crate::shading`].
 
-pub mod lights;
 pub mod path;
 pub mod photon_map;
 mod settings;
-pub mod shading;
 pub mod sppm;
 pub mod whitted;
 

@@ -6,21 +6,21 @@
 //! [`MAX_DELTA_BOUNCES`], so a gem's internal reflections are not cut short. Russian
 //! roulette on the throughput after three non-delta bounces.
 //!
-//! Materials become BSDFs ([`crate::bsdf`]) in the local frame of the outward shading
-//! normal; volumes use the path's medium stack for η and Beer–Lambert.
+//! Each hit is the per-hit step shared with the other loops ([`crate::shading::step`]):
+//! materials become BSDFs ([`crate::bsdf`]) in the local frame of the outward shading
+//! normal, volumes use the path's medium stack for η and Beer–Lambert, and alpha-BLEND
+//! surfaces are passed through with probability 1 − α. Emission, MIS and next-event
+//! estimation are this loop's own.
 
-use super::{lights, shading, Context};
+use super::Context;
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::interaction::SurfaceHit;
 use crate::math::{Frame, Ray};
 use crate::medium::MediumStack;
-use crate::scene::desc::AlphaMode;
 use crate::scene::Scene;
+use crate::shading::{self, is_diffuse_like, lights, Arrival, Event, Surface, MAX_DELTA_BOUNCES};
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
-
-/// Most delta (specular) bounces on one path.
-pub const MAX_DELTA_BOUNCES: u32 = 1024;
 
 /// Power heuristic with β = 2.
 fn mis(a: f32, b: f32) -> f32 {
@@ -32,20 +32,17 @@ fn mis(a: f32, b: f32) -> f32 {
     }
 }
 
-/// Next-event estimation: one light, chosen uniformly among the light groups.
+/// Next-event estimation at `s`: one light, chosen uniformly among the light groups.
 /// With `use_mis` false the light sample gets the full weight (the path stops here, so
 /// BSDF sampling will not find the light).
-#[allow(clippy::too_many_arguments)]
 fn next_event<C: Carrier>(
     scene: &Scene,
-    hit: &SurfaceHit,
-    bsdf: &Bsdf<C>,
-    frame: &Frame,
-    wo: Vec3,
+    s: &Surface<C>,
     lambda: &C::Lambda,
     use_mis: bool,
     ctx: &mut Context,
 ) -> C {
+    let (hit, bsdf, wo) = (&s.hit, &s.bsdf, s.wo);
     let n_punctual = scene.lights.len();
     let has_area = !scene.area_lights.is_empty();
     let has_env = scene.environment.is_some();
@@ -69,7 +66,7 @@ fn next_event<C: Carrier>(
     };
     // The light's pdf includes choosing its group.
     let light_pdf = ls.pdf.map(|p| p * p_sel);
-    let wi_local = frame.to_local(ls.wi);
+    let wi_local = s.frame.to_local(ls.wi);
     let f = bsdf.eval(wo, wi_local, TransportMode::Radiance);
     if f == C::ZERO {
         return C::ZERO;
@@ -118,25 +115,6 @@ pub struct VisiblePoint<C: Carrier> {
     pub hit: SurfaceHit,
 }
 
-/// GGX α from which a glossy lobe is treated like a diffuse one (a visible point); below
-/// it camera paths continue by BSDF sampling.
-pub const GLOSSY_ALPHA: f32 = 0.25;
-
-/// Whether photons should be gathered at a BSDF rather than continuing the camera path:
-/// anything with a diffuse lobe, or a glossy lobe at least [`GLOSSY_ALPHA`] rough.
-pub fn is_diffuse_like<C: Carrier>(b: &Bsdf<C>) -> bool {
-    match *b {
-        Bsdf::Lambert { .. } => true,
-        Bsdf::GltfPbr {
-            metallic, alpha, ..
-        } => metallic < 1.0 || alpha >= GLOSSY_ALPHA,
-        Bsdf::Conductor { alpha, .. } | Bsdf::Dielectric { alpha, .. } => {
-            !b.is_delta() && alpha >= GLOSSY_ALPHA
-        }
-        Bsdf::ThinDielectric { .. } => false,
-    }
-}
-
 /// Radiance along `ray` (the camera is in air) at the sample's wavelengths `lambda`
 /// (nothing in RGB transport).
 pub fn radiance<C: Carrier>(
@@ -149,9 +127,66 @@ pub fn radiance<C: Carrier>(
     camera_path(scene, ray, max_depth, lambda, StopAt::Never, ctx).0
 }
 
+/// The previous bounce, for MIS of emission found by BSDF sampling: whether it was delta
+/// (no MIS), its BSDF pdf and where it left from.
+#[derive(Debug, Clone, Copy)]
+struct Prev {
+    delta: bool,
+    pdf: f32,
+    p: Vec3,
+}
+
+/// The environment seen along an escaped ray, times `beta`, MIS-weighted against the light
+/// sampling of the previous bounce (`p_sel`: the probability of choosing one light group);
+/// `None` without an environment.
+fn escaped<C: Carrier>(
+    scene: &Scene,
+    ray: &Ray,
+    prev: &Prev,
+    p_sel: f32,
+    beta: C,
+    lambda: &C::Lambda,
+) -> Option<C> {
+    let env = scene.environment.as_ref()?;
+    let d = ray.dir.normalize();
+    let w = if prev.delta {
+        1.0
+    } else {
+        mis(prev.pdf, p_sel * env.pdf(d))
+    };
+    Some(beta * C::illuminant(env.eval(d), lambda) * w)
+}
+
+/// Emission of the surface arrived at (its emitting side only), times `beta`, MIS-weighted
+/// like [`escaped`]; `None` if it does not emit toward the path.
+fn emitted<C: Carrier>(
+    scene: &Scene,
+    at: &Arrival<'_, C>,
+    prev: &Prev,
+    p_sel: f32,
+    beta: C,
+    lambda: &C::Lambda,
+) -> Option<C> {
+    let (hit, mat) = (&at.hit, at.mat);
+    if at.sp.emissive == Vec3::ZERO || !(hit.front_face || mat.desc.double_sided) {
+        return None;
+    }
+    let w = if prev.delta {
+        1.0
+    } else {
+        let lp = p_sel
+            * scene
+                .area_lights
+                .pdf(&scene.triangle_data, hit.prim, prev.p, hit.p);
+        mis(prev.pdf, lp)
+    };
+    Some(beta * C::emitted(at.sp.emissive, mat.emitter_shape(), lambda) * w)
+}
+
 /// The path tracer's loop: radiance gathered along the path and, with [`StopAt::Diffuse`],
 /// the visible point where it stopped (none if it escaped, was absorbed or hit the depth
-/// limit first).
+/// limit first). Each hit is the shared step ([`shading::arrive`], [`Arrival::event`]);
+/// emission is counted on arrival, before BLEND coverage is decided.
 pub fn camera_path<C: Carrier>(
     scene: &Scene,
     ray: &Ray,
@@ -169,100 +204,68 @@ pub fn camera_path<C: Carrier>(
     // which leaves out the radiance-mode 1/η'² factors that cancel on leaving the object
     // (pbrt-v4 `etaScale`); otherwise paths inside glass would be killed ~η² times as often.
     let mut eta_scale = 1.0f32;
-    // The previous bounce: delta (no MIS), its BSDF pdf and position.
-    let (mut prev_delta, mut prev_pdf, mut prev_p) = (true, 0.0f32, ray.origin);
+    let mut prev = Prev {
+        delta: true,
+        pdf: 0.0,
+        p: ray.origin,
+    };
     let groups = scene.lights.len()
         + !scene.area_lights.is_empty() as usize
         + scene.environment.is_some() as usize;
     let p_sel = if groups > 0 { 1.0 / groups as f32 } else { 0.0 };
     loop {
-        ctx.rays += 1;
-        let Some(hit) = scene.intersect(&ray) else {
-            if let Some(env) = &scene.environment {
-                let d = ray.dir.normalize();
-                let w = if prev_delta {
-                    1.0
-                } else {
-                    mis(prev_pdf, p_sel * env.pdf(d))
-                };
-                l += beta * C::illuminant(env.eval(d), &lambda) * w;
+        let Some(at) = shading::arrive::<C>(scene, &ray, &media, &lambda, &mut ctx.rays) else {
+            if let Some(e) = escaped(scene, &ray, &prev, p_sel, beta, &lambda) {
+                l += e;
             }
             break;
         };
-        if let Some(m) = media.current() {
-            beta *= scene.materials[m as usize].transmittance_at::<C>(hit.t, &lambda);
+        beta *= at.transmittance;
+        if let Some(e) = emitted(scene, &at, &prev, p_sel, beta, &lambda) {
+            l += e;
         }
-        let (hit, coincident, mat, sp) = shading::arrive(scene, hit);
-        if sp.emissive != Vec3::ZERO && (hit.front_face || mat.desc.double_sided) {
-            let w = if prev_delta {
-                1.0
-            } else {
-                let lp = p_sel
-                    * scene
-                        .area_lights
-                        .pdf(&scene.triangle_data, hit.prim, prev_p, hit.p);
-                mis(prev_pdf, lp)
-            };
-            l += beta * C::emitted(sp.emissive, mat.emitter_shape(), &lambda) * w;
-        }
-        // glTF BLEND: stochastic coverage; the uncovered part continues straight on.
-        if matches!(mat.desc.alpha_mode, AlphaMode::Blend) && ctx.rng.next_f32() >= sp.alpha {
-            ray = hit.spawn_ray(-hit.wo);
-            continue;
-        }
-        let (bsdf, media_t, dispersive) = shading::bsdf_at::<C>(
-            scene,
-            &hit,
-            &coincident,
-            &sp,
-            media,
-            ctx.rng.next_f32(),
-            &lambda,
-        );
-        if dispersive {
-            // The directions from here on are the hero wavelength's (pbrt-v4
-            // `TerminateSecondary`).
-            beta = beta.keep_hero(&mut lambda);
-        }
-        let frame = Frame::from_normal(hit.ns);
-        let wo = frame.to_local(hit.wo);
-        if stop == StopAt::Diffuse && is_diffuse_like(&bsdf) {
-            l += beta * next_event(scene, &hit, &bsdf, &frame, wo, &lambda, false, ctx);
+        let s = match at.event(scene, media, &mut beta, &mut lambda, &mut ctx.rng) {
+            Event::PassThrough(next) => {
+                ray = next;
+                continue;
+            }
+            Event::Scatter(s) => s,
+        };
+        if stop == StopAt::Diffuse && is_diffuse_like(&s.bsdf) {
+            l += beta * next_event(scene, &s, &lambda, false, ctx);
             let vp = VisiblePoint {
-                p: hit.p,
-                ng: hit.ng,
-                frame,
-                wo,
-                bsdf,
+                p: s.hit.p,
+                ng: s.hit.ng,
+                frame: s.frame,
+                wo: s.wo,
+                bsdf: s.bsdf,
                 beta,
                 lambda,
-                hit,
+                hit: s.hit,
             };
             return (l, Some(vp));
         }
-        if !bsdf.is_delta() {
-            l += beta * next_event(scene, &hit, &bsdf, &frame, wo, &lambda, true, ctx);
+        if !s.bsdf.is_delta() {
+            l += beta * next_event(scene, &s, &lambda, true, ctx);
         }
         let uc = ctx.rng.next_f32();
         let u = Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
-        let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Radiance) else {
+        let Some(bs) = s.sample(uc, u, TransportMode::Radiance) else {
             break;
         };
-        if bs.pdf.is_nan() || bs.pdf <= 0.0 || !bs.f.is_finite() {
-            break;
-        }
         beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
-        if let (Bsdf::Dielectric { eta, .. }, true) = (bsdf, bs.transmission) {
-            let etap = if wo.z > 0.0 { eta } else { 1.0 / eta };
+        if let (Bsdf::Dielectric { eta, .. }, true) = (s.bsdf, bs.transmission) {
+            let etap = if s.wo.z > 0.0 { eta } else { 1.0 / eta };
             if etap.is_finite() && etap > 0.0 {
                 eta_scale *= etap * etap;
             }
         }
-        let wi = frame.to_world(bs.wi);
-        if bs.transmission && mat.is_volume() {
-            media = media_t;
-        }
-        (prev_delta, prev_pdf, prev_p) = (bs.delta, bs.pdf, hit.p);
+        media = s.media_after(bs.transmission);
+        prev = Prev {
+            delta: bs.delta,
+            pdf: bs.pdf,
+            p: s.hit.p,
+        };
         if bs.delta {
             delta_depth += 1;
             if delta_depth > MAX_DELTA_BOUNCES {
@@ -281,7 +284,7 @@ pub fn camera_path<C: Carrier>(
                 beta /= p;
             }
         }
-        ray = hit.spawn_ray(wi);
+        ray = s.spawn(bs.wi);
     }
     (l, None)
 }

@@ -12,9 +12,11 @@
 //! - the caustic map's radiance estimate: the k nearest caustic photons with Jensen's cone
 //!   filter (k_cone = 1.1; L = Σ f Φ w_p / ((1 − 2/(3 k_cone)) π r²), w_p = 1 − d/(k_cone r)),
 //! - one final-gather ray per camera sample: BSDF-sampled from x, through specular
-//!   surfaces to the next non-delta hit y, where the global map's k-nearest estimate gives
-//!   the radiance leaving y toward x. Emission and the environment seen by gather rays are
-//!   skipped (they are direct light or caustics, already counted).
+//!   surfaces (and the uncovered part of alpha-BLEND ones) to the next non-delta hit y,
+//!   where the global map's k-nearest estimate gives the radiance leaving y toward x. Each
+//!   hit is the per-hit step of camera and photon paths ([`crate::shading::step`]).
+//!   Emission and the environment seen by gather rays are skipped (they are direct light or
+//!   caustics, already counted).
 //!
 //! Spectral scenes: photons are traced spectrally (4 random wavelengths each, a dispersive
 //! interface keeps the hero, as in the seed paper: one wavelength per photon), and each
@@ -25,11 +27,11 @@
 //! Flux in the maps is per emitted photon (already divided by their number).
 
 use super::path::{self, StopAt, VisiblePoint};
-use super::{shading, Context, PhotonMapSettings, StoreBudget};
+use super::{Context, PhotonMapSettings, StoreBudget};
 use crate::bsdf::TransportMode;
 use crate::camera::Camera;
 use crate::error::Result;
-use crate::math::{Frame, Rng};
+use crate::math::{Frame, Ray, Rng};
 use crate::medium::MediumStack;
 use crate::output::ImageRgb;
 use crate::photon::emit::PhotonEmitter;
@@ -38,6 +40,7 @@ use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
 use crate::render::{render_samples, Observer, RenderSettings, RenderStats, Setup};
 use crate::scene::Scene;
+use crate::shading::{self, Event};
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -49,7 +52,8 @@ pub const DEFAULT_PHOTONS: u64 = 500_000;
 const CONE_K: f32 = 1.1;
 /// Photons traced per parallel work item.
 const CHUNK: u64 = 4096;
-/// Most specular bounces a final-gather ray follows.
+/// Most surfaces a final-gather ray scatters at (the last one non-delta); BLEND surfaces
+/// it passes through do not count.
 const GATHER_SPECULAR: u32 = 16;
 
 /// Where a map is queried: a position and its BSDF in the local frame.
@@ -199,64 +203,61 @@ impl PhotonMaps {
             wo: vp.wo,
             bsdf: vp.bsdf,
         };
-        let mut l = self.estimate(&self.caustic, k.0, &at, true, buf);
+        let l = self.estimate(&self.caustic, k.0, &at, true, buf);
         // Final gather.
         let uc = ctx.rng.next_f32();
         let u = Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
-        let Some(bs) = vp.bsdf.sample(vp.wo, uc, u, TransportMode::Radiance) else {
+        let Some(bs) = shading::sample_bsdf(&vp.bsdf, vp.wo, uc, u, TransportMode::Radiance) else {
             return l;
         };
-        if bs.pdf.is_nan() || bs.pdf <= 0.0 {
-            return l;
-        }
-        let mut beta = bs.f * (bs.wi.z.abs() / bs.pdf);
-        let mut ray = vp.hit.spawn_ray(vp.frame.to_world(bs.wi));
+        let beta = bs.f * (bs.wi.z.abs() / bs.pdf);
+        let ray = vp.hit.spawn_ray(vp.frame.to_world(bs.wi));
+        l + self.gather(scene, ray, beta, k.1, ctx, buf)
+    }
+
+    /// The global map's estimate where `ray` (throughput `beta`) first meets a non-delta
+    /// surface, followed through delta ones and BLEND pass-through; zero if it escapes.
+    fn gather(
+        &self,
+        scene: &Scene,
+        mut ray: Ray,
+        mut beta: Vec3,
+        k: usize,
+        ctx: &mut Context,
+        buf: &mut Vec<(f32, u32)>,
+    ) -> Vec3 {
         // Gather rays start outside volumes (visible points are on opaque surfaces).
         let mut media = MediumStack::new();
         for _ in 0..GATHER_SPECULAR {
-            ctx.rays += 1;
-            let Some(hit) = scene.intersect(&ray) else {
-                break;
-            };
-            if let Some(m) = media.current() {
-                beta *= scene.materials[m as usize].transmittance_at::<Vec3>(hit.t, &());
-            }
-            let (hit, coincident, mat, sp) = shading::arrive(scene, hit);
-            let (bsdf, media_t, _) = shading::bsdf_at::<Vec3>(
-                scene,
-                &hit,
-                &coincident,
-                &sp,
-                media,
-                ctx.rng.next_f32(),
-                &(),
-            );
-            let frame = Frame::from_normal(hit.ns);
-            let wo = frame.to_local(hit.wo);
-            if !bsdf.is_delta() {
-                let at = GatherPoint {
-                    p: hit.p,
-                    frame,
-                    wo,
-                    bsdf,
+            let s = loop {
+                let Some(at) = shading::arrive::<Vec3>(scene, &ray, &media, &(), &mut ctx.rays)
+                else {
+                    return Vec3::ZERO;
                 };
-                l += beta * self.estimate(&self.global, k.1, &at, false, buf);
-                break;
+                beta *= at.transmittance;
+                match at.event(scene, media, &mut beta, &mut (), &mut ctx.rng) {
+                    Event::PassThrough(next) => ray = next,
+                    Event::Scatter(s) => break s,
+                }
+            };
+            if !s.bsdf.is_delta() {
+                let at = GatherPoint {
+                    p: s.hit.p,
+                    frame: s.frame,
+                    wo: s.wo,
+                    bsdf: s.bsdf,
+                };
+                return beta * self.estimate(&self.global, k, &at, false, buf);
             }
             let uc = ctx.rng.next_f32();
-            let Some(bs) = bsdf.sample(wo, uc, Vec2::ZERO, TransportMode::Radiance) else {
+            let Some(bs) = s.sample(uc, Vec2::ZERO, TransportMode::Radiance) else {
                 break;
             };
-            if bs.pdf.is_nan() || bs.pdf <= 0.0 {
-                break;
-            }
             beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
-            if bs.transmission && mat.is_volume() {
-                media = media_t;
-            }
-            ray = hit.spawn_ray(frame.to_world(bs.wi));
+            media = s.media_after(bs.transmission);
+            ray = s.spawn(bs.wi);
         }
-        l
+        Vec3::ZERO
     }
 }
 

@@ -7,17 +7,21 @@
 //! sides (glass → water is 1.33/1.5, not 1.33/1), and Beer–Lambert absorption applies to
 //! the medium a segment actually crossed.
 //!
+//! Each hit arrives through the shared step ([`crate::shading::arrive`]: the surface
+//! really met, its material, the segment's transmittance); the rest is this tracer's own
+//! branching, alpha-BLEND coverage included (a deterministic α / 1 − α split where the
+//! other loops choose stochastically).
+//!
 //! Branches whose weight falls below [`RR_WEIGHT`] continue by Russian roulette (unbiased),
 //! so a gem's branching stays bounded; `max_depth` bounds the recursion.
 
-use super::{shading, Context};
-use crate::interaction::{CoincidentSet, SurfaceHit};
-use crate::material::ShadingPoint;
+use super::Context;
 use crate::math::Ray;
 use crate::medium::MediumStack;
 use crate::optics::{fresnel_dielectric, fresnel_schlick, reflect, refract};
 use crate::scene::desc::AlphaMode;
 use crate::scene::Scene;
+use crate::shading::{self, Arrival};
 use crate::spectrum::Carrier;
 
 /// Branch weight (max RGB component) below which Russian roulette decides survival.
@@ -68,19 +72,14 @@ fn trace<C: Carrier>(scene: &Scene, ray: &Ray, path: Path<C>, w: C, ctx: &mut Co
     if path.depth >= path.max_depth {
         return C::ZERO;
     }
-    ctx.rays += 1;
-    let Some(hit) = scene.intersect(ray) else {
+    let Some(at) = shading::arrive::<C>(scene, ray, &path.media, &path.lambda, &mut ctx.rays)
+    else {
         return scene.environment.as_ref().map_or(C::ZERO, |e| {
             C::illuminant(e.eval(ray.dir.normalize()), &path.lambda)
         });
     };
-    let (hit, coincident) = shading::meet(scene, hit);
-    let l = shade(scene, &hit, &coincident, path, w, ctx);
     // Beer–Lambert over the segment just travelled, inside the current medium.
-    match path.media.current() {
-        Some(m) => l * scene.materials[m as usize].transmittance_at::<C>(hit.t, &path.lambda),
-        None => l,
-    }
+    shade(scene, &at, path, w, ctx) * at.transmittance
 }
 
 /// Follows a child branch of weight `w·k` with the media `media`.
@@ -105,24 +104,25 @@ fn branch<C: Carrier>(
     }
 }
 
+/// Radiance leaving the surface arrived at toward the branch: emission, the dielectric's
+/// Fresnel split, direct light and mirror reflection on the opaque part, and BLEND's
+/// uncovered part continued straight on.
 fn shade<C: Carrier>(
     scene: &Scene,
-    hit: &SurfaceHit,
-    coincident: &CoincidentSet,
+    at: &Arrival<'_, C>,
     path: Path<C>,
     w: C,
     ctx: &mut Context,
 ) -> C {
-    let mat = &scene.materials[hit.material as usize];
-    let sp = mat.shade(hit.uv, &scene.images);
+    let (hit, mat, sp) = (&at.hit, at.mat, &at.sp);
     let mut l = C::emitted(sp.emissive, mat.emitter_shape(), &path.lambda);
     let t = sp.transmission;
     if t > 0.0 {
-        l += dielectric(scene, hit, coincident, &sp, path, w * t, ctx) * t;
+        l += dielectric(scene, at, path, w * t, ctx) * t;
     }
     let opaque = 1.0 - t;
     if opaque > 0.0 {
-        let mut o = shading::direct_light::<C>(scene, hit, mat, &sp, &path.lambda, ctx);
+        let mut o = shading::direct_light(scene, at, &path.lambda, &mut ctx.rng, &mut ctx.rays);
         // Smooth metals reflect the scene as mirrors.
         if sp.metallic > 0.0 && sp.roughness < 0.1 {
             let n = if hit.wo.dot(hit.ns) >= 0.0 {
@@ -159,14 +159,12 @@ fn shade<C: Carrier>(
 /// The smooth dielectric interface: Fresnel-weighted reflection and refraction.
 fn dielectric<C: Carrier>(
     scene: &Scene,
-    hit: &SurfaceHit,
-    coincident: &CoincidentSet,
-    sp: &ShadingPoint,
+    at: &Arrival<'_, C>,
     path: Path<C>,
     w: C,
     ctx: &mut Context,
 ) -> C {
-    let mat = &scene.materials[hit.material as usize];
+    let (hit, mat, sp) = (&at.hit, at.mat, &at.sp);
     let tint = C::reflectance(sp.base_color, &path.lambda);
     // Normal on the incident side.
     let n = if hit.front_face { hit.ns } else { -hit.ns };
@@ -190,7 +188,7 @@ fn dielectric<C: Carrier>(
     // In spectral transport a dispersive interface keeps the hero wavelength only, on both
     // branches (the Fresnel split depends on λ too).
     let (n_i, n_t, media_t, dispersive) =
-        shading::interface::<C>(scene, hit, coincident, path.media, &path.lambda);
+        shading::interface::<C>(scene, hit, &at.coincident, path.media, &path.lambda);
     let mut path = path;
     let mut hero = C::ONE;
     if dispersive {

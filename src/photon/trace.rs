@@ -1,6 +1,6 @@
 //! Photon paths: a photon from [`super::emit`] followed through the scene with the
-//! integrators' per-hit step ([`crate::integrator::shading`]: coincident faces, the BSDF,
-//! the medium stack and η), sampling the BSDFs in importance mode
+//! per-hit step camera paths take too ([`crate::shading::step`]: coincident faces, BLEND
+//! coverage, the BSDF, the medium stack and η), sampling the BSDFs in importance mode
 //! ([`TransportMode::Importance`]: no 1/η'² factor on refraction, pbrt-v4 §9.5.2) and
 //! Beer–Lambert attenuation in media. Every non-delta hit is reported to the caller, which
 //! keeps what its estimator needs (a caustic map keeps L S+ D, SPPM keeps everything after
@@ -22,13 +22,11 @@
 
 use super::emit::EmittedPhoton;
 use crate::bsdf::{Bsdf, TransportMode};
-use crate::integrator::path::{is_diffuse_like, MAX_DELTA_BOUNCES};
-use crate::integrator::shading;
-use crate::math::{Frame, Rng};
+use crate::math::Rng;
 use crate::medium::MediumStack;
 use crate::optics::refract;
-use crate::scene::desc::AlphaMode;
 use crate::scene::Scene;
+use crate::shading::{self, is_diffuse_like, Event, MAX_DELTA_BOUNCES};
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
 
@@ -160,59 +158,38 @@ pub fn trace<C: Carrier>(
     let (mut bounces, mut depth, mut delta_depth) = (0u32, 0u32, 0u32);
     let mut all_specular = true;
     let mut rays = 0u64;
-    loop {
-        rays += 1;
-        let Some(hit) = scene.intersect(&ray) else {
-            break;
-        };
+    while let Some(at) = shading::arrive::<C>(scene, &ray, &media, &lambda, &mut rays) {
         if bounces == 0 && photon.range.is_some() {
-            beta *= crate::light::range_window(hit.t, photon.range);
+            beta *= crate::light::range_window(at.hit.t, photon.range);
         }
-        if let Some(m) = media.current() {
-            beta *= scene.materials[m as usize].transmittance_at::<C>(hit.t, &lambda);
-        }
+        beta *= at.transmittance;
         if beta == C::ZERO {
             break;
         }
-        let (hit, coincident, mat, sp) = shading::arrive(scene, hit);
-        if matches!(mat.desc.alpha_mode, AlphaMode::Blend) && rng.next_f32() >= sp.alpha {
-            ray = hit.spawn_ray(-hit.wo);
-            continue;
-        }
-        let (bsdf, media_t, dispersive) = shading::bsdf_at::<C>(
-            scene,
-            &hit,
-            &coincident,
-            &sp,
-            media,
-            rng.next_f32(),
-            &lambda,
-        );
-        if dispersive {
-            beta = beta.keep_hero(&mut lambda);
-        }
-        if !bsdf.is_delta() {
+        let s = match at.event(scene, media, &mut beta, &mut lambda, rng) {
+            Event::PassThrough(next) => {
+                ray = next;
+                continue;
+            }
+            Event::Scatter(s) => s,
+        };
+        if !s.bsdf.is_delta() {
             let v = PhotonVertex {
-                p: hit.p,
-                wi: hit.wo,
+                p: s.hit.p,
+                wi: s.hit.wo,
                 power: beta,
                 bounces,
                 caustic: bounces > 0 && all_specular,
             };
             store(&v, &lambda);
         }
-        let frame = Frame::from_normal(hit.ns);
-        let wo = frame.to_local(hit.wo);
         let (wi, transmission, delta) = match settings.roulette {
             Roulette::Throughput => {
                 let uc = rng.next_f32();
                 let u = Vec2::new(rng.next_f32(), rng.next_f32());
-                let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Importance) else {
+                let Some(bs) = s.sample(uc, u, TransportMode::Importance) else {
                     break;
                 };
-                if bs.pdf.is_nan() || bs.pdf <= 0.0 || !bs.f.is_finite() {
-                    break;
-                }
                 let new_beta = beta * bs.f * (bs.wi.z.abs() / bs.pdf);
                 let old = beta.max_element();
                 let p = if old > 0.0 {
@@ -227,20 +204,22 @@ pub fn trace<C: Carrier>(
                 (bs.wi, bs.transmission, bs.delta)
             }
             Roulette::Seed => {
-                let Some((wi, colour, transmission)) = seed_step(&bsdf, wo, rng) else {
+                let Some((wi, colour, transmission)) = seed_step(&s.bsdf, s.wo, rng) else {
                     break;
                 };
                 beta *= colour;
-                (wi, transmission, !is_diffuse_like(&bsdf) || bsdf.is_delta())
+                (
+                    wi,
+                    transmission,
+                    !is_diffuse_like(&s.bsdf) || s.bsdf.is_delta(),
+                )
             }
         };
         if !beta.is_finite() {
             break;
         }
-        all_specular &= !is_diffuse_like(&bsdf);
-        if transmission && mat.is_volume() {
-            media = media_t;
-        }
+        all_specular &= !is_diffuse_like(&s.bsdf);
+        media = s.media_after(transmission);
         bounces += 1;
         if delta {
             delta_depth += 1;
@@ -253,7 +232,7 @@ pub fn trace<C: Carrier>(
                 break;
             }
         }
-        ray = hit.spawn_ray(frame.to_world(wi));
+        ray = s.spawn(wi);
     }
     rays
 }

@@ -1,4 +1,5 @@
-//! Light samples toward a hit, shared by both integrators' direct lighting: one punctual
+//! Light samples toward a hit, shared by the integrators' direct lighting (the path
+//! tracer's next-event estimation, the Whitted tracer's [`super::direct`]): one punctual
 //! light, one point on the emissive triangles, or one direction of the environment, each
 //! with its shadow ray, its incident light and, for an emitter that names one, its exact
 //! spectral shape. Random numbers are drawn by the callers, so each integrator keeps its own

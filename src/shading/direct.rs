@@ -1,0 +1,98 @@
+//! Direct lighting of an opaque hit with shadow rays, the Whitted tracer's light step: every
+//! punctual light, one sample of the emissive triangles and one of the environment, each
+//! through the surface BSDF ([`surface_bsdf`]) seen from the viewer's side. The path tracer
+//! uses its own next-event estimation with MIS instead.
+//!
+//! Directions are unit vectors pointing away from the surface (world space, the BSDF's in
+//! the local frame of the shading normal); radiance in the units of the lights (cd and lux
+//! give nits).
+
+use super::lights::{self, LightSample};
+use super::material_bsdf::surface_bsdf;
+use super::step::Arrival;
+use crate::bsdf::{Bsdf, TransportMode};
+use crate::math::{Frame, Rng};
+use crate::scene::Scene;
+use crate::spectrum::Carrier;
+use glam::{Vec2, Vec3};
+
+/// An opaque hit seen from the viewer's side, ready to receive light.
+struct Receiver<'a, C: Carrier> {
+    scene: &'a Scene,
+    bsdf: Bsdf<C>,
+    lambda: C::Lambda,
+    /// Local frame of the outward shading normal (the BSDF's frame).
+    frame: Frame,
+    /// `hit.wo` in that frame.
+    wo: Vec3,
+    /// Shading normal on the viewer's side.
+    n: Vec3,
+    /// Geometric normal on the viewer's side.
+    ng: Vec3,
+}
+
+impl<C: Carrier> Receiver<'_, C> {
+    /// Light from `ls` if its shadow ray is unblocked: f · incident · cos.
+    fn connect(&self, ls: Option<LightSample>, rays: &mut u64) -> C {
+        let Some(ls) = ls else {
+            return C::ZERO;
+        };
+        let cos = self.n.dot(ls.wi);
+        if cos <= 0.0 || self.ng.dot(ls.wi) <= 0.0 {
+            return C::ZERO;
+        }
+        let f = self
+            .bsdf
+            .eval(self.wo, self.frame.to_local(ls.wi), TransportMode::Radiance);
+        if f == C::ZERO {
+            return C::ZERO;
+        }
+        *rays += 1;
+        if self.scene.occluded(&ls.shadow) {
+            return C::ZERO;
+        }
+        f * C::emitted(ls.incident, ls.shape, &self.lambda) * cos
+    }
+}
+
+/// Direct light at an opaque hit, with shadow rays: every punctual light, one sample of the
+/// emissive triangles and one of the environment.
+pub fn direct_light<C: Carrier>(
+    scene: &Scene,
+    at: &Arrival<'_, C>,
+    lambda: &C::Lambda,
+    rng: &mut Rng,
+    rays: &mut u64,
+) -> C {
+    let (hit, mat) = (&at.hit, at.mat);
+    // Shade the side the viewer is on.
+    let (n, ng) = if hit.front_face || mat.desc.double_sided || !mat.is_volume() {
+        let s = if hit.ng.dot(hit.wo) >= 0.0 { 1.0 } else { -1.0 };
+        (hit.ns * s, hit.ng * s)
+    } else {
+        (-hit.ns, -hit.ng)
+    };
+    let frame = Frame::from_normal(hit.ns);
+    let r = Receiver {
+        scene,
+        bsdf: surface_bsdf(mat, &at.sp, lambda),
+        lambda: *lambda,
+        frame,
+        wo: frame.to_local(hit.wo),
+        n,
+        ng,
+    };
+    let mut sum = C::ZERO;
+    for k in 0..scene.lights.len() {
+        sum += r.connect(lights::punctual(scene, hit, k), rays);
+    }
+    // One emissive-triangle sample, then one environment sample.
+    let uc = rng.next_f32();
+    let u = Vec2::new(rng.next_f32(), rng.next_f32());
+    sum += r.connect(lights::area(scene, hit, uc, u), rays);
+    if scene.environment.is_some() {
+        let u = Vec2::new(rng.next_f32(), rng.next_f32());
+        sum += r.connect(lights::environment(scene, hit, u), rays);
+    }
+    sum
+}

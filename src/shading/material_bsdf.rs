@@ -1,0 +1,124 @@
+//! The BSDF a material has at a hit ([`crate::bsdf`]): glTF metallic-roughness (Appendix B
+//! of the glTF 2.0 spec, with KHR_materials_specular), a smooth or rough dielectric with η
+//! from the path's media, a thin-walled transmission; and which BSDFs the photon methods
+//! treat as diffuse (where photons are gathered and caustic paths end).
+//!
+//! Directions are unit vectors in the local frame of the outward shading normal; η is the
+//! ratio n_inside / n_outside, the outside being the normal's side.
+
+use crate::bsdf::Bsdf;
+use crate::interaction::{CoincidentSet, SurfaceHit};
+use crate::material::{Material, ShadingPoint};
+use crate::medium::{self, MediumStack};
+use crate::scene::Scene;
+use crate::spectrum::Carrier;
+
+/// The surface BSDF of an opaque (non-transmitting) shading point: glTF metallic-roughness
+/// with KHR_materials_specular.
+pub fn surface_bsdf<C: Carrier>(mat: &Material, sp: &ShadingPoint, l: &C::Lambda) -> Bsdf<C> {
+    let d = &mat.desc;
+    Bsdf::GltfPbr {
+        base: C::reflectance(sp.base_color, l),
+        metallic: sp.metallic,
+        alpha: sp.roughness * sp.roughness,
+        ior: mat.ior(),
+        specular: d.specular,
+        specular_color: C::reflectance(d.specular_color, l),
+    }
+}
+
+/// The BSDF at a hit (one lobe chosen by the transmission weight with `u`) and the media on
+/// the far side of a refraction. At a volume boundary η is the ratio of the indices on the
+/// two sides from the path's medium stack, with the `coincident` volume faces (from
+/// [`super::meet`]) crossed in the same step ([`medium::crossing`]).
+///
+/// Spectral transport: when a medium on either side may be dispersive (a dispersive
+/// material among the surfaces crossed or the media the path is in), the indices are taken
+/// at the hero wavelength and the third value is `true`: the caller must then keep only the
+/// hero ([`Carrier::keep_hero`]) — the refracted direction is the hero's alone. Thin walls
+/// do not bend light and use n_d.
+pub fn bsdf_at<C: Carrier>(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    coincident: &CoincidentSet,
+    sp: &ShadingPoint,
+    media: MediumStack,
+    u: f32,
+    l: &C::Lambda,
+) -> (Bsdf<C>, MediumStack, bool) {
+    let mat = &scene.materials[hit.material as usize];
+    if sp.transmission > 0.0 && u < sp.transmission {
+        let tint = C::reflectance(sp.base_color, l);
+        if !mat.is_volume() {
+            return (
+                Bsdf::ThinDielectric {
+                    eta: mat.ior(),
+                    tint,
+                },
+                media,
+                false,
+            );
+        }
+        let (n_i, n_t, after, dispersive) = interface::<C>(scene, hit, coincident, media, l);
+        // Bsdf's η is n_inside / n_outside, the outside being the normal's side.
+        let eta = if n_i == n_t {
+            1.0
+        } else if hit.front_face {
+            n_t / n_i
+        } else {
+            n_i / n_t
+        };
+        return (
+            Bsdf::Dielectric {
+                eta,
+                alpha: sp.roughness * sp.roughness,
+                tint,
+            },
+            after,
+            dispersive,
+        );
+    }
+    (surface_bsdf(mat, sp, l), media, false)
+}
+
+/// The indices on both sides of the volume boundary at `hit` (coincident volume faces
+/// merged, [`medium::crossing`]), the media beyond, and whether the path must keep only its
+/// hero wavelength: in spectral transport, when a dispersive material is among the surfaces
+/// crossed or the media the path is in, the indices are those at the hero wavelength.
+pub fn interface<C: Carrier>(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    coincident: &CoincidentSet,
+    media: MediumStack,
+    l: &C::Lambda,
+) -> (f32, f32, MediumStack, bool) {
+    let hero = C::hero(l);
+    let disp = |m: u32| scene.materials[m as usize].is_dispersive();
+    let dispersive = hero.is_some()
+        && (disp(hit.material)
+            || coincident.iter().any(|c| disp(c.material))
+            || media.iter().any(disp));
+    let (n_i, n_t, after) = medium::crossing(scene, hit, coincident, media, |m| {
+        scene.materials[m as usize].ior_at(hero, dispersive)
+    });
+    (n_i, n_t, after, dispersive)
+}
+
+/// GGX α from which a glossy lobe is treated like a diffuse one (a visible point); below
+/// it camera paths continue by BSDF sampling.
+pub const GLOSSY_ALPHA: f32 = 0.25;
+
+/// Whether photons should be gathered at a BSDF rather than continuing the camera path:
+/// anything with a diffuse lobe, or a glossy lobe at least [`GLOSSY_ALPHA`] rough.
+pub fn is_diffuse_like<C: Carrier>(b: &Bsdf<C>) -> bool {
+    match *b {
+        Bsdf::Lambert { .. } => true,
+        Bsdf::GltfPbr {
+            metallic, alpha, ..
+        } => metallic < 1.0 || alpha >= GLOSSY_ALPHA,
+        Bsdf::Conductor { alpha, .. } | Bsdf::Dielectric { alpha, .. } => {
+            !b.is_delta() && alpha >= GLOSSY_ALPHA
+        }
+        Bsdf::ThinDielectric { .. } => false,
+    }
+}

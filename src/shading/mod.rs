@@ -1,0 +1,19 @@
+//! Shading at a hit, below the integrators ([`crate::integrator`]) and photon tracing
+//! ([`crate::photon`]), which both call it and which it never imports:
+//! - [`step`]: the per-hit step every loop takes (arrive at a surface, BLEND coverage, the
+//!   BSDF, the hero wavelength, the shading frame);
+//! - [`material_bsdf`]: the BSDF a material has at a hit, and which BSDFs count as diffuse;
+//! - [`direct`]: direct light with shadow rays (the Whitted tracer's light step);
+//! - [`lights`]: one light sample toward a hit (punctual, emissive triangles, environment).
+//!
+//! Units and frames are stated in each module: directions are unit vectors, world space
+//! unless said to be in the local frame of the outward shading normal.
+
+pub mod direct;
+pub mod lights;
+pub mod material_bsdf;
+pub mod step;
+
+pub use direct::direct_light;
+pub use material_bsdf::{bsdf_at, interface, is_diffuse_like, surface_bsdf, GLOSSY_ALPHA};
+pub use step::{arrive, meet, sample_bsdf, Arrival, Event, Surface, MAX_DELTA_BOUNCES};

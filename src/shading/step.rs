@@ -1,0 +1,208 @@
+//! The per-hit step every loop takes — the path tracer's camera paths, the Whitted tracer,
+//! photon paths and photon mapping's final gather — written once, in two phases:
+//!
+//! 1. [`arrive`]: trace the ray to the next surface (one ray counted), take the
+//!    Beer–Lambert transmittance of the segment in the current medium, find the surface
+//!    really met ([`meet`]: coincident faces of touching objects) and evaluate its material
+//!    there ([`Arrival`]). `None` when the ray escapes.
+//! 2. [`Arrival::event`]: glTF BLEND coverage (stochastic: the surface is there with
+//!    probability α, otherwise the path passes straight through, unchanged), then the BSDF
+//!    at the hit ([`bsdf_at`], η from the path's media), keeping only the hero wavelength
+//!    past a dispersive interface, and the shading frame ([`Surface`]).
+//!
+//! What differs between the loops stays in them: what they do on arrival (emission with
+//! MIS for camera paths, the light's range window for photons, Whitted's deterministic
+//! branching, which uses phase 1 only), the transport mode they sample in, next-event
+//! estimation and their termination rules.
+//!
+//! Frames: world space, except `wo` and sampled directions, which are in the local frame of
+//! the outward shading normal (the BSDF's frame). Transmittance is per unit radiance or
+//! flux (dimensionless).
+
+use super::material_bsdf::bsdf_at;
+use crate::bsdf::{Bsdf, BsdfSample, TransportMode};
+use crate::interaction::{CoincidentSet, SurfaceHit};
+use crate::material::{Material, ShadingPoint};
+use crate::math::{Frame, Ray, Rng};
+use crate::medium::MediumStack;
+use crate::scene::desc::AlphaMode;
+use crate::scene::Scene;
+use crate::spectrum::Carrier;
+use glam::{Vec2, Vec3};
+
+/// Most delta (specular) bounces on one camera or photon path; they do not use up the
+/// `max_depth` budget of non-delta bounces, so a gem's internal reflections are not cut
+/// short.
+pub const MAX_DELTA_BOUNCES: u32 = 1024;
+
+/// The surface a path really meets at `hit`, for touching objects (the intersection layer's
+/// [`Scene::coincident`], probed only at volume boundaries): a non-volumetric face lying
+/// on the boundary wins — water filling an opaque mug meets the mug's wall, still in the
+/// water — and otherwise the coincident volume faces are returned to be crossed as one
+/// interface. Either way rays leave from the returned hit, which clears all of them.
+pub fn meet(scene: &Scene, hit: SurfaceHit) -> (SurfaceHit, CoincidentSet) {
+    if !scene.materials[hit.material as usize].is_volume() {
+        return (hit, CoincidentSet::default());
+    }
+    let (merged, set) = scene.coincident(&hit);
+    let solid = set
+        .iter()
+        .find(|c| !scene.materials[c.material as usize].is_volume());
+    match solid {
+        Some(solid) => (solid, CoincidentSet::default()),
+        None => (merged, set),
+    }
+}
+
+/// A ray arrived at a surface: phase 1 of the step.
+#[derive(Debug, Clone, Copy)]
+pub struct Arrival<'s, C: Carrier> {
+    /// The surface really met ([`meet`]); rays leave from it.
+    pub hit: SurfaceHit,
+    /// Coincident volume faces crossed with it as one interface.
+    pub coincident: CoincidentSet,
+    /// Its material.
+    pub mat: &'s Material,
+    /// The material at the hit (textures evaluated).
+    pub sp: ShadingPoint,
+    /// Beer–Lambert transmittance of the segment just travelled, in the medium the ray was
+    /// in (one outside every medium).
+    pub transmittance: C,
+}
+
+/// Traces `ray` (one ray added to `rays`) to the surface it meets, inside `media` at the
+/// wavelengths `lambda`: `None` if it escapes the scene.
+pub fn arrive<'s, C: Carrier>(
+    scene: &'s Scene,
+    ray: &Ray,
+    media: &MediumStack,
+    lambda: &C::Lambda,
+    rays: &mut u64,
+) -> Option<Arrival<'s, C>> {
+    *rays += 1;
+    let hit = scene.intersect(ray)?;
+    let transmittance = match media.current() {
+        Some(m) => scene.materials[m as usize].transmittance_at::<C>(hit.t, lambda),
+        None => C::ONE,
+    };
+    let (hit, coincident) = meet(scene, hit);
+    let mat = &scene.materials[hit.material as usize];
+    let sp = mat.shade(hit.uv, &scene.images);
+    Some(Arrival {
+        hit,
+        coincident,
+        mat,
+        sp,
+        transmittance,
+    })
+}
+
+/// What a path does at an [`Arrival`]: phase 2 of the step.
+// Returned by value and matched at once on every hit: boxing the large variant would cost
+// an allocation per hit.
+#[allow(clippy::large_enum_variant)]
+#[derive(Debug, Clone, Copy)]
+pub enum Event<C: Carrier> {
+    /// The uncovered part of an alpha-BLEND surface: the path continues along this ray
+    /// with its throughput, media and wavelengths unchanged.
+    PassThrough(Ray),
+    /// The path scatters at the surface.
+    Scatter(Surface<C>),
+}
+
+/// A surface a path scatters at: its BSDF in the shading frame.
+#[derive(Debug, Clone, Copy)]
+pub struct Surface<C: Carrier> {
+    /// The hit (rays leave from it).
+    pub hit: SurfaceHit,
+    /// The BSDF (one lobe chosen by the transmission weight).
+    pub bsdf: Bsdf<C>,
+    /// Frame of the outward shading normal (the BSDF's frame).
+    pub frame: Frame,
+    /// Direction back along the incoming ray, in `frame`.
+    pub wo: Vec3,
+    /// The media the path is in on arrival.
+    media: MediumStack,
+    /// The media on the far side of a refraction (equal to `media` unless a volume is
+    /// entered or left).
+    beyond: MediumStack,
+}
+
+impl<C: Carrier> Arrival<'_, C> {
+    /// Phase 2 of the step for a path inside `media`: BLEND coverage with one random number
+    /// (only for BLEND materials), then the BSDF with another (the lobe choice); past a
+    /// dispersive interface the path keeps only its hero wavelength: `beta` and `lambda`
+    /// are updated ([`Carrier::keep_hero`], pbrt-v4 `TerminateSecondary`).
+    pub fn event(
+        &self,
+        scene: &Scene,
+        media: MediumStack,
+        beta: &mut C,
+        lambda: &mut C::Lambda,
+        rng: &mut Rng,
+    ) -> Event<C> {
+        // glTF BLEND: stochastic coverage; the uncovered part continues straight on.
+        if matches!(self.mat.desc.alpha_mode, AlphaMode::Blend) && rng.next_f32() >= self.sp.alpha {
+            return Event::PassThrough(self.hit.spawn_ray(-self.hit.wo));
+        }
+        let (bsdf, beyond, dispersive) = bsdf_at::<C>(
+            scene,
+            &self.hit,
+            &self.coincident,
+            &self.sp,
+            media,
+            rng.next_f32(),
+            lambda,
+        );
+        if dispersive {
+            *beta = beta.keep_hero(lambda);
+        }
+        let frame = Frame::from_normal(self.hit.ns);
+        Event::Scatter(Surface {
+            hit: self.hit,
+            bsdf,
+            frame,
+            wo: frame.to_local(self.hit.wo),
+            media,
+            beyond,
+        })
+    }
+}
+
+impl<C: Carrier> Surface<C> {
+    /// A BSDF sample at `wo` ([`sample_bsdf`]).
+    pub fn sample(&self, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample<C>> {
+        sample_bsdf(&self.bsdf, self.wo, uc, u, mode)
+    }
+
+    /// The media after leaving along a sampled direction: those beyond the surface if the
+    /// sample is a transmission, the arrival's otherwise.
+    pub fn media_after(&self, transmission: bool) -> MediumStack {
+        if transmission {
+            self.beyond
+        } else {
+            self.media
+        }
+    }
+
+    /// The ray leaving the surface along the local direction `wi`.
+    pub fn spawn(&self, wi: Vec3) -> Ray {
+        self.hit.spawn_ray(self.frame.to_world(wi))
+    }
+}
+
+/// Samples `bsdf` at the local `wo`; `None` when there is no sample or it cannot be used
+/// (a pdf that is not positive, a non-finite value): the path ends there.
+pub fn sample_bsdf<C: Carrier>(
+    bsdf: &Bsdf<C>,
+    wo: Vec3,
+    uc: f32,
+    u: Vec2,
+    mode: TransportMode,
+) -> Option<BsdfSample<C>> {
+    let bs = bsdf.sample(wo, uc, u, mode)?;
+    if bs.pdf.is_nan() || bs.pdf <= 0.0 || !bs.f.is_finite() {
+        return None;
+    }
+    Some(bs)
+}
