@@ -26,8 +26,8 @@
 
 use crate::app::SpectralMode;
 use crate::converge::method_name;
-use crate::envmap::Environment;
 use crate::integrator::Method;
+use crate::light::env::Environment;
 use crate::photon::emit::PhotonEmitter;
 use crate::photon::trace::has_caustic_paths;
 use crate::scene::{Scene, TriangleData};
