@@ -4,7 +4,7 @@
 //!   and the default lights of a scene without any;
 //! - [`area`]: emissive triangles as lights (radiance; chosen by power, sampled by area,
 //!   pdfs per solid angle at the receiver);
-//! - [`env`]: the environment, radiance arriving from infinitely far away (`--env`;
+//! - [`env`](mod@env): the environment, radiance arriving from infinitely far away (`--env`;
 //!   uniform or an equirectangular map, importance-sampled, pdfs per solid angle).
 //!
 //! Frame: Iris's world space (metres, right-handed, +Y up). How the integrators sample

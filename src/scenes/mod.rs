@@ -9,7 +9,7 @@
 //! - [`caustic`]: scenes lit by delta lights for the photon mapper (Fig. 4.5.1's
 //!   sphere and prism caustics, a diamond's caustics); [`rainbow`]: the sun-through-a-slit
 //!   prism rainbow; [`focus_bench`]: the ball-lens test scene (not an asset);
-//!   [`bench`]: the caustic sphere of the tests and benchmarks (not an asset).
+//!   [`bench`](mod@bench): the caustic sphere of the tests and benchmarks (not an asset).
 //! - [`gems`]: the `iris gem` previews shipped in `assets/gems/`.
 //!
 //! [`write_all_assets`]`(root)` regenerates them into `root/paper/`, `root/scenes/` and

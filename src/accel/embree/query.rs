@@ -54,7 +54,7 @@ impl EmbreeAccel {
         ray.tfar == f32::NEG_INFINITY
     }
 
-    /// Every hit in `[0, t_max)` (up to [`super::MAX_HITS`]): an argument filter records
+    /// Every hit in `[0, t_max)` (up to [`crate::accel::MAX_HITS`]): an argument filter records
     /// each candidate and rejects it, so Embree keeps traversing until none is left.
     pub fn all_hits(&self, origin: Vec3, dir: Vec3, t_max: f32) -> HitList {
         let mut ctx = CollectContext {
