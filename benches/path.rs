@@ -16,8 +16,8 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use iris::app::{choose_camera, load};
 use iris::camera::Camera;
-use iris::envmap::Environment;
 use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::light::env::Environment;
 use iris::render::RenderSettings;
 use std::path::PathBuf;
 use std::time::Duration;

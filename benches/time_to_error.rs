@@ -33,8 +33,8 @@
 
 use iris::accel::Backend;
 use iris::camera::Camera;
-use iris::envmap::Environment;
 use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::light::env::Environment;
 use iris::output::ImageRgb;
 use iris::prepare::{prepare, PrepareOptions};
 use iris::preview::PreviewOptions;
@@ -99,14 +99,18 @@ fn budget(method: Method, k: u32) -> (Integrator, u32, String) {
     }
 }
 
-/// Relative MSE (issue 6's definition, [`iris::metrics::compare`]).
+/// Relative MSE (issue 6's definition, [`iris::measure::metrics::compare`]).
 fn rel_mse(a: &ImageRgb, r: &ImageRgb) -> f64 {
-    iris::metrics::compare(a, r).expect("same size").rel_mse
+    iris::measure::metrics::compare(a, r)
+        .expect("same size")
+        .rel_mse
 }
 
 /// RMSE over pixels and channels (linear RGB).
 fn rmse(a: &ImageRgb, r: &ImageRgb) -> f64 {
-    iris::metrics::compare(a, r).expect("same size").rmse
+    iris::measure::metrics::compare(a, r)
+        .expect("same size")
+        .rmse
 }
 
 /// The scene on `backend` with its camera, or `None` (printed) when it cannot be loaded.

@@ -6,19 +6,18 @@ pub mod commands;
 
 use crate::accel::Backend;
 use crate::camera::Camera;
-use crate::converge::{measure::Recorder, MeasureOptions};
-use crate::envmap::Environment;
+use crate::converge::MeasureOptions;
 use crate::error::{Error, Result};
 pub use crate::info::info_command;
 use crate::integrator::{Integrator, Method};
-use crate::metrics::ErrorMetrics;
+use crate::light::env::Environment;
+use crate::measure::{metrics::ErrorMetrics, report::ReportRow, Recorder};
 use crate::output::{self, Background, DisplayOptions, ImageRgb};
 pub use crate::plan::SpectralMode;
 pub use crate::preview::{
     choose_camera, choose_camera_view, default_preview_scene, load_for_preview, PreviewOptions,
 };
 use crate::render::{Control, Progress, RenderSettings, RenderStats};
-use crate::report::ReportRow;
 use crate::scene::desc::{EnvironmentDesc, Projection};
 use crate::scene::Scene;
 use std::path::{Path, PathBuf};
@@ -66,7 +65,7 @@ pub struct RenderOptions {
     /// Environment light from `--env`: `None` = flag not given (use the scene file's
     /// `iris_environment`, if any), `Some(None)` = `--env none` (no environment, even if
     /// the file names one), `Some(Some(e))` = use `e` instead of the file's.
-    pub env: Option<Option<crate::envmap::Environment>>,
+    pub env: Option<Option<crate::light::env::Environment>>,
     /// `--spectral`: spectral transport always, never, or when the scene needs it.
     pub spectral: SpectralMode,
 }
@@ -185,7 +184,7 @@ pub fn resolve_environment(
             Ok(Some(Environment::Uniform { radiance }))
         }
         (None, Some(EnvironmentDesc::Map(path))) => {
-            Ok(Some(Environment::Map(crate::envmap::load(&path)?)))
+            Ok(Some(Environment::Map(crate::light::env::load(&path)?)))
         }
     }
 }
@@ -292,7 +291,7 @@ pub fn render_command_planned(
     let reference = measure
         .reference
         .as_deref()
-        .map(crate::converge::measure::read_reference_file)
+        .map(crate::measure::read_reference_file)
         .transpose()?;
     let prepared = crate::prepare::prepare(
         &opts.scene,
@@ -307,7 +306,7 @@ pub fn render_command_planned(
         camera_note: cam_note,
     } = prepared;
     if let (Some(r), Some(path)) = (&reference, &measure.reference) {
-        crate::converge::measure::check_reference_size(
+        crate::measure::check_reference_size(
             r,
             path,
             w,

@@ -16,21 +16,18 @@
 //! file → [`scene::desc::SceneDesc`] (loaders in [`load`]) → validation →
 //! immutable [`scene::Scene`] → [`integrator`] via [`render`] → PNG/EXR ([`output`]).
 //!
-//! `unsafe` appears only in `accel/embree.rs`.
+//! `unsafe` appears only in `accel/embree/` (the Embree backend).
 #![warn(missing_docs)]
 #![cfg_attr(not(feature = "embree"), forbid(unsafe_code))]
 
 pub mod accel;
 pub mod app;
-pub mod area_light;
 pub mod bsdf;
 pub mod camera;
 pub mod converge;
-pub mod envmap;
 pub mod error;
 pub mod framing;
 pub mod gallery;
-pub mod gen;
 pub mod info;
 pub mod integrator;
 pub mod interaction;
@@ -38,18 +35,18 @@ pub mod light;
 pub mod load;
 pub mod material;
 pub mod math;
+pub mod measure;
 pub mod medium;
-pub mod metrics;
+pub mod model;
 pub mod optics;
 pub mod output;
 pub mod photon;
 pub mod plan;
-pub mod plot;
 pub mod prepare;
 pub mod preview;
 pub mod render;
-pub mod report;
 pub mod scene;
+pub mod scenes;
 pub mod shading;
 pub mod spectrum;
 pub mod studio;

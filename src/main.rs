@@ -91,14 +91,14 @@ struct GalleryArgs {
 struct GemArgs {
     /// Cut: round (Tolkowsky brilliant), emerald (step cut), oval (brilliant, L/W 1.4),
     /// pear (brilliant, L/W 1.6).
-    #[arg(long, value_parser = iris::gen::cuts::Cut::parse)]
-    cut: iris::gen::cuts::Cut,
+    #[arg(long, value_parser = iris::model::cuts::Cut::parse)]
+    cut: iris::model::cuts::Cut,
     /// Stone: diamond, sapphire, ruby, cubic-zirconia, quartz, crown-glass.
-    #[arg(long, value_parser = iris::gen::stones::Stone::parse)]
-    stone: iris::gen::stones::Stone,
+    #[arg(long, value_parser = iris::model::stones::Stone::parse)]
+    stone: iris::model::stones::Stone,
     /// Girdle diameter (round) or length (emerald, oval, pear) in millimetres, from 0.1 to
     /// 1000.
-    #[arg(long, default_value_t = iris::gen::cuts::DEFAULT_SIZE_MM, value_parser = parse_gem_size, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = iris::model::cuts::DEFAULT_SIZE_MM, value_parser = parse_gem_size, allow_hyphen_values = true)]
     size: f64,
     /// Only the stone: no camera, lights or floor.
     #[arg(long)]
@@ -296,9 +296,9 @@ fn parse_threads() -> clap::builder::RangedU64ValueParser<usize> {
     clap::builder::RangedU64ValueParser::new().range(0..=iris::render::MAX_THREADS as u64)
 }
 
-/// `gem --size`: millimetres in [0.1, 1000] ([`iris::gen::cuts::size_metres`]).
+/// `gem --size`: millimetres in [0.1, 1000] ([`iris::model::cuts::size_metres`]).
 fn parse_gem_size(s: &str) -> Result<f64, String> {
-    use iris::gen::cuts::{size_metres, MAX_SIZE_MM, MIN_SIZE_MM};
+    use iris::model::cuts::{size_metres, MAX_SIZE_MM, MIN_SIZE_MM};
     match s.parse::<f64>() {
         Ok(v) if size_metres(v).is_ok() => Ok(v),
         _ => Err(format!(
@@ -357,7 +357,7 @@ fn run(cli: Cli) -> iris::Result<()> {
         Command::Info { scene } => app::commands::info(&scene),
         Command::Diff { image, reference } => app::commands::diff(&image, &reference),
         Command::Gem(a) => {
-            let spec = iris::gen::cuts::preview::GemSpec {
+            let spec = iris::model::cuts::preview::GemSpec {
                 cut: a.cut,
                 stone: a.stone,
                 size_mm: a.size,
@@ -403,7 +403,7 @@ impl RenderArgs {
             env: a
                 .env
                 .as_deref()
-                .map(iris::envmap::Environment::parse_arg)
+                .map(iris::light::env::Environment::parse_arg)
                 .transpose()?,
             spectral: a.spectral,
         };

@@ -12,8 +12,8 @@
 
 use crate::accel::Backend;
 use crate::app::{check_size, default_size, resolve_environment};
-use crate::envmap::Environment;
 use crate::error::Result;
+use crate::light::env::Environment;
 use crate::preview::{choose_camera_view, load_for_preview, PreviewOptions};
 use crate::scene::desc::CameraDesc;
 use crate::scene::Scene;

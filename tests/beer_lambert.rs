@@ -8,14 +8,14 @@
 use glam::{Mat3, Vec3};
 use iris::accel::Backend;
 use iris::camera::{look_at, Camera};
-use iris::envmap::Environment;
 use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::light::env::Environment;
 use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 
 fn transmitted(thickness: f32, distance: f32, color: Vec3, backend: Backend) -> Vec3 {
-    let slab = iris::gen::shapes::cuboid(Vec3::new(2.0, 2.0, thickness / 2.0))
+    let slab = iris::model::shapes::cuboid(Vec3::new(2.0, 2.0, thickness / 2.0))
         .transformed(Mat3::IDENTITY, Vec3::ZERO);
     let desc = SceneDesc {
         source: "slab".into(),

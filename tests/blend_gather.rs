@@ -14,8 +14,8 @@
 
 use glam::{Mat3, Vec3, Vec4};
 use iris::camera::Camera;
-use iris::gen::shapes;
 use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::model::shapes;
 use iris::render::RenderSettings;
 use iris::scene::desc::{
     AlphaMode, CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc,

@@ -101,7 +101,7 @@ fn report_and_plot_of_a_render() {
     assert_eq!((img.width(), img.height()), (32, 24));
     let rows = csv(&dir.join("r.csv"));
     assert_eq!(rows[0], COLUMNS.to_vec(), "header");
-    assert_eq!(rows[0].join(","), iris::report::CSV_HEADER);
+    assert_eq!(rows[0].join(","), iris::measure::report::CSV_HEADER);
     assert!(rows.iter().all(|r| r.len() == COLUMNS.len()), "{rows:?}");
     assert_eq!(rows[1][1], "load");
     assert_eq!(rows[2][1], "build");

@@ -149,28 +149,28 @@ fn auto_picks_sppm_for_caustics_and_path_otherwise() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("SPPM"), "{}", stderr(&o));
     // A scene with no transmissive or mirror material: the path tracer.
-    let mut scene = iris::gen::GenScene {
+    let mut scene = iris::model::GenScene {
         name: "diffuse only".into(),
         ..Default::default()
     };
-    scene.meshes.push(iris::gen::GenMesh {
+    scene.meshes.push(iris::model::GenMesh {
         name: "floor".into(),
-        geometry: iris::gen::shapes::ground_plane(1.0, 1.0),
+        geometry: iris::model::shapes::ground_plane(1.0, 1.0),
         material: 0,
         translation: None,
     });
-    scene.materials.push(iris::gen::GenMaterial::diffuse(
+    scene.materials.push(iris::model::GenMaterial::diffuse(
         "white",
         glam::Vec3::splat(0.8),
     ));
-    scene.lights.push(iris::gen::GenLight::Point {
+    scene.lights.push(iris::model::GenLight::Point {
         name: "bulb".into(),
         position: glam::Vec3::new(0.0, 1.0, 0.0),
         color: glam::Vec3::ONE,
         intensity: 1.0,
     });
     let plain = dir.join("plain.glb");
-    iris::gen::write_glb(&plain, &scene).unwrap();
+    iris::model::write_glb(&plain, &scene).unwrap();
     let o = iris(
         &[
             "render",

@@ -10,7 +10,7 @@ mod common;
 
 use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
-use iris::metrics::{compare, half_buffer_estimate};
+use iris::measure::metrics::{compare, half_buffer_estimate};
 use iris::output::ImageRgb;
 use iris::render::{Control, Progress, RenderSettings};
 

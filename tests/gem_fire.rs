@@ -71,7 +71,7 @@ fn scene(keep: bool, backend: Backend) -> (Scene, Camera, u32) {
     let cam = desc.cameras.first().expect("preview camera").clone();
     let env = match desc.environment {
         Some(EnvironmentDesc::Uniform(radiance)) => {
-            Some(iris::envmap::Environment::Uniform { radiance })
+            Some(iris::light::env::Environment::Uniform { radiance })
         }
         _ => None,
     };

@@ -425,7 +425,7 @@ fn huge_environment_maps_are_rejected_before_allocating() {
     let exr = dir.join("huge.exr");
     std::fs::write(&exr, exr_claiming(99_999, 99_999)).unwrap();
     for path in [hdr, exr] {
-        let (result, peak) = peak_during(|| iris::envmap::load(&path));
+        let (result, peak) = peak_during(|| iris::light::env::load(&path));
         let err = result.expect_err("huge map loaded");
         let text = err.to_string();
         match &err {

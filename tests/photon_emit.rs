@@ -7,7 +7,7 @@
 //! for f32 rounding (photons whose power is constant have zero sample variance).
 
 use glam::{Vec2, Vec3};
-use iris::envmap::{luminance, EnvMap, Environment};
+use iris::light::env::{luminance, EnvMap, Environment};
 use iris::light::Light;
 use iris::math::Rng;
 use iris::photon::emit::{EmittedPhoton, PhotonEmitter, DISC_MARGIN};
@@ -413,7 +413,7 @@ fn environment_map_flux_matches_quadrature() {
         for k in 0..nu {
             let u = (k as f32 + 0.5) / nu as f32;
             let v = (j as f32 + 0.5) / nv as f32;
-            let l = env.eval(iris::envmap::uv_to_dir(Vec2::new(u, v)));
+            let l = env.eval(iris::light::env::uv_to_dir(Vec2::new(u, v)));
             let w = theta.sin()
                 * (std::f64::consts::PI / nv as f64)
                 * (2.0 * std::f64::consts::PI / nu as f64);

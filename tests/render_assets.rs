@@ -11,8 +11,8 @@ mod common;
 use glam::Vec3;
 use iris::accel::Backend;
 use iris::app::{render_command, RenderOptions};
-use iris::envmap::Environment;
 use iris::integrator::{Method, PhotonSettings};
+use iris::light::env::Environment;
 use iris::output::{read_exr, DisplayOptions};
 use std::path::{Path, PathBuf};
 

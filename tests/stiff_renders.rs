@@ -35,9 +35,9 @@ mod fixtures;
 use glam::{Mat3, Vec3};
 use iris::accel::Backend;
 use iris::camera::{look_at, Camera};
-use iris::envmap::Environment;
-use iris::gen::shapes::{checkerboard, cuboid, ground_plane, icosphere, quarter_turn_x, TriMesh};
 use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::light::env::Environment;
+use iris::model::shapes::{checkerboard, cuboid, ground_plane, icosphere, quarter_turn_x, TriMesh};
 use iris::output::ImageRgb;
 use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
@@ -421,7 +421,7 @@ fn beer_lambert_extreme_distances_render() {
 fn bubble_ring_starts_at_the_critical_impact_parameter() {
     let dir = common::scratch_dir("stiff_bubble");
     let path = dir.join("fig7_2_bubble.glb");
-    iris::gen::glb::write_glb(&path, &iris::gen::paper::fig7_2_bubble()).expect("write");
+    iris::model::glb::write_glb(&path, &iris::scenes::paper::fig7_2_bubble()).expect("write");
     let desc = iris::load::load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
     let bubble = desc
         .materials

@@ -3,9 +3,9 @@
 //! stderr, tables on stdout). main.rs calls exactly one of these per command.
 
 use super::{PreviewOptions, RenderOptions};
-use crate::converge::measure::relative_rmse;
 use crate::converge::{converge_command, ConvergeOptions, MeasureOptions};
 use crate::error::Result;
+use crate::measure::relative_rmse;
 use std::path::Path;
 
 /// `iris render`: renders, prints the notes, warnings and a summary line, and the error
@@ -122,8 +122,8 @@ pub fn diff(image: &Path, reference: &Path) -> Result<()> {
 }
 
 /// `iris gem`: writes the gem's .glb and says so.
-pub fn gem(spec: &crate::gen::cuts::preview::GemSpec, output: &Path) -> Result<()> {
-    crate::gen::cuts::preview::write_gem(output, spec)?;
+pub fn gem(spec: &crate::model::cuts::preview::GemSpec, output: &Path) -> Result<()> {
+    crate::model::cuts::preview::write_gem(output, spec)?;
     eprintln!("wrote {}", output.display());
     Ok(())
 }
@@ -147,7 +147,7 @@ pub fn gallery(opts: &crate::gallery::GalleryOptions) -> Result<()> {
 
 /// `iris gen-assets`: regenerates the project's scenes under `dir`, one line per file.
 pub fn gen_assets(dir: &Path) -> Result<()> {
-    for p in crate::gen::write_all_assets(dir)? {
+    for p in crate::scenes::write_all_assets(dir)? {
         eprintln!("wrote {}", p.display());
     }
     Ok(())

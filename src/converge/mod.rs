@@ -4,24 +4,24 @@
 //! methods under the same time budget and compares their error curves.
 //!
 //! Units and conventions: wall-clock seconds; errors on the linear image
-//! ([`crate::metrics`]); "relative error" is the relative RMSE `sqrt(rel_mse)`
+//! ([`crate::measure::metrics`]); "relative error" is the relative RMSE `sqrt(rel_mse)`
 //! ([`measure::relative_rmse`]). Every file is written atomically (temporary file + rename),
 //! and every flag and input file is checked before anything is rendered.
 
-pub mod measure;
+mod observe;
 
 use crate::accel::Backend;
 use crate::app;
 use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::integrator::{Integrator, Method, PhotonSettings};
+use crate::measure::plot::{plot_error_vs_time, Series};
+use crate::measure::report::{write_csv, ReportRow};
+use crate::measure::{self, Recorder};
 use crate::output::{self, DisplayOptions, ImageRgb};
 use crate::plan::SpectralMode;
-use crate::plot::{plot_error_vs_time, Series};
 use crate::render::{Control, Progress, RenderSettings, RenderStats};
-use crate::report::{write_csv, ReportRow};
 use crate::scene::Scene;
-use measure::Recorder;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -274,7 +274,7 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
     let given_reference = opts
         .reference
         .as_deref()
-        .map(crate::converge::measure::read_reference_file)
+        .map(crate::measure::read_reference_file)
         .transpose()?;
     prepare_dir(&opts.out_dir)?;
     // The scene `iris render` renders for the same file and flags (the default drop-in
@@ -358,7 +358,7 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
             output::write_image(&path, &image, &display)?;
             files.push(path);
         }
-        let last = crate::metrics::compare(&image, &reference)?;
+        let last = crate::measure::metrics::compare(&image, &reference)?;
         runs.push(RunSummary {
             name: name.to_string(),
             stats,

@@ -7,11 +7,11 @@
 //! to nothing (a `MissingBuffer`/`Io` error), and an OBJ's `mtllib` resolves to the given
 //! MTL bytes, whatever its name. No input can make these functions read the file system.
 //! Environment maps (HDR/EXR), which Iris only reads from files, are written to a scratch
-//! file in the system temp dir and loaded with [`crate::envmap::load`].
+//! file in the system temp dir and loaded with [`crate::light::env::load`].
 //!
 //! Contract (checked by the fuzzers): every input returns `Ok` or an `Err` naming the
 //! file and, where there is one, the element; never a panic, a hang, or an allocation
-//! out of proportion with the limits in [`crate::load::decode`], [`crate::envmap::MAX_TEXELS`]
+//! out of proportion with the limits in [`crate::load::decode`], [`crate::light::env::MAX_TEXELS`]
 //! and [`crate::scene::validate::MAX_ELEMENTS`].
 
 use super::files::Files;
@@ -104,7 +104,7 @@ fn load_env_bytes(bytes: &[u8], ext: &str) -> Result<(u32, u32), Error> {
         path: path.clone(),
         reason: e.to_string(),
     })?;
-    let map = crate::envmap::load(&path);
+    let map = crate::light::env::load(&path);
     let _ = std::fs::remove_file(&path);
     map.map(|m| (m.width(), m.height()))
 }

@@ -20,7 +20,7 @@
 //!   [`DISC_MARGIN`] × the bounding-sphere radius of `scene.bounds`, perpendicular to the
 //!   travel direction, centred r upstream of the bounding-sphere centre (so the disc lies
 //!   outside the sphere and its shadow covers it; pbrt-v4 §12.4 `DistantLight::SampleLe`).
-//!   Directional: Φ = E·π r². Environment: wi from [`crate::envmap::Environment::sample`],
+//!   Directional: Φ = E·π r². Environment: wi from [`crate::light::env::Environment::sample`],
 //!   power = L(wi)/pdf(wi)·π r², Φ = π r²·∫L dω (a map's integral is the exact texel sum).
 //! - Emissive triangles: triangle by power, point uniform by area, cosine-weighted
 //!   direction about the outward normal (either side with probability ½ for double-sided
@@ -32,8 +32,8 @@
 //! Scenes without geometry (infinite bounds) get no disc: their directional lights and
 //! environment emit nothing.
 
-use crate::envmap::{luminance, Environment};
 use crate::interaction::OFFSET_SCALE;
+use crate::light::env::{luminance, Environment};
 use crate::light::Light;
 use crate::math::{Frame, Ray, Rng};
 use crate::scene::{Scene, TriangleData};
@@ -165,7 +165,7 @@ fn environment_integral(env: &Environment) -> Vec3 {
 }
 
 /// RGB flux of all emissive triangles: Σ L·π·A·sides (emissive factor, no texture), over
-/// the triangles [`crate::area_light::AreaLights`] selects from.
+/// the triangles [`crate::light::area::AreaLights`] selects from.
 fn area_flux(scene: &Scene) -> Vec3 {
     let mut sum = [0.0f64; 3];
     for t in &scene.triangle_data {

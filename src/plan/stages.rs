@@ -3,8 +3,8 @@
 //! order and meaning of the stages are the parent module's.
 
 use super::{SpectralMode, Stage, CAUSTIC_PROBE_PHOTONS};
-use crate::envmap::Environment;
 use crate::integrator::Method;
+use crate::light::env::Environment;
 use crate::material::Material;
 use crate::photon::emit::PhotonEmitter;
 use crate::photon::trace::has_caustic_paths;

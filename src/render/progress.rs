@@ -67,9 +67,9 @@ impl Setup {
 }
 
 /// The relative error of the full image estimated from its two halves
-/// ([`crate::metrics::half_buffer_estimate`], √ of the relative MSE), for the progress bar.
+/// ([`crate::measure::metrics::half_buffer_estimate`], √ of the relative MSE), for the progress bar.
 pub fn relative_error_estimate(a: &ImageRgb, b: &ImageRgb) -> Option<f64> {
-    crate::metrics::half_buffer_estimate(a, b)
+    crate::measure::metrics::half_buffer_estimate(a, b)
         .ok()
         .map(|e| e.rel_mse.sqrt())
 }

@@ -17,9 +17,9 @@ pub mod winding;
 pub use triangle::TriangleData;
 
 use crate::accel::{Accel, Backend};
-use crate::area_light::AreaLights;
-use crate::envmap::Environment;
 use crate::error::Result;
+use crate::light::area::AreaLights;
+use crate::light::env::Environment;
 use crate::light::{self, Light};
 use crate::material::Material;
 use crate::spectrum::EmitterShape;

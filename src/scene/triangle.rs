@@ -1,8 +1,8 @@
 //! The packed triangle record the intersection layer reads at a hit ([`TriangleData`]):
 //! world-space vertex positions (the scene file's units) and the material index with three
 //! flags in one `u32`. A module of its own, below both [`crate::scene`] and
-//! [`crate::area_light`], which build and read it (it sat in `scene/mod.rs`, which made
-//! `scene` ↔ `area_light` an import cycle).
+//! [`crate::light::area`], which build and read it (it sat in `scene/mod.rs`, which made
+//! `scene` ↔ `light::area` an import cycle).
 
 use glam::Vec3;
 

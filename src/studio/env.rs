@@ -3,11 +3,11 @@
 //! importance-sampled like any `--env` map).
 //!
 //! - Map: [`WIDTH`]×[`HEIGHT`] texels (0.35° each, so the narrowest strip, 4° wide, spans
-//!   about 11 texels), the mapping of [`crate::envmap::mapping`]; each texel holds the
+//!   about 11 texels), the mapping of [`crate::light::env::mapping`]; each texel holds the
 //!   radiance at its centre direction.
 //! - Gradient (nits): `ground` below the horizon, blending to `horizon` over the first 5°
 //!   below it; above the horizon from `horizon` to `zenith` with √(elevation/90°), as in
-//!   [`crate::gen::sky`].
+//!   [`crate::scenes::sky`].
 //! - Softbox: centred at (elevation, azimuth) in the studio convention of [`super`]; a
 //!   point at angular offsets (Δel, Δaz·cos el) is inside when both are within the half
 //!   sizes. The edge is feathered over the outer [`FEATHER`] of each half size (a linear
@@ -15,7 +15,7 @@
 //!   radiance replaces the gradient where it is the larger.
 
 use super::PresetSpec;
-use crate::envmap::{uv_to_dir, EnvMap, Environment};
+use crate::light::env::{uv_to_dir, EnvMap, Environment};
 use crate::output::ImageRgb;
 use glam::{Vec2, Vec3};
 use std::path::Path;

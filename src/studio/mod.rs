@@ -32,8 +32,8 @@
 pub mod env;
 pub mod ground;
 
-use crate::envmap::Environment;
 use crate::error::{Error, Result};
+use crate::light::env::Environment;
 use crate::light::Light;
 use crate::scene::desc::CameraDesc;
 use crate::scene::Scene;

@@ -38,7 +38,7 @@ pub fn sphere_in_white_environment(
     material: iris::scene::desc::MaterialDesc,
 ) -> iris::scene::Scene {
     use iris::scene::desc::{MeshDesc, SceneDesc};
-    let sphere = iris::gen::shapes::icosphere(1.0, 4);
+    let sphere = iris::model::shapes::icosphere(1.0, 4);
     let desc = SceneDesc {
         source: "furnace".into(),
         meshes: vec![MeshDesc {
@@ -55,7 +55,7 @@ pub fn sphere_in_white_environment(
     let desc = iris::scene::validate::validate(desc).expect("valid furnace scene");
     iris::scene::Scene::build(desc, iris::accel::Backend::Auto)
         .expect("build")
-        .with_environment(Some(iris::envmap::Environment::Uniform {
+        .with_environment(Some(iris::light::env::Environment::Uniform {
             radiance: glam::Vec3::ONE,
         }))
 }
@@ -93,11 +93,11 @@ pub fn white_lambert() -> iris::scene::desc::MaterialDesc {
     }
 }
 
-/// The caustic test scene ([`iris::gen::bench_scenes::caustic_sphere`]), built on the
+/// The caustic test scene ([`iris::scenes::bench::caustic_sphere`]), built on the
 /// automatic backend.
 #[allow(dead_code)]
 pub fn caustic_sphere(area: Option<f32>) -> (iris::scene::Scene, iris::scene::desc::CameraDesc) {
-    let (desc, cam) = iris::gen::bench_scenes::caustic_sphere(area);
+    let (desc, cam) = iris::scenes::bench::caustic_sphere(area);
     let desc = iris::scene::validate::validate(desc).expect("valid caustic scene");
     let scene = iris::scene::Scene::build(desc, iris::accel::Backend::Auto).expect("build");
     (scene, cam)

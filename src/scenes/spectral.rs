@@ -2,7 +2,7 @@
 //! Fig. 5.3.1 (a narrow white beam through a 60° prism onto a screen) and a diamond.
 //!
 //! Units are metres, +Y up, linear RGB, real-world sizes; emitters are black diffuse quads
-//! with the radiance below, emitting from their front face (as in [`super::scenes`]). Every
+//! with the radiance below, emitting from their front face (as in [`super::demos`]). Every
 //! mesh's vertices are in world space (no node translation). Geometry is computed in `f64`
 //! with `+ − × ÷ √` only and rounded to `f32` once, so the files are bit-identical on every
 //! platform.
@@ -40,11 +40,11 @@
 //! and a faint uniform environment (`iris_environment: 0.02`); camera 6 cm from the
 //! stone's vertex centroid, 30° off the table normal (towards +Y), yfov 10°.
 
-use super::gem::Brilliant;
-use super::lathe::sin_cos;
-use super::model::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
 use super::parts::push_material;
-use super::shapes::{cuboid, ground_plane, push_flat_facing_away, TriMesh};
+use crate::model::gem::Brilliant;
+use crate::model::lathe::sin_cos;
+use crate::model::scene::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
+use crate::model::shapes::{cuboid, ground_plane, push_flat_facing_away, TriMesh};
 use glam::{DVec3, Vec3};
 
 /// Side of the prism's equilateral cross-section, metres.

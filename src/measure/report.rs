@@ -7,16 +7,16 @@
 //! - `stage`: `load`, `build` or `render`.
 //! - `wall_s`: wall-clock seconds since the run started (cumulative, so a `render` row's time
 //!   includes nothing hidden); `samples_per_pixel`, `passes`, `rays`, `photons`: counts so far.
-//! - `rmse, rel_mse, mae`: error against a reference ([`crate::metrics::compare`]);
+//! - `rmse, rel_mse, mae`: error against a reference ([`super::metrics::compare`]);
 //!   `est_*`: the reference-free half-buffer estimate
-//!   ([`crate::metrics::half_buffer_estimate`]). Empty cells where not computed.
+//!   ([`super::metrics::half_buffer_estimate`]). Empty cells where not computed.
 //!
 //! Numbers are written with Rust's shortest round-trip formatting, so `str::parse::<f64>` /
 //! `parse::<u64>` read back the exact values (NaN and infinities as `NaN`, `inf`, `-inf`).
 //! The file is replaced atomically ([`crate::output::atomic`]).
 
+use super::metrics::ErrorMetrics;
 use crate::error::Result;
-use crate::metrics::ErrorMetrics;
 use crate::output::atomic::write_file_atomic;
 use std::fmt::Write as _;
 use std::path::Path;

@@ -51,10 +51,10 @@
 //! the scene's bounding disc, ≈ 4 m², and ≈ 3·10⁻⁵ of them would pass). Its rays diverge
 //! by at most the slit's size over 4 m (< 0.6 mrad, less than the real sun's 9 mrad).
 
-use super::model::{GenLight, GenMaterial, GenMesh, GenScene};
 use super::parts::{camera, push_material};
-use super::shapes::TriMesh;
-use super::spectral_scenes::{upright_prism, BeamLayout, N_D_BK7};
+use super::spectral::{upright_prism, BeamLayout, N_D_BK7};
+use crate::model::scene::{GenLight, GenMaterial, GenMesh, GenScene};
+use crate::model::shapes::TriMesh;
 use glam::{DVec3, Vec3};
 
 /// Side of the prism's equilateral cross-section, metres.

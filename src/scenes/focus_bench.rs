@@ -11,10 +11,10 @@
 //! Geometry is computed in `f64` and rounded to `f32` once; all meshes face +Z (the plate
 //! and screen) or outwards (the sphere).
 
-use super::lathe::sin_cos;
-use super::model::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
 use super::parts::{camera, push_material};
-use super::shapes::{ground_plane, icosphere, quarter_turn_x, TriMesh};
+use crate::model::lathe::sin_cos;
+use crate::model::scene::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
+use crate::model::shapes::{ground_plane, icosphere, quarter_turn_x, TriMesh};
 use glam::{DVec3, Vec3};
 
 /// Adds a mesh with its own material.

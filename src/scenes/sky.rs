@@ -1,7 +1,7 @@
 //! A procedural sky for the environment-lit scenes, written as a Radiance RGBE (`.hdr`)
 //! equirectangular map.
 //!
-//! Mapping: the one of [`crate::envmap::mapping`] — texel (x, y) of a W×H map has
+//! Mapping: the one of [`crate::light::env::mapping`] — texel (x, y) of a W×H map has
 //! u = (x + ½)/W, v = (y + ½)/H, polar angle θ = π v from +Y (top row = zenith) and
 //! azimuth φ = 2π (u − ½) = atan2(dir.x, −dir.z) (image centre = −Z, φ = 90° = +X), so
 //! `dir = (sin θ sin φ, cos θ, −sin θ cos φ)`. Elevation β = 90° − θ.
@@ -19,7 +19,7 @@
 //! run-length encoded as in Radiance's `fwritecolrs` (B. Walter's `rgbe.c`), so the file
 //! is bit-identical on every platform.
 
-use super::lathe::sin_cos;
+use crate::model::lathe::sin_cos;
 use glam::{DVec3, Vec3};
 
 /// Map width in texels (0.70° per texel).
@@ -230,7 +230,7 @@ mod tests {
         std::fs::create_dir_all(&dir).expect("mkdir");
         let path = dir.join("sky.hdr");
         std::fs::write(&path, sky_hdr()).expect("write");
-        let map = crate::envmap::load(&path).expect("load");
+        let map = crate::light::env::load(&path).expect("load");
         let _ = std::fs::remove_dir_all(&dir);
         assert_eq!((map.width(), map.height()), (SKY_WIDTH, SKY_HEIGHT));
         // The brightest direction is the sun (within RGBE's 1/256 precision), and the

@@ -7,7 +7,7 @@
 //!   [`mapping`]: `u = 0.5 + atan2(dir.x, −dir.z)/(2π)`, `v = acos(dir.y)/π`, top row
 //!   (v = 0) = +Y, image centre = −Z.
 //! - Radiance is linear RGB (Rec.709 primaries) in the scene's radiometric unit
-//!   (W·sr⁻¹·m⁻², or whatever unit the punctual lights of [`crate::light`] imply); map
+//!   (W·sr⁻¹·m⁻², or whatever unit the punctual lights of [`crate::light::punctual`] imply); map
 //!   texels are used as stored, without exposure.
 //! - Every pdf is with respect to **solid angle** (sr⁻¹).
 //!

@@ -13,23 +13,23 @@
 //! | `prism_sky.glb` + `sky.hdr` | an upright 60° prism (side 0.25, height 0.4, apex towards +Z) 1 mm above a 3×3 m checker floor (0.15 m tiles) framed by plain floor out to ±60 m | prism glass IOR 1.5, dispersion 1.0 (Abbe 20); checker 0.8 / 0.55 grey, plain floor 0.7 | scene extras `iris_environment: "sky.hdr"` ([`super::sky`]: sky, ground, four coloured panels, sun at elevation 30° whose light crosses the prism near minimum deviation and lands on the floor on the +Z side) | eye (0.55, 0.3, 0.8) → (−0.05, 0.12, 0.1), yfov 45°, 1:1 |//!
 //! `fig5_3_1_prism_beam.glb` (a white beam through an N-BK7 prism at minimum deviation
 //! onto a screen) and `diamond.glb` (IOR 2.42, dispersion 0.36) are built in
-//! [`super::spectral_scenes`], which documents them. `fig5_3_1_rainbow.glb` (sunlight
+//! [`super::spectral`], which documents them. `fig5_3_1_rainbow.glb` (sunlight
 //! through a slit and an N-BK7 prism, the rainbow as a caustic on a screen) is built in
 //! [`super::rainbow`] and `gem_caustics.glb` (a diamond under a narrow spot light) in
-//! [`super::caustic_scenes`].
+//! [`super::caustic`].
 
-use super::caustic_scenes::gem_caustics;
-use super::gem::Brilliant;
-use super::glb::write_glb;
-use super::lathe::{append, Tumbler};
-use super::model::{GenMaterial, GenMesh, GenScene, GenVolume};
+use super::caustic::gem_caustics;
 use super::paper::{add_checker, grey_pair, SceneBuilder};
 use super::parts::{camera, push_material};
 use super::rainbow::fig5_3_1_rainbow;
-use super::shapes::{checkerboard, ground_plane, prism, quarter_turn_x, TriMesh};
 use super::sky::sky_hdr;
-use super::spectral_scenes::{diamond, fig5_3_1_prism_beam};
+use super::spectral::{diamond, fig5_3_1_prism_beam};
 use crate::error::{Error, Result};
+use crate::model::gem::Brilliant;
+use crate::model::glb::write_glb;
+use crate::model::lathe::{append, Tumbler};
+use crate::model::scene::{GenMaterial, GenMesh, GenScene, GenVolume};
+use crate::model::shapes::{checkerboard, ground_plane, prism, quarter_turn_x, TriMesh};
 use glam::{Mat3, Vec3};
 use std::path::{Path, PathBuf};
 
@@ -288,8 +288,8 @@ mod tests {
     #[test]
     fn scenes_encode_deterministically_and_small() {
         for (name, build) in SCENES {
-            let a = super::super::glb::encode_glb(&build()).expect(name);
-            let b = super::super::glb::encode_glb(&build()).expect(name);
+            let a = crate::model::glb::encode_glb(&build()).expect(name);
+            let b = crate::model::glb::encode_glb(&build()).expect(name);
             assert_eq!(a, b, "{name} not deterministic");
             assert!(a.len() < 300_000, "{name} is {} bytes", a.len());
         }

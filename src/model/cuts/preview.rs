@@ -1,8 +1,8 @@
 //! `iris gem`: a named stone in a standard cut, written as .glb, bare or in a preview
-//! scene; and the shipped `assets/gems/`.
+//! scene (the list shipped in `assets/gems/` is `crate::scenes::gems`).
 //!
 //! Units: metres, +Y up, linear RGB; emitters are black diffuse quads emitting their
-//! radiance from the face turned to the stone (as in [`super::super::scenes`]).
+//! radiance from the face turned to the stone (as in the demonstration scenes).
 //!
 //! - **bare** (`--bare`): one mesh, the stone in the frame of [`super::Cut`] (girdle
 //!   plane y = 0, table up), the stone's material ([`Stone::material`]); no camera, light,
@@ -18,13 +18,13 @@
 
 use super::super::glb::write_glb;
 use super::super::lathe::sin_cos;
-use super::super::model::{GenCamera, GenMaterial, GenMesh, GenScene};
+use super::super::scene::{GenCamera, GenMaterial, GenMesh, GenScene};
 use super::super::shapes::{ground_plane, TriMesh};
 use super::super::stones::Stone;
 use super::{size_metres, Cut};
 use crate::error::{Error, Result};
 use glam::{DVec3, Vec3};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Radiance of the preview's key panel.
 pub const KEY_RADIANCE: f32 = 80.0;
@@ -44,38 +44,6 @@ pub struct GemSpec {
     pub size_mm: f64,
     /// Only the stone (no camera, lights, floor).
     pub bare: bool,
-}
-
-/// The stones shipped in `assets/gems/`: file name and what it holds. The four previews
-/// carry camera, lights and floor; `round_diamond_bare.glb` is the stone alone (what an
-/// artist's file usually is), for the drop-in preview.
-pub const GEM_ASSETS: [(&str, GemSpec); 5] = [
-    (
-        "round_diamond.glb",
-        spec(Cut::Round, Stone::Diamond, 6.5, false),
-    ),
-    (
-        "emerald_sapphire.glb",
-        spec(Cut::Emerald, Stone::Sapphire, 8.0, false),
-    ),
-    ("oval_ruby.glb", spec(Cut::Oval, Stone::Ruby, 8.0, false)),
-    (
-        "pear_cubic_zirconia.glb",
-        spec(Cut::Pear, Stone::CubicZirconia, 8.0, false),
-    ),
-    (
-        "round_diamond_bare.glb",
-        spec(Cut::Round, Stone::Diamond, 6.5, true),
-    ),
-];
-
-const fn spec(cut: Cut, stone: Stone, size_mm: f64, bare: bool) -> GemSpec {
-    GemSpec {
-        cut,
-        stone,
-        size_mm,
-        bare,
-    }
 }
 
 fn cut_title(cut: Cut) -> &'static str {
@@ -217,22 +185,6 @@ pub fn write_gem(path: &Path, spec: &GemSpec) -> Result<()> {
         )));
     }
     write_glb(path, &gem_scene(spec)?)
-}
-
-/// Writes [`GEM_ASSETS`] (preview scenes) into `dir` (created if missing), each
-/// atomically; returns their paths in order.
-pub fn write_gem_assets(dir: &Path) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::Output {
-        path: dir.to_path_buf(),
-        reason: format!("cannot create directory: {e}"),
-    })?;
-    let mut written = Vec::with_capacity(GEM_ASSETS.len());
-    for (name, spec) in GEM_ASSETS {
-        let path = dir.join(name);
-        write_glb(&path, &gem_scene(&spec)?)?;
-        written.push(path);
-    }
-    Ok(written)
 }
 
 #[cfg(test)]

@@ -1,10 +1,10 @@
-//! Small helpers the generated scenes share (`paper`, `scenes`, `caustic_scenes`,
-//! `spectral_scenes`, `focus_bench`, `rainbow`): a material slot and a look-at camera. They
+//! Small helpers the generated scenes share (`paper`, `demos`, `caustic`,
+//! `spectral`, `focus_bench`, `rainbow`): a material slot and a look-at camera. They
 //! live here, below every scene module, so that no scene module imports another's helpers
-//! (which made `paper` ↔ `caustic_scenes` ↔ `spectral_scenes` an import cycle). Units:
+//! (which made `paper` ↔ `caustic` ↔ `spectral` an import cycle). Units:
 //! metres; frames: world space, +Y up.
 
-use super::model::{GenCamera, GenMaterial, GenScene};
+use crate::model::scene::{GenCamera, GenMaterial, GenScene};
 use glam::Vec3;
 
 /// Appends `m` to the scene's materials and returns its index.

@@ -46,12 +46,12 @@
 //! coloured caustics thrown by the stone land on unlit floor. Camera 0.15 m from the
 //! centroid at elevation 50° from +X, yfov 35° (± 4.7 cm at the stone), 1:1.
 
-use super::gem::Brilliant;
-use super::lathe::sin_cos;
-use super::model::{GenLight, GenMaterial, GenMesh, GenScene};
 use super::parts::{camera, push_material};
-use super::shapes::{ground_plane, icosphere, TriMesh};
-use super::spectral_scenes::upright_prism;
+use super::spectral::upright_prism;
+use crate::model::gem::Brilliant;
+use crate::model::lathe::sin_cos;
+use crate::model::scene::{GenLight, GenMaterial, GenMesh, GenScene};
+use crate::model::shapes::{ground_plane, icosphere, TriMesh};
 use glam::{DVec3, Vec3};
 
 /// The ball-lens test scene, also reachable from here (see [`super::focus_bench`]).

@@ -1,4 +1,4 @@
-//! glTF JSON for the non-geometry parts of a [`GenScene`](super::model::GenScene):
+//! glTF JSON for the non-geometry parts of a [`GenScene`](super::scene::GenScene):
 //! materials (with their KHR extensions), KHR_lights_punctual lights and the camera, plus
 //! the number formatting shared with [`super::glb`].
 //!
@@ -8,7 +8,7 @@
 //! `+ − × ÷ √` only and rounded once, so files are bit-identical on every platform.
 //! Numbers print as the shortest decimal that reads back as the same `f32`.
 
-use super::model::{GenCamera, GenLight, GenMaterial};
+use super::scene::{GenCamera, GenLight, GenMaterial};
 use crate::error::{Error, Result};
 use glam::{DMat3, DQuat, DVec3, Vec3};
 use serde_json::{json, Map, Value};

@@ -1,22 +1,18 @@
-//! Measuring a progressive render: at each checkpoint of
-//! [`render_progressive`](crate::render::render_progressive), the error against a reference
-//! (if one was given) and the half-buffer estimate (always), as [`ReportRow`]s; the
-//! `--target-error` stop; and the error levels each run reached first.
+//! Measuring a progressive render: at each [`Checkpoint`] (the renderer's progress as plain
+//! data), the error against a reference (if one was given) and the half-buffer estimate
+//! (always), as [`ReportRow`]s; the `--target-error` stop; and the `--reference` file checks.
 //!
 //! Units: times are wall seconds since rendering started (loading and the acceleration build
-//! are their own rows); errors are on the linear image ([`crate::metrics`]). The *relative
+//! are their own rows); errors are on the linear image ([`super::metrics`]). The *relative
 //! error* used for `--target-error`, the plots and the levels table is the relative RMSE
 //! `sqrt(rel_mse)`, with `rel_mse = mean((x−r)²/(r²+0.01))` (issue 6).
 
+use super::metrics::{compare, half_buffer_estimate, ErrorMetrics};
+use super::report::ReportRow;
 use crate::error::{Error, Result};
-use crate::metrics::{compare, half_buffer_estimate, ErrorMetrics};
 use crate::output::ImageRgb;
-use crate::render::{Control, Progress};
-use crate::report::ReportRow;
 use std::path::Path;
-
-/// Error levels (relative RMSE) reported by `iris converge`, coarse to fine.
-pub const LEVELS: [f64; 5] = [0.5, 0.2, 0.1, 0.05, 0.02];
+use std::time::Duration;
 
 /// The relative RMSE `sqrt(rel_mse)` of a metrics triple.
 pub fn relative_rmse(m: &ErrorMetrics) -> f64 {
@@ -50,6 +46,28 @@ pub fn check_reference_size(
     Ok(())
 }
 
+/// One checkpoint of a progressive render, as the recorder needs it: the images so far and
+/// the work done (the renderer's progress report, field for field).
+#[derive(Debug, Clone, Copy)]
+pub struct Checkpoint<'a> {
+    /// The mean of all samples (passes) so far.
+    pub image: &'a ImageRgb,
+    /// The means of two independent halves of the samples (passes).
+    pub halves: (&'a ImageRgb, &'a ImageRgb),
+    /// Wall time since the render started.
+    pub elapsed: Duration,
+    /// Samples per pixel so far (SPPM: passes).
+    pub samples: u64,
+    /// Passes done (SPPM; 1 for the other methods).
+    pub passes: u32,
+    /// Rays traced so far.
+    pub rays: u64,
+    /// Photons emitted so far.
+    pub photons: u64,
+    /// True on the last call of a render that ended by itself.
+    pub done: bool,
+}
+
 /// Collects one [`ReportRow`] per checkpoint of one run and decides when to stop.
 #[derive(Debug)]
 pub struct Recorder<'a> {
@@ -80,8 +98,9 @@ impl<'a> Recorder<'a> {
         }
     }
 
-    /// Records a checkpoint; returns [`Control::Stop`] when the target error is reached.
-    pub fn observe(&mut self, p: &Progress) -> Result<Control> {
+    /// Records a checkpoint; returns `true` (stop rendering) when the target error is
+    /// reached.
+    pub fn record(&mut self, p: &Checkpoint) -> Result<bool> {
         let estimate = half_buffer_estimate(p.halves.0, p.halves.1)?;
         let error = match self.reference {
             Some(r) => Some(compare(p.image, r)?),
@@ -117,9 +136,8 @@ impl<'a> Recorder<'a> {
             .is_some_and(|e| relative_rmse(&estimate) <= e);
         if reached {
             self.reached_target = true;
-            return Ok(Control::Stop);
         }
-        Ok(Control::Continue)
+        Ok(reached)
     }
 
     /// (seconds, error) points for a plot: the error against the reference if there is one,
@@ -145,7 +163,7 @@ pub fn points(rows: &[ReportRow]) -> Vec<(f64, f64)> {
 /// `path: 16 spp, 3 passes, 1.25 s: estimated relative error 0.081 (vs reference 0.094)`.
 fn checkpoint_line(
     run: &str,
-    p: &Progress,
+    p: &Checkpoint,
     estimate: &ErrorMetrics,
     error: Option<&ErrorMetrics>,
 ) -> String {
@@ -162,64 +180,9 @@ fn checkpoint_line(
     s
 }
 
-/// The first time each run's error (relative RMSE, reference if present else estimate)
-/// reached `level`: one entry per run, `None` if it never did.
-pub fn first_reached(runs: &[(String, Vec<(f64, f64)>)], level: f64) -> Vec<Option<f64>> {
-    runs.iter()
-        .map(|(_, pts)| pts.iter().find(|(_, e)| *e <= level).map(|(t, _)| *t))
-        .collect()
-}
-
-/// The levels table of `iris converge`: for each of [`LEVELS`], the run that reached it
-/// first and when (checkpoint resolution: checkpoints fall at 1, 2, 4, … samples or passes).
-pub fn levels_table(runs: &[(String, Vec<(f64, f64)>)]) -> String {
-    let mut s = String::from("relative error  first to reach it\n");
-    for level in LEVELS {
-        let times = first_reached(runs, level);
-        let best = times
-            .iter()
-            .enumerate()
-            .filter_map(|(i, t)| t.map(|t| (i, t)))
-            .min_by(|a, b| a.1.total_cmp(&b.1));
-        let others: Vec<String> = runs
-            .iter()
-            .zip(&times)
-            .map(|((name, _), t)| match t {
-                Some(t) => format!("{name} {t:.2} s"),
-                None => format!("{name} not reached"),
-            })
-            .collect();
-        let first = match best {
-            Some((i, t)) => format!("{} at {t:.2} s", runs[i].0),
-            None => "none".into(),
-        };
-        s.push_str(&format!(
-            "{level:<14}  {first:<20}  ({})\n",
-            others.join(", ")
-        ));
-    }
-    s
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn levels_pick_the_earliest_run() {
-        // Hand-made curves: "a" is faster to 0.5 and 0.2, "b" alone reaches 0.05.
-        let runs = vec![
-            ("a".to_string(), vec![(0.1, 0.6), (0.2, 0.3), (0.4, 0.15)]),
-            ("b".to_string(), vec![(0.3, 0.45), (0.6, 0.04)]),
-        ];
-        assert_eq!(first_reached(&runs, 0.5), vec![Some(0.2), Some(0.3)]);
-        assert_eq!(first_reached(&runs, 0.05), vec![None, Some(0.6)]);
-        let t = levels_table(&runs);
-        let line = |l: &str| t.lines().find(|x| x.starts_with(l)).unwrap().to_string();
-        assert!(line("0.5 ").contains("a at 0.20 s"), "{t}");
-        assert!(line("0.1 ").contains("b at 0.60 s"), "{t}");
-        assert!(line("0.02").contains("none"), "{t}");
-    }
 
     #[test]
     fn recorder_stops_at_the_target_and_merges_the_final_call() {
@@ -234,7 +197,7 @@ mod tests {
         let (a, b, m) = (img(0.9), img(1.1), img(1.0));
         let reference = img(1.0);
         let mut rec = Recorder::new("path", Some(&reference), Some(0.1));
-        let progress = |done| Progress {
+        let progress = |done| Checkpoint {
             image: &m,
             halves: (&a, &b),
             elapsed: std::time::Duration::from_millis(5),
@@ -244,9 +207,9 @@ mod tests {
             photons: 0,
             done,
         };
-        assert_eq!(rec.observe(&progress(false)).unwrap(), Control::Stop);
+        assert!(rec.record(&progress(false)).unwrap(), "stop");
         assert!(rec.reached_target);
-        rec.observe(&progress(true)).unwrap();
+        rec.record(&progress(true)).unwrap();
         assert_eq!(
             rec.rows.len(),
             1,
@@ -256,7 +219,7 @@ mod tests {
         assert!((relative_rmse(&est) - (0.01f64 / 1.01).sqrt()).abs() < 1e-6);
         assert_eq!(rec.rows[0].error.unwrap().rmse, 0.0);
         let mut strict = Recorder::new("path", None, Some(0.09));
-        assert_eq!(strict.observe(&progress(false)).unwrap(), Control::Continue);
+        assert!(!strict.record(&progress(false)).unwrap(), "continue");
     }
 
     #[test]

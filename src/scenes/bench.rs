@@ -2,7 +2,7 @@
 //! a white floor lit by a point light or a small area light. Units: metres, candela,
 //! nits; +Y up.
 
-use super::shapes;
+use crate::model::shapes;
 use crate::scene::desc::{CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
 use glam::{Mat3, Vec3};
 

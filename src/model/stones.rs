@@ -19,7 +19,7 @@
 //! choices, not measured spectra: ruby (0.9, 0.08, 0.16) and sapphire (0.12, 0.25, 0.9),
 //! both over 4 mm, so a 6.5 mm stone is saturated but not black.
 
-use super::model::{GenMaterial, GenVolume};
+use super::scene::{GenMaterial, GenVolume};
 use crate::error::{Error, Result};
 use glam::Vec3;
 

@@ -19,14 +19,14 @@
 //! (0.5, −0.7, −0.4).
 //!
 //! `fig4_5_1_caustics.glb` (a glass sphere and prism under one point light, no fill) is
-//! built and documented in [`super::caustic_scenes`].
+//! built and documented in [`super::caustic`].
 
-use super::caustic_scenes::fig4_5_1_caustics;
-use super::glb::write_glb;
-use super::model::{GenLight, GenMaterial, GenMesh, GenScene};
+use super::caustic::fig4_5_1_caustics;
 use super::parts::{camera, push_material};
-use super::shapes::{checkerboard, ground_plane, icosphere, prism, quarter_turn_x, TriMesh};
 use crate::error::{Error, Result};
+use crate::model::glb::write_glb;
+use crate::model::scene::{GenLight, GenMaterial, GenMesh, GenScene};
+use crate::model::shapes::{checkerboard, ground_plane, icosphere, prism, quarter_turn_x, TriMesh};
 use glam::{Mat3, Vec3};
 use std::path::{Path, PathBuf};
 
@@ -270,8 +270,8 @@ mod tests {
     #[test]
     fn paper_scenes_validate_and_encode_deterministically() {
         for (name, build) in PAPER_SCENES {
-            let a = super::super::glb::encode_glb(&build()).expect(name);
-            let b = super::super::glb::encode_glb(&build()).expect(name);
+            let a = crate::model::glb::encode_glb(&build()).expect(name);
+            let b = crate::model::glb::encode_glb(&build()).expect(name);
             assert_eq!(a, b, "{name} not deterministic");
             assert!(a.len() < 1_500_000, "{name} is {} bytes", a.len());
         }

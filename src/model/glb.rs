@@ -22,7 +22,7 @@
 
 pub use super::gltf_json::ZNEAR;
 use super::gltf_json::{camera, light, material, vec3};
-use super::model::GenScene;
+use super::scene::GenScene;
 use super::shapes::TriMesh;
 use crate::error::{Error, Result};
 use glam::Vec3;
@@ -248,8 +248,8 @@ fn assemble(mut json: Vec<u8>, mut bin: Vec<u8>) -> Result<Vec<u8>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gen::model::{GenCamera, GenLight, GenMaterial, GenMesh, GenVolume};
-    use crate::gen::shapes::cuboid;
+    use crate::model::scene::{GenCamera, GenLight, GenMaterial, GenMesh, GenVolume};
+    use crate::model::shapes::cuboid;
 
     fn scene() -> GenScene {
         let mut glass = GenMaterial::clear_glass("Flint", 1.62, 0.1);

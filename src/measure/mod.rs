@@ -1,0 +1,24 @@
+//! Measuring renders: how far an image is from a reference and how that distance falls with
+//! time. Used by `iris render --reference/--report/--plot/--target-error` and by
+//! `iris converge`; it knows images and numbers, not the renderer.
+//!
+//! - [`metrics`]: RMSE, relative MSE and MAE against a reference, and the half-buffer
+//!   estimate without one (linear RGB, means over pixels and channels, `f64`).
+//! - [`recorder`]: one [`ReportRow`](report::ReportRow) per [`Checkpoint`] of a progressive
+//!   render, the `--target-error` stop, the `--reference` file checks.
+//! - [`levels`]: which run reached each error level first (`iris converge`).
+//! - [`report`]: the CSV report; [`plot`]: the error-against-time plot (PNG).
+//!
+//! Units: wall seconds; "relative error" is the relative RMSE `sqrt(rel_mse)`
+//! ([`relative_rmse`]). Files are written atomically (temporary file + rename).
+
+pub mod levels;
+pub mod metrics;
+pub mod plot;
+pub mod recorder;
+pub mod report;
+
+pub use levels::{levels_table, LEVELS};
+pub use recorder::{
+    check_reference_size, points, read_reference_file, relative_rmse, Checkpoint, Recorder,
+};
