@@ -14,17 +14,33 @@
 //! shared assets the bench says so and measures nothing.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use iris::app::{choose_camera, load};
+use iris::accel::Backend;
+use iris::app::choose_camera;
 use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::light::env::Environment;
 use iris::render::RenderSettings;
-use std::path::PathBuf;
+use iris::scene::desc::SceneDesc;
+use iris::scene::Scene;
+use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 mod common;
 
 const SIZE: u32 = 512;
+
+/// Loads and builds `path`, lit by a uniform environment of radiance `env` when given
+/// (which replaces the default lights of a file with none).
+fn load_lit(path: &Path, backend: Backend, env: Option<f32>) -> Scene {
+    let desc = iris::load::load_scene(path).expect("scene loads");
+    let desc = SceneDesc {
+        environment_light: env.map(|g| Environment::Uniform {
+            radiance: glam::Vec3::splat(g),
+        }),
+        ..desc
+    };
+    Scene::build(desc, backend).expect("scene builds")
+}
 
 fn path_tracer(c: &mut Criterion) {
     let Some(assets) = common::shared_assets() else {
@@ -62,10 +78,7 @@ fn path_tracer(c: &mut Criterion) {
     group.throughput(Throughput::Elements(u64::from(SIZE * SIZE)));
     for (name, path, env) in &scenes {
         for (bname, backend) in common::backends() {
-            let (scene, _) = load(path, backend).expect("scene loads");
-            let scene = scene.with_environment(env.map(|g| Environment::Uniform {
-                radiance: glam::Vec3::splat(g),
-            }));
+            let scene = load_lit(path, backend, *env);
             let (cam, _) = choose_camera(&scene, None, 1.0).expect("camera");
             let camera = Camera::new(&cam, SIZE, SIZE);
             let (_, stats) = integrator
@@ -112,10 +125,7 @@ fn spectral_overhead(c: &mut Criterion) {
     group.measurement_time(Duration::from_secs(8));
     group.throughput(Throughput::Elements(256 * 256 * 2));
     for (name, path, env) in &scenes {
-        let (scene, _) = load(path, common::backends()[0].1).expect("scene loads");
-        let scene = scene.with_environment(env.map(|g| Environment::Uniform {
-            radiance: glam::Vec3::splat(g),
-        }));
+        let scene = load_lit(path, common::backends()[0].1, *env);
         let (cam, _) = choose_camera(&scene, None, 1.0).expect("camera");
         let camera = Camera::new(&cam, 256, 256);
         for spectral in [false, true] {

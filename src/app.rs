@@ -14,11 +14,10 @@ use crate::light::env::Environment;
 use crate::measure::{metrics::ErrorMetrics, report::ReportRow, Recorder};
 use crate::output::{self, Background, DisplayOptions, ImageRgb};
 pub use crate::plan::SpectralMode;
-pub use crate::preview::{
-    choose_camera, choose_camera_view, default_preview_scene, load_for_preview, PreviewOptions,
-};
+pub use crate::prepare::default_preview_scene;
+pub use crate::preview::{choose_camera, choose_camera_view, load_for_preview, PreviewOptions};
 use crate::render::{Control, Progress, RenderSettings, RenderStats};
-use crate::scene::desc::{EnvironmentDesc, Projection};
+use crate::scene::desc::{CameraDesc, EnvironmentDesc, Projection};
 use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -190,9 +189,8 @@ pub fn resolve_environment(
 }
 
 /// The default image size: 800 wide at the first camera's aspect ratio (or 4:3).
-pub fn default_size(scene: &Scene) -> (u32, u32) {
-    let aspect = scene
-        .cameras
+pub fn default_size(cameras: &[CameraDesc]) -> (u32, u32) {
+    let aspect = cameras
         .first()
         .and_then(|c| match c.projection {
             Projection::Perspective { aspect, .. } => aspect,
@@ -302,7 +300,7 @@ pub fn render_command_planned(
         camera: cam_desc,
         size: (w, h),
         load_time,
-        ground_note,
+        notes: prepared_notes,
         camera_note: cam_note,
     } = prepared;
     if let (Some(r), Some(path)) = (&reference, &measure.reference) {
@@ -388,10 +386,7 @@ pub fn render_command_planned(
     let reached_target = recorder.reached_target;
     rows.append(&mut recorder.rows);
     let measure_notes = measure.write_outputs(&rows, &opts.scene)?;
-    let mut notes = scene.notes.clone();
-    if !ground_note.is_empty() {
-        notes.push(ground_note);
-    }
+    let mut notes: Vec<String> = prepared_notes.iter().map(ToString::to_string).collect();
     notes.extend(method_note);
     if settings.spectral {
         notes.push(match opts.spectral {
@@ -401,7 +396,7 @@ pub fn render_command_planned(
                 .into(),
         });
     }
-    notes.extend(cam_note);
+    notes.extend(cam_note.map(|n| n.to_string()));
     notes.extend(scene.warnings.iter().cloned());
     notes.extend(measure_notes);
     Ok(RenderSummary {

@@ -4,7 +4,7 @@
 //! printed in the file's units (lights: candela / lux, as KHR_lights_punctual).
 
 use crate::accel::Backend;
-use crate::app::{default_preview_scene, SpectralMode};
+use crate::app::SpectralMode;
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::integrator::Method;
@@ -187,17 +187,30 @@ pub fn info_command(path: &Path) -> Result<String> {
 }
 
 /// The render plan of `iris render SCENE` with default flags (auto method, auto spectral,
-/// the file's environment), with its costs measured, for `iris info`.
+/// the file's environment), with its costs measured, and what the preparation decided (the
+/// notes `iris render` and `iris converge` print), for `iris info`.
 fn info_plan(path: &Path) -> Result<String> {
     let (w, h) = crate::plan::PROBE_SIZE;
-    let (scene, cam) = default_preview_scene(path, Backend::Auto, (w, h))?;
-    let mut plan = crate::plan::Plan::new(&scene, Method::Auto, SpectralMode::Auto);
+    let prepared = crate::prepare::prepare(
+        path,
+        &crate::prepare::PrepareOptions {
+            accel: Backend::Auto,
+            size: Some((w, h)),
+            ..Default::default()
+        },
+    )?;
+    let (scene, cam) = (&prepared.scene, &prepared.camera);
+    let mut plan = crate::plan::Plan::new(scene, Method::Auto, SpectralMode::Auto);
     plan.add_file_counts(path);
-    plan.measure_costs(&scene, &Camera::new(&cam, w, h), 0)?;
-    Ok(format!(
+    plan.measure_costs(scene, &Camera::new(cam, w, h), 0)?;
+    let mut s = format!(
         "{}  (the plan for --method auto; `iris render` defaults to --method whitted)\n",
         plan.text_with_costs()
-    ))
+    );
+    for n in prepared.notes() {
+        let _ = writeln!(s, "note: {n}");
+    }
+    Ok(s)
 }
 
 /// `spectrum D65 (sRGB [1.000 1.000 1.000])`: an emitter's `iris_spectrum` and the colour

@@ -1,14 +1,12 @@
 //! The drop-in preview's set-up, between loading and rendering: what `iris render` does
 //! for a file that lacks a camera, lights or a floor ([`PreviewOptions`]: `--view`,
-//! `--studio`, `--ground`, `--background`).
+//! `--studio`, `--ground`, `--background`), and the camera choice ([`choose_camera_in`]).
 //!
-//! The steps, in the order [`crate::prepare::prepare`] (the one scene preparation every
-//! command uses) runs them: load and validate the file; add the `--ground` floor
-//! ([`crate::studio::ground`]) before the acceleration build; pick the file's camera or
-//! frame the model ([`crate::framing`], fitting the file's own vertices, never the floor);
-//! then, when the file has no light and no environment is given, light it with the studio
-//! ([`crate::studio`]), placed relative to that camera. Units: the file's (metres for
-//! glTF); frames: world space, +Y up.
+//! [`crate::prepare::prepare`] (the one scene preparation every command uses) runs the
+//! steps on the scene description, in order: ground decision, environment, camera (the
+//! file's, or framed by [`crate::framing`] on the file's own vertices, never the floor),
+//! studio ([`crate::studio`]) or default lights, floor ([`crate::studio::ground`]), build.
+//! Units: the file's (metres for glTF); frames: world space, +Y up.
 
 use crate::accel::Backend;
 use crate::error::{Error, Result};
@@ -16,39 +14,37 @@ use crate::framing::{frame_points, View};
 use crate::output::Background;
 use crate::scene::desc::{CameraDesc, EnvironmentDesc};
 use crate::scene::Scene;
+use crate::studio::ground::{self, Floor};
+use glam::Vec3;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-/// Like [`load_with_environment`], adding the `--ground` floor between validation and the
-/// acceleration build; the scene's `subject_bounds` stay those of the file's geometry.
-/// Returns the note saying whether a floor was added.
+/// Loads and builds `path` with the `--ground` floor added to the description before the
+/// build (the scene's `subject_bounds` stay those of the file's geometry), without the
+/// environment (returned as the file names it). Returns the floor decision too.
 pub fn load_for_preview(
     path: &Path,
     accel: Backend,
     ground: crate::studio::GroundMode,
-) -> Result<(Scene, Option<EnvironmentDesc>, Duration, String)> {
+) -> Result<(Scene, Option<EnvironmentDesc>, Duration, Floor)> {
     let start = Instant::now();
     let mut desc = crate::load::load_scene(path)?;
     let env = desc.environment.take();
-    let model = crate::studio::ground::desc_bounds(&desc);
-    let (add, note) = crate::studio::ground::decide(&desc, ground);
+    let (add, floor) = ground::decide(&desc, ground);
     if add {
-        crate::studio::ground::add_ground(&mut desc, model);
+        ground::add_ground(&mut desc);
     }
-    let mut scene = Scene::build(desc, accel)?;
-    if add {
-        scene.subject_bounds = model;
-    }
-    Ok((scene, env, start.elapsed(), note))
+    let scene = Scene::build(desc, accel)?;
+    Ok((scene, env, start.elapsed(), floor))
 }
 
-/// The vertices automatic framing fits: the file's own, without a `--ground` floor
-/// ([`crate::studio::ground::GROUND_MESH`]).
-fn subject_points(scene: &Scene) -> std::borrow::Cow<'_, [glam::Vec3]> {
+/// The vertices automatic framing fits in a built scene: the file's own, without a
+/// `--ground` floor ([`crate::studio::ground::GROUND_MESH`]).
+fn subject_points(scene: &Scene) -> std::borrow::Cow<'_, [Vec3]> {
     let ground = scene
         .meshes
         .iter()
-        .position(|m| m.name == crate::studio::ground::GROUND_MESH);
+        .position(|m| m.name == ground::GROUND_MESH);
     match ground {
         None => std::borrow::Cow::Borrowed(&scene.positions),
         Some(g) => std::borrow::Cow::Owned(
@@ -63,24 +59,62 @@ fn subject_points(scene: &Scene) -> std::borrow::Cow<'_, [glam::Vec3]> {
     }
 }
 
-/// Picks the camera by name or index, or frames the scene when the file has none.
+/// How Iris chose the camera when the file's was not used as it is (the render notes say
+/// it, [`crate::prepare::Note`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AutoCamera {
+    /// `--view`: the model framed from `view`, over the file's camera when it has one.
+    View {
+        /// The view asked for.
+        view: View,
+        /// Whether the file has a camera (that the view replaces).
+        over_file_camera: bool,
+    },
+    /// The file has no camera: the model framed from the default view.
+    NoCamera,
+}
+
+/// Picks the camera of a built scene by name or index, or frames it when the file has
+/// none.
 pub fn choose_camera(
     scene: &Scene,
     choice: Option<&str>,
     aspect: f32,
-) -> Result<(CameraDesc, Option<String>)> {
+) -> Result<(CameraDesc, Option<AutoCamera>)> {
     choose_camera_view(scene, choice, None, aspect)
 }
 
-/// [`choose_camera`] with `--view`: a view frames the model automatically
-/// ([`crate::framing`]) even when the file has cameras; it cannot be combined with
-/// `--camera`.
+/// [`choose_camera`] with `--view` ([`choose_camera_in`] on a built scene, framing the
+/// file's own vertices).
 pub fn choose_camera_view(
     scene: &Scene,
     choice: Option<&str>,
     view: Option<View>,
     aspect: f32,
-) -> Result<(CameraDesc, Option<String>)> {
+) -> Result<(CameraDesc, Option<AutoCamera>)> {
+    let subject = subject_points(scene);
+    choose_camera_in(
+        &scene.cameras,
+        &scene.source,
+        &subject,
+        choice,
+        view,
+        aspect,
+    )
+}
+
+/// Picks one of `cameras` (of the file `source`) by name or index, or frames the points
+/// `subject` (the model's own vertices) when there is none. With `--view` the model is
+/// framed automatically ([`crate::framing`]) even when the file has cameras; it cannot be
+/// combined with `--camera`.
+pub fn choose_camera_in(
+    cameras: &[CameraDesc],
+    source: &Path,
+    subject: &[Vec3],
+    choice: Option<&str>,
+    view: Option<View>,
+    aspect: f32,
+) -> Result<(CameraDesc, Option<AutoCamera>)> {
     if let (Some(v), Some(c)) = (view, choice) {
         return Err(Error::Usage(format!(
             "--view {} and --camera {c}: choose one (--view frames the model automatically)",
@@ -88,58 +122,43 @@ pub fn choose_camera_view(
         )));
     }
     if let Some(v) = view {
-        return Ok((
-            frame_points(&subject_points(scene), v, aspect),
-            Some(format!(
-                "--view {}: framing the model automatically{}",
-                v.name(),
-                if scene.cameras.is_empty() {
-                    ""
-                } else {
-                    " instead of the file's camera"
-                }
-            )),
-        ));
+        let note = AutoCamera::View {
+            view: v,
+            over_file_camera: !cameras.is_empty(),
+        };
+        return Ok((frame_points(subject, v, aspect), Some(note)));
     }
-    match choice {
-        Some(c) => {
-            let found = scene
-                .cameras
+    let Some(c) = choice else {
+        return Ok(match cameras.first() {
+            Some(cam) => (cam.clone(), None),
+            None => (
+                frame_points(subject, View::default(), aspect),
+                Some(AutoCamera::NoCamera),
+            ),
+        });
+    };
+    let found = cameras
+        .iter()
+        .find(|cam| cam.name == c)
+        .or_else(|| c.parse::<usize>().ok().and_then(|i| cameras.get(i)));
+    match found {
+        Some(cam) => Ok((cam.clone(), None)),
+        None => {
+            let names: Vec<String> = cameras
                 .iter()
-                .find(|cam| cam.name == c)
-                .or_else(|| c.parse::<usize>().ok().and_then(|i| scene.cameras.get(i)));
-            match found {
-                Some(cam) => Ok((cam.clone(), None)),
-                None => {
-                    let names: Vec<String> = scene
-                        .cameras
-                        .iter()
-                        .enumerate()
-                        .map(|(i, c)| format!("{i} \"{}\"", c.name))
-                        .collect();
-                    Err(Error::Usage(format!(
-                        "--camera {c}: no such camera in {} (available: {})",
-                        scene.source.display(),
-                        if names.is_empty() {
-                            "none".into()
-                        } else {
-                            names.join(", ")
-                        }
-                    )))
+                .enumerate()
+                .map(|(i, c)| format!("{i} \"{}\"", c.name))
+                .collect();
+            Err(Error::Usage(format!(
+                "--camera {c}: no such camera in {} (available: {})",
+                source.display(),
+                if names.is_empty() {
+                    "none".into()
+                } else {
+                    names.join(", ")
                 }
-            }
+            )))
         }
-        None => match scene.cameras.first() {
-            Some(cam) => Ok((cam.clone(), None)),
-            None => Ok((
-                frame_points(&subject_points(scene), View::default(), aspect),
-                Some(
-                    "no camera in the file: framing the model from the front-right, 35° above \
-                     (--view front|top|side|threequarter)"
-                        .into(),
-                ),
-            )),
-        },
     }
 }
 
@@ -169,22 +188,4 @@ impl PreviewOptions {
             (g, _) => g,
         }
     }
-}
-
-/// The scene and camera `iris render FILE --size WxH` renders with otherwise default flags
-/// (the one preparation, [`crate::prepare::prepare`], with default options).
-pub fn default_preview_scene(
-    path: &Path,
-    accel: Backend,
-    size: (u32, u32),
-) -> Result<(Scene, CameraDesc)> {
-    let p = crate::prepare::prepare(
-        path,
-        &crate::prepare::PrepareOptions {
-            accel,
-            size: Some(size),
-            ..Default::default()
-        },
-    )?;
-    Ok((p.scene, p.camera))
 }

@@ -203,11 +203,13 @@ fn gltf_with_every_kind_of_bad_triangle_loads_repaired_and_renders_finite() {
         );
     }
     for backend in backends() {
-        let scene = Scene::build(desc.clone(), backend)
-            .expect("build")
-            .with_environment(Some(Environment::Uniform {
+        let desc = SceneDesc {
+            environment_light: Some(Environment::Uniform {
                 radiance: Vec3::ONE,
-            }));
+            }),
+            ..desc.clone()
+        };
+        let scene = Scene::build(desc, backend).expect("build");
         let img = render_path(&scene, &furnace_camera(), 16, 4);
         assert!(
             img.iter().all(|p| p.is_finite()),
@@ -310,12 +312,13 @@ fn stone_scene(mesh: &TriMesh, backend: Backend) -> Scene {
         }],
         ..Default::default()
     };
-    let desc = iris::scene::validate::validate(desc).expect("valid");
-    Scene::build(desc, backend)
-        .expect("build")
-        .with_environment(Some(Environment::Uniform {
+    let desc = SceneDesc {
+        environment_light: Some(Environment::Uniform {
             radiance: Vec3::splat(0.1),
-        }))
+        }),
+        ..iris::scene::validate::validate(desc).expect("valid")
+    };
+    Scene::build(desc, backend).expect("build")
 }
 
 /// `mesh` with a random `share` of its triangles reversed (seeded).

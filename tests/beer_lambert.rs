@@ -39,11 +39,13 @@ fn transmitted(thickness: f32, distance: f32, color: Vec3, backend: Backend) -> 
         }],
         ..Default::default()
     };
-    let scene = Scene::build(iris::scene::validate::validate(desc).unwrap(), backend)
-        .unwrap()
-        .with_environment(Some(Environment::Uniform {
+    let desc = SceneDesc {
+        environment_light: Some(Environment::Uniform {
             radiance: Vec3::ONE,
-        }));
+        }),
+        ..iris::scene::validate::validate(desc).unwrap()
+    };
+    let scene = Scene::build(desc, backend).unwrap();
     let cam = CameraDesc {
         name: "ortho".into(),
         projection: Projection::Orthographic {

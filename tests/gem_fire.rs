@@ -45,7 +45,7 @@ use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::output::ImageRgb;
 use iris::render::{Control, Progress, RenderSettings};
-use iris::scene::desc::EnvironmentDesc;
+use iris::scene::desc::{EnvironmentDesc, SceneDesc};
 use iris::scene::Scene;
 use std::path::PathBuf;
 
@@ -76,9 +76,14 @@ fn scene(keep: bool, backend: Backend) -> (Scene, Camera, u32) {
         _ => None,
     };
     assert!(env.is_some(), "the preview has a uniform environment");
-    let scene = Scene::build(desc, backend)
-        .expect("build")
-        .with_environment(env);
+    let scene = Scene::build(
+        SceneDesc {
+            environment_light: env,
+            ..desc
+        },
+        backend,
+    )
+    .expect("build");
     (scene, Camera::new(&cam, W, H), stone as u32)
 }
 

@@ -42,8 +42,18 @@ fn scene(extra: Vec<MeshDesc>, materials: Vec<MaterialDesc>) -> Scene {
 
 fn scene_with_images(
     extra: Vec<MeshDesc>,
+    materials: Vec<MaterialDesc>,
+    images: Vec<ImageDesc>,
+) -> Scene {
+    scene_under(extra, materials, images, None)
+}
+
+/// The disc scene with `extra` meshes, lit only by its emitters and the environment `env`.
+fn scene_under(
+    extra: Vec<MeshDesc>,
     mut materials: Vec<MaterialDesc>,
     images: Vec<ImageDesc>,
+    env: Option<Environment>,
 ) -> Scene {
     materials.insert(0, MaterialDesc::default());
     let mut meshes = vec![quad(0.0, 1.0, false, 0)];
@@ -53,6 +63,7 @@ fn scene_with_images(
         meshes,
         materials,
         images,
+        environment_light: env,
         ..Default::default()
     };
     let desc = iris::scene::validate::validate(desc).expect("valid scene");
@@ -366,7 +377,12 @@ fn area_light_double_sided_emits_both_ways() {
 #[test]
 fn uniform_environment_flux_is_l_4pi_pi_r2() {
     let l = Vec3::new(0.5, 1.0, 2.0);
-    let s = scene(vec![], vec![]).with_environment(Some(Environment::Uniform { radiance: l }));
+    let s = scene_under(
+        vec![],
+        vec![],
+        vec![],
+        Some(Environment::Uniform { radiance: l }),
+    );
     let (_, r, _) = disc(&s);
     let flux = l * 4.0 * PI * PI * r * r;
     let e = PhotonEmitter::new(&s);
@@ -423,7 +439,7 @@ fn environment_map_flux_matches_quadrature() {
         }
     }
     let integral = Vec3::new(integral[0] as f32, integral[1] as f32, integral[2] as f32);
-    let s = scene(vec![], vec![]).with_environment(Some(env));
+    let s = scene_under(vec![], vec![], vec![], Some(env));
     let (_, r, _) = disc(&s);
     let flux = integral * PI * r * r;
     let e = PhotonEmitter::new(&s);
@@ -443,7 +459,14 @@ fn environment_map_flux_matches_quadrature() {
 #[test]
 fn mixed_lights_are_chosen_by_luminance() {
     let le = Vec3::new(1.0, 1.0, 1.0);
-    let base = scene(vec![quad(1.8, 0.2, true, 1)], vec![emitter(le, false)]);
+    let base = scene_under(
+        vec![quad(1.8, 0.2, true, 1)],
+        vec![emitter(le, false)],
+        vec![],
+        Some(Environment::Uniform {
+            radiance: Vec3::splat(0.05),
+        }),
+    );
     let sun = Vec3::new(-0.3, -1.0, 0.1).normalize();
     let p_pos = Vec3::new(0.5, 1.0, 0.5);
     let s_pos = Vec3::new(-0.5, 1.0, -0.5);
@@ -472,9 +495,7 @@ fn mixed_lights_are_chosen_by_luminance() {
             range: None,
         },
     ];
-    let s = with_lights(base, lights).with_environment(Some(Environment::Uniform {
-        radiance: Vec3::splat(0.05),
-    }));
+    let s = with_lights(base, lights);
     let (_, r, _) = disc(&s);
     let fluxes = [
         4.0 * PI * Vec3::new(1.0, 0.2, 0.2),

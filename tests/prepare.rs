@@ -1,15 +1,25 @@
 //! One scene preparation (issue 16): `iris render`, `iris converge` and `iris info` describe
 //! and render the same scene for the same file and flags. Before, `iris converge` on a file
 //! with no light rendered the plain key and fill with no floor, while `iris render` showed
-//! the studio and a floor: three commands prepared the scene three ways.
+//! the studio and a floor: three commands prepared the scene three ways. The preparation's
+//! decisions are data ([`Note`]): each `--env`/`--studio`/`--ground`/`--background`/`--view`
+//! variation is checked to decide what it says, in the library and on the command line.
 
 mod common;
 
+use glam::Vec3;
 use iris::accel::Backend;
 use iris::app::{PreviewOptions, RenderOptions};
 use iris::converge::ConvergeOptions;
+use iris::framing::View;
 use iris::integrator::Method;
-use iris::prepare::prepare;
+use iris::light::env::Environment;
+use iris::output::Background;
+use iris::prepare::{prepare, Note, Prepared};
+use iris::preview::AutoCamera;
+use iris::scene::Scene;
+use iris::studio::ground::Floor;
+use iris::studio::{GroundMode, Studio};
 use std::path::{Path, PathBuf};
 
 /// A round diamond with no camera, light or floor: every drop-in decision is taken.
@@ -23,6 +33,41 @@ fn notes(stderr: &str) -> Vec<String> {
         .lines()
         .filter_map(|l| l.strip_prefix("note: ").map(String::from))
         .collect()
+}
+
+/// What a command renders, in comparable form: lights, triangles, bounds, the environment
+/// (its radiance in the six axis directions) and the camera.
+#[derive(Debug, PartialEq)]
+struct Seen {
+    lights: Vec<iris::light::Light>,
+    default_lights: bool,
+    triangles: usize,
+    positions: Vec<Vec3>,
+    bounds: (Vec3, Vec3),
+    subject_bounds: (Vec3, Vec3),
+    environment: Option<Vec<Vec3>>,
+    camera: glam::Mat4,
+}
+
+fn seen(scene: &Scene, camera: &iris::scene::desc::CameraDesc) -> Seen {
+    let dirs = [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z];
+    Seen {
+        lights: scene.lights.clone(),
+        default_lights: scene.default_lights,
+        triangles: scene.triangle_count(),
+        positions: scene.positions.clone(),
+        bounds: scene.bounds,
+        subject_bounds: scene.subject_bounds,
+        environment: scene
+            .environment
+            .as_ref()
+            .map(|e| dirs.iter().map(|&d| e.eval(d)).collect()),
+        camera: camera.world_from_camera,
+    }
+}
+
+fn seen_prepared(p: &Prepared) -> Seen {
+    seen(&p.scene, &p.camera)
 }
 
 #[test]
@@ -53,6 +98,11 @@ fn render_and_converge_options_prepare_the_same_scene() {
     .expect("render's preparation");
     let b = prepare(&path, &converge.prepare_options(None)).expect("converge's preparation");
     assert_eq!(a.notes(), b.notes());
+    assert_eq!(seen_prepared(&a), seen_prepared(&b), "render and converge");
+    // `iris info` plans the default preparation (at its probe size; same aspect here).
+    let (scene, camera) =
+        iris::app::default_preview_scene(&path, Backend::Bvh, (48, 27)).expect("info's");
+    assert_eq!(seen(&scene, &camera), seen_prepared(&a), "render and info");
     assert_eq!(a.size, b.size);
     assert_eq!(a.scene.triangle_count(), b.scene.triangle_count());
     assert_eq!(a.scene.lights.len(), b.scene.lights.len());
@@ -62,9 +112,25 @@ fn render_and_converge_options_prepare_the_same_scene() {
         "same framing"
     );
     // And it is the drop-in preview: the studio lights the stone and a floor is added.
-    let n = a.notes().join("\n");
+    let n = a
+        .notes()
+        .iter()
+        .map(ToString::to_string)
+        .collect::<Vec<_>>()
+        .join("\n");
     assert!(n.contains("studio `soft`"), "{n}");
     assert!(n.contains("white floor added"), "{n}");
+    assert_eq!(
+        a.notes(),
+        [
+            Note::Studio {
+                preset: Studio::Soft,
+                keys: 1
+            },
+            Note::Floor(Floor::UnderGlass),
+            Note::Camera(AutoCamera::NoCamera),
+        ]
+    );
     assert!(
         a.scene.environment.is_some(),
         "the studio's softbox environment"
@@ -115,6 +181,202 @@ fn cli_converge_notes_the_preparation_render_notes() {
     }
     assert!(cn.iter().any(|n| n.contains("studio")), "{cn:?}");
     assert!(cn.iter().any(|n| n.contains("floor added")), "{cn:?}");
+    // `iris info` prints the same preparation notes.
+    let info = common::iris(&["info", scene], &dir);
+    assert!(info.status.success(), "{}", common::stderr(&info));
+    let info_text = String::from_utf8_lossy(&info.stdout).into_owned();
+    assert_eq!(notes(&info_text), cn, "{info_text}");
+}
+
+/// A flag variation: the command-line flags and the library options they stand for.
+struct Variation {
+    flags: &'static [&'static str],
+    env: Option<Option<Environment>>,
+    preview: PreviewOptions,
+}
+
+fn variations() -> Vec<Variation> {
+    let p = PreviewOptions::default;
+    vec![
+        Variation {
+            flags: &[],
+            env: None,
+            preview: p(),
+        },
+        Variation {
+            flags: &["--studio", "jeweller"],
+            env: None,
+            preview: PreviewOptions {
+                studio: Studio::Jeweller,
+                ..p()
+            },
+        },
+        Variation {
+            flags: &["--studio", "none"],
+            env: None,
+            preview: PreviewOptions {
+                studio: Studio::None,
+                ..p()
+            },
+        },
+        Variation {
+            flags: &["--env", "0.5"],
+            env: Some(Some(Environment::Uniform {
+                radiance: Vec3::splat(0.5),
+            })),
+            preview: p(),
+        },
+        Variation {
+            flags: &["--env", "none"],
+            env: Some(None),
+            preview: p(),
+        },
+        Variation {
+            flags: &["--ground", "on"],
+            env: None,
+            preview: PreviewOptions {
+                ground: GroundMode::On,
+                ..p()
+            },
+        },
+        Variation {
+            flags: &["--ground", "off", "--studio", "bright"],
+            env: None,
+            preview: PreviewOptions {
+                ground: GroundMode::Off,
+                studio: Studio::Bright,
+                ..p()
+            },
+        },
+        Variation {
+            flags: &["--background", "transparent", "--view", "top"],
+            env: None,
+            preview: PreviewOptions {
+                background: Background::Transparent,
+                view: Some(View::Top),
+                ..p()
+            },
+        },
+    ]
+}
+
+#[test]
+fn each_variation_prepares_what_it_says_in_the_library_and_on_the_command_line() {
+    let path = bare();
+    let dir = common::scratch_dir("prepare_variations");
+    let studio = |preset, keys| Note::Studio { preset, keys };
+    let no_camera = Note::Camera(AutoCamera::NoCamera);
+    let expected = [
+        vec![
+            studio(Studio::Soft, 1),
+            Note::Floor(Floor::UnderGlass),
+            no_camera,
+        ],
+        vec![
+            studio(Studio::Jeweller, 2),
+            Note::Floor(Floor::UnderGlass),
+            no_camera,
+        ],
+        vec![Note::KeyFill, Note::Floor(Floor::UnderGlass), no_camera],
+        vec![Note::Floor(Floor::UnderGlass), no_camera],
+        vec![Note::KeyFill, Note::Floor(Floor::UnderGlass), no_camera],
+        vec![studio(Studio::Soft, 1), Note::Floor(Floor::On), no_camera],
+        vec![
+            studio(Studio::Bright, 1),
+            Note::Floor(Floor::Off),
+            no_camera,
+        ],
+        vec![
+            studio(Studio::Soft, 1),
+            Note::Floor(Floor::CoversBackground),
+            Note::Camera(AutoCamera::View {
+                view: View::Top,
+                over_file_camera: false,
+            }),
+        ],
+    ];
+    let mut floorless: Option<Seen> = None;
+    for (v, want) in variations().iter().zip(expected) {
+        let render = RenderOptions {
+            size: Some((32, 18)),
+            accel: Backend::Bvh,
+            env: v.env.clone(),
+            ..RenderOptions::new(&path, None)
+        };
+        let p = prepare(&path, &render.prepare_options(&v.preview, None)).expect("prepare");
+        assert_eq!(p.notes(), want, "{:?}", v.flags);
+        let s = seen_prepared(&p);
+        // The lights say the same as the notes: the key and fill, a studio's keys, or only
+        // the environment.
+        let keys = want.iter().find_map(|n| match n {
+            Note::Studio { keys, .. } => Some(*keys),
+            _ => None,
+        });
+        let key_fill = want.contains(&Note::KeyFill);
+        assert_eq!(s.default_lights, key_fill, "{:?}", v.flags);
+        let n_lights = keys.unwrap_or(if key_fill { 2 } else { 0 });
+        assert_eq!(s.lights.len(), n_lights, "{:?}", v.flags);
+        assert_eq!(s.environment.is_some(), !key_fill, "{:?}", v.flags);
+        // A floor adds two triangles; the subject bounds stay the stone's either way.
+        let floor = want.contains(&Note::Floor(Floor::On))
+            || want.contains(&Note::Floor(Floor::UnderGlass));
+        let stone = floorless.get_or_insert_with(|| {
+            let v = prepare(
+                &path,
+                &render.prepare_options(
+                    &PreviewOptions {
+                        ground: GroundMode::Off,
+                        ..PreviewOptions::default()
+                    },
+                    None,
+                ),
+            )
+            .expect("floorless");
+            seen_prepared(&v)
+        });
+        let floor_triangles = if floor { 2 } else { 0 };
+        assert_eq!(
+            s.triangles,
+            stone.triangles + floor_triangles,
+            "{:?}",
+            v.flags
+        );
+        assert_eq!(s.subject_bounds, stone.bounds, "{:?}", v.flags);
+        if v.preview.view.is_none() {
+            // Framing never fits the floor: the same camera with or without it.
+            assert_eq!(s.camera, stone.camera, "{:?}", v.flags);
+        }
+        // `iris render` with these flags prints these notes, in this order (among the
+        // render's own: method, spectral transport).
+        let mut args = vec![
+            "render",
+            path.to_str().unwrap(),
+            "--method",
+            "whitted",
+            "--spp",
+            "1",
+            "--size",
+            "32x18",
+            "--accel",
+            "bvh",
+            "-q",
+            "-o",
+            "v.exr",
+        ];
+        args.extend(v.flags);
+        let r = common::iris(&args, &dir);
+        let err = common::stderr(&r);
+        assert!(r.status.success(), "{:?}: {err}", v.flags);
+        let printed = notes(&err);
+        let want_text: Vec<String> = want.iter().map(ToString::to_string).collect();
+        let in_order: Vec<&String> = printed.iter().filter(|n| want_text.contains(n)).collect();
+        assert_eq!(
+            in_order,
+            want_text.iter().collect::<Vec<_>>(),
+            "{:?}: {printed:?}",
+            v.flags
+        );
+    }
 }
 
 #[test]

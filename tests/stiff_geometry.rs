@@ -90,9 +90,13 @@ fn gem_scene(scale: f32, backend: Backend) -> (Scene, CameraDesc) {
         }],
         ..Default::default()
     };
-    let scene = build(desc, backend).with_environment(Some(Environment::Uniform {
-        radiance: Vec3::splat(0.1),
-    }));
+    let desc = SceneDesc {
+        environment_light: Some(Environment::Uniform {
+            radiance: Vec3::splat(0.1),
+        }),
+        ..desc
+    };
+    let scene = build(desc, backend);
     let cam = CameraDesc {
         name: "c".into(),
         projection: Projection::Perspective {
@@ -506,9 +510,13 @@ fn brilliant_in_a_white_furnace_at_the_largest_depth_never_exceeds_the_sky() {
             materials: vec![common::clear_glass("diamond", N_DIAMOND)],
             ..Default::default()
         };
-        let scene = build(desc, backend).with_environment(Some(Environment::Uniform {
-            radiance: Vec3::ONE,
-        }));
+        let desc = SceneDesc {
+            environment_light: Some(Environment::Uniform {
+                radiance: Vec3::ONE,
+            }),
+            ..desc
+        };
+        let scene = build(desc, backend);
         let cam = CameraDesc {
             name: "c".into(),
             projection: Projection::Perspective {

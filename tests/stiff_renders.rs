@@ -59,12 +59,13 @@ fn mesh(name: &str, m: TriMesh, material: usize) -> MeshDesc {
 }
 
 fn build(desc: SceneDesc, backend: Backend, env: Option<f32>) -> Scene {
-    let desc = iris::scene::validate::validate(desc).expect("valid scene");
-    Scene::build(desc, backend)
-        .expect("build")
-        .with_environment(env.map(|r| Environment::Uniform {
+    let desc = SceneDesc {
+        environment_light: env.map(|r| Environment::Uniform {
             radiance: Vec3::splat(r),
-        }))
+        }),
+        ..iris::scene::validate::validate(desc).expect("valid scene")
+    };
+    Scene::build(desc, backend).expect("build")
 }
 
 fn ortho(eye: Vec3, target: Vec3, half: f32) -> CameraDesc {

@@ -12,6 +12,7 @@ use iris::model::cuts::preview::{write_gem, GemSpec};
 use iris::model::cuts::Cut;
 use iris::model::stones::Stone;
 use iris::output::{read_exr, ImageRgb};
+use iris::prepare::Note;
 use iris::studio::{ground, GroundMode, Studio};
 use std::path::{Path, PathBuf};
 
@@ -170,10 +171,11 @@ fn ground_auto_on_for_a_bare_stone_off_for_a_scene_with_a_floor() {
     let dir = common::scratch_dir("studio_auto");
     let bare = iris::load::load_scene(&bare_gem(&dir)).expect("load bare");
     let (add, note) = ground::decide(&bare, GroundMode::Auto);
-    assert!(add, "{note}");
+    assert!(add, "{note:?}");
     let preview = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/gems/round_diamond.glb");
     let with_floor = iris::load::load_scene(&preview).expect("load preview");
     let (add, note) = ground::decide(&with_floor, GroundMode::Auto);
+    let note = Note::Floor(note).to_string();
     assert!(!add, "{note}");
     assert!(note.contains("surface of its own"), "{note}");
     // `on` adds one anyway; `off` never.
@@ -187,6 +189,7 @@ fn ground_auto_on_for_a_bare_stone_off_for_a_scene_with_a_floor() {
         GroundMode::Auto,
     )
     .expect("load");
+    let note = Note::Floor(note).to_string();
     assert!(note.contains("white floor added"), "{note}");
     let size = |b: (glam::Vec3, glam::Vec3)| (b.1 - b.0).length();
     assert!(size(scene.bounds) > 10.0 * size(scene.subject_bounds));

@@ -163,11 +163,13 @@ fn dispersion_test_zero_column_stays_white() {
         20,
         "expected 20 dispersive prisms removed"
     );
-    let scene = Scene::build(desc, Backend::Auto)
-        .unwrap()
-        .with_environment(Some(iris::light::env::Environment::Uniform {
+    let desc = SceneDesc {
+        environment_light: Some(iris::light::env::Environment::Uniform {
             radiance: Vec3::ONE,
-        }));
+        }),
+        ..desc
+    };
+    let scene = Scene::build(desc, Backend::Auto).unwrap();
     // Look straight at the column (x ≈ −0.05 m in the file) from the front.
     let cam = CameraDesc {
         name: "front".into(),

@@ -281,7 +281,7 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
     // preview: floor, studio, framing), from the one preparation.
     let reference_size = given_reference.as_ref().map(|r| (r.width, r.height));
     let prepared = crate::prepare::prepare(&opts.scene, &opts.prepare_options(reference_size))?;
-    let notes = prepared.notes();
+    let notes: Vec<String> = prepared.notes().iter().map(ToString::to_string).collect();
     let (scene, cam_desc, (w, h), load_time) = (
         prepared.scene,
         prepared.camera,

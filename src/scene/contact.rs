@@ -64,8 +64,10 @@ impl Aabb {
 }
 
 /// Marks [`TriangleData::TOUCHES`] on every triangle that shares a face with another mesh
-/// or lies on the other side of a thin sheet of its own mesh.
-pub(super) fn mark_touching(scene: &mut Scene) {
+/// or lies on the other side of a thin sheet of its own mesh (a step of
+/// [`Scene::build`](super::Scene::build), on the scene it is building); returns how many
+/// triangles are marked.
+pub(super) fn mark_touching(scene: &mut Scene) -> usize {
     let n_mesh = scene.meshes.len();
     let volume = |i: usize| {
         let m = scene.triangle_data[i].material() as usize;
@@ -125,14 +127,9 @@ pub(super) fn mark_touching(scene: &mut Scene) {
     for &i in &marked {
         scene.triangle_data[i as usize].info |= TriangleData::TOUCHES;
     }
-    let count = scene
+    scene
         .triangle_data
         .iter()
         .filter(|t| t.info & TriangleData::TOUCHES != 0)
-        .count();
-    if count > 0 {
-        scene.notes.push(format!(
-            "{count} triangles lie on another object's faces (touching volumes are crossed as one interface there)"
-        ));
-    }
+        .count()
 }

@@ -16,11 +16,19 @@
 //!
 //! Values are *not* trusted here: NaN, out-of-range indices and bad IORs are caught by
 //! `scene::validate`, which names the element.
+//!
+//! What Iris adds to a file before the build is written here too, never into the built
+//! scene: the resolved environment light, the studio or default lights ([`AddedLights`]),
+//! the `--ground` floor (a mesh) and the bounds of the file's own geometry
+//! ([`crate::prepare`] writes them; loaders leave them empty).
 
+mod added;
 mod emission;
 
+pub use added::{AddedLights, SpotKey};
 pub use emission::{effective_color, EmissionSpectrum, BLACKBODY_KELVIN, SUN_KELVIN};
 
+use crate::light::env::Environment;
 use crate::spectrum::{IorModel as SpectralIor, UnknownIorName};
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use std::path::PathBuf;
@@ -50,6 +58,14 @@ pub struct SceneDesc {
     /// Texture slots the loader left undecoded because their material is on no mesh (the
     /// render plan reports them).
     pub skipped_textures: usize,
+    /// The environment light to render with, resolved (`--env`, the file's `environment`,
+    /// or a studio's); `None` = no light from far away. Loaders leave it `None`.
+    pub environment_light: Option<Environment>,
+    /// Lights Iris adds to a file with none ([`AddedLights`]); loaders add none.
+    pub added_lights: AddedLights,
+    /// Bounds of the file's own geometry (min, max) when Iris added geometry to it (the
+    /// `--ground` floor, [`crate::studio::ground`]); `None` = the bounds of every mesh.
+    pub subject_bounds: Option<(Vec3, Vec3)>,
 }
 
 /// An environment light named by the scene file (glTF scene `extras.iris_environment`).

@@ -4,11 +4,14 @@
 //! A `Scene` holds every triangle of every mesh in one world-space array (so a triangle id
 //! from a backend indexes it directly), sorted by the Morton code of the centroids so that
 //! nearby hits read nearby memory (`triangle_mesh` says which mesh each came from), per-vertex shading data, materials, lights,
-//! cameras and the acceleration structure. It is built once and never mutated; rays reach
-//! it only through [`crate::interaction`].
+//! cameras and the acceleration structure. It is built once, from a description that
+//! already holds everything Iris adds (environment light, studio or default lights, floor:
+//! [`desc::AddedLights`], [`lighting`]), and never mutated; rays reach it only through
+//! [`crate::interaction`].
 
 pub mod contact;
 pub mod desc;
+pub mod lighting;
 mod thin;
 pub mod triangle;
 pub mod validate;
@@ -20,10 +23,10 @@ use crate::accel::{Accel, Backend};
 use crate::error::Result;
 use crate::light::area::AreaLights;
 use crate::light::env::Environment;
-use crate::light::{self, Light};
+use crate::light::Light;
 use crate::material::Material;
 use crate::spectrum::EmitterShape;
-use desc::{CameraDesc, ImageDesc, MaterialDesc, SceneDesc};
+use desc::{AddedLights, CameraDesc, ImageDesc, MaterialDesc, SceneDesc};
 use glam::{Vec2, Vec3};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -65,16 +68,17 @@ pub struct Scene {
     pub images: Vec<ImageDesc>,
     /// Texture slots the loader did not decode: their material is on no mesh.
     pub skipped_textures: usize,
-    /// Lights (the default key/fill lights when the file has no light and no emitter).
+    /// Lights: the file's, then those Iris added ([`desc::AddedLights`]: the default
+    /// key/fill lights when nothing else lights the scene, or a studio's keys).
     pub lights: Vec<Light>,
     /// The exact spectral shape of each light that names one (`iris_spectrum`), for
     /// spectral transport; parallel to `lights`.
     pub light_shapes: Vec<Option<EmitterShape>>,
     /// Emissive triangles, sampled for direct light.
     pub area_lights: AreaLights,
-    /// Light from infinitely far away (`--env`), if any.
+    /// Light from infinitely far away (`--env`, the file's, or a studio's), if any.
     pub environment: Option<Environment>,
-    /// Whether `lights` are the default key/fill lights (the file had none).
+    /// Whether the default key/fill lights were added (nothing else lit the scene).
     pub default_lights: bool,
     /// Cameras from the file.
     pub cameras: Vec<CameraDesc>,
@@ -83,10 +87,11 @@ pub struct Scene {
     /// Bounds of the file's own geometry, which cameras frame and the studio lights: equal
     /// to `bounds` unless a floor was added ([`crate::studio::ground`]).
     pub subject_bounds: (Vec3, Vec3),
-    /// Loader and validation warnings.
+    /// Loader, validation and environment-map warnings.
     pub warnings: Vec<String>,
-    /// Decisions taken for the user (e.g. "no light in the file: default key light").
-    pub notes: Vec<String>,
+    /// Triangles on which another object's face lies ([`TriangleData::TOUCHES`]: touching
+    /// volumes are crossed as one interface there).
+    pub touching_triangles: usize,
     /// Whether any material can cut holes (alpha MASK).
     pub has_cutouts: bool,
     /// Time spent building the acceleration structure.
@@ -96,8 +101,97 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// Builds the render scene from a **validated** description.
-    pub fn build(desc: SceneDesc, backend: Backend) -> Result<Scene> {
+    /// Builds the render scene from a **validated** description, lit as it says; a
+    /// description that nothing lights gets the default key and fill lights
+    /// ([`lighting::light_if_unlit`]).
+    pub fn build(mut desc: SceneDesc, backend: Backend) -> Result<Scene> {
+        lighting::light_if_unlit(&mut desc);
+        let g = Geometry::gather(&desc);
+        let mut materials: Vec<Material> = std::mem::take(&mut desc.materials)
+            .into_iter()
+            .map(Material::new)
+            .collect();
+        materials.push(Material::new(MaterialDesc::default()));
+        let bounds = g.positions.iter().fold(
+            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+        );
+        let area_lights = AreaLights::build(&g.triangle_data, |m| {
+            let mat = &materials[m as usize];
+            (mat.emission(), mat.desc.double_sided)
+        });
+        let (lights, light_shapes) = lighting::render_lights(&desc);
+        let mut warnings = desc.warnings;
+        if let Some(Environment::Map(m)) = &desc.environment_light {
+            warnings.extend(m.warnings().iter().cloned());
+        }
+        let has_cutouts = materials.iter().any(Material::may_cut_out);
+        let start = Instant::now();
+        let accel = Accel::build(backend, &g.positions, &g.triangles)?;
+        let accel_build_time = start.elapsed();
+        let mut scene = Scene {
+            source: desc.source,
+            positions: g.positions,
+            normals: g.normals,
+            uvs: g.uvs,
+            triangles: g.triangles,
+            triangle_material: g.triangle_material,
+            triangle_data: g.triangle_data,
+            triangle_mesh: g.triangle_mesh,
+            meshes: g.meshes,
+            materials,
+            images: desc.images,
+            skipped_textures: desc.skipped_textures,
+            lights,
+            light_shapes,
+            area_lights,
+            environment: desc.environment_light,
+            default_lights: desc.added_lights == AddedLights::KeyFill,
+            cameras: desc.cameras,
+            bounds,
+            subject_bounds: desc.subject_bounds.unwrap_or(bounds),
+            warnings,
+            touching_triangles: 0,
+            has_cutouts,
+            accel_build_time,
+            accel,
+        };
+        // The last step of the build: it probes the finished acceleration structure.
+        let touching_triangles = contact::mark_touching(&mut scene);
+        Ok(Scene {
+            touching_triangles,
+            ..scene
+        })
+    }
+
+    /// Name of the acceleration backend in use.
+    pub fn backend_name(&self) -> &'static str {
+        self.accel.name()
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+}
+
+/// The meshes of a description gathered into the scene's arrays, triangles in Morton
+/// order ([`morton_order`]).
+struct Geometry {
+    positions: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    uvs: Vec<Vec2>,
+    triangles: Vec<[u32; 3]>,
+    triangle_material: Vec<u32>,
+    triangle_data: Vec<TriangleData>,
+    triangle_mesh: Vec<u32>,
+    meshes: Vec<MeshInfo>,
+}
+
+impl Geometry {
+    /// Concatenates the meshes of `desc` (a mesh without a material gets the default one,
+    /// index `desc.materials.len()`), then sorts the triangles spatially.
+    fn gather(desc: &SceneDesc) -> Geometry {
         let total_v: usize = desc.meshes.iter().map(|m| m.positions.len()).sum();
         let total_t: usize = desc.meshes.iter().map(|m| m.indices.len()).sum();
         let mut positions = Vec::with_capacity(total_v);
@@ -148,94 +242,16 @@ impl Scene {
         }
         // Spatial order: hits of neighbouring rays then touch neighbouring memory.
         let order = morton_order(&triangle_data);
-        let triangles: Vec<[u32; 3]> = order.iter().map(|&i| triangles[i]).collect();
-        let triangle_material: Vec<u32> = order.iter().map(|&i| triangle_material[i]).collect();
-        let triangle_mesh: Vec<u32> = order.iter().map(|&i| triangle_mesh[i]).collect();
-        let triangle_data: Vec<TriangleData> = order.iter().map(|&i| triangle_data[i]).collect();
-        let mut materials: Vec<Material> = desc.materials.into_iter().map(Material::new).collect();
-        materials.push(Material::new(MaterialDesc::default()));
-        let bounds = positions.iter().fold(
-            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-        );
-        let mut notes = Vec::new();
-        let area_lights = AreaLights::build(&triangle_data, |m| {
-            let mat = &materials[m as usize];
-            (mat.emission(), mat.desc.double_sided)
-        });
-        let mut lights: Vec<Light> = desc.lights.iter().map(Light::from_desc).collect();
-        let mut light_shapes: Vec<Option<EmitterShape>> = desc
-            .lights
-            .iter()
-            .map(|l| {
-                l.spectrum()
-                    .map(|s| s.emitter_shape(l.color() * l.intensity()))
-            })
-            .collect();
-        let default_lights = lights.is_empty() && area_lights.is_empty();
-        if default_lights {
-            lights = light::default_lights();
-            light_shapes = vec![None; lights.len()];
-            notes.push("no light in the file: using the default key and fill lights".into());
-        }
-        let has_cutouts = materials.iter().any(Material::may_cut_out);
-        let start = Instant::now();
-        let accel = Accel::build(backend, &positions, &triangles)?;
-        let accel_build_time = start.elapsed();
-        let mut scene = Scene {
-            source: desc.source,
+        Geometry {
             positions,
             normals,
             uvs,
-            triangles,
-            triangle_material,
-            triangle_data,
-            triangle_mesh,
+            triangles: order.iter().map(|&i| triangles[i]).collect(),
+            triangle_material: order.iter().map(|&i| triangle_material[i]).collect(),
+            triangle_data: order.iter().map(|&i| triangle_data[i]).collect(),
+            triangle_mesh: order.iter().map(|&i| triangle_mesh[i]).collect(),
             meshes,
-            materials,
-            images: desc.images,
-            skipped_textures: desc.skipped_textures,
-            lights,
-            light_shapes,
-            area_lights,
-            environment: None,
-            default_lights,
-            cameras: desc.cameras,
-            bounds,
-            subject_bounds: bounds,
-            warnings: desc.warnings,
-            notes,
-            has_cutouts,
-            accel_build_time,
-            accel,
-        };
-        contact::mark_touching(&mut scene);
-        Ok(scene)
-    }
-
-    /// Adds an environment light. It replaces the default key/fill lights (which are only
-    /// there because the file has no light of its own).
-    pub fn with_environment(mut self, env: Option<Environment>) -> Scene {
-        if env.is_some() && self.default_lights {
-            self.lights.clear();
-            self.default_lights = false;
-            self.notes.retain(|n| !n.contains("default key"));
         }
-        if let Some(Environment::Map(m)) = &env {
-            self.warnings.extend(m.warnings().iter().cloned());
-        }
-        self.environment = env;
-        self
-    }
-
-    /// Name of the acceleration backend in use.
-    pub fn backend_name(&self) -> &'static str {
-        self.accel.name()
-    }
-
-    /// Number of triangles.
-    pub fn triangle_count(&self) -> usize {
-        self.triangles.len()
     }
 }
 

@@ -79,12 +79,36 @@ fn transmissive(desc: &SceneDesc, m: &MeshDesc) -> bool {
         .is_some_and(|mat| mat.transmission > 0.0)
 }
 
-/// Whether to add a floor, and why (for the render notes; empty when `auto` finds no
-/// transmissive material, the common case not worth a note).
-pub fn decide(desc: &SceneDesc, mode: GroundMode) -> (bool, String) {
-    match mode {
-        GroundMode::On => (true, "--ground on: white floor under the model".into()),
-        GroundMode::Off => (false, "--ground off: no floor added".into()),
+/// Why a floor was or was not added (the render notes say it, [`crate::prepare::Note`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Floor {
+    /// `--ground on`: a floor.
+    On,
+    /// `--ground off`: none.
+    Off,
+    /// `auto`: no transmissive material, no floor (the common case, not worth a note).
+    NotTransmissive,
+    /// `auto`: the model stands on a surface of its own, no floor.
+    OwnSurface,
+    /// `auto`: a transmissive model with nothing under it gets a floor for its caustics.
+    UnderGlass,
+    /// `auto` with a `--background` other than the environment: no floor, which would
+    /// cover it ([`crate::preview::PreviewOptions::ground_mode`]).
+    CoversBackground,
+}
+
+impl Floor {
+    /// Whether a floor is added.
+    pub fn adds(self) -> bool {
+        matches!(self, Floor::On | Floor::UnderGlass)
+    }
+}
+
+/// Whether to add a floor ([`Floor::adds`]), and why.
+pub fn decide(desc: &SceneDesc, mode: GroundMode) -> (bool, Floor) {
+    let floor = match mode {
+        GroundMode::On => Floor::On,
+        GroundMode::Off => Floor::Off,
         GroundMode::Auto => {
             let glass: Vec<&MeshDesc> = desc
                 .meshes
@@ -92,24 +116,15 @@ pub fn decide(desc: &SceneDesc, mode: GroundMode) -> (bool, String) {
                 .filter(|m| transmissive(desc, m))
                 .collect();
             if glass.is_empty() {
-                return (false, String::new());
-            }
-            if has_floor(desc, bounds_of(glass.into_iter())) {
-                (
-                    false,
-                    "--ground auto: the model stands on a surface of its own, no floor added"
-                        .into(),
-                )
+                Floor::NotTransmissive
+            } else if has_floor(desc, bounds_of(glass.into_iter())) {
+                Floor::OwnSurface
             } else {
-                (
-                    true,
-                    "--ground auto: transmissive model with nothing under it: white floor \
-                     added for caustics (--ground off to remove)"
-                        .into(),
-                )
+                Floor::UnderGlass
             }
         }
-    }
+    };
+    (floor.adds(), floor)
 }
 
 /// Whether opaque up-facing triangles lie under most of the footprint of `glass` (the
@@ -166,9 +181,12 @@ fn in_triangle(q: Vec2, t: [Vec2; 3]) -> bool {
     (d0 >= 0.0 && d1 >= 0.0 && d2 >= 0.0) || (d0 <= 0.0 && d1 <= 0.0 && d2 <= 0.0)
 }
 
-/// Adds the floor under `model` (the file's own bounds) to `desc`: a new material and a
-/// two-triangle mesh, valid by construction (so validation need not run again).
-pub fn add_ground(desc: &mut SceneDesc, model: (Vec3, Vec3)) {
+/// Adds the floor under the model (the file's own geometry, whose bounds it records as
+/// `desc.subject_bounds`) to `desc`: a new material and a two-triangle mesh, valid by
+/// construction (so validation need not run again).
+pub fn add_ground(desc: &mut SceneDesc) {
+    let model = desc.subject_bounds.unwrap_or_else(|| desc_bounds(desc));
+    desc.subject_bounds = Some(model);
     let (centre, radius) = super::bounding_sphere(model);
     let y = if model.0.y.is_finite() {
         model.0.y
@@ -270,7 +288,8 @@ mod tests {
     fn ground_touches_the_lowest_point_and_faces_up() {
         let mut d = glass_scene();
         let b = desc_bounds(&d);
-        add_ground(&mut d, b);
+        add_ground(&mut d);
+        assert_eq!(d.subject_bounds, Some(b));
         let g = d.meshes.last().unwrap();
         assert!(g.positions.iter().all(|p| p.y == 0.5));
         let p = &g.positions;

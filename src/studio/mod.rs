@@ -34,9 +34,7 @@ pub mod ground;
 
 use crate::error::{Error, Result};
 use crate::light::env::Environment;
-use crate::light::Light;
-use crate::scene::desc::CameraDesc;
-use crate::scene::Scene;
+use crate::scene::desc::{AddedLights, CameraDesc, SceneDesc, SpotKey};
 use glam::Vec3;
 
 pub use ground::GroundMode;
@@ -145,7 +143,7 @@ impl Studio {
 #[derive(Debug, Clone)]
 pub struct StudioSetup {
     /// Spot key lights (candela), aimed at the model's centre.
-    pub lights: Vec<Light>,
+    pub keys: Vec<SpotKey>,
     /// The procedural environment.
     pub environment: Environment,
 }
@@ -187,24 +185,23 @@ pub fn setup(preset: Studio, bounds: (Vec3, Vec3), camera: &CameraDesc) -> Optio
     let cos_outer = (KEY_POOL / KEY_DISTANCE).atan().cos();
     // Full intensity within 70 % of the outer half-angle: a soft-edged pool.
     let cos_inner = (0.7 * (KEY_POOL / KEY_DISTANCE).atan()).cos();
-    let lights = spec
+    let keys = spec
         .keys
         .iter()
         .map(|&(el, az, lux)| {
             let dir = studio_direction(el, az, cam_az);
-            Light::Spot {
+            SpotKey {
                 position: centre + dir * d,
                 direction: -dir,
                 // E = I / d² at the centre (inverse-square law), so I = E·d².
-                intensity: Vec3::splat(lux * d * d),
+                intensity: lux * d * d,
                 cos_inner,
                 cos_outer,
-                range: None,
             }
         })
         .collect();
     Some(StudioSetup {
-        lights,
+        keys,
         environment: env::environment(&spec, cam_az),
     })
 }
@@ -221,28 +218,20 @@ pub fn bounding_sphere(bounds: (Vec3, Vec3)) -> (Vec3, f32) {
     (centre, radius)
 }
 
-/// Replaces the default key/fill lights of a scene whose file has no light (and no
-/// environment was given) with `preset`'s studio, framed for `camera`; `bounds` are the
-/// model's own bounds. Returns whether the studio was applied (false for
-/// [`Studio::None`], a file with lights, or a scene that already has an environment).
-pub fn apply(scene: &mut Scene, preset: Studio, bounds: (Vec3, Vec3), camera: &CameraDesc) -> bool {
-    if !scene.default_lights || scene.environment.is_some() {
-        return false;
-    }
-    let Some(s) = setup(preset, bounds, camera) else {
-        return false;
-    };
-    scene.light_shapes = vec![None; s.lights.len()];
-    scene.lights = s.lights;
-    scene.environment = Some(s.environment);
-    scene.notes.retain(|n| !n.contains("default key"));
-    scene.notes.push(format!(
-        "no light in the file: studio `{}` (soft environment and {} key light(s); \
-         --studio none for the plain key and fill)",
-        preset.name(),
-        scene.lights.len()
-    ));
-    true
+/// Writes `preset`'s studio into the description of a file with no light (given no
+/// environment): its spot keys ([`AddedLights::Studio`]) and soft environment, placed for
+/// `camera` round the file's own geometry (`subject_bounds`, else every mesh). Returns the
+/// number of keys, or `None` for [`Studio::None`] (nothing written). The caller checks that
+/// the file has no light ([`crate::scene::lighting::is_lit`]).
+pub fn light(desc: &mut SceneDesc, preset: Studio, camera: &CameraDesc) -> Option<usize> {
+    let bounds = desc
+        .subject_bounds
+        .unwrap_or_else(|| ground::desc_bounds(desc));
+    let s = setup(preset, bounds, camera)?;
+    let keys = s.keys.len();
+    desc.added_lights = AddedLights::Studio(s.keys);
+    desc.environment_light = Some(s.environment);
+    Some(keys)
 }
 
 #[cfg(test)]
@@ -283,9 +272,10 @@ mod tests {
         for preset in [Studio::Soft, Studio::Jeweller, Studio::Bright] {
             let s = setup(preset, bounds, &cam).unwrap();
             let spec = preset.spec().unwrap();
-            assert_eq!(s.lights.len(), spec.keys.len());
+            assert_eq!(s.keys.len(), spec.keys.len());
             let (centre, _) = bounding_sphere(bounds);
-            for (l, k) in s.lights.iter().zip(spec.keys) {
+            for (l, k) in s.keys.iter().zip(spec.keys) {
+                let l = crate::scene::lighting::spot(l);
                 let e = l.sample_li(centre).unwrap().irradiance.x;
                 // f32 inverse-square arithmetic: a few ulps.
                 assert!(

@@ -50,14 +50,13 @@ pub fn sphere_in_white_environment(
             ..Default::default()
         }],
         materials: vec![material],
+        environment_light: Some(iris::light::env::Environment::Uniform {
+            radiance: glam::Vec3::ONE,
+        }),
         ..Default::default()
     };
     let desc = iris::scene::validate::validate(desc).expect("valid furnace scene");
-    iris::scene::Scene::build(desc, iris::accel::Backend::Auto)
-        .expect("build")
-        .with_environment(Some(iris::light::env::Environment::Uniform {
-            radiance: glam::Vec3::ONE,
-        }))
+    iris::scene::Scene::build(desc, iris::accel::Backend::Auto).expect("build")
 }
 
 /// Every backend compiled in: the BVH, then Embree when the `embree` feature is on.

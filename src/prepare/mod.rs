@@ -1,0 +1,156 @@
+//! One scene preparation for every command (issue 16): what `iris render`, `iris converge`,
+//! `iris info` and the benches render or describe for a scene file and its flags.
+//!
+//! Order, all on the scene description ([`crate::scene::desc::SceneDesc`]): load and
+//! validate the file; decide the `--ground` floor ([`crate::studio::ground::decide`]); set
+//! the environment light (`--env`, else the file's `iris_environment`); fix the image size
+//! (the flag, else the reference's, else [`crate::app::default_size`]); pick the file's
+//! camera or frame the model's vertices ([`crate::preview::choose_camera_in`]); when the
+//! file has no light and no `--env` is given, write the studio's lights into the
+//! description ([`crate::studio::light`]), placed relative to that camera, else the default
+//! key and fill when nothing lights it ([`crate::scene::lighting::light_if_unlit`]); add
+//! the floor; then [`Scene::build`], once. Nothing changes the scene after the build, and
+//! what was decided is kept as data ([`Note`]). Units: the file's (metres for glTF);
+//! frames: world space, +Y up. Two calls with the same file and options give the same
+//! scene, camera and notes.
+
+mod note;
+
+pub use note::Note;
+
+use crate::accel::Backend;
+use crate::app::{check_size, default_size, resolve_environment};
+use crate::error::Result;
+use crate::light::env::Environment;
+use crate::preview::{choose_camera_in, PreviewOptions};
+use crate::scene::desc::{CameraDesc, SceneDesc};
+use crate::scene::{lighting, Scene};
+use crate::studio::ground::{self, Floor};
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+/// The flags that decide the scene a command sees.
+#[derive(Debug, Clone, Default)]
+pub struct PrepareOptions {
+    /// Intersection backend.
+    pub accel: Backend,
+    /// `--env`: `Some(choice)` overrides the file's environment (and turns the studio off).
+    pub env: Option<Option<Environment>>,
+    /// `--camera` name or index.
+    pub camera: Option<String>,
+    /// Image size: `--size`, else a reference image's size; `None` = the default size.
+    pub size: Option<(u32, u32)>,
+    /// Studio, ground, view and background choices.
+    pub preview: PreviewOptions,
+}
+
+/// A scene ready to render: built, lit, with its camera and image size.
+pub struct Prepared {
+    /// The render scene (floor, environment and studio lights included).
+    pub scene: Scene,
+    /// The camera: the file's, or the automatic framing.
+    pub camera: CameraDesc,
+    /// Image width and height in pixels (checked by [`check_size`]).
+    pub size: (u32, u32),
+    /// Load, validation and build time.
+    pub load_time: Duration,
+    /// What was decided about the scene, in order: default lights, touching volumes,
+    /// studio, floor.
+    pub notes: Vec<Note>,
+    /// How the camera was chosen, when Iris chose it.
+    pub camera_note: Option<Note>,
+}
+
+impl Prepared {
+    /// Everything decided for the user while preparing, in order: `notes`, then the camera.
+    pub fn notes(&self) -> Vec<Note> {
+        self.notes
+            .iter()
+            .chain(&self.camera_note)
+            .copied()
+            .collect()
+    }
+}
+
+/// Loads `path` and prepares it as described in the module docs.
+pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
+    let preview = &opts.preview;
+    let start = Instant::now();
+    let mut desc = crate::load::load_scene(path)?;
+    let (add_floor, floor) = if preview.ground_mode() != preview.ground {
+        (false, Floor::CoversBackground)
+    } else {
+        ground::decide(&desc, preview.ground)
+    };
+    let load_time = start.elapsed();
+    desc.environment_light = resolve_environment(opts.env.clone(), desc.environment.take())?;
+    let (w, h) = opts.size.unwrap_or_else(|| default_size(&desc.cameras));
+    check_size(w, h)?;
+    let subject: Vec<glam::Vec3> = desc
+        .meshes
+        .iter()
+        .flat_map(|m| m.positions.iter().copied())
+        .collect();
+    let (camera, camera_note) = choose_camera_in(
+        &desc.cameras,
+        &desc.source,
+        &subject,
+        opts.camera.as_deref(),
+        preview.view,
+        w as f32 / h as f32,
+    )?;
+    let studio = light(&mut desc, opts, &camera);
+    let build_start = Instant::now();
+    if add_floor {
+        ground::add_ground(&mut desc);
+    }
+    let scene = Scene::build(desc, opts.accel)?;
+    let load_time = load_time + build_start.elapsed();
+    let touching = (scene.touching_triangles > 0).then_some(Note::Touching {
+        triangles: scene.touching_triangles,
+    });
+    let notes = [
+        scene.default_lights.then_some(Note::KeyFill),
+        touching,
+        studio,
+        (floor != Floor::NotTransmissive).then_some(Note::Floor(floor)),
+    ];
+    Ok(Prepared {
+        scene,
+        camera,
+        size: (w, h),
+        load_time,
+        notes: notes.into_iter().flatten().collect(),
+        camera_note: camera_note.map(Note::Camera),
+    })
+}
+
+/// Lights a description that brings no light: with the studio when no `--env` is given
+/// (the returned note), else, or for `--studio none`, with the default key and fill.
+fn light(desc: &mut SceneDesc, opts: &PrepareOptions, camera: &CameraDesc) -> Option<Note> {
+    let preset = opts.preview.studio;
+    let studio = (opts.env.is_none() && !lighting::is_lit(desc))
+        .then(|| crate::studio::light(desc, preset, camera))
+        .flatten()
+        .map(|keys| Note::Studio { preset, keys });
+    lighting::light_if_unlit(desc);
+    studio
+}
+
+/// The scene and camera `iris render FILE --size WxH` renders with otherwise default flags
+/// (the one preparation, [`prepare`], with default options).
+pub fn default_preview_scene(
+    path: &Path,
+    accel: Backend,
+    size: (u32, u32),
+) -> Result<(Scene, CameraDesc)> {
+    let p = prepare(
+        path,
+        &PrepareOptions {
+            accel,
+            size: Some(size),
+            ..Default::default()
+        },
+    )?;
+    Ok((p.scene, p.camera))
+}
