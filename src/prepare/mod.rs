@@ -4,7 +4,7 @@
 //! Order, all on the scene description ([`crate::scene::desc::SceneDesc`]): load and
 //! validate the file; decide the `--ground` floor ([`crate::studio::ground::decide`]); set
 //! the environment light (`--env`, else the file's `iris_environment`); fix the image size
-//! (the flag, else the reference's, else [`crate::app::default_size`]); pick the file's
+//! (the flag, else the reference's, else [`input::default_size`]); pick the file's
 //! camera or frame the model's vertices ([`crate::preview::choose_camera_in`]); when the
 //! file has no light and no `--env` is given, write the studio's lights into the
 //! description ([`crate::studio::light`]), placed relative to that camera, else the default
@@ -18,9 +18,11 @@ mod note;
 
 pub use note::Note;
 
+pub mod input;
+
 use crate::accel::Backend;
-use crate::app::{check_size, default_size, resolve_environment};
 use crate::error::Result;
+use input::{check_size, default_size, resolve_environment};
 use crate::light::env::Environment;
 use crate::preview::{choose_camera_in, PreviewOptions};
 use crate::scene::desc::{CameraDesc, SceneDesc};
