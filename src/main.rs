@@ -10,9 +10,9 @@
 
 use clap::{Parser, Subcommand};
 use iris::accel::Backend;
+use iris::app::converge::{parse_methods, ConvergeOptions, MeasureOptions};
 use iris::app::SpectralMode;
 use iris::app::{self, RenderOptions};
-use iris::converge::{parse_methods, ConvergeOptions, MeasureOptions};
 use iris::integrator::{Method, PhotonSettings};
 use iris::output::{DisplayOptions, Exposure, ToneMap};
 use iris::photon::trace::Roulette;
@@ -444,13 +444,13 @@ impl ConvergeArgs {
 impl GalleryArgs {
     /// The gallery options, with the command line for the page: `iris` and the flags, after
     /// the shared-assets override when one was set (it decides which entries render).
-    fn options(&self) -> iris::gallery::GalleryOptions {
+    fn options(&self) -> iris::app::gallery::GalleryOptions {
         let mut args = std::env::args().skip(1).collect::<Vec<_>>();
         args.insert(0, "iris".into());
         if let Some(dir) = std::env::var_os("IRIS_SHARED_ASSETS") {
             args.insert(0, format!("IRIS_SHARED_ASSETS={}", dir.to_string_lossy()));
         }
-        iris::gallery::GalleryOptions {
+        iris::app::gallery::GalleryOptions {
             out: self.out.clone(),
             size: self.size,
             time: std::time::Duration::from_secs_f64(self.time),

@@ -9,8 +9,8 @@ mod common;
 
 use glam::Vec3;
 use iris::accel::Backend;
+use iris::app::converge::ConvergeOptions;
 use iris::app::{PreviewOptions, RenderOptions};
-use iris::converge::ConvergeOptions;
 use iris::framing::View;
 use iris::integrator::Method;
 use iris::light::env::Environment;

@@ -6,8 +6,8 @@
 mod common;
 
 use iris::accel::Backend;
+use iris::app::converge::MeasureOptions;
 use iris::app::{render_command_preview, PreviewOptions, RenderOptions, RenderSummary};
-use iris::converge::MeasureOptions;
 use iris::model::cuts::preview::{write_gem, GemSpec};
 use iris::model::cuts::Cut;
 use iris::model::stones::Stone;

@@ -7,7 +7,9 @@ use std::path::PathBuf;
 /// `../shared/assets` (or `IRIS_SHARED_ASSETS`) if present; the bench says SKIPPED otherwise.
 pub fn shared_assets() -> Option<PathBuf> {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    iris::gallery::shared_assets_dir_in(root).ok().flatten()
+    iris::app::gallery::shared_assets_dir_in(root)
+        .ok()
+        .flatten()
 }
 
 /// The backends compiled in, Embree first.

@@ -3,7 +3,7 @@
 //! stderr, tables on stdout). main.rs calls exactly one of these per command.
 
 use super::{PreviewOptions, RenderOptions};
-use crate::converge::{converge_command, ConvergeOptions, MeasureOptions};
+use crate::app::converge::{converge_command, ConvergeOptions, MeasureOptions};
 use crate::error::Result;
 use crate::measure::relative_rmse;
 use std::path::Path;
@@ -129,8 +129,8 @@ pub fn gem(spec: &crate::model::cuts::preview::GemSpec, output: &Path) -> Result
 }
 
 /// `iris gallery`: renders the entries and writes the page, one line per image.
-pub fn gallery(opts: &crate::gallery::GalleryOptions) -> Result<()> {
-    let s = crate::gallery::run(opts)?;
+pub fn gallery(opts: &crate::app::gallery::GalleryOptions) -> Result<()> {
+    let s = crate::app::gallery::run(opts)?;
     for r in &s.rendered {
         eprintln!(
             "{}: {}, {}, render {:.2} s -> {}",

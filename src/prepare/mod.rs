@@ -22,12 +22,12 @@ pub mod input;
 
 use crate::accel::Backend;
 use crate::error::Result;
-use input::{check_size, default_size, resolve_environment};
 use crate::light::env::Environment;
 use crate::preview::{choose_camera_in, PreviewOptions};
 use crate::scene::desc::{CameraDesc, SceneDesc};
 use crate::scene::{lighting, Scene};
 use crate::studio::ground::{self, Floor};
+use input::{check_size, default_size, resolve_environment};
 use std::path::Path;
 use std::time::{Duration, Instant};
 

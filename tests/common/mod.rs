@@ -12,13 +12,13 @@ pub mod alloc;
 /// absence into a failure so CI never skips these tests.
 pub fn shared_assets() -> Option<PathBuf> {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    // The rule is the gallery's (`iris::gallery::shared_assets_dir_in`); an error here
+    // The rule is the gallery's (`iris::app::gallery::shared_assets_dir_in`); an error here
     // is IRIS_REQUIRE_SHARED=1 with the folder missing.
-    let found = iris::gallery::shared_assets_dir_in(root).unwrap_or_else(|e| panic!("{e}"));
+    let found = iris::app::gallery::shared_assets_dir_in(root).unwrap_or_else(|e| panic!("{e}"));
     if found.is_none() {
         eprintln!(
             "SKIPPED: shared test assets not found at {} (no MANIFEST.md there; set IRIS_SHARED_ASSETS, or IRIS_REQUIRE_SHARED=1 to fail)",
-            iris::gallery::shared_assets_candidate(root).display()
+            iris::app::gallery::shared_assets_candidate(root).display()
         );
     }
     found

@@ -24,8 +24,8 @@
 //! [`crate::output::atomic::write_file_atomic`]); a `--only` pattern that matches no entry
 //! is an error before anything renders; the page lists the entries in [`ENTRIES`] order.
 
+use crate::app::converge::MeasureOptions;
 use crate::app::{self, RenderOptions, RenderSummary};
-use crate::converge::MeasureOptions;
 use crate::error::{Error, Result};
 use crate::integrator::{Method, PhotonSettings};
 use std::fmt::Write as _;

@@ -3,25 +3,27 @@
 //! return a summary; `main.rs` only parses flags and prints.
 
 pub mod commands;
+pub mod converge;
+pub mod gallery;
+pub mod info;
 
 use crate::accel::Backend;
+use crate::app::converge::MeasureOptions;
 use crate::camera::Camera;
-use crate::converge::MeasureOptions;
 use crate::error::{Error, Result};
-pub use crate::info::info_command;
 use crate::integrator::{Integrator, Method};
 use crate::measure::{metrics::ErrorMetrics, report::ReportRow, Recorder};
 use crate::output::{self, Background, DisplayOptions, ImageRgb};
 pub use crate::plan::SpectralMode;
+pub use crate::prepare::default_preview_scene;
 pub use crate::prepare::input::{
     check_size, default_size, load, load_with_environment, resolve_environment, MAX_PIXELS,
 };
-pub use crate::prepare::default_preview_scene;
 pub use crate::preview::{choose_camera, choose_camera_view, load_for_preview, PreviewOptions};
 use crate::render::{Control, Progress, RenderSettings, RenderStats};
+pub use info::info_command;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
-
 
 /// Everything `iris render` needs.
 #[derive(Debug, Clone)]
@@ -277,7 +279,7 @@ pub fn render_command_planned(
         time_limit: opts.time_limit,
     };
     let run = method.name();
-    let mut rows = crate::converge::setup_rows(run, load_time, scene.accel_build_time);
+    let mut rows = crate::app::converge::setup_rows(run, load_time, scene.accel_build_time);
     let mut recorder = Recorder::new(run, reference.as_ref(), measure.target_error);
     recorder.verbose = !opts.quiet && measure.any();
     // `--background`: the coverage of the camera samples (as many as the render will take
