@@ -10,10 +10,11 @@
 
 use clap::{Parser, Subcommand};
 use iris::accel::Backend;
-use iris::app::converge::{parse_methods, ConvergeOptions, MeasureOptions};
+use iris::app::converge::{parse_methods, ConvergeOptions};
 use iris::app::SpectralMode;
 use iris::app::{self, RenderOptions};
 use iris::integrator::{Method, PhotonSettings};
+use iris::measure::MeasureOptions;
 use iris::output::{DisplayOptions, Exposure, ToneMap};
 use iris::photon::trace::Roulette;
 use std::path::PathBuf;
@@ -349,10 +350,7 @@ fn parse_exposure(s: &str) -> Result<Exposure, String> {
 
 fn run(cli: Cli) -> iris::Result<()> {
     match cli.command {
-        Command::Render(a) => {
-            let (opts, measure, preview) = a.options()?;
-            app::commands::render(&opts, &measure, &preview, a.explain)
-        }
+        Command::Render(a) => app::commands::render(&a.options()?),
         Command::Converge(a) => app::commands::converge(&a.options()?),
         Command::Info { scene } => app::commands::info(&scene),
         Command::Diff { image, reference } => app::commands::diff(&image, &reference),
@@ -371,10 +369,10 @@ fn run(cli: Cli) -> iris::Result<()> {
 }
 
 impl RenderArgs {
-    /// The render, measurement and drop-in preview options these flags ask for.
-    fn options(&self) -> iris::Result<(RenderOptions, MeasureOptions, app::PreviewOptions)> {
+    /// The render options (measurement and drop-in preview included) these flags ask for.
+    fn options(&self) -> iris::Result<RenderOptions> {
         let a = self.clone();
-        let opts = RenderOptions {
+        Ok(RenderOptions {
             scene: a.scene,
             output: a.output,
             size: a.size,
@@ -406,20 +404,20 @@ impl RenderArgs {
                 .map(iris::light::env::Environment::parse_arg)
                 .transpose()?,
             spectral: a.spectral,
-        };
-        let measure = MeasureOptions {
-            reference: a.reference,
-            report: a.report,
-            plot: a.plot,
-            target_error: a.target_error,
-        };
-        let preview = app::PreviewOptions {
-            studio: a.studio,
-            ground: a.ground,
-            view: a.view,
-            background: a.background.unwrap_or_default(),
-        };
-        Ok((opts, measure, preview))
+            measure: MeasureOptions {
+                reference: a.reference,
+                report: a.report,
+                plot: a.plot,
+                target_error: a.target_error,
+            },
+            preview: app::PreviewOptions {
+                studio: a.studio,
+                ground: a.ground,
+                view: a.view,
+                background: a.background.unwrap_or_default(),
+            },
+            explain: a.explain,
+        })
     }
 }
 

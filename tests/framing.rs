@@ -141,8 +141,11 @@ fn a_file_with_no_camera_and_no_light_renders_a_lit_framed_model() {
         background: Background::Transparent,
         ..Default::default()
     };
-    let s = app::render_command_preview(&render_opts(&scene, &out), &Default::default(), &preview)
-        .expect("render");
+    let s = app::render_command(&RenderOptions {
+        preview,
+        ..render_opts(&scene, &out)
+    })
+    .expect("render");
     assert!(
         s.notes.iter().any(|n| n.contains("no camera")),
         "{:?}",
@@ -184,7 +187,7 @@ fn framed_renders_are_deterministic() {
             background: Background::Transparent,
             ..Default::default()
         };
-        app::render_command_preview(&opts, &Default::default(), &preview).expect("render");
+        app::render_command(&RenderOptions { preview, ..opts }).expect("render");
         bytes.push(std::fs::read(&out).expect("read"));
     }
     assert_eq!(

@@ -91,11 +91,7 @@ fn render_and_converge_options_prepare_the_same_scene() {
         accel: Backend::Bvh,
         quiet: true,
     };
-    let a = prepare(
-        &path,
-        &render.prepare_options(&PreviewOptions::default(), None),
-    )
-    .expect("render's preparation");
+    let a = prepare(&path, &render.prepare_options(None)).expect("render's preparation");
     let b = prepare(&path, &converge.prepare_options(None)).expect("converge's preparation");
     assert_eq!(a.notes(), b.notes());
     assert_eq!(seen_prepared(&a), seen_prepared(&b), "render and converge");
@@ -303,7 +299,11 @@ fn each_variation_prepares_what_it_says_in_the_library_and_on_the_command_line()
             env: v.env.clone(),
             ..RenderOptions::new(&path, None)
         };
-        let p = prepare(&path, &render.prepare_options(&v.preview, None)).expect("prepare");
+        let render = RenderOptions {
+            preview: v.preview,
+            ..render
+        };
+        let p = prepare(&path, &render.prepare_options(None)).expect("prepare");
         assert_eq!(p.notes(), want, "{:?}", v.flags);
         let s = seen_prepared(&p);
         // The lights say the same as the notes: the key and fill, a studio's keys, or only
@@ -323,13 +323,14 @@ fn each_variation_prepares_what_it_says_in_the_library_and_on_the_command_line()
         let stone = floorless.get_or_insert_with(|| {
             let v = prepare(
                 &path,
-                &render.prepare_options(
-                    &PreviewOptions {
+                &RenderOptions {
+                    preview: PreviewOptions {
                         ground: GroundMode::Off,
                         ..PreviewOptions::default()
                     },
-                    None,
-                ),
+                    ..render.clone()
+                }
+                .prepare_options(None),
             )
             .expect("floorless");
             seen_prepared(&v)

@@ -75,6 +75,9 @@ fn render_all(files: &[PathBuf], scratch: &str) {
                 quiet: true,
                 spectral: Default::default(),
                 env: env.map(Some),
+                measure: Default::default(),
+                preview: Default::default(),
+                explain: false,
             };
             let summary =
                 render_command(&opts).unwrap_or_else(|e| panic!("{}: {e}", scene.display()));

@@ -37,6 +37,9 @@ fn opts(scene: &Path, out: &Path, accel: Backend, threads: usize) -> RenderOptio
         quiet: true,
         spectral: Default::default(),
         env: None,
+        measure: Default::default(),
+        preview: Default::default(),
+        explain: false,
     }
 }
 
@@ -235,11 +238,10 @@ fn emissive_triangles_light_the_cornell_box() {
         view: Some(iris::framing::View::Front),
         ..Default::default()
     };
-    let summary = iris::app::render_command_preview(
-        &opts(&scene, &out, Backend::Auto, 2),
-        &Default::default(),
-        &preview,
-    )
+    let summary = render_command(&RenderOptions {
+        preview,
+        ..opts(&scene, &out, Backend::Auto, 2)
+    })
     .expect("render");
     // The ceiling light (Ke) is the only light: no default lights may be added.
     assert!(

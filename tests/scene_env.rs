@@ -178,6 +178,9 @@ fn render_mean(scene: &Path, env: Option<Option<Environment>>, out: &Path) -> Ve
         quiet: true,
         spectral: Default::default(),
         env,
+        measure: Default::default(),
+        preview: Default::default(),
+        explain: false,
     };
     render_command(&opts).expect("render");
     let img = read_exr(out).expect("read");

@@ -340,6 +340,9 @@ fn render_under_a_2700_k_light_has_its_colour() {
             quiet: true,
             spectral: iris::app::SpectralMode::Off, // the RGB renderer's colour
             env: None,
+            measure: Default::default(),
+            preview: Default::default(),
+            explain: false,
         };
         render_command(&opts).expect("render").image
     };
@@ -415,6 +418,9 @@ fn spectral_render_under_a_2700_k_light_has_the_planckian_chromaticity() {
         quiet: true,
         spectral: iris::app::SpectralMode::On,
         env: None,
+        measure: Default::default(),
+        preview: Default::default(),
+        explain: false,
     };
     let image = render_command(&opts).expect("render").image;
     let mean = image.data.iter().fold(Vec3::ZERO, |a, p| a + *p) / image.data.len() as f32;

@@ -6,8 +6,8 @@
 mod common;
 
 use iris::accel::Backend;
-use iris::app::converge::MeasureOptions;
-use iris::app::{render_command_preview, PreviewOptions, RenderOptions, RenderSummary};
+use iris::app::{render_command, PreviewOptions, RenderOptions, RenderSummary};
+use iris::measure::MeasureOptions;
 use iris::model::cuts::preview::{write_gem, GemSpec};
 use iris::model::cuts::Cut;
 use iris::model::stones::Stone;
@@ -58,7 +58,7 @@ fn render(
         ground,
         ..Default::default()
     };
-    let s = render_command_preview(&opts, &MeasureOptions::default(), &preview).expect("render");
+    let s = render_command(&RenderOptions { preview, ..opts }).expect("render");
     (read_exr(out).expect("read exr"), s)
 }
 

@@ -2,26 +2,22 @@
 //! runs the command through the library, and prints what the command prints (summaries on
 //! stderr, tables on stdout). main.rs calls exactly one of these per command.
 
-use super::{PreviewOptions, RenderOptions};
-use crate::app::converge::{converge_command, ConvergeOptions, MeasureOptions};
+use super::RenderOptions;
+use crate::app::converge::{converge_command, ConvergeOptions};
 use crate::error::Result;
 use crate::measure::relative_rmse;
 use std::path::Path;
 
 /// `iris render`: renders, prints the notes, warnings and a summary line, and the error
-/// estimate (against `--reference` and `--target-error` when given). With `explain` the
-/// plan and its measured costs go to stderr first.
-pub fn render(
-    opts: &RenderOptions,
-    measure: &MeasureOptions,
-    preview: &PreviewOptions,
-    explain: bool,
-) -> Result<()> {
-    let s = super::render_command_planned(opts, measure, preview, explain, &mut |plan| {
-        if explain {
-            eprint!("{}", plan.text_with_costs());
-        }
-    })?;
+/// estimate (against `--reference` and `--target-error` when given). With `--explain` the
+/// plan and its measured costs go to stderr before the render starts.
+pub fn render(opts: &RenderOptions) -> Result<()> {
+    let job = super::RenderJob::new(opts)?;
+    if opts.explain {
+        eprint!("{}", job.plan.text_with_costs());
+    }
+    let s = job.run()?;
+    let measure = &opts.measure;
     for n in &s.notes {
         eprintln!("note: {n}");
     }

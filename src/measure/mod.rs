@@ -14,11 +14,13 @@
 
 pub mod levels;
 pub mod metrics;
+mod options;
 pub mod plot;
 pub mod recorder;
 pub mod report;
 
 pub use levels::{levels_table, LEVELS};
+pub use options::{check_plot_extension, file_name, MeasureOptions};
 pub use recorder::{
     check_reference_size, points, read_reference_file, relative_rmse, Checkpoint, Recorder,
 };

@@ -97,6 +97,29 @@ pub fn write_csv(path: &Path, rows: &[ReportRow]) -> Result<()> {
     write_file_atomic(path, format_csv(rows).as_bytes())
 }
 
+/// The "load" (parse + validation, without the acceleration build) and "build" rows.
+pub fn setup_rows(
+    run: &str,
+    load_and_build: std::time::Duration,
+    build: std::time::Duration,
+) -> Vec<ReportRow> {
+    let row = |stage: &str, t: std::time::Duration| ReportRow {
+        run: run.to_string(),
+        stage: stage.to_string(),
+        wall_s: t.as_secs_f64(),
+        samples: 0,
+        passes: 0,
+        rays: 0,
+        photons: 0,
+        error: None,
+        estimate: None,
+    };
+    vec![
+        row("load", load_and_build.saturating_sub(build)),
+        row("build", build),
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

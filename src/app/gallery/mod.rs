@@ -6,7 +6,7 @@
 //!
 //! Each entry is rendered exactly as `iris render FILE --method auto --size WxH --time SECS
 //! --spp 4096 --passes 4096` would: the same app-level function
-//! ([`crate::app::render_command_planned`], called only from [`render_entry`]), the CLI's
+//! ([`crate::app::render_command`], called only from [`render_entry`]), the CLI's
 //! defaults for every other flag (one photon per pixel and pass, ACES tone map, automatic
 //! exposure, the file's camera, lights and environment, else the drop-in preview's framing,
 //! studio and floor), so the plan and the `--method auto` choice shown are the real ones. The time limit is per entry, wall-clock seconds; as in `iris render`, it ends the
@@ -24,7 +24,6 @@
 //! [`crate::output::atomic::write_file_atomic`]); a `--only` pattern that matches no entry
 //! is an error before anything renders; the page lists the entries in [`ENTRIES`] order.
 
-use crate::app::converge::MeasureOptions;
 use crate::app::{self, RenderOptions, RenderSummary};
 use crate::error::{Error, Result};
 use crate::integrator::{Method, PhotonSettings};
@@ -145,13 +144,7 @@ fn render_entry(scene: &Path, output: &Path, opts: &GalleryOptions) -> Result<Re
         quiet: opts.quiet,
         ..RenderOptions::new(scene, Some(output))
     };
-    app::render_command_planned(
-        &render,
-        &MeasureOptions::default(),
-        &app::PreviewOptions::default(),
-        false,
-        &mut |_| {},
-    )
+    app::render_command(&render)
 }
 
 /// `iris gallery`: renders the selected entries into `opts.out` and writes the page.

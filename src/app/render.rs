@@ -1,0 +1,359 @@
+//! `iris render` as a library call: the options ([`RenderOptions`], every flag), the job
+//! between plan and render ([`RenderJob`]: flags checked, scene prepared, plan made), and
+//! the summary ([`RenderSummary`]). Images are linear RGB until written; times are
+//! wall-clock.
+
+use crate::accel::Backend;
+use crate::camera::Camera;
+use crate::error::Result;
+use crate::integrator::{Integrator, Method};
+use crate::measure::{metrics::ErrorMetrics, report::ReportRow, MeasureOptions, Recorder};
+use crate::output::{self, Background, DisplayOptions, ImageRgb};
+use crate::plan::SpectralMode;
+use crate::prepare::input::check_size;
+use crate::preview::PreviewOptions;
+use crate::render::{Control, Progress, RenderSettings, RenderStats};
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+/// Everything `iris render` needs.
+#[derive(Debug, Clone)]
+pub struct RenderOptions {
+    /// Scene file.
+    pub scene: PathBuf,
+    /// Output file (.png or .exr); default `<scene stem>.png` in the current directory.
+    pub output: Option<PathBuf>,
+    /// Image size; default 800 wide with the camera's aspect (or 4:3).
+    pub size: Option<(u32, u32)>,
+    /// Samples per pixel.
+    pub spp: u32,
+    /// Rendering method.
+    pub method: Method,
+    /// Recursion depth limit.
+    pub max_depth: u32,
+    /// `--time`: stop after the round (SPPM: pass) that crosses this wall time (every method;
+    /// at least one sample or pass).
+    pub time_limit: Option<Duration>,
+    /// `--checkpoint K`: write the image at the checkpoints (1, 2, 4, … samples or passes)
+    /// that come at least K samples (passes) after the last write.
+    pub checkpoint: Option<u32>,
+    /// Photon-mapping settings (`--photons`, `--radius`, `--alpha`, `--passes`, …).
+    pub photon: crate::integrator::PhotonSettings,
+    /// Acceleration backend.
+    pub accel: Backend,
+    /// Seed.
+    pub seed: u64,
+    /// Threads (0 = all), at most [`crate::render::MAX_THREADS`].
+    pub threads: usize,
+    /// Camera name or index.
+    pub camera: Option<String>,
+    /// PNG display options.
+    pub display: DisplayOptions,
+    /// No progress bar.
+    pub quiet: bool,
+    /// Environment light from `--env`: `None` = flag not given (use the scene file's
+    /// `iris_environment`, if any), `Some(None)` = `--env none` (no environment, even if
+    /// the file names one), `Some(Some(e))` = use `e` instead of the file's.
+    pub env: Option<Option<crate::light::env::Environment>>,
+    /// `--spectral`: spectral transport always, never, or when the scene needs it.
+    pub spectral: SpectralMode,
+    /// The measuring flags (`--reference`, `--report`, `--plot`, `--target-error`).
+    pub measure: MeasureOptions,
+    /// The drop-in preview choices (`--studio`, `--ground`, `--view`, `--background`).
+    pub preview: PreviewOptions,
+    /// `--explain`: measure the plan's costs before rendering (a 32×24 probe render each
+    /// way and 10 000 photons, [`crate::plan::Plan::measure_costs`]).
+    pub explain: bool,
+}
+
+impl RenderOptions {
+    /// `iris render SCENE -o OUTPUT` with every other flag at the CLI's default (4 spp,
+    /// Whitted, depth 64, no time limit, automatic backend, seed 0, all threads, the
+    /// file's first camera and environment, automatic spectral transport).
+    pub fn new(scene: &Path, output: Option<&Path>) -> RenderOptions {
+        RenderOptions {
+            scene: scene.to_path_buf(),
+            output: output.map(Path::to_path_buf),
+            size: None,
+            spp: 4,
+            method: Method::Whitted,
+            max_depth: 64,
+            time_limit: None,
+            checkpoint: None,
+            photon: crate::integrator::PhotonSettings::default(),
+            accel: Backend::Auto,
+            seed: 0,
+            threads: 0,
+            camera: None,
+            display: DisplayOptions::default(),
+            quiet: false,
+            env: None,
+            spectral: SpectralMode::Auto,
+            measure: MeasureOptions::default(),
+            preview: PreviewOptions::default(),
+            explain: false,
+        }
+    }
+}
+
+/// What a render did, for the one-line summary.
+#[derive(Debug, Clone)]
+pub struct RenderSummary {
+    /// Where the image went.
+    pub output: PathBuf,
+    /// The linear image.
+    pub image: ImageRgb,
+    /// Render figures.
+    pub stats: RenderStats,
+    /// Scene load + validation time.
+    pub load_time: Duration,
+    /// Acceleration build time.
+    pub build_time: Duration,
+    /// Triangles.
+    pub triangles: usize,
+    /// Backend name.
+    pub backend: &'static str,
+    /// Decisions taken for the user and loader warnings.
+    pub notes: Vec<String>,
+    /// Report rows: "load", "build", then one "render" row per checkpoint.
+    pub rows: Vec<ReportRow>,
+    /// Whether `--target-error` stopped the render.
+    pub reached_target: bool,
+    /// The method that rendered (`--method auto` resolved).
+    pub method: Method,
+    /// The render plan the render followed (costs measured with `--explain`).
+    pub plan: crate::plan::Plan,
+}
+
+impl RenderSummary {
+    /// The last checkpoint's error against the reference (with `--reference`).
+    pub fn final_error(&self) -> Option<ErrorMetrics> {
+        self.rows.last().and_then(|r| r.error)
+    }
+
+    /// "12 spp" or "40 passes, 9216000 photons": the work the render did, as `iris render`
+    /// and the gallery print it.
+    pub fn work_done(&self) -> String {
+        let pixels = u64::from(self.image.width) * u64::from(self.image.height);
+        let spp = self.stats.samples / pixels.max(1);
+        match self.method {
+            Method::Sppm => format!(
+                "{} passes, {} photons",
+                self.stats.passes, self.stats.photons
+            ),
+            Method::Photon => format!("{spp} spp, {} photons", self.stats.photons),
+            _ => format!("{spp} spp"),
+        }
+    }
+
+    /// The last checkpoint's half-buffer error estimate.
+    pub fn final_estimate(&self) -> Option<ErrorMetrics> {
+        self.rows.last().and_then(|r| r.estimate)
+    }
+}
+
+impl RenderOptions {
+    /// The scene preparation these options (with their drop-in preview choices) ask for;
+    /// `reference_size` is the `--reference` image's size, used when `--size` is not given.
+    pub fn prepare_options(
+        &self,
+        reference_size: Option<(u32, u32)>,
+    ) -> crate::prepare::PrepareOptions {
+        crate::prepare::PrepareOptions {
+            accel: self.accel,
+            env: self.env.clone(),
+            camera: self.camera.clone(),
+            size: self.size.or(reference_size),
+            preview: self.preview,
+        }
+    }
+}
+
+/// `iris render`: every flag is checked (sizes, bounds, extensions, the reference's file
+/// and size) before rendering; the image, then the CSV, then the plot are written, each
+/// atomically. The same as [`RenderJob::new`] then [`RenderJob::run`].
+pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
+    RenderJob::new(opts)?.run()
+}
+
+/// An `iris render` between its plan and its render: the options checked, the scene
+/// prepared ([`crate::prepare::prepare`]) and the plan made (with costs under
+/// `--explain`), so a caller can show the plan before the render starts.
+pub struct RenderJob<'a> {
+    opts: &'a RenderOptions,
+    output: PathBuf,
+    reference: Option<ImageRgb>,
+    prepared: crate::prepare::Prepared,
+    /// The render plan (method and transport resolved).
+    pub plan: crate::plan::Plan,
+}
+
+impl<'a> RenderJob<'a> {
+    /// Checks every flag, prepares the scene and makes the plan.
+    pub fn new(opts: &'a RenderOptions) -> Result<RenderJob<'a>> {
+        if let Some((w, h)) = opts.size {
+            check_size(w, h)?;
+        }
+        crate::render::check_threads(opts.threads)?;
+        crate::integrator::check_depth(opts.max_depth)?;
+        opts.photon.check()?;
+        let output = match &opts.output {
+            Some(o) => o.clone(),
+            None => {
+                let stem = opts
+                    .scene
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().into_owned());
+                PathBuf::from(format!("{}.png", stem.unwrap_or_else(|| "render".into())))
+            }
+        };
+        output::check_extension(&output)?;
+        let measure = &opts.measure;
+        measure.check_flags()?;
+        let reference = measure
+            .reference
+            .as_deref()
+            .map(crate::measure::read_reference_file)
+            .transpose()?;
+        let prepared = crate::prepare::prepare(
+            &opts.scene,
+            &opts.prepare_options(reference.as_ref().map(|r| (r.width, r.height))),
+        )?;
+        let (w, h) = prepared.size;
+        if let (Some(r), Some(path)) = (&reference, &measure.reference) {
+            crate::measure::check_reference_size(
+                r,
+                path,
+                w,
+                h,
+                &format!("the render of {}", opts.scene.display()),
+            )?;
+        }
+        let mut plan = crate::plan::Plan::new(&prepared.scene, opts.method, opts.spectral);
+        if opts.explain {
+            plan.add_file_counts(&opts.scene);
+            let (pw, ph) = crate::plan::PROBE_SIZE;
+            let probe = Camera::new(&prepared.camera, pw, ph);
+            plan.measure_costs(&prepared.scene, &probe, opts.threads)?;
+        }
+        crate::integrator::check_memory(w, h, plan.method)?;
+        let units = if plan.method == Method::Sppm {
+            opts.photon.passes
+        } else {
+            opts.spp
+        };
+        measure.check_checkpoints(units)?;
+        Ok(RenderJob {
+            opts,
+            output,
+            reference,
+            prepared,
+            plan,
+        })
+    }
+
+    /// Renders through the plan's integrator, writing checkpoints (`--checkpoint`) and the
+    /// image, then the measuring outputs; returns the summary.
+    pub fn run(self) -> Result<RenderSummary> {
+        let RenderJob {
+            opts,
+            output,
+            reference,
+            prepared,
+            plan,
+        } = self;
+        let (scene, (w, h)) = (&prepared.scene, prepared.size);
+        let camera = Camera::new(&prepared.camera, w, h);
+        let method = plan.method;
+        let integrator = Integrator::new(method, opts.max_depth, &opts.photon)?;
+        let settings = RenderSettings {
+            width: w,
+            height: h,
+            spp: opts.spp,
+            seed: opts.seed,
+            threads: opts.threads,
+            quiet: opts.quiet,
+            spectral: plan.spectral,
+            time_limit: opts.time_limit,
+        };
+        let (measure, preview) = (&opts.measure, &opts.preview);
+        let run = method.name();
+        let mut rows =
+            crate::measure::report::setup_rows(run, prepared.load_time, scene.accel_build_time);
+        let mut recorder = Recorder::new(run, reference.as_ref(), measure.target_error);
+        recorder.verbose = !opts.quiet && measure.any();
+        // The units (samples; SPPM: passes) the render takes at most.
+        let units = u64::from(if method == Method::Sppm {
+            opts.photon.passes
+        } else {
+            opts.spp
+        });
+        // `--background`: the coverage of the camera samples (as many as the render will
+        // take at most, up to the pass's cap), computed once before rendering.
+        let coverage = (preview.background != Background::Environment)
+            .then(|| -> Result<_> {
+                Ok(crate::render::thread_pool(&settings)?.install(|| {
+                    crate::render::coverage::coverage(scene, &camera, &settings, units)
+                }))
+            })
+            .transpose()?;
+        let write = |img: &ImageRgb| {
+            output::write_image_with_background(
+                &output,
+                img,
+                coverage.as_ref(),
+                preview.background,
+                &opts.display,
+            )
+        };
+        // `--checkpoint K`: write the image whenever K more samples (passes) are done.
+        let mut last_written = 0u64;
+        let mut observe = |p: &Progress| -> Result<Control> {
+            if let Some(k) = opts.checkpoint {
+                let done = if method == Method::Sppm {
+                    u64::from(p.passes)
+                } else {
+                    p.samples
+                };
+                if !p.done && done >= last_written + u64::from(k) {
+                    write(p.image)?;
+                    last_written = done;
+                }
+            }
+            recorder.observe(p)
+        };
+        let (image, stats) =
+            integrator.render_progressive(scene, &camera, &settings, Some(&mut observe))?;
+        write(&image)?;
+        let reached_target = recorder.reached_target;
+        rows.append(&mut recorder.rows);
+        let measure_notes = measure.write_outputs(&rows, &opts.scene)?;
+        let mut notes: Vec<String> = prepared.notes.iter().map(ToString::to_string).collect();
+        notes.extend(plan.method_note.clone());
+        if settings.spectral {
+            notes.push(match opts.spectral {
+                SpectralMode::On => "spectral transport (--spectral on)".into(),
+                _ => "spectral transport: the scene has dispersive materials or spectral \
+                      lights (--spectral off for RGB)"
+                    .into(),
+            });
+        }
+        notes.extend(prepared.camera_note.as_ref().map(|n| n.to_string()));
+        notes.extend(scene.warnings.iter().cloned());
+        notes.extend(measure_notes);
+        Ok(RenderSummary {
+            output,
+            image,
+            stats,
+            load_time: prepared.load_time,
+            build_time: scene.accel_build_time,
+            triangles: scene.triangle_count(),
+            backend: scene.backend_name(),
+            notes,
+            rows,
+            reached_target,
+            method,
+            plan,
+        })
+    }
+}
