@@ -7,7 +7,6 @@ mod common;
 
 use iris::accel::Backend;
 use iris::app::{render_command, PreviewOptions, RenderOptions, RenderSummary};
-use iris::measure::MeasureOptions;
 use iris::model::cuts::preview::{write_gem, GemSpec};
 use iris::model::cuts::Cut;
 use iris::model::stones::Stone;
