@@ -4,7 +4,7 @@
 //!
 //! - [`metrics`]: RMSE, relative MSE and MAE against a reference, and the half-buffer
 //!   estimate without one (linear RGB, means over pixels and channels, `f64`).
-//! - [`recorder`]: one [`ReportRow`](report::ReportRow) per [`Checkpoint`] of a progressive
+//! - [`recorder`]: one [`ReportRow`](report::ReportRow) per [`Progress`] of a progressive
 //!   render, the `--target-error` stop, the `--reference` file checks.
 //! - [`levels`]: which run reached each error level first (`iris converge`).
 //! - [`report`]: the CSV report; [`plot`]: the error-against-time plot (PNG).
@@ -22,5 +22,5 @@ pub mod report;
 pub use levels::{levels_table, LEVELS};
 pub use options::{check_plot_extension, file_name, MeasureOptions};
 pub use recorder::{
-    check_reference_size, points, read_reference_file, relative_rmse, Checkpoint, Recorder,
+    check_reference_size, points, read_reference_file, relative_rmse, Progress, Recorder,
 };

@@ -1,5 +1,5 @@
-//! Measuring a progressive render: at each [`Checkpoint`] (the renderer's progress as plain
-//! data), the error against a reference (if one was given) and the half-buffer estimate
+//! Measuring a progressive render: at each checkpoint ([`Progress`], what the renderer shows
+//! its observer), the error against a reference (if one was given) and the half-buffer estimate
 //! (always), as [`ReportRow`]s; the `--target-error` stop; and the `--reference` file checks.
 //!
 //! Units: times are wall seconds since rendering started (loading and the acceleration build
@@ -46,15 +46,17 @@ pub fn check_reference_size(
     Ok(())
 }
 
-/// One checkpoint of a progressive render, as the recorder needs it: the images so far and
-/// the work done (the renderer's progress report, field for field).
+/// The state of a render at a checkpoint, shown to an observer
+/// ([`crate::render::Observer`]) and to a [`Recorder`].
 #[derive(Debug, Clone, Copy)]
-pub struct Checkpoint<'a> {
+pub struct Progress<'a> {
     /// The mean of all samples (passes) so far.
     pub image: &'a ImageRgb,
-    /// The means of two independent halves of the samples (passes).
+    /// The means of two independent halves of the samples (even and odd sample indices;
+    /// SPPM: even and odd passes). With a single sample (pass) the second half is empty and
+    /// both are that sample's image, so error estimates from them are 0 then.
     pub halves: (&'a ImageRgb, &'a ImageRgb),
-    /// Wall time since the render started.
+    /// Wall time since the render started (photon map building included).
     pub elapsed: Duration,
     /// Samples per pixel so far (SPPM: passes).
     pub samples: u64,
@@ -64,7 +66,8 @@ pub struct Checkpoint<'a> {
     pub rays: u64,
     /// Photons emitted so far.
     pub photons: u64,
-    /// True on the last call of a render that ended by itself.
+    /// True on the last call of a render that ended by itself (sample, pass or time limit).
+    /// After an observer returns [`crate::render::Control::Stop`] it is not called again.
     pub done: bool,
 }
 
@@ -100,7 +103,7 @@ impl<'a> Recorder<'a> {
 
     /// Records a checkpoint; returns `true` (stop rendering) when the target error is
     /// reached.
-    pub fn record(&mut self, p: &Checkpoint) -> Result<bool> {
+    pub fn record(&mut self, p: &Progress) -> Result<bool> {
         let estimate = half_buffer_estimate(p.halves.0, p.halves.1)?;
         let error = match self.reference {
             Some(r) => Some(compare(p.image, r)?),
@@ -163,7 +166,7 @@ pub fn points(rows: &[ReportRow]) -> Vec<(f64, f64)> {
 /// `path: 16 spp, 3 passes, 1.25 s: estimated relative error 0.081 (vs reference 0.094)`.
 fn checkpoint_line(
     run: &str,
-    p: &Checkpoint,
+    p: &Progress,
     estimate: &ErrorMetrics,
     error: Option<&ErrorMetrics>,
 ) -> String {
@@ -197,7 +200,7 @@ mod tests {
         let (a, b, m) = (img(0.9), img(1.1), img(1.0));
         let reference = img(1.0);
         let mut rec = Recorder::new("path", Some(&reference), Some(0.1));
-        let progress = |done| Checkpoint {
+        let progress = |done| Progress {
             image: &m,
             halves: (&a, &b),
             elapsed: std::time::Duration::from_millis(5),
