@@ -13,8 +13,11 @@
 //!   epsilon.
 //!
 //! ## Pipeline
-//! file → [`scene::desc::SceneDesc`] (loaders in [`load`]) → validation →
-//! immutable [`scene::Scene`] → [`integrator`] via [`render`] → PNG/EXR ([`output`]).
+//! file → [`scene::desc::SceneDesc`] (loaders in [`load`]) → validation → the one
+//! preparation ([`prepare`]: environment, camera, lights, floor written into the
+//! description) → immutable [`scene::Scene`] → the plan ([`plan`], `--method auto`) → an
+//! [`integrator::Integrator`] rendering through the one progressive driver and film
+//! ([`render`]) → PNG/EXR ([`output`]). Commands live in [`app`].
 //!
 //! `unsafe` appears only in `accel/embree/` (the Embree backend).
 #![warn(missing_docs)]

@@ -29,7 +29,7 @@
 //!
 //! The two half images of a render (even/odd samples) are not used as independent
 //! estimates here: the hero wavelengths of successive samples follow one rank-1 lattice
-//! per pixel (`src/render.rs`), so the halves' colour errors are anti-correlated.
+//! per pixel (`src/render/samples.rs`), so the halves' colour errors are anti-correlated.
 //!
 //! Measured (96×72 pixels, 828 on the stone; 64/128/256 spp; Whitted; seed 7; BVH, and
 //! Embree when compiled in; printed with `--nocapture`): median relative chroma with

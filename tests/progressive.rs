@@ -146,7 +146,7 @@ fn path_images_do_not_depend_on_rounds_threads_or_stopping() {
 fn path_image_does_not_depend_on_how_a_time_limit_split_the_rounds() {
     // A time limit may split the doubling rounds into sub-rounds sized to the time left; the
     // image for the N samples taken must equal a plain N-spp render. (Arbitrary splits are
-    // tested deterministically by the unit test in src/render/samples.rs.)
+    // tested deterministically by the unit tests in src/render/samples.rs.)
     let (scene, camera) = grey_sphere();
     let s = RenderSettings {
         time_limit: Some(Duration::from_millis(300)),

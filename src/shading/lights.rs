@@ -8,6 +8,11 @@
 //! Units: `incident` is irradiance at normal incidence (lux-based) for punctual lights, and
 //! radiance / solid-angle pdf for area and environment samples, linear RGB (spectral
 //! transport converts it with [`crate::spectrum::Carrier::emitted`]).
+//!
+//! The lights themselves (punctual, area, environment) are defined in [`crate::light`];
+//! sampling them toward a hit lives here because it needs the built scene and the
+//! intersection layer, which sit above those definitions (`crate::light` must not import
+//! `crate::scene`).
 
 use crate::interaction::SurfaceHit;
 use crate::math::Ray;
