@@ -4,7 +4,7 @@
 //! printed in the file's units (lights: candela / lux, as KHR_lights_punctual).
 
 use crate::accel::Backend;
-use crate::app::SpectralMode;
+use crate::plan::SpectralMode;
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::integrator::Method;

@@ -3,9 +3,9 @@
 //! Units: wall-clock seconds; errors on the linear image.
 
 use crate::error::{Error, Result};
-use crate::measure;
-use crate::measure::plot::{plot_error_vs_time, Series};
-use crate::measure::report::{write_csv, ReportRow};
+use super::recorder::points;
+use super::plot::{plot_error_vs_time, Series};
+use super::report::{write_csv, ReportRow};
 use std::path::{Path, PathBuf};
 
 /// The measuring flags of `iris render`; all off by default.
@@ -64,7 +64,7 @@ impl MeasureOptions {
             write_csv(path, rows)?;
         }
         if let Some(path) = &self.plot {
-            let points = measure::points(rows);
+            let points = points(rows);
             if points.len() < 2 {
                 notes.push(format!(
                     "--plot {}: not written, the render stopped after {} checkpoint(s) (a line needs 2)",

@@ -18,6 +18,9 @@
 //! [`Scene::coincident`]: crate::scene::Scene::coincident
 
 use super::{Scene, TriangleData};
+// An upward import, on purpose: the last step of `Scene::build` marks touching faces with
+// the intersection layer's own merge distance and coincident-surface probe, so build time
+// and render time use one rule (the design card: one layer, one offset rule).
 use crate::interaction::MERGE_SCALE;
 use glam::Vec3;
 use rayon::prelude::*;

@@ -14,6 +14,9 @@
 //! Cost: O(T log T) for T triangles (one sort per bucket and a binary search per triangle).
 
 use super::TriangleData;
+// An upward import, on purpose: the last step of `Scene::build` marks touching faces with
+// the intersection layer's own merge distance and coincident-surface probe, so build time
+// and render time use one rule (the design card: one layer, one offset rule).
 use crate::interaction::{geometric_normal, MERGE_SCALE};
 use glam::{IVec3, Vec3};
 use std::collections::HashMap;
