@@ -2,13 +2,18 @@
 //! KHR values, lights, cameras, the environment, warnings) and the render plan that
 //! `iris render FILE` would follow with default flags, with its costs measured. Values are
 //! printed in the file's units (lights: candela / lux, as KHR_lights_punctual).
+//!
+//! Each section of the text is written by its own function, in the order printed: header,
+//! meshes, materials, lights (with the file's environment), cameras, warnings, render plan.
 
 use crate::accel::Backend;
 use crate::plan::SpectralMode;
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::integrator::Method;
-use crate::scene::desc::{EnvironmentDesc, LightDesc, Projection};
+use crate::scene::desc::{
+    CameraDesc, EnvironmentDesc, LightDesc, MaterialDesc, Projection, SceneDesc,
+};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -16,6 +21,23 @@ use std::path::Path;
 pub fn info_command(path: &Path) -> Result<String> {
     let desc = crate::load::load_scene(path)?;
     let mut s = String::new();
+    write_header(&mut s, path, &desc);
+    write_meshes(&mut s, &desc);
+    write_materials(&mut s, &desc.materials);
+    write_lights(&mut s, &desc);
+    write_cameras(&mut s, &desc.cameras);
+    write_warnings(&mut s, &desc.warnings);
+    match info_plan(path) {
+        Ok(plan) => s.push_str(&plan),
+        Err(e) => {
+            let _ = writeln!(s, "render plan: unavailable ({e})");
+        }
+    }
+    Ok(s)
+}
+
+/// `FILE: N meshes, T triangles`.
+fn write_header(s: &mut String, path: &Path, desc: &SceneDesc) {
     let tris: usize = desc.meshes.iter().map(|m| m.indices.len()).sum();
     let _ = writeln!(
         s,
@@ -24,6 +46,10 @@ pub fn info_command(path: &Path) -> Result<String> {
         desc.meshes.len(),
         tris
     );
+}
+
+/// `meshes:`, one line per mesh: triangle count and material name.
+fn write_meshes(s: &mut String, desc: &SceneDesc) {
     let _ = writeln!(s, "meshes:");
     for m in &desc.meshes {
         let mat = m
@@ -32,52 +58,67 @@ pub fn info_command(path: &Path) -> Result<String> {
             .map_or("default material", |x| &x.name);
         let _ = writeln!(s, "  {}: {} triangles, {}", m.name, m.indices.len(), mat);
     }
+}
+
+/// `materials:`, one line per material ([`write_material`]).
+fn write_materials(s: &mut String, materials: &[MaterialDesc]) {
     let _ = writeln!(s, "materials:");
-    for m in &desc.materials {
-        let ior = crate::material::describe_ior(m);
+    for m in materials {
+        write_material(s, m);
+    }
+}
+
+/// One material's line: the metallic-roughness values, then only the KHR extensions and
+/// Iris extras that differ from their defaults.
+fn write_material(s: &mut String, m: &MaterialDesc) {
+    let ior = crate::material::describe_ior(m);
+    let _ = write!(
+        s,
+        "  {}: base [{:.3} {:.3} {:.3} {:.3}] metallic {} roughness {} ior {} transmission {}",
+        m.name,
+        m.base_color.x,
+        m.base_color.y,
+        m.base_color.z,
+        m.base_color.w,
+        m.metallic,
+        m.roughness,
+        ior,
+        m.transmission
+    );
+    if m.thickness > 0.0 || m.attenuation_distance.is_finite() {
         let _ = write!(
             s,
-            "  {}: base [{:.3} {:.3} {:.3} {:.3}] metallic {} roughness {} ior {} transmission {}",
-            m.name,
-            m.base_color.x,
-            m.base_color.y,
-            m.base_color.z,
-            m.base_color.w,
-            m.metallic,
-            m.roughness,
-            ior,
-            m.transmission
+            " volume(thickness {} attenuation [{:.3} {:.3} {:.3}] over {})",
+            m.thickness,
+            m.attenuation_color.x,
+            m.attenuation_color.y,
+            m.attenuation_color.z,
+            m.attenuation_distance
         );
-        if m.thickness > 0.0 || m.attenuation_distance.is_finite() {
-            let _ = write!(
-                s,
-                " volume(thickness {} attenuation [{:.3} {:.3} {:.3}] over {})",
-                m.thickness,
-                m.attenuation_color.x,
-                m.attenuation_color.y,
-                m.attenuation_color.z,
-                m.attenuation_distance
-            );
-        }
-        if m.priority != 0 {
-            let _ = write!(s, " priority {}", m.priority);
-        }
-        if m.specular != 1.0 || m.specular_color != glam::Vec3::ONE {
-            let _ = write!(
-                s,
-                " specular {} color {:?}",
-                m.specular,
-                m.specular_color.to_array()
-            );
-        }
-        if m.emissive != glam::Vec3::ZERO {
-            let _ = write!(s, " emissive {:?}", m.emissive.to_array());
-        }
-        if let Some(spectrum) = m.emission_spectrum {
-            let _ = write!(s, " {}", spectrum_note(spectrum));
-        }
-        let _ = writeln!(s);
     }
+    if m.priority != 0 {
+        let _ = write!(s, " priority {}", m.priority);
+    }
+    if m.specular != 1.0 || m.specular_color != glam::Vec3::ONE {
+        let _ = write!(
+            s,
+            " specular {} color {:?}",
+            m.specular,
+            m.specular_color.to_array()
+        );
+    }
+    if m.emissive != glam::Vec3::ZERO {
+        let _ = write!(s, " emissive {:?}", m.emissive.to_array());
+    }
+    if let Some(spectrum) = m.emission_spectrum {
+        let _ = write!(s, " {}", spectrum_note(spectrum));
+    }
+    let _ = writeln!(s);
+}
+
+/// `lights:`: the emissive meshes, a note when the file has no light at all, each punctual
+/// light ([`light_line`]) and the file's environment.
+fn write_lights(s: &mut String, desc: &SceneDesc) {
     let _ = writeln!(s, "lights:");
     let emitters = desc
         .meshes
@@ -98,37 +139,7 @@ pub fn info_command(path: &Path) -> Result<String> {
         );
     }
     for l in &desc.lights {
-        let line = match l {
-            LightDesc::Point {
-                name,
-                position,
-                intensity,
-                ..
-            } => format!(
-                "point \"{name}\" {intensity} cd at {:?}",
-                position.to_array()
-            ),
-            LightDesc::Spot {
-                name,
-                position,
-                intensity,
-                outer_cone,
-                ..
-            } => format!(
-                "spot \"{name}\" {intensity} cd at {:?}, outer cone {:.1}°",
-                position.to_array(),
-                outer_cone.to_degrees()
-            ),
-            LightDesc::Directional {
-                name,
-                direction,
-                intensity,
-                ..
-            } => format!(
-                "directional \"{name}\" {intensity} lx toward {:?}",
-                direction.to_array()
-            ),
-        };
+        let line = light_line(l);
         match l.spectrum() {
             Some(spectrum) => {
                 let _ = writeln!(s, "  {line}, {}", spectrum_note(spectrum));
@@ -138,7 +149,47 @@ pub fn info_command(path: &Path) -> Result<String> {
             }
         }
     }
-    match &desc.environment {
+    write_environment(s, desc.environment.as_ref());
+}
+
+/// A punctual light in the file's units: kind, name, intensity (cd or lx) and placement.
+fn light_line(l: &LightDesc) -> String {
+    match l {
+        LightDesc::Point {
+            name,
+            position,
+            intensity,
+            ..
+        } => format!(
+            "point \"{name}\" {intensity} cd at {:?}",
+            position.to_array()
+        ),
+        LightDesc::Spot {
+            name,
+            position,
+            intensity,
+            outer_cone,
+            ..
+        } => format!(
+            "spot \"{name}\" {intensity} cd at {:?}, outer cone {:.1}°",
+            position.to_array(),
+            outer_cone.to_degrees()
+        ),
+        LightDesc::Directional {
+            name,
+            direction,
+            intensity,
+            ..
+        } => format!(
+            "directional \"{name}\" {intensity} lx toward {:?}",
+            direction.to_array()
+        ),
+    }
+}
+
+/// The file's environment (under `lights:`), if it names one.
+fn write_environment(s: &mut String, environment: Option<&EnvironmentDesc>) {
+    match environment {
         Some(EnvironmentDesc::Uniform(c)) => {
             let _ = writeln!(
                 s,
@@ -155,14 +206,19 @@ pub fn info_command(path: &Path) -> Result<String> {
         }
         None => {}
     }
+}
+
+/// `cameras:`, one line per camera (index, name, projection), or how renders frame the
+/// model without one.
+fn write_cameras(s: &mut String, cameras: &[CameraDesc]) {
     let _ = writeln!(s, "cameras:");
-    if desc.cameras.is_empty() {
+    if cameras.is_empty() {
         let _ = writeln!(
             s,
             "  none (renders frame the model automatically; --view front|top|side|threequarter)"
         );
     }
-    for (i, c) in desc.cameras.iter().enumerate() {
+    for (i, c) in cameras.iter().enumerate() {
         let p = match c.projection {
             Projection::Perspective { yfov, .. } => {
                 format!("perspective yfov {:.1}°", yfov.to_degrees())
@@ -171,19 +227,16 @@ pub fn info_command(path: &Path) -> Result<String> {
         };
         let _ = writeln!(s, "  {i} \"{}\": {p}", c.name);
     }
-    if !desc.warnings.is_empty() {
+}
+
+/// `warnings:` and the loader's warnings, only when there are any.
+fn write_warnings(s: &mut String, warnings: &[String]) {
+    if !warnings.is_empty() {
         let _ = writeln!(s, "warnings:");
-        for w in &desc.warnings {
+        for w in warnings {
             let _ = writeln!(s, "  {w}");
         }
     }
-    match info_plan(path) {
-        Ok(plan) => s.push_str(&plan),
-        Err(e) => {
-            let _ = writeln!(s, "render plan: unavailable ({e})");
-        }
-    }
-    Ok(s)
 }
 
 /// The render plan of `iris render SCENE` with default flags (auto method, auto spectral,

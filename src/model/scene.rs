@@ -205,140 +205,165 @@ fn in_unit(x: f32) -> bool {
 }
 
 impl GenScene {
-    /// Checks every value the GLB writer relies on; the error names the element.
+    /// Checks every value the GLB writer relies on; the error names the element. Elements
+    /// are checked in file order: meshes, materials, lights, light extras, camera.
     pub fn validate(&self) -> Result<()> {
         for (i, m) in self.meshes.iter().enumerate() {
-            let el = format!("mesh {i} \"{}\"", m.name);
-            let g = &m.geometry;
-            if g.positions.is_empty() || g.indices.is_empty() {
-                return Err(bad(&el, "no triangles"));
-            }
-            if u32::try_from(g.positions.len()).is_err()
-                || g.indices.len() > (u32::MAX / 3) as usize
-            {
-                return Err(bad(&el, "too many vertices or triangles"));
-            }
-            if !g.normals.is_empty() && g.normals.len() != g.positions.len() {
-                return Err(bad(&el, "normals and positions differ in length"));
-            }
-            if !g.positions.iter().chain(&g.normals).all(|&p| finite3(p)) {
-                return Err(bad(&el, "non-finite position or normal"));
-            }
-            let n = g.positions.len() as u64;
-            if g.indices.iter().flatten().any(|&k| u64::from(k) >= n) {
-                return Err(bad(&el, "vertex index out of range"));
-            }
-            if m.material >= self.materials.len() {
-                return Err(bad(&el, format!("material {} out of range", m.material)));
-            }
-            if m.translation.is_some_and(|t| !finite3(t)) {
-                return Err(bad(&el, "non-finite translation"));
-            }
+            check_mesh(i, m, self.materials.len())?;
         }
         for (i, m) in self.materials.iter().enumerate() {
-            let el = format!("material {i} \"{}\"", m.name);
-            let c = m.base_color;
-            if !(c.is_finite() && c.min_element() >= 0.0 && c.max_element() <= 1.0) {
-                return Err(bad(&el, "base colour outside [0, 1]"));
-            }
-            if !in_unit(m.metallic) || !in_unit(m.roughness) || !m.transmission.is_none_or(in_unit)
-            {
-                return Err(bad(
-                    &el,
-                    "metallic, roughness or transmission outside [0, 1]",
-                ));
-            }
-            if !m.ior.is_none_or(|n| n.is_finite() && n >= 0.0) {
-                return Err(bad(&el, "ior must be finite and ≥ 0"));
-            }
-            if !m.dispersion.is_none_or(|d| d.is_finite() && d >= 0.0) {
-                return Err(bad(&el, "dispersion must be finite and ≥ 0"));
-            }
-            if !m
-                .emissive
-                .is_none_or(|e| e.is_finite() && e.min_element() >= 0.0)
-            {
-                return Err(bad(&el, "emissive radiance must be finite and ≥ 0"));
-            }
-            if let Some(v) = m.volume {
-                let ok = v.thickness.is_finite()
-                    && v.thickness >= 0.0
-                    && v.attenuation_color.is_finite()
-                    && v.attenuation_color.min_element() >= 0.0
-                    && v.attenuation_color.max_element() <= 1.0
-                    && v.attenuation_distance
-                        .is_none_or(|d| d.is_finite() && d > 0.0);
-                if !ok {
-                    return Err(bad(&el, "invalid volume parameters"));
-                }
-            }
+            check_material(i, m)?;
         }
         for (i, l) in self.lights.iter().enumerate() {
-            let (name, color, intensity, pos, dir) = match l {
-                GenLight::Point {
-                    name,
-                    position,
-                    color,
-                    intensity,
-                } => (name, color, intensity, Some(position), None),
-                GenLight::Spot {
-                    name,
-                    position,
-                    direction,
-                    color,
-                    intensity,
-                    inner_cone,
-                    outer_cone,
-                } => {
-                    let ok = inner_cone.is_finite()
-                        && outer_cone.is_finite()
-                        && *inner_cone >= 0.0
-                        && inner_cone < outer_cone
-                        && *outer_cone <= std::f32::consts::FRAC_PI_2;
-                    if !ok {
-                        return Err(bad(
-                            &format!("light {i} \"{name}\""),
-                            "need 0 ≤ inner < outer ≤ π/2",
-                        ));
-                    }
-                    (name, color, intensity, Some(position), Some(direction))
-                }
-                GenLight::Directional {
-                    name,
-                    direction,
-                    color,
-                    intensity,
-                } => (name, color, intensity, None, Some(direction)),
-            };
-            let el = format!("light {i} \"{name}\"");
-            if !(color.is_finite() && color.min_element() >= 0.0) {
-                return Err(bad(&el, "colour must be finite and ≥ 0"));
-            }
-            if !(intensity.is_finite() && *intensity >= 0.0) {
-                return Err(bad(&el, "intensity must be finite and ≥ 0"));
-            }
-            if pos.is_some_and(|p| !finite3(*p)) {
-                return Err(bad(&el, "non-finite position"));
-            }
-            if dir.is_some_and(|d| !(finite3(*d) && d.length_squared() > 0.0)) {
-                return Err(bad(&el, "direction must be finite and non-zero"));
-            }
+            check_light(i, l)?;
         }
         if self.light_extras.len() > self.lights.len() {
             return Err(bad("light extras", "more entries than lights"));
         }
         if let Some(c) = &self.camera {
-            let el = format!("camera \"{}\"", c.name);
-            if !(finite3(c.eye) && finite3(c.target) && finite3(c.up)) {
-                return Err(bad(&el, "non-finite eye, target or up"));
-            }
-            if !(c.yfov.is_finite() && c.yfov > 0.0 && c.yfov < std::f32::consts::PI) {
-                return Err(bad(&el, "yfov must be in (0, π)"));
-            }
-            if !c.aspect.is_none_or(|a| a.is_finite() && a > 0.0) {
-                return Err(bad(&el, "aspect must be finite and > 0"));
-            }
+            check_camera(c)?;
         }
         Ok(())
     }
+}
+
+/// Mesh `i`: triangles present and within u32 counts, normals matching positions, finite
+/// values, indices in range, material `< materials`, finite translation.
+fn check_mesh(i: usize, m: &GenMesh, materials: usize) -> Result<()> {
+    let el = format!("mesh {i} \"{}\"", m.name);
+    let g = &m.geometry;
+    if g.positions.is_empty() || g.indices.is_empty() {
+        return Err(bad(&el, "no triangles"));
+    }
+    if u32::try_from(g.positions.len()).is_err() || g.indices.len() > (u32::MAX / 3) as usize {
+        return Err(bad(&el, "too many vertices or triangles"));
+    }
+    if !g.normals.is_empty() && g.normals.len() != g.positions.len() {
+        return Err(bad(&el, "normals and positions differ in length"));
+    }
+    if !g.positions.iter().chain(&g.normals).all(|&p| finite3(p)) {
+        return Err(bad(&el, "non-finite position or normal"));
+    }
+    let n = g.positions.len() as u64;
+    if g.indices.iter().flatten().any(|&k| u64::from(k) >= n) {
+        return Err(bad(&el, "vertex index out of range"));
+    }
+    if m.material >= materials {
+        return Err(bad(&el, format!("material {} out of range", m.material)));
+    }
+    if m.translation.is_some_and(|t| !finite3(t)) {
+        return Err(bad(&el, "non-finite translation"));
+    }
+    Ok(())
+}
+
+/// Material `i`: factors in their glTF ranges, finite non-negative ior, dispersion and
+/// emission, valid volume parameters.
+fn check_material(i: usize, m: &GenMaterial) -> Result<()> {
+    let el = format!("material {i} \"{}\"", m.name);
+    let c = m.base_color;
+    if !(c.is_finite() && c.min_element() >= 0.0 && c.max_element() <= 1.0) {
+        return Err(bad(&el, "base colour outside [0, 1]"));
+    }
+    if !in_unit(m.metallic) || !in_unit(m.roughness) || !m.transmission.is_none_or(in_unit) {
+        return Err(bad(
+            &el,
+            "metallic, roughness or transmission outside [0, 1]",
+        ));
+    }
+    if !m.ior.is_none_or(|n| n.is_finite() && n >= 0.0) {
+        return Err(bad(&el, "ior must be finite and ≥ 0"));
+    }
+    if !m.dispersion.is_none_or(|d| d.is_finite() && d >= 0.0) {
+        return Err(bad(&el, "dispersion must be finite and ≥ 0"));
+    }
+    if !m
+        .emissive
+        .is_none_or(|e| e.is_finite() && e.min_element() >= 0.0)
+    {
+        return Err(bad(&el, "emissive radiance must be finite and ≥ 0"));
+    }
+    if let Some(v) = m.volume {
+        let ok = v.thickness.is_finite()
+            && v.thickness >= 0.0
+            && v.attenuation_color.is_finite()
+            && v.attenuation_color.min_element() >= 0.0
+            && v.attenuation_color.max_element() <= 1.0
+            && v.attenuation_distance
+                .is_none_or(|d| d.is_finite() && d > 0.0);
+        if !ok {
+            return Err(bad(&el, "invalid volume parameters"));
+        }
+    }
+    Ok(())
+}
+
+/// Light `i`: finite non-negative colour and intensity, finite position, finite non-zero
+/// direction, and for a spot `0 ≤ inner < outer ≤ π/2`.
+fn check_light(i: usize, l: &GenLight) -> Result<()> {
+    let (name, color, intensity, pos, dir) = match l {
+        GenLight::Point {
+            name,
+            position,
+            color,
+            intensity,
+        } => (name, color, intensity, Some(position), None),
+        GenLight::Spot {
+            name,
+            position,
+            direction,
+            color,
+            intensity,
+            inner_cone,
+            outer_cone,
+        } => {
+            let ok = inner_cone.is_finite()
+                && outer_cone.is_finite()
+                && *inner_cone >= 0.0
+                && inner_cone < outer_cone
+                && *outer_cone <= std::f32::consts::FRAC_PI_2;
+            if !ok {
+                return Err(bad(
+                    &format!("light {i} \"{name}\""),
+                    "need 0 ≤ inner < outer ≤ π/2",
+                ));
+            }
+            (name, color, intensity, Some(position), Some(direction))
+        }
+        GenLight::Directional {
+            name,
+            direction,
+            color,
+            intensity,
+        } => (name, color, intensity, None, Some(direction)),
+    };
+    let el = format!("light {i} \"{name}\"");
+    if !(color.is_finite() && color.min_element() >= 0.0) {
+        return Err(bad(&el, "colour must be finite and ≥ 0"));
+    }
+    if !(intensity.is_finite() && *intensity >= 0.0) {
+        return Err(bad(&el, "intensity must be finite and ≥ 0"));
+    }
+    if pos.is_some_and(|p| !finite3(*p)) {
+        return Err(bad(&el, "non-finite position"));
+    }
+    if dir.is_some_and(|d| !(finite3(*d) && d.length_squared() > 0.0)) {
+        return Err(bad(&el, "direction must be finite and non-zero"));
+    }
+    Ok(())
+}
+
+/// The camera: finite look-at frame, `yfov` in (0, π), finite positive aspect.
+fn check_camera(c: &GenCamera) -> Result<()> {
+    let el = format!("camera \"{}\"", c.name);
+    if !(finite3(c.eye) && finite3(c.target) && finite3(c.up)) {
+        return Err(bad(&el, "non-finite eye, target or up"));
+    }
+    if !(c.yfov.is_finite() && c.yfov > 0.0 && c.yfov < std::f32::consts::PI) {
+        return Err(bad(&el, "yfov must be in (0, π)"));
+    }
+    if !c.aspect.is_none_or(|a| a.is_finite() && a > 0.0) {
+        return Err(bad(&el, "aspect must be finite and > 0"));
+    }
+    Ok(())
 }

@@ -15,7 +15,7 @@ use crate::error::{Error, Result};
 use crate::integrator::{Integrator, Method, PhotonSettings};
 use crate::measure::file_name;
 use crate::measure::plot::{plot_error_vs_time, Series};
-use crate::measure::report::{setup_rows, write_csv};
+use crate::measure::report::{setup_rows, write_csv, ReportRow};
 use crate::measure::{self, Recorder};
 use crate::output::{self, DisplayOptions, ImageRgb};
 use crate::plan::SpectralMode;
@@ -124,6 +124,8 @@ const UNBOUNDED_SPP: u32 = 1_000_000;
 const UNBOUNDED_PASSES: u32 = 10_000_000;
 /// Seed offset of a rendered reference, so its noise is independent of the runs'.
 const REFERENCE_SEED: u64 = 0x5EED_0F2E_FE2E_7C00;
+/// One run's error curve: its label and its (seconds, relative RMSE) points.
+type Curve = (String, Vec<(f64, f64)>);
 
 /// `iris converge`: renders the scene with each method for the same time budget, writes
 /// DIR/<method>.exr and .png, DIR/report.csv (every checkpoint of every run, run = method)
@@ -134,13 +136,7 @@ const REFERENCE_SEED: u64 = 0x5EED_0F2E_FE2E_7C00;
 /// (SPPM when the scene has caustic paths, the path tracer otherwise) on an independent
 /// seed, and writes it to DIR/reference.exr.
 pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
-    if opts.methods.is_empty() {
-        return Err(Error::Usage("--methods: name at least one method".into()));
-    }
-    if let Some((w, h)) = opts.size {
-        crate::prepare::input::check_size(w, h)?;
-    }
-    crate::render::check_threads(opts.threads)?;
+    check_flags(opts)?;
     let given_reference = opts
         .reference
         .as_deref()
@@ -158,14 +154,67 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
         prepared.size,
         prepared.load_time,
     );
-    // The reference's method (without --reference) and every run's fit in memory.
+    // The reference's method (without --reference).
     let reference_method = given_reference
         .is_none()
         .then(|| crate::plan::resolve_method(Method::Auto, &scene).0);
+    check_fit(opts, given_reference.as_ref(), reference_method, (w, h))?;
+    let job = Job::new(opts, &scene, Camera::new(&cam_desc, w, h), (w, h));
+    let mut files = Vec::new();
+    let (reference, rendered_reference) = match given_reference {
+        Some(r) => (r, None),
+        None => {
+            // Always `Some` without a reference.
+            let method = reference_method.unwrap_or(Method::Sppm);
+            let (image, path) = render_reference(opts, &job, method)?;
+            files.push(path.clone());
+            (image, Some((method, path)))
+        }
+    };
+    let mut rows = setup_rows("scene", load_time, scene.accel_build_time);
+    let mut runs = Vec::new();
+    let mut curves = Vec::new();
+    for &method in &opts.methods {
+        let (run, curve) = run_method(opts, &job, method, &reference, &mut files, &mut rows)?;
+        runs.push(run);
+        curves.push(curve);
+    }
+    files.push(write_report(opts, &rows)?);
+    files.push(write_plot(opts, &curves)?);
+    Ok(ConvergeSummary {
+        notes,
+        files,
+        rendered_reference,
+        runs,
+        table: measure::levels_table(&curves),
+    })
+}
+
+/// The flags checked before any file is read: at least one method, a valid `--size`, a
+/// valid `--threads`.
+fn check_flags(opts: &ConvergeOptions) -> Result<()> {
+    if opts.methods.is_empty() {
+        return Err(Error::Usage("--methods: name at least one method".into()));
+    }
+    if let Some((w, h)) = opts.size {
+        crate::prepare::input::check_size(w, h)?;
+    }
+    crate::render::check_threads(opts.threads)
+}
+
+/// Checks, before anything is rendered, that every run (and the reference's, rendered
+/// with `reference_method`) fits in memory at `(w, h)`, then that a given reference has
+/// that size.
+fn check_fit(
+    opts: &ConvergeOptions,
+    given_reference: Option<&ImageRgb>,
+    reference_method: Option<Method>,
+    (w, h): (u32, u32),
+) -> Result<()> {
     for m in opts.methods.iter().chain(reference_method.as_ref()) {
         crate::integrator::check_memory(w, h, *m)?;
     }
-    if let (Some(r), Some(path)) = (&given_reference, &opts.reference) {
+    if let (Some(r), Some(path)) = (given_reference, &opts.reference) {
         measure::check_reference_size(
             r,
             path,
@@ -174,73 +223,75 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
             &format!("--size of {}", opts.scene.display()),
         )?;
     }
-    let job = Job {
-        scene: &scene,
-        camera: Camera::new(&cam_desc, w, h),
-        base: RenderSettings {
-            width: w,
-            height: h,
-            spp: UNBOUNDED_SPP,
-            seed: opts.seed,
-            threads: opts.threads,
-            quiet: opts.quiet,
-            spectral: SpectralMode::Auto.resolve(&scene),
-            time_limit: Some(opts.time),
-        },
-    };
-    let display = DisplayOptions::default();
-    let mut files = Vec::new();
-    let mut rendered_reference = None;
-    let reference = match given_reference {
-        Some(r) => r,
-        None => {
-            // Always `Some` without a reference.
-            let method = reference_method.unwrap_or(Method::Sppm);
-            if !opts.quiet {
-                eprintln!(
-                    "iris converge: no --reference: rendering one with {} for {:.1} s (4× the budget)",
-                    method.name(),
-                    4.0 * opts.time.as_secs_f64()
-                );
-            }
-            let mut settings = job.base.clone();
-            settings.seed ^= REFERENCE_SEED;
-            settings.time_limit = Some(opts.time * 4);
-            let (image, _) = job.run(method, &settings, None)?;
-            let path = opts.out_dir.join("reference.exr");
-            output::write_image(&path, &image, &display)?;
-            files.push(path.clone());
-            rendered_reference = Some((method, path));
-            image
-        }
-    };
-    let mut rows = setup_rows("scene", load_time, scene.accel_build_time);
-    let mut runs = Vec::new();
-    let mut curves = Vec::new();
-    for &method in &opts.methods {
-        let name = method.name();
-        let mut recorder = Recorder::new(name, Some(&reference), None);
-        recorder.verbose = !opts.quiet;
-        let mut observe = |p: &Progress| -> Result<Control> { recorder.observe(p) };
-        let (image, stats) = job.run(method, &job.base, Some(&mut observe))?;
-        for ext in ["exr", "png"] {
-            let path = opts.out_dir.join(format!("{name}.{ext}"));
-            output::write_image(&path, &image, &display)?;
-            files.push(path);
-        }
-        let last = crate::measure::metrics::compare(&image, &reference)?;
-        runs.push(RunSummary {
-            name: name.to_string(),
-            stats,
-            spp: recorder.rows.last().map_or(0, |r| r.samples),
-            relative_error: measure::relative_rmse(&last),
-        });
-        curves.push((name.to_string(), recorder.points()));
-        rows.append(&mut recorder.rows);
+    Ok(())
+}
+
+/// Renders the reference with `method` for 4× the budget on an independent seed and
+/// writes it to DIR/reference.exr; returns the image and that path.
+fn render_reference(
+    opts: &ConvergeOptions,
+    job: &Job,
+    method: Method,
+) -> Result<(ImageRgb, PathBuf)> {
+    if !opts.quiet {
+        eprintln!(
+            "iris converge: no --reference: rendering one with {} for {:.1} s (4× the budget)",
+            method.name(),
+            4.0 * opts.time.as_secs_f64()
+        );
     }
+    let mut settings = job.base.clone();
+    settings.seed ^= REFERENCE_SEED;
+    settings.time_limit = Some(opts.time * 4);
+    let (image, _) = job.run(method, &settings, None)?;
+    let path = opts.out_dir.join("reference.exr");
+    output::write_image(&path, &image, &DisplayOptions::default())?;
+    Ok((image, path))
+}
+
+/// One method's run for the time budget, measured against `reference` at every
+/// checkpoint: writes DIR/<method>.exr and .png (added to `files`), appends its checkpoint
+/// rows to `rows`, and returns its summary and its error curve (label, points).
+fn run_method(
+    opts: &ConvergeOptions,
+    job: &Job,
+    method: Method,
+    reference: &ImageRgb,
+    files: &mut Vec<PathBuf>,
+    rows: &mut Vec<ReportRow>,
+) -> Result<(RunSummary, Curve)> {
+    let name = method.name();
+    let mut recorder = Recorder::new(name, Some(reference), None);
+    recorder.verbose = !opts.quiet;
+    let mut observe = |p: &Progress| -> Result<Control> { recorder.observe(p) };
+    let (image, stats) = job.run(method, &job.base, Some(&mut observe))?;
+    let display = DisplayOptions::default();
+    for ext in ["exr", "png"] {
+        let path = opts.out_dir.join(format!("{name}.{ext}"));
+        output::write_image(&path, &image, &display)?;
+        files.push(path);
+    }
+    let last = crate::measure::metrics::compare(&image, reference)?;
+    let run = RunSummary {
+        name: name.to_string(),
+        stats,
+        spp: recorder.rows.last().map_or(0, |r| r.samples),
+        relative_error: measure::relative_rmse(&last),
+    };
+    let curve = (name.to_string(), recorder.points());
+    rows.append(&mut recorder.rows);
+    Ok((run, curve))
+}
+
+/// Writes DIR/report.csv (every row) and returns its path.
+fn write_report(opts: &ConvergeOptions, rows: &[ReportRow]) -> Result<PathBuf> {
     let report = opts.out_dir.join("report.csv");
-    write_csv(&report, &rows)?;
-    files.push(report);
+    write_csv(&report, rows)?;
+    Ok(report)
+}
+
+/// Writes DIR/convergence.png (one line per run) and returns its path.
+fn write_plot(opts: &ConvergeOptions, curves: &[Curve]) -> Result<PathBuf> {
     let plot = opts.out_dir.join("convergence.png");
     let series: Vec<Series> = curves
         .iter()
@@ -259,14 +310,7 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
         "relative RMSE against the reference",
         &series,
     )?;
-    files.push(plot);
-    Ok(ConvergeSummary {
-        notes,
-        files,
-        rendered_reference,
-        runs,
-        table: measure::levels_table(&curves),
-    })
+    Ok(plot)
 }
 
 /// Creates the output directory and proves it writable (a probe file, removed again), so a
@@ -289,7 +333,28 @@ struct Job<'a> {
     base: RenderSettings,
 }
 
-impl Job<'_> {
+impl<'a> Job<'a> {
+    /// The runs' settings: `size`, unbounded samples stopped by the time budget, the
+    /// runs' seed, the spectral mode `--spectral auto` picks for `scene`.
+    fn new(opts: &ConvergeOptions, scene: &'a Scene, camera: Camera, (w, h): (u32, u32)) -> Self {
+        Job {
+            scene,
+            camera,
+            base: RenderSettings {
+                width: w,
+                height: h,
+                spp: UNBOUNDED_SPP,
+                seed: opts.seed,
+                threads: opts.threads,
+                quiet: opts.quiet,
+                spectral: SpectralMode::Auto.resolve(scene),
+                time_limit: Some(opts.time),
+            },
+        }
+    }
+
+    /// Renders with `method` and `settings` (the budget stops it), reporting progress to
+    /// `observer`.
     fn run(
         &self,
         method: Method,
