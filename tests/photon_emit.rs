@@ -40,6 +40,11 @@ fn scene(extra: Vec<MeshDesc>, materials: Vec<MaterialDesc>) -> Scene {
     scene_with_images(extra, materials, vec![])
 }
 
+/// [`scene`]'s validated description, to build with exact lights ([`with_lights`]).
+fn scene_desc(extra: Vec<MeshDesc>, materials: Vec<MaterialDesc>) -> SceneDesc {
+    desc_under(extra, materials, vec![], None)
+}
+
 fn scene_with_images(
     extra: Vec<MeshDesc>,
     materials: Vec<MaterialDesc>,
@@ -51,10 +56,20 @@ fn scene_with_images(
 /// The disc scene with `extra` meshes, lit only by its emitters and the environment `env`.
 fn scene_under(
     extra: Vec<MeshDesc>,
-    mut materials: Vec<MaterialDesc>,
+    materials: Vec<MaterialDesc>,
     images: Vec<ImageDesc>,
     env: Option<Environment>,
 ) -> Scene {
+    with_lights(desc_under(extra, materials, images, env), vec![])
+}
+
+/// [`scene_under`]'s validated description.
+fn desc_under(
+    extra: Vec<MeshDesc>,
+    mut materials: Vec<MaterialDesc>,
+    images: Vec<ImageDesc>,
+    env: Option<Environment>,
+) -> SceneDesc {
     materials.insert(0, MaterialDesc::default());
     let mut meshes = vec![quad(0.0, 1.0, false, 0)];
     meshes.extend(extra);
@@ -66,17 +81,12 @@ fn scene_under(
         environment_light: env,
         ..Default::default()
     };
-    let desc = iris::scene::validate::validate(desc).expect("valid scene");
-    let mut s = Scene::build(desc, iris::accel::Backend::Bvh).expect("build");
-    s.lights.clear();
-    s.light_shapes.clear();
-    s
+    iris::scene::validate::validate(desc).expect("valid scene")
 }
 
-fn with_lights(mut s: Scene, lights: Vec<Light>) -> Scene {
-    s.light_shapes = vec![None; lights.len()];
-    s.lights = lights;
-    s
+/// The scene of `desc` with exactly the punctual `lights` (no default lights), built once.
+fn with_lights(desc: SceneDesc, lights: Vec<Light>) -> Scene {
+    Scene::build_with_lights(desc, iris::accel::Backend::Bvh, lights).expect("build")
 }
 
 fn emitter(le: Vec3, double_sided: bool) -> MaterialDesc {
@@ -158,7 +168,7 @@ fn point_light_flux_is_4_pi_i() {
     let i = Vec3::new(10.0, 20.0, 5.0);
     let pos = Vec3::new(0.2, 1.5, -0.3);
     let s = with_lights(
-        scene(vec![], vec![]),
+        scene_desc(vec![], vec![]),
         vec![Light::Point {
             position: pos,
             intensity: i,
@@ -189,7 +199,7 @@ fn spot_light_stays_in_its_cone_with_t_squared_falloff() {
     let (ci, co) = (inner.cos(), outer.cos());
     let axis = Vec3::new(0.3, -1.0, 0.2).normalize();
     let s = with_lights(
-        scene(vec![], vec![]),
+        scene_desc(vec![], vec![]),
         vec![Light::Spot {
             position: Vec3::new(0.0, 2.0, 0.0),
             direction: axis,
@@ -252,7 +262,7 @@ fn directional_light_starts_on_a_disc_upstream() {
     let ill = Vec3::new(3.0, 2.0, 1.0);
     let dir = Vec3::new(1.0, -2.0, 0.5).normalize();
     let s = with_lights(
-        scene(vec![quad(1.0, 0.3, true, 0)], vec![]),
+        scene_desc(vec![quad(1.0, 0.3, true, 0)], vec![]),
         vec![Light::Directional {
             direction: dir,
             illuminance: ill,
@@ -459,7 +469,7 @@ fn environment_map_flux_matches_quadrature() {
 #[test]
 fn mixed_lights_are_chosen_by_luminance() {
     let le = Vec3::new(1.0, 1.0, 1.0);
-    let base = scene_under(
+    let base = desc_under(
         vec![quad(1.8, 0.2, true, 1)],
         vec![emitter(le, false)],
         vec![],
@@ -541,7 +551,7 @@ fn mixed_lights_are_chosen_by_luminance() {
 #[test]
 fn no_light_means_empty() {
     let s = with_lights(
-        scene(vec![], vec![]),
+        scene_desc(vec![], vec![]),
         vec![Light::Point {
             position: Vec3::ONE,
             intensity: Vec3::ZERO,

@@ -7,10 +7,10 @@
 //! meshes, materials, lights (with the file's environment), cameras, warnings, render plan.
 
 use crate::accel::Backend;
-use crate::plan::SpectralMode;
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::integrator::Method;
+use crate::plan::SpectralMode;
 use crate::scene::desc::{
     CameraDesc, EnvironmentDesc, LightDesc, MaterialDesc, Projection, SceneDesc,
 };

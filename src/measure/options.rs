@@ -2,10 +2,10 @@
 //! `--target-error`): what they ask for and their checks, made before anything renders.
 //! Units: wall-clock seconds; errors on the linear image.
 
-use crate::error::{Error, Result};
-use super::recorder::points;
 use super::plot::{plot_error_vs_time, Series};
+use super::recorder::points;
 use super::report::{write_csv, ReportRow};
+use crate::error::{Error, Result};
 use std::path::{Path, PathBuf};
 
 /// The measuring flags of `iris render`; all off by default.

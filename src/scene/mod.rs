@@ -106,6 +106,30 @@ impl Scene {
     /// ([`lighting::light_if_unlit`]).
     pub fn build(mut desc: SceneDesc, backend: Backend) -> Result<Scene> {
         lighting::light_if_unlit(&mut desc);
+        let lights = lighting::render_lights(&desc);
+        Scene::build_lit(desc, backend, lights)
+    }
+
+    /// Builds the render scene from a **validated** description with exactly these
+    /// punctual lights in render terms (and no spectral shapes), instead of the ones the
+    /// description implies, and no default lights: for tests and tools that place lights
+    /// by their render values (candela, lux, unit directions), which
+    /// [`crate::scene::desc::LightDesc`]'s unit conversions would round.
+    pub fn build_with_lights(
+        desc: SceneDesc,
+        backend: Backend,
+        lights: Vec<Light>,
+    ) -> Result<Scene> {
+        let shapes = vec![None; lights.len()];
+        Scene::build_lit(desc, backend, (lights, shapes))
+    }
+
+    /// [`Scene::build`] with the punctual lights already decided.
+    fn build_lit(
+        mut desc: SceneDesc,
+        backend: Backend,
+        (lights, light_shapes): (Vec<Light>, Vec<Option<EmitterShape>>),
+    ) -> Result<Scene> {
         let g = Geometry::gather(&desc);
         let mut materials: Vec<Material> = std::mem::take(&mut desc.materials)
             .into_iter()
@@ -120,7 +144,6 @@ impl Scene {
             let mat = &materials[m as usize];
             (mat.emission(), mat.desc.double_sided)
         });
-        let (lights, light_shapes) = lighting::render_lights(&desc);
         let mut warnings = desc.warnings;
         if let Some(Environment::Map(m)) = &desc.environment_light {
             warnings.extend(m.warnings().iter().cloned());
