@@ -8,54 +8,31 @@
 //! studio ([`crate::studio`]) or default lights, floor ([`crate::studio::ground`]), build.
 //! Units: the file's (metres for glTF); frames: world space, +Y up.
 
-use crate::accel::Backend;
 use crate::error::{Error, Result};
 use crate::framing::{frame_points, View};
 use crate::output::Background;
-use crate::scene::desc::{CameraDesc, EnvironmentDesc};
+use crate::scene::desc::CameraDesc;
 use crate::scene::Scene;
-use crate::studio::ground::{self, Floor};
+use crate::studio::ground;
 use glam::Vec3;
 use std::path::Path;
-use std::time::{Duration, Instant};
-
-/// Loads and builds `path` with the `--ground` floor added to the description before the
-/// build (the scene's `subject_bounds` stay those of the file's geometry), without the
-/// environment (returned as the file names it). Returns the floor decision too.
-pub fn load_for_preview(
-    path: &Path,
-    accel: Backend,
-    ground: crate::studio::GroundMode,
-) -> Result<(Scene, Option<EnvironmentDesc>, Duration, Floor)> {
-    let start = Instant::now();
-    let mut desc = crate::load::load_scene(path)?;
-    let env = desc.environment.take();
-    let (add, floor) = ground::decide(&desc, ground);
-    if add {
-        ground::add_ground(&mut desc);
-    }
-    let scene = Scene::build(desc, accel)?;
-    Ok((scene, env, start.elapsed(), floor))
-}
 
 /// The vertices automatic framing fits in a built scene: the file's own, without a
 /// `--ground` floor ([`crate::studio::ground::GROUND_MESH`]).
-fn subject_points(scene: &Scene) -> std::borrow::Cow<'_, [Vec3]> {
+fn subject_points(scene: &Scene) -> Vec<Vec3> {
     let ground = scene
         .meshes
         .iter()
         .position(|m| m.name == ground::GROUND_MESH);
     match ground {
-        None => std::borrow::Cow::Borrowed(&scene.positions),
-        Some(g) => std::borrow::Cow::Owned(
-            scene
-                .triangles
-                .iter()
-                .zip(&scene.triangle_mesh)
-                .filter(|(_, &m)| m as usize != g)
-                .flat_map(|(t, _)| t.iter().map(|&i| scene.positions[i as usize]))
-                .collect(),
-        ),
+        None => scene.positions.clone(),
+        Some(g) => scene
+            .triangles
+            .iter()
+            .zip(&scene.triangle_mesh)
+            .filter(|(_, &m)| m as usize != g)
+            .flat_map(|(t, _)| t.iter().map(|&i| scene.positions[i as usize]))
+            .collect(),
     }
 }
 
@@ -92,11 +69,10 @@ pub fn choose_camera_view(
     view: Option<View>,
     aspect: f32,
 ) -> Result<(CameraDesc, Option<AutoCamera>)> {
-    let subject = subject_points(scene);
     choose_camera_in(
         &scene.cameras,
         &scene.source,
-        &subject,
+        || subject_points(scene),
         choice,
         view,
         aspect,
@@ -104,13 +80,14 @@ pub fn choose_camera_view(
 }
 
 /// Picks one of `cameras` (of the file `source`) by name or index, or frames the points
-/// `subject` (the model's own vertices) when there is none. With `--view` the model is
+/// `subject()` returns (the model's own vertices; gathered only when framing) when there is
+/// none. With `--view` the model is
 /// framed automatically ([`crate::framing`]) even when the file has cameras; it cannot be
 /// combined with `--camera`.
 pub fn choose_camera_in(
     cameras: &[CameraDesc],
     source: &Path,
-    subject: &[Vec3],
+    subject: impl FnOnce() -> Vec<Vec3>,
     choice: Option<&str>,
     view: Option<View>,
     aspect: f32,
@@ -126,13 +103,13 @@ pub fn choose_camera_in(
             view: v,
             over_file_camera: !cameras.is_empty(),
         };
-        return Ok((frame_points(subject, v, aspect), Some(note)));
+        return Ok((frame_points(&subject(), v, aspect), Some(note)));
     }
     let Some(c) = choice else {
         return Ok(match cameras.first() {
             Some(cam) => (cam.clone(), None),
             None => (
-                frame_points(subject, View::default(), aspect),
+                frame_points(&subject(), View::default(), aspect),
                 Some(AutoCamera::NoCamera),
             ),
         });

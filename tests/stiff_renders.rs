@@ -28,6 +28,8 @@
 //!   1e9 equals clear glass to 1e-5.
 
 mod common;
+
+use common::mesh;
 #[allow(dead_code)]
 #[path = "load_gltf/fixtures.rs"]
 mod fixtures;
@@ -40,23 +42,12 @@ use iris::light::env::Environment;
 use iris::model::shapes::{checkerboard, cuboid, ground_plane, icosphere, quarter_turn_x, TriMesh};
 use iris::output::ImageRgb;
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
+use iris::scene::desc::{CameraDesc, LightDesc, MaterialDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 use serde_json::json;
 
 /// Pixel count of the images (48 × 48): enough for silhouettes, fast in release.
 const SIZE: u32 = 48;
-
-fn mesh(name: &str, m: TriMesh, material: usize) -> MeshDesc {
-    MeshDesc {
-        name: name.into(),
-        positions: m.positions,
-        normals: m.normals,
-        indices: m.indices,
-        material: Some(material),
-        ..Default::default()
-    }
-}
 
 fn build(desc: SceneDesc, backend: Backend, env: Option<f32>) -> Scene {
     let desc = SceneDesc {

@@ -182,14 +182,26 @@ fn ground_auto_on_for_a_bare_stone_off_for_a_scene_with_a_floor() {
     assert!(!ground::decide(&bare, GroundMode::Off).0);
     // The auto floor is framed out of the camera's bounds: the scene bounds grow, the
     // subject bounds stay the stone's.
-    let (scene, _, _, note) = iris::app::load_for_preview(
+    let prepared = iris::prepare::prepare(
         &dir.join("bare_diamond.glb"),
-        Backend::Bvh,
-        GroundMode::Auto,
+        &iris::prepare::PrepareOptions {
+            accel: Backend::Bvh,
+            preview: PreviewOptions {
+                ground: GroundMode::Auto,
+                ..PreviewOptions::default()
+            },
+            ..Default::default()
+        },
     )
-    .expect("load");
-    let note = Note::Floor(note).to_string();
+    .expect("prepare");
+    let note = prepared
+        .notes
+        .iter()
+        .find(|n| matches!(n, Note::Floor(_)))
+        .map(ToString::to_string)
+        .unwrap_or_default();
     assert!(note.contains("white floor added"), "{note}");
+    let scene = &prepared.scene;
     let size = |b: (glam::Vec3, glam::Vec3)| (b.1 - b.0).length();
     assert!(size(scene.bounds) > 10.0 * size(scene.subject_bounds));
     assert_eq!(

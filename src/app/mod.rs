@@ -14,10 +14,8 @@ pub mod render;
 pub use crate::measure::MeasureOptions;
 pub use crate::plan::SpectralMode;
 pub use crate::prepare::default_preview_scene;
-pub use crate::prepare::input::{
-    check_size, default_size, load, load_with_environment, resolve_environment, MAX_PIXELS,
-};
-pub use crate::preview::{choose_camera, choose_camera_view, load_for_preview, PreviewOptions};
+pub use crate::prepare::input::{check_size, default_size, load, resolve_environment, MAX_PIXELS};
+pub use crate::preview::{choose_camera, choose_camera_view, PreviewOptions};
 pub use diff::{diff_command, DiffSummary};
 pub use info::info_command;
 pub use render::{render_command, RenderJob, RenderOptions, RenderSummary};

@@ -94,6 +94,30 @@ impl RenderOptions {
             explain: false,
         }
     }
+
+    /// The scene preparation these options (with their drop-in preview choices) ask for;
+    /// `reference_size` is the `--reference` image's size, used when `--size` is not given.
+    pub fn prepare_options(
+        &self,
+        reference_size: Option<(u32, u32)>,
+    ) -> crate::prepare::PrepareOptions {
+        crate::prepare::PrepareOptions {
+            accel: self.accel,
+            env: self.env.clone(),
+            camera: self.camera.clone(),
+            size: self.size.or(reference_size),
+            preview: self.preview,
+        }
+    }
+
+    /// The most units `method` takes: samples per pixel, or passes for SPPM.
+    fn units(&self, method: Method) -> u32 {
+        if method == Method::Sppm {
+            self.photon.passes
+        } else {
+            self.spp
+        }
+    }
 }
 
 /// What a render did, for the one-line summary.
@@ -149,23 +173,6 @@ impl RenderSummary {
     /// The last checkpoint's half-buffer error estimate.
     pub fn final_estimate(&self) -> Option<ErrorMetrics> {
         self.rows.last().and_then(|r| r.estimate)
-    }
-}
-
-impl RenderOptions {
-    /// The scene preparation these options (with their drop-in preview choices) ask for;
-    /// `reference_size` is the `--reference` image's size, used when `--size` is not given.
-    pub fn prepare_options(
-        &self,
-        reference_size: Option<(u32, u32)>,
-    ) -> crate::prepare::PrepareOptions {
-        crate::prepare::PrepareOptions {
-            accel: self.accel,
-            env: self.env.clone(),
-            camera: self.camera.clone(),
-            size: self.size.or(reference_size),
-            preview: self.preview,
-        }
     }
 }
 
@@ -237,12 +244,7 @@ impl<'a> RenderJob<'a> {
             plan.measure_costs(&prepared.scene, &probe, opts.threads)?;
         }
         crate::integrator::check_memory(w, h, plan.method)?;
-        let units = if plan.method == Method::Sppm {
-            opts.photon.passes
-        } else {
-            opts.spp
-        };
-        measure.check_checkpoints(units)?;
+        measure.check_checkpoints(opts.units(plan.method))?;
         Ok(RenderJob {
             opts,
             output,
@@ -282,12 +284,7 @@ impl<'a> RenderJob<'a> {
             crate::measure::report::setup_rows(run, prepared.load_time, scene.accel_build_time);
         let mut recorder = Recorder::new(run, reference.as_ref(), measure.target_error);
         recorder.verbose = !opts.quiet && measure.any();
-        // The units (samples; SPPM: passes) the render takes at most.
-        let units = u64::from(if method == Method::Sppm {
-            opts.photon.passes
-        } else {
-            opts.spp
-        });
+        let units = u64::from(opts.units(method));
         // `--background`: the coverage of the camera samples (as many as the render will
         // take at most, up to the pass's cap), computed once before rendering.
         let coverage = (preview.background != Background::Environment)
@@ -306,18 +303,14 @@ impl<'a> RenderJob<'a> {
                 &opts.display,
             )
         };
-        // `--checkpoint K`: write the image whenever K more samples (passes) are done.
+        // `--checkpoint K`: write the image whenever K more units (samples, or SPPM passes:
+        // the driver counts either in `Progress::samples`) are done.
         let mut last_written = 0u64;
         let mut observe = |p: &Progress| -> Result<Control> {
             if let Some(k) = opts.checkpoint {
-                let done = if method == Method::Sppm {
-                    u64::from(p.passes)
-                } else {
-                    p.samples
-                };
-                if !p.done && done >= last_written + u64::from(k) {
+                if !p.done && p.samples >= last_written + u64::from(k) {
                     write(p.image)?;
-                    last_written = done;
+                    last_written = p.samples;
                 }
             }
             recorder.observe(p)

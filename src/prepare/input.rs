@@ -15,22 +15,15 @@ use std::time::{Duration, Instant};
 /// allocating; SPPM is further limited by [`crate::integrator::check_memory`].
 pub const MAX_PIXELS: u64 = 1 << 26;
 
-/// Loads, validates and builds a scene.
+/// Loads, validates and builds a scene as the file describes it, without its environment
+/// (`iris_environment`: the preparation decides it, [`resolve_environment`]) and without any
+/// drop-in decision: for tools, benches and tests. Returns the load-and-build time.
 pub fn load(path: &Path, accel: Backend) -> Result<(Scene, Duration)> {
-    let (scene, _, time) = load_with_environment(path, accel)?;
-    Ok((scene, time))
-}
-
-/// Like [`load`], also returning the environment the file names (`iris_environment`).
-pub fn load_with_environment(
-    path: &Path,
-    accel: Backend,
-) -> Result<(Scene, Option<EnvironmentDesc>, Duration)> {
     let start = Instant::now();
     let mut desc = crate::load::load_scene(path)?;
-    let env = desc.environment.take();
+    desc.environment = None;
     let scene = Scene::build(desc, accel)?;
-    Ok((scene, env, start.elapsed()))
+    Ok((scene, start.elapsed()))
 }
 
 /// The environment to render with: the `--env` choice if given, else the file's

@@ -88,15 +88,16 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
     desc.environment_light = resolve_environment(opts.env.clone(), desc.environment.take())?;
     let (w, h) = opts.size.unwrap_or_else(|| default_size(&desc.cameras));
     check_size(w, h)?;
-    let subject: Vec<glam::Vec3> = desc
-        .meshes
-        .iter()
-        .flat_map(|m| m.positions.iter().copied())
-        .collect();
+    let meshes = &desc.meshes;
     let (camera, camera_note) = choose_camera_in(
         &desc.cameras,
         &desc.source,
-        &subject,
+        || {
+            meshes
+                .iter()
+                .flat_map(|m| m.positions.iter().copied())
+                .collect()
+        },
         opts.camera.as_deref(),
         preview.view,
         w as f32 / h as f32,

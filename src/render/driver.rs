@@ -84,8 +84,8 @@ pub fn drive(
     let started = Instant::now();
     let (mut done, mut next_checkpoint) = (0u64, 1u64);
     let (mut rays, mut photons, mut bad) = (setup.rays, setup.photons, 0u64);
-    let (mut estimate, mut note, mut interrupted);
-    estimate = None;
+    let mut estimate = None;
+    let mut interrupted;
     loop {
         // Units to the next checkpoint, fewer if the time limit would be crossed.
         let mut n = (next_checkpoint.min(target) - done).min(schedule.max_round.max(1));
@@ -99,7 +99,7 @@ pub fn drive(
         rays += round.rays;
         photons += round.photons;
         bad += round.bad;
-        note = round.note;
+        let note = round.note;
         // A stop request after the last unit is not an interruption: the image is whole.
         let stop_asked = env.skip(k0);
         done = film.done();

@@ -35,8 +35,6 @@ pub struct Film {
 /// `(x0 + i mod TILE, y0 + i / TILE)`; slots with [`FilmTile::pixel`] `None` lie outside
 /// the image) and its unit count.
 pub struct FilmTile<'a> {
-    /// Tile index (row-major over tiles).
-    pub index: usize,
     /// The tile's top-left pixel.
     pub origin: (u32, u32),
     /// Per-slot sums of the two halves.
@@ -51,6 +49,12 @@ impl FilmTile<'_> {
     pub fn pixel(&self, i: usize) -> Option<(u32, u32)> {
         pixel_of(self.origin, self.size, i)
     }
+}
+
+/// The top-left pixel of tile `t` (tiles row-major, `tiles_x` per row).
+fn tile_origin(tiles_x: u32, t: usize) -> (u32, u32) {
+    let t = t as u32;
+    ((t % tiles_x) * TILE, (t / tiles_x) * TILE)
 }
 
 /// The pixel of slot `i` of the tile at `origin` in an image of `size`, if inside.
@@ -86,8 +90,7 @@ impl Film {
 
     /// The top-left pixel of tile `t`.
     fn origin(&self, t: usize) -> (u32, u32) {
-        let t = t as u32;
-        ((t % self.tiles_x) * TILE, (t / self.tiles_x) * TILE)
+        tile_origin(self.tiles_x, t)
     }
 
     /// The tiles, in parallel, for one round.
@@ -97,15 +100,11 @@ impl Film {
             .par_chunks_mut(TILE_PIXELS)
             .zip(self.counts.par_iter_mut())
             .enumerate()
-            .map(move |(index, (sums, count))| {
-                let t = index as u32;
-                FilmTile {
-                    index,
-                    origin: ((t % tiles_x) * TILE, (t / tiles_x) * TILE),
-                    sums,
-                    count,
-                    size,
-                }
+            .map(move |(t, (sums, count))| FilmTile {
+                origin: tile_origin(tiles_x, t),
+                sums,
+                count,
+                size,
             })
     }
 

@@ -82,6 +82,22 @@ pub fn clear_glass(name: &str, ior: f32) -> iris::scene::desc::MaterialDesc {
     }
 }
 
+/// A mesh description of a generated triangle mesh, with material `material`.
+pub fn mesh(
+    name: &str,
+    m: iris::model::shapes::TriMesh,
+    material: usize,
+) -> iris::scene::desc::MeshDesc {
+    iris::scene::desc::MeshDesc {
+        name: name.into(),
+        positions: m.positions,
+        normals: m.normals,
+        indices: m.indices,
+        material: Some(material),
+        ..Default::default()
+    }
+}
+
 /// A white Lambertian material: albedo 1, no specular layer.
 pub fn white_lambert() -> iris::scene::desc::MaterialDesc {
     iris::scene::desc::MaterialDesc {
