@@ -45,6 +45,7 @@ pub mod plan;
 pub mod prepare;
 pub mod preview;
 pub mod render;
+pub mod sampler;
 pub mod scene;
 pub mod scenes;
 pub mod shading;
