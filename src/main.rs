@@ -17,6 +17,7 @@ use iris::integrator::{Method, PhotonSettings};
 use iris::measure::MeasureOptions;
 use iris::output::{DisplayOptions, Exposure, ToneMap};
 use iris::photon::trace::Roulette;
+use iris::sampler::SamplerKind;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -141,6 +142,10 @@ struct RenderArgs {
     /// Random seed (same seed, scene and backend → same image).
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// Numbers driving the camera paths: zsobol (Owen-scrambled Sobol' per pixel in Morton
+    /// order, blue-noise error; the default) or independent (a PCG stream per sample).
+    #[arg(long, default_value = "zsobol", value_parser = SamplerKind::parse)]
+    sampler: SamplerKind,
     /// Worker threads, 0 to 1024 (0 = one per core).
     #[arg(long, default_value_t = 0, value_parser = parse_threads())]
     threads: usize,
@@ -260,6 +265,9 @@ struct ConvergeArgs {
     /// Random seed of the runs.
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// Numbers driving the camera paths: zsobol (default) or independent.
+    #[arg(long, default_value = "zsobol", value_parser = SamplerKind::parse)]
+    sampler: SamplerKind,
     /// Worker threads, 0 to 1024 (0 = one per core).
     #[arg(long, default_value_t = 0, value_parser = parse_threads())]
     threads: usize,
@@ -391,6 +399,7 @@ impl RenderArgs {
             },
             accel: a.accel,
             seed: a.seed,
+            sampler: a.sampler,
             threads: a.threads,
             camera: a.camera,
             display: DisplayOptions {
@@ -432,6 +441,7 @@ impl ConvergeArgs {
             out_dir: self.output.clone(),
             size: self.size,
             seed: self.seed,
+            sampler: self.sampler,
             threads: self.threads,
             accel: self.accel,
             quiet: self.quiet,

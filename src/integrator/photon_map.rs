@@ -205,8 +205,8 @@ impl PhotonMaps {
         };
         let l = self.estimate(&self.caustic, k.0, &at, true, buf);
         // Final gather.
-        let uc = ctx.rng.next_f32();
-        let u = Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
+        let uc = ctx.sample.rng.next_f32();
+        let u = Vec2::new(ctx.sample.rng.next_f32(), ctx.sample.rng.next_f32());
         let Some(bs) = shading::sample_bsdf(&vp.bsdf, vp.wo, uc, u, TransportMode::Radiance) else {
             return l;
         };
@@ -235,7 +235,7 @@ impl PhotonMaps {
                     return Vec3::ZERO;
                 };
                 beta *= at.transmittance;
-                match at.event(scene, media, &mut beta, &mut (), &mut ctx.rng) {
+                match at.event(scene, media, &mut beta, &mut (), &mut ctx.sample.rng) {
                     Event::PassThrough(next) => ray = next,
                     Event::Scatter(s) => break s,
                 }
@@ -249,7 +249,7 @@ impl PhotonMaps {
                 };
                 return beta * self.estimate(&self.global, k, &at, false, buf);
             }
-            let uc = ctx.rng.next_f32();
+            let uc = ctx.sample.rng.next_f32();
             let Some(bs) = s.sample(uc, Vec2::ZERO, TransportMode::Radiance) else {
                 break;
             };

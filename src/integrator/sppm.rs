@@ -45,8 +45,8 @@ use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
 use crate::render::{
-    drive, guard, primary_ray, Film, Observer, RenderSettings, RenderStats, Round, Schedule, Setup,
-    TILE_PIXELS,
+    drive, guard, pixel_sampler, primary_ray, Film, Observer, RenderSettings, RenderStats, Round,
+    Schedule, Setup, TILE_PIXELS,
 };
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
@@ -171,7 +171,7 @@ fn run<C: Carrier>(
                 camera,
                 max_depth,
                 settings,
-                pass,
+                (pass, ps.passes.max(1)),
                 lambda,
                 film,
                 &mut state.vps,
@@ -201,7 +201,8 @@ fn run<C: Carrier>(
     )
 }
 
-/// Traces one camera path per pixel through [`primary_ray`] (stream `[seed, pass, x, y]`),
+/// Traces one camera path per pixel through [`primary_ray`] (sample `pass` of the pixel
+/// from the render's sampler, Sobol' blocks of `--passes`),
 /// adds its direct light to the film's half `pass mod 2` and keeps its visible point in the
 /// pixel's slot. Returns the rays and bad samples.
 #[allow(clippy::too_many_arguments)]
@@ -210,12 +211,13 @@ fn camera_pass<C: Carrier>(
     camera: &Camera,
     max_depth: u32,
     settings: &RenderSettings,
-    pass: u32,
+    (pass, passes): (u32, u32),
     lambda: C::Lambda,
     film: &mut Film,
     vps: &mut [Option<VisiblePoint<C>>],
 ) -> (u64, u64) {
     let half = (pass % 2) as usize;
+    let sampler = pixel_sampler(settings, u64::from(passes));
     film.par_tiles_mut()
         .zip(vps.par_chunks_mut(TILE_PIXELS))
         .map(|(tile, vp_tile)| {
@@ -225,10 +227,10 @@ fn camera_pass<C: Carrier>(
                     continue;
                 };
                 let mut ctx = Context {
-                    rng: Rng::new(&[settings.seed, pass as u64, x as u64, y as u64]),
+                    sample: sampler.start(x, y, u64::from(pass)),
                     rays: 0,
                 };
-                let ray = primary_ray(camera, x, y, false, &mut ctx.rng);
+                let ray = primary_ray(camera, x, y, false, &mut ctx.sample);
                 let (l, vp) = path::camera_path::<C>(
                     scene,
                     &ray,

@@ -56,6 +56,7 @@ impl Plan {
             let (w, h) = PROBE_SIZE;
             let integrator = Integrator::new(method, 64, &Default::default())?;
             let settings = RenderSettings {
+                sampler: Default::default(),
                 width: w,
                 height: h,
                 spp: 1,

@@ -105,6 +105,15 @@ fn shl(x: u64, n: u32) -> u64 {
     x.checked_shl(n).unwrap_or(0)
 }
 
+/// `v` randomised by `randomize` with the key `hash`.
+fn randomize_bits(randomize: Randomize, v: u32, hash: u32) -> u32 {
+    match randomize {
+        Randomize::None => v,
+        Randomize::Xor => v ^ hash,
+        Randomize::Owen => fast_owen(v, hash),
+    }
+}
+
 /// A per-pixel Sobol' sampler in Morton order. Cheap to copy: one per worker thread.
 #[derive(Debug, Clone)]
 pub struct ZSobol {
@@ -188,13 +197,26 @@ impl ZSobol {
     /// A 2D sample in `[0, 1)^2` (Sobol' dims 0 and 1 of one permuted index); advances the
     /// dimension by 2.
     pub fn get_2d(&mut self) -> [f32; 2] {
+        self.get_2d_with(self.randomize)
+    }
+
+    /// [`ZSobol::get_2d`] with the randomisation `randomize` for this draw. A random digit
+    /// shift ([`Randomize::Xor`]) keeps each coordinate of a pixel's 2^k first samples on a
+    /// shifted regular grid of spacing 2^-k (Owen scrambling only keeps one per stratum):
+    /// what a periodic use of the number needs (the hero wavelength's rotation,
+    /// [`crate::spectrum::hero_number`]).
+    pub fn get_2d_with(&mut self, randomize: Randomize) -> [f32; 2] {
         let dim = self.dimension;
         self.dimension = dim.wrapping_add(2);
         let index = self.sample_index(dim);
         let hash = self.dimension_hash(dim);
         [
-            bits_to_unit(self.randomize_bits(sobol_bits(index, 0), hash as u32)),
-            bits_to_unit(self.randomize_bits(sobol_bits(index, 1), (hash >> 32) as u32)),
+            bits_to_unit(randomize_bits(randomize, sobol_bits(index, 0), hash as u32)),
+            bits_to_unit(randomize_bits(
+                randomize,
+                sobol_bits(index, 1),
+                (hash >> 32) as u32,
+            )),
         ]
     }
 
@@ -209,11 +231,7 @@ impl ZSobol {
     }
 
     fn randomize_bits(&self, v: u32, hash: u32) -> u32 {
-        match self.randomize {
-            Randomize::None => v,
-            Randomize::Xor => v ^ hash,
-            Randomize::Owen => fast_owen(v, hash),
-        }
+        randomize_bits(self.randomize, v, hash)
     }
 
     /// The Sobol' index for dimension `dim`: every base-4 digit of the Morton index permuted
