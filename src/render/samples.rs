@@ -99,7 +99,7 @@ fn sample_rounds(
             Ok(round(
                 camera,
                 &sampler,
-                target == 1,
+                (target == 1, settings.spectral),
                 film,
                 (k0, k1),
                 env,
@@ -114,7 +114,7 @@ fn sample_rounds(
 fn round(
     camera: &Camera,
     sampler: &PixelSampler,
-    centre: bool,
+    (centre, spectral): (bool, bool),
     film: &mut Film,
     (k0, k1): (u64, u64),
     env: &RoundEnv,
@@ -127,17 +127,23 @@ fn round(
                 return (0, 0);
             }
             let (mut rays, mut bad) = (0, 0);
+            let mut ctx = Context {
+                sample: sampler.start(0, 0, 0),
+                rays: 0,
+            };
             for i in 0..tile.sums.len() {
                 let Some((x, y)) = tile.pixel(i) else {
                     continue;
                 };
                 for k in k0..k1 {
-                    let mut ctx = Context {
-                        sample: sampler.start(x, y, k),
-                        rays: 0,
-                    };
+                    sampler.restart(&mut ctx.sample, x, y, k);
+                    ctx.rays = 0;
                     let ray = primary_ray(camera, x, y, centre, &mut ctx.sample);
-                    let u_lambda = ctx.sample.wavelength();
+                    let u_lambda = if spectral {
+                        ctx.sample.wavelength()
+                    } else {
+                        0.0
+                    };
                     let l = guard::admit(estimate(&ray, u_lambda, &mut ctx), &mut bad);
                     tile.sums[i][(k % 2) as usize] += l.as_dvec3();
                     rays += ctx.rays;

@@ -83,6 +83,17 @@ impl PixelSampler {
         PixelSampler { seed, sobol }
     }
 
+    /// Makes `stream` the numbers of sample `k` of pixel `(x, y)`: [`PixelSampler::start`]
+    /// without building a new stream (the per-sample loops reuse one per tile).
+    pub fn restart(&self, stream: &mut SampleStream, x: u32, y: u32, k: u64) {
+        stream.rng = Rng::new(&[self.seed, u64::from(x), u64::from(y), k]);
+        stream.lattice = (self.seed, x, y, k);
+        match (&self.sobol, &mut stream.sobol) {
+            (Some(_), Some(z)) => z.start_pixel_sample(x, y, k),
+            _ => *stream = self.start(x, y, k),
+        }
+    }
+
     /// The numbers of sample `k` of pixel `(x, y)`.
     pub fn start(&self, x: u32, y: u32, k: u64) -> SampleStream {
         let rng = Rng::new(&[self.seed, u64::from(x), u64::from(y), k]);
@@ -256,6 +267,24 @@ mod tests {
         let _ = bb.bsdf_direction();
         assert_eq!(bb.roulette(), r1);
         assert_ne!(a.bounce(3).roulette(), r1);
+    }
+
+    #[test]
+    fn restart_equals_start() {
+        for kind in SamplerKind::ALL {
+            let p = PixelSampler::new(kind, 8, (16, 16), 5);
+            let mut s = p.start(0, 0, 0);
+            for (x, y, k) in [(3, 4, 2), (15, 0, 7), (3, 4, 9)] {
+                p.restart(&mut s, x, y, k);
+                let mut fresh = p.start(x, y, k);
+                assert_eq!(s.wavelength(), fresh.wavelength());
+                assert_eq!(
+                    s.bounce(1).bsdf_direction(),
+                    fresh.bounce(1).bsdf_direction()
+                );
+                assert_eq!(s.rng.next_u32(), fresh.rng.next_u32());
+            }
+        }
     }
 
     #[test]
