@@ -31,14 +31,41 @@
 //!
 //! Scenes without geometry (infinite bounds) get no disc: their directional lights and
 //! environment emit nothing.
+//!
+//! ## Aiming ([`Aim`], [`super::aim`])
+//! With [`Aim::Mixture`]`(a)` the light is chosen as above, then with probability `a` the
+//! direction (point, spot, emissive triangles: uniform in the cone toward one of the caustic
+//! makers' bounding spheres, seen from the emission point) or the disc point (directional,
+//! environment: uniform in one sphere's projection) is aimed, else drawn as above. The
+//! photon's power is the light's contribution over the mixture density
+//! (1 − a)·p_usual + a·p_aimed (a defensive mixture, Hesterberg 1995; Veach 1997 §9.2.1),
+//! so the mean power is still [`PhotonEmitter::total_power`] for every `a`. Spot light
+//! aimed outside its cone, or an emitter aimed behind its emitting side, gives no photon
+//! (`None`: a zero-power sample, still counted). [`Aim::Only`] drops the usual term (see its
+//! docs for what it keeps). Without caustic makers every aim is [`Aim::Off`] (and `Only`
+//! emits nothing).
+//!
+//! ## Numbers
+//! Every photon is a pure function of its five uniform numbers `u = [light, point (2),
+//! direction (2)]` ([`PhotonEmitter::emit_aimed`]); the renderers draw them from
+//! Owen-scrambled Halton dimensions 0–4 over the photon index ([`photon_numbers`]; pbrt-v4
+//! SPPM draws its photon paths from Halton over the photon index,
+//! src/pbrt/cpu/integrators.cpp). The aim choice and the sphere choice reuse the direction's
+//! first number (the disc point's, for distant light), rescaled within the chosen interval.
 
+pub use super::aim::{Aim, DEFAULT_AIM};
+use super::aim::{split_choice, Targets};
+use super::flux::{
+    area_flux, area_point, environment_integral, punctual_flux, sample_spot_cos, spot_integral,
+    uniform_sphere, unit_disc,
+};
 use crate::interaction::OFFSET_SCALE;
-use crate::light::env::{luminance, Environment};
+use crate::light::env::luminance;
 use crate::light::Light;
 use crate::math::{Frame, Ray, Rng};
-use crate::scene::{Scene, TriangleData};
+use crate::sampler::halton::halton_sample;
+use crate::scene::Scene;
 use crate::spectrum::EmitterShape;
-use crate::texture::{self, Encoding};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -88,102 +115,14 @@ pub struct PhotonEmitter {
     centre: Vec3,
     /// Disc radius for distant light (0 without geometry).
     radius: f32,
+    /// The caustic makers' bounding spheres.
+    targets: Targets,
 }
 
-/// ∫_{cos_o}^1 t(c)² dc for the KHR spot falloff; `cos_i ≤ cos_o` is the hard cone of
-/// [`Light::sample_li`].
-fn spot_integral(cos_i: f32, cos_o: f32) -> f32 {
-    let ci = cos_i.max(cos_o);
-    ((1.0 - ci) + (ci - cos_o) / 3.0).max(0.0)
-}
-
-/// Samples cos θ ∝ t(c)² on [cos_o, 1]: the CDF is (c − cos_o)³/(3Δ²) on the falloff and
-/// linear above cos_i.
-fn sample_spot_cos(cos_i: f32, cos_o: f32, u: f32) -> f32 {
-    let ci = cos_i.max(cos_o);
-    let delta = ci - cos_o;
-    let x = u * spot_integral(cos_i, cos_o);
-    let c = if x < delta / 3.0 {
-        cos_o + (3.0 * delta * delta * x).cbrt()
-    } else {
-        ci + (x - delta / 3.0)
-    };
-    c.clamp(cos_o, 1.0)
-}
-
-/// Uniform direction on the unit sphere (Archimedes: z uniform in [−1, 1]).
-fn uniform_sphere(u: Vec2) -> Vec3 {
-    let z = 1.0 - 2.0 * u.x;
-    let r = (1.0 - z * z).max(0.0).sqrt();
-    let (s, c) = (2.0 * PI * u.y).sin_cos();
-    Vec3::new(r * c, r * s, z)
-}
-
-/// Uniform point on the unit disc (polar mapping, radius √u).
-fn unit_disc(u: Vec2) -> Vec2 {
-    let r = u.x.sqrt();
-    let (s, c) = (2.0 * PI * u.y).sin_cos();
-    Vec2::new(r * c, r * s)
-}
-
-/// Flux of one punctual light.
-fn punctual_flux(light: &Light, radius: f32) -> Vec3 {
-    match *light {
-        Light::Point { intensity, .. } => intensity * (4.0 * PI),
-        Light::Spot {
-            intensity,
-            cos_inner,
-            cos_outer,
-            ..
-        } => intensity * (2.0 * PI * spot_integral(cos_inner, cos_outer)),
-        Light::Directional { illuminance, .. } => illuminance * (PI * radius * radius),
-    }
-}
-
-/// ∫ L dω over the sphere, RGB: the exact texel sum for a map (texel solid angle
-/// (2π/W)(cos θ₀ − cos θ₁)).
-fn environment_integral(env: &Environment) -> Vec3 {
-    match env {
-        Environment::Uniform { radiance } => *radiance * (4.0 * PI),
-        Environment::Map(m) => {
-            let (w, h) = (m.width(), m.height());
-            let dtheta = std::f64::consts::PI / h as f64;
-            let mut sum = [0.0f64; 3];
-            for y in 0..h {
-                let d_omega = 2.0 * std::f64::consts::PI / w as f64
-                    * ((y as f64 * dtheta).cos() - ((y + 1) as f64 * dtheta).cos());
-                for x in 0..w {
-                    let t = m.texel(x, y);
-                    for (s, c) in sum.iter_mut().zip([t.x, t.y, t.z]) {
-                        *s += c as f64 * d_omega;
-                    }
-                }
-            }
-            Vec3::new(sum[0] as f32, sum[1] as f32, sum[2] as f32)
-        }
-    }
-}
-
-/// RGB flux of all emissive triangles: Σ L·π·A·sides (emissive factor, no texture), over
-/// the triangles [`crate::light::area::AreaLights`] selects from.
-fn area_flux(scene: &Scene) -> Vec3 {
-    let mut sum = [0.0f64; 3];
-    for t in &scene.triangle_data {
-        let Some(mat) = scene.materials.get(t.material() as usize) else {
-            continue;
-        };
-        let le = mat.emission();
-        let area = 0.5 * (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]).length();
-        let sides = if mat.desc.double_sided { 2.0 } else { 1.0 };
-        let w = luminance(le) * area * PI * sides;
-        if w > 0.0 && w.is_finite() {
-            let f = le * (area * PI * sides);
-            for (s, c) in sum.iter_mut().zip([f.x, f.y, f.z]) {
-                *s += c as f64;
-            }
-        }
-    }
-    Vec3::new(sum[0] as f32, sum[1] as f32, sum[2] as f32)
+/// The five emission numbers of photon `index` under `seed`: Owen-scrambled Halton
+/// dimensions 0–4 (light, point, direction), a pure function of `(index, seed)`.
+pub fn photon_numbers(index: u64, seed: u64) -> [f32; 5] {
+    std::array::from_fn(|d| halton_sample(index, d, seed))
 }
 
 impl PhotonEmitter {
@@ -236,7 +175,13 @@ impl PhotonEmitter {
             total,
             centre,
             radius,
+            targets: Targets::new(scene),
         }
+    }
+
+    /// The caustic makers' bounding spheres photons are aimed at.
+    pub fn targets(&self) -> &Targets {
+        &self.targets
     }
 
     /// No light emits (zero power).
@@ -254,8 +199,7 @@ impl PhotonEmitter {
         (self.centre, self.radius)
     }
 
-    /// A photon from the next five numbers of `rng` (light, point, direction: the order
-    /// every photon loop uses, so photon `i` of a seed is the same everywhere).
+    /// A photon from the next five numbers of `rng` (light, point, direction), not aimed.
     pub fn emit_from<'a>(&self, scene: &'a Scene, rng: &mut Rng) -> Option<EmittedPhoton<'a>> {
         let u_light = rng.next_f32();
         let u_pos = Vec2::new(rng.next_f32(), rng.next_f32());
@@ -263,8 +207,20 @@ impl PhotonEmitter {
         self.emit(scene, u_light, u_pos, u_dir)
     }
 
-    /// A photon from uniform numbers: `u_light` picks the light (by power), `u_pos` the
-    /// point, `u_dir` the direction. `None` if the sample is degenerate.
+    /// Photon `index` of the Halton sequence under `seed` ([`photon_numbers`]), aimed by
+    /// `aim`: what every photon loop of the renderers (and the plan's caustic probe) emits.
+    pub fn emit_index<'a>(
+        &self,
+        scene: &'a Scene,
+        index: u64,
+        seed: u64,
+        aim: Aim,
+    ) -> Option<EmittedPhoton<'a>> {
+        self.emit_aimed(scene, photon_numbers(index, seed), aim)
+    }
+
+    /// A photon from uniform numbers, not aimed: `u_light` picks the light (by power),
+    /// `u_pos` the point, `u_dir` the direction. `None` if the sample is degenerate.
     pub fn emit<'a>(
         &self,
         scene: &'a Scene,
@@ -272,9 +228,32 @@ impl PhotonEmitter {
         u_pos: Vec2,
         u_dir: Vec2,
     ) -> Option<EmittedPhoton<'a>> {
+        let u = [u_light, u_pos.x, u_pos.y, u_dir.x, u_dir.y];
+        self.emit_aimed(scene, u, Aim::Off)
+    }
+
+    /// A photon from five uniform numbers `[light, point.x, point.y, direction.x,
+    /// direction.y]`, aimed by `aim` (module docs). `None` if the sample is degenerate or
+    /// carries no power.
+    pub fn emit_aimed<'a>(
+        &self,
+        scene: &'a Scene,
+        u: [f32; 5],
+        aim: Aim,
+    ) -> Option<EmittedPhoton<'a>> {
         if self.sources.is_empty() {
             return None;
         }
+        let (u_light, u_pos, u_dir) = (u[0], Vec2::new(u[1], u[2]), Vec2::new(u[3], u[4]));
+        let only = aim == Aim::Only;
+        let a = if self.targets.is_empty() {
+            if only {
+                return None;
+            }
+            0.0
+        } else {
+            aim.fraction()
+        };
         let k = self
             .cdf
             .partition_point(|&c| c <= u_light)
@@ -283,18 +262,34 @@ impl PhotonEmitter {
         // Reuse u_light within the chosen interval (for the triangle choice).
         let lo = if k == 0 { 0.0 } else { self.cdf[k - 1] };
         let u_sub = ((u_light - lo) / prob).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
+        let mix = Mix { a, only };
         let photon = match source {
             Source::Punctual(i) => {
                 let shape = scene.light_shapes.get(i).and_then(Option::as_ref);
-                self.punctual(&scene.lights[i], flux, u_pos, u_dir, shape)
+                self.punctual(&scene.lights[i], flux, u_pos, u_dir, shape, mix)
             }
-            Source::Area => area(scene, u_sub, u_pos, u_dir),
+            Source::Area => {
+                let pt = area_point(scene, u_sub, u_pos)?;
+                let (dir, ratio) = self.mix_direction(
+                    pt.point,
+                    mix,
+                    u_dir,
+                    |u| pt.base_direction(u),
+                    |d| pt.base_pdf(d),
+                )?;
+                Some(EmittedPhoton {
+                    ray: scene.spawn_from_triangle(pt.prim, pt.point, dir),
+                    power: pt.base_power() * ratio,
+                    shape: pt.shape,
+                    range: None,
+                })
+            }
             Source::Environment => {
                 let s = scene.environment.as_ref()?.sample(u_dir)?;
-                let power = s.radiance / s.pdf * (PI * self.radius * self.radius);
+                let (origin, area) = self.distant_origin(-s.wi, u_pos, mix)?;
                 Some(EmittedPhoton {
-                    ray: Ray::new(self.disc_origin(-s.wi, u_pos), -s.wi),
-                    power,
+                    ray: Ray::new(origin, -s.wi),
+                    power: s.radiance / s.pdf * area,
                     shape: None,
                     range: None,
                 })
@@ -305,6 +300,82 @@ impl PhotonEmitter {
             .then_some(EmittedPhoton { power, ..photon })
     }
 
+    /// A direction from `p`: with probability `mix.a` aimed at a target, else
+    /// `base_sample` (whose density is `base_pdf`) with `u.x` rescaled. Returns the direction
+    /// and p_usual/p_mixture, the factor on the usual photon's power (exactly 1 unaimed).
+    fn mix_direction(
+        &self,
+        p: Vec3,
+        mix: Mix,
+        u: Vec2,
+        base_sample: impl FnOnce(Vec2) -> Option<Vec3>,
+        base_pdf: impl Fn(Vec3) -> f32,
+    ) -> Option<(Vec3, f32)> {
+        if mix.a <= 0.0 {
+            return Some((base_sample(u)?, 1.0));
+        }
+        let cones = self.targets.cones_from(p);
+        if cones.total() <= 0.0 {
+            return if mix.only {
+                None
+            } else {
+                Some((base_sample(u)?, 1.0))
+            };
+        }
+        let (aimed, ux) = split_choice(u.x, mix.a);
+        let (dir, sampled) = if aimed {
+            let (d, j) = self
+                .targets
+                .sample_direction(&cones, Vec2::new(ux, u.y))?;
+            (d, Some(j))
+        } else {
+            (base_sample(Vec2::new(ux, u.y))?, None)
+        };
+        let p_aim = self.targets.direction_pdf(&cones, dir, sampled);
+        let p_base = base_pdf(dir);
+        let p_mix = if mix.only {
+            p_aim
+        } else {
+            (1.0 - mix.a) * p_base + mix.a * p_aim
+        };
+        (p_mix > 0.0).then(|| (dir, p_base / p_mix))
+    }
+
+    /// Where a distant-light photon travelling along `dir` starts: a point of the plane ⟂
+    /// `dir` r upstream of the scene centre, uniform on the disc of radius r or (with
+    /// probability `mix.a`) in a target's projection. Returns the origin and 1/(its area
+    /// density) (π r² unaimed).
+    fn distant_origin(&self, dir: Vec3, u: Vec2, mix: Mix) -> Option<(Vec3, f32)> {
+        let disc_area = PI * self.radius * self.radius;
+        if mix.a <= 0.0 {
+            return Some((self.disc_origin(dir, u), disc_area));
+        }
+        let f = Frame::from_normal(dir);
+        let (aimed, ux) = split_choice(u.x, mix.a);
+        let (x, sampled) = if aimed {
+            let (x, j) = self
+                .targets
+                .sample_across(&f, self.centre, Vec2::new(ux, u.y))?;
+            (x, Some(j))
+        } else {
+            (unit_disc(Vec2::new(ux, u.y)) * self.radius, None)
+        };
+        let p_aim = self.targets.across_pdf(&f, self.centre, x, sampled);
+        let inside = sampled.is_none() || x.length_squared() <= self.radius * self.radius;
+        let p_base = if inside && disc_area > 0.0 {
+            1.0 / disc_area
+        } else {
+            0.0
+        };
+        let p_mix = if mix.only {
+            p_aim
+        } else {
+            (1.0 - mix.a) * p_base + mix.a * p_aim
+        };
+        let origin = self.centre - dir * self.radius + f.s * x.x + f.t * x.y;
+        (p_mix > 0.0).then(|| (origin, 1.0 / p_mix))
+    }
+
     /// A point of the disc ⟂ `dir`, centred r upstream of the scene centre.
     fn disc_origin(&self, dir: Vec3, u: Vec2) -> Vec3 {
         let f = Frame::from_normal(dir);
@@ -312,7 +383,8 @@ impl PhotonEmitter {
         self.centre - dir * self.radius + f.s * d.x + f.t * d.y
     }
 
-    /// A photon of one punctual light carrying its whole flux (before selection).
+    /// A photon of one punctual light carrying its contribution before light selection
+    /// (its whole flux when not aimed).
     fn punctual<'a>(
         &self,
         light: &Light,
@@ -320,11 +392,21 @@ impl PhotonEmitter {
         u_pos: Vec2,
         u_dir: Vec2,
         shape: Option<&'a EmitterShape>,
+        mix: Mix,
     ) -> Option<EmittedPhoton<'a>> {
-        let (ray, range) = match *light {
+        let (ray, range, ratio) = match *light {
             Light::Point {
                 position, range, ..
-            } => (Ray::new(position, uniform_sphere(u_dir)), range),
+            } => {
+                let (dir, ratio) = self.mix_direction(
+                    position,
+                    mix,
+                    u_dir,
+                    |u| Some(uniform_sphere(u)),
+                    |_| 1.0 / (4.0 * PI),
+                )?;
+                (Ray::new(position, dir), range, ratio)
+            }
             Light::Spot {
                 position,
                 direction,
@@ -333,72 +415,54 @@ impl PhotonEmitter {
                 range,
                 ..
             } => {
-                let c = sample_spot_cos(cos_inner, cos_outer, u_dir.x);
-                let s = (1.0 - c * c).max(0.0).sqrt();
-                let (sp, cp) = (2.0 * PI * u_dir.y).sin_cos();
-                let local = Vec3::new(s * cp, s * sp, c);
-                let dir = Frame::from_normal(direction).to_world(local).normalize();
-                (Ray::new(position, dir), range)
+                let frame = Frame::from_normal(direction);
+                let sample = |u: Vec2| {
+                    let c = sample_spot_cos(cos_inner, cos_outer, u.x);
+                    let s = (1.0 - c * c).max(0.0).sqrt();
+                    let (sp, cp) = (2.0 * PI * u.y).sin_cos();
+                    Some(frame.to_world(Vec3::new(s * cp, s * sp, c)).normalize())
+                };
+                // Density t(c)²/(2πK) on the cone, 0 outside (KHR falloff, crate::light).
+                let k = spot_integral(cos_inner, cos_outer);
+                let pdf = |d: Vec3| {
+                    let c = d.dot(direction);
+                    let ci = cos_inner.max(cos_outer);
+                    let t = if ci > cos_outer {
+                        ((c - cos_outer) / (ci - cos_outer)).clamp(0.0, 1.0)
+                    } else if c >= cos_outer {
+                        1.0
+                    } else {
+                        0.0
+                    };
+                    if k > 0.0 {
+                        t * t / (2.0 * PI * k)
+                    } else {
+                        0.0
+                    }
+                };
+                let (dir, ratio) = self.mix_direction(position, mix, u_dir, sample, pdf)?;
+                (Ray::new(position, dir), range, ratio)
             }
-            Light::Directional { direction, .. } => (
-                Ray::new(self.disc_origin(direction, u_pos), direction),
-                None,
-            ),
+            Light::Directional { direction, .. } => {
+                let (origin, area) = self.distant_origin(direction, u_pos, mix)?;
+                // flux = E·π r²; the photon carries E / p_area.
+                let ratio = area / (PI * self.radius * self.radius);
+                (Ray::new(origin, direction), None, ratio)
+            }
         };
         Some(EmittedPhoton {
             ray,
-            power: flux,
+            power: flux * ratio,
             shape,
             range,
         })
     }
 }
 
-/// A photon from the emissive triangles carrying L·cos/(p_A·p_ω) before light selection.
-fn area<'a>(scene: &'a Scene, u: f32, u_pos: Vec2, u_dir: Vec2) -> Option<EmittedPhoton<'a>> {
-    let e = scene
-        .area_lights
-        .sample_point(&scene.triangle_data, u, u_pos)?;
-    let t = scene.triangle_data.get(e.prim as usize)?;
-    let mat = scene.materials.get(t.material() as usize)?;
-    let mut le = mat.emission();
-    if let (Some(tex), true) = (
-        mat.desc.emissive_texture,
-        t.info & TriangleData::HAS_UVS != 0,
-    ) {
-        let vi = scene.triangles.get(e.prim as usize)?;
-        let uv = vi
-            .iter()
-            .zip(e.bary)
-            .map(|(&i, b)| scene.uvs.get(i as usize).copied().unwrap_or(Vec2::ZERO) * b)
-            .sum();
-        if let Some(img) = scene.images.get(tex.image) {
-            le *= texture::sample(img, uv, Encoding::Srgb).truncate();
-        }
-    }
-    // Double-sided: u_dir.x < ½ picks the front, else the back, each with probability ½.
-    let (normal, ux, sides) = if mat.desc.double_sided {
-        if u_dir.x < 0.5 {
-            (e.normal, 2.0 * u_dir.x, 2.0)
-        } else {
-            (-e.normal, 2.0 * u_dir.x - 1.0, 2.0)
-        }
-    } else {
-        (e.normal, u_dir.x, 1.0)
-    };
-    // Cosine-weighted hemisphere (Malley's method): pdf cos/π, so L·cos/(pdf·p_A) = L·π/p_A.
-    let d = unit_disc(Vec2::new(ux, u_dir.y));
-    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
-    if z <= 0.0 {
-        return None;
-    }
-    let dir = Frame::from_normal(normal)
-        .to_world(Vec3::new(d.x, d.y, z))
-        .normalize();
-    Some(EmittedPhoton {
-        ray: scene.spawn_from_triangle(e.prim, e.point, dir),
-        power: le * (PI * sides * e.area / e.prob),
-        shape: mat.emitter_shape(),
-        range: None,
-    })
+/// The aim of one emission: the aimed fraction (0 when there is nothing to aim at) and
+/// whether the usual term is dropped.
+#[derive(Debug, Clone, Copy)]
+struct Mix {
+    a: f32,
+    only: bool,
 }

@@ -128,7 +128,8 @@ fn time_photons(scene: &Scene, emitter: &PhotonEmitter) -> f64 {
     let mut vertices = 0u64;
     for i in 0..COST_PHOTONS {
         let mut rng = crate::math::Rng::new(&[0x0C05_7000, i as u64]);
-        if let Some(ph) = emitter.emit_from(scene, &mut rng) {
+        let aim = crate::photon::emit::DEFAULT_AIM;
+        if let Some(ph) = emitter.emit_index(scene, i as u64, 0x0C05_7000, aim) {
             trace::<Vec3>(scene, &ph, (), &settings, &mut rng, |_, _| vertices += 1);
         }
     }
