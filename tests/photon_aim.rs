@@ -15,7 +15,7 @@ use glam::{Vec2, Vec3};
 use iris::light::Light;
 use iris::math::Rng;
 use iris::photon::aim::{Aim, Targets};
-use iris::photon::emit::PhotonEmitter;
+use iris::photon::emit::{PhotonEmitter, PhotonNumbers};
 use iris::photon::trace::{has_caustic_paths, trace, Roulette, TraceSettings};
 use iris::scene::Scene;
 
@@ -86,15 +86,26 @@ fn assert_agree(a: (f64, f64), b: (f64, f64), what: &str) {
 fn mean_power_is_the_total_flux_for_every_aim() {
     let s = scene(true);
     let e = PhotonEmitter::new(&s);
-    assert_eq!(e.targets().spheres().len(), 1, "{:?}", e.targets().spheres());
+    assert_eq!(
+        e.targets().spheres().len(),
+        1,
+        "{:?}",
+        e.targets().spheres()
+    );
     let total = e.total_power();
     let n = 200_000;
-    for aim in [Aim::Off, Aim::Mixture(0.25), Aim::Mixture(0.5), Aim::Mixture(0.9)] {
+    let nums = PhotonNumbers::new(11);
+    for aim in [
+        Aim::Off,
+        Aim::Mixture(0.25),
+        Aim::Mixture(0.5),
+        Aim::Mixture(0.9),
+    ] {
         let mut st = [Stat::default(); 3];
         for i in 0..n {
-            if let Some(p) = e.emit_index(&s, i as u64, 11, aim) {
-                for c in 0..3 {
-                    st[c].add(p.power[c] as f64);
+            if let Some(p) = e.emit_index(&s, &nums, i as u64, aim) {
+                for (c, x) in st.iter_mut().zip(p.power.to_array()) {
+                    c.add(x as f64);
                 }
             }
         }
@@ -118,8 +129,9 @@ fn floor_flux(s: &Scene, aim: Aim, n: usize, seed: u64) -> (Vec<(f64, f64)>, (f6
     };
     let mut cells = vec![Stat::default(); 16];
     let mut caustic = Stat::default();
+    let nums = PhotonNumbers::new(seed);
     for i in 0..n {
-        let Some(ph) = e.emit_index(s, i as u64, seed, aim) else {
+        let Some(ph) = e.emit_index(s, &nums, i as u64, aim) else {
             continue;
         };
         let mut rng = Rng::new(&[seed, i as u64]);
@@ -127,7 +139,10 @@ fn floor_flux(s: &Scene, aim: Aim, n: usize, seed: u64) -> (Vec<(f64, f64)>, (f6
         let mut c = 0.0;
         trace::<Vec3>(s, &ph, (), &settings, &mut rng, |v, _| {
             if v.p.y.abs() < 1e-3 && v.p.x.abs() < 1.0 && v.p.z.abs() < 1.0 {
-                let (x, z) = (((v.p.x + 1.0) * 2.0) as usize, ((v.p.z + 1.0) * 2.0) as usize);
+                let (x, z) = (
+                    ((v.p.x + 1.0) * 2.0) as usize,
+                    ((v.p.z + 1.0) * 2.0) as usize,
+                );
                 let y = v.power.element_sum() as f64;
                 per[x.min(3) * 4 + z.min(3)] += y;
                 if v.caustic {
@@ -159,7 +174,12 @@ fn floor_irradiance_and_caustic_agree_aimed_or_not() {
         assert_agree(off_c, on_c, &format!("{aim:?} caustic flux"));
         assert!(off_c.0 > 0.0 && on_c.0 > 0.0, "no caustic");
         // Aiming concentrates photons on the glass: the caustic estimate is less noisy.
-        assert!(on_c.1 < off_c.1, "{aim:?}: caustic se {} vs {}", on_c.1, off_c.1);
+        assert!(
+            on_c.1 < off_c.1,
+            "{aim:?}: caustic se {} vs {}",
+            on_c.1,
+            off_c.1
+        );
     }
     // Only aimed photons: the spheres bound every caustic maker, so the L S+ D flux is kept.
     let (_, only_c) = floor_flux(&s, Aim::Only, n, 5);
@@ -170,9 +190,10 @@ fn floor_irradiance_and_caustic_agree_aimed_or_not() {
 fn through_glass(s: &Scene, aim: Aim, n: usize) -> f64 {
     let e = PhotonEmitter::new(s);
     let glass = 0u32; // caustic_sphere: material 0 is the glass
+    let nums = PhotonNumbers::new(9);
     let hits = (0..n)
         .filter(|&i| {
-            e.emit_index(s, i as u64, 9, aim)
+            e.emit_index(s, &nums, i as u64, aim)
                 .and_then(|p| s.intersect(&p.ray))
                 .is_some_and(|h| h.material == glass)
         })
@@ -197,7 +218,10 @@ fn aimed_photons_go_through_the_glass() {
         "unaimed fraction {off} vs {want_off}"
     );
     eprintln!("point light: through the glass {off} unaimed, {on} aimed");
-    assert!(on >= 0.45 && on >= 30.0 * off, "aimed {on} vs unaimed {off}");
+    assert!(
+        on >= 0.45 && on >= 30.0 * off,
+        "aimed {on} vs unaimed {off}"
+    );
     let only = through_glass(&s, Aim::Only, n);
     assert!(only > 0.97, "Only: {only}");
     // The down-facing lamp at the point light's place sends ≈ 2.3 % of its cosine-weighted
@@ -209,7 +233,10 @@ fn aimed_photons_go_through_the_glass() {
         through_glass(&s, Aim::Mixture(0.5), n),
     );
     eprintln!("area light: through the glass {off} unaimed, {on} aimed");
-    assert!(on >= 0.45 && on >= 15.0 * off, "area: aimed {on} vs unaimed {off}");
+    assert!(
+        on >= 0.45 && on >= 15.0 * off,
+        "area: aimed {on} vs unaimed {off}"
+    );
 }
 
 /// Mean power per photon whose first hit is on the glass (flux onto the glass), with its
@@ -217,9 +244,10 @@ fn aimed_photons_go_through_the_glass() {
 fn flux_onto_glass(s: &Scene, aim: Aim, n: usize) -> (f64, f64) {
     let e = PhotonEmitter::new(s);
     let mut st = Stat::default();
+    let nums = PhotonNumbers::new(21);
     for i in 0..n {
         let y = e
-            .emit_index(s, i as u64, 21, aim)
+            .emit_index(s, &nums, i as u64, aim)
             .and_then(|p| s.intersect(&p.ray).map(|h| (p, h)))
             .filter(|(_, h)| h.material == 0)
             .map_or(0.0, |(p, _)| p.power.x as f64);
@@ -317,12 +345,18 @@ fn photons_are_a_pure_function_of_index_and_seed() {
     };
     let mut differ = 0;
     for i in (0..2000u64).rev() {
-        let a = e.emit_index(&s, i, 7, Aim::Mixture(0.5)).map(key);
+        let a = e
+            .emit_index(&s, &PhotonNumbers::new(7), i, Aim::Mixture(0.5))
+            .map(key);
         let b = PhotonEmitter::new(&s)
-            .emit_index(&s, i, 7, Aim::Mixture(0.5))
+            .emit_index(&s, &PhotonNumbers::new(7), i, Aim::Mixture(0.5))
             .map(key);
         assert_eq!(a, b, "photon {i}");
-        differ += usize::from(a != e.emit_index(&s, i, 8, Aim::Mixture(0.5)).map(key));
+        differ += usize::from(
+            a != e
+                .emit_index(&s, &PhotonNumbers::new(8), i, Aim::Mixture(0.5))
+                .map(key),
+        );
     }
     assert!(differ > 1900, "seed changes the photons: {differ}");
 }
@@ -342,7 +376,9 @@ fn without_caustic_makers_aiming_changes_nothing() {
     assert!(e.targets().is_empty());
     let u = [0.3, 0.2, 0.7, 0.1, 0.9];
     let a = e.emit_aimed(&s, u, Aim::Mixture(0.5)).unwrap();
-    let b = e.emit(&s, u[0], Vec2::new(u[1], u[2]), Vec2::new(u[3], u[4])).unwrap();
+    let b = e
+        .emit(&s, u[0], Vec2::new(u[1], u[2]), Vec2::new(u[3], u[4]))
+        .unwrap();
     assert_eq!((a.ray.dir, a.power), (b.ray.dir, b.power));
     assert!(e.emit_aimed(&s, u, Aim::Only).is_none());
 }

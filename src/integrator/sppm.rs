@@ -33,8 +33,8 @@
 //! are the per-sample methods' [`crate::render::primary_ray`] (jittered; stream
 //! `Rng::new(&[seed, pass, x, y])`). Visible points are kept per film slot.
 //!
-//! Photons: photon `i` of pass `p` is emitted from Owen-scrambled Halton point
-//! `p·photons + i` under the seed (each pass continues the sequence, as pbrt-v4 SPPM does),
+//! Photons: photon `i` of pass `p` is emitted from Halton point `p·photons + i`
+//! (digit-permuted by the seed, [`crate::photon::emit::PhotonNumbers`]) (each pass continues the sequence, as pbrt-v4 SPPM does),
 //! aimed at the caustic makers ([`crate::photon::emit::DEFAULT_AIM`], unbiased); its path
 //! after emission draws from `Rng::new(&[seed, pass, i, 0x9E07])`.
 
@@ -45,7 +45,7 @@ use crate::camera::Camera;
 use crate::error::Result;
 use crate::math::Rng;
 use crate::output::ImageRgb;
-use crate::photon::emit::{PhotonEmitter, DEFAULT_AIM};
+use crate::photon::emit::{PhotonEmitter, PhotonNumbers, DEFAULT_AIM};
 use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
@@ -267,6 +267,7 @@ fn photon_pass<C: Carrier>(
 ) -> Result<u64> {
     let chunks = n_photons.div_ceil(CHUNK);
     let budget = StoreBudget::default();
+    let numbers = PhotonNumbers::new(seed);
     let per_chunk: Vec<(Vec<Photon>, u64)> = (0..chunks)
         .into_par_iter()
         .map(|c| {
@@ -277,7 +278,7 @@ fn photon_pass<C: Carrier>(
                 let mut rng = Rng::new(&[seed, pass as u64, i, 0x9E07]);
                 // Halton over the global photon index: each pass continues the sequence.
                 let index = pass as u64 * n_photons + i;
-                let Some(ph) = emitter.emit_index(scene, index, seed, DEFAULT_AIM) else {
+                let Some(ph) = emitter.emit_index(scene, &numbers, index, DEFAULT_AIM) else {
                     continue;
                 };
                 let before = out.len();

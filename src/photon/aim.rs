@@ -323,7 +323,10 @@ impl Targets {
         let s = &self.spheres[j];
         let r = u_r.sqrt() * s.radius;
         let (sp, cp) = (2.0 * PI * u.y).sin_cos();
-        Some((Targets::projected(s, frame, centre) + Vec2::new(r * cp, r * sp), j))
+        Some((
+            Targets::projected(s, frame, centre) + Vec2::new(r * cp, r * sp),
+            j,
+        ))
     }
 
     /// The aimed density (per m²) of point `x` of [`Targets::sample_across`]'s plane: the

@@ -48,26 +48,25 @@
 //! ## Numbers
 //! Every photon is a pure function of its five uniform numbers `u = [light, point (2),
 //! direction (2)]` ([`PhotonEmitter::emit_aimed`]); the renderers draw them from
-//! Owen-scrambled Halton dimensions 0–4 over the photon index ([`photon_numbers`]; pbrt-v4
-//! SPPM draws its photon paths from Halton over the photon index,
-//! src/pbrt/cpu/integrators.cpp). The aim choice and the sphere choice reuse the direction's
+//! Halton dimensions 0–4 over the photon index, digit-permuted per seed
+//! ([`PhotonNumbers`], [`PhotonEmitter::emit_index`]; pbrt-v4 SPPM draws its photon paths
+//! from Halton over the photon index, src/pbrt/cpu/integrators.cpp). The aim choice and the sphere choice reuse the direction's
 //! first number (the disc point's, for distant light), rescaled within the chosen interval.
 
+use super::aim::Targets;
 pub use super::aim::{Aim, DEFAULT_AIM};
-use super::aim::{split_choice, Targets};
-use super::flux::{
-    area_flux, area_point, environment_integral, punctual_flux, sample_spot_cos, spot_integral,
-    uniform_sphere, unit_disc,
-};
+use super::flux::{area_flux, area_point, environment_integral, punctual_flux};
+pub use super::numbers::PhotonNumbers;
 use crate::interaction::OFFSET_SCALE;
 use crate::light::env::luminance;
-use crate::light::Light;
-use crate::math::{Frame, Ray, Rng};
-use crate::sampler::halton::halton_sample;
+use crate::math::{Ray, Rng};
 use crate::scene::Scene;
 use crate::spectrum::EmitterShape;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
+
+mod aimed;
+use aimed::Mix;
 
 /// The directional/environment disc radius over the bounding-sphere radius (> 1, so disc
 /// origins lie strictly outside the bounding sphere).
@@ -117,12 +116,6 @@ pub struct PhotonEmitter {
     radius: f32,
     /// The caustic makers' bounding spheres.
     targets: Targets,
-}
-
-/// The five emission numbers of photon `index` under `seed`: Owen-scrambled Halton
-/// dimensions 0–4 (light, point, direction), a pure function of `(index, seed)`.
-pub fn photon_numbers(index: u64, seed: u64) -> [f32; 5] {
-    std::array::from_fn(|d| halton_sample(index, d, seed))
 }
 
 impl PhotonEmitter {
@@ -207,16 +200,17 @@ impl PhotonEmitter {
         self.emit(scene, u_light, u_pos, u_dir)
     }
 
-    /// Photon `index` of the Halton sequence under `seed` ([`photon_numbers`]), aimed by
-    /// `aim`: what every photon loop of the renderers (and the plan's caustic probe) emits.
+    /// Photon `index` of the scrambled Halton sequence `numbers` ([`PhotonNumbers`], built
+    /// once per seed), aimed by `aim`: what every photon loop of the renderers (and the
+    /// plan's caustic probe) emits.
     pub fn emit_index<'a>(
         &self,
         scene: &'a Scene,
+        numbers: &PhotonNumbers,
         index: u64,
-        seed: u64,
         aim: Aim,
     ) -> Option<EmittedPhoton<'a>> {
-        self.emit_aimed(scene, photon_numbers(index, seed), aim)
+        self.emit_aimed(scene, numbers.get(index), aim)
     }
 
     /// A photon from uniform numbers, not aimed: `u_light` picks the light (by power),
@@ -299,170 +293,4 @@ impl PhotonEmitter {
         (power.is_finite() && power.max_element() > 0.0)
             .then_some(EmittedPhoton { power, ..photon })
     }
-
-    /// A direction from `p`: with probability `mix.a` aimed at a target, else
-    /// `base_sample` (whose density is `base_pdf`) with `u.x` rescaled. Returns the direction
-    /// and p_usual/p_mixture, the factor on the usual photon's power (exactly 1 unaimed).
-    fn mix_direction(
-        &self,
-        p: Vec3,
-        mix: Mix,
-        u: Vec2,
-        base_sample: impl FnOnce(Vec2) -> Option<Vec3>,
-        base_pdf: impl Fn(Vec3) -> f32,
-    ) -> Option<(Vec3, f32)> {
-        if mix.a <= 0.0 {
-            return Some((base_sample(u)?, 1.0));
-        }
-        let cones = self.targets.cones_from(p);
-        if cones.total() <= 0.0 {
-            return if mix.only {
-                None
-            } else {
-                Some((base_sample(u)?, 1.0))
-            };
-        }
-        let (aimed, ux) = split_choice(u.x, mix.a);
-        let (dir, sampled) = if aimed {
-            let (d, j) = self
-                .targets
-                .sample_direction(&cones, Vec2::new(ux, u.y))?;
-            (d, Some(j))
-        } else {
-            (base_sample(Vec2::new(ux, u.y))?, None)
-        };
-        let p_aim = self.targets.direction_pdf(&cones, dir, sampled);
-        let p_base = base_pdf(dir);
-        let p_mix = if mix.only {
-            p_aim
-        } else {
-            (1.0 - mix.a) * p_base + mix.a * p_aim
-        };
-        (p_mix > 0.0).then(|| (dir, p_base / p_mix))
-    }
-
-    /// Where a distant-light photon travelling along `dir` starts: a point of the plane ⟂
-    /// `dir` r upstream of the scene centre, uniform on the disc of radius r or (with
-    /// probability `mix.a`) in a target's projection. Returns the origin and 1/(its area
-    /// density) (π r² unaimed).
-    fn distant_origin(&self, dir: Vec3, u: Vec2, mix: Mix) -> Option<(Vec3, f32)> {
-        let disc_area = PI * self.radius * self.radius;
-        if mix.a <= 0.0 {
-            return Some((self.disc_origin(dir, u), disc_area));
-        }
-        let f = Frame::from_normal(dir);
-        let (aimed, ux) = split_choice(u.x, mix.a);
-        let (x, sampled) = if aimed {
-            let (x, j) = self
-                .targets
-                .sample_across(&f, self.centre, Vec2::new(ux, u.y))?;
-            (x, Some(j))
-        } else {
-            (unit_disc(Vec2::new(ux, u.y)) * self.radius, None)
-        };
-        let p_aim = self.targets.across_pdf(&f, self.centre, x, sampled);
-        let inside = sampled.is_none() || x.length_squared() <= self.radius * self.radius;
-        let p_base = if inside && disc_area > 0.0 {
-            1.0 / disc_area
-        } else {
-            0.0
-        };
-        let p_mix = if mix.only {
-            p_aim
-        } else {
-            (1.0 - mix.a) * p_base + mix.a * p_aim
-        };
-        let origin = self.centre - dir * self.radius + f.s * x.x + f.t * x.y;
-        (p_mix > 0.0).then(|| (origin, 1.0 / p_mix))
-    }
-
-    /// A point of the disc ⟂ `dir`, centred r upstream of the scene centre.
-    fn disc_origin(&self, dir: Vec3, u: Vec2) -> Vec3 {
-        let f = Frame::from_normal(dir);
-        let d = unit_disc(u) * self.radius;
-        self.centre - dir * self.radius + f.s * d.x + f.t * d.y
-    }
-
-    /// A photon of one punctual light carrying its contribution before light selection
-    /// (its whole flux when not aimed).
-    fn punctual<'a>(
-        &self,
-        light: &Light,
-        flux: Vec3,
-        u_pos: Vec2,
-        u_dir: Vec2,
-        shape: Option<&'a EmitterShape>,
-        mix: Mix,
-    ) -> Option<EmittedPhoton<'a>> {
-        let (ray, range, ratio) = match *light {
-            Light::Point {
-                position, range, ..
-            } => {
-                let (dir, ratio) = self.mix_direction(
-                    position,
-                    mix,
-                    u_dir,
-                    |u| Some(uniform_sphere(u)),
-                    |_| 1.0 / (4.0 * PI),
-                )?;
-                (Ray::new(position, dir), range, ratio)
-            }
-            Light::Spot {
-                position,
-                direction,
-                cos_inner,
-                cos_outer,
-                range,
-                ..
-            } => {
-                let frame = Frame::from_normal(direction);
-                let sample = |u: Vec2| {
-                    let c = sample_spot_cos(cos_inner, cos_outer, u.x);
-                    let s = (1.0 - c * c).max(0.0).sqrt();
-                    let (sp, cp) = (2.0 * PI * u.y).sin_cos();
-                    Some(frame.to_world(Vec3::new(s * cp, s * sp, c)).normalize())
-                };
-                // Density t(c)²/(2πK) on the cone, 0 outside (KHR falloff, crate::light).
-                let k = spot_integral(cos_inner, cos_outer);
-                let pdf = |d: Vec3| {
-                    let c = d.dot(direction);
-                    let ci = cos_inner.max(cos_outer);
-                    let t = if ci > cos_outer {
-                        ((c - cos_outer) / (ci - cos_outer)).clamp(0.0, 1.0)
-                    } else if c >= cos_outer {
-                        1.0
-                    } else {
-                        0.0
-                    };
-                    if k > 0.0 {
-                        t * t / (2.0 * PI * k)
-                    } else {
-                        0.0
-                    }
-                };
-                let (dir, ratio) = self.mix_direction(position, mix, u_dir, sample, pdf)?;
-                (Ray::new(position, dir), range, ratio)
-            }
-            Light::Directional { direction, .. } => {
-                let (origin, area) = self.distant_origin(direction, u_pos, mix)?;
-                // flux = E·π r²; the photon carries E / p_area.
-                let ratio = area / (PI * self.radius * self.radius);
-                (Ray::new(origin, direction), None, ratio)
-            }
-        };
-        Some(EmittedPhoton {
-            ray,
-            power: flux * ratio,
-            shape,
-            range,
-        })
-    }
-}
-
-/// The aim of one emission: the aimed fraction (0 when there is nothing to aim at) and
-/// whether the usual term is dropped.
-#[derive(Debug, Clone, Copy)]
-struct Mix {
-    a: f32,
-    only: bool,
 }

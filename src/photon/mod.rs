@@ -5,6 +5,7 @@
 //! - [`emit`]: where photons start, from every light type, chosen by power, optionally
 //!   aimed at the caustic makers; [`flux`]: the lights' flux and usual sampling shapes.
 //! - [`aim`]: the caustic makers' bounding spheres and the aimed densities.
+//! - [`numbers`]: the photons' emission numbers (digit-permuted Halton over the index).
 //! - [`store`]: the compact stored photon (32 bytes, octahedral direction, flags).
 //! - [`kdtree`]: the photon map, a kd-tree with k-nearest and radius queries.
 //! - [`grid`]: the hash grid for fixed-radius queries, rebuilt every SPPM pass.
@@ -19,5 +20,6 @@ pub mod emit;
 pub mod flux;
 pub mod grid;
 pub mod kdtree;
+pub mod numbers;
 pub mod store;
 pub mod trace;

@@ -246,10 +246,11 @@ pub fn has_caustic_paths(scene: &Scene, emitter: &super::emit::PhotonEmitter, n:
         max_depth: 8,
         roulette: Roulette::Throughput,
     };
+    let numbers = super::emit::PhotonNumbers::new(0xCA05_71C5);
     (0..n).any(|i| {
         let mut rng = Rng::new(&[0xCA05_71C5, i as u64]);
         let aim = super::emit::DEFAULT_AIM;
-        let Some(ph) = emitter.emit_index(scene, i as u64, 0xCA05_71C5, aim) else {
+        let Some(ph) = emitter.emit_index(scene, &numbers, i as u64, aim) else {
             return false;
         };
         let mut found = false;
