@@ -17,7 +17,9 @@ use std::f32::consts::PI;
 /// whether the usual term is dropped.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Mix {
+    /// Probability of an aimed sample, in [0, 1].
     pub a: f32,
+    /// [`crate::photon::aim::Aim::Only`]: the density is the aimed one alone.
     pub only: bool,
 }
 
