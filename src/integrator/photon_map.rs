@@ -6,6 +6,11 @@
 //!   only, then a diffuse-like surface);
 //! - the **global map**: every photon stored at a non-delta surface.
 //!
+//! Photon `i` is emitted from Halton point `i` (digit-permuted by the seed,
+//! [`crate::photon::emit::PhotonNumbers`]), aimed at the
+//! caustic makers ([`crate::photon::emit::DEFAULT_AIM`], unbiased); its path after emission
+//! draws from `Rng::new(&[seed, i, 0x9E07_0001])`.
+//!
 //! Pass 2 follows camera paths with the path tracer's loop ([`path::camera_path`]) through
 //! specular and glossy bounces to the first diffuse-like hit x, and adds there
 //! - direct light from shadow rays (the path tracer's next-event estimation),
@@ -34,7 +39,7 @@ use crate::error::Result;
 use crate::math::{Frame, Ray, Rng};
 use crate::medium::MediumStack;
 use crate::output::ImageRgb;
-use crate::photon::emit::PhotonEmitter;
+use crate::photon::emit::{PhotonEmitter, PhotonNumbers, DEFAULT_AIM};
 use crate::photon::kdtree::PhotonMap;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
@@ -89,6 +94,7 @@ pub fn build_maps(
     spectral: bool,
 ) -> Result<(Vec<Photon>, Vec<Photon>, u64)> {
     let emitter = PhotonEmitter::new(scene);
+    let numbers = PhotonNumbers::new(seed);
     let inv_n = 1.0 / n.max(1) as f32;
     let chunks = n.div_ceil(CHUNK);
     let budget = StoreBudget::default();
@@ -98,7 +104,7 @@ pub fn build_maps(
             let (mut caustic, mut global, mut rays) = (Vec::new(), Vec::new(), 0);
             for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
                 let mut rng = Rng::new(&[seed, i, 0x9E07_0001]);
-                let Some(ph) = emitter.emit_from(scene, &mut rng) else {
+                let Some(ph) = emitter.emit_index(scene, &numbers, i, DEFAULT_AIM) else {
                     continue;
                 };
                 let before = caustic.len() + global.len();

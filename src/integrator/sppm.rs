@@ -32,6 +32,11 @@
 //! observer, the time limit and stop requests between passes are the driver's. Camera rays
 //! are the per-sample methods' [`crate::render::primary_ray`] (jittered; stream
 //! `Rng::new(&[seed, pass, x, y])`). Visible points are kept per film slot.
+//!
+//! Photons: photon `i` of pass `p` is emitted from Halton point `p·photons + i`
+//! (digit-permuted by the seed, [`crate::photon::emit::PhotonNumbers`]) (each pass continues the sequence, as pbrt-v4 SPPM does),
+//! aimed at the caustic makers ([`crate::photon::emit::DEFAULT_AIM`], unbiased); its path
+//! after emission draws from `Rng::new(&[seed, pass, i, 0x9E07])`.
 
 use super::path::{self, StopAt, VisiblePoint};
 use super::{Context, SppmSettings, StoreBudget, MAX_PHOTONS};
@@ -40,7 +45,7 @@ use crate::camera::Camera;
 use crate::error::Result;
 use crate::math::Rng;
 use crate::output::ImageRgb;
-use crate::photon::emit::PhotonEmitter;
+use crate::photon::emit::{PhotonEmitter, PhotonNumbers, DEFAULT_AIM};
 use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
@@ -264,6 +269,7 @@ fn photon_pass<C: Carrier>(
 ) -> Result<u64> {
     let chunks = n_photons.div_ceil(CHUNK);
     let budget = StoreBudget::default();
+    let numbers = PhotonNumbers::new(seed);
     let per_chunk: Vec<(Vec<Photon>, u64)> = (0..chunks)
         .into_par_iter()
         .map(|c| {
@@ -272,7 +278,9 @@ fn photon_pass<C: Carrier>(
             let inv_n = 1.0 / n_photons as f32;
             for i in c * CHUNK..((c + 1) * CHUNK).min(n_photons) {
                 let mut rng = Rng::new(&[seed, pass as u64, i, 0x9E07]);
-                let Some(ph) = emitter.emit_from(scene, &mut rng) else {
+                // Halton over the global photon index: each pass continues the sequence.
+                let index = pass as u64 * n_photons + i;
+                let Some(ph) = emitter.emit_index(scene, &numbers, index, DEFAULT_AIM) else {
                     continue;
                 };
                 let before = out.len();
