@@ -126,7 +126,6 @@ fn randomize_bits(randomize: Randomize, v: u32, hash: u32) -> u32 {
 #[derive(Debug, Clone)]
 pub struct ZSobol {
     randomize: Randomize,
-    seed: u64,
     log2_spp: u32,
     /// Base-4 digits covering pixel and sample bits (pbrt-v4 `nBase4Digits`).
     base4_digits: u32,
@@ -177,7 +176,6 @@ impl ZSobol {
         let log2_res = res.trailing_zeros();
         ZSobol {
             randomize,
-            seed,
             log2_spp,
             base4_digits: log2_res + log2_spp.div_ceil(2),
             low_bits: 2 * log2_res + log2_spp,
