@@ -83,6 +83,10 @@ pub enum Integrator {
     Path {
         /// Bounces per path, at most [`MAX_DEPTH`].
         max_depth: u32,
+        /// Spectral transport: keep the 4 wavelengths at rough dispersive interfaces with
+        /// spectral MIS ([`crate::shading::spectral_mis`]; on by default), instead of the
+        /// hero only (pbrt-v4 `TerminateSecondary`; for comparisons).
+        spectral_mis: bool,
     },
     /// Classic photon mapping with a final gather ([`photon_map`]).
     PhotonMap {
@@ -107,7 +111,10 @@ impl Integrator {
     pub fn new(method: Method, max_depth: u32, photon: &PhotonSettings) -> Result<Integrator> {
         Ok(match method {
             Method::Whitted => Integrator::Whitted { max_depth },
-            Method::Path => Integrator::Path { max_depth },
+            Method::Path => Integrator::Path {
+                max_depth,
+                spectral_mis: true,
+            },
             Method::Photon => Integrator::PhotonMap {
                 max_depth,
                 photons: photon.photon_map(),
@@ -138,7 +145,7 @@ impl Integrator {
     pub fn max_depth(&self) -> u32 {
         match *self {
             Integrator::Whitted { max_depth }
-            | Integrator::Path { max_depth }
+            | Integrator::Path { max_depth, .. }
             | Integrator::PhotonMap { max_depth, .. }
             | Integrator::Sppm { max_depth, .. } => max_depth,
         }
@@ -170,9 +177,17 @@ impl Integrator {
             Integrator::Whitted { max_depth } => {
                 Some(whitted::radiance(scene, ray, max_depth, lambda, ctx))
             }
-            Integrator::Path { max_depth } => {
-                Some(path::radiance(scene, ray, max_depth, lambda, ctx))
-            }
+            Integrator::Path {
+                max_depth,
+                spectral_mis,
+            } => Some(path::radiance(
+                scene,
+                ray,
+                max_depth,
+                lambda,
+                spectral_mis,
+                ctx,
+            )),
             Integrator::PhotonMap { .. } | Integrator::Sppm { .. } => None,
         }
     }

@@ -10,7 +10,10 @@
 //! materials become BSDFs ([`crate::bsdf`]) in the local frame of the outward shading
 //! normal, volumes use the path's medium stack for η and Beer–Lambert, and alpha-BLEND
 //! surfaces are passed through with probability 1 − α. Emission, MIS and next-event
-//! estimation are this loop's own.
+//! estimation are this loop's own. In spectral transport a rough dispersive interface keeps
+//! the 4 wavelengths with spectral MIS ([`crate::shading::spectral_mis`]): the BSDF's f and
+//! pdf there come from [`Surface::sample_mis`] / [`Surface::eval_mis`], and the pdf both
+//! MIS sides use is the hero-marginal one.
 
 use super::Context;
 use crate::bsdf::{Bsdf, TransportMode};
@@ -44,7 +47,7 @@ fn next_event<C: Carrier>(
     u: &mut Bounce<'_>,
     rays: &mut u64,
 ) -> C {
-    let (hit, bsdf, wo) = (&s.hit, &s.bsdf, s.wo);
+    let hit = &s.hit;
     let n_punctual = scene.lights.len();
     let has_area = !scene.area_lights.is_empty();
     let has_env = scene.environment.is_some();
@@ -69,7 +72,8 @@ fn next_event<C: Carrier>(
     // The light's pdf includes choosing its group.
     let light_pdf = ls.pdf.map(|p| p * p_sel);
     let wi_local = s.frame.to_local(ls.wi);
-    let f = bsdf.eval(wo, wi_local, TransportMode::Radiance);
+    // Per lane with the hero-marginal pdf at a rough dispersive interface (spectral MIS).
+    let (f, bsdf_pdf) = s.eval_mis(wi_local, TransportMode::Radiance, lambda);
     if f == C::ZERO {
         return C::ZERO;
     }
@@ -78,7 +82,7 @@ fn next_event<C: Carrier>(
         return C::ZERO;
     }
     let w = match light_pdf {
-        Some(lp) if use_mis => mis(lp, bsdf.pdf(wo, wi_local, TransportMode::Radiance)),
+        Some(lp) if use_mis => mis(lp, bsdf_pdf),
         _ => 1.0,
     };
     let incident = C::emitted(ls.incident / p_sel, ls.shape, lambda);
@@ -118,15 +122,26 @@ pub struct VisiblePoint<C: Carrier> {
 }
 
 /// Radiance along `ray` (the camera is in air) at the sample's wavelengths `lambda`
-/// (nothing in RGB transport).
+/// (nothing in RGB transport); `spectral_mis`: keep the 4 wavelengths at rough dispersive
+/// interfaces ([`crate::shading::spectral_mis`]) rather than the hero only.
 pub fn radiance<C: Carrier>(
     scene: &Scene,
     ray: &Ray,
     max_depth: u32,
     lambda: C::Lambda,
+    spectral_mis: bool,
     ctx: &mut Context,
 ) -> C {
-    camera_path(scene, ray, max_depth, lambda, StopAt::Never, ctx).0
+    trace(
+        scene,
+        ray,
+        max_depth,
+        lambda,
+        StopAt::Never,
+        spectral_mis,
+        ctx,
+    )
+    .0
 }
 
 /// The previous bounce, for MIS of emission found by BSDF sampling: whether it was delta
@@ -193,10 +208,26 @@ pub fn camera_path<C: Carrier>(
     scene: &Scene,
     ray: &Ray,
     max_depth: u32,
-    mut lambda: C::Lambda,
+    lambda: C::Lambda,
     stop: StopAt,
     ctx: &mut Context,
 ) -> (C, Option<VisiblePoint<C>>) {
+    trace(scene, ray, max_depth, lambda, stop, false, ctx)
+}
+
+/// [`camera_path`], with spectral MIS at rough dispersive interfaces when `spectral_mis`
+/// (only with [`StopAt::Never`]: the photon methods' visible points keep the hero only, as
+/// their gather evaluates the BSDF with one η).
+fn trace<C: Carrier>(
+    scene: &Scene,
+    ray: &Ray,
+    max_depth: u32,
+    mut lambda: C::Lambda,
+    stop: StopAt,
+    spectral_mis: bool,
+    ctx: &mut Context,
+) -> (C, Option<VisiblePoint<C>>) {
+    let spectral_mis = spectral_mis && stop == StopAt::Never;
     let mut l = C::ZERO;
     let mut beta = C::ONE;
     let mut ray = *ray;
@@ -229,7 +260,12 @@ pub fn camera_path<C: Carrier>(
             l += e;
         }
         let mut u = ctx.sample.bounce(vertex);
-        let s = match at.event(scene, media, &mut beta, &mut lambda, &mut u) {
+        let ev = if spectral_mis {
+            at.event_lanes(scene, media, &mut beta, &mut lambda, &mut u)
+        } else {
+            at.event(scene, media, &mut beta, &mut lambda, &mut u)
+        };
+        let s = match ev {
             Event::PassThrough(next) => {
                 ray = next;
                 continue;
@@ -255,7 +291,7 @@ pub fn camera_path<C: Carrier>(
         }
         let uc = u.bsdf_lobe();
         let ud = u.bsdf_direction();
-        let Some(bs) = s.sample(uc, ud, TransportMode::Radiance) else {
+        let Some(bs) = s.sample_mis(uc, ud, TransportMode::Radiance, &mut lambda) else {
             break;
         };
         beta *= bs.f * (bs.wi.z.abs() / bs.pdf);

@@ -60,14 +60,7 @@ pub fn bsdf_at<C: Carrier>(
             );
         }
         let (n_i, n_t, after, dispersive) = interface::<C>(scene, hit, coincident, media, l);
-        // Bsdf's η is n_inside / n_outside, the outside being the normal's side.
-        let eta = if n_i == n_t {
-            1.0
-        } else if hit.front_face {
-            n_t / n_i
-        } else {
-            n_i / n_t
-        };
+        let eta = bsdf_eta(n_i, n_t, hit.front_face);
         return (
             Bsdf::Dielectric {
                 eta,
@@ -102,6 +95,36 @@ pub fn interface<C: Carrier>(
         scene.materials[m as usize].ior_at(hero, dispersive)
     });
     (n_i, n_t, after, dispersive)
+}
+
+/// The BSDF's η (n_inside / n_outside, the outside being the normal's side) from the
+/// indices on the incident (`n_i`) and far (`n_t`) sides.
+fn bsdf_eta(n_i: f32, n_t: f32, front_face: bool) -> f32 {
+    if n_i == n_t {
+        1.0
+    } else if front_face {
+        n_t / n_i
+    } else {
+        n_i / n_t
+    }
+}
+
+/// The BSDF's η at each of the 4 wavelengths `lanes` (nm) at a dispersive volume boundary
+/// (what [`bsdf_at`] takes at the hero alone), for spectral MIS at rough interfaces
+/// ([`super::spectral_mis`]). Lane 0 is the hero: equal to the η [`bsdf_at`] gives.
+pub fn lane_etas(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    coincident: &CoincidentSet,
+    media: MediumStack,
+    lanes: [f32; 4],
+) -> [f32; 4] {
+    lanes.map(|nm| {
+        let (n_i, n_t, _) = medium::crossing(scene, hit, coincident, media, |m| {
+            scene.materials[m as usize].ior_at(Some(nm), true)
+        });
+        bsdf_eta(n_i, n_t, hit.front_face)
+    })
 }
 
 /// GGX α from which a glossy lobe is treated like a diffuse one (a visible point); below

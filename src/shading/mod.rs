@@ -3,6 +3,7 @@
 //! - [`step`]: the per-hit step every loop takes (arrive at a surface, BLEND coverage, the
 //!   BSDF, the hero wavelength, the shading frame);
 //! - [`material_bsdf`]: the BSDF a material has at a hit, and which BSDFs count as diffuse;
+//! - [`spectral_mis`]: spectral MIS over the 4 wavelengths at rough dispersive interfaces;
 //! - [`direct`]: direct light with shadow rays (the Whitted tracer's light step);
 //! - [`lights`]: one light sample toward a hit (punctual, emissive triangles, environment).
 //!
@@ -12,8 +13,11 @@
 pub mod direct;
 pub mod lights;
 pub mod material_bsdf;
+pub mod spectral_mis;
 pub mod step;
 
 pub use direct::direct_light;
-pub use material_bsdf::{bsdf_at, interface, is_diffuse_like, surface_bsdf, GLOSSY_ALPHA};
+pub use material_bsdf::{
+    bsdf_at, interface, is_diffuse_like, lane_etas, surface_bsdf, GLOSSY_ALPHA,
+};
 pub use step::{arrive, meet, sample_bsdf, Arrival, Event, Surface, MAX_DELTA_BOUNCES};

@@ -8,7 +8,9 @@
 //! 2. [`Arrival::event`]: glTF BLEND coverage (stochastic: the surface is there with
 //!    probability α, otherwise the path passes straight through, unchanged), then the BSDF
 //!    at the hit ([`bsdf_at`], η from the path's media), keeping only the hero wavelength
-//!    past a dispersive interface, and the shading frame ([`Surface`]).
+//!    past a dispersive interface (or, for the path tracer at a rough one, all 4 with
+//!    spectral MIS: [`Arrival::event_lanes`], [`spectral_mis`]), and the shading frame
+//!    ([`Surface`]).
 //!
 //! What differs between the loops stays in them: what they do on arrival (emission with
 //! MIS for camera paths, the light's range window for photons, Whitted's deterministic
@@ -19,7 +21,8 @@
 //! the outward shading normal (the BSDF's frame). Transmittance is per unit radiance or
 //! flux (dimensionless).
 
-use super::material_bsdf::bsdf_at;
+use super::material_bsdf::{bsdf_at, lane_etas};
+use super::spectral_mis;
 use crate::bsdf::{Bsdf, BsdfSample, TransportMode};
 use crate::interaction::{CoincidentSet, SurfaceHit};
 use crate::material::{Material, ShadingPoint};
@@ -127,6 +130,10 @@ pub struct Surface<C: Carrier> {
     /// The media on the far side of a refraction (equal to `media` unless a volume is
     /// entered or left).
     beyond: MediumStack,
+    /// At a rough dispersive dielectric met by [`Arrival::event_lanes`]: the BSDF's η for
+    /// each of the 4 lanes (lane 0 = the hero's, in `bsdf`), for spectral MIS
+    /// ([`spectral_mis`]); `None` otherwise.
+    lanes: Option<[f32; 4]>,
 }
 
 impl<C: Carrier> Arrival<'_, C> {
@@ -142,6 +149,33 @@ impl<C: Carrier> Arrival<'_, C> {
         lambda: &mut C::Lambda,
         u: &mut impl StepNumbers,
     ) -> Event<C> {
+        self.step(scene, media, beta, lambda, u, false)
+    }
+
+    /// [`Arrival::event`], except that at a ROUGH dispersive dielectric the path keeps its
+    /// 4 lanes: the surface gets per-lane indices and its [`Surface::sample_mis`] and
+    /// [`Surface::eval_mis`] weight the lanes by spectral MIS ([`spectral_mis`]). Smooth
+    /// dispersive interfaces still keep the hero only. For the path tracer's camera paths.
+    pub fn event_lanes(
+        &self,
+        scene: &Scene,
+        media: MediumStack,
+        beta: &mut C,
+        lambda: &mut C::Lambda,
+        u: &mut impl StepNumbers,
+    ) -> Event<C> {
+        self.step(scene, media, beta, lambda, u, true)
+    }
+
+    fn step(
+        &self,
+        scene: &Scene,
+        media: MediumStack,
+        beta: &mut C,
+        lambda: &mut C::Lambda,
+        u: &mut impl StepNumbers,
+        keep_lanes: bool,
+    ) -> Event<C> {
         // glTF BLEND: stochastic coverage; the uncovered part continues straight on.
         if matches!(self.mat.desc.alpha_mode, AlphaMode::Blend) && u.alpha() >= self.sp.alpha {
             return Event::PassThrough(self.hit.spawn_ray(-self.hit.wo));
@@ -155,8 +189,15 @@ impl<C: Carrier> Arrival<'_, C> {
             u.layer(),
             lambda,
         );
+        let mut lanes = None;
         if dispersive {
-            *beta = beta.keep_hero(lambda);
+            let rough = matches!(bsdf, Bsdf::Dielectric { .. }) && !bsdf.is_delta();
+            match C::lanes_nm(lambda) {
+                Some(nm) if keep_lanes && rough && !C::is_hero_only(lambda) => {
+                    lanes = Some(lane_etas(scene, &self.hit, &self.coincident, media, nm));
+                }
+                _ => *beta = beta.keep_hero(lambda),
+            }
         }
         let frame = Frame::from_normal(self.hit.ns);
         Event::Scatter(Surface {
@@ -166,6 +207,7 @@ impl<C: Carrier> Arrival<'_, C> {
             wo: frame.to_local(self.hit.wo),
             media,
             beyond,
+            lanes,
         })
     }
 }
@@ -203,6 +245,35 @@ impl<C: Carrier> Surface<C> {
     /// A BSDF sample at `wo` ([`sample_bsdf`]).
     pub fn sample(&self, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample<C>> {
         sample_bsdf(&self.bsdf, self.wo, uc, u, mode)
+    }
+
+    /// A BSDF sample for a path carrying `lambda`: at a rough dispersive dielectric
+    /// ([`Arrival::event_lanes`]) f per lane and the hero-marginal pdf, updating the hero
+    /// weights ([`spectral_mis::sample`]); elsewhere [`Surface::sample`].
+    pub fn sample_mis(
+        &self,
+        uc: f32,
+        u: Vec2,
+        mode: TransportMode,
+        lambda: &mut C::Lambda,
+    ) -> Option<BsdfSample<C>> {
+        match &self.lanes {
+            Some(etas) => spectral_mis::sample(&self.bsdf, etas, self.wo, uc, u, mode, lambda),
+            None => self.sample(uc, u, mode),
+        }
+    }
+
+    /// f(wo, wi) and the pdf BSDF sampling ([`Surface::sample_mis`]) has for the local
+    /// `wi`: per lane and hero-marginal at a rough dispersive dielectric
+    /// ([`spectral_mis::eval`]), the BSDF's eval and pdf elsewhere.
+    pub fn eval_mis(&self, wi: Vec3, mode: TransportMode, lambda: &C::Lambda) -> (C, f32) {
+        match &self.lanes {
+            Some(etas) => spectral_mis::eval(&self.bsdf, etas, self.wo, wi, mode, lambda),
+            None => (
+                self.bsdf.eval(self.wo, wi, mode),
+                self.bsdf.pdf(self.wo, wi, mode),
+            ),
+        }
     }
 
     /// The media after leaving along a sampled direction: those beyond the surface if the

@@ -12,6 +12,12 @@
 //!   with the unchanged wavelength pdfs is exactly pbrt-v4's `TerminateSecondary` (pdf/4 on
 //!   the hero) — but as a property of the carried value, so Whitted's branches may terminate
 //!   independently and still add up.
+//! - At a ROUGH dispersive interface the path tracer keeps all 4 lanes instead, with
+//!   spectral MIS over the wavelengths (Wilkie et al. 2014, "Hero Wavelength Spectral
+//!   Sampling", §4; [`crate::shading::spectral_mis`]): [`Lambdas::hero_weight`] is then the
+//!   posterior probability that each lane is the hero given the directions sampled so far,
+//!   and [`Carrier::keep_hero`] multiplies the hero by 1/weight (4 while no rough dispersive
+//!   vertex has been met, as above).
 //! - [`Carrier::to_rgb`] is the film's conversion (spectrum → CIE XYZ → linear sRGB); it is
 //!   the only place colour is converted.
 
@@ -32,6 +38,11 @@ pub struct Lambdas {
     /// D65 (luminance 1) at the 4 wavelengths, looked up once per sample: every emission
     /// upsampling multiplies by it.
     pub d65: SampledSpectrum,
+    /// Probability that lane j is the hero given the path so far (sums to 1; uniform 1/4
+    /// until a rough dispersive vertex reweights it, [`crate::shading::spectral_mis`]). The
+    /// lanes are rotations of the hero's sample number by j/4, so before any direction is
+    /// sampled each lane is equally likely to be the one that chose them.
+    pub hero_weight: [f32; N_LAMBDA],
 }
 
 impl Lambdas {
@@ -41,6 +52,7 @@ impl Lambdas {
             wl,
             hero_only: false,
             d65: SampledSpectrum::from_fn(&wl, d65_normalized),
+            hero_weight: [1.0 / N_LAMBDA as f32; N_LAMBDA],
         }
     }
 }
@@ -119,8 +131,16 @@ pub trait Carrier:
     fn to_rgb(self, l: &Self::Lambda) -> Vec3;
     /// The hero wavelength in nm (`None` in RGB): what a dispersive interface refracts with.
     fn hero(l: &Self::Lambda) -> Option<f32>;
-    /// Keeps the hero wavelength only (a dispersive interface); marks `l`.
+    /// Keeps the hero wavelength only (a dispersive interface); marks `l`. The hero lane is
+    /// divided by its hero weight ([`Lambdas::hero_weight`]; 1/4 unless spectral MIS has
+    /// reweighted it), which then becomes 1.
     fn keep_hero(self, l: &mut Self::Lambda) -> Self;
+    /// The 4 wavelengths in nm (`None` in RGB).
+    fn lanes_nm(l: &Self::Lambda) -> Option<[f32; 4]>;
+    /// The hero weights ([`Lambdas::hero_weight`]; RGB: `[1, 0, 0, 0]`, unused).
+    fn hero_weight(l: &Self::Lambda) -> [f32; 4];
+    /// Sets the hero weights (no-op in RGB).
+    fn set_hero_weight(l: &mut Self::Lambda, w: [f32; 4]);
     /// Whether the path kept only its hero wavelength ([`Carrier::keep_hero`]).
     fn is_hero_only(l: &Self::Lambda) -> bool;
     /// The channels / lanes as 4 floats (RGB: the 4th is 0), for compact storage.
@@ -185,6 +205,16 @@ impl Carrier for Vec3 {
     fn keep_hero(self, _l: &mut ()) -> Self {
         self
     }
+    #[inline]
+    fn lanes_nm(_l: &()) -> Option<[f32; 4]> {
+        None
+    }
+    #[inline]
+    fn hero_weight(_l: &()) -> [f32; 4] {
+        [1.0, 0.0, 0.0, 0.0]
+    }
+    #[inline]
+    fn set_hero_weight(_l: &mut (), _w: [f32; 4]) {}
     #[inline]
     fn is_hero_only(_l: &()) -> bool {
         false
@@ -266,8 +296,25 @@ impl Carrier for SampledSpectrum {
         }
         l.hero_only = true;
         let mut v = [0.0; N_LAMBDA];
-        v[0] = self.values()[0] * N_LAMBDA as f32;
+        let w0 = l.hero_weight[0];
+        // The path's density marginalised over which lane is the hero was
+        // Σ_j P_j / 4 = P_0 / (4 w_0); past a delta dispersive vertex only the hero could
+        // have produced it (density P_0 / 4): a factor 1/w_0 (4 with uniform weights).
+        v[0] = if w0 > 0.0 { self.values()[0] / w0 } else { 0.0 };
+        l.hero_weight = [1.0, 0.0, 0.0, 0.0];
         SampledSpectrum::new(v)
+    }
+    #[inline]
+    fn lanes_nm(l: &Lambdas) -> Option<[f32; 4]> {
+        Some(l.wl.lambdas())
+    }
+    #[inline]
+    fn hero_weight(l: &Lambdas) -> [f32; 4] {
+        l.hero_weight
+    }
+    #[inline]
+    fn set_hero_weight(l: &mut Lambdas, w: [f32; 4]) {
+        l.hero_weight = w;
     }
     #[inline]
     fn is_hero_only(l: &Lambdas) -> bool {
