@@ -402,3 +402,36 @@ fn area<'a>(scene: &'a Scene, u: f32, u_pos: Vec2, u_dir: Vec2) -> Option<Emitte
         range: None,
     })
 }
+
+impl PhotonEmitter {
+    /// The same emitter without the environment: the punctual lights and emissive
+    /// triangles only, reselected by the luminance of their flux (the hybrid's caustic
+    /// lights, [`crate::integrator::caustic`]). Each photon's power is still divided by its
+    /// (new) selection probability, so the mean power is the remaining lights' flux.
+    pub fn without_environment(&self) -> PhotonEmitter {
+        let kept: Vec<(Source, Vec3)> = self
+            .sources
+            .iter()
+            .filter(|(s, _, _)| *s != Source::Environment)
+            .map(|&(s, f, _)| (s, f))
+            .collect();
+        let lum_total: f64 = kept.iter().map(|(_, f)| luminance(*f) as f64).sum();
+        let (mut sources, mut cdf, mut total, mut acc) = (Vec::new(), Vec::new(), Vec3::ZERO, 0.0);
+        for (s, f) in kept {
+            let y = luminance(f) as f64;
+            acc += y;
+            cdf.push((acc / lum_total) as f32);
+            sources.push((s, f, (y / lum_total) as f32));
+            total += f;
+        }
+        if let Some(last) = cdf.last_mut() {
+            *last = 1.0;
+        }
+        PhotonEmitter {
+            sources,
+            cdf,
+            total,
+            ..self.clone()
+        }
+    }
+}
