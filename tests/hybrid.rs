@@ -479,3 +479,38 @@ fn cli_accepts_hybrid_and_rejects_nonsense() {
     assert!(err.contains("hybird") && err.contains("hybrid"), "{err}");
     assert!(!dir.join("x.png").exists());
 }
+
+/// `--method auto` among path, hybrid and SPPM ([`iris::plan::resolve_method`]): the point
+/// light's caustic under the glass sphere is a small share of the floor's light → hybrid;
+/// the bulb inside a glass ball sends all its light through glass → SPPM; the glass sphere
+/// under a uniform sky alone (its caustic comes from the environment, which the hybrid
+/// leaves to the path tracer) → SPPM; the plan's photons stage says why.
+#[test]
+fn auto_chooses_among_path_hybrid_and_sppm_and_says_why() {
+    use iris::plan::{resolve_method, Plan, SpectralMode};
+    let (sphere, _) = common::caustic_sphere(None);
+    let (m, why) = resolve_method(Method::Auto, &sphere);
+    assert_eq!(m, Method::Hybrid, "{why:?}");
+    let plan = Plan::new(&sphere, Method::Auto, SpectralMode::Auto);
+    let reason = &plan.stage("photons").unwrap().reason;
+    assert!(
+        reason.contains("--method auto -> hybrid") && reason.contains("caustics carry"),
+        "{reason}"
+    );
+    let (m, why) = resolve_method(Method::Auto, &glass_lantern_room());
+    assert_eq!(m, Method::Sppm, "{why:?}");
+    assert!(why.unwrap().contains("100 %"));
+    let (desc, _) = iris::scenes::bench::caustic_sphere(None);
+    let desc = iris::scene::desc::SceneDesc {
+        lights: Vec::new(),
+        environment_light: Some(iris::light::env::Environment::Uniform {
+            radiance: Vec3::ONE,
+        }),
+        ..desc
+    };
+    let desc = iris::scene::validate::validate(desc).expect("valid scene");
+    let sky = Scene::build(desc, iris::accel::Backend::Auto).expect("build");
+    let (m, why) = resolve_method(Method::Auto, &sky);
+    assert_eq!(m, Method::Sppm, "{why:?}");
+    assert!(why.unwrap().contains("environment"));
+}

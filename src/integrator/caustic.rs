@@ -199,3 +199,42 @@ impl CausticMap {
         sum / (std::f64::consts::PI * r2) as f32
     }
 }
+
+/// The caustic lights' probe behind `--method auto` ([`crate::plan::resolve_method`]): of
+/// `n` photons from the caustic lights (fixed seed, RGB, the map's split), the share of the
+/// power arriving at first non-delta hits that arrives after ≥ 1 delta bounce (L S+ D),
+/// in [0, 1]; 0 when no photon reaches a non-delta surface.
+pub fn probe_share(scene: &Scene, n: u32) -> f64 {
+    let emitter = emitter(scene);
+    if emitter.is_empty() {
+        return 0.0;
+    }
+    let settings = TraceSettings {
+        max_depth: 1,
+        roulette: Roulette::Throughput,
+    };
+    let (mut all, mut caustic) = (0.0f64, 0.0f64);
+    for i in 0..n {
+        let mut rng = Rng::new(&[KEY, u64::from(i), 0x9206E]);
+        let Some(ph) = emit_one(&emitter, scene, &mut rng) else {
+            continue;
+        };
+        let mut first = true;
+        trace::trace::<glam::Vec3>(scene, &ph, (), &settings, &mut rng, |v, _| {
+            if std::mem::take(&mut first) {
+                let y = f64::from(crate::light::env::luminance(v.power));
+                if y.is_finite() {
+                    all += y;
+                    if v.bounces > 0 {
+                        caustic += y;
+                    }
+                }
+            }
+        });
+    }
+    if all > 0.0 {
+        caustic / all
+    } else {
+        0.0
+    }
+}

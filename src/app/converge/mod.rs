@@ -24,7 +24,7 @@ use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-/// Parses `--methods path,photon,sppm`: names from whitted, path, photon, sppm, each at most
+/// Parses `--methods path,photon,sppm`: names from whitted, path, photon, sppm, hybrid, each at most
 /// once, at least one.
 pub fn parse_methods(list: &str) -> Result<Vec<Method>> {
     let mut methods = Vec::new();
@@ -34,9 +34,10 @@ pub fn parse_methods(list: &str) -> Result<Vec<Method>> {
             "path" => Method::Path,
             "photon" => Method::Photon,
             "sppm" => Method::Sppm,
+            "hybrid" => Method::Hybrid,
             _ => {
                 return Err(Error::Usage(format!(
-                "--methods {list}: unknown method {name:?} (accepted: whitted, path, photon, sppm)"
+                "--methods {list}: unknown method {name:?} (accepted: whitted, path, photon, sppm, hybrid)"
             )))
             }
         };
