@@ -129,9 +129,8 @@ struct RenderArgs {
     /// maps, final gather), sppm (stochastic progressive photon mapping: passes, converges),
     /// hybrid (the path tracer plus a progressive caustic photon map for light that reaches
     /// a diffuse surface through specular ones only; one pass per sample, converges), auto
-    /// (the path tracer without caustic paths; else the hybrid, or SPPM when most light
-    /// reaches diffuse surfaces through specular ones or the caustics come from the
-    /// environment).
+    /// (SPPM when light can reach a diffuse surface through specular ones, the path tracer
+    /// otherwise; the reason names the caustics' share of the light).
     #[arg(long, default_value = "whitted", value_parser = Method::parse)]
     method: Method,
     /// Maximum number of bounces (reflections and refractions) per path, 1 to 1024 (also

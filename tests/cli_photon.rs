@@ -126,7 +126,7 @@ fn checkpoints_write_the_image_while_passes_run_and_time_stops_them() {
 }
 
 #[test]
-fn auto_picks_hybrid_for_caustics_and_path_otherwise() {
+fn auto_picks_sppm_for_caustics_and_path_otherwise() {
     let dir = common::scratch_dir("cli_auto");
     let o = iris(
         &[
@@ -147,9 +147,7 @@ fn auto_picks_hybrid_for_caustics_and_path_otherwise() {
         &dir,
     );
     assert!(o.status.success(), "{}", stderr(&o));
-    // The lamp lights most of the floor directly: the hybrid (tests/hybrid.rs covers the
-    // SPPM cases of the rule).
-    assert!(stderr(&o).contains("(hybrid)"), "{}", stderr(&o));
+    assert!(stderr(&o).contains("SPPM"), "{}", stderr(&o));
     // A scene with no transmissive or mirror material: the path tracer.
     let mut scene = iris::model::GenScene {
         name: "diffuse only".into(),

@@ -149,14 +149,14 @@ fn glass_sphere_on_floor_needs_photons_and_auto_follows() {
     let (scene, cam) = sphere_on_floor(glass());
     let plan = Plan::new(&scene, Method::Auto, SpectralMode::Auto);
     assert!(used(&plan, "photons"), "{}", plan.text());
-    assert_eq!(plan.method, Method::Hybrid);
+    assert_eq!(plan.method, Method::Sppm);
     assert_eq!(
         plan.method,
         iris::plan::resolve_method(Method::Auto, &scene).0
     );
     assert!(!plan.spectral && !used(&plan, "volumes"), "{}", plan.text());
     let photons = &plan.stage("photons").unwrap().reason;
-    assert!(photons.contains("glass") && photons.contains("--method auto -> hybrid"));
+    assert!(photons.contains("glass") && photons.contains("--method auto -> sppm"));
     // An explicit method is kept and the reason still names the caustics.
     let whitted = Plan::new(&scene, Method::Whitted, SpectralMode::Auto);
     assert_eq!(whitted.method, Method::Whitted);

@@ -156,9 +156,13 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
         prepared.load_time,
     );
     // The reference's method (without --reference).
-    let reference_method = given_reference
-        .is_none()
-        .then(|| crate::plan::resolve_method(Method::Auto, &scene).0);
+    let reference_method = given_reference.is_none().then(|| {
+        match crate::plan::resolve_method(Method::Auto, &scene).0 {
+            // The reference stays SPPM for caustic scenes (not the hybrid under test).
+            Method::Hybrid => Method::Sppm,
+            m => m,
+        }
+    });
     check_fit(opts, given_reference.as_ref(), reference_method, (w, h))?;
     let job = Job::new(opts, &scene, Camera::new(&cam_desc, w, h), (w, h));
     let mut files = Vec::new();
