@@ -9,7 +9,7 @@
 //! - under a point light, the caustic the path tracer cannot see appears, and agrees with
 //!   SPPM's (both consistent);
 //! - the image does not depend on the thread count or on how passes are split into rounds;
-//! - the command line accepts `--method hybrid`.
+//! - `--method auto` names the caustic share it decided on (the CLI is tests/cli_photon.rs).
 
 mod common;
 
@@ -439,45 +439,6 @@ fn hybrid_is_deterministic_across_threads_and_rounds() {
         "the split into rounds changed the image"
     );
     assert!(one.data != two.data);
-}
-
-#[test]
-fn cli_accepts_hybrid_and_rejects_nonsense() {
-    let dir = common::scratch_dir("cli_hybrid");
-    let scene = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/assets/scenes/gem_caustics.glb"
-    );
-    let o = common::iris(
-        &[
-            "render",
-            scene,
-            "--method",
-            "hybrid",
-            "--spp",
-            "2",
-            "--photons",
-            "2000",
-            "--size",
-            "32x24",
-            "-q",
-            "-o",
-            "h.png",
-        ],
-        &dir,
-    );
-    assert!(o.status.success(), "{}", common::stderr(&o));
-    assert!(dir.join("h.png").exists());
-    let o = common::iris(
-        &[
-            "render", scene, "--method", "hybird", "--size", "32x24", "-q", "-o", "x.png",
-        ],
-        &dir,
-    );
-    assert!(!o.status.success());
-    let err = common::stderr(&o);
-    assert!(err.contains("hybird") && err.contains("hybrid"), "{err}");
-    assert!(!dir.join("x.png").exists());
 }
 
 /// `--method auto` among path, hybrid and SPPM ([`iris::plan::resolve_method`]) says why:
