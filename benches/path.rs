@@ -70,6 +70,7 @@ fn path_tracer(c: &mut Criterion) {
         quiet: true,
         spectral: false,
         time_limit: None,
+        sampler: Default::default(),
     };
     let mut group = c.benchmark_group("path_tracer_512");
     group.sample_size(10);
@@ -138,6 +139,7 @@ fn spectral_overhead(c: &mut Criterion) {
                 quiet: true,
                 spectral,
                 time_limit: None,
+                sampler: Default::default(),
             };
             let id = if spectral {
                 "spectral_on"

@@ -66,6 +66,7 @@ fn settings(spp: u32, seed: u64, time_limit: Option<Duration>) -> RenderSettings
         quiet: true,
         spectral: false,
         time_limit,
+        sampler: Default::default(),
     }
 }
 

@@ -17,6 +17,7 @@ use iris::integrator::{Method, PhotonSettings};
 use iris::measure::MeasureOptions;
 use iris::output::{DisplayOptions, Exposure, ToneMap};
 use iris::photon::trace::Roulette;
+use iris::sampler::SamplerKind;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -143,6 +144,10 @@ struct RenderArgs {
     /// Random seed (same seed, scene and backend → same image).
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// Numbers driving the camera paths: zsobol (Owen-scrambled Sobol' per pixel in Morton
+    /// order, blue-noise error; the default) or independent (a PCG stream per sample).
+    #[arg(long, default_value = "zsobol", value_parser = SamplerKind::parse)]
+    sampler: SamplerKind,
     /// Worker threads, 0 to 1024 (0 = one per core).
     #[arg(long, default_value_t = 0, value_parser = parse_threads())]
     threads: usize,
@@ -262,6 +267,9 @@ struct ConvergeArgs {
     /// Random seed of the runs.
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// Numbers driving the camera paths: zsobol (default) or independent.
+    #[arg(long, default_value = "zsobol", value_parser = SamplerKind::parse)]
+    sampler: SamplerKind,
     /// Worker threads, 0 to 1024 (0 = one per core).
     #[arg(long, default_value_t = 0, value_parser = parse_threads())]
     threads: usize,
@@ -393,6 +401,7 @@ impl RenderArgs {
             },
             accel: a.accel,
             seed: a.seed,
+            sampler: a.sampler,
             threads: a.threads,
             camera: a.camera,
             display: DisplayOptions {
@@ -434,6 +443,7 @@ impl ConvergeArgs {
             out_dir: self.output.clone(),
             size: self.size,
             seed: self.seed,
+            sampler: self.sampler,
             threads: self.threads,
             accel: self.accel,
             quiet: self.quiet,

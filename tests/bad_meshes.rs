@@ -160,6 +160,7 @@ fn render_path(scene: &Scene, cam: &CameraDesc, size: u32, spp: u32) -> Vec<Vec3
         quiet: true,
         spectral: false,
         time_limit: None,
+        sampler: Default::default(),
     };
     let integrator =
         Integrator::new(Method::Path, 64, &PhotonSettings::default()).expect("a resolved method");

@@ -63,6 +63,7 @@ fn transmitted(thickness: f32, distance: f32, color: Vec3, backend: Backend) -> 
         quiet: true,
         spectral: false,
         time_limit: None,
+        sampler: Default::default(),
     };
     let integrator = Integrator::new(Method::Whitted, 16, &PhotonSettings::default())
         .expect("a resolved method");

@@ -98,6 +98,7 @@ fn left_mean(sheet: bool, seed: u64) -> f64 {
         quiet: true,
         spectral: false,
         time_limit: None,
+        sampler: Default::default(),
     };
     let integrator = Integrator::new(
         Method::Photon,

@@ -414,6 +414,7 @@ fn library_rejects_absurd_threads_depth_and_photons() {
         quiet: true,
         spectral: false,
         time_limit: None,
+        sampler: Default::default(),
     };
     let e = iris::render::thread_pool(&settings).expect_err("100000 threads");
     assert!(e.to_string().contains("--threads 100000"), "{e}");

@@ -27,6 +27,7 @@ fn settings(spp: u32, seed: u64) -> RenderSettings {
         quiet: true,
         spectral: false,
         time_limit: None,
+        sampler: Default::default(),
     }
 }
 

@@ -47,6 +47,7 @@ fn settings(w: u32, h: u32) -> RenderSettings {
         quiet: true,
         spectral: false,
         time_limit: None,
+        sampler: Default::default(),
     }
 }
 

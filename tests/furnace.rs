@@ -2,7 +2,13 @@
 //! a non-absorbing object must vanish — every pixel renders 1.
 //! - A smooth glass sphere (IOR 1.5): every path is a chain of delta bounces weighted
 //!   exactly (Fresnel choice, 1/η² in and η² out), so each pixel is 1 up to rounding;
-//!   tolerance 1 % per pixel and on the mean.
+//!   tolerance 1 % per pixel and on the mean. One exception, measured: a ray entering the
+//!   faceted icosphere at grazing incidence (88.6°) refracts to the critical angle (41.8°);
+//!   inside, the facets' normals scatter its incidence around the critical angle, so it is
+//!   totally reflected (or reflected with R ≈ 0.99) at every bounce and still inside at the
+//!   path tracer's cap of 1024 delta bounces, where it counts 0 (found with the Sobol'
+//!   sampler: seed 11, pixel (0, 14), sample 12; 1 sample in 110 000). So rim pixels, whose
+//!   centre ray meets the sphere beyond 0.9 of its radius, may lose one sample: 1/spp.
 //! - A white Lambertian sphere (albedo 1, no specular layer): the estimate is noisy but
 //!   unbiased; with 64 spp at 24×24 the image mean is within 1 % (σ of the mean ≈ 0.2 %).
 //! - A rough glass sphere (IOR 1.5, roughness 0.3 and 0.7, α = roughness²): the GGX
@@ -23,6 +29,18 @@ use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, MaterialDesc, Projection};
 
+/// The camera 4 m from the unit sphere at the origin.
+fn furnace_camera() -> CameraDesc {
+    CameraDesc {
+        name: "c".into(),
+        projection: Projection::Perspective {
+            yfov: 0.5,
+            aspect: None,
+        },
+        world_from_camera: look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y),
+    }
+}
+
 fn furnace(material: MaterialDesc, spp: u32) -> Vec<Vec3> {
     furnace_image(material, 24, spp, 11)
 }
@@ -41,14 +59,7 @@ fn furnace_render(
     spectral: bool,
 ) -> Vec<Vec3> {
     let scene = common::sphere_in_white_environment(material);
-    let cam = CameraDesc {
-        name: "c".into(),
-        projection: Projection::Perspective {
-            yfov: 0.5,
-            aspect: None,
-        },
-        world_from_camera: look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y),
-    };
+    let cam = furnace_camera();
     let settings = RenderSettings {
         width: size,
         height: size,
@@ -58,6 +69,7 @@ fn furnace_render(
         quiet: true,
         spectral,
         time_limit: None,
+        sampler: Default::default(),
     };
     let integrator =
         Integrator::new(Method::Path, 64, &PhotonSettings::default()).expect("a resolved method");
@@ -71,13 +83,25 @@ fn furnace_render(
 #[test]
 fn smooth_glass_sphere_vanishes_in_a_white_furnace() {
     let glass = common::clear_glass("glass", 1.5);
-    let px = furnace(glass, 16);
+    let spp = 16;
+    let px = furnace(glass, spp);
     let mean = px.iter().map(|p| p.x as f64).sum::<f64>() / px.len() as f64;
     assert!((mean - 1.0).abs() < 0.01, "mean {mean}");
+    let camera = Camera::new(&furnace_camera(), 24, 24);
     for (i, p) in px.iter().enumerate() {
+        // Impact parameter of the pixel's centre ray: distance of the sphere's centre
+        // (the origin) from the ray's line.
+        let ray = camera.generate_ray(glam::Vec2::new((i % 24) as f32, (i / 24) as f32) + 0.5);
+        let d = ray.dir.normalize();
+        let b = (ray.origin - d * ray.origin.dot(d)).length();
+        let tol = if (0.9..1.1).contains(&b) {
+            0.01 + 1.0 / spp as f32
+        } else {
+            0.01
+        };
         assert!(
-            (p.max_element() - 1.0).abs() < 0.01 && (p.min_element() - 1.0).abs() < 0.01,
-            "pixel {i}: {p}"
+            (p.max_element() - 1.0).abs() < tol && (p.min_element() - 1.0).abs() < tol,
+            "pixel {i} (impact parameter {b}): {p}"
         );
     }
 }

@@ -98,6 +98,7 @@ fn render(scene: &Scene, camera: &Camera) -> [ImageRgb; 3] {
         quiet: true,
         spectral: true,
         time_limit: None,
+        sampler: Default::default(),
     };
     // Whitted (the CLI's default method): dielectrics split deterministically into the
     // reflected and refracted branches, so the only noise is the pixel position and the

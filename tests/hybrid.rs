@@ -34,6 +34,7 @@ fn settings(spp: u32, seed: u64, threads: usize) -> RenderSettings {
         quiet: true,
         spectral: false,
         time_limit: None,
+        sampler: Default::default(),
     }
 }
 

@@ -29,6 +29,7 @@ fn run(method: Method, spp: u32, photon: PhotonSettings, seed: u64) -> ImageRgb 
         quiet: true,
         spectral: false,
         time_limit: None,
+        sampler: Default::default(),
     };
     let integrator = Integrator::new(method, 32, &photon).expect("a resolved method");
     integrator

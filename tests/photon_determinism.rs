@@ -20,6 +20,7 @@ fn image(method: Method, threads: usize, seed: u64, spectral: bool) -> Vec<glam:
         quiet: true,
         spectral,
         time_limit: None,
+        sampler: Default::default(),
     };
     let integrator = Integrator::new(
         method,

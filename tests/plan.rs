@@ -71,6 +71,7 @@ fn mean(scene: &Scene, cam: &CameraDesc, method: Method, spectral: bool, seed: u
         quiet: true,
         spectral,
         time_limit: None,
+        sampler: Default::default(),
     };
     let (img, _) = integrator
         .render_progressive(scene, &Camera::new(cam, w, h), &settings, None)

@@ -87,6 +87,7 @@ fn render_and_converge_options_prepare_the_same_scene() {
         out_dir: dir.join("c"),
         size: Some((48, 27)),
         seed: 0,
+        sampler: Default::default(),
         threads: 0,
         accel: Backend::Bvh,
         quiet: true,

@@ -11,6 +11,7 @@ use iris::camera::{look_at, Camera};
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::output::ImageRgb;
 use iris::render::{Control, Progress, RenderSettings, RenderStats};
+use iris::sampler::SamplerKind;
 use iris::scene::desc::{CameraDesc, MaterialDesc, Projection};
 use iris::scene::Scene;
 use std::time::{Duration, Instant};
@@ -48,6 +49,7 @@ fn settings(spp: u32, seed: u64, threads: usize) -> RenderSettings {
         quiet: true,
         spectral: false,
         time_limit: None,
+        sampler: Default::default(),
     }
 }
 
@@ -131,10 +133,14 @@ fn path_images_do_not_depend_on_rounds_threads_or_stopping() {
                 (*m - (*a + *b) * 0.5).abs().max_element() <= 1e-6 * (1.0 + m.abs().max_element())
             );
         }
-        // A 64-spp render stopped by the observer at 8 gives the 8-spp image.
+        // A 64-spp render stopped by the observer at 8 on 2 threads gives the image the
+        // whole 64-spp render on 1 thread had at its checkpoint 8. (Not the 8-spp render's:
+        // the Sobol' sampler's pixel blocks are the render's spp, `sampler::stream`.)
         let (stopped, stats, seen) = observed(&scene, &camera, &path(), &s(64, 2), Some(8));
+        let (_, _, whole) = observed(&scene, &camera, &path(), &s(64, 1), None);
+        let at8 = whole.iter().find(|c| c.0 == 8).expect("checkpoint 8");
         assert_eq!(
-            stopped.data, one_shot.data,
+            stopped.data, at8.2.data,
             "spectral {spectral}: stopped at 8"
         );
         assert_eq!(stats.samples, (W * H * 8) as u64);
@@ -145,11 +151,14 @@ fn path_images_do_not_depend_on_rounds_threads_or_stopping() {
 #[test]
 fn path_image_does_not_depend_on_how_a_time_limit_split_the_rounds() {
     // A time limit may split the doubling rounds into sub-rounds sized to the time left; the
-    // image for the N samples taken must equal a plain N-spp render. (Arbitrary splits are
+    // image for the N samples taken must equal a plain N-spp render. The independent
+    // sampler, whose samples do not depend on the spp cap (the Sobol' sampler's pixel
+    // blocks do; its split-independence is the unit tests' job). (Arbitrary splits are
     // tested deterministically by the unit tests in src/render/samples.rs.)
     let (scene, camera) = grey_sphere();
     let s = RenderSettings {
         time_limit: Some(Duration::from_millis(300)),
+        sampler: SamplerKind::Independent,
         spectral: true,
         ..settings(1_000_000, 3, 2)
     };
@@ -162,6 +171,7 @@ fn path_image_does_not_depend_on_how_a_time_limit_split_the_rounds() {
     assert!(n >= 1, "{n} spp");
     let plain = RenderSettings {
         spectral: true,
+        sampler: SamplerKind::Independent,
         ..settings(n as u32, 3, 1)
     };
     let (img, _) = path().render(&scene, &camera, &plain).unwrap();
@@ -173,6 +183,7 @@ fn time_limit_stops_a_million_spp_render_and_done_is_seen_once() {
     let (scene, camera) = grey_sphere();
     let s = RenderSettings {
         time_limit: Some(Duration::from_millis(500)),
+        sampler: Default::default(),
         ..settings(1_000_000, 1, 2)
     };
     let t = Instant::now();
@@ -237,14 +248,16 @@ fn sppm_stopped_after_n_passes_equals_n_passes() {
         )
         .expect("a resolved method")
     };
-    let (one_shot, stats) = sppm(8).render(&scene, &camera, &settings(1, 9, 1)).unwrap();
-    assert_eq!(stats.passes, 8);
-    let (stopped, stats, seen) =
-        observed(&scene, &camera, &sppm(1000), &settings(1, 9, 2), Some(8));
+    // The camera samples' Sobol' blocks are the render's passes: a 16-pass render on 1
+    // thread, and the same stopped at 8 on 2 threads, agree at pass 8.
+    let (_, stats, whole) = observed(&scene, &camera, &sppm(16), &settings(1, 9, 1), None);
+    assert_eq!(stats.passes, 16);
+    let one_shot = &whole.iter().find(|c| c.0 == 8).expect("checkpoint 8").2;
+    let (stopped, stats, seen) = observed(&scene, &camera, &sppm(16), &settings(1, 9, 2), Some(8));
     assert_eq!(stats.passes, 8);
     assert_eq!(
         stopped.data, one_shot.data,
-        "8 passes vs stopped at 8, 1 vs 2 threads"
+        "16 passes at 8 vs stopped at 8, 1 vs 2 threads"
     );
     let calls: Vec<(u64, bool)> = seen.iter().map(|c| (c.0, c.1)).collect();
     assert_eq!(calls, [(1, false), (2, false), (4, false), (8, false)]);
@@ -273,7 +286,8 @@ fn photon_method_builds_maps_once_and_renders_progressively() {
         },
     )
     .expect("a resolved method");
-    let (one_shot, _) = photon.render(&scene, &camera, &settings(4, 2, 1)).unwrap();
+    let (_, _, whole) = observed(&scene, &camera, &photon, &settings(32, 2, 1), None);
+    let one_shot = &whole.iter().find(|c| c.0 == 4).expect("checkpoint 4").2;
     let (stopped, stats, seen) = observed(&scene, &camera, &photon, &settings(32, 2, 2), Some(4));
     assert_eq!(stopped.data, one_shot.data);
     assert_eq!(stats.photons, 5000);

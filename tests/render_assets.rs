@@ -69,6 +69,7 @@ fn render_all(files: &[PathBuf], scratch: &str) {
                 photon,
                 accel: Backend::Auto,
                 seed: 1,
+                sampler: Default::default(),
                 threads: 2,
                 camera: None,
                 display: DisplayOptions::default(),

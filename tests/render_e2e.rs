@@ -31,6 +31,7 @@ fn opts(scene: &Path, out: &Path, accel: Backend, threads: usize) -> RenderOptio
         photon: Default::default(),
         accel,
         seed: 7,
+        sampler: Default::default(),
         threads,
         camera: None,
         display: DisplayOptions::default(),
@@ -300,6 +301,7 @@ fn lambertian_sphere_in_uniform_environment_has_albedo_radiance() {
         quiet: true,
         spectral: false,
         time_limit: None,
+        sampler: Default::default(),
     };
     let (img, _) = integrator.render(&scene, &cam, &settings).unwrap();
     // The sphere (radius 1 at distance 5, yfov 0.6) spans ~ ±0.2 rad: pixels within 6 of the

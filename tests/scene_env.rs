@@ -172,6 +172,7 @@ fn render_mean(scene: &Path, env: Option<Option<Environment>>, out: &Path) -> Ve
         photon: Default::default(),
         accel: Backend::Bvh,
         seed: 1,
+        sampler: Default::default(),
         threads: 1,
         camera: None,
         display: DisplayOptions::default(),

@@ -32,6 +32,7 @@ fn settings(seed: u64) -> RenderSettings {
         quiet: true,
         spectral: false,
         time_limit: None,
+        sampler: Default::default(),
     }
 }
 

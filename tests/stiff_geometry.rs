@@ -128,6 +128,7 @@ fn render_image(
         quiet: true,
         spectral: false,
         time_limit: None,
+        sampler: Default::default(),
     };
     let integrator = Integrator::new(Method::Path, max_depth, &PhotonSettings::default())
         .expect("a resolved method");

@@ -91,6 +91,7 @@ fn shoot(scene: &Scene, cam: &CameraDesc, method: Method, spp: u32, spectral: bo
         quiet: true,
         spectral,
         time_limit: None,
+        sampler: Default::default(),
     };
     let integrator =
         Integrator::new(method, 64, &PhotonSettings::default()).expect("a resolved method");
@@ -435,6 +436,7 @@ fn bubble_ring_starts_at_the_critical_impact_parameter() {
         quiet: true,
         spectral: false,
         time_limit: None,
+        sampler: Default::default(),
     };
     let whitted = Integrator::new(Method::Whitted, 16, &PhotonSettings::default())
         .expect("a resolved method");
@@ -538,6 +540,7 @@ fn whitted_at_the_largest_depth_in_a_closed_mirror_box_keeps_its_stack() {
                 quiet: true,
                 spectral,
                 time_limit: None,
+                sampler: Default::default(),
             };
             let integrator = Integrator::new(Method::Whitted, depth, &PhotonSettings::default())
                 .expect("a resolved method");

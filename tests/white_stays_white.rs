@@ -81,6 +81,7 @@ fn render_spectral(scene: &Scene, cam: &CameraDesc, size: u32, spp: u32) -> Vec<
         quiet: true,
         spectral: true,
         time_limit: None,
+        sampler: Default::default(),
     };
     let integrator =
         Integrator::new(Method::Path, 16, &PhotonSettings::default()).expect("a resolved method");

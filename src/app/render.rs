@@ -43,6 +43,8 @@ pub struct RenderOptions {
     pub accel: Backend,
     /// Seed.
     pub seed: u64,
+    /// The numbers driving camera paths (`--sampler`).
+    pub sampler: crate::sampler::SamplerKind,
     /// Threads (0 = all), at most [`crate::render::MAX_THREADS`].
     pub threads: usize,
     /// Camera name or index.
@@ -83,6 +85,7 @@ impl RenderOptions {
             photon: crate::integrator::PhotonSettings::default(),
             accel: Backend::Auto,
             seed: 0,
+            sampler: Default::default(),
             threads: 0,
             camera: None,
             display: DisplayOptions::default(),
@@ -274,6 +277,7 @@ impl<'a> RenderJob<'a> {
             height: h,
             spp: opts.spp,
             seed: opts.seed,
+            sampler: opts.sampler,
             threads: opts.threads,
             quiet: opts.quiet,
             spectral: plan.spectral,

@@ -22,15 +22,17 @@
 //!   E S* D keep their emission and NEE. Every light path is counted exactly once.
 //!
 //! Units: world space, metres; photon power is flux (the lights' units) divided by the
-//! photons emitted in the pass; radii in metres. Determinism: photon `i` of pass `p` uses
-//! the stream `Rng::new(&[seed, p, i, KEY])`, traced in fixed chunks and concatenated in
-//! chunk order, so the map is the same whatever the thread count.
+//! photons emitted in the pass; radii in metres. Determinism: photon `i` of pass `p` starts
+//! from number `p·n + i` of the seed's digit-permuted Halton sequence, aimed at the caustic
+//! makers only ([`emit_one`]), and continues on the stream `Rng::new(&[seed, p, i, KEY])`,
+//! traced in fixed chunks and concatenated in chunk order, so the map is the same whatever
+//! the thread count.
 
 use super::{StoreBudget, MAX_PHOTONS};
 use crate::bsdf::TransportMode;
 use crate::error::Result;
 use crate::math::Rng;
-use crate::photon::emit::{EmittedPhoton, PhotonEmitter};
+use crate::photon::emit::{Aim, EmittedPhoton, PhotonEmitter, PhotonNumbers};
 use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, Roulette, TraceSettings};
@@ -50,13 +52,17 @@ pub fn emitter(scene: &Scene) -> PhotonEmitter {
     PhotonEmitter::new(scene).without_environment()
 }
 
-/// The one place a caustic photon is emitted (photon `i` of a pass, from its own stream).
+/// The one place a caustic photon is emitted: number `index` of the seed's digit-permuted
+/// Halton sequence ([`PhotonNumbers`]), aimed only at the caustic makers' bounding spheres
+/// ([`Aim::Only`]): exact for L S+ D paths, whose first segment always points into a
+/// sphere, and none is spent on directions that cannot start a caustic.
 fn emit_one<'a>(
     emitter: &PhotonEmitter,
     scene: &'a Scene,
-    rng: &mut Rng,
+    numbers: &PhotonNumbers,
+    index: u64,
 ) -> Option<EmittedPhoton<'a>> {
-    emitter.emit_from(scene, rng)
+    emitter.emit_index(scene, numbers, index, Aim::Only)
 }
 
 /// Photons emitted per pass: `photons`, or one per pixel (at most [`MAX_PHOTONS`]).
@@ -108,13 +114,15 @@ impl CausticMap {
         };
         let budget = StoreBudget::default();
         let inv_n = 1.0 / n.max(1) as f32;
+        let numbers = PhotonNumbers::new(seed ^ KEY);
         let per_chunk: Vec<(Vec<Photon>, u64)> = (0..n.div_ceil(CHUNK))
             .into_par_iter()
             .map(|c| {
                 let (mut out, mut rays) = (Vec::new(), 0);
                 for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
                     let mut rng = Rng::new(&[seed, u64::from(pass), i, KEY]);
-                    let Some(ph) = emit_one(emitter, scene, &mut rng) else {
+                    let Some(ph) = emit_one(emitter, scene, &numbers, u64::from(pass) * n + i)
+                    else {
                         continue;
                     };
                     let before = out.len();
@@ -216,7 +224,8 @@ pub fn probe_share(scene: &Scene, n: u32) -> f64 {
     let (mut all, mut caustic) = (0.0f64, 0.0f64);
     for i in 0..n {
         let mut rng = Rng::new(&[KEY, u64::from(i), 0x9206E]);
-        let Some(ph) = emit_one(&emitter, scene, &mut rng) else {
+        // Unaimed: the share is of all the light the caustic lights send.
+        let Some(ph) = emitter.emit_from(scene, &mut rng) else {
             continue;
         };
         let mut first = true;

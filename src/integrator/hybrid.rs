@@ -8,12 +8,13 @@
 //! Each pass (one unit of the progressive driver [`crate::render::drive`], one round):
 //! 1. draws ONE set of wavelengths shared by its photons and camera paths (spectral
 //!    transport; as SPPM: the map's photon powers are per lane of that set);
-//! 2. traces the pass's caustic photons (`Rng::new(&[seed, pass, i, KEY])`) and builds
+//! 2. traces the pass's caustic photons (aimed at the caustic makers, [`caustic`]) and builds
 //!    their grid with the pass radius (the first radius, unless given, is 2 pixel
 //!    footprints at the median camera distance of the first pass's photons, 1 % of the
 //!    scene's diagonal without any);
-//! 3. traces one camera sample per pixel (`primary_ray`, stream `[seed, x, y, pass]`,
-//!    jittered) through the split path tracer and adds it to the film's half `pass mod 2`.
+//! 3. traces one camera sample per pixel (`primary_ray`, sample `pass` of the pixel from
+//!    the render's sampler, Sobol' blocks of `--spp`) through the split path tracer and
+//!    adds it to the film's half `pass mod 2`.
 //!
 //! So `--spp N` is N passes of one sample per pixel and N caustic maps; the image after N
 //! passes is a pure function of the seed (pixels are independent, the map is built in
@@ -24,10 +25,9 @@ use super::path::{self, CausticSplit, StopAt};
 use super::{CausticSettings, Context};
 use crate::camera::Camera;
 use crate::error::Result;
-use crate::math::Rng;
 use crate::output::ImageRgb;
 use crate::render::{
-    drive, guard, primary_ray, Film, Observer, RenderSettings, RenderStats, Round, Schedule, Setup,
+    drive, guard, pixel_sampler, primary_ray, Film, Observer, RenderSettings, RenderStats, Round, Schedule, Setup,
 };
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
@@ -139,6 +139,7 @@ fn camera_pass<C: Carrier>(
     film: &mut Film,
 ) -> (u64, u64) {
     let half = (pass % 2) as usize;
+    let sampler = pixel_sampler(settings, u64::from(settings.spp.max(1)));
     let gather = |s: &crate::shading::Surface<C>, l: &C::Lambda| map.density(s, l);
     film.par_tiles_mut()
         .map(|tile| {
@@ -148,10 +149,10 @@ fn camera_pass<C: Carrier>(
                     continue;
                 };
                 let mut ctx = Context {
-                    rng: Rng::new(&[settings.seed, u64::from(x), u64::from(y), u64::from(pass)]),
+                    sample: sampler.start(x, y, u64::from(pass)),
                     rays: 0,
                 };
-                let ray = primary_ray(camera, x, y, false, &mut ctx.rng);
+                let ray = primary_ray(camera, x, y, false, &mut ctx.sample);
                 let (l, _) = path::camera_path::<C>(
                     scene,
                     &ray,

@@ -17,10 +17,11 @@ use crate::bsdf::{Bsdf, TransportMode};
 use crate::interaction::SurfaceHit;
 use crate::math::{Frame, Ray};
 use crate::medium::MediumStack;
+use crate::sampler::Bounce;
 use crate::scene::Scene;
 use crate::shading::{self, is_diffuse_like, lights, Arrival, Event, Surface, MAX_DELTA_BOUNCES};
 use crate::spectrum::Carrier;
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 /// Power heuristic with β = 2.
 fn mis(a: f32, b: f32) -> f32 {
@@ -40,7 +41,8 @@ fn next_event<C: Carrier>(
     s: &Surface<C>,
     lambda: &C::Lambda,
     use_mis: bool,
-    ctx: &mut Context,
+    u: &mut Bounce<'_>,
+    rays: &mut u64,
 ) -> C {
     let (hit, bsdf, wo) = (&s.hit, &s.bsdf, s.wo);
     let n_punctual = scene.lights.len();
@@ -51,15 +53,15 @@ fn next_event<C: Carrier>(
         return C::ZERO;
     }
     let p_sel = 1.0 / groups as f32;
-    let k = ((ctx.rng.next_f32() * groups as f32) as usize).min(groups - 1);
-    let u = Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
-    let uc = ctx.rng.next_f32();
+    let k = ((u.light_choice() * groups as f32) as usize).min(groups - 1);
+    let up = u.light_position();
+    let uc = u.light_member();
     let sample = if k < n_punctual {
         lights::punctual(scene, hit, k)
     } else if has_area && k == n_punctual {
-        lights::area(scene, hit, uc, u)
+        lights::area(scene, hit, uc, up)
     } else {
-        lights::environment(scene, hit, u)
+        lights::environment(scene, hit, up)
     };
     let Some(ls) = sample else {
         return C::ZERO;
@@ -71,7 +73,7 @@ fn next_event<C: Carrier>(
     if f == C::ZERO {
         return C::ZERO;
     }
-    ctx.rays += 1;
+    *rays += 1;
     if scene.occluded(&ls.shadow) {
         return C::ZERO;
     }
@@ -227,6 +229,8 @@ pub fn camera_path<C: Carrier>(
     let mut ray = *ray;
     let mut media = MediumStack::new();
     let (mut depth, mut delta_depth) = (0u32, 0u32);
+    // Scattering vertices so far: the sampler's bounce index (every vertex, delta included).
+    let mut vertex = 0u32;
     // Product of η'² over the refractions so far: Russian roulette looks at beta·eta_scale,
     // which leaves out the radiance-mode 1/η'² factors that cancel on leaving the object
     // (pbrt-v4 `etaScale`); otherwise paths inside glass would be killed ~η² times as often.
@@ -255,7 +259,8 @@ pub fn camera_path<C: Carrier>(
         if let (Some(e), false) = (emitted(scene, &at, &prev, p_sel, beta, &lambda), caustic) {
             l += e;
         }
-        let s = match at.event(scene, media, &mut beta, &mut lambda, &mut ctx.rng) {
+        let mut u = ctx.sample.bounce(vertex);
+        let s = match at.event(scene, media, &mut beta, &mut lambda, &mut u) {
             Event::PassThrough(next) => {
                 ray = next;
                 continue;
@@ -263,7 +268,7 @@ pub fn camera_path<C: Carrier>(
             Event::Scatter(s) => s,
         };
         if stop == StopAt::Diffuse && is_diffuse_like(&s.bsdf) {
-            l += beta * next_event(scene, &s, &lambda, false, ctx);
+            l += beta * next_event(scene, &s, &lambda, false, &mut u, &mut ctx.rays);
             let vp = VisiblePoint {
                 p: s.hit.p,
                 ng: s.hit.ng,
@@ -277,14 +282,14 @@ pub fn camera_path<C: Carrier>(
             return (l, Some(vp));
         }
         if !s.bsdf.is_delta() {
-            l += beta * next_event(scene, &s, &lambda, true, ctx);
+            l += beta * next_event(scene, &s, &lambda, true, &mut u, &mut ctx.rays);
             if let (CausticSplit::Map(gather), true) = (split, depth + 1 < max_depth) {
                 l += beta * gather(&s, &lambda);
             }
         }
-        let uc = ctx.rng.next_f32();
-        let u = Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
-        let Some(bs) = s.sample(uc, u, TransportMode::Radiance) else {
+        let uc = u.bsdf_lobe();
+        let ud = u.bsdf_direction();
+        let Some(bs) = s.sample(uc, ud, TransportMode::Radiance) else {
             break;
         };
         beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
@@ -317,13 +322,14 @@ pub fn camera_path<C: Carrier>(
             }
             if depth >= 3 {
                 let p = (beta * eta_scale).max_element().min(0.95);
-                if ctx.rng.next_f32() >= p {
+                if u.roulette() >= p {
                     break;
                 }
                 beta /= p;
             }
         }
         ray = s.spawn(bs.wi);
+        vertex += 1;
     }
     (l, None)
 }

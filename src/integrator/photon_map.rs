@@ -6,6 +6,11 @@
 //!   only, then a diffuse-like surface);
 //! - the **global map**: every photon stored at a non-delta surface.
 //!
+//! Photon `i` is emitted from Halton point `i` (digit-permuted by the seed,
+//! [`crate::photon::emit::PhotonNumbers`]), aimed at the
+//! caustic makers ([`crate::photon::emit::DEFAULT_AIM`], unbiased); its path after emission
+//! draws from `Rng::new(&[seed, i, 0x9E07_0001])`.
+//!
 //! Pass 2 follows camera paths with the path tracer's loop ([`path::camera_path`]) through
 //! specular and glossy bounces to the first diffuse-like hit x, and adds there
 //! - direct light from shadow rays (the path tracer's next-event estimation),
@@ -34,7 +39,7 @@ use crate::error::Result;
 use crate::math::{Frame, Ray, Rng};
 use crate::medium::MediumStack;
 use crate::output::ImageRgb;
-use crate::photon::emit::PhotonEmitter;
+use crate::photon::emit::{PhotonEmitter, PhotonNumbers, DEFAULT_AIM};
 use crate::photon::kdtree::PhotonMap;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
@@ -89,6 +94,7 @@ pub fn build_maps(
     spectral: bool,
 ) -> Result<(Vec<Photon>, Vec<Photon>, u64)> {
     let emitter = PhotonEmitter::new(scene);
+    let numbers = PhotonNumbers::new(seed);
     let inv_n = 1.0 / n.max(1) as f32;
     let chunks = n.div_ceil(CHUNK);
     let budget = StoreBudget::default();
@@ -98,7 +104,7 @@ pub fn build_maps(
             let (mut caustic, mut global, mut rays) = (Vec::new(), Vec::new(), 0);
             for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
                 let mut rng = Rng::new(&[seed, i, 0x9E07_0001]);
-                let Some(ph) = emitter.emit_from(scene, &mut rng) else {
+                let Some(ph) = emitter.emit_index(scene, &numbers, i, DEFAULT_AIM) else {
                     continue;
                 };
                 let before = caustic.len() + global.len();
@@ -205,8 +211,8 @@ impl PhotonMaps {
         };
         let l = self.estimate(&self.caustic, k.0, &at, true, buf);
         // Final gather.
-        let uc = ctx.rng.next_f32();
-        let u = Vec2::new(ctx.rng.next_f32(), ctx.rng.next_f32());
+        let uc = ctx.sample.rng.next_f32();
+        let u = Vec2::new(ctx.sample.rng.next_f32(), ctx.sample.rng.next_f32());
         let Some(bs) = shading::sample_bsdf(&vp.bsdf, vp.wo, uc, u, TransportMode::Radiance) else {
             return l;
         };
@@ -235,7 +241,7 @@ impl PhotonMaps {
                     return Vec3::ZERO;
                 };
                 beta *= at.transmittance;
-                match at.event(scene, media, &mut beta, &mut (), &mut ctx.rng) {
+                match at.event(scene, media, &mut beta, &mut (), &mut ctx.sample.rng) {
                     Event::PassThrough(next) => ray = next,
                     Event::Scatter(s) => break s,
                 }
@@ -249,7 +255,7 @@ impl PhotonMaps {
                 };
                 return beta * self.estimate(&self.global, k, &at, false, buf);
             }
-            let uc = ctx.rng.next_f32();
+            let uc = ctx.sample.rng.next_f32();
             let Some(bs) = s.sample(uc, Vec2::ZERO, TransportMode::Radiance) else {
                 break;
             };

@@ -32,6 +32,11 @@
 //! observer, the time limit and stop requests between passes are the driver's. Camera rays
 //! are the per-sample methods' [`crate::render::primary_ray`] (jittered; stream
 //! `Rng::new(&[seed, pass, x, y])`). Visible points are kept per film slot.
+//!
+//! Photons: photon `i` of pass `p` is emitted from Halton point `p·photons + i`
+//! (digit-permuted by the seed, [`crate::photon::emit::PhotonNumbers`]) (each pass continues the sequence, as pbrt-v4 SPPM does),
+//! aimed at the caustic makers ([`crate::photon::emit::DEFAULT_AIM`], unbiased); its path
+//! after emission draws from `Rng::new(&[seed, pass, i, 0x9E07])`.
 
 use super::path::{self, StopAt, VisiblePoint};
 use super::{Context, SppmSettings, StoreBudget, MAX_PHOTONS};
@@ -40,13 +45,13 @@ use crate::camera::Camera;
 use crate::error::Result;
 use crate::math::Rng;
 use crate::output::ImageRgb;
-use crate::photon::emit::PhotonEmitter;
+use crate::photon::emit::{PhotonEmitter, PhotonNumbers, DEFAULT_AIM};
 use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
 use crate::render::{
-    drive, guard, primary_ray, Film, Observer, RenderSettings, RenderStats, Round, Schedule, Setup,
-    TILE_PIXELS,
+    drive, guard, pixel_sampler, primary_ray, Film, Observer, RenderSettings, RenderStats, Round,
+    Schedule, Setup, TILE_PIXELS,
 };
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
@@ -171,7 +176,7 @@ fn run<C: Carrier>(
                 camera,
                 max_depth,
                 settings,
-                pass,
+                (pass, ps.passes.max(1)),
                 lambda,
                 film,
                 &mut state.vps,
@@ -201,7 +206,8 @@ fn run<C: Carrier>(
     )
 }
 
-/// Traces one camera path per pixel through [`primary_ray`] (stream `[seed, pass, x, y]`),
+/// Traces one camera path per pixel through [`primary_ray`] (sample `pass` of the pixel
+/// from the render's sampler, Sobol' blocks of `--passes`),
 /// adds its direct light to the film's half `pass mod 2` and keeps its visible point in the
 /// pixel's slot. Returns the rays and bad samples.
 #[allow(clippy::too_many_arguments)]
@@ -210,12 +216,13 @@ fn camera_pass<C: Carrier>(
     camera: &Camera,
     max_depth: u32,
     settings: &RenderSettings,
-    pass: u32,
+    (pass, passes): (u32, u32),
     lambda: C::Lambda,
     film: &mut Film,
     vps: &mut [Option<VisiblePoint<C>>],
 ) -> (u64, u64) {
     let half = (pass % 2) as usize;
+    let sampler = pixel_sampler(settings, u64::from(passes));
     film.par_tiles_mut()
         .zip(vps.par_chunks_mut(TILE_PIXELS))
         .map(|(tile, vp_tile)| {
@@ -225,10 +232,10 @@ fn camera_pass<C: Carrier>(
                     continue;
                 };
                 let mut ctx = Context {
-                    rng: Rng::new(&[settings.seed, pass as u64, x as u64, y as u64]),
+                    sample: sampler.start(x, y, u64::from(pass)),
                     rays: 0,
                 };
-                let ray = primary_ray(camera, x, y, false, &mut ctx.rng);
+                let ray = primary_ray(camera, x, y, false, &mut ctx.sample);
                 let (l, vp) = path::camera_path::<C>(
                     scene,
                     &ray,
@@ -263,6 +270,7 @@ fn photon_pass<C: Carrier>(
 ) -> Result<u64> {
     let chunks = n_photons.div_ceil(CHUNK);
     let budget = StoreBudget::default();
+    let numbers = PhotonNumbers::new(seed);
     let per_chunk: Vec<(Vec<Photon>, u64)> = (0..chunks)
         .into_par_iter()
         .map(|c| {
@@ -271,7 +279,9 @@ fn photon_pass<C: Carrier>(
             let inv_n = 1.0 / n_photons as f32;
             for i in c * CHUNK..((c + 1) * CHUNK).min(n_photons) {
                 let mut rng = Rng::new(&[seed, pass as u64, i, 0x9E07]);
-                let Some(ph) = emitter.emit_from(scene, &mut rng) else {
+                // Halton over the global photon index: each pass continues the sequence.
+                let index = pass as u64 * n_photons + i;
+                let Some(ph) = emitter.emit_index(scene, &numbers, index, DEFAULT_AIM) else {
                     continue;
                 };
                 let before = out.len();

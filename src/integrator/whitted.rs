@@ -65,7 +65,7 @@ fn survive<C: Carrier>(w: C, ctx: &mut Context) -> Option<f32> {
         return Some(1.0);
     }
     let p = m / RR_WEIGHT;
-    (ctx.rng.next_f32() < p).then_some(1.0 / p)
+    (ctx.sample.rng.next_f32() < p).then_some(1.0 / p)
 }
 
 fn trace<C: Carrier>(scene: &Scene, ray: &Ray, path: Path<C>, w: C, ctx: &mut Context) -> C {
@@ -122,7 +122,8 @@ fn shade<C: Carrier>(
     }
     let opaque = 1.0 - t;
     if opaque > 0.0 {
-        let mut o = shading::direct_light(scene, at, &path.lambda, &mut ctx.rng, &mut ctx.rays);
+        let mut u = ctx.sample.bounce(path.depth);
+        let mut o = shading::direct_light(scene, at, &path.lambda, &mut u, &mut ctx.rays);
         // Smooth metals reflect the scene as mirrors.
         if sp.metallic > 0.0 && sp.roughness < 0.1 {
             let n = if hit.wo.dot(hit.ns) >= 0.0 {

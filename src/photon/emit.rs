@@ -31,16 +31,42 @@
 //!
 //! Scenes without geometry (infinite bounds) get no disc: their directional lights and
 //! environment emit nothing.
+//!
+//! ## Aiming ([`Aim`], [`super::aim`])
+//! With [`Aim::Mixture`]`(a)` the light is chosen as above, then with probability `a` the
+//! direction (point, spot, emissive triangles: uniform in the cone toward one of the caustic
+//! makers' bounding spheres, seen from the emission point) or the disc point (directional,
+//! environment: uniform in one sphere's projection) is aimed, else drawn as above. The
+//! photon's power is the light's contribution over the mixture density
+//! (1 − a)·p_usual + a·p_aimed (a defensive mixture, Hesterberg 1995; Veach 1997 §9.2.1),
+//! so the mean power is still [`PhotonEmitter::total_power`] for every `a`. Spot light
+//! aimed outside its cone, or an emitter aimed behind its emitting side, gives no photon
+//! (`None`: a zero-power sample, still counted). [`Aim::Only`] drops the usual term (see its
+//! docs for what it keeps). Without caustic makers every aim is [`Aim::Off`] (and `Only`
+//! emits nothing).
+//!
+//! ## Numbers
+//! Every photon is a pure function of its five uniform numbers `u = [light, point (2),
+//! direction (2)]` ([`PhotonEmitter::emit_aimed`]); the renderers draw them from
+//! Halton dimensions 0–4 over the photon index, digit-permuted per seed
+//! ([`PhotonNumbers`], [`PhotonEmitter::emit_index`]; pbrt-v4 SPPM draws its photon paths
+//! from Halton over the photon index, src/pbrt/cpu/integrators.cpp). The aim choice and the sphere choice reuse the direction's
+//! first number (the disc point's, for distant light), rescaled within the chosen interval.
 
+use super::aim::Targets;
+pub use super::aim::{Aim, DEFAULT_AIM};
+use super::flux::{area_flux, area_point, environment_integral, punctual_flux};
+pub use super::numbers::PhotonNumbers;
 use crate::interaction::OFFSET_SCALE;
-use crate::light::env::{luminance, Environment};
-use crate::light::Light;
-use crate::math::{Frame, Ray, Rng};
-use crate::scene::{Scene, TriangleData};
+use crate::light::env::luminance;
+use crate::math::{Ray, Rng};
+use crate::scene::Scene;
 use crate::spectrum::EmitterShape;
-use crate::texture::{self, Encoding};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
+
+mod aimed;
+use aimed::Mix;
 
 /// The directional/environment disc radius over the bounding-sphere radius (> 1, so disc
 /// origins lie strictly outside the bounding sphere).
@@ -88,102 +114,8 @@ pub struct PhotonEmitter {
     centre: Vec3,
     /// Disc radius for distant light (0 without geometry).
     radius: f32,
-}
-
-/// ∫_{cos_o}^1 t(c)² dc for the KHR spot falloff; `cos_i ≤ cos_o` is the hard cone of
-/// [`Light::sample_li`].
-fn spot_integral(cos_i: f32, cos_o: f32) -> f32 {
-    let ci = cos_i.max(cos_o);
-    ((1.0 - ci) + (ci - cos_o) / 3.0).max(0.0)
-}
-
-/// Samples cos θ ∝ t(c)² on [cos_o, 1]: the CDF is (c − cos_o)³/(3Δ²) on the falloff and
-/// linear above cos_i.
-fn sample_spot_cos(cos_i: f32, cos_o: f32, u: f32) -> f32 {
-    let ci = cos_i.max(cos_o);
-    let delta = ci - cos_o;
-    let x = u * spot_integral(cos_i, cos_o);
-    let c = if x < delta / 3.0 {
-        cos_o + (3.0 * delta * delta * x).cbrt()
-    } else {
-        ci + (x - delta / 3.0)
-    };
-    c.clamp(cos_o, 1.0)
-}
-
-/// Uniform direction on the unit sphere (Archimedes: z uniform in [−1, 1]).
-fn uniform_sphere(u: Vec2) -> Vec3 {
-    let z = 1.0 - 2.0 * u.x;
-    let r = (1.0 - z * z).max(0.0).sqrt();
-    let (s, c) = (2.0 * PI * u.y).sin_cos();
-    Vec3::new(r * c, r * s, z)
-}
-
-/// Uniform point on the unit disc (polar mapping, radius √u).
-fn unit_disc(u: Vec2) -> Vec2 {
-    let r = u.x.sqrt();
-    let (s, c) = (2.0 * PI * u.y).sin_cos();
-    Vec2::new(r * c, r * s)
-}
-
-/// Flux of one punctual light.
-fn punctual_flux(light: &Light, radius: f32) -> Vec3 {
-    match *light {
-        Light::Point { intensity, .. } => intensity * (4.0 * PI),
-        Light::Spot {
-            intensity,
-            cos_inner,
-            cos_outer,
-            ..
-        } => intensity * (2.0 * PI * spot_integral(cos_inner, cos_outer)),
-        Light::Directional { illuminance, .. } => illuminance * (PI * radius * radius),
-    }
-}
-
-/// ∫ L dω over the sphere, RGB: the exact texel sum for a map (texel solid angle
-/// (2π/W)(cos θ₀ − cos θ₁)).
-fn environment_integral(env: &Environment) -> Vec3 {
-    match env {
-        Environment::Uniform { radiance } => *radiance * (4.0 * PI),
-        Environment::Map(m) => {
-            let (w, h) = (m.width(), m.height());
-            let dtheta = std::f64::consts::PI / h as f64;
-            let mut sum = [0.0f64; 3];
-            for y in 0..h {
-                let d_omega = 2.0 * std::f64::consts::PI / w as f64
-                    * ((y as f64 * dtheta).cos() - ((y + 1) as f64 * dtheta).cos());
-                for x in 0..w {
-                    let t = m.texel(x, y);
-                    for (s, c) in sum.iter_mut().zip([t.x, t.y, t.z]) {
-                        *s += c as f64 * d_omega;
-                    }
-                }
-            }
-            Vec3::new(sum[0] as f32, sum[1] as f32, sum[2] as f32)
-        }
-    }
-}
-
-/// RGB flux of all emissive triangles: Σ L·π·A·sides (emissive factor, no texture), over
-/// the triangles [`crate::light::area::AreaLights`] selects from.
-fn area_flux(scene: &Scene) -> Vec3 {
-    let mut sum = [0.0f64; 3];
-    for t in &scene.triangle_data {
-        let Some(mat) = scene.materials.get(t.material() as usize) else {
-            continue;
-        };
-        let le = mat.emission();
-        let area = 0.5 * (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]).length();
-        let sides = if mat.desc.double_sided { 2.0 } else { 1.0 };
-        let w = luminance(le) * area * PI * sides;
-        if w > 0.0 && w.is_finite() {
-            let f = le * (area * PI * sides);
-            for (s, c) in sum.iter_mut().zip([f.x, f.y, f.z]) {
-                *s += c as f64;
-            }
-        }
-    }
-    Vec3::new(sum[0] as f32, sum[1] as f32, sum[2] as f32)
+    /// The caustic makers' bounding spheres.
+    targets: Targets,
 }
 
 impl PhotonEmitter {
@@ -236,7 +168,13 @@ impl PhotonEmitter {
             total,
             centre,
             radius,
+            targets: Targets::new(scene),
         }
+    }
+
+    /// The caustic makers' bounding spheres photons are aimed at.
+    pub fn targets(&self) -> &Targets {
+        &self.targets
     }
 
     /// No light emits (zero power).
@@ -254,8 +192,7 @@ impl PhotonEmitter {
         (self.centre, self.radius)
     }
 
-    /// A photon from the next five numbers of `rng` (light, point, direction: the order
-    /// every photon loop uses, so photon `i` of a seed is the same everywhere).
+    /// A photon from the next five numbers of `rng` (light, point, direction), not aimed.
     pub fn emit_from<'a>(&self, scene: &'a Scene, rng: &mut Rng) -> Option<EmittedPhoton<'a>> {
         let u_light = rng.next_f32();
         let u_pos = Vec2::new(rng.next_f32(), rng.next_f32());
@@ -263,8 +200,21 @@ impl PhotonEmitter {
         self.emit(scene, u_light, u_pos, u_dir)
     }
 
-    /// A photon from uniform numbers: `u_light` picks the light (by power), `u_pos` the
-    /// point, `u_dir` the direction. `None` if the sample is degenerate.
+    /// Photon `index` of the scrambled Halton sequence `numbers` ([`PhotonNumbers`], built
+    /// once per seed), aimed by `aim`: what every photon loop of the renderers (and the
+    /// plan's caustic probe) emits.
+    pub fn emit_index<'a>(
+        &self,
+        scene: &'a Scene,
+        numbers: &PhotonNumbers,
+        index: u64,
+        aim: Aim,
+    ) -> Option<EmittedPhoton<'a>> {
+        self.emit_aimed(scene, numbers.get(index), aim)
+    }
+
+    /// A photon from uniform numbers, not aimed: `u_light` picks the light (by power),
+    /// `u_pos` the point, `u_dir` the direction. `None` if the sample is degenerate.
     pub fn emit<'a>(
         &self,
         scene: &'a Scene,
@@ -272,9 +222,32 @@ impl PhotonEmitter {
         u_pos: Vec2,
         u_dir: Vec2,
     ) -> Option<EmittedPhoton<'a>> {
+        let u = [u_light, u_pos.x, u_pos.y, u_dir.x, u_dir.y];
+        self.emit_aimed(scene, u, Aim::Off)
+    }
+
+    /// A photon from five uniform numbers `[light, point.x, point.y, direction.x,
+    /// direction.y]`, aimed by `aim` (module docs). `None` if the sample is degenerate or
+    /// carries no power.
+    pub fn emit_aimed<'a>(
+        &self,
+        scene: &'a Scene,
+        u: [f32; 5],
+        aim: Aim,
+    ) -> Option<EmittedPhoton<'a>> {
         if self.sources.is_empty() {
             return None;
         }
+        let (u_light, u_pos, u_dir) = (u[0], Vec2::new(u[1], u[2]), Vec2::new(u[3], u[4]));
+        let only = aim == Aim::Only;
+        let a = if self.targets.is_empty() {
+            if only {
+                return None;
+            }
+            0.0
+        } else {
+            aim.fraction()
+        };
         let k = self
             .cdf
             .partition_point(|&c| c <= u_light)
@@ -283,18 +256,34 @@ impl PhotonEmitter {
         // Reuse u_light within the chosen interval (for the triangle choice).
         let lo = if k == 0 { 0.0 } else { self.cdf[k - 1] };
         let u_sub = ((u_light - lo) / prob).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
+        let mix = Mix { a, only };
         let photon = match source {
             Source::Punctual(i) => {
                 let shape = scene.light_shapes.get(i).and_then(Option::as_ref);
-                self.punctual(&scene.lights[i], flux, u_pos, u_dir, shape)
+                self.punctual(&scene.lights[i], flux, u_pos, u_dir, shape, mix)
             }
-            Source::Area => area(scene, u_sub, u_pos, u_dir),
+            Source::Area => {
+                let pt = area_point(scene, u_sub, u_pos)?;
+                let (dir, ratio) = self.mix_direction(
+                    pt.point,
+                    mix,
+                    u_dir,
+                    |u| pt.base_direction(u),
+                    |d| pt.base_pdf(d),
+                )?;
+                Some(EmittedPhoton {
+                    ray: scene.spawn_from_triangle(pt.prim, pt.point, dir),
+                    power: pt.base_power() * ratio,
+                    shape: pt.shape,
+                    range: None,
+                })
+            }
             Source::Environment => {
                 let s = scene.environment.as_ref()?.sample(u_dir)?;
-                let power = s.radiance / s.pdf * (PI * self.radius * self.radius);
+                let (origin, area) = self.distant_origin(-s.wi, u_pos, mix)?;
                 Some(EmittedPhoton {
-                    ray: Ray::new(self.disc_origin(-s.wi, u_pos), -s.wi),
-                    power,
+                    ray: Ray::new(origin, -s.wi),
+                    power: s.radiance / s.pdf * area,
                     shape: None,
                     range: None,
                 })
@@ -304,103 +293,6 @@ impl PhotonEmitter {
         (power.is_finite() && power.max_element() > 0.0)
             .then_some(EmittedPhoton { power, ..photon })
     }
-
-    /// A point of the disc ⟂ `dir`, centred r upstream of the scene centre.
-    fn disc_origin(&self, dir: Vec3, u: Vec2) -> Vec3 {
-        let f = Frame::from_normal(dir);
-        let d = unit_disc(u) * self.radius;
-        self.centre - dir * self.radius + f.s * d.x + f.t * d.y
-    }
-
-    /// A photon of one punctual light carrying its whole flux (before selection).
-    fn punctual<'a>(
-        &self,
-        light: &Light,
-        flux: Vec3,
-        u_pos: Vec2,
-        u_dir: Vec2,
-        shape: Option<&'a EmitterShape>,
-    ) -> Option<EmittedPhoton<'a>> {
-        let (ray, range) = match *light {
-            Light::Point {
-                position, range, ..
-            } => (Ray::new(position, uniform_sphere(u_dir)), range),
-            Light::Spot {
-                position,
-                direction,
-                cos_inner,
-                cos_outer,
-                range,
-                ..
-            } => {
-                let c = sample_spot_cos(cos_inner, cos_outer, u_dir.x);
-                let s = (1.0 - c * c).max(0.0).sqrt();
-                let (sp, cp) = (2.0 * PI * u_dir.y).sin_cos();
-                let local = Vec3::new(s * cp, s * sp, c);
-                let dir = Frame::from_normal(direction).to_world(local).normalize();
-                (Ray::new(position, dir), range)
-            }
-            Light::Directional { direction, .. } => (
-                Ray::new(self.disc_origin(direction, u_pos), direction),
-                None,
-            ),
-        };
-        Some(EmittedPhoton {
-            ray,
-            power: flux,
-            shape,
-            range,
-        })
-    }
-}
-
-/// A photon from the emissive triangles carrying L·cos/(p_A·p_ω) before light selection.
-fn area<'a>(scene: &'a Scene, u: f32, u_pos: Vec2, u_dir: Vec2) -> Option<EmittedPhoton<'a>> {
-    let e = scene
-        .area_lights
-        .sample_point(&scene.triangle_data, u, u_pos)?;
-    let t = scene.triangle_data.get(e.prim as usize)?;
-    let mat = scene.materials.get(t.material() as usize)?;
-    let mut le = mat.emission();
-    if let (Some(tex), true) = (
-        mat.desc.emissive_texture,
-        t.info & TriangleData::HAS_UVS != 0,
-    ) {
-        let vi = scene.triangles.get(e.prim as usize)?;
-        let uv = vi
-            .iter()
-            .zip(e.bary)
-            .map(|(&i, b)| scene.uvs.get(i as usize).copied().unwrap_or(Vec2::ZERO) * b)
-            .sum();
-        if let Some(img) = scene.images.get(tex.image) {
-            le *= texture::sample(img, uv, Encoding::Srgb).truncate();
-        }
-    }
-    // Double-sided: u_dir.x < ½ picks the front, else the back, each with probability ½.
-    let (normal, ux, sides) = if mat.desc.double_sided {
-        if u_dir.x < 0.5 {
-            (e.normal, 2.0 * u_dir.x, 2.0)
-        } else {
-            (-e.normal, 2.0 * u_dir.x - 1.0, 2.0)
-        }
-    } else {
-        (e.normal, u_dir.x, 1.0)
-    };
-    // Cosine-weighted hemisphere (Malley's method): pdf cos/π, so L·cos/(pdf·p_A) = L·π/p_A.
-    let d = unit_disc(Vec2::new(ux, u_dir.y));
-    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
-    if z <= 0.0 {
-        return None;
-    }
-    let dir = Frame::from_normal(normal)
-        .to_world(Vec3::new(d.x, d.y, z))
-        .normalize();
-    Some(EmittedPhoton {
-        ray: scene.spawn_from_triangle(e.prim, e.point, dir),
-        power: le * (PI * sides * e.area / e.prob),
-        shape: mat.emitter_shape(),
-        range: None,
-    })
 }
 
 impl PhotonEmitter {

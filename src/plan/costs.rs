@@ -56,6 +56,7 @@ impl Plan {
             let (w, h) = PROBE_SIZE;
             let integrator = Integrator::new(method, 64, &Default::default())?;
             let settings = RenderSettings {
+                sampler: Default::default(),
                 width: w,
                 height: h,
                 spp: 1,
@@ -126,9 +127,11 @@ fn time_photons(scene: &Scene, emitter: &PhotonEmitter) -> f64 {
     };
     let start = Instant::now();
     let mut vertices = 0u64;
+    let numbers = crate::photon::emit::PhotonNumbers::new(0x0C05_7000);
     for i in 0..COST_PHOTONS {
         let mut rng = crate::math::Rng::new(&[0x0C05_7000, i as u64]);
-        if let Some(ph) = emitter.emit_from(scene, &mut rng) {
+        let aim = crate::photon::emit::DEFAULT_AIM;
+        if let Some(ph) = emitter.emit_index(scene, &numbers, i as u64, aim) {
             trace::<Vec3>(scene, &ph, (), &settings, &mut rng, |_, _| vertices += 1);
         }
     }

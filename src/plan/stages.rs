@@ -6,7 +6,7 @@ use super::{SpectralMode, Stage, CAUSTIC_PROBE_PHOTONS};
 use crate::integrator::Method;
 use crate::light::env::Environment;
 use crate::material::Material;
-use crate::photon::emit::PhotonEmitter;
+use crate::photon::emit::{PhotonEmitter, DEFAULT_AIM};
 use crate::photon::trace::has_caustic_paths;
 use crate::scene::{Scene, TriangleData};
 use std::collections::BTreeSet;
@@ -99,10 +99,17 @@ pub(super) fn photons(ev: &Evidence, method: Method, resolved: Method, why: Opti
     } else {
         !emitter.is_empty() && has_caustic_paths(scene, &emitter, CAUSTIC_PROBE_PHOTONS)
     };
-    let specular = mats(&|m: &Material| m.is_transmissive() || m.desc.metallic >= 1.0);
+    let specular = mats(&crate::photon::aim::is_caustic_maker);
+    let aimed = match emitter.targets().spheres().len() {
+        0 => String::new(),
+        n => format!(
+            ", {:.0} % aimed at {n} bounding sphere(s) of the caustic makers",
+            DEFAULT_AIM.fraction() * 100.0
+        ),
+    };
     let evidence = if caustics {
         format!(
-            "caustic paths: probe photons ({CAUSTIC_PROBE_PHOTONS}) reach a diffuse \
+            "caustic paths: probe photons ({CAUSTIC_PROBE_PHOTONS}{aimed}) reach a diffuse \
                      surface after specular bounces only; transmissive or metallic materials {}",
             names(specular)
         )
@@ -110,8 +117,8 @@ pub(super) fn photons(ev: &Evidence, method: Method, resolved: Method, why: Opti
         "no transmissive or metallic material on any triangle: no caustic paths".to_string()
     } else {
         format!(
-            "no caustic path among {CAUSTIC_PROBE_PHOTONS} probe photons (transmissive or \
-                     metallic materials {})",
+            "no caustic path among {CAUSTIC_PROBE_PHOTONS} probe photons{aimed} (transmissive \
+                     or metallic materials {})",
             names(specular)
         )
     };

@@ -3,17 +3,15 @@
 //! ([`crate::output::background`] defines both and how they are used).
 //!
 //! It replays the per-sample methods' camera rays exactly: sample k of pixel (x, y) is
-//! jittered by the first two numbers of the stream `Rng::new(&[seed, x, y, k])` (the pixel
-//! centre when `spp` = 1), as [`super::render_samples`] does (one [`primary_ray`]), so α
-//! and the escaped radiance are those of the rendered samples (SPPM jitters its own rays:
-//! same distribution). One
-//! closest-hit query per sample; parallel over rows on the current rayon pool. Units:
+//! jittered by its pixel dimensions from the render's sampler (the pixel centre when `spp`
+//! = 1), as [`super::render_samples`] does (one [`primary_ray`], one [`pixel_sampler`]), so
+//! α and the escaped radiance are those of the rendered samples (SPPM jitters its own rays:
+//! same distribution). One closest-hit query per sample; parallel over rows on the current rayon pool. Units:
 //! linear RGB radiance.
 
-use super::samples::primary_ray;
+use super::samples::{pixel_sampler, primary_ray};
 use super::RenderSettings;
 use crate::camera::Camera;
-use crate::math::Rng;
 use crate::output::Coverage;
 use crate::scene::Scene;
 use glam::Vec3;
@@ -33,6 +31,7 @@ pub fn coverage(
 ) -> Coverage {
     let (w, h) = (settings.width, settings.height);
     let n = samples.clamp(1, MAX_COVERAGE_SAMPLES);
+    let sampler = pixel_sampler(settings, u64::from(settings.spp.max(1)));
     let rows: Vec<(Vec<f32>, Vec<Vec3>)> = (0..h)
         .into_par_iter()
         .map(|y| {
@@ -41,8 +40,8 @@ pub fn coverage(
             for x in 0..w {
                 let (mut hits, mut env) = (0u64, Vec3::ZERO);
                 for k in 0..n {
-                    let mut rng = Rng::new(&[settings.seed, x as u64, y as u64, k]);
-                    let ray = primary_ray(camera, x, y, settings.spp <= 1, &mut rng);
+                    let mut sample = sampler.start(x, y, k);
+                    let ray = primary_ray(camera, x, y, settings.spp <= 1, &mut sample);
                     if scene.intersect(&ray).is_some() {
                         hits += 1;
                     } else if let Some(e) = &scene.environment {

@@ -11,13 +11,13 @@
 //! optional [`Observer`] sees the image so far ([`Progress`]) and may stop the render.
 //!
 //! Invariants:
-//! - Sample k of pixel (x, y) draws only from the stream `Rng::new(&[seed, x, y, k])` and is
-//!   added to the pixel's running sums in the order k = 0, 1, 2, …, so the image after N
-//!   samples is bit-identical however the rounds were split and whatever the thread count.
-//! - The spectral hero wavelength of sample k uses the rank-1 lattice (golden-ratio)
-//!   sequence u_k = frac(o + k·φ⁻¹) with a per-pixel random offset o (a Cranley–Patterson
-//!   rotation; Owen, "Monte Carlo theory, methods and examples", §15.4): every prefix of
-//!   samples is well stratified, so stopping early (time limit, observer) keeps colour noise
+//! - Sample k of pixel (x, y) draws only from its [`crate::sampler::SampleStream`] (a pure
+//!   function of seed, x, y, k, the resolution and `spp`; low-discrepancy Sobol' by default,
+//!   [`crate::sampler`]) and is added to the pixel's running sums in the order k = 0, 1, 2,
+//!   …, so the image after N samples is bit-identical however the rounds were split and
+//!   whatever the thread count.
+//! - The spectral hero wavelength of sample k is the stream's wavelength number: stratified
+//!   over the pixel's samples, so stopping early (time limit, observer) keeps colour noise
 //!   low and unbiased.
 //! - Sample k goes to half k mod 2: the two half images are independent estimates used to
 //!   estimate the error without a reference.
@@ -25,7 +25,7 @@
 //! Images are linear RGB (radiance, W·sr⁻¹·m⁻² per channel); times are wall-clock.
 
 use crate::error::{Error, Result};
-use crate::math::Rng;
+use crate::sampler::{SampleStream, SamplerKind};
 use std::time::Duration;
 
 pub mod coverage;
@@ -39,7 +39,7 @@ pub use film::{Film, FilmTile, TILE, TILE_PIXELS};
 pub use progress::{
     estimate_note, progress_bar, relative_error_estimate, Control, Observer, Progress, Setup,
 };
-pub use samples::{primary_ray, render_samples};
+pub use samples::{pixel_sampler, primary_ray, render_samples};
 
 /// What to render.
 #[derive(Debug, Clone)]
@@ -61,12 +61,15 @@ pub struct RenderSettings {
     /// Stop after the round (SPPM: pass) that crosses this wall time, counted from the start
     /// of the render (photon map building included); at least one sample (pass) is taken.
     pub time_limit: Option<Duration>,
+    /// The numbers driving camera paths (`--sampler`).
+    pub sampler: SamplerKind,
 }
 
 /// Per-thread state an integrator carries along one camera sample (or photon).
 pub struct Context {
-    /// Random numbers for this pixel sample.
-    pub rng: Rng,
+    /// Random numbers for this pixel sample: the scheduled low-discrepancy decisions and
+    /// the independent stream ([`SampleStream::rng`]).
+    pub sample: SampleStream,
     /// Rays traced so far (closest-hit and shadow).
     pub rays: u64,
 }

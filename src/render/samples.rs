@@ -1,7 +1,7 @@
 //! The sample loop of the per-sample methods (path, Whitted, photon): rounds of camera
 //! samples to checkpoints 1, 2, 4, … samples per pixel, accumulated per pixel in two halves
-//! (sample k in half k mod 2). The invariants (stream per (seed, x, y, k), golden-ratio hero
-//! wavelength, additions in sample order) are the parent module's; they make the image after
+//! (sample k in half k mod 2). The invariants (numbers per (seed, x, y, k) from the render's
+//! [`PixelSampler`], stratified hero wavelength, additions in sample order) are the parent module's; they make the image after
 //! N samples independent of the round split and the thread count. Units: linear RGB
 //! radiance; pixel (x, y) has its centre at (x + ½, y + ½) in raster space.
 
@@ -10,27 +10,39 @@ use super::film::Film;
 use super::{guard, Context, Observer, RenderSettings, RenderStats, Setup};
 use crate::camera::Camera;
 use crate::error::Result;
-use crate::math::{Ray, Rng};
+use crate::math::Ray;
 use crate::output::ImageRgb;
+use crate::sampler::{PixelSampler, SampleStream};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
-/// Stream key of the per-pixel offset of the hero-wavelength sequence.
-const LAMBDA_KEY: u64 = 0x1A4B_DA00;
-/// 1/φ, the golden ratio's fractional part: the rank-1 lattice generator.
-const INV_PHI: f64 = 0.618_033_988_749_894_9;
-
 /// The camera ray of one sample of pixel (x, y): through the pixel centre when the render
-/// takes one sample per pixel (`centre`), else jittered by the first two numbers of `rng`,
-/// the sample's stream `Rng::new(&[seed, x, y, k])`. The coverage pass
-/// ([`super::coverage`]) replays it.
-pub fn primary_ray(camera: &Camera, x: u32, y: u32, centre: bool, rng: &mut Rng) -> Ray {
+/// takes one sample per pixel (`centre`), else jittered by the sample's pixel dimensions.
+/// The coverage pass ([`super::coverage`]) replays it.
+pub fn primary_ray(
+    camera: &Camera,
+    x: u32,
+    y: u32,
+    centre: bool,
+    sample: &mut SampleStream,
+) -> Ray {
     let jitter = if centre {
         Vec2::splat(0.5)
     } else {
-        Vec2::new(rng.next_f32(), rng.next_f32())
+        sample.pixel()
     };
     camera.generate_ray(Vec2::new(x as f32, y as f32) + jitter)
+}
+
+/// The sampler of a render with `settings`: Sobol' blocks of `spp` samples per pixel over
+/// its resolution (the same for every round, thread and shard).
+pub fn pixel_sampler(settings: &RenderSettings, spp: u64) -> PixelSampler {
+    PixelSampler::new(
+        settings.sampler,
+        spp,
+        (settings.width, settings.height),
+        settings.seed,
+    )
 }
 
 /// The sample loop of the per-sample methods: samples k = 0, 1, … per pixel, each a jittered
@@ -70,6 +82,7 @@ fn sample_rounds(
     estimate: impl Fn(&Ray, f32, &mut Context) -> Vec3 + Sync,
 ) -> Result<(ImageRgb, RenderStats)> {
     let target = settings.spp.max(1) as u64;
+    let sampler = pixel_sampler(settings, target);
     let schedule = Schedule {
         target,
         max_round,
@@ -85,8 +98,8 @@ fn sample_rounds(
         |film, k0, k1, env| {
             Ok(round(
                 camera,
-                settings,
-                target == 1,
+                &sampler,
+                (target == 1, settings.spectral),
                 film,
                 (k0, k1),
                 env,
@@ -100,8 +113,8 @@ fn sample_rounds(
 /// keeps its count).
 fn round(
     camera: &Camera,
-    settings: &RenderSettings,
-    centre: bool,
+    sampler: &PixelSampler,
+    (centre, spectral): (bool, bool),
     film: &mut Film,
     (k0, k1): (u64, u64),
     env: &RoundEnv,
@@ -114,20 +127,23 @@ fn round(
                 return (0, 0);
             }
             let (mut rays, mut bad) = (0, 0);
+            let mut ctx = Context {
+                sample: sampler.start(0, 0, 0),
+                rays: 0,
+            };
             for i in 0..tile.sums.len() {
                 let Some((x, y)) = tile.pixel(i) else {
                     continue;
                 };
-                let (xk, yk) = (x as u64, y as u64);
-                let offset = Rng::new(&[settings.seed, xk, yk, LAMBDA_KEY]).next_f32() as f64;
                 for k in k0..k1 {
-                    let mut ctx = Context {
-                        rng: Rng::new(&[settings.seed, xk, yk, k]),
-                        rays: 0,
+                    sampler.restart(&mut ctx.sample, x, y, k);
+                    ctx.rays = 0;
+                    let ray = primary_ray(camera, x, y, centre, &mut ctx.sample);
+                    let u_lambda = if spectral {
+                        ctx.sample.wavelength()
+                    } else {
+                        0.0
                     };
-                    let ray = primary_ray(camera, x, y, centre, &mut ctx.rng);
-                    let u_lambda =
-                        ((offset + k as f64 * INV_PHI).fract() as f32).min(1.0 - f32::EPSILON);
                     let l = guard::admit(estimate(&ray, u_lambda, &mut ctx), &mut bad);
                     tile.sums[i][(k % 2) as usize] += l.as_dvec3();
                     rays += ctx.rays;
@@ -150,12 +166,15 @@ mod tests {
     use super::*;
     use crate::camera::look_at;
     use crate::render::{Control, Progress};
+    use crate::sampler::SamplerKind;
     use crate::scene::desc::{CameraDesc, Projection};
+
+    const ZSOBOL: SamplerKind = SamplerKind::ZSobol;
 
     /// A synthetic estimate that uses every input: the sample's random stream, the hero
     /// variate and the ray; any dependence on the round split changes it.
     fn render_split(max_round: u64, threads: usize) -> (ImageRgb, Vec<u64>) {
-        let (img, seen, _) = render_with(19, 13, 23, max_round, threads, &|| false);
+        let (img, seen, _) = render_with(19, 13, 23, max_round, threads, &|| false, ZSOBOL);
         (img, seen)
     }
 
@@ -168,6 +187,7 @@ mod tests {
         max_round: u64,
         threads: usize,
         stop: &(dyn Fn() -> bool + Sync),
+        sampler: SamplerKind,
     ) -> (ImageRgb, Vec<u64>, RenderStats) {
         let settings = RenderSettings {
             width: w,
@@ -178,6 +198,7 @@ mod tests {
             quiet: true,
             spectral: true,
             time_limit: None,
+            sampler,
         };
         let desc = CameraDesc {
             name: "c".into(),
@@ -208,7 +229,7 @@ mod tests {
                             // A numerical failure on a few samples: counted, never painted.
                             Vec3::NAN
                         } else {
-                            Vec3::new(ctx.rng.next_f32(), u, ray.dir.x)
+                            Vec3::new(ctx.sample.get_1d(9), u, ray.dir.x)
                         }
                     },
                 )
@@ -219,7 +240,7 @@ mod tests {
 
     #[test]
     fn bad_samples_are_counted_not_painted() {
-        let (img, _, stats) = render_with(19, 13, 23, u64::MAX, 2, &|| false);
+        let (img, _, stats) = render_with(19, 13, 23, u64::MAX, 2, &|| false, ZSOBOL);
         assert!(img.data.iter().all(|p| p.is_finite()));
         // About 1 % of the samples of the right-hand pixels hit the failure.
         assert!(stats.bad_samples > 0, "{}", stats.bad_samples);
@@ -235,12 +256,14 @@ mod tests {
     fn an_interrupted_round_keeps_whole_tiles() {
         // 40×40 = 3×3 tiles. Rounds 1, 1→2, 2→4, 4→8; every round after the first asks
         // once per tile and once at its end: the stop request comes during the last round,
-        // after 3 of its tiles started.
+        // after 3 of its tiles started. The independent sampler: its 4-spp image does not
+        // depend on the spp cap (the Sobol' sampler's blocks do).
         let calls = std::sync::atomic::AtomicU64::new(0);
         let stop = || calls.fetch_add(1, std::sync::atomic::Ordering::SeqCst) >= 10 + 10 + 3;
-        let (img, seen, stats) = render_with(40, 40, 8, u64::MAX, 1, &stop);
-        let (four, ..) = render_with(40, 40, 4, u64::MAX, 1, &|| false);
-        let (eight, ..) = render_with(40, 40, 8, u64::MAX, 1, &|| false);
+        let ind = SamplerKind::Independent;
+        let (img, seen, stats) = render_with(40, 40, 8, u64::MAX, 1, &stop, ind);
+        let (four, ..) = render_with(40, 40, 4, u64::MAX, 1, &|| false, ind);
+        let (eight, ..) = render_with(40, 40, 8, u64::MAX, 1, &|| false, ind);
         assert!(stats.interrupted);
         assert_eq!(seen, [1, 2, 4, 4]);
         let tile_of = |i: usize| (i % 40 / 16, i / 40 / 16);

@@ -1,4 +1,5 @@
-//! Low-discrepancy samplers (issue 17 groundwork; not yet used by any integrator).
+//! Low-discrepancy samplers: the camera paths' numbers ([`stream`]) and the sequences behind
+//! them.
 //!
 //! - [`sobol`]: the Sobol' sequence (Joe & Kuo 2008 matrices, [`sobol_table`]) with
 //!   pbrt-v4's randomisations: none, XOR (random digit), fast Owen (Burley 2020).
@@ -16,7 +17,9 @@ pub mod halton;
 pub mod schedule;
 pub mod sobol;
 pub mod sobol_table;
+pub mod stream;
 pub mod zsobol;
 
 pub use sobol::{sobol_sample, Scramble};
+pub use stream::{Bounce, PixelSampler, SampleStream, SamplerKind};
 pub use zsobol::{Randomize, ZSobol};

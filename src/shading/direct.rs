@@ -11,10 +11,11 @@ use super::lights::{self, LightSample};
 use super::material_bsdf::surface_bsdf;
 use super::step::Arrival;
 use crate::bsdf::{Bsdf, TransportMode};
-use crate::math::{Frame, Rng};
+use crate::math::Frame;
+use crate::sampler::Bounce;
 use crate::scene::Scene;
 use crate::spectrum::Carrier;
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 /// An opaque hit seen from the viewer's side, ready to receive light.
 struct Receiver<'a, C: Carrier> {
@@ -56,12 +57,13 @@ impl<C: Carrier> Receiver<'_, C> {
 }
 
 /// Direct light at an opaque hit, with shadow rays: every punctual light, one sample of the
-/// emissive triangles and one of the environment.
+/// emissive triangles (the vertex's light member and position numbers) and one of the
+/// environment (its BSDF-direction numbers, which a Whitted vertex never uses otherwise).
 pub fn direct_light<C: Carrier>(
     scene: &Scene,
     at: &Arrival<'_, C>,
     lambda: &C::Lambda,
-    rng: &mut Rng,
+    u: &mut Bounce<'_>,
     rays: &mut u64,
 ) -> C {
     let (hit, mat) = (&at.hit, at.mat);
@@ -87,12 +89,12 @@ pub fn direct_light<C: Carrier>(
         sum += r.connect(lights::punctual(scene, hit, k), rays);
     }
     // One emissive-triangle sample, then one environment sample.
-    let uc = rng.next_f32();
-    let u = Vec2::new(rng.next_f32(), rng.next_f32());
-    sum += r.connect(lights::area(scene, hit, uc, u), rays);
+    let uc = u.light_member();
+    let up = u.light_position();
+    sum += r.connect(lights::area(scene, hit, uc, up), rays);
     if scene.environment.is_some() {
-        let u = Vec2::new(rng.next_f32(), rng.next_f32());
-        sum += r.connect(lights::environment(scene, hit, u), rays);
+        let ud = u.bsdf_direction();
+        sum += r.connect(lights::environment(scene, hit, ud), rays);
     }
     sum
 }

@@ -25,6 +25,7 @@ use crate::interaction::{CoincidentSet, SurfaceHit};
 use crate::material::{Material, ShadingPoint};
 use crate::math::{Frame, Ray, Rng};
 use crate::medium::MediumStack;
+use crate::sampler::Bounce;
 use crate::scene::desc::AlphaMode;
 use crate::scene::Scene;
 use crate::spectrum::Carrier;
@@ -139,10 +140,10 @@ impl<C: Carrier> Arrival<'_, C> {
         media: MediumStack,
         beta: &mut C,
         lambda: &mut C::Lambda,
-        rng: &mut Rng,
+        u: &mut impl StepNumbers,
     ) -> Event<C> {
         // glTF BLEND: stochastic coverage; the uncovered part continues straight on.
-        if matches!(self.mat.desc.alpha_mode, AlphaMode::Blend) && rng.next_f32() >= self.sp.alpha {
+        if matches!(self.mat.desc.alpha_mode, AlphaMode::Blend) && u.alpha() >= self.sp.alpha {
             return Event::PassThrough(self.hit.spawn_ray(-self.hit.wo));
         }
         let (bsdf, beyond, dispersive) = bsdf_at::<C>(
@@ -151,7 +152,7 @@ impl<C: Carrier> Arrival<'_, C> {
             &self.coincident,
             &self.sp,
             media,
-            rng.next_f32(),
+            u.layer(),
             lambda,
         );
         if dispersive {
@@ -166,6 +167,35 @@ impl<C: Carrier> Arrival<'_, C> {
             media,
             beyond,
         })
+    }
+}
+
+/// Where the step's two random numbers come from: BLEND coverage (drawn only at BLEND
+/// materials) and the material layer, in that order. A plain [`Rng`] draws both from its
+/// stream (photon paths); a camera path's [`Bounce`] draws the layer from its scheduled
+/// dimension.
+pub trait StepNumbers {
+    /// The number compared with a BLEND material's α.
+    fn alpha(&mut self) -> f32;
+    /// The number choosing the material layer.
+    fn layer(&mut self) -> f32;
+}
+
+impl StepNumbers for Rng {
+    fn alpha(&mut self) -> f32 {
+        self.next_f32()
+    }
+    fn layer(&mut self) -> f32 {
+        self.next_f32()
+    }
+}
+
+impl StepNumbers for Bounce<'_> {
+    fn alpha(&mut self) -> f32 {
+        Bounce::alpha(self)
+    }
+    fn layer(&mut self) -> f32 {
+        Bounce::layer(self)
     }
 }
 

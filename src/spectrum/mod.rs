@@ -31,7 +31,7 @@ pub use ior::{IorModel, UnknownIorName};
 pub use sampled::SampledSpectrum;
 pub use spectra::Spectrum;
 pub use upsample::{RgbIlluminant, RgbReflectance};
-pub use wavelengths::SampledWavelengths;
+pub use wavelengths::{hero_number, SampledWavelengths};
 
 /// Shortest wavelength sampled, nm (pbrt-v4 `Lambda_min`).
 pub const LAMBDA_MIN: f32 = 360.0;

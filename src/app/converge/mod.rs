@@ -68,6 +68,8 @@ pub struct ConvergeOptions {
     pub size: Option<(u32, u32)>,
     /// Seed of the runs (the rendered reference uses another stream).
     pub seed: u64,
+    /// The numbers driving camera paths (`--sampler`).
+    pub sampler: crate::sampler::SamplerKind,
     /// Threads (0 = all), at most [`crate::render::MAX_THREADS`].
     pub threads: usize,
     /// Acceleration backend.
@@ -354,6 +356,7 @@ impl<'a> Job<'a> {
                 quiet: opts.quiet,
                 spectral: SpectralMode::Auto.resolve(scene),
                 time_limit: Some(opts.time),
+                sampler: opts.sampler,
             },
         }
     }
