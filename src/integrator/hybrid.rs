@@ -27,7 +27,8 @@ use crate::camera::Camera;
 use crate::error::Result;
 use crate::output::ImageRgb;
 use crate::render::{
-    drive, guard, pixel_sampler, primary_ray, Film, Observer, RenderSettings, RenderStats, Round, Schedule, Setup,
+    drive, guard, pixel_sampler, primary_ray, Film, Observer, RenderSettings, RenderStats, Round,
+    Schedule, Setup,
 };
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
