@@ -128,8 +128,10 @@ struct RenderArgs {
     /// Rendering method: whitted (recursive ray tracing, seed paper §4), path (path tracing
     /// with next-event estimation and MIS), photon (classic photon mapping: caustic + global
     /// maps, final gather), sppm (stochastic progressive photon mapping: passes, converges),
-    /// auto (SPPM when light can reach a diffuse surface through specular ones, the path
-    /// tracer otherwise).
+    /// hybrid (the path tracer plus a progressive caustic photon map for light that reaches
+    /// a diffuse surface through specular ones only; one pass per sample, converges), auto
+    /// (SPPM when light can reach a diffuse surface through specular ones, the path tracer
+    /// otherwise; the reason names the caustics' share of the light).
     #[arg(long, default_value = "whitted", value_parser = Method::parse)]
     method: Method,
     /// Maximum number of bounces (reflections and refractions) per path, 1 to 1024 (also
@@ -184,16 +186,16 @@ struct RenderArgs {
     /// round of samples (SPPM: the pass) that crosses it, with at least one sample per pixel.
     #[arg(long, value_parser = parse_seconds, allow_hyphen_values = true)]
     time: Option<f64>,
-    /// Photons per SPPM pass (default: one per pixel) or in total for `--method photon`
+    /// Photons per SPPM or hybrid pass (default: one per pixel) or in total for `--method photon`
     /// (default 500000), 1 to 16777216 (2^24). A pass or map that would store more than
     /// 2^26 photons (2 GiB) stops with an error.
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=iris::integrator::MAX_PHOTONS))]
     photons: Option<u64>,
-    /// Initial SPPM gather radius / largest photon-map radius, in scene units (default: from
+    /// Initial SPPM / hybrid gather radius, largest photon-map radius, in scene units (default: from
     /// the pixel footprint): finite and > 0 (no memory depends on it).
     #[arg(long, value_parser = parse_radius, allow_hyphen_values = true)]
     radius: Option<f32>,
-    /// SPPM radius reduction α in (0, 1): r²ᵢ₊₁ = r²ᵢ (i+α)/(i+1) (Knaus & Zwicker 2011).
+    /// SPPM / hybrid radius reduction α in (0, 1): r²ᵢ₊₁ = r²ᵢ (i+α)/(i+1) (Knaus & Zwicker 2011).
     #[arg(long, default_value_t = 2.0 / 3.0, value_parser = parse_alpha, allow_hyphen_values = true)]
     alpha: f32,
     /// Write the image so far at the checkpoints (1, 2, 4, … samples, or passes for SPPM)
@@ -246,7 +248,7 @@ struct RenderArgs {
 struct ConvergeArgs {
     /// Scene file (.gltf, .glb, .obj).
     scene: PathBuf,
-    /// Methods to compare, comma-separated: whitted, path, photon, sppm.
+    /// Methods to compare, comma-separated: whitted, path, photon, sppm, hybrid.
     #[arg(long, default_value = "path,photon,sppm")]
     methods: String,
     /// Time budget of each method in seconds (more than 0, at most 10000000).

@@ -204,6 +204,8 @@ fn diff_measures_rmse_and_rejects_size_mismatch() {
         (d.rmse - 0.5).abs() < 1e-6 && (d.relative_rmse - 0.5).abs() < 1e-6,
         "{d:?}"
     );
+    // Relative MSE: 0.5² / (1² + 0.01).
+    assert!((d.rel_mse - 0.25 / 1.01).abs() < 1e-6, "{d:?}");
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_iris"))
         .args(["diff"])
         .arg(&c)

@@ -1,4 +1,4 @@
-//! The photon methods from the command line: `--method sppm|photon|auto`, `--passes`,
+//! The photon methods from the command line: `--method sppm|photon|hybrid|auto`, `--passes`,
 //! `--time`, `--checkpoint`, `--photons`, `--radius`, `--alpha`, `--photon-rr`; bad values
 //! end in a message naming the flag, a non-zero exit and no output.
 
@@ -187,6 +187,7 @@ fn auto_picks_sppm_for_caustics_and_path_otherwise() {
     );
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("path tracer"), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("(hybrid)"), "{}", stderr(&o));
 }
 
 #[test]
@@ -223,4 +224,44 @@ fn bad_photon_flags_fail_cleanly() {
         assert!(!e.contains("panicked"), "{e}");
     }
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+}
+
+/// `--method hybrid` renders; a misspelt method is rejected naming the accepted ones.
+#[test]
+fn cli_accepts_hybrid_and_rejects_nonsense() {
+    let dir = common::scratch_dir("cli_hybrid");
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/scenes/gem_caustics.glb"
+    );
+    let o = common::iris(
+        &[
+            "render",
+            scene,
+            "--method",
+            "hybrid",
+            "--spp",
+            "2",
+            "--photons",
+            "2000",
+            "--size",
+            "32x24",
+            "-q",
+            "-o",
+            "h.png",
+        ],
+        &dir,
+    );
+    assert!(o.status.success(), "{}", common::stderr(&o));
+    assert!(dir.join("h.png").exists());
+    let o = common::iris(
+        &[
+            "render", scene, "--method", "hybird", "--size", "32x24", "-q", "-o", "x.png",
+        ],
+        &dir,
+    );
+    assert!(!o.status.success());
+    let err = common::stderr(&o);
+    assert!(err.contains("hybird") && err.contains("hybrid"), "{err}");
+    assert!(!dir.join("x.png").exists());
 }

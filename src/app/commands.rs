@@ -107,12 +107,13 @@ pub fn info(scene: &Path) -> Result<()> {
     Ok(())
 }
 
-/// `iris diff`: prints RMSE, relative RMSE and the means of an image and its reference.
+/// `iris diff`: prints RMSE, relative RMSE, relative MSE and the means of an image and its
+/// reference.
 pub fn diff(image: &Path, reference: &Path) -> Result<()> {
     let d = super::diff_command(image, reference)?;
     println!(
-        "rmse {:.6e} relative {:.6e} mean {:.6e} reference mean {:.6e}",
-        d.rmse, d.relative_rmse, d.mean, d.reference_mean
+        "rmse {:.6e} relative {:.6e} relmse {:.6e} mean {:.6e} reference mean {:.6e}",
+        d.rmse, d.relative_rmse, d.rel_mse, d.mean, d.reference_mean
     );
     Ok(())
 }

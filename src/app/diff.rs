@@ -1,5 +1,6 @@
 //! `iris diff`: the error of an EXR image against a reference EXR of the same size, on the
-//! linear values (all pixels and channels).
+//! linear values (all pixels and channels): RMSE, RMSE relative to the reference's mean,
+//! and the relative MSE of [`crate::measure::metrics`].
 
 use crate::error::{Error, Result};
 use crate::output;
@@ -12,6 +13,8 @@ pub struct DiffSummary {
     pub rmse: f64,
     /// `rmse` divided by the reference's mean value.
     pub relative_rmse: f64,
+    /// Relative MSE, mean of (x − r)²/(r² + 0.01) ([`crate::measure::metrics::compare`]).
+    pub rel_mse: f64,
     /// Mean value of the image (all channels).
     pub mean: f64,
     /// Mean value of the reference.
@@ -43,8 +46,10 @@ pub fn diff_command(image: &Path, reference: &Path) -> Result<DiffSummary> {
     }
     let rmse = (se / n).sqrt();
     let reference_mean = sb / n;
+    let rel_mse = crate::measure::metrics::compare(&a, &b)?.rel_mse;
     Ok(DiffSummary {
         rmse,
+        rel_mse,
         relative_rmse: if reference_mean > 0.0 {
             rmse / reference_mean
         } else {

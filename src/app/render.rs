@@ -169,6 +169,7 @@ impl RenderSummary {
                 self.stats.passes, self.stats.photons
             ),
             Method::Photon => format!("{spp} spp, {} photons", self.stats.photons),
+            Method::Hybrid => format!("{spp} spp, {} caustic photons", self.stats.photons),
             _ => format!("{spp} spp"),
         }
     }

@@ -2,6 +2,8 @@
 //! maths lives in its own module, and the per-hit step shared between them (and with photon
 //! tracing) lives below them in [`crate::shading`].
 
+pub mod caustic;
+pub mod hybrid;
 pub mod path;
 pub mod photon_map;
 mod settings;
@@ -18,8 +20,8 @@ use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::Vec3;
 pub use settings::{
-    check_depth, PhotonMapSettings, PhotonSettings, SppmSettings, StoreBudget, MAX_DEPTH,
-    MAX_PHOTONS, MAX_STORED_PHOTONS,
+    check_depth, CausticSettings, PhotonMapSettings, PhotonSettings, SppmSettings, StoreBudget,
+    MAX_DEPTH, MAX_PHOTONS, MAX_STORED_PHOTONS,
 };
 
 /// The rendering method (`--method`).
@@ -36,7 +38,10 @@ pub enum Method {
     /// Stochastic progressive photon mapping in passes (Hachisuka & Jensen 2009, radius
     /// sequence of Knaus & Zwicker 2011).
     Sppm,
-    /// `Sppm` when the scene has caustic paths, `Path` otherwise: a choice the render plan
+    /// The path tracer with a progressive caustic photon map for exactly the light paths it
+    /// cannot sample (light → delta chain → first non-delta surface): [`hybrid`].
+    Hybrid,
+    /// `Path`, `Hybrid` or `Sppm` from the caustic probes: a choice the render plan
     /// makes ([`crate::plan::resolve_method`]) before an [`Integrator`] exists; [`Integrator::new`]
     /// rejects it unresolved.
     Auto,
@@ -44,11 +49,12 @@ pub enum Method {
 
 impl Method {
     /// Every method, in the order `--method` lists them.
-    pub const ALL: [Method; 5] = [
+    pub const ALL: [Method; 6] = [
         Method::Whitted,
         Method::Path,
         Method::Photon,
         Method::Sppm,
+        Method::Hybrid,
         Method::Auto,
     ];
 
@@ -59,6 +65,7 @@ impl Method {
             Method::Path => "path",
             Method::Photon => "photon",
             Method::Sppm => "sppm",
+            Method::Hybrid => "hybrid",
             Method::Auto => "auto",
         }
     }
@@ -102,6 +109,13 @@ pub enum Integrator {
         /// Photons per pass, radius sequence, passes and roulette.
         sppm: SppmSettings,
     },
+    /// The path tracer plus a progressive caustic photon map ([`hybrid`]).
+    Hybrid {
+        /// Bounces per camera path.
+        max_depth: u32,
+        /// Caustic photons per pass, initial radius and α.
+        caustics: CausticSettings,
+    },
 }
 
 impl Integrator {
@@ -123,6 +137,10 @@ impl Integrator {
                 max_depth,
                 sppm: photon.sppm(),
             },
+            Method::Hybrid => Integrator::Hybrid {
+                max_depth,
+                caustics: photon.caustics(),
+            },
             Method::Auto => {
                 return Err(Error::Usage(
                     "--method auto must be resolved by the render plan before rendering".into(),
@@ -138,6 +156,7 @@ impl Integrator {
             Integrator::Path { .. } => Method::Path,
             Integrator::PhotonMap { .. } => Method::Photon,
             Integrator::Sppm { .. } => Method::Sppm,
+            Integrator::Hybrid { .. } => Method::Hybrid,
         }
     }
 
@@ -147,7 +166,8 @@ impl Integrator {
             Integrator::Whitted { max_depth }
             | Integrator::Path { max_depth, .. }
             | Integrator::PhotonMap { max_depth, .. }
-            | Integrator::Sppm { max_depth, .. } => max_depth,
+            | Integrator::Sppm { max_depth, .. }
+            | Integrator::Hybrid { max_depth, .. } => max_depth,
         }
     }
 
@@ -160,12 +180,13 @@ impl Integrator {
             Integrator::Whitted { .. } | Integrator::Path { .. } => Ok(()),
             Integrator::PhotonMap { photons, .. } => photons.check(),
             Integrator::Sppm { sppm, .. } => sppm.check(),
+            Integrator::Hybrid { caustics, .. } => caustics.check(),
         }
     }
 
     /// Radiance arriving along `ray` at the sample's wavelengths `lambda` (linear RGB when
-    /// `C` is [`Vec3`]) for the per-sample methods; `None` for the photon methods, whose
-    /// estimates need their maps or passes.
+    /// `C` is [`Vec3`]) for the per-sample methods; `None` for the photon methods and the
+    /// hybrid, whose estimates need their maps or passes.
     pub fn radiance<C: Carrier>(
         &self,
         scene: &Scene,
@@ -188,7 +209,9 @@ impl Integrator {
                 spectral_mis,
                 ctx,
             )),
-            Integrator::PhotonMap { .. } | Integrator::Sppm { .. } => None,
+            Integrator::PhotonMap { .. } | Integrator::Sppm { .. } | Integrator::Hybrid { .. } => {
+                None
+            }
         }
     }
 
@@ -233,6 +256,12 @@ impl Integrator {
             Integrator::Sppm { max_depth, sppm } => {
                 pool.install(|| sppm::render(scene, camera, *max_depth, sppm, settings, observer))
             }
+            Integrator::Hybrid {
+                max_depth,
+                caustics,
+            } => pool.install(|| {
+                hybrid::render(scene, camera, *max_depth, caustics, settings, observer)
+            }),
         }
     }
 

@@ -100,6 +100,21 @@ pub enum StopAt {
     Diffuse,
 }
 
+/// How the path tracer shares light transport with a caustic photon map (`--method hybrid`,
+/// [`super::caustic`]); the split is Jensen's caustic map in Heckbert's notation.
+#[derive(Clone, Copy)]
+pub enum CausticSplit<'a, C: Carrier> {
+    /// The plain path tracer: every path is counted here.
+    None,
+    /// Light paths L S+ D (a caustic light, at least one delta bounce, the first non-delta
+    /// vertex D) belong to the caustic map: at every non-delta vertex whose BSDF-sampled
+    /// bounce would be followed, `gather(surface, lambda)` adds the map's reflected radiance
+    /// (times the path throughput), and emission found by BSDF sampling after a
+    /// non-delta bounce followed by ≥ 1 delta bounces is dropped (exactly the paths the map
+    /// counts). The environment is not a caustic light: its radiance stays here.
+    Map(&'a (dyn Fn(&Surface<C>, &C::Lambda) -> C + Sync)),
+}
+
 /// The first diffuse-like hit of a camera path: where photons are gathered.
 #[derive(Debug, Clone, Copy)]
 pub struct VisiblePoint<C: Carrier> {
@@ -138,6 +153,7 @@ pub fn radiance<C: Carrier>(
         max_depth,
         lambda,
         StopAt::Never,
+        CausticSplit::None,
         spectral_mis,
         ctx,
     )
@@ -203,27 +219,32 @@ fn emitted<C: Carrier>(
 /// The path tracer's loop: radiance gathered along the path and, with [`StopAt::Diffuse`],
 /// the visible point where it stopped (none if it escaped, was absorbed or hit the depth
 /// limit first). Each hit is the shared step ([`shading::arrive`], [`Arrival::event`]);
-/// emission is counted on arrival, before BLEND coverage is decided.
+/// emission is counted on arrival, before BLEND coverage is decided. `split` hands the
+/// caustic paths to a caustic map ([`CausticSplit`]).
+#[allow(clippy::too_many_arguments)]
 pub fn camera_path<C: Carrier>(
     scene: &Scene,
     ray: &Ray,
     max_depth: u32,
     lambda: C::Lambda,
     stop: StopAt,
+    split: CausticSplit<'_, C>,
     ctx: &mut Context,
 ) -> (C, Option<VisiblePoint<C>>) {
-    trace(scene, ray, max_depth, lambda, stop, false, ctx)
+    trace(scene, ray, max_depth, lambda, stop, split, false, ctx)
 }
 
 /// [`camera_path`], with spectral MIS at rough dispersive interfaces when `spectral_mis`
 /// (only with [`StopAt::Never`]: the photon methods' visible points keep the hero only, as
 /// their gather evaluates the BSDF with one η).
+#[allow(clippy::too_many_arguments)]
 fn trace<C: Carrier>(
     scene: &Scene,
     ray: &Ray,
     max_depth: u32,
     mut lambda: C::Lambda,
     stop: StopAt,
+    split: CausticSplit<'_, C>,
     spectral_mis: bool,
     ctx: &mut Context,
 ) -> (C, Option<VisiblePoint<C>>) {
@@ -248,6 +269,9 @@ fn trace<C: Carrier>(
         + !scene.area_lights.is_empty() as usize
         + scene.environment.is_some() as usize;
     let p_sel = if groups > 0 { 1.0 / groups as f32 } else { 0.0 };
+    // Delta bounces since the last non-delta bounce (None before the first): ≥ 1 when
+    // emission found now closes a D S+ L chain, the caustic map's share.
+    let mut since_diffuse: Option<u32> = None;
     loop {
         let Some(at) = shading::arrive::<C>(scene, &ray, &media, &lambda, &mut ctx.rays) else {
             if let Some(e) = escaped(scene, &ray, &prev, p_sel, beta, &lambda) {
@@ -256,7 +280,8 @@ fn trace<C: Carrier>(
             break;
         };
         beta *= at.transmittance;
-        if let Some(e) = emitted(scene, &at, &prev, p_sel, beta, &lambda) {
+        let caustic = matches!(split, CausticSplit::Map(_)) && since_diffuse.unwrap_or(0) > 0;
+        if let (Some(e), false) = (emitted(scene, &at, &prev, p_sel, beta, &lambda), caustic) {
             l += e;
         }
         let mut u = ctx.sample.bounce(vertex);
@@ -288,6 +313,9 @@ fn trace<C: Carrier>(
         }
         if !s.bsdf.is_delta() {
             l += beta * next_event(scene, &s, &lambda, true, &mut u, &mut ctx.rays);
+            if let (CausticSplit::Map(gather), true) = (split, depth + 1 < max_depth) {
+                l += beta * gather(&s, &lambda);
+            }
         }
         let uc = u.bsdf_lobe();
         let ud = u.bsdf_direction();
@@ -306,6 +334,11 @@ fn trace<C: Carrier>(
             delta: bs.delta,
             pdf: bs.pdf,
             p: s.hit.p,
+        };
+        since_diffuse = if bs.delta {
+            since_diffuse.map(|n| n + 1)
+        } else {
+            Some(0)
         };
         if bs.delta {
             delta_depth += 1;

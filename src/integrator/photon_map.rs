@@ -310,7 +310,15 @@ pub fn render(
         photons: maps.emitted,
     };
     render_samples(camera, settings, setup, observer, |ray, _u_lambda, ctx| {
-        let (ld, vp) = path::camera_path::<Vec3>(scene, ray, max_depth, (), StopAt::Diffuse, ctx);
+        let (ld, vp) = path::camera_path::<Vec3>(
+            scene,
+            ray,
+            max_depth,
+            (),
+            StopAt::Diffuse,
+            path::CausticSplit::None,
+            ctx,
+        );
         let Some(vp) = vp else {
             return ld;
         };

@@ -154,7 +154,43 @@ pub struct SppmSettings {
     pub roulette: Roulette,
 }
 
+/// What the hybrid (`--method hybrid`) uses of the photon flags: its caustic map.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CausticSettings {
+    /// Caustic-light photons emitted per pass (one pass per camera sample per pixel);
+    /// 0 = one per pixel (at most [`MAX_PHOTONS`]). Only those reaching a non-delta surface
+    /// through delta bounces are stored.
+    pub photons: u64,
+    /// Initial gather radius in scene units; `None` = from the pixel footprint at the first
+    /// pass's caustic photons ([`super::caustic`]).
+    pub radius: Option<f32>,
+    /// Radius-reduction parameter α ∈ (0, 1) (Knaus & Zwicker 2011).
+    pub alpha: f32,
+}
+
+impl CausticSettings {
+    /// [`PhotonSettings::check`] on the fields this method uses.
+    pub fn check(&self) -> Result<()> {
+        PhotonSettings {
+            photons: self.photons,
+            radius: self.radius,
+            alpha: self.alpha,
+            ..PhotonSettings::default()
+        }
+        .check()
+    }
+}
+
 impl PhotonSettings {
+    /// The part `--method hybrid` uses.
+    pub fn caustics(&self) -> CausticSettings {
+        CausticSettings {
+            photons: self.photons,
+            radius: self.radius,
+            alpha: self.alpha,
+        }
+    }
+
     /// The part `--method photon` uses.
     pub fn photon_map(&self) -> PhotonMapSettings {
         PhotonMapSettings {

@@ -242,6 +242,7 @@ fn camera_pass<C: Carrier>(
                     max_depth,
                     lambda,
                     StopAt::Diffuse,
+                    path::CausticSplit::None,
                     &mut ctx,
                 );
                 tile.sums[i][half] += guard::admit(l.to_rgb(&lambda), &mut bad).as_dvec3();

@@ -4,9 +4,10 @@
 //!
 //! Stages, in print order:
 //! - **transport**: spectral (4 wavelengths, CIE film) or RGB — [`SpectralMode::resolve`].
-//! - **photons**: a photon pass (SPPM / photon map) or not — [`resolve_method`], whose
-//!   `auto` choice rests on [`has_caustic_paths`] (fixed-seed probe photons; the same seed
-//!   here, so the plan and the render always agree).
+//! - **photons**: a photon pass (SPPM / photon map / the hybrid's caustic map) or not —
+//!   [`resolve_method`], whose `auto` choice among path, hybrid and SPPM rests on
+//!   [`has_caustic_paths`] and the caustic share of the hybrid's probe (fixed-seed probe
+//!   photons; the same seeds here, so the plan and the render always agree).
 //! - **volumes**: Beer–Lambert attenuation, evaluated only for materials on triangles with a
 //!   finite attenuation distance ([`crate::material::Material::transmittance_at`] returns 1
 //!   otherwise).
@@ -24,7 +25,7 @@
 //! else is claimed. [`Plan::text`] leaves timings out (it is what the snapshot test
 //! compares); [`Plan::text_with_costs`] adds them.
 
-use crate::integrator::Method;
+use crate::integrator::{caustic, Method};
 use crate::scene::Scene;
 
 mod costs;
@@ -72,29 +73,82 @@ impl SpectralMode {
     }
 }
 
-/// Resolves [`Method::Auto`] for `scene`: SPPM when light can reach a diffuse-like
-/// surface through specular ones (found by tracing a few thousand photons:
-/// [`crate::photon::trace::has_caustic_paths`]), the path tracer otherwise. Returns the
-/// method and the reason.
+/// Resolves [`Method::Auto`] for `scene` among the path tracer, the hybrid and SPPM, from
+/// two fixed-seed photon probes (the same seeds here and in the stages, so the plan and the
+/// render always agree). Returns the method and the reason. The rule:
+/// 1. no light reaches a diffuse-like surface through specular ones
+///    ([`crate::photon::trace::has_caustic_paths`], all lights) → **path**: nothing the path
+///    tracer cannot sample;
+/// 2. the caustic lights (punctual and emissive, [`crate::integrator::caustic`]) put no
+///    power through delta chains onto a non-delta surface ([`caustic::probe_share`] = 0): the
+///    caustics come from the environment (or glossy chains), which the hybrid leaves to the
+///    path tracer → **SPPM**, whose photons carry them;
+/// 3. the caustic share s of the caustic lights' power at first non-delta hits is below
+///    [`AUTO_HYBRID_BELOW`] → **hybrid** (the path tracer for everything it reaches, the
+///    map only for L S+ D);
+/// 4. otherwise → **SPPM**.
+///
+/// [`AUTO_HYBRID_BELOW`] is 0 (the hybrid is not chosen) on the measurements so far: at
+/// equal time (20 s, 2 shared cores, against 150–300 s SPPM references) SPPM was ahead of
+/// the hybrid on every caustic scene of the repository, from s ≈ 0 (ruby, relative error
+/// 0.171 vs 0.200) and 2.4 % (glass of water, 0.081 vs 0.090) to 2.9 % (fig4_5_1
+/// caustics, RMSE 0.27 vs 0.39) and 37 % (gem caustics, 0.37 vs 2.3): the hybrid's
+/// indirect light gathers the concentrated caustic map at later camera vertices, and in
+/// spectral scenes its path-traced part shares the pass's wavelengths.
 pub fn resolve_method(method: Method, scene: &Scene) -> (Method, Option<String>) {
     if method != Method::Auto {
         return (method, None);
     }
     let emitter = crate::photon::emit::PhotonEmitter::new(scene);
-    if !emitter.is_empty()
-        && crate::photon::trace::has_caustic_paths(scene, &emitter, CAUSTIC_PROBE_PHOTONS)
+    if emitter.is_empty()
+        || !crate::photon::trace::has_caustic_paths(scene, &emitter, CAUSTIC_PROBE_PHOTONS)
     {
+        return (
+            Method::Path,
+            Some("--method auto: no caustic paths found: path tracer".into()),
+        );
+    }
+    let share = caustic::probe_share(scene, CAUSTIC_PROBE_PHOTONS);
+    let (method, why) = if share <= 0.0 {
         (
             Method::Sppm,
-            Some("--method auto: light reaches diffuse surfaces through specular ones (caustics): SPPM".into()),
+            "caustics only from the environment or glossy surfaces (the lamps and punctual \
+             lights put no power through specular chains onto a diffuse surface): SPPM"
+                .to_string(),
+        )
+    } else if share < AUTO_HYBRID_BELOW {
+        (
+            Method::Hybrid,
+            format!(
+                "caustics carry {:.2} % of the light reaching diffuse surfaces (under {:.2} %): \
+                 path tracer + caustic map (hybrid)",
+                100.0 * share,
+                100.0 * AUTO_HYBRID_BELOW
+            ),
         )
     } else {
         (
-            Method::Path,
-            Some("--method auto: no caustic paths found: path tracer".into()),
+            Method::Sppm,
+            format!(
+                "caustics carry {:.2} % of the light reaching diffuse surfaces ({}): SPPM",
+                100.0 * share,
+                if AUTO_HYBRID_BELOW > 0.0 {
+                    format!(
+                        "the hybrid is chosen under {:.2} %",
+                        100.0 * AUTO_HYBRID_BELOW
+                    )
+                } else {
+                    "the hybrid, behind SPPM at equal time so far, is not chosen".to_string()
+                }
+            ),
         )
-    }
+    };
+    (method, Some(format!("--method auto: {why}")))
 }
+
+/// The caustic share of first-hit power under which `--method auto` picks the hybrid over
+/// SPPM ([`resolve_method`]; 0 = never, from the measurements cited there).
+pub const AUTO_HYBRID_BELOW: f64 = 0.0;
 
 /// Probe photons behind the caustic decision (the number [`resolve_method`] uses).
 pub const CAUSTIC_PROBE_PHOTONS: u32 = 4096;
@@ -134,7 +188,7 @@ impl Plan {
         Plan {
             stages: vec![
                 stages::transport(&ev, spectral, spectral_on),
-                stages::photons(&ev, method, resolved),
+                stages::photons(&ev, method, resolved, method_note.as_deref()),
                 stages::volumes(&ev),
                 stages::textures(&ev),
                 stages::acceleration(scene),

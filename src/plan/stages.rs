@@ -90,11 +90,12 @@ pub(super) fn transport(ev: &Evidence, spectral: SpectralMode, spectral_on: bool
 }
 
 /// Photons: whether the method traces photons, and the caustic evidence.
-pub(super) fn photons(ev: &Evidence, method: Method, resolved: Method) -> Stage {
+/// `why` is the `--method auto` decision's reason ([`super::resolve_method`]), appended.
+pub(super) fn photons(ev: &Evidence, method: Method, resolved: Method, why: Option<&str>) -> Stage {
     let (scene, mats) = (ev.scene, |f: &dyn Fn(&Material) -> bool| ev.mats(f));
     let emitter = PhotonEmitter::new(scene);
     let caustics = if method == Method::Auto {
-        resolved == Method::Sppm
+        resolved != Method::Path
     } else {
         !emitter.is_empty() && has_caustic_paths(scene, &emitter, CAUSTIC_PROBE_PHOTONS)
     };
@@ -121,7 +122,7 @@ pub(super) fn photons(ev: &Evidence, method: Method, resolved: Method) -> Stage 
             names(specular)
         )
     };
-    let photons_used = matches!(resolved, Method::Sppm | Method::Photon);
+    let photons_used = matches!(resolved, Method::Sppm | Method::Photon | Method::Hybrid);
     let how = if method == Method::Auto {
         format!("--method auto -> {}", resolved.name())
     } else {
@@ -130,7 +131,13 @@ pub(super) fn photons(ev: &Evidence, method: Method, resolved: Method) -> Stage 
     Stage {
         name: "photons",
         used: photons_used,
-        reason: format!("{how}: {evidence}"),
+        reason: match why
+            .filter(|_| resolved != Method::Path)
+            .and_then(|w| w.strip_prefix("--method auto: "))
+        {
+            Some(w) => format!("{how}: {evidence}; {w}"),
+            None => format!("{how}: {evidence}"),
+        },
         cost: None,
     }
 }

@@ -24,7 +24,7 @@ use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-/// Parses `--methods path,photon,sppm`: names from whitted, path, photon, sppm, each at most
+/// Parses `--methods path,photon,sppm`: names from whitted, path, photon, sppm, hybrid, each at most
 /// once, at least one.
 pub fn parse_methods(list: &str) -> Result<Vec<Method>> {
     let mut methods = Vec::new();
@@ -34,9 +34,10 @@ pub fn parse_methods(list: &str) -> Result<Vec<Method>> {
             "path" => Method::Path,
             "photon" => Method::Photon,
             "sppm" => Method::Sppm,
+            "hybrid" => Method::Hybrid,
             _ => {
                 return Err(Error::Usage(format!(
-                "--methods {list}: unknown method {name:?} (accepted: whitted, path, photon, sppm)"
+                "--methods {list}: unknown method {name:?} (accepted: whitted, path, photon, sppm, hybrid)"
             )))
             }
         };
@@ -157,9 +158,13 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
         prepared.load_time,
     );
     // The reference's method (without --reference).
-    let reference_method = given_reference
-        .is_none()
-        .then(|| crate::plan::resolve_method(Method::Auto, &scene).0);
+    let reference_method = given_reference.is_none().then(|| {
+        match crate::plan::resolve_method(Method::Auto, &scene).0 {
+            // The reference stays SPPM for caustic scenes (not the hybrid under test).
+            Method::Hybrid => Method::Sppm,
+            m => m,
+        }
+    });
     check_fit(opts, given_reference.as_ref(), reference_method, (w, h))?;
     let job = Job::new(opts, &scene, Camera::new(&cam_desc, w, h), (w, h));
     let mut files = Vec::new();

@@ -1,0 +1,248 @@
+//! The hybrid's progressive caustic photon map (`--method hybrid`, [`super::hybrid`]):
+//! Jensen's caustic map ("Realistic Image Synthesis Using Photon Mapping", 2001, §7.5) made
+//! progressive with a global radius sequence (Knaus & Zwicker 2011, "Progressive Photon
+//! Mapping: A Probabilistic Approach", ACM TOG 30(3), §4.3):
+//! r²ᵢ₊₁ = r²ᵢ · (i + α)/(i + 1), so r²ᵢ = r²₁ · Πₖ₌₁^{i−1} (k + α)/(k + 1) and the average of
+//! the passes' estimates converges without per-pixel statistics.
+//!
+//! ## The split (Heckbert's notation; S = a delta bounce, `bs.delta`; D = a non-delta one)
+//! - **Caustic lights** (the one rule, kept here in [`emitter`]): every punctual light and
+//!   every emissive triangle; the environment is not one. Punctual lights must be: no camera
+//!   path can hit them, so NEE through glass is impossible. Emissive triangles are the
+//!   consistent simple choice. The environment's light through glass stays with the path
+//!   tracer (its photons would spread over a disc the size of the scene).
+//! - **Photons** (this module): a caustic light's photon is followed through delta bounces
+//!   only and stored at its first non-delta vertex if it had at least one bounce (L S+ D);
+//!   tracing stops after the first non-delta bounce (the tracer's `max_depth` 1).
+//! - **Camera paths** ([`super::path::camera_path`] with [`super::path::CausticSplit::Map`]):
+//!   at every non-delta vertex whose bounce would be followed, the map's reflected radiance
+//!   L = Σ f(wo, wiₚ) Φₚ / (N π r²) (constant kernel) times the throughput; emission found
+//!   by BSDF sampling after a non-delta bounce followed by ≥ 1 delta bounces (D S+ L) is
+//!   dropped. NEE is unchanged (shadow rays through glass are occluded), and camera paths
+//!   E S* D keep their emission and NEE. Every light path is counted exactly once.
+//!
+//! Units: world space, metres; photon power is flux (the lights' units) divided by the
+//! photons emitted in the pass; radii in metres. Determinism: photon `i` of pass `p` starts
+//! from number `p·n + i` of the seed's digit-permuted Halton sequence, aimed at the caustic
+//! makers only ([`emit_one`]), and continues on the stream `Rng::new(&[seed, p, i, KEY])`,
+//! traced in fixed chunks and concatenated in chunk order, so the map is the same whatever
+//! the thread count.
+
+use super::{StoreBudget, MAX_PHOTONS};
+use crate::bsdf::TransportMode;
+use crate::error::Result;
+use crate::math::Rng;
+use crate::photon::emit::{Aim, EmittedPhoton, PhotonEmitter, PhotonNumbers};
+use crate::photon::grid::HashGrid;
+use crate::photon::store::Photon;
+use crate::photon::trace::{self, Roulette, TraceSettings};
+use crate::scene::Scene;
+use crate::shading::Surface;
+use crate::spectrum::Carrier;
+use rayon::prelude::*;
+
+/// Photons traced per parallel work item (a fixed split: deterministic).
+const CHUNK: u64 = 4096;
+/// Stream key of caustic photons (distinct from SPPM's).
+const KEY: u64 = 0xCA05_71C0;
+
+/// The caustic lights' emitter (see the module docs: punctual lights and emissive
+/// triangles, not the environment).
+pub fn emitter(scene: &Scene) -> PhotonEmitter {
+    PhotonEmitter::new(scene).without_environment()
+}
+
+/// The one place a caustic photon is emitted: number `index` of the seed's digit-permuted
+/// Halton sequence ([`PhotonNumbers`]), aimed only at the caustic makers' bounding spheres
+/// ([`Aim::Only`]): exact for L S+ D paths, whose first segment always points into a
+/// sphere, and none is spent on directions that cannot start a caustic.
+fn emit_one<'a>(
+    emitter: &PhotonEmitter,
+    scene: &'a Scene,
+    numbers: &PhotonNumbers,
+    index: u64,
+) -> Option<EmittedPhoton<'a>> {
+    emitter.emit_index(scene, numbers, index, Aim::Only)
+}
+
+/// Photons emitted per pass: `photons`, or one per pixel (at most [`MAX_PHOTONS`]).
+pub fn photons_per_pass(photons: u64, pixels: u64) -> u64 {
+    if photons > 0 {
+        photons
+    } else {
+        pixels.clamp(1, MAX_PHOTONS)
+    }
+}
+
+/// One pass's caustic photons, their grid and the radius sequence.
+#[derive(Debug, Default)]
+pub struct CausticMap {
+    /// The pass's stored photons (power already divided by the photons emitted).
+    pub photons: Vec<Photon>,
+    grid: HashGrid,
+    /// r² of the current pass (`None` until the first radius is chosen).
+    r2: Option<f64>,
+    alpha: f32,
+}
+
+impl CausticMap {
+    /// An empty map with an initial radius (`None`: chosen on the first pass) and α.
+    pub fn new(radius: Option<f32>, alpha: f32) -> CausticMap {
+        CausticMap {
+            r2: radius.map(|r| f64::from(r) * f64::from(r)),
+            alpha,
+            ..CausticMap::default()
+        }
+    }
+
+    /// Traces `n` photons of pass `pass` from the caustic lights and keeps the L S+ D
+    /// vertices. Returns the rays traced; an error when the store budget is crossed.
+    #[allow(clippy::too_many_arguments)]
+    pub fn trace_pass<C: Carrier>(
+        &mut self,
+        scene: &Scene,
+        emitter: &PhotonEmitter,
+        seed: u64,
+        pass: u32,
+        n: u64,
+        lambda: C::Lambda,
+    ) -> Result<u64> {
+        // Throughput roulette only: the seed rule's "specular" is not the delta split.
+        let settings = TraceSettings {
+            max_depth: 1,
+            roulette: Roulette::Throughput,
+        };
+        let budget = StoreBudget::default();
+        let inv_n = 1.0 / n.max(1) as f32;
+        let numbers = PhotonNumbers::new(seed ^ KEY);
+        let per_chunk: Vec<(Vec<Photon>, u64)> = (0..n.div_ceil(CHUNK))
+            .into_par_iter()
+            .map(|c| {
+                let (mut out, mut rays) = (Vec::new(), 0);
+                for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
+                    let mut rng = Rng::new(&[seed, u64::from(pass), i, KEY]);
+                    let Some(ph) = emit_one(emitter, scene, &numbers, u64::from(pass) * n + i)
+                    else {
+                        continue;
+                    };
+                    let before = out.len();
+                    // With max_depth 1 the tracer stops after the first non-delta bounce, so
+                    // every vertex after ≥ 1 bounce followed delta bounces only: L S+ D.
+                    rays += trace::trace::<C>(scene, &ph, lambda, &settings, &mut rng, |v, l| {
+                        if v.bounces > 0 && v.power != C::ZERO {
+                            let flags = if C::is_hero_only(l) {
+                                Photon::HERO_ONLY | Photon::CAUSTIC
+                            } else {
+                                Photon::CAUSTIC
+                            };
+                            out.push(Photon::new(v.p, v.wi, (v.power * inv_n).to_lanes(), flags));
+                        }
+                    });
+                    if !budget.add(out.len() - before) {
+                        break;
+                    }
+                }
+                (out, rays)
+            })
+            .collect();
+        budget.check(n, 1)?;
+        self.photons.clear();
+        self.photons
+            .reserve_exact(per_chunk.iter().map(|c| c.0.len()).sum());
+        let mut rays = 0;
+        for (p, r) in per_chunk {
+            self.photons.extend_from_slice(&p);
+            rays += r;
+        }
+        Ok(rays)
+    }
+
+    /// The current pass's radius, choosing the first with `initial(photons)` when none was
+    /// given (it must be finite and positive, else 1 mm), and builds the grid for it.
+    pub fn begin_gather(&mut self, initial: impl FnOnce(&[Photon]) -> f32) -> f32 {
+        if self.r2.is_none() {
+            let r = initial(&self.photons);
+            let r = if r.is_finite() && r > 0.0 { r } else { 1e-3 };
+            self.r2 = Some(f64::from(r) * f64::from(r));
+        }
+        let r = self.radius();
+        self.grid.rebuild(&self.photons, r);
+        r
+    }
+
+    /// The current radius (0 before the first is chosen).
+    pub fn radius(&self) -> f32 {
+        self.r2.map_or(0.0, f64::sqrt) as f32
+    }
+
+    /// Ends pass `pass` (0-based): r² ← r² · (i + α)/(i + 1) with i = pass + 1.
+    pub fn end_pass(&mut self, pass: u32) {
+        let factor = super::sppm::radius2_factor(pass + 1, self.alpha);
+        self.r2 = self.r2.map(|r2| r2 * factor);
+    }
+
+    /// Radiance the map reflects at the camera vertex `s` toward its `wo`:
+    /// Σ f(wo, wiₚ) Φₚ / (π r²) over the photons within r (Jensen 2001 eq. 7.6 with a
+    /// constant kernel). Hero-wavelength bookkeeping as in SPPM: when both the camera path
+    /// and the photon kept only the hero (each carrying 4× its lane), divide by 4 once.
+    pub fn density<C: Carrier>(&self, s: &Surface<C>, lambda: &C::Lambda) -> C {
+        let r2 = self.r2.unwrap_or(0.0);
+        if self.photons.is_empty() || r2 <= 0.0 {
+            return C::ZERO;
+        }
+        let r = r2.sqrt() as f32;
+        let hero = C::is_hero_only(lambda);
+        let mut sum = C::ZERO;
+        self.grid.for_each_within(s.hit.p, r, |i, _| {
+            let ph = &self.photons[i as usize];
+            let wi = s.frame.to_local(ph.wi());
+            let f = s.bsdf.eval(s.wo, wi, TransportMode::Radiance);
+            let mut c = f * C::from_lanes(ph.power());
+            if hero && ph.flags() & Photon::HERO_ONLY != 0 {
+                c /= 4.0;
+            }
+            sum += c;
+        });
+        sum / (std::f64::consts::PI * r2) as f32
+    }
+}
+
+/// The caustic lights' probe behind `--method auto` ([`crate::plan::resolve_method`]): of
+/// `n` photons from the caustic lights (fixed seed, RGB, the map's split), the share of the
+/// power arriving at first non-delta hits that arrives after ≥ 1 delta bounce (L S+ D),
+/// in [0, 1]; 0 when no photon reaches a non-delta surface.
+pub fn probe_share(scene: &Scene, n: u32) -> f64 {
+    let emitter = emitter(scene);
+    if emitter.is_empty() {
+        return 0.0;
+    }
+    let settings = TraceSettings {
+        max_depth: 1,
+        roulette: Roulette::Throughput,
+    };
+    let (mut all, mut caustic) = (0.0f64, 0.0f64);
+    for i in 0..n {
+        let mut rng = Rng::new(&[KEY, u64::from(i), 0x9206E]);
+        // Unaimed: the share is of all the light the caustic lights send.
+        let Some(ph) = emitter.emit_from(scene, &mut rng) else {
+            continue;
+        };
+        let mut first = true;
+        trace::trace::<glam::Vec3>(scene, &ph, (), &settings, &mut rng, |v, _| {
+            if std::mem::take(&mut first) {
+                let y = f64::from(crate::light::env::luminance(v.power));
+                if y.is_finite() {
+                    all += y;
+                    if v.bounces > 0 {
+                        caustic += y;
+                    }
+                }
+            }
+        });
+    }
+    if all > 0.0 {
+        caustic / all
+    } else {
+        0.0
+    }
+}

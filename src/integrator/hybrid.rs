@@ -1,0 +1,173 @@
+//! The hybrid (`--method hybrid`): the path tracer for every path a camera path can reach
+//! with next-event estimation or BSDF sampling, and a progressive caustic photon map for
+//! exactly the light paths it cannot, L S+ D (light → delta chain → first non-delta
+//! surface). The split, the caustic lights and the radius sequence are
+//! [`super::caustic`]'s; the camera side is [`path::camera_path`] with
+//! [`CausticSplit::Map`].
+//!
+//! Each pass (one unit of the progressive driver [`crate::render::drive`], one round):
+//! 1. draws ONE set of wavelengths shared by its photons and camera paths (spectral
+//!    transport; as SPPM: the map's photon powers are per lane of that set);
+//! 2. traces the pass's caustic photons (aimed at the caustic makers, [`caustic`]) and builds
+//!    their grid with the pass radius (the first radius, unless given, is 2 pixel
+//!    footprints at the median camera distance of the first pass's photons, 1 % of the
+//!    scene's diagonal without any);
+//! 3. traces one camera sample per pixel (`primary_ray`, sample `pass` of the pixel from
+//!    the render's sampler, Sobol' blocks of `--spp`) through the split path tracer and
+//!    adds it to the film's half `pass mod 2`.
+//!
+//! So `--spp N` is N passes of one sample per pixel and N caustic maps; the image after N
+//! passes is a pure function of the seed (pixels are independent, the map is built in
+//! fixed chunks), whatever the thread count or the split into rounds.
+
+use super::caustic::{self, CausticMap};
+use super::path::{self, CausticSplit, StopAt};
+use super::{CausticSettings, Context};
+use crate::camera::Camera;
+use crate::error::Result;
+use crate::output::ImageRgb;
+use crate::render::{
+    drive, guard, pixel_sampler, primary_ray, Film, Observer, RenderSettings, RenderStats, Round,
+    Schedule, Setup,
+};
+use crate::scene::Scene;
+use crate::spectrum::{Carrier, SampledSpectrum};
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+
+/// Renders with the hybrid: `settings.spp` passes of one sample per pixel, fewer if the time
+/// limit or the observer stops it.
+pub fn render(
+    scene: &Scene,
+    camera: &Camera,
+    max_depth: u32,
+    cs: &CausticSettings,
+    settings: &RenderSettings,
+    observer: Option<Observer>,
+) -> Result<(ImageRgb, RenderStats)> {
+    if settings.spectral {
+        run::<SampledSpectrum>(scene, camera, max_depth, cs, settings, observer)
+    } else {
+        run::<Vec3>(scene, camera, max_depth, cs, settings, observer)
+    }
+}
+
+/// The first radius: 2 pixel footprints at the median camera distance of `photons`
+/// (1 % of the scene's diagonal without photons).
+fn initial_radius(
+    scene: &Scene,
+    camera: &Camera,
+    settings: &RenderSettings,
+    photons: &[crate::photon::store::Photon],
+) -> f32 {
+    let (w, h) = (settings.width as f32, settings.height as f32);
+    let o = camera.generate_ray(Vec2::new(w, h) * 0.5).origin;
+    let mut d: Vec<f32> = photons.iter().map(|p| p.position().distance(o)).collect();
+    if d.is_empty() {
+        return 0.01 * (scene.bounds.1 - scene.bounds.0).length();
+    }
+    let mid = d.len() / 2;
+    let (_, m, _) = d.select_nth_unstable_by(mid, f32::total_cmp);
+    2.0 * super::sppm::pixel_footprint(camera, settings, *m)
+}
+
+fn run<C: Carrier>(
+    scene: &Scene,
+    camera: &Camera,
+    max_depth: u32,
+    cs: &CausticSettings,
+    settings: &RenderSettings,
+    observer: Option<Observer>,
+) -> Result<(ImageRgb, RenderStats)> {
+    let pixels = u64::from(settings.width) * u64::from(settings.height);
+    let n_photons = caustic::photons_per_pass(cs.photons, pixels);
+    let emitter = caustic::emitter(scene);
+    let mut map = CausticMap::new(cs.radius, cs.alpha);
+    let schedule = Schedule {
+        target: u64::from(settings.spp.max(1)),
+        max_round: 1,
+        passes: false,
+        label: "hybrid",
+    };
+    drive(
+        settings,
+        schedule,
+        Setup::now(),
+        observer,
+        &guard::stop_requested,
+        |film, k0, _k1, env| {
+            if env.skip(k0) {
+                return Ok(Round::default());
+            }
+            let pass = k0 as u32;
+            // 1. The pass's wavelengths (SPPM's golden-ratio sequence over passes).
+            let u_l =
+                (0.5 + pass as f64 * 0.618_033_988_749_895 + (settings.seed % 1024) as f64 * 0.1)
+                    .fract() as f32;
+            let lambda = C::sample_lambda(u_l.min(1.0 - f32::EPSILON));
+            // 2. The caustic map.
+            let mut round = Round::default();
+            if !emitter.is_empty() {
+                round.rays +=
+                    map.trace_pass::<C>(scene, &emitter, settings.seed, pass, n_photons, lambda)?;
+                round.photons = n_photons;
+            }
+            let r = map.begin_gather(|ph| initial_radius(scene, camera, settings, ph));
+            // 3. Camera samples.
+            let (rays, bad) =
+                camera_pass::<C>(scene, camera, max_depth, settings, pass, lambda, &map, film);
+            round.rays += rays;
+            round.bad += bad;
+            map.end_pass(pass);
+            env.bar.inc(film.tiles() as u64);
+            round.note = format!(", r {r:.3e}, {} caustic photons", map.photons.len());
+            Ok(round)
+        },
+    )
+}
+
+/// One camera sample per pixel of pass `pass`, split with the caustic map, into the film's
+/// half `pass mod 2`. Returns the rays and bad samples.
+#[allow(clippy::too_many_arguments)]
+fn camera_pass<C: Carrier>(
+    scene: &Scene,
+    camera: &Camera,
+    max_depth: u32,
+    settings: &RenderSettings,
+    pass: u32,
+    lambda: C::Lambda,
+    map: &CausticMap,
+    film: &mut Film,
+) -> (u64, u64) {
+    let half = (pass % 2) as usize;
+    let sampler = pixel_sampler(settings, u64::from(settings.spp.max(1)));
+    let gather = |s: &crate::shading::Surface<C>, l: &C::Lambda| map.density(s, l);
+    film.par_tiles_mut()
+        .map(|tile| {
+            let (mut rays, mut bad) = (0, 0);
+            for i in 0..tile.sums.len() {
+                let Some((x, y)) = tile.pixel(i) else {
+                    continue;
+                };
+                let mut ctx = Context {
+                    sample: sampler.start(x, y, u64::from(pass)),
+                    rays: 0,
+                };
+                let ray = primary_ray(camera, x, y, false, &mut ctx.sample);
+                let (l, _) = path::camera_path::<C>(
+                    scene,
+                    &ray,
+                    max_depth,
+                    lambda,
+                    StopAt::Never,
+                    CausticSplit::Map(&gather),
+                    &mut ctx,
+                );
+                tile.sums[i][half] += guard::admit(l.to_rgb(&lambda), &mut bad).as_dvec3();
+                rays += ctx.rays;
+            }
+            *tile.count = u64::from(pass) + 1;
+            (rays, bad)
+        })
+        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1))
+}
