@@ -11,15 +11,23 @@
 //!   path can hit them, so NEE through glass is impossible. Emissive triangles are the
 //!   consistent simple choice. The environment's light through glass stays with the path
 //!   tracer (its photons would spread over a disc the size of the scene).
-//! - **Photons** (this module): a caustic light's photon is followed through delta bounces
-//!   only and stored at its first non-delta vertex if it had at least one bounce (L S+ D);
-//!   tracing stops after the first non-delta bounce (the tracer's `max_depth` 1).
+//! - **Photons** (this module): a caustic light's photon whose light subpath starts L S+ D
+//!   (≥ 1 delta bounce before its first non-delta vertex) — a *caustic-origin* photon — is
+//!   stored at that vertex and at every later non-delta vertex as it goes on bouncing
+//!   (throughput roulette, the integrator's depth); other photons are not stored.
 //! - **Camera paths** ([`super::path::camera_path`] with [`super::path::CausticSplit::Map`]):
-//!   at every non-delta vertex whose bounce would be followed, the map's reflected radiance
-//!   L = Σ f(wo, wiₚ) Φₚ / (N π r²) (constant kernel) times the throughput; emission found
-//!   by BSDF sampling after a non-delta bounce followed by ≥ 1 delta bounces (D S+ L) is
-//!   dropped. NEE is unchanged (shadow rays through glass are occluded), and camera paths
-//!   E S* D keep their emission and NEE. Every light path is counted exactly once.
+//!   at the camera path's FIRST non-delta vertex D₁ only (if its bounce would be followed),
+//!   the map's reflected radiance L = Σ f(wo, wiₚ) Φₚ / (N π r²) (constant kernel) times the
+//!   throughput; at every vertex, emission found by BSDF sampling after a non-delta bounce
+//!   followed by ≥ 1 delta bounces (… D S+ L: a caustic-origin light end) is dropped. NEE is
+//!   unchanged (shadow rays through glass are occluded). Every full path is counted exactly
+//!   once, by its light end: a caustic-origin light end by the map at D₁ (the light side
+//!   may bounce diffusely before reaching D₁), any other by the path tracer.
+//! - A first version gathered a map of first-vertex photons at every camera vertex; the
+//!   map is concentrated (a gem's caustic), and gathering it at the second and later camera
+//!   vertices made bright splotches in indirect light: it lost to SPPM at equal time on
+//!   every caustic scene measured. Gathering only at D₁, with the light side carrying the
+//!   caustic's indirect light as SPPM's photons do, is the fix.
 //!
 //! Units: world space, metres; photon power is flux (the lights' units) divided by the
 //! photons emitted in the pass; radii in metres. Determinism: photon `i` of pass `p` starts
@@ -106,10 +114,11 @@ impl CausticMap {
         pass: u32,
         n: u64,
         lambda: C::Lambda,
+        max_depth: u32,
     ) -> Result<u64> {
         // Throughput roulette only: the seed rule's "specular" is not the delta split.
         let settings = TraceSettings {
-            max_depth: 1,
+            max_depth,
             roulette: Roulette::Throughput,
         };
         let budget = StoreBudget::default();
@@ -126,10 +135,14 @@ impl CausticMap {
                         continue;
                     };
                     let before = out.len();
-                    // With max_depth 1 the tracer stops after the first non-delta bounce, so
-                    // every vertex after ≥ 1 bounce followed delta bounces only: L S+ D.
+                    // The tracer calls back at every non-delta vertex; the first call is the
+                    // first non-delta vertex, reached through delta bounces only. A photon
+                    // whose first one came after ≥ 1 bounce (L S+ D) is stored there and at
+                    // every later non-delta vertex; any other photon is not stored.
+                    let mut origin: Option<bool> = None;
                     rays += trace::trace::<C>(scene, &ph, lambda, &settings, &mut rng, |v, l| {
-                        if v.bounces > 0 && v.power != C::ZERO {
+                        let caustic_origin = *origin.get_or_insert(v.bounces > 0);
+                        if caustic_origin && v.power != C::ZERO {
                             let flags = if C::is_hero_only(l) {
                                 Photon::HERO_ONLY | Photon::CAUSTIC
                             } else {

@@ -108,8 +108,15 @@ fn run<C: Carrier>(
             // 2. The caustic map.
             let mut round = Round::default();
             if !emitter.is_empty() {
-                round.rays +=
-                    map.trace_pass::<C>(scene, &emitter, settings.seed, pass, n_photons, lambda)?;
+                round.rays += map.trace_pass::<C>(
+                    scene,
+                    &emitter,
+                    settings.seed,
+                    pass,
+                    n_photons,
+                    lambda,
+                    max_depth,
+                )?;
                 round.photons = n_photons;
             }
             let r = map.begin_gather(|ph| initial_radius(scene, camera, settings, ph));

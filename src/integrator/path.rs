@@ -102,12 +102,13 @@ pub enum StopAt {
 pub enum CausticSplit<'a, C: Carrier> {
     /// The plain path tracer: every path is counted here.
     None,
-    /// Light paths L S+ D (a caustic light, at least one delta bounce, the first non-delta
-    /// vertex D) belong to the caustic map: at every non-delta vertex whose BSDF-sampled
-    /// bounce would be followed, `gather(surface, lambda)` adds the map's reflected radiance
-    /// (times the path throughput), and emission found by BSDF sampling after a
-    /// non-delta bounce followed by ≥ 1 delta bounces is dropped (exactly the paths the map
-    /// counts). The environment is not a caustic light: its radiance stays here.
+    /// Paths whose light end starts L S+ D (a caustic light, at least one delta bounce, a
+    /// non-delta vertex) belong to the caustic map ([`super::caustic`]): at the path's
+    /// first non-delta vertex, if its BSDF-sampled bounce would be followed,
+    /// `gather(surface, lambda)` adds the map's reflected radiance (times the path
+    /// throughput), and emission found by BSDF sampling after any non-delta bounce followed
+    /// by ≥ 1 delta bounces is dropped (exactly the paths the map counts). The environment
+    /// is not a caustic light: its radiance stays here.
     Map(&'a (dyn Fn(&Surface<C>, &C::Lambda) -> C + Sync)),
 }
 
@@ -283,7 +284,8 @@ pub fn camera_path<C: Carrier>(
         }
         if !s.bsdf.is_delta() {
             l += beta * next_event(scene, &s, &lambda, true, &mut u, &mut ctx.rays);
-            if let (CausticSplit::Map(gather), true) = (split, depth + 1 < max_depth) {
+            let first = since_diffuse.is_none();
+            if let (CausticSplit::Map(gather), true) = (split, first && depth + 1 < max_depth) {
                 l += beta * gather(&s, &lambda);
             }
         }
