@@ -190,9 +190,8 @@ impl CausticMap {
 
     /// Ends pass `pass` (0-based): r² ← r² · (i + α)/(i + 1) with i = pass + 1.
     pub fn end_pass(&mut self, pass: u32) {
-        let i = f64::from(pass) + 1.0;
-        let a = f64::from(self.alpha);
-        self.r2 = self.r2.map(|r2| r2 * (i + a) / (i + 1.0));
+        let factor = super::sppm::radius2_factor(pass + 1, self.alpha);
+        self.r2 = self.r2.map(|r2| r2 * factor);
     }
 
     /// Radiance the map reflects at the camera vertex `s` toward its `wo`:

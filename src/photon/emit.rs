@@ -147,21 +147,7 @@ impl PhotonEmitter {
             let y = luminance(*f);
             f.is_finite() && y.is_finite() && y > 0.0
         });
-        let lum_total: f64 = candidates.iter().map(|(_, f)| luminance(*f) as f64).sum();
-        let mut cdf = Vec::with_capacity(candidates.len());
-        let mut sources = Vec::with_capacity(candidates.len());
-        let mut acc = 0.0f64;
-        let mut total = Vec3::ZERO;
-        for (s, f) in candidates {
-            let y = luminance(f) as f64;
-            acc += y;
-            cdf.push((acc / lum_total) as f32);
-            sources.push((s, f, (y / lum_total) as f32));
-            total += f;
-        }
-        if let Some(last) = cdf.last_mut() {
-            *last = 1.0;
-        }
+        let (sources, cdf, total) = selection(candidates);
         PhotonEmitter {
             sources,
             cdf,
@@ -307,18 +293,7 @@ impl PhotonEmitter {
             .filter(|(s, _, _)| *s != Source::Environment)
             .map(|&(s, f, _)| (s, f))
             .collect();
-        let lum_total: f64 = kept.iter().map(|(_, f)| luminance(*f) as f64).sum();
-        let (mut sources, mut cdf, mut total, mut acc) = (Vec::new(), Vec::new(), Vec3::ZERO, 0.0);
-        for (s, f) in kept {
-            let y = luminance(f) as f64;
-            acc += y;
-            cdf.push((acc / lum_total) as f32);
-            sources.push((s, f, (y / lum_total) as f32));
-            total += f;
-        }
-        if let Some(last) = cdf.last_mut() {
-            *last = 1.0;
-        }
+        let (sources, cdf, total) = selection(kept);
         PhotonEmitter {
             sources,
             cdf,
@@ -326,4 +301,26 @@ impl PhotonEmitter {
             ..self.clone()
         }
     }
+}
+
+/// The light selection over `candidates` (source, flux): each chosen with probability
+/// proportional to its flux's luminance. Returns (source, flux, probability) per source,
+/// the CDF (last entry exactly 1) and the total flux.
+#[allow(clippy::type_complexity)]
+fn selection(candidates: Vec<(Source, Vec3)>) -> (Vec<(Source, Vec3, f32)>, Vec<f32>, Vec3) {
+    let lum_total: f64 = candidates.iter().map(|(_, f)| luminance(*f) as f64).sum();
+    let mut cdf = Vec::with_capacity(candidates.len());
+    let mut sources = Vec::with_capacity(candidates.len());
+    let (mut acc, mut total) = (0.0f64, Vec3::ZERO);
+    for (s, f) in candidates {
+        let y = luminance(f) as f64;
+        acc += y;
+        cdf.push((acc / lum_total) as f32);
+        sources.push((s, f, (y / lum_total) as f32));
+        total += f;
+    }
+    if let Some(last) = cdf.last_mut() {
+        *last = 1.0;
+    }
+    (sources, cdf, total)
 }
