@@ -36,6 +36,7 @@
 //! traced in fixed chunks and concatenated in chunk order, so the map is the same whatever
 //! the thread count.
 
+use super::light_trace::{Splat, Splatter};
 use super::{StoreBudget, MAX_PHOTONS};
 use crate::bsdf::TransportMode;
 use crate::error::Result;
@@ -104,7 +105,10 @@ impl CausticMap {
     }
 
     /// Traces `n` photons of pass `pass` from the caustic lights and keeps the L S+ D
-    /// vertices. Returns the rays traced; an error when the store budget is crossed.
+    /// vertices; with a `splatter`, also connects each kept vertex to the camera
+    /// ([`super::light_trace`]). Returns the rays traced and the splats, one list per fixed
+    /// photon chunk in chunk order (empty without a splatter); an error when the store
+    /// budget is crossed.
     #[allow(clippy::too_many_arguments)]
     pub fn trace_pass<C: Carrier>(
         &mut self,
@@ -115,7 +119,8 @@ impl CausticMap {
         n: u64,
         lambda: C::Lambda,
         max_depth: u32,
-    ) -> Result<u64> {
+        splatter: Option<&Splatter>,
+    ) -> Result<(u64, Vec<Vec<Splat>>)> {
         // Throughput roulette only: the seed rule's "specular" is not the delta split.
         let settings = TraceSettings {
             max_depth,
@@ -124,10 +129,10 @@ impl CausticMap {
         let budget = StoreBudget::default();
         let inv_n = 1.0 / n.max(1) as f32;
         let numbers = PhotonNumbers::new(seed ^ KEY);
-        let per_chunk: Vec<(Vec<Photon>, u64)> = (0..n.div_ceil(CHUNK))
+        let per_chunk: Vec<(Vec<Photon>, Vec<Splat>, u64)> = (0..n.div_ceil(CHUNK))
             .into_par_iter()
             .map(|c| {
-                let (mut out, mut rays) = (Vec::new(), 0);
+                let (mut out, mut splats, mut rays) = (Vec::new(), Vec::new(), 0);
                 for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
                     let mut rng = Rng::new(&[seed, u64::from(pass), i, KEY]);
                     let Some(ph) = emit_one(emitter, scene, &numbers, u64::from(pass) * n + i)
@@ -140,34 +145,41 @@ impl CausticMap {
                     // whose first one came after ≥ 1 bounce (L S+ D) is stored there and at
                     // every later non-delta vertex; any other photon is not stored.
                     let mut origin: Option<bool> = None;
+                    let mut camera_rays = 0;
                     rays += trace::trace::<C>(scene, &ph, lambda, &settings, &mut rng, |v, l| {
                         let caustic_origin = *origin.get_or_insert(v.bounces > 0);
                         if caustic_origin && v.power != C::ZERO {
+                            let power = v.power * inv_n;
+                            if let Some(sp) = splatter {
+                                splats.extend(sp.connect(v, power, l, &mut camera_rays));
+                            }
                             let flags = if C::is_hero_only(l) {
                                 Photon::HERO_ONLY | Photon::CAUSTIC
                             } else {
                                 Photon::CAUSTIC
                             };
-                            out.push(Photon::new(v.p, v.wi, (v.power * inv_n).to_lanes(), flags));
+                            out.push(Photon::new(v.p, v.wi, power.to_lanes(), flags));
                         }
                     });
+                    rays += camera_rays;
                     if !budget.add(out.len() - before) {
                         break;
                     }
                 }
-                (out, rays)
+                (out, splats, rays)
             })
             .collect();
         budget.check(n, 1)?;
         self.photons.clear();
         self.photons
             .reserve_exact(per_chunk.iter().map(|c| c.0.len()).sum());
-        let mut rays = 0;
-        for (p, r) in per_chunk {
+        let (mut rays, mut splats) = (0, Vec::with_capacity(per_chunk.len()));
+        for (p, sp, r) in per_chunk {
             self.photons.extend_from_slice(&p);
+            splats.push(sp);
             rays += r;
         }
-        Ok(rays)
+        Ok((rays, splats))
     }
 
     /// The current pass's radius, choosing the first with `initial(photons)` when none was

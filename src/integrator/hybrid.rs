@@ -21,8 +21,9 @@
 //! fixed chunks), whatever the thread count or the split into rounds.
 
 use super::caustic::{self, CausticMap};
+use super::light_trace::{self, Splatter};
 use super::path::{self, CausticSplit, StopAt};
-use super::{CausticSettings, Context};
+use super::{CausticMode, CausticSettings, Context};
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::output::ImageRgb;
@@ -83,6 +84,12 @@ fn run<C: Carrier>(
     let n_photons = caustic::photons_per_pass(cs.photons, pixels);
     let emitter = caustic::emitter(scene);
     let mut map = CausticMap::new(cs.radius, cs.alpha);
+    let splatter = match cs.mode {
+        CausticMode::Map => None,
+        CausticMode::Mixed => {
+            Splatter::new(scene, camera, settings.width, settings.height, max_depth)
+        }
+    };
     let schedule = Schedule {
         target: u64::from(settings.spp.max(1)),
         max_round: 1,
@@ -107,8 +114,9 @@ fn run<C: Carrier>(
             let lambda = C::sample_lambda(u_l.min(1.0 - f32::EPSILON));
             // 2. The caustic map.
             let mut round = Round::default();
+            let mut splats = Vec::new();
             if !emitter.is_empty() {
-                round.rays += map.trace_pass::<C>(
+                let (rays, s) = map.trace_pass::<C>(
                     scene,
                     &emitter,
                     settings.seed,
@@ -116,13 +124,25 @@ fn run<C: Carrier>(
                     n_photons,
                     lambda,
                     max_depth,
+                    splatter.as_ref(),
                 )?;
+                (round.rays, splats) = (round.rays + rays, s);
                 round.photons = n_photons;
             }
+            let image = splatter
+                .is_some()
+                .then(|| light_trace::splat_image(&splats, pixels as usize));
             let r = map.begin_gather(|ph| initial_radius(scene, camera, settings, ph));
             // 3. Camera samples.
-            let (rays, bad) =
-                camera_pass::<C>(scene, camera, max_depth, settings, pass, lambda, &map, film);
+            let (rays, bad) = camera_pass::<C>(
+                scene,
+                camera,
+                max_depth,
+                settings,
+                (pass, lambda),
+                (&map, image.as_deref()),
+                film,
+            );
             round.rays += rays;
             round.bad += bad;
             map.end_pass(pass);
@@ -133,22 +153,26 @@ fn run<C: Carrier>(
     )
 }
 
-/// One camera sample per pixel of pass `pass`, split with the caustic map, into the film's
-/// half `pass mod 2`. Returns the rays and bad samples.
-#[allow(clippy::too_many_arguments)]
+/// One camera sample per pixel of pass `pass`, split with the caustic map, plus the pass's
+/// light-traced splats (`Some` in mixed mode: the map is then gathered only through delta
+/// bounces), into the film's half `pass mod 2`. Returns the rays and bad samples.
 fn camera_pass<C: Carrier>(
     scene: &Scene,
     camera: &Camera,
     max_depth: u32,
     settings: &RenderSettings,
-    pass: u32,
-    lambda: C::Lambda,
-    map: &CausticMap,
+    (pass, lambda): (u32, C::Lambda),
+    (map, splats): (&CausticMap, Option<&[Vec3]>),
     film: &mut Film,
 ) -> (u64, u64) {
     let half = (pass % 2) as usize;
     let sampler = pixel_sampler(settings, u64::from(settings.spp.max(1)));
     let gather = |s: &crate::shading::Surface<C>, l: &C::Lambda| map.density(s, l);
+    let split = match splats {
+        Some(_) => CausticSplit::Mixed(&gather),
+        None => CausticSplit::Map(&gather),
+    };
+    let width = settings.width as usize;
     film.par_tiles_mut()
         .map(|tile| {
             let (mut rays, mut bad) = (0, 0);
@@ -167,10 +191,14 @@ fn camera_pass<C: Carrier>(
                     max_depth,
                     lambda,
                     StopAt::Never,
-                    CausticSplit::Map(&gather),
+                    split,
                     &mut ctx,
                 );
-                tile.sums[i][half] += guard::admit(l.to_rgb(&lambda), &mut bad).as_dvec3();
+                let mut rgb = l.to_rgb(&lambda);
+                if let Some(img) = splats {
+                    rgb += img[y as usize * width + x as usize];
+                }
+                tile.sums[i][half] += guard::admit(rgb, &mut bad).as_dvec3();
                 rays += ctx.rays;
             }
             *tile.count = u64::from(pass) + 1;

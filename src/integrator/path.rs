@@ -110,6 +110,10 @@ pub enum CausticSplit<'a, C: Carrier> {
     /// by ≥ 1 delta bounces is dropped (exactly the paths the map counts). The environment
     /// is not a caustic light: its radiance stays here.
     Map(&'a (dyn Fn(&Surface<C>, &C::Lambda) -> C + Sync)),
+    /// As `Map`, but D₁ gathers only if the camera reached it through ≥ 1 delta bounce or
+    /// BLEND pass-through; a D₁ seen directly leaves the caustic-origin paths to light
+    /// tracing ([`super::light_trace`], which proves the split).
+    Mixed(&'a (dyn Fn(&Surface<C>, &C::Lambda) -> C + Sync)),
 }
 
 /// The first diffuse-like hit of a camera path: where photons are gathered.
@@ -248,6 +252,8 @@ pub fn camera_path<C: Carrier>(
     // Delta bounces since the last non-delta bounce (None before the first): ≥ 1 when
     // emission found now closes a D S+ L chain, the caustic map's share.
     let mut since_diffuse: Option<u32> = None;
+    // No bounce and no BLEND pass-through yet: the next vertex is seen directly.
+    let mut direct = true;
     loop {
         let Some(at) = shading::arrive::<C>(scene, &ray, &media, &lambda, &mut ctx.rays) else {
             if let Some(e) = escaped(scene, &ray, &prev, p_sel, beta, &lambda) {
@@ -256,7 +262,7 @@ pub fn camera_path<C: Carrier>(
             break;
         };
         beta *= at.transmittance;
-        let caustic = matches!(split, CausticSplit::Map(_)) && since_diffuse.unwrap_or(0) > 0;
+        let caustic = !matches!(split, CausticSplit::None) && since_diffuse.unwrap_or(0) > 0;
         if let (Some(e), false) = (emitted(scene, &at, &prev, p_sel, beta, &lambda), caustic) {
             l += e;
         }
@@ -264,6 +270,7 @@ pub fn camera_path<C: Carrier>(
         let s = match at.event(scene, media, &mut beta, &mut lambda, &mut u) {
             Event::PassThrough(next) => {
                 ray = next;
+                direct = false;
                 continue;
             }
             Event::Scatter(s) => s,
@@ -285,7 +292,12 @@ pub fn camera_path<C: Carrier>(
         if !s.bsdf.is_delta() {
             l += beta * next_event(scene, &s, &lambda, true, &mut u, &mut ctx.rays);
             let first = since_diffuse.is_none();
-            if let (CausticSplit::Map(gather), true) = (split, first && depth + 1 < max_depth) {
+            let gather = match split {
+                CausticSplit::None => None,
+                CausticSplit::Map(g) => Some(g),
+                CausticSplit::Mixed(g) => (!direct).then_some(g),
+            };
+            if let (Some(gather), true) = (gather, first && depth + 1 < max_depth) {
                 l += beta * gather(&s, &lambda);
             }
         }
@@ -332,6 +344,7 @@ pub fn camera_path<C: Carrier>(
         }
         ray = s.spawn(bs.wi);
         vertex += 1;
+        direct = false;
     }
     (l, None)
 }

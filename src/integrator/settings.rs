@@ -44,6 +44,28 @@ pub struct PhotonSettings {
     pub k_caustic: usize,
     /// Photons in a global-map estimate (photon, at final-gather hits).
     pub k_global: usize,
+    /// How the hybrid estimates its caustic paths (`--caustics`).
+    pub caustic_mode: CausticMode,
+}
+
+/// How the hybrid (`--method hybrid`) estimates the caustic-origin paths
+/// ([`super::caustic`], [`super::light_trace`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum CausticMode {
+    /// The caustic map, gathered at every camera path's first non-delta vertex.
+    Map,
+    /// Light tracing splatted onto the image where that vertex is seen directly, the map
+    /// where it is seen through delta bounces (an orthographic camera keeps the map).
+    #[default]
+    Mixed,
+}
+
+impl CausticMode {
+    /// Parses `--caustics map|mixed` ([`crate::error::parse_name`]).
+    pub fn parse(s: &str) -> Result<CausticMode> {
+        let names = [("map", CausticMode::Map), ("mixed", CausticMode::Mixed)];
+        crate::error::parse_name("--caustics", s, &names)
+    }
 }
 
 impl Default for PhotonSettings {
@@ -56,6 +78,7 @@ impl Default for PhotonSettings {
             roulette: Roulette::Throughput,
             k_caustic: 64,
             k_global: 64,
+            caustic_mode: CausticMode::default(),
         }
     }
 }
@@ -166,6 +189,8 @@ pub struct CausticSettings {
     pub radius: Option<f32>,
     /// Radius-reduction parameter α ∈ (0, 1) (Knaus & Zwicker 2011).
     pub alpha: f32,
+    /// Map only, or light tracing where the caustic is seen directly.
+    pub mode: CausticMode,
 }
 
 impl CausticSettings {
@@ -188,6 +213,7 @@ impl PhotonSettings {
             photons: self.photons,
             radius: self.radius,
             alpha: self.alpha,
+            mode: self.caustic_mode,
         }
     }
 

@@ -1,0 +1,146 @@
+//! Light tracing of the hybrid's caustic paths onto the image (`--caustics mixed`, Iris
+//! issue 17): the caustic-origin photon vertices the map stores ([`super::caustic`]) are
+//! also connected to the camera and splatted onto the pixel they project to (the t = 1
+//! strategy of bidirectional path tracing, Veach 1997 §10.2; pbrt-v4 `ConnectBDPT` with
+//! `t == 1`, LuxCore's "hybrid back/forward"). It is strong where the caustic is seen
+//! directly: no kernel blur, and every photon lands in its own pixel.
+//!
+//! ## The split with the map (Heckbert's notation; S = delta bounce, D = non-delta)
+//! A full path x₀ (camera) … L whose light end starts L S+ D is a caustic-origin path; the
+//! map's photons are its light subpath's non-delta vertices y (the first and every later
+//! one). The camera path reaches its first non-delta vertex D₁ either *directly*
+//! (C D₁: no delta bounce and no BLEND pass-through on the way) or *through* ≥ 1 delta
+//! bounce or pass-through (C (S|P)+ D₁). With `CausticMode::Mixed`:
+//! - C (S|P)+ D₁ y…L S+ L-end: D₁ gathers the map (as with `Map`): light tracing cannot
+//!   connect a photon to a camera seen only through a delta chain.
+//! - C D₁ … L S+ L-end with D₁ seen directly: D₁ does NOT gather; instead every photon
+//!   vertex y is connected to the pinhole. A camera path sees y directly iff the segment
+//!   y→eye is unoccluded (a BLEND surface occludes the connection: its 1 − α share is the
+//!   map's via the pass-through rule) and y projects inside the image, so the connection
+//!   counts exactly the full paths C y … L with y = D₁ seen directly.
+//! - Every other path (light end not L S+ D) is the path tracer's, unchanged (its emission
+//!   after D S+ L is dropped in both modes).
+//! Each caustic-origin path has exactly one D₁, seen either directly or not, so it is counted
+//! once, by exactly one of the two estimators; nothing is lost (the camera-side depth rule
+//! — D₁ gathers only if its bounce would be followed, `max_depth` ≥ 2 — is applied to the
+//! connections too: no splats below `max_depth` 2).
+//!
+//! ## The splat (units: radiance, linear RGB)
+//! Iris's pixel j is the box-filtered radiance I_j = (1/a) ∫_{pixel j} L(ω) / cos³θ dω,
+//! where a is the pixel's area on the image plane at unit distance (pixels are uniform
+//! over their square in raster space, `render::primary_ray`; the plane's area element is
+//! dω / cos³θ). With dω = |cos θ_y,g| dA_y / d² this is pinhole importance
+//! W_e = 1/(a cos⁴θ) times the connection's cos θ / d², i.e. pbrt-v4
+//! `PerspectiveCamera::We` = 1/(A cos⁴θ) with the whole film area A (and lens area 1 for
+//! a pinhole) times `SampleWi`'s cos θ / d², with the film's 1/A replaced by the pixel's
+//! 1/a because Iris's film holds per-pixel radiance. A photon of flux Φ (already divided
+//! by the photons emitted in the pass) arriving at y from w_l contributes
+//! Φ · f(w_c, w_l) · |w_l·n_s| |w_c·n_g| / |w_l·n_g| · 1/(a d² cos³θ)
+//! to its pixel, where w_c points to the eye: the adjoint BSDF in importance mode
+//! f*(w_l, w_c) = f(w_c, w_l) in radiance mode (Veach 1997 §5.3; as the map's gather), and
+//! |w_l·n_s| |w_c·n_g| / |w_l·n_g| is pbrt-v4's `CorrectShadingNormal` (bdpt.cpp) times
+//! the connection's |w_c·n_s|. Summed over the pass's photons, that is an unbiased
+//! per-pixel estimate of the caustic paths' share of I_j, added to the pass's camera
+//! sample.
+//!
+//! Spectral: the photons carry the pass's shared wavelengths; a photon that kept only its
+//! hero (4× its lane, the others 0) converts with the same wavelengths and needs no other
+//! factor (the camera side brings no second 4×, unlike the map's gather).
+//!
+//! Limits: an orthographic camera cannot be connected to (no pinhole): it keeps the map
+//! everywhere ([`Splatter::new`] is `None`). Iris cameras are in air: a photon vertex
+//! inside a volume is reached only through its boundary (a surface, which occludes), so
+//! the connection carries no Beer–Lambert factor.
+//!
+//! Determinism: splats are made in the caustic map's fixed photon chunks and added to the
+//! pass's splat image in chunk order ([`splat_image`]).
+
+use crate::bsdf::TransportMode;
+use crate::camera::Camera;
+use crate::photon::trace::PhotonVertex;
+use crate::scene::Scene;
+use crate::spectrum::Carrier;
+use glam::Vec3;
+
+/// One splat: the pixel index (y · width + x) and the radiance added to it (linear RGB).
+pub type Splat = (u32, Vec3);
+
+/// Connects photon vertices to a perspective camera ([`Splatter::connect`]).
+#[derive(Clone, Copy)]
+pub struct Splatter<'a> {
+    scene: &'a Scene,
+    camera: &'a Camera,
+    width: u32,
+    height: u32,
+}
+
+impl<'a> Splatter<'a> {
+    /// A splatter onto a `width × height` image of `camera` (the size it was built for);
+    /// `None` when no connection can count: an orthographic camera, or `max_depth` < 2
+    /// (the camera path would not follow D₁'s bounce, see the module docs).
+    pub fn new(
+        scene: &'a Scene,
+        camera: &'a Camera,
+        width: u32,
+        height: u32,
+        max_depth: u32,
+    ) -> Option<Splatter<'a>> {
+        (camera.is_perspective() && max_depth >= 2).then_some(Splatter {
+            scene,
+            camera,
+            width,
+            height,
+        })
+    }
+
+    /// The splat of photon vertex `v` carrying flux `power` at wavelengths `lambda`
+    /// (see the module docs for the formula); `None` if it projects outside the image, is
+    /// occluded from the eye or contributes nothing. Counts the visibility ray in `rays`.
+    pub fn connect<C: Carrier>(
+        &self,
+        v: &PhotonVertex<C>,
+        power: C,
+        lambda: &C::Lambda,
+        rays: &mut u64,
+    ) -> Option<Splat> {
+        let s = v.surface;
+        let pr = self.camera.project(s.hit.p)?;
+        let (x, y) = (pr.raster.x as u32, pr.raster.y as u32);
+        if x >= self.width || y >= self.height {
+            return None;
+        }
+        let to_eye = pr.eye - s.hit.p;
+        let d2 = to_eye.length_squared();
+        let w_c = to_eye / d2.sqrt();
+        let (wo, wi) = (s.frame.to_local(w_c), s.frame.to_local(v.wi));
+        let f = s.bsdf.eval(wo, wi, TransportMode::Radiance);
+        if f == C::ZERO {
+            return None;
+        }
+        // pbrt-v4 CorrectShadingNormal × |w_c·n_s|, and W_e · cos θ / d² for the pixel.
+        let ng = s.hit.ng;
+        let cos3 = pr.cos_theta * pr.cos_theta * pr.cos_theta;
+        let g = wi.z.abs() * w_c.dot(ng).abs() / (v.wi.dot(ng).abs() * pr.pixel_area * d2 * cos3);
+        if !(g.is_finite() && g > 0.0) {
+            return None;
+        }
+        *rays += 1;
+        if self.scene.occluded(&s.hit.spawn_ray_to(pr.eye)) {
+            return None;
+        }
+        let rgb = (f * power * g).to_rgb(lambda);
+        rgb.is_finite().then_some((y * self.width + x, rgb))
+    }
+}
+
+/// The pass's splat image (`pixels` entries, row-major): `chunks` added in order (a fixed
+/// order whatever the thread count, so the image is bit-identical).
+pub fn splat_image(chunks: &[Vec<Splat>], pixels: usize) -> Vec<Vec3> {
+    let mut img = vec![Vec3::ZERO; pixels];
+    for &(i, rgb) in chunks.iter().flatten() {
+        if let Some(p) = img.get_mut(i as usize) {
+            *p += rgb;
+        }
+    }
+    img
+}
