@@ -13,7 +13,7 @@
 //!   tracer (its photons would spread over a disc the size of the scene).
 //! - **Photons** (this module): a caustic light's photon whose light subpath starts L S+ D
 //!   (≥ 1 delta bounce before its first non-delta vertex) — a *caustic-origin* photon — is
-//!   stored at that vertex and at every later non-delta vertex as it goes on bouncing
+//!   stored at that vertex (flagged [`Photon::CAUSTIC`]) and at every later non-delta vertex as it goes on bouncing
 //!   (throughput roulette, the integrator's depth); other photons are not stored.
 //! - **Camera paths** ([`super::path::camera_path`] with [`super::path::CausticSplit::Map`]):
 //!   at the camera path's FIRST non-delta vertex D₁ only (if its bounce would be followed),
@@ -144,21 +144,25 @@ impl CausticMap {
                     // first non-delta vertex, reached through delta bounces only. A photon
                     // whose first one came after ≥ 1 bounce (L S+ D) is stored there and at
                     // every later non-delta vertex; any other photon is not stored.
+                    // The first vertex (L S+ D itself) is flagged CAUSTIC, the later ones
+                    // not ([`CausticMap::density`] can leave it to light tracing).
                     let mut origin: Option<bool> = None;
                     let mut camera_rays = 0;
                     rays += trace::trace::<C>(scene, &ph, lambda, &settings, &mut rng, |v, l| {
+                        let first = origin.is_none();
                         let caustic_origin = *origin.get_or_insert(v.bounces > 0);
                         if caustic_origin && v.power != C::ZERO {
                             let power = v.power * inv_n;
-                            if let Some(sp) = splatter {
+                            if let Some(sp) = splatter.filter(|sp| first || sp.every_vertex()) {
                                 splats.extend(sp.connect(v, power, l, &mut camera_rays));
                             }
-                            let flags = if C::is_hero_only(l) {
-                                Photon::HERO_ONLY | Photon::CAUSTIC
+                            let hero = if C::is_hero_only(l) {
+                                Photon::HERO_ONLY
                             } else {
-                                Photon::CAUSTIC
+                                0
                             };
-                            out.push(Photon::new(v.p, v.wi, power.to_lanes(), flags));
+                            let caustic = if first { Photon::CAUSTIC } else { 0 };
+                            out.push(Photon::new(v.p, v.wi, power.to_lanes(), hero | caustic));
                         }
                     });
                     rays += camera_rays;
@@ -208,9 +212,12 @@ impl CausticMap {
 
     /// Radiance the map reflects at the camera vertex `s` toward its `wo`:
     /// Σ f(wo, wiₚ) Φₚ / (π r²) over the photons within r (Jensen 2001 eq. 7.6 with a
-    /// constant kernel). Hero-wavelength bookkeeping as in SPPM: when both the camera path
-    /// and the photon kept only the hero (each carrying 4× its lane), divide by 4 once.
-    pub fn density<C: Carrier>(&self, s: &Surface<C>, lambda: &C::Lambda) -> C {
+    /// constant kernel); with `later_only`, over the photons stored after a diffuse bounce
+    /// only (not at a photon's first vertex, flagged [`Photon::CAUSTIC`]: light tracing's in
+    /// mixed mode, [`super::light_trace`]). Hero-wavelength bookkeeping as in SPPM: when
+    /// both the camera path and the photon kept only the hero (each carrying 4× its lane),
+    /// divide by 4 once.
+    pub fn density<C: Carrier>(&self, s: &Surface<C>, lambda: &C::Lambda, later_only: bool) -> C {
         let r2 = self.r2.unwrap_or(0.0);
         if self.photons.is_empty() || r2 <= 0.0 {
             return C::ZERO;
@@ -220,6 +227,9 @@ impl CausticMap {
         let mut sum = C::ZERO;
         self.grid.for_each_within(s.hit.p, r, |i, _| {
             let ph = &self.photons[i as usize];
+            if later_only && ph.flags() & Photon::CAUSTIC != 0 {
+                return;
+            }
             let wi = s.frame.to_local(ph.wi());
             let f = s.bsdf.eval(s.wo, wi, TransportMode::Radiance);
             let mut c = f * C::from_lanes(ph.power());

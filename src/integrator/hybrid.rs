@@ -86,9 +86,13 @@ fn run<C: Carrier>(
     let mut map = CausticMap::new(cs.radius, cs.alpha);
     let splatter = match cs.mode {
         CausticMode::Map => None,
-        CausticMode::Mixed => {
-            Splatter::new(scene, camera, settings.width, settings.height, max_depth)
-        }
+        CausticMode::Light | CausticMode::Mixed => Splatter::new(
+            scene,
+            camera,
+            (settings.width, settings.height),
+            max_depth,
+            cs.mode == CausticMode::Light,
+        ),
     };
     let schedule = Schedule {
         target: u64::from(settings.spp.max(1)),
@@ -140,7 +144,7 @@ fn run<C: Carrier>(
                 max_depth,
                 settings,
                 (pass, lambda),
-                (&map, image.as_deref()),
+                (&map, image.as_deref(), cs.mode),
                 film,
             );
             round.rays += rays;
@@ -162,15 +166,23 @@ fn camera_pass<C: Carrier>(
     max_depth: u32,
     settings: &RenderSettings,
     (pass, lambda): (u32, C::Lambda),
-    (map, splats): (&CausticMap, Option<&[Vec3]>),
+    (map, splats, mode): (&CausticMap, Option<&[Vec3]>, CausticMode),
     film: &mut Film,
 ) -> (u64, u64) {
     let half = (pass % 2) as usize;
     let sampler = pixel_sampler(settings, u64::from(settings.spp.max(1)));
-    let gather = |s: &crate::shading::Surface<C>, l: &C::Lambda| map.density(s, l);
-    let split = match splats {
-        Some(_) => CausticSplit::Mixed(&gather),
-        None => CausticSplit::Map(&gather),
+    let gather = |s: &crate::shading::Surface<C>, l: &C::Lambda| map.density(s, l, false);
+    let later = |s: &crate::shading::Surface<C>, l: &C::Lambda| map.density(s, l, true);
+    let split = match (splats, mode) {
+        (None, _) | (_, CausticMode::Map) => CausticSplit::Map(&gather),
+        (Some(_), CausticMode::Light) => CausticSplit::Mixed {
+            through: &gather,
+            direct: None,
+        },
+        (Some(_), CausticMode::Mixed) => CausticSplit::Mixed {
+            through: &gather,
+            direct: Some(&later),
+        },
     };
     let width = settings.width as usize;
     film.par_tiles_mut()

@@ -72,25 +72,34 @@ pub struct Splatter<'a> {
     camera: &'a Camera,
     width: u32,
     height: u32,
+    every_vertex: bool,
 }
 
 impl<'a> Splatter<'a> {
-    /// A splatter onto a `width × height` image of `camera` (the size it was built for);
-    /// `None` when no connection can count: an orthographic camera, or `max_depth` < 2
-    /// (the camera path would not follow D₁'s bounce, see the module docs).
+    /// A splatter onto a `width × height` image of `camera` (the size it was built for),
+    /// of every caustic-origin vertex (`every_vertex`, `--caustics light`) or of the first
+    /// ones only (`mixed`); `None` when no connection can count: an orthographic camera,
+    /// or `max_depth` < 2 (the camera path would not follow D₁'s bounce, see the module
+    /// docs).
     pub fn new(
         scene: &'a Scene,
         camera: &'a Camera,
-        width: u32,
-        height: u32,
+        (width, height): (u32, u32),
         max_depth: u32,
+        every_vertex: bool,
     ) -> Option<Splatter<'a>> {
         (camera.is_perspective() && max_depth >= 2).then_some(Splatter {
             scene,
             camera,
             width,
             height,
+            every_vertex,
         })
+    }
+
+    /// Whether every caustic-origin vertex is splatted (else only the first, L S+ D).
+    pub fn every_vertex(&self) -> bool {
+        self.every_vertex
     }
 
     /// The splat of photon vertex `v` carrying flux `power` at wavelengths `lambda`

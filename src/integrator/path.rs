@@ -110,10 +110,15 @@ pub enum CausticSplit<'a, C: Carrier> {
     /// by ≥ 1 delta bounces is dropped (exactly the paths the map counts). The environment
     /// is not a caustic light: its radiance stays here.
     Map(&'a (dyn Fn(&Surface<C>, &C::Lambda) -> C + Sync)),
-    /// As `Map`, but D₁ gathers only if the camera reached it through ≥ 1 delta bounce or
-    /// BLEND pass-through; a D₁ seen directly leaves the caustic-origin paths to light
-    /// tracing ([`super::light_trace`], which proves the split).
-    Mixed(&'a (dyn Fn(&Surface<C>, &C::Lambda) -> C + Sync)),
+    /// As `Map`, but D₁ gathers with `through` if the camera reached it through ≥ 1 delta
+    /// bounce or BLEND pass-through, with `direct` if it is seen directly (`None`: nothing);
+    /// light tracing counts the rest ([`super::light_trace`], which proves the split).
+    Mixed {
+        /// The gather at a D₁ seen through delta bounces (the whole map).
+        through: &'a (dyn Fn(&Surface<C>, &C::Lambda) -> C + Sync),
+        /// The gather at a D₁ seen directly (the photons light tracing does not splat).
+        direct: Option<&'a (dyn Fn(&Surface<C>, &C::Lambda) -> C + Sync)>,
+    },
 }
 
 /// The first diffuse-like hit of a camera path: where photons are gathered.
@@ -295,7 +300,13 @@ pub fn camera_path<C: Carrier>(
             let gather = match split {
                 CausticSplit::None => None,
                 CausticSplit::Map(g) => Some(g),
-                CausticSplit::Mixed(g) => (!direct).then_some(g),
+                CausticSplit::Mixed { through, direct: d } => {
+                    if direct {
+                        d
+                    } else {
+                        Some(through)
+                    }
+                }
             };
             if let (Some(gather), true) = (gather, first && depth + 1 < max_depth) {
                 l += beta * gather(&s, &lambda);

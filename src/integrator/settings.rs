@@ -52,18 +52,27 @@ pub struct PhotonSettings {
 /// ([`super::caustic`], [`super::light_trace`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum CausticMode {
-    /// The caustic map, gathered at every camera path's first non-delta vertex.
+    /// The caustic map, gathered at every camera path's first non-delta vertex D₁.
     Map,
-    /// Light tracing splatted onto the image where that vertex is seen directly, the map
-    /// where it is seen through delta bounces (an orthographic camera keeps the map).
+    /// Where D₁ is seen directly, light tracing of every caustic-origin photon vertex
+    /// (L S+ D and its later diffuse bounces); the map where D₁ is seen through delta
+    /// bounces.
+    Light,
+    /// Where D₁ is seen directly, light tracing of the L S+ D vertices (the caustic itself)
+    /// and the map's later-bounce photons for the rest; the whole map where D₁ is seen
+    /// through delta bounces.
     #[default]
     Mixed,
 }
 
 impl CausticMode {
-    /// Parses `--caustics map|mixed` ([`crate::error::parse_name`]).
+    /// Parses `--caustics map|light|mixed` ([`crate::error::parse_name`]).
     pub fn parse(s: &str) -> Result<CausticMode> {
-        let names = [("map", CausticMode::Map), ("mixed", CausticMode::Mixed)];
+        let names = [
+            ("map", CausticMode::Map),
+            ("light", CausticMode::Light),
+            ("mixed", CausticMode::Mixed),
+        ];
         crate::error::parse_name("--caustics", s, &names)
     }
 }
@@ -189,7 +198,7 @@ pub struct CausticSettings {
     pub radius: Option<f32>,
     /// Radius-reduction parameter α ∈ (0, 1) (Knaus & Zwicker 2011).
     pub alpha: f32,
-    /// Map only, or light tracing where the caustic is seen directly.
+    /// Map only, or light tracing where the caustic is seen directly ([`CausticMode`]).
     pub mode: CausticMode,
 }
 
