@@ -70,7 +70,7 @@ impl Camera {
             return None;
         }
         let q = self.camera_from_world.transform_point3(p);
-        if !(q.z < 0.0) {
+        if q.z >= 0.0 || q.z.is_nan() {
             return None;
         }
         let (ndc_x, ndc_y) = (q.x / -q.z, q.y / -q.z);

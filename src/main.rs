@@ -207,10 +207,12 @@ struct RenderArgs {
     /// paper's rule: diffuse / reflect / refract by the material's colours).
     #[arg(long, default_value = "throughput", value_parser = Roulette::parse)]
     photon_rr: Roulette,
-    /// How `--method hybrid` counts its caustics: map (the caustic photon map everywhere) or
-    /// mixed (light tracing splatted onto the image where the caustic is seen directly, the
-    /// map where it is seen through glass or mirrors; an orthographic camera keeps the map).
-    #[arg(long, default_value = "mixed", value_parser = CausticMode::parse)]
+    /// How `--method hybrid` counts its caustics: map (the caustic photon map everywhere),
+    /// light (light tracing splatted onto the image wherever the caustic light is seen
+    /// directly, the map where it is seen through glass or mirrors) or mixed (light tracing
+    /// for the caustic itself, the map for its later diffuse bounces, where seen directly).
+    /// An orthographic camera keeps the map.
+    #[arg(long, default_value = "map", value_parser = CausticMode::parse)]
     caustics: CausticMode,
     /// Reference EXR (same size as the render; sets the size if --size is not given): error
     /// against it at every checkpoint (1, 2, 4, … samples or passes).

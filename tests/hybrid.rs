@@ -15,7 +15,7 @@ mod common;
 
 use glam::Vec3;
 use iris::camera::{look_at, Camera};
-use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::integrator::{CausticMode, Integrator, Method, PhotonSettings};
 use iris::output::ImageRgb;
 use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
@@ -88,9 +88,12 @@ fn relative_rmse(a: &[f64], b: &[f64]) -> f64 {
     mse.sqrt() / mean(b)
 }
 
+/// `n` photons a pass, `--caustics map` (the map everywhere: this file tests the map; the
+/// light-traced modes are tests/light_trace.rs's).
 fn photons(n: u64) -> PhotonSettings {
     PhotonSettings {
         photons: n,
+        caustic_mode: CausticMode::Map,
         ..PhotonSettings::default()
     }
 }

@@ -1,7 +1,8 @@
 //! The hybrid (`--method hybrid`): the path tracer for every path a camera path can reach
 //! with next-event estimation or BSDF sampling, and a progressive caustic photon map for
 //! exactly the light paths it cannot, L S+ D (light → delta chain → first non-delta
-//! surface). The split, the caustic lights and the radius sequence are
+//! surface), optionally light-traced where the camera sees them directly
+//! ([`super::light_trace`]). The split, the caustic lights and the radius sequence are
 //! [`super::caustic`]'s; the camera side is [`path::camera_path`] with
 //! [`CausticSplit::Map`].
 //!
@@ -12,9 +13,15 @@
 //!    their grid with the pass radius (the first radius, unless given, is 2 pixel
 //!    footprints at the median camera distance of the first pass's photons, 1 % of the
 //!    scene's diagonal without any);
+//!    With `--caustics light|mixed` and a perspective camera, the same photon vertices are
+//!    connected to the camera ([`light_trace`]; which ones, and which map photons D₁ then
+//!    gathers, is the split proved there), the splats applied in the photon chunks' order
+//!    to the pass's splat image;
 //! 3. traces one camera sample per pixel (`primary_ray`, sample `pass` of the pixel from
-//!    the render's sampler, Sobol' blocks of `--spp`) through the split path tracer and
-//!    adds it to the film's half `pass mod 2`.
+//!    the render's sampler, Sobol' blocks of `--spp`) through the split path tracer, adds
+//!    the pixel's splats (the splat image is a per-pixel estimate of one pass, so the
+//!    film's average over passes stays the mean) and adds it to the film's half
+//!    `pass mod 2`.
 //!
 //! So `--spp N` is N passes of one sample per pixel and N caustic maps; the image after N
 //! passes is a pure function of the seed (pixels are independent, the map is built in

@@ -1,29 +1,33 @@
-//! Light tracing of the hybrid's caustic paths onto the image (`--caustics mixed`, Iris
-//! issue 17): the caustic-origin photon vertices the map stores ([`super::caustic`]) are
+//! Light tracing of the hybrid's caustic paths onto the image (`--caustics light|mixed`,
+//! Iris issue 17): caustic-origin photon vertices the map stores ([`super::caustic`]) are
 //! also connected to the camera and splatted onto the pixel they project to (the t = 1
 //! strategy of bidirectional path tracing, Veach 1997 §10.2; pbrt-v4 `ConnectBDPT` with
-//! `t == 1`, LuxCore's "hybrid back/forward"). It is strong where the caustic is seen
-//! directly: no kernel blur, and every photon lands in its own pixel.
+//! `t == 1`; LuxCore's "hybrid back/forward"). It is strong where the caustic is seen
+//! directly: no kernel blur, every photon lands in its own pixel.
 //!
 //! ## The split with the map (Heckbert's notation; S = delta bounce, D = non-delta)
-//! A full path x₀ (camera) … L whose light end starts L S+ D is a caustic-origin path; the
-//! map's photons are its light subpath's non-delta vertices y (the first and every later
-//! one). The camera path reaches its first non-delta vertex D₁ either *directly*
-//! (C D₁: no delta bounce and no BLEND pass-through on the way) or *through* ≥ 1 delta
-//! bounce or pass-through (C (S|P)+ D₁). With `CausticMode::Mixed`:
-//! - C (S|P)+ D₁ y…L S+ L-end: D₁ gathers the map (as with `Map`): light tracing cannot
-//!   connect a photon to a camera seen only through a delta chain.
-//! - C D₁ … L S+ L-end with D₁ seen directly: D₁ does NOT gather; instead every photon
-//!   vertex y is connected to the pinhole. A camera path sees y directly iff the segment
-//!   y→eye is unoccluded (a BLEND surface occludes the connection: its 1 − α share is the
-//!   map's via the pass-through rule) and y projects inside the image, so the connection
-//!   counts exactly the full paths C y … L with y = D₁ seen directly.
-//! - Every other path (light end not L S+ D) is the path tracer's, unchanged (its emission
-//!   after D S+ L is dropped in both modes).
-//! Each caustic-origin path has exactly one D₁, seen either directly or not, so it is counted
-//! once, by exactly one of the two estimators; nothing is lost (the camera-side depth rule
-//! — D₁ gathers only if its bounce would be followed, `max_depth` ≥ 2 — is applied to the
-//! connections too: no splats below `max_depth` 2).
+//! A caustic-origin path is a full path whose light end starts L S+ D; its light subpath's
+//! non-delta vertices are y₁ (the L S+ D vertex, flagged
+//! [`crate::photon::store::Photon::CAUSTIC`] in the map)
+//! and the later y₂, y₃, …, all stored in the map. The camera path reaches its first
+//! non-delta vertex D₁ either *through* ≥ 1 delta bounce or BLEND pass-through
+//! (C (S|P)+ D₁) or *directly* (C D₁); D₁ is one of the yₖ. Per mode:
+//! - D₁ through delta (every mode): D₁ gathers the whole map, as `--caustics map` does
+//!   everywhere — no connection to a camera seen only through a delta chain is possible.
+//! - D₁ seen directly, `light`: D₁ gathers nothing; every yₖ is connected to the pinhole.
+//! - D₁ seen directly, `mixed`: y₁ is connected (the caustic proper, L S+ y₁ C); D₁ gathers only the map's later photons (k ≥ 2, no
+//!   `CAUSTIC` flag), whose kernel blur is harmless on smooth indirect light and which
+//!   light tracing would splat sparsely.
+//! - Every other path (light end not L S+ D) is the path tracer's, unchanged (emission after
+//!   D S+ L dropped in every mode).
+//!
+//! A connection from yₖ counts iff the segment yₖ→eye is unoccluded and yₖ projects into
+//! the image, i.e. iff a camera ray reaches yₖ directly as its D₁ (a BLEND surface
+//! occludes the connection; its 1 − α share is the map's by the pass-through rule). So
+//! each caustic-origin path, having exactly one D₁ = yₖ, seen directly or not, and one k,
+//! is counted by exactly one estimator: never twice, never lost. The camera-side depth rule
+//! (D₁ gathers only if its bounce would be followed: `max_depth` ≥ 2) holds for the
+//! connections too: no splats below `max_depth` 2.
 //!
 //! ## The splat (units: radiance, linear RGB)
 //! Iris's pixel j is the box-filtered radiance I_j = (1/a) ∫_{pixel j} L(ω) / cos³θ dω,
@@ -48,7 +52,8 @@
 //! factor (the camera side brings no second 4×, unlike the map's gather).
 //!
 //! Limits: an orthographic camera cannot be connected to (no pinhole): it keeps the map
-//! everywhere ([`Splatter::new`] is `None`). Iris cameras are in air: a photon vertex
+//! everywhere ([`Splatter::new`] is `None`). The pinhole's solid-angle factors assume a
+//! rigid camera transform (as [`Camera::generate_ray`]'s normalised directions do). Iris cameras are in air: a photon vertex
 //! inside a volume is reached only through its boundary (a surface, which occludes), so
 //! the connection carries no Beer–Lambert factor.
 //!

@@ -96,6 +96,10 @@ pub enum StopAt {
     Diffuse,
 }
 
+/// A caustic map's gather at a camera vertex: reflected radiance toward its `wo`
+/// ([`super::caustic::CausticMap::density`]).
+pub type Gather<'a, C> = &'a (dyn Fn(&Surface<C>, &<C as Carrier>::Lambda) -> C + Sync);
+
 /// How the path tracer shares light transport with a caustic photon map (`--method hybrid`,
 /// [`super::caustic`]); the split is Jensen's caustic map in Heckbert's notation.
 #[derive(Clone, Copy)]
@@ -109,15 +113,15 @@ pub enum CausticSplit<'a, C: Carrier> {
     /// throughput), and emission found by BSDF sampling after any non-delta bounce followed
     /// by ≥ 1 delta bounces is dropped (exactly the paths the map counts). The environment
     /// is not a caustic light: its radiance stays here.
-    Map(&'a (dyn Fn(&Surface<C>, &C::Lambda) -> C + Sync)),
+    Map(Gather<'a, C>),
     /// As `Map`, but D₁ gathers with `through` if the camera reached it through ≥ 1 delta
     /// bounce or BLEND pass-through, with `direct` if it is seen directly (`None`: nothing);
     /// light tracing counts the rest ([`super::light_trace`], which proves the split).
     Mixed {
         /// The gather at a D₁ seen through delta bounces (the whole map).
-        through: &'a (dyn Fn(&Surface<C>, &C::Lambda) -> C + Sync),
+        through: Gather<'a, C>,
         /// The gather at a D₁ seen directly (the photons light tracing does not splat).
-        direct: Option<&'a (dyn Fn(&Surface<C>, &C::Lambda) -> C + Sync)>,
+        direct: Option<Gather<'a, C>>,
     },
 }
 
