@@ -23,6 +23,10 @@
 //!   unchanged (shadow rays through glass are occluded). Every full path is counted exactly
 //!   once, by its light end: a caustic-origin light end by the map at D₁ (the light side
 //!   may bounce diffusely before reaching D₁), any other by the path tracer.
+//! - **Light tracing** (`--caustics light|mixed`, [`super::light_trace`]): where the camera
+//!   sees D₁ directly, the photons' vertices (all, or the first only) are splatted onto the
+//!   image instead, and D₁ gathers none of them (or the later ones only); the proof that
+//!   the three estimators still count each path once is there.
 //! - A first version gathered a map of first-vertex photons at every camera vertex; the
 //!   map is concentrated (a gem's caustic), and gathering it at the second and later camera
 //!   vertices made bright splotches in indirect light: it lost to SPPM at equal time on
