@@ -6,11 +6,17 @@
 //! the passes' estimates converges without per-pixel statistics.
 //!
 //! ## The split (Heckbert's notation; S = a delta bounce, `bs.delta`; D = a non-delta one)
-//! - **Caustic lights** (the one rule, kept here in [`emitter`]): every punctual light and
-//!   every emissive triangle; the environment is not one. Punctual lights must be: no camera
-//!   path can hit them, so NEE through glass is impossible. Emissive triangles are the
-//!   consistent simple choice. The environment's light through glass stays with the path
-//!   tracer (its photons would spread over a disc the size of the scene).
+//! - **Caustic lights** (the one rule, kept here in [`emitter`]): every light — punctual
+//!   lights, emissive triangles and the environment. Punctual lights must be: no camera
+//!   path can hit them, so NEE through glass is impossible. Emissive triangles and the
+//!   environment are the consistent simple choice, and the one that pays on gems: a small
+//!   stone under a studio focuses its softboxes onto the floor, which a camera path finds
+//!   only when its BSDF sample happens to pass the stone and hit a softbox (bright
+//!   fireflies), while photons aimed at the stone carry that light exactly. Caustic photons
+//!   are aimed only at the caustic makers ([`emit_one`]), so the environment's start on
+//!   the discs the stones' bounding spheres project, not across the whole scene. (A first
+//!   version left the environment to the path tracer; on a diamond under the studio it
+//!   lost to SPPM 10× by relative MSE, from exactly those fireflies.)
 //! - **Photons** (this module): a caustic light's photon whose light subpath starts L S+ D
 //!   (≥ 1 delta bounce before its first non-delta vertex) — a *caustic-origin* photon — is
 //!   stored at that vertex (flagged [`Photon::CAUSTIC`]) and at every later non-delta vertex as it goes on bouncing
@@ -19,7 +25,8 @@
 //!   at the camera path's FIRST non-delta vertex D₁ only (if its bounce would be followed),
 //!   the map's reflected radiance L = Σ f(wo, wiₚ) Φₚ / (N π r²) (constant kernel) times the
 //!   throughput; at every vertex, emission found by BSDF sampling after a non-delta bounce
-//!   followed by ≥ 1 delta bounces (… D S+ L: a caustic-origin light end) is dropped. NEE is
+//!   followed by ≥ 1 delta bounces (… D S+ L: a caustic-origin light end, the environment
+//!   seen by an escaping ray included) is dropped. NEE is
 //!   unchanged (shadow rays through glass are occluded). Every full path is counted exactly
 //!   once, by its light end: a caustic-origin light end by the map at D₁ (the light side
 //!   may bounce diffusely before reaching D₁), any other by the path tracer.
@@ -45,6 +52,7 @@ use super::{StoreBudget, MAX_PHOTONS};
 use crate::bsdf::TransportMode;
 use crate::error::Result;
 use crate::math::Rng;
+use crate::photon::aim::DEFAULT_AIM;
 use crate::photon::emit::{Aim, EmittedPhoton, PhotonEmitter, PhotonNumbers};
 use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
@@ -59,10 +67,10 @@ const CHUNK: u64 = 4096;
 /// Stream key of caustic photons (distinct from SPPM's).
 const KEY: u64 = 0xCA05_71C0;
 
-/// The caustic lights' emitter (see the module docs: punctual lights and emissive
-/// triangles, not the environment).
+/// The caustic lights' emitter (see the module docs: every light, the environment
+/// included).
 pub fn emitter(scene: &Scene) -> PhotonEmitter {
-    PhotonEmitter::new(scene).without_environment()
+    PhotonEmitter::new(scene)
 }
 
 /// The one place a caustic photon is emitted: number `index` of the seed's digit-permuted
@@ -249,7 +257,10 @@ impl CausticMap {
 /// The caustic lights' probe behind `--method auto` ([`crate::plan::resolve_method`]): of
 /// `n` photons from the caustic lights (fixed seed, RGB, the map's split), the share of the
 /// power arriving at first non-delta hits that arrives after ≥ 1 delta bounce (L S+ D),
-/// in [0, 1]; 0 when no photon reaches a non-delta surface.
+/// in [0, 1]; 0 when no photon reaches a non-delta surface. The photons are emitted as
+/// SPPM's are ([`DEFAULT_AIM`]: half aimed at the caustic makers, each weighted by
+/// p_usual/p_mixture), so the share is of all the light the lights send, estimated with
+/// enough photons through a small stone under a large sky to see it.
 pub fn probe_share(scene: &Scene, n: u32) -> f64 {
     let emitter = emitter(scene);
     if emitter.is_empty() {
@@ -260,10 +271,10 @@ pub fn probe_share(scene: &Scene, n: u32) -> f64 {
         roulette: Roulette::Throughput,
     };
     let (mut all, mut caustic) = (0.0f64, 0.0f64);
+    let numbers = PhotonNumbers::new(KEY ^ 0x9206E);
     for i in 0..n {
         let mut rng = Rng::new(&[KEY, u64::from(i), 0x9206E]);
-        // Unaimed: the share is of all the light the caustic lights send.
-        let Some(ph) = emitter.emit_from(scene, &mut rng) else {
+        let Some(ph) = emitter.emit_index(scene, &numbers, u64::from(i), DEFAULT_AIM) else {
             continue;
         };
         let mut first = true;

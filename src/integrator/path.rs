@@ -111,8 +111,9 @@ pub enum CausticSplit<'a, C: Carrier> {
     /// first non-delta vertex, if its BSDF-sampled bounce would be followed,
     /// `gather(surface, lambda)` adds the map's reflected radiance (times the path
     /// throughput), and emission found by BSDF sampling after any non-delta bounce followed
-    /// by ≥ 1 delta bounces is dropped (exactly the paths the map counts). The environment
-    /// is not a caustic light: its radiance stays here.
+    /// by ≥ 1 delta bounces is dropped (exactly the paths the map counts), the environment's
+    /// radiance seen by a ray escaping after D S+ included (the environment is a caustic
+    /// light).
     Map(Gather<'a, C>),
     /// As `Map`, but D₁ gathers with `through` if the camera reached it through ≥ 1 delta
     /// bounce or BLEND pass-through, with `direct` if it is seen directly (`None`: nothing);
@@ -264,14 +265,16 @@ pub fn camera_path<C: Carrier>(
     // No bounce and no BLEND pass-through yet: the next vertex is seen directly.
     let mut direct = true;
     loop {
+        // The light end found now closes a D S+ L chain: the caustic map's (or light
+        // tracing's) share when the path is split.
+        let caustic = !matches!(split, CausticSplit::None) && since_diffuse.unwrap_or(0) > 0;
         let Some(at) = shading::arrive::<C>(scene, &ray, &media, &lambda, &mut ctx.rays) else {
-            if let Some(e) = escaped(scene, &ray, &prev, p_sel, beta, &lambda) {
+            if let (Some(e), false) = (escaped(scene, &ray, &prev, p_sel, beta, &lambda), caustic) {
                 l += e;
             }
             break;
         };
         beta *= at.transmittance;
-        let caustic = !matches!(split, CausticSplit::None) && since_diffuse.unwrap_or(0) > 0;
         if let (Some(e), false) = (emitted(scene, &at, &prev, p_sel, beta, &lambda), caustic) {
             l += e;
         }
