@@ -18,6 +18,22 @@ pub struct Camera {
     half_width: f32,
     width: u32,
     height: u32,
+    /// Inverse of `world_from_camera` (for projecting world points, [`Camera::project`]).
+    camera_from_world: Mat4,
+}
+
+/// A world point seen by a perspective camera ([`Camera::project`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Projected {
+    /// Raster position (pixels, (0,0) top-left), inside the image.
+    pub raster: Vec2,
+    /// The camera's position (the pinhole), world space.
+    pub eye: Vec3,
+    /// cos θ between the camera's viewing axis and the direction to the point.
+    pub cos_theta: f32,
+    /// Area of one pixel on the image plane at unit distance from the pinhole (camera
+    /// space units²): (2 tan(xfov/2) / width) · (2 tan(yfov/2) / height).
+    pub pixel_area: f32,
 }
 
 impl Camera {
@@ -36,7 +52,42 @@ impl Camera {
             half_width: half_height * aspect,
             width,
             height,
+            camera_from_world: desc.world_from_camera.inverse(),
         }
+    }
+
+    /// Whether rays leave from one point (a pinhole): only then can a light path be
+    /// connected to the camera ([`Camera::project`]).
+    pub fn is_perspective(&self) -> bool {
+        matches!(self.projection, Projection::Perspective { .. })
+    }
+
+    /// Where the world point `p` lands on the image of a perspective camera (the inverse of
+    /// [`Camera::generate_ray`]): `None` for an orthographic camera (no ray through a
+    /// given point reaches a pinhole), a point behind the camera or outside the image.
+    pub fn project(&self, p: Vec3) -> Option<Projected> {
+        if !self.is_perspective() {
+            return None;
+        }
+        let q = self.camera_from_world.transform_point3(p);
+        if q.z >= 0.0 || q.z.is_nan() {
+            return None;
+        }
+        let (ndc_x, ndc_y) = (q.x / -q.z, q.y / -q.z);
+        let (w, h) = (self.width as f32, self.height as f32);
+        let raster = Vec2::new(
+            (ndc_x / self.half_width + 1.0) * 0.5 * w,
+            (1.0 - ndc_y / self.half_height) * 0.5 * h,
+        );
+        if !(raster.x >= 0.0 && raster.y >= 0.0 && raster.x < w && raster.y < h) {
+            return None;
+        }
+        Some(Projected {
+            raster,
+            eye: self.world_from_camera.transform_point3(Vec3::ZERO),
+            cos_theta: -q.z / q.length(),
+            pixel_area: (2.0 * self.half_width / w) * (2.0 * self.half_height / h),
+        })
     }
 
     /// The ray through raster position `px` (pixels, fractional).

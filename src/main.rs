@@ -13,7 +13,7 @@ use iris::accel::Backend;
 use iris::app::converge::{parse_methods, ConvergeOptions};
 use iris::app::SpectralMode;
 use iris::app::{self, RenderOptions};
-use iris::integrator::{Method, PhotonSettings};
+use iris::integrator::{CausticMode, Method, PhotonSettings};
 use iris::measure::MeasureOptions;
 use iris::output::{DisplayOptions, Exposure, ToneMap};
 use iris::photon::trace::Roulette;
@@ -207,6 +207,13 @@ struct RenderArgs {
     /// paper's rule: diffuse / reflect / refract by the material's colours).
     #[arg(long, default_value = "throughput", value_parser = Roulette::parse)]
     photon_rr: Roulette,
+    /// How `--method hybrid` counts its caustics: map (the caustic photon map everywhere),
+    /// light (light tracing splatted onto the image wherever the caustic light is seen
+    /// directly, the map where it is seen through glass or mirrors) or mixed (light tracing
+    /// for the caustic itself, the map for its later diffuse bounces, where seen directly).
+    /// An orthographic camera keeps the map.
+    #[arg(long, default_value = "map", value_parser = CausticMode::parse)]
+    caustics: CausticMode,
     /// Reference EXR (same size as the render; sets the size if --size is not given): error
     /// against it at every checkpoint (1, 2, 4, … samples or passes).
     #[arg(long)]
@@ -397,6 +404,7 @@ impl RenderArgs {
                 alpha: a.alpha,
                 passes: a.passes,
                 roulette: a.photon_rr,
+                caustic_mode: a.caustics,
                 ..PhotonSettings::default()
             },
             accel: a.accel,

@@ -264,4 +264,42 @@ fn cli_accepts_hybrid_and_rejects_nonsense() {
     let err = common::stderr(&o);
     assert!(err.contains("hybird") && err.contains("hybrid"), "{err}");
     assert!(!dir.join("x.png").exists());
+    // `--caustics map|light|mixed`: each renders, a misspelt one is rejected naming them.
+    for mode in ["map", "light", "mixed"] {
+        let args = [
+            "render",
+            scene,
+            "--method",
+            "hybrid",
+            "--caustics",
+            mode,
+            "--spp",
+            "1",
+            "--photons",
+            "500",
+            "--size",
+            "16x12",
+            "-q",
+            "-o",
+            "c.png",
+        ];
+        let o = common::iris(&args, &dir);
+        assert!(o.status.success(), "{mode}: {}", common::stderr(&o));
+    }
+    let args = [
+        "render",
+        scene,
+        "--method",
+        "hybrid",
+        "--caustics",
+        "lite",
+        "-q",
+        "-o",
+        "y.png",
+    ];
+    let o = common::iris(&args, &dir);
+    assert!(!o.status.success());
+    let err = common::stderr(&o);
+    assert!(err.contains("--caustics") && err.contains("mixed"), "{err}");
+    assert!(!dir.join("y.png").exists());
 }

@@ -15,7 +15,7 @@ mod common;
 
 use glam::Vec3;
 use iris::camera::{look_at, Camera};
-use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::integrator::{CausticMode, Integrator, Method, PhotonSettings};
 use iris::output::ImageRgb;
 use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
@@ -88,9 +88,12 @@ fn relative_rmse(a: &[f64], b: &[f64]) -> f64 {
     mse.sqrt() / mean(b)
 }
 
+/// `n` photons a pass, `--caustics map` (the map everywhere: this file tests the map; the
+/// light-traced modes are tests/light_trace.rs's).
 fn photons(n: u64) -> PhotonSettings {
     PhotonSettings {
         photons: n,
+        caustic_mode: CausticMode::Map,
         ..PhotonSettings::default()
     }
 }
@@ -187,6 +190,66 @@ fn hybrid_agrees_with_the_path_tracer_under_a_small_area_light() {
     );
     assert!(m_err.abs() < 0.01, "image mean: hybrid vs path {m_err}");
     assert!(c_err.abs() < 0.06, "caustic region: hybrid vs path {c_err}");
+    assert!(err < 0.05, "block RMSE: hybrid vs path {err}");
+}
+
+/// The environment is a caustic light: under a uniform sky of radiance 1 (no other
+/// light) the floor below the glass sphere gets the sky through the sphere only via the
+/// caustic map (the path tracer drops what it finds after D S+ and its shadow rays stop at
+/// the glass), and the rest by the path tracer. Were the split to lose or double that
+/// share, the shadowed floor under the sphere (where the sphere covers ~40 % of the sky)
+/// would be off by tens of per cent. Same bounds and reference as the area-light test
+/// (two 1024-spp path renders; the path tracer converges here: the sky is large).
+#[test]
+fn hybrid_agrees_with_the_path_tracer_under_a_sky() {
+    let (mut desc, cam) = iris::scenes::bench::caustic_sphere(None);
+    desc.lights.clear();
+    desc.environment_light = Some(iris::light::env::Environment::Uniform {
+        radiance: Vec3::ONE,
+    });
+    let desc = iris::scene::validate::validate(desc).expect("valid scene");
+    let scene = Scene::build(desc, iris::accel::Backend::Auto).expect("build");
+    let path1 = blocks(&render(
+        &scene,
+        &cam,
+        Method::Path,
+        &settings(512, 1, 2),
+        photons(0),
+    ));
+    let path2 = blocks(&render(
+        &scene,
+        &cam,
+        Method::Path,
+        &settings(512, 2, 2),
+        photons(0),
+    ));
+    let hybrid = blocks(&render(
+        &scene,
+        &cam,
+        Method::Hybrid,
+        &settings(512, 3, 2),
+        photons(20_000),
+    ));
+    let path: Vec<f64> = path1
+        .iter()
+        .zip(&path2)
+        .map(|(a, b)| 0.5 * (a + b))
+        .collect();
+    let noise = relative_rmse(&path2, &path1);
+    let err = relative_rmse(&hybrid, &path);
+    let m_err = mean(&hybrid) / mean(&path) - 1.0;
+    // The darkest block: the floor in the sphere's shadow, lit mostly through the glass.
+    let dark = (0..path.len())
+        .min_by(|&a, &b| path[a].total_cmp(&path[b]))
+        .expect("blocks");
+    let d_err = hybrid[dark] / path[dark] - 1.0;
+    let d_noise = path2[dark] / path1[dark] - 1.0;
+    eprintln!(
+        "sky: relative block RMSE path vs path {noise:.4}, hybrid vs path {err:.4}; mean \
+         {m_err:+.4}; darkest block {dark}: hybrid {d_err:+.4} (path2/path1 {d_noise:+.4})"
+    );
+    assert!(m_err.abs() < 0.01, "image mean: hybrid vs path {m_err}");
+    assert!(d_err.abs() < 0.06, "shadowed block: hybrid vs path {d_err}");
     assert!(err < 0.05, "block RMSE: hybrid vs path {err}");
 }
 
@@ -289,8 +352,9 @@ fn hybrid_renders_the_analytic_room_lit_through_glass() {
 }
 
 /// The white furnace (uniform environment of radiance 1, a smooth glass sphere and a white
-/// Lambertian sphere): the environment is not a caustic light, so this is the path
-/// tracer's estimate with the map empty; it must still be 1 (24×24, 64 passes: σ of the mean
+/// Lambertian sphere): the environment is a caustic light, so the white sphere's light
+/// through the glass comes from the caustic map and the rest from the path tracer; their
+/// sum must still be 1 (24×24, 64 passes: σ of the mean
 /// ≈ 0.2 %; bound 1 %).
 #[test]
 fn white_furnace_renders_one_with_the_hybrid() {
@@ -446,10 +510,11 @@ fn hybrid_is_deterministic_across_threads_and_rounds() {
 
 /// `--method auto` among path, hybrid and SPPM ([`iris::plan::resolve_method`]) says why:
 /// the point light's caustic under the glass sphere is a small share of the floor's light,
-/// measured and named (SPPM: the hybrid threshold is 0 on the measurements so far); the
-/// bulb inside a glass ball sends all its light through glass (100 %); the glass sphere
-/// under a uniform sky alone has caustics from the environment only, which the hybrid
-/// leaves to the path tracer → SPPM; the plan's photons stage carries the reason.
+/// measured and named (→ hybrid, under [`iris::plan::AUTO_HYBRID_BELOW`]); the bulb inside
+/// a glass ball sends all its light through glass (100 % → SPPM); under a uniform sky the
+/// environment is a caustic light like the others (a small share → hybrid); the same
+/// sphere made rough → SPPM, naming the material; the plan's photons stage carries the
+/// reason.
 #[test]
 fn auto_says_why_from_the_caustic_share() {
     use iris::plan::{resolve_method, Plan, SpectralMode, AUTO_HYBRID_BELOW};
@@ -477,16 +542,25 @@ fn auto_says_why_from_the_caustic_share() {
     assert_eq!(m, Method::Sppm, "{why:?}");
     assert!(why.unwrap().contains("carry 100.00 %"));
     let (desc, _) = iris::scenes::bench::caustic_sphere(None);
-    let desc = iris::scene::desc::SceneDesc {
+    let sky_desc = iris::scene::desc::SceneDesc {
         lights: Vec::new(),
         environment_light: Some(iris::light::env::Environment::Uniform {
             radiance: Vec3::ONE,
         }),
         ..desc
     };
-    let desc = iris::scene::validate::validate(desc).expect("valid scene");
-    let sky = Scene::build(desc, iris::accel::Backend::Auto).expect("build");
-    let (m, why) = resolve_method(Method::Auto, &sky);
-    assert_eq!(m, Method::Sppm, "{why:?}");
-    assert!(why.unwrap().contains("environment"));
+    let mut rough = sky_desc.clone();
+    rough.materials[0].roughness = 0.3;
+    let build = |d| {
+        let d = iris::scene::validate::validate(d).expect("valid scene");
+        Scene::build(d, iris::accel::Backend::Auto).expect("build")
+    };
+    let (m, why) = resolve_method(Method::Auto, &build(sky_desc));
+    let why = why.unwrap();
+    assert_eq!(m, Method::Hybrid, "{why}");
+    assert!(why.contains("caustics carry"), "{why}");
+    let (m, why) = resolve_method(Method::Auto, &build(rough));
+    let why = why.unwrap();
+    assert_eq!(m, Method::Sppm, "{why}");
+    assert!(why.contains("rough transmissive material"), "{why}");
 }

@@ -6,20 +6,39 @@
 //! the passes' estimates converges without per-pixel statistics.
 //!
 //! ## The split (Heckbert's notation; S = a delta bounce, `bs.delta`; D = a non-delta one)
-//! - **Caustic lights** (the one rule, kept here in [`emitter`]): every punctual light and
-//!   every emissive triangle; the environment is not one. Punctual lights must be: no camera
-//!   path can hit them, so NEE through glass is impossible. Emissive triangles are the
-//!   consistent simple choice. The environment's light through glass stays with the path
-//!   tracer (its photons would spread over a disc the size of the scene).
-//! - **Photons** (this module): a caustic light's photon is followed through delta bounces
-//!   only and stored at its first non-delta vertex if it had at least one bounce (L S+ D);
-//!   tracing stops after the first non-delta bounce (the tracer's `max_depth` 1).
+//! - **Caustic lights** (the one rule, kept here in [`emitter`]): every light — punctual
+//!   lights, emissive triangles and the environment. Punctual lights must be: no camera
+//!   path can hit them, so NEE through glass is impossible. Emissive triangles and the
+//!   environment are the consistent simple choice, and the one that pays on gems: a small
+//!   stone under a studio focuses its softboxes onto the floor, which a camera path finds
+//!   only when its BSDF sample happens to pass the stone and hit a softbox (bright
+//!   fireflies), while photons aimed at the stone carry that light exactly. Caustic photons
+//!   are aimed only at the caustic makers ([`emit_one`]), so the environment's start on
+//!   the discs the stones' bounding spheres project, not across the whole scene. (A first
+//!   version left the environment to the path tracer; on a diamond under the studio it
+//!   lost to SPPM 10× by relative MSE, from exactly those fireflies.)
+//! - **Photons** (this module): a caustic light's photon whose light subpath starts L S+ D
+//!   (≥ 1 delta bounce before its first non-delta vertex) — a *caustic-origin* photon — is
+//!   stored at that vertex (flagged [`Photon::CAUSTIC`]) and at every later non-delta vertex as it goes on bouncing
+//!   (throughput roulette, the integrator's depth); other photons are not stored.
 //! - **Camera paths** ([`super::path::camera_path`] with [`super::path::CausticSplit::Map`]):
-//!   at every non-delta vertex whose bounce would be followed, the map's reflected radiance
-//!   L = Σ f(wo, wiₚ) Φₚ / (N π r²) (constant kernel) times the throughput; emission found
-//!   by BSDF sampling after a non-delta bounce followed by ≥ 1 delta bounces (D S+ L) is
-//!   dropped. NEE is unchanged (shadow rays through glass are occluded), and camera paths
-//!   E S* D keep their emission and NEE. Every light path is counted exactly once.
+//!   at the camera path's FIRST non-delta vertex D₁ only (if its bounce would be followed),
+//!   the map's reflected radiance L = Σ f(wo, wiₚ) Φₚ / (N π r²) (constant kernel) times the
+//!   throughput; at every vertex, emission found by BSDF sampling after a non-delta bounce
+//!   followed by ≥ 1 delta bounces (… D S+ L: a caustic-origin light end, the environment
+//!   seen by an escaping ray included) is dropped. NEE is
+//!   unchanged (shadow rays through glass are occluded). Every full path is counted exactly
+//!   once, by its light end: a caustic-origin light end by the map at D₁ (the light side
+//!   may bounce diffusely before reaching D₁), any other by the path tracer.
+//! - **Light tracing** (`--caustics light|mixed`, [`super::light_trace`]): where the camera
+//!   sees D₁ directly, the photons' vertices (all, or the first only) are splatted onto the
+//!   image instead, and D₁ gathers none of them (or the later ones only); the proof that
+//!   the three estimators still count each path once is there.
+//! - A first version gathered a map of first-vertex photons at every camera vertex; the
+//!   map is concentrated (a gem's caustic), and gathering it at the second and later camera
+//!   vertices made bright splotches in indirect light: it lost to SPPM at equal time on
+//!   every caustic scene measured. Gathering only at D₁, with the light side carrying the
+//!   caustic's indirect light as SPPM's photons do, is the fix.
 //!
 //! Units: world space, metres; photon power is flux (the lights' units) divided by the
 //! photons emitted in the pass; radii in metres. Determinism: photon `i` of pass `p` starts
@@ -28,10 +47,12 @@
 //! traced in fixed chunks and concatenated in chunk order, so the map is the same whatever
 //! the thread count.
 
+use super::light_trace::{Splat, Splatter};
 use super::{StoreBudget, MAX_PHOTONS};
 use crate::bsdf::TransportMode;
 use crate::error::Result;
 use crate::math::Rng;
+use crate::photon::aim::DEFAULT_AIM;
 use crate::photon::emit::{Aim, EmittedPhoton, PhotonEmitter, PhotonNumbers};
 use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
@@ -46,10 +67,10 @@ const CHUNK: u64 = 4096;
 /// Stream key of caustic photons (distinct from SPPM's).
 const KEY: u64 = 0xCA05_71C0;
 
-/// The caustic lights' emitter (see the module docs: punctual lights and emissive
-/// triangles, not the environment).
+/// The caustic lights' emitter (see the module docs: every light, the environment
+/// included).
 pub fn emitter(scene: &Scene) -> PhotonEmitter {
-    PhotonEmitter::new(scene).without_environment()
+    PhotonEmitter::new(scene)
 }
 
 /// The one place a caustic photon is emitted: number `index` of the seed's digit-permuted
@@ -96,7 +117,10 @@ impl CausticMap {
     }
 
     /// Traces `n` photons of pass `pass` from the caustic lights and keeps the L S+ D
-    /// vertices. Returns the rays traced; an error when the store budget is crossed.
+    /// vertices; with a `splatter`, also connects each kept vertex to the camera
+    /// ([`super::light_trace`]). Returns the rays traced and the splats, one list per fixed
+    /// photon chunk in chunk order (empty without a splatter); an error when the store
+    /// budget is crossed.
     #[allow(clippy::too_many_arguments)]
     pub fn trace_pass<C: Carrier>(
         &mut self,
@@ -106,19 +130,21 @@ impl CausticMap {
         pass: u32,
         n: u64,
         lambda: C::Lambda,
-    ) -> Result<u64> {
+        max_depth: u32,
+        splatter: Option<&Splatter>,
+    ) -> Result<(u64, Vec<Vec<Splat>>)> {
         // Throughput roulette only: the seed rule's "specular" is not the delta split.
         let settings = TraceSettings {
-            max_depth: 1,
+            max_depth,
             roulette: Roulette::Throughput,
         };
         let budget = StoreBudget::default();
         let inv_n = 1.0 / n.max(1) as f32;
         let numbers = PhotonNumbers::new(seed ^ KEY);
-        let per_chunk: Vec<(Vec<Photon>, u64)> = (0..n.div_ceil(CHUNK))
+        let per_chunk: Vec<(Vec<Photon>, Vec<Splat>, u64)> = (0..n.div_ceil(CHUNK))
             .into_par_iter()
             .map(|c| {
-                let (mut out, mut rays) = (Vec::new(), 0);
+                let (mut out, mut splats, mut rays) = (Vec::new(), Vec::new(), 0);
                 for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
                     let mut rng = Rng::new(&[seed, u64::from(pass), i, KEY]);
                     let Some(ph) = emit_one(emitter, scene, &numbers, u64::from(pass) * n + i)
@@ -126,35 +152,50 @@ impl CausticMap {
                         continue;
                     };
                     let before = out.len();
-                    // With max_depth 1 the tracer stops after the first non-delta bounce, so
-                    // every vertex after ≥ 1 bounce followed delta bounces only: L S+ D.
+                    // The tracer calls back at every non-delta vertex; the first call is the
+                    // first non-delta vertex, reached through delta bounces only. A photon
+                    // whose first one came after ≥ 1 bounce (L S+ D) is stored there and at
+                    // every later non-delta vertex; any other photon is not stored.
+                    // The first vertex (L S+ D itself) is flagged CAUSTIC, the later ones
+                    // not ([`CausticMap::density`] can leave it to light tracing).
+                    let mut origin: Option<bool> = None;
+                    let mut camera_rays = 0;
                     rays += trace::trace::<C>(scene, &ph, lambda, &settings, &mut rng, |v, l| {
-                        if v.bounces > 0 && v.power != C::ZERO {
-                            let flags = if C::is_hero_only(l) {
-                                Photon::HERO_ONLY | Photon::CAUSTIC
+                        let first = origin.is_none();
+                        let caustic_origin = *origin.get_or_insert(v.bounces > 0);
+                        if caustic_origin && v.power != C::ZERO {
+                            let power = v.power * inv_n;
+                            if let Some(sp) = splatter.filter(|sp| first || sp.every_vertex()) {
+                                splats.extend(sp.connect(v, power, l, &mut camera_rays));
+                            }
+                            let hero = if C::is_hero_only(l) {
+                                Photon::HERO_ONLY
                             } else {
-                                Photon::CAUSTIC
+                                0
                             };
-                            out.push(Photon::new(v.p, v.wi, (v.power * inv_n).to_lanes(), flags));
+                            let caustic = if first { Photon::CAUSTIC } else { 0 };
+                            out.push(Photon::new(v.p, v.wi, power.to_lanes(), hero | caustic));
                         }
                     });
+                    rays += camera_rays;
                     if !budget.add(out.len() - before) {
                         break;
                     }
                 }
-                (out, rays)
+                (out, splats, rays)
             })
             .collect();
         budget.check(n, 1)?;
         self.photons.clear();
         self.photons
             .reserve_exact(per_chunk.iter().map(|c| c.0.len()).sum());
-        let mut rays = 0;
-        for (p, r) in per_chunk {
+        let (mut rays, mut splats) = (0, Vec::with_capacity(per_chunk.len()));
+        for (p, sp, r) in per_chunk {
             self.photons.extend_from_slice(&p);
+            splats.push(sp);
             rays += r;
         }
-        Ok(rays)
+        Ok((rays, splats))
     }
 
     /// The current pass's radius, choosing the first with `initial(photons)` when none was
@@ -183,9 +224,12 @@ impl CausticMap {
 
     /// Radiance the map reflects at the camera vertex `s` toward its `wo`:
     /// Σ f(wo, wiₚ) Φₚ / (π r²) over the photons within r (Jensen 2001 eq. 7.6 with a
-    /// constant kernel). Hero-wavelength bookkeeping as in SPPM: when both the camera path
-    /// and the photon kept only the hero (each carrying 4× its lane), divide by 4 once.
-    pub fn density<C: Carrier>(&self, s: &Surface<C>, lambda: &C::Lambda) -> C {
+    /// constant kernel); with `later_only`, over the photons stored after a diffuse bounce
+    /// only (not at a photon's first vertex, flagged [`Photon::CAUSTIC`]: light tracing's in
+    /// mixed mode, [`super::light_trace`]). Hero-wavelength bookkeeping as in SPPM: when
+    /// both the camera path and the photon kept only the hero (each carrying 4× its lane),
+    /// divide by 4 once.
+    pub fn density<C: Carrier>(&self, s: &Surface<C>, lambda: &C::Lambda, later_only: bool) -> C {
         let r2 = self.r2.unwrap_or(0.0);
         if self.photons.is_empty() || r2 <= 0.0 {
             return C::ZERO;
@@ -195,6 +239,9 @@ impl CausticMap {
         let mut sum = C::ZERO;
         self.grid.for_each_within(s.hit.p, r, |i, _| {
             let ph = &self.photons[i as usize];
+            if later_only && ph.flags() & Photon::CAUSTIC != 0 {
+                return;
+            }
             let wi = s.frame.to_local(ph.wi());
             let f = s.bsdf.eval(s.wo, wi, TransportMode::Radiance);
             let mut c = f * C::from_lanes(ph.power());
@@ -210,7 +257,10 @@ impl CausticMap {
 /// The caustic lights' probe behind `--method auto` ([`crate::plan::resolve_method`]): of
 /// `n` photons from the caustic lights (fixed seed, RGB, the map's split), the share of the
 /// power arriving at first non-delta hits that arrives after ≥ 1 delta bounce (L S+ D),
-/// in [0, 1]; 0 when no photon reaches a non-delta surface.
+/// in [0, 1]; 0 when no photon reaches a non-delta surface. The photons are emitted as
+/// SPPM's are ([`DEFAULT_AIM`]: half aimed at the caustic makers, each weighted by
+/// p_usual/p_mixture), so the share is of all the light the lights send, estimated with
+/// enough photons through a small stone under a large sky to see it.
 pub fn probe_share(scene: &Scene, n: u32) -> f64 {
     let emitter = emitter(scene);
     if emitter.is_empty() {
@@ -221,10 +271,10 @@ pub fn probe_share(scene: &Scene, n: u32) -> f64 {
         roulette: Roulette::Throughput,
     };
     let (mut all, mut caustic) = (0.0f64, 0.0f64);
+    let numbers = PhotonNumbers::new(KEY ^ 0x9206E);
     for i in 0..n {
         let mut rng = Rng::new(&[KEY, u64::from(i), 0x9206E]);
-        // Unaimed: the share is of all the light the caustic lights send.
-        let Some(ph) = emitter.emit_from(scene, &mut rng) else {
+        let Some(ph) = emitter.emit_index(scene, &numbers, u64::from(i), DEFAULT_AIM) else {
             continue;
         };
         let mut first = true;

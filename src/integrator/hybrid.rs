@@ -1,7 +1,8 @@
 //! The hybrid (`--method hybrid`): the path tracer for every path a camera path can reach
 //! with next-event estimation or BSDF sampling, and a progressive caustic photon map for
 //! exactly the light paths it cannot, L S+ D (light → delta chain → first non-delta
-//! surface). The split, the caustic lights and the radius sequence are
+//! surface), optionally light-traced where the camera sees them directly
+//! ([`super::light_trace`]). The split, the caustic lights and the radius sequence are
 //! [`super::caustic`]'s; the camera side is [`path::camera_path`] with
 //! [`CausticSplit::Map`].
 //!
@@ -12,17 +13,24 @@
 //!    their grid with the pass radius (the first radius, unless given, is 2 pixel
 //!    footprints at the median camera distance of the first pass's photons, 1 % of the
 //!    scene's diagonal without any);
+//!    With `--caustics light|mixed` and a perspective camera, the same photon vertices are
+//!    connected to the camera ([`light_trace`]; which ones, and which map photons D₁ then
+//!    gathers, is the split proved there), the splats applied in the photon chunks' order
+//!    to the pass's splat image;
 //! 3. traces one camera sample per pixel (`primary_ray`, sample `pass` of the pixel from
-//!    the render's sampler, Sobol' blocks of `--spp`) through the split path tracer and
-//!    adds it to the film's half `pass mod 2`.
+//!    the render's sampler, Sobol' blocks of `--spp`) through the split path tracer, adds
+//!    the pixel's splats (the splat image is a per-pixel estimate of one pass, so the
+//!    film's average over passes stays the mean) and adds it to the film's half
+//!    `pass mod 2`.
 //!
 //! So `--spp N` is N passes of one sample per pixel and N caustic maps; the image after N
 //! passes is a pure function of the seed (pixels are independent, the map is built in
 //! fixed chunks), whatever the thread count or the split into rounds.
 
 use super::caustic::{self, CausticMap};
+use super::light_trace::{self, Splatter};
 use super::path::{self, CausticSplit, StopAt};
-use super::{CausticSettings, Context};
+use super::{CausticMode, CausticSettings, Context};
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::output::ImageRgb;
@@ -83,6 +91,16 @@ fn run<C: Carrier>(
     let n_photons = caustic::photons_per_pass(cs.photons, pixels);
     let emitter = caustic::emitter(scene);
     let mut map = CausticMap::new(cs.radius, cs.alpha);
+    let splatter = match cs.mode {
+        CausticMode::Map => None,
+        CausticMode::Light | CausticMode::Mixed => Splatter::new(
+            scene,
+            camera,
+            (settings.width, settings.height),
+            max_depth,
+            cs.mode == CausticMode::Light,
+        ),
+    };
     let schedule = Schedule {
         target: u64::from(settings.spp.max(1)),
         max_round: 1,
@@ -107,15 +125,35 @@ fn run<C: Carrier>(
             let lambda = C::sample_lambda(u_l.min(1.0 - f32::EPSILON));
             // 2. The caustic map.
             let mut round = Round::default();
+            let mut splats = Vec::new();
             if !emitter.is_empty() {
-                round.rays +=
-                    map.trace_pass::<C>(scene, &emitter, settings.seed, pass, n_photons, lambda)?;
+                let (rays, s) = map.trace_pass::<C>(
+                    scene,
+                    &emitter,
+                    settings.seed,
+                    pass,
+                    n_photons,
+                    lambda,
+                    max_depth,
+                    splatter.as_ref(),
+                )?;
+                (round.rays, splats) = (round.rays + rays, s);
                 round.photons = n_photons;
             }
+            let image = splatter
+                .is_some()
+                .then(|| light_trace::splat_image(&splats, pixels as usize));
             let r = map.begin_gather(|ph| initial_radius(scene, camera, settings, ph));
             // 3. Camera samples.
-            let (rays, bad) =
-                camera_pass::<C>(scene, camera, max_depth, settings, pass, lambda, &map, film);
+            let (rays, bad) = camera_pass::<C>(
+                scene,
+                camera,
+                max_depth,
+                settings,
+                (pass, lambda),
+                (&map, image.as_deref(), cs.mode),
+                film,
+            );
             round.rays += rays;
             round.bad += bad;
             map.end_pass(pass);
@@ -126,22 +164,34 @@ fn run<C: Carrier>(
     )
 }
 
-/// One camera sample per pixel of pass `pass`, split with the caustic map, into the film's
-/// half `pass mod 2`. Returns the rays and bad samples.
-#[allow(clippy::too_many_arguments)]
+/// One camera sample per pixel of pass `pass`, split with the caustic map, plus the pass's
+/// light-traced splats (`Some` in mixed mode: the map is then gathered only through delta
+/// bounces), into the film's half `pass mod 2`. Returns the rays and bad samples.
 fn camera_pass<C: Carrier>(
     scene: &Scene,
     camera: &Camera,
     max_depth: u32,
     settings: &RenderSettings,
-    pass: u32,
-    lambda: C::Lambda,
-    map: &CausticMap,
+    (pass, lambda): (u32, C::Lambda),
+    (map, splats, mode): (&CausticMap, Option<&[Vec3]>, CausticMode),
     film: &mut Film,
 ) -> (u64, u64) {
     let half = (pass % 2) as usize;
     let sampler = pixel_sampler(settings, u64::from(settings.spp.max(1)));
-    let gather = |s: &crate::shading::Surface<C>, l: &C::Lambda| map.density(s, l);
+    let gather = |s: &crate::shading::Surface<C>, l: &C::Lambda| map.density(s, l, false);
+    let later = |s: &crate::shading::Surface<C>, l: &C::Lambda| map.density(s, l, true);
+    let split = match (splats, mode) {
+        (None, _) | (_, CausticMode::Map) => CausticSplit::Map(&gather),
+        (Some(_), CausticMode::Light) => CausticSplit::Mixed {
+            through: &gather,
+            direct: None,
+        },
+        (Some(_), CausticMode::Mixed) => CausticSplit::Mixed {
+            through: &gather,
+            direct: Some(&later),
+        },
+    };
+    let width = settings.width as usize;
     film.par_tiles_mut()
         .map(|tile| {
             let (mut rays, mut bad) = (0, 0);
@@ -160,10 +210,14 @@ fn camera_pass<C: Carrier>(
                     max_depth,
                     lambda,
                     StopAt::Never,
-                    CausticSplit::Map(&gather),
+                    split,
                     &mut ctx,
                 );
-                tile.sums[i][half] += guard::admit(l.to_rgb(&lambda), &mut bad).as_dvec3();
+                let mut rgb = l.to_rgb(&lambda);
+                if let Some(img) = splats {
+                    rgb += img[y as usize * width + x as usize];
+                }
+                tile.sums[i][half] += guard::admit(rgb, &mut bad).as_dvec3();
                 rays += ctx.rays;
             }
             *tile.count = u64::from(pass) + 1;

@@ -4,6 +4,7 @@
 
 pub mod caustic;
 pub mod hybrid;
+pub mod light_trace;
 pub mod path;
 pub mod photon_map;
 mod settings;
@@ -20,8 +21,8 @@ use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::Vec3;
 pub use settings::{
-    check_depth, CausticSettings, PhotonMapSettings, PhotonSettings, SppmSettings, StoreBudget,
-    MAX_DEPTH, MAX_PHOTONS, MAX_STORED_PHOTONS,
+    check_depth, CausticMode, CausticSettings, PhotonMapSettings, PhotonSettings, SppmSettings,
+    StoreBudget, MAX_DEPTH, MAX_PHOTONS, MAX_STORED_PHOTONS,
 };
 
 /// The rendering method (`--method`).

@@ -100,19 +100,34 @@ pub enum StopAt {
     Diffuse,
 }
 
+/// A caustic map's gather at a camera vertex: reflected radiance toward its `wo`
+/// ([`super::caustic::CausticMap::density`]).
+pub type Gather<'a, C> = &'a (dyn Fn(&Surface<C>, &<C as Carrier>::Lambda) -> C + Sync);
+
 /// How the path tracer shares light transport with a caustic photon map (`--method hybrid`,
 /// [`super::caustic`]); the split is Jensen's caustic map in Heckbert's notation.
 #[derive(Clone, Copy)]
 pub enum CausticSplit<'a, C: Carrier> {
     /// The plain path tracer: every path is counted here.
     None,
-    /// Light paths L S+ D (a caustic light, at least one delta bounce, the first non-delta
-    /// vertex D) belong to the caustic map: at every non-delta vertex whose BSDF-sampled
-    /// bounce would be followed, `gather(surface, lambda)` adds the map's reflected radiance
-    /// (times the path throughput), and emission found by BSDF sampling after a
-    /// non-delta bounce followed by ≥ 1 delta bounces is dropped (exactly the paths the map
-    /// counts). The environment is not a caustic light: its radiance stays here.
-    Map(&'a (dyn Fn(&Surface<C>, &C::Lambda) -> C + Sync)),
+    /// Paths whose light end starts L S+ D (a caustic light, at least one delta bounce, a
+    /// non-delta vertex) belong to the caustic map ([`super::caustic`]): at the path's
+    /// first non-delta vertex, if its BSDF-sampled bounce would be followed,
+    /// `gather(surface, lambda)` adds the map's reflected radiance (times the path
+    /// throughput), and emission found by BSDF sampling after any non-delta bounce followed
+    /// by ≥ 1 delta bounces is dropped (exactly the paths the map counts), the environment's
+    /// radiance seen by a ray escaping after D S+ included (the environment is a caustic
+    /// light).
+    Map(Gather<'a, C>),
+    /// As `Map`, but D₁ gathers with `through` if the camera reached it through ≥ 1 delta
+    /// bounce or BLEND pass-through, with `direct` if it is seen directly (`None`: nothing);
+    /// light tracing counts the rest ([`super::light_trace`], which proves the split).
+    Mixed {
+        /// The gather at a D₁ seen through delta bounces (the whole map).
+        through: Gather<'a, C>,
+        /// The gather at a D₁ seen directly (the photons light tracing does not splat).
+        direct: Option<Gather<'a, C>>,
+    },
 }
 
 /// The first diffuse-like hit of a camera path: where photons are gathered.
@@ -272,15 +287,19 @@ fn trace<C: Carrier>(
     // Delta bounces since the last non-delta bounce (None before the first): ≥ 1 when
     // emission found now closes a D S+ L chain, the caustic map's share.
     let mut since_diffuse: Option<u32> = None;
+    // No bounce and no BLEND pass-through yet: the next vertex is seen directly.
+    let mut direct = true;
     loop {
+        // The light end found now closes a D S+ L chain: the caustic map's (or light
+        // tracing's) share when the path is split.
+        let caustic = !matches!(split, CausticSplit::None) && since_diffuse.unwrap_or(0) > 0;
         let Some(at) = shading::arrive::<C>(scene, &ray, &media, &lambda, &mut ctx.rays) else {
-            if let Some(e) = escaped(scene, &ray, &prev, p_sel, beta, &lambda) {
+            if let (Some(e), false) = (escaped(scene, &ray, &prev, p_sel, beta, &lambda), caustic) {
                 l += e;
             }
             break;
         };
         beta *= at.transmittance;
-        let caustic = matches!(split, CausticSplit::Map(_)) && since_diffuse.unwrap_or(0) > 0;
         if let (Some(e), false) = (emitted(scene, &at, &prev, p_sel, beta, &lambda), caustic) {
             l += e;
         }
@@ -293,6 +312,7 @@ fn trace<C: Carrier>(
         let s = match ev {
             Event::PassThrough(next) => {
                 ray = next;
+                direct = false;
                 continue;
             }
             Event::Scatter(s) => s,
@@ -313,7 +333,19 @@ fn trace<C: Carrier>(
         }
         if !s.bsdf.is_delta() {
             l += beta * next_event(scene, &s, &lambda, true, &mut u, &mut ctx.rays);
-            if let (CausticSplit::Map(gather), true) = (split, depth + 1 < max_depth) {
+            let first = since_diffuse.is_none();
+            let gather = match split {
+                CausticSplit::None => None,
+                CausticSplit::Map(g) => Some(g),
+                CausticSplit::Mixed { through, direct: d } => {
+                    if direct {
+                        d
+                    } else {
+                        Some(through)
+                    }
+                }
+            };
+            if let (Some(gather), true) = (gather, first && depth + 1 < max_depth) {
                 l += beta * gather(&s, &lambda);
             }
         }
@@ -360,6 +392,7 @@ fn trace<C: Carrier>(
         }
         ray = s.spawn(bs.wi);
         vertex += 1;
+        direct = false;
     }
     (l, None)
 }

@@ -281,28 +281,6 @@ impl PhotonEmitter {
     }
 }
 
-impl PhotonEmitter {
-    /// The same emitter without the environment: the punctual lights and emissive
-    /// triangles only, reselected by the luminance of their flux (the hybrid's caustic
-    /// lights, [`crate::integrator::caustic`]). Each photon's power is still divided by its
-    /// (new) selection probability, so the mean power is the remaining lights' flux.
-    pub fn without_environment(&self) -> PhotonEmitter {
-        let kept: Vec<(Source, Vec3)> = self
-            .sources
-            .iter()
-            .filter(|(s, _, _)| *s != Source::Environment)
-            .map(|&(s, f, _)| (s, f))
-            .collect();
-        let (sources, cdf, total) = selection(kept);
-        PhotonEmitter {
-            sources,
-            cdf,
-            total,
-            ..self.clone()
-        }
-    }
-}
-
 /// The light selection over `candidates` (source, flux): each chosen with probability
 /// proportional to its flux's luminance. Returns (source, flux, probability) per source,
 /// the CDF (last entry exactly 1) and the total flux.

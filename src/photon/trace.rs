@@ -26,7 +26,7 @@ use crate::math::Rng;
 use crate::medium::MediumStack;
 use crate::optics::refract;
 use crate::scene::Scene;
-use crate::shading::{self, is_diffuse_like, Event, MAX_DELTA_BOUNCES};
+use crate::shading::{self, is_diffuse_like, Event, Surface, MAX_DELTA_BOUNCES};
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
 
@@ -63,7 +63,7 @@ pub struct TraceSettings {
 
 /// A photon arriving at a non-delta surface.
 #[derive(Debug, Clone, Copy)]
-pub struct PhotonVertex<C: Carrier> {
+pub struct PhotonVertex<'s, C: Carrier> {
     /// Position.
     pub p: Vec3,
     /// Unit direction back toward where the photon came from (world).
@@ -75,6 +75,9 @@ pub struct PhotonVertex<C: Carrier> {
     /// The path so far is L S+ (at least one bounce, all specular or near-specular): a
     /// caustic photon.
     pub caustic: bool,
+    /// The surface there (hit, BSDF, shading frame; its `wo` is `wi` in the frame): what
+    /// connecting the vertex to the camera needs ([`crate::integrator::light_trace`]).
+    pub surface: &'s Surface<C>,
 }
 
 /// The lobe colours the seed paper's rule chooses among: (diffuse, specular, transmission).
@@ -180,6 +183,7 @@ pub fn trace<C: Carrier>(
                 power: beta,
                 bounces,
                 caustic: bounces > 0 && all_specular,
+                surface: &s,
             };
             store(&v, &lambda);
         }

@@ -79,22 +79,26 @@ impl SpectralMode {
 /// 1. no light reaches a diffuse-like surface through specular ones
 ///    ([`crate::photon::trace::has_caustic_paths`], all lights) → **path**: nothing the path
 ///    tracer cannot sample;
-/// 2. the caustic lights (punctual and emissive, [`crate::integrator::caustic`]) put no
-///    power through delta chains onto a non-delta surface ([`caustic::probe_share`] = 0): the
-///    caustics come from the environment (or glossy chains), which the hybrid leaves to the
-///    path tracer → **SPPM**, whose photons carry them;
-/// 3. the caustic share s of the caustic lights' power at first non-delta hits is below
-///    [`AUTO_HYBRID_BELOW`] → **hybrid** (the path tracer for everything it reaches, the
-///    map only for L S+ D);
-/// 4. otherwise → **SPPM**.
+/// 2. a transmissive material is rough ([`rough_glass`]): light focused through rough glass
+///    (L G+ D) is neither the path tracer's strength (a point or spot light is reached only
+///    by next-event estimation at the last rough interface: fireflies) nor the hybrid's
+///    caustic map's (delta chains only) → **SPPM**, whose photons carry every chain;
+/// 3. the caustic share s — of the lights' power arriving at first non-delta hits, the part
+///    that came through delta bounces ([`caustic::probe_share`]) — is below
+///    [`AUTO_HYBRID_BELOW`] → **hybrid**: the path tracer for everything it reaches, the
+///    caustic map only for the L S+ D paths;
+/// 4. otherwise (the caustics are the picture: a stone under a narrow spot, a beam through a
+///    prism) → **SPPM**.
 ///
-/// [`AUTO_HYBRID_BELOW`] is 0 (the hybrid is not chosen) on the measurements so far: at
-/// equal time (20 s, 2 shared cores, against 150–300 s SPPM references) SPPM was ahead of
-/// the hybrid on every caustic scene of the repository, from s ≈ 0 (ruby, relative error
-/// 0.171 vs 0.200) and 2.4 % (glass of water, 0.081 vs 0.090) to 2.9 % (fig4_5_1
-/// caustics, RMSE 0.27 vs 0.39) and 37 % (gem caustics, 0.37 vs 2.3): the hybrid's
-/// indirect light gathers the concentrated caustic map at later camera vertices, and in
-/// spectral scenes its path-traced part shares the pass's wavelengths.
+/// Measured (BENCHMARKS.md "Converging faster", 20 s each, 2 cores, relative MSE against
+/// long references, hybrid vs SPPM): the hybrid ahead on the gallery's studio-lit stones
+/// (s < 0.2 %: oval ruby 0.0070 vs 0.035, round diamond 0.095 vs 0.19, bare diamond 0.90
+/// vs 2.9), the prism beam of Fig. 5.3.1 (s ≈ 0: 2.8e-5 vs 1.0e-4) and the point-light
+/// caustic sphere (s = 3.2 %: 2.7e-3 vs 4.2e-3); SPPM ahead on DispersionTest (s = 4.9 %:
+/// 5.8e-3 vs 5.3e-3), the Cornell box with water (s = 18 %: 0.020 vs 0.0023: the floor seen
+/// through the water is all caustic, where SPPM's per-pixel radii beat the map's global
+/// one), the stone under a 3° spot (s = 38 %: 1.7 vs 0.19) and CompareDispersion's rough
+/// spheres (12.9 vs 6.4). Hence [`AUTO_HYBRID_BELOW`] = 4 %.
 pub fn resolve_method(method: Method, scene: &Scene) -> (Method, Option<String>) {
     if method != Method::Auto {
         return (method, None);
@@ -108,47 +112,58 @@ pub fn resolve_method(method: Method, scene: &Scene) -> (Method, Option<String>)
             Some("--method auto: no caustic paths found: path tracer".into()),
         );
     }
-    let share = caustic::probe_share(scene, CAUSTIC_PROBE_PHOTONS);
-    let (method, why) = if share <= 0.0 {
+    let why = if let Some(name) = rough_glass(scene) {
         (
             Method::Sppm,
-            "caustics only from the environment or glossy surfaces (the lamps and punctual \
-             lights put no power through specular chains onto a diffuse surface): SPPM"
-                .to_string(),
-        )
-    } else if share < AUTO_HYBRID_BELOW {
-        (
-            Method::Hybrid,
             format!(
-                "caustics carry {:.2} % of the light reaching diffuse surfaces (under {:.2} %): \
-                 path tracer + caustic map (hybrid)",
-                100.0 * share,
-                100.0 * AUTO_HYBRID_BELOW
+                "rough transmissive material {name} focuses light the path tracer reaches only \
+                 by chance and the hybrid's caustic map does not carry: SPPM"
             ),
         )
     } else {
-        (
-            Method::Sppm,
-            format!(
-                "caustics carry {:.2} % of the light reaching diffuse surfaces ({}): SPPM",
-                100.0 * share,
-                if AUTO_HYBRID_BELOW > 0.0 {
-                    format!(
-                        "the hybrid is chosen under {:.2} %",
-                        100.0 * AUTO_HYBRID_BELOW
-                    )
-                } else {
-                    "the hybrid, behind SPPM at equal time so far, is not chosen".to_string()
-                }
-            ),
-        )
+        let share = caustic::probe_share(scene, CAUSTIC_PROBE_PHOTONS);
+        if share < AUTO_HYBRID_BELOW {
+            (
+                Method::Hybrid,
+                format!(
+                    "caustics carry {:.2} % of the light reaching diffuse surfaces (under {:.0} %): \
+                     path tracer + caustic map (hybrid)",
+                    100.0 * share,
+                    100.0 * AUTO_HYBRID_BELOW
+                ),
+            )
+        } else {
+            (
+                Method::Sppm,
+                format!(
+                    "caustics carry {:.2} % of the light reaching diffuse surfaces (the hybrid \
+                     is chosen under {:.0} %): SPPM",
+                    100.0 * share,
+                    100.0 * AUTO_HYBRID_BELOW
+                ),
+            )
+        }
     };
-    (method, Some(format!("--method auto: {why}")))
+    (why.0, Some(format!("--method auto: {}", why.1)))
 }
 
-/// The caustic share of first-hit power under which `--method auto` picks the hybrid over
-/// SPPM ([`resolve_method`]; 0 = never, from the measurements cited there).
-pub const AUTO_HYBRID_BELOW: f64 = 0.0;
+/// The first transmissive material with a rough surface (GGX roughness factor above
+/// [`ROUGH_GLASS`]), by its label (`material N "name"`), if any.
+fn rough_glass(scene: &Scene) -> Option<String> {
+    scene
+        .materials
+        .iter()
+        .enumerate()
+        .find(|(_, m)| m.is_transmissive() && m.desc.roughness > ROUGH_GLASS)
+        .map(|(_, m)| m.desc.name.clone())
+}
+
+/// Roughness above which a transmissive material counts as rough glass for `--method auto`.
+pub const ROUGH_GLASS: f32 = 0.05;
+
+/// The caustic share under which `--method auto` picks the hybrid over SPPM
+/// ([`resolve_method`], from the measurements cited there).
+pub const AUTO_HYBRID_BELOW: f64 = 0.04;
 
 /// Probe photons behind the caustic decision (the number [`resolve_method`] uses).
 pub const CAUSTIC_PROBE_PHOTONS: u32 = 4096;
