@@ -125,29 +125,40 @@ fn checkpoints_write_the_image_while_passes_run_and_time_stops_them() {
     assert_eq!(names, vec!["c.png".to_string()]);
 }
 
+/// `--method auto` says which method and why: the point light's small caustic under the
+/// glass sphere in a lit room → the hybrid; the stone under a 3° spot, whose light is mostly
+/// caustic → SPPM; a scene with nothing specular → the path tracer.
 #[test]
-fn auto_picks_sppm_for_caustics_and_path_otherwise() {
+fn auto_picks_hybrid_sppm_or_path() {
     let dir = common::scratch_dir("cli_auto");
-    let o = iris(
-        &[
-            "render",
-            &asset("paper/fig4_5_1_caustics.glb"),
-            "--method",
-            "auto",
-            "--passes",
-            "2",
-            "--photons",
-            "5000",
-            "--size",
-            "32x24",
-            "-q",
-            "-o",
-            "a.png",
-        ],
-        &dir,
-    );
+    let run = |file: &str, out: &str| {
+        iris(
+            &[
+                "render",
+                &asset(file),
+                "--method",
+                "auto",
+                "--spp",
+                "2",
+                "--passes",
+                "2",
+                "--photons",
+                "5000",
+                "--size",
+                "32x24",
+                "-q",
+                "-o",
+                out,
+            ],
+            &dir,
+        )
+    };
+    let o = run("paper/fig4_5_1_caustics.glb", "a.png");
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(stderr(&o).contains("SPPM"), "{}", stderr(&o));
+    assert!(stderr(&o).contains("(hybrid)"), "{}", stderr(&o));
+    let o = run("scenes/gem_caustics.glb", "g.png");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("): SPPM"), "{}", stderr(&o));
     // A scene with no transmissive or mirror material: the path tracer.
     let mut scene = iris::model::GenScene {
         name: "diffuse only".into(),
