@@ -75,32 +75,7 @@ fn render(
     render_depth(scene, cam, method, 32, s, photon)
 }
 
-/// 4 × 4 block means of the channel mean.
-fn blocks(img: &ImageRgb) -> Vec<f64> {
-    let mut out = Vec::new();
-    for by in 0..H / 4 {
-        for bx in 0..W / 4 {
-            let mut s = 0.0;
-            for y in by * 4..by * 4 + 4 {
-                for x in bx * 4..bx * 4 + 4 {
-                    let p = img.data[(y * W + x) as usize];
-                    s += (p.x + p.y + p.z) as f64 / 3.0;
-                }
-            }
-            out.push(s / 16.0);
-        }
-    }
-    out
-}
-
-fn mean(v: &[f64]) -> f64 {
-    v.iter().sum::<f64>() / v.len() as f64
-}
-
-fn relative_rmse(a: &[f64], b: &[f64]) -> f64 {
-    let mse = a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum::<f64>() / a.len() as f64;
-    mse.sqrt() / mean(b)
-}
+use common::{blocks, mean, relative_rmse};
 
 /// The 3 × 3 blocks around the block brightest relative to its 8 neighbours (the focused
 /// light under the sphere), and that excess relative to the neighbours' mean.

@@ -38,29 +38,7 @@ fn run(method: Method, spp: u32, photon: PhotonSettings, seed: u64) -> ImageRgb 
         .0
 }
 
-/// 4 × 4 block means of the channel mean.
-fn blocks(img: &ImageRgb) -> Vec<f64> {
-    let mut out = Vec::new();
-    for by in 0..H / 4 {
-        for bx in 0..W / 4 {
-            let mut s = 0.0;
-            for y in by * 4..by * 4 + 4 {
-                for x in bx * 4..bx * 4 + 4 {
-                    let p = img.data[(y * W + x) as usize];
-                    s += (p.x + p.y + p.z) as f64 / 3.0;
-                }
-            }
-            out.push(s / 16.0);
-        }
-    }
-    out
-}
-
-fn relative_rmse(a: &[f64], b: &[f64]) -> f64 {
-    let mean = b.iter().sum::<f64>() / b.len() as f64;
-    let mse = a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum::<f64>() / a.len() as f64;
-    mse.sqrt() / mean
-}
+use common::{blocks, mean, relative_rmse};
 
 #[test]
 fn photon_methods_agree_with_the_path_tracer_under_an_area_light() {
@@ -88,7 +66,6 @@ fn photon_methods_agree_with_the_path_tracer_under_an_area_light() {
     let noise = relative_rmse(&path2, &path);
     let e_sppm = relative_rmse(&sppm, &path);
     let e_photon = relative_rmse(&photon, &path);
-    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
     eprintln!(
         "relative block RMSE: path vs path {noise:.4}, sppm vs path {e_sppm:.4}, photon vs path {e_photon:.4}; means path {:.5} sppm {:.5} photon {:.5}",
         mean(&path),

@@ -216,3 +216,37 @@ pub fn files_with_ext(dir: &std::path::Path, exts: &[&str]) -> Vec<PathBuf> {
     out.sort();
     out
 }
+
+/// 4 × 4 block means of the channel mean of `img` (its width and height multiples of 4):
+/// the agreement tests' unit of comparison.
+#[allow(dead_code)]
+pub fn blocks(img: &iris::output::ImageRgb) -> Vec<f64> {
+    let (w, h) = (img.width, img.height);
+    let mut out = Vec::new();
+    for by in 0..h / 4 {
+        for bx in 0..w / 4 {
+            let mut s = 0.0;
+            for y in by * 4..by * 4 + 4 {
+                for x in bx * 4..bx * 4 + 4 {
+                    let p = img.data[(y * w + x) as usize];
+                    s += (p.x + p.y + p.z) as f64 / 3.0;
+                }
+            }
+            out.push(s / 16.0);
+        }
+    }
+    out
+}
+
+/// The mean of `v`.
+#[allow(dead_code)]
+pub fn mean(v: &[f64]) -> f64 {
+    v.iter().sum::<f64>() / v.len() as f64
+}
+
+/// RMSE of `a` against `b`, relative to `b`'s mean.
+#[allow(dead_code)]
+pub fn relative_rmse(a: &[f64], b: &[f64]) -> f64 {
+    let mse = a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum::<f64>() / a.len() as f64;
+    mse.sqrt() / mean(b)
+}
