@@ -136,35 +136,6 @@ fn zsobol_values_do_not_depend_on_visiting_order() {
     assert!(forward.iter().flatten().all(|u| (0.0..1.0).contains(u)));
 }
 
-#[test]
-fn sampler_speed_is_printed_not_asserted() {
-    // A rough cost per value (release build); printed for the record, never asserted.
-    let n = 1u64 << 20;
-    let t = std::time::Instant::now();
-    let mut acc = 0.0f32;
-    for i in 0..n {
-        acc += sobol_sample(i, (i & 63) as usize, Scramble::Owen(i as u32));
-    }
-    let sobol_ns = t.elapsed().as_nanos() as f64 / n as f64;
-    let mut s = ZSobol::new(64, (1920, 1080), 1);
-    let t = std::time::Instant::now();
-    for i in 0..n / 8 {
-        s.start_pixel_sample((i % 1920) as u32, ((i / 1920) % 1080) as u32, i % 64);
-        for _ in 0..8 {
-            acc += s.get_1d();
-        }
-    }
-    let zsobol_ns = t.elapsed().as_nanos() as f64 / n as f64;
-    let t = std::time::Instant::now();
-    for i in 0..n / 8 {
-        acc += halton_sample(i, (i & 7) as usize, 3);
-    }
-    let halton_ns = t.elapsed().as_nanos() as f64 / (n / 8) as f64;
-    eprintln!(
-        "ns per value: sobol+owen {sobol_ns:.1}, zsobol get_1d {zsobol_ns:.1}, owen halton {halton_ns:.1} (checksum {acc})"
-    );
-}
-
 fn settings(w: u32, h: u32, spp: u32, seed: u64, sampler: SamplerKind) -> RenderSettings {
     RenderSettings {
         width: w,
