@@ -40,6 +40,8 @@ enum Command {
     Info {
         /// Scene file.
         scene: PathBuf,
+        #[command(flatten)]
+        looks: LookArgs,
     },
     /// Compare an EXR image with a reference EXR of the same size: RMSE (linear RGB, all
     /// channels), RMSE relative to the reference's mean, and the mean of each.
@@ -69,6 +71,46 @@ enum Command {
     Gallery(GalleryArgs),
 }
 
+/// `--stone`, `--metal`, `--metal-roughness`: material overrides for render, converge, info.
+#[derive(clap::Args, Clone, Default)]
+struct LookArgs {
+    /// Make materials a stone (repeatable): NAME is diamond, sapphire, ruby, emerald,
+    /// cubic-zirconia, quartz or crown-glass. Without =SELECTOR it changes every material
+    /// no other --stone/--metal names; NAME=MATERIAL changes that material (a mesh name if
+    /// no material has it), NAME=material:MATERIAL or NAME=mesh:MESH say which.
+    #[arg(long, value_name = "NAME[=SELECTOR]")]
+    stone: Vec<String>,
+    /// Make materials a measured metal (repeatable), for settings: gold, silver, platinum,
+    /// copper, rose-gold, spectral n and k (see README, "Stones and settings"); selectors as
+    /// for --stone.
+    #[arg(long, value_name = "NAME[=SELECTOR]")]
+    metal: Vec<String>,
+    /// GGX perceptual roughness of every --metal surface, 0 (polished mirror, the default)
+    /// to 1.
+    #[arg(long, default_value_t = 0.0, value_parser = parse_unit, allow_hyphen_values = true)]
+    metal_roughness: f32,
+}
+
+impl LookArgs {
+    /// The flags, stones first, each in the order given.
+    fn flags(&self) -> iris::Result<Vec<iris::prepare::looks::LookFlag>> {
+        use iris::prepare::looks::LookFlag;
+        let stones = self.stone.iter().map(|a| LookFlag::stone(a));
+        let metals = self
+            .metal
+            .iter()
+            .map(|a| LookFlag::metal(a, self.metal_roughness));
+        stones.chain(metals).collect()
+    }
+}
+
+fn parse_unit(s: &str) -> Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(v) if (0.0..=1.0).contains(&v) => Ok(v),
+        _ => Err(format!("expected a value from 0 to 1, got {s:?}")),
+    }
+}
+
 #[derive(clap::Args)]
 struct GalleryArgs {
     /// Output directory (created if missing).
@@ -95,7 +137,7 @@ struct GemArgs {
     /// pear (brilliant, L/W 1.6).
     #[arg(long, value_parser = iris::model::cuts::Cut::parse)]
     cut: iris::model::cuts::Cut,
-    /// Stone: diamond, sapphire, ruby, cubic-zirconia, quartz, crown-glass.
+    /// Stone: diamond, sapphire, ruby, emerald, cubic-zirconia, quartz, crown-glass.
     #[arg(long, value_parser = iris::model::stones::Stone::parse)]
     stone: iris::model::stones::Stone,
     /// Girdle diameter (round) or length (emerald, oval, pear) in millimetres, from 0.1 to
@@ -244,6 +286,8 @@ struct RenderArgs {
     /// the model; pixels count as covered when the camera ray hits a surface (glass too).
     #[arg(long, value_parser = iris::output::Background::parse)]
     background: Option<iris::output::Background>,
+    #[command(flatten)]
+    looks: LookArgs,
     /// Print the render plan to stderr before rendering: which stages the scene needs
     /// (spectral or RGB, photons, volumes, textures, acceleration, environment, nested
     /// media), why, and what each costs (a 32x24 probe render, 10 000 photons).
@@ -286,6 +330,8 @@ struct ConvergeArgs {
     /// No progress output.
     #[arg(short, long)]
     quiet: bool,
+    #[command(flatten)]
+    looks: LookArgs,
 }
 
 fn parse_target(s: &str) -> Result<f64, String> {
@@ -369,7 +415,7 @@ fn run(cli: Cli) -> iris::Result<()> {
     match cli.command {
         Command::Render(a) => app::commands::render(&a.options()?),
         Command::Converge(a) => app::commands::converge(&a.options()?),
-        Command::Info { scene } => app::commands::info(&scene),
+        Command::Info { scene, looks } => app::commands::info(&scene, &looks.flags()?),
         Command::Diff { image, reference } => app::commands::diff(&image, &reference),
         Command::Gem(a) => {
             let spec = iris::model::cuts::preview::GemSpec {
@@ -435,6 +481,7 @@ impl RenderArgs {
                 view: a.view,
                 background: a.background.unwrap_or_default(),
             },
+            looks: a.looks.flags()?,
             explain: a.explain,
         })
     }
@@ -455,6 +502,7 @@ impl ConvergeArgs {
             threads: self.threads,
             accel: self.accel,
             quiet: self.quiet,
+            looks: self.looks.flags()?,
         })
     }
 }

@@ -11,12 +11,16 @@
 //! [`MaterialDesc::spectral_ior`] when the material is built): RGB transport uses its n at
 //! the helium d line ([`Material::ior`]), spectral transport evaluates
 //! [`Material::ior_model`] at each wavelength (nm).
+//!
+//! A material with a measured metal (`desc.conductor`, `--metal`) is an opaque conductor
+//! whose complex index n(λ) + ik(λ) comes from [`spectrum::metals`]
+//! ([`Material::conductor_index`]); its base colour is not used for shading.
 
 use crate::scene::desc::{
     effective_color, AlphaMode, ExplicitIor, ImageDesc, MaterialDesc, TextureRef,
 };
 use crate::spectrum::{self, ior::KNOWN_NAMES};
-use crate::spectrum::{Carrier, EmitterShape};
+use crate::spectrum::{Carrier, EmitterShape, Metal};
 use crate::texture::{self, Encoding};
 use glam::{Vec2, Vec3, Vec4};
 
@@ -148,6 +152,32 @@ impl Material {
             spectrum::IorModel::KhrDispersion { n_d, .. } => n_d,
             model => model.n_d(),
         }
+    }
+
+    /// The measured metal of a `--metal` material, if any.
+    pub fn conductor(&self) -> Option<Metal> {
+        self.desc.conductor
+    }
+
+    /// The complex index (n, k) of the material's measured metal at the path's wavelengths:
+    /// per wavelength in spectral transport, the metal's per-channel stand-ins
+    /// ([`Metal::rgb_eta_k`]) in RGB; `None` for any other material.
+    pub fn conductor_index<C: Carrier>(&self, l: &C::Lambda) -> Option<(C, C)> {
+        let metal = self.desc.conductor?;
+        Some(match C::lanes_nm(l) {
+            Some(lanes) => {
+                let nk = lanes.map(|nm| metal.eta_k(nm));
+                (
+                    C::from_lanes(nk.map(|p| p.0)),
+                    C::from_lanes(nk.map(|p| p.1)),
+                )
+            }
+            None => {
+                let (eta, k) = metal.rgb_eta_k();
+                let lanes = |v: glam::Vec3| C::from_lanes(v.extend(0.0).to_array());
+                (lanes(eta), lanes(k))
+            }
+        })
     }
 
     /// The material's n(λ) model (λ in nm), for spectral transport.

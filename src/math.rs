@@ -1,5 +1,6 @@
-//! Small math shared by every module: rays, a deterministic random-number generator and
-//! orthonormal frames. Directions are unit vectors unless stated; lengths in world units.
+//! Small math shared by every module: rays, a deterministic random-number generator,
+//! orthonormal frames and f64 complex numbers (for complex indices of refraction).
+//! Directions are unit vectors unless stated; lengths in world units.
 
 use glam::Vec3;
 
@@ -135,6 +136,93 @@ impl Frame {
     }
 }
 
+/// A complex number in f64: just what complex indices of refraction n + ik and the
+/// conductor Fresnel equations need (arithmetic, principal square root, |z|²).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Complex {
+    /// Real part.
+    pub re: f64,
+    /// Imaginary part.
+    pub im: f64,
+}
+
+impl Complex {
+    /// `re + i·im`.
+    pub const fn new(re: f64, im: f64) -> Self {
+        Complex { re, im }
+    }
+
+    /// A real number.
+    pub const fn real(re: f64) -> Self {
+        Complex { re, im: 0.0 }
+    }
+
+    /// |z|² = re² + im².
+    pub fn norm_sqr(self) -> f64 {
+        self.re * self.re + self.im * self.im
+    }
+
+    /// The principal square root (re ≥ 0, and im ≥ 0 when `self.im` ≥ 0): with
+    /// r = |z|, √z = (√((r + re)/2), sign(im)·√((r − re)/2)), the form without cancellation
+    /// for re < 0 (Press et al., Numerical Recipes, 3rd ed., §5.5).
+    pub fn sqrt(self) -> Self {
+        let r = self.norm_sqr().sqrt();
+        if r == 0.0 {
+            return Complex::real(0.0);
+        }
+        if self.re >= 0.0 {
+            let a = ((r + self.re) * 0.5).sqrt();
+            Complex::new(a, self.im / (2.0 * a))
+        } else {
+            let b = ((r - self.re) * 0.5).sqrt().copysign(self.im);
+            Complex::new(self.im / (2.0 * b), b)
+        }
+    }
+}
+
+impl std::ops::Add for Complex {
+    type Output = Complex;
+    fn add(self, o: Complex) -> Complex {
+        Complex::new(self.re + o.re, self.im + o.im)
+    }
+}
+
+impl std::ops::Sub for Complex {
+    type Output = Complex;
+    fn sub(self, o: Complex) -> Complex {
+        Complex::new(self.re - o.re, self.im - o.im)
+    }
+}
+
+impl std::ops::Mul for Complex {
+    type Output = Complex;
+    fn mul(self, o: Complex) -> Complex {
+        Complex::new(
+            self.re * o.re - self.im * o.im,
+            self.re * o.im + self.im * o.re,
+        )
+    }
+}
+
+impl std::ops::Mul<f64> for Complex {
+    type Output = Complex;
+    fn mul(self, s: f64) -> Complex {
+        Complex::new(self.re * s, self.im * s)
+    }
+}
+
+impl std::ops::Div for Complex {
+    type Output = Complex;
+    /// z / w = z·w̄ / |w|² (NaN or ∞ for w = 0).
+    fn div(self, o: Complex) -> Complex {
+        let d = o.norm_sqr();
+        Complex::new(
+            (self.re * o.re + self.im * o.im) / d,
+            (self.im * o.re - self.re * o.im) / d,
+        )
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -169,5 +257,34 @@ mod tests {
             let v = Vec3::new(0.2, 0.7, -0.1);
             assert!((f.to_world(f.to_local(v)) - v).length() < 1e-6);
         }
+    }
+
+    /// √z squares back to z, and the root is the principal one (re ≥ 0, im with the sign
+    /// of z's), including negative reals (gold's permittivity in the red is about −10 + 1i).
+    #[test]
+    fn complex_sqrt_is_the_principal_root() {
+        for (re, im) in [
+            (4.0, 0.0),
+            (-9.0, 0.0),
+            (-10.0, 1.2),
+            (3.0, -4.0),
+            (0.04, 9.0),
+        ] {
+            let z = Complex::new(re, im);
+            let r = z.sqrt();
+            let back = r * r;
+            assert!(
+                (back.re - re).abs() < 1e-12 && (back.im - im).abs() < 1e-12,
+                "{z:?}"
+            );
+            assert!(r.re >= 0.0, "{z:?} -> {r:?}");
+            assert!(r.im * im >= 0.0, "{z:?} -> {r:?}");
+        }
+        assert_eq!(Complex::new(-9.0, 0.0).sqrt(), Complex::new(0.0, 3.0));
+        let q = Complex::new(1.0, 2.0) / Complex::new(3.0, -1.0);
+        assert!(
+            (q.re - 0.1).abs() < 1e-15 && (q.im - 0.7).abs() < 1e-15,
+            "{q:?}"
+        );
     }
 }

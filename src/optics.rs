@@ -1,10 +1,12 @@
 //! Geometric optics at a smooth interface: mirror reflection, Snell refraction, the exact
-//! unpolarised Fresnel equations and the critical angle. Pure functions on unit vectors;
-//! `eta` is always the **relative** index n_transmitted / n_incident.
+//! unpolarised Fresnel equations (dielectric, and conductor with a complex index) and the
+//! critical angle. Pure functions on unit vectors; `eta` is always the **relative** index
+//! n_transmitted / n_incident.
 //!
 //! Sign convention: `n` is the unit normal on the side the incident direction comes from,
 //! i.e. `dot(wi, n) > 0` where `wi` points *away* from the surface toward the viewer/light.
 
+use crate::math::Complex;
 use crate::spectrum::Carrier;
 use glam::Vec3;
 
@@ -91,6 +93,43 @@ pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
     let r_parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
     let r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
     (0.5 * (r_parl * r_parl + r_perp * r_perp)).clamp(0.0, 1.0) as f32
+}
+
+/// Exact unpolarised Fresnel reflectance of a smooth conductor with complex relative index
+/// η = n + ik (k ≥ 0), light arriving from the side of the normal: the mean of |r_∥|² and
+/// |r_⊥|² with Snell's law in complex form, sin²θ_t = sin²θ_i/η², cos θ_t = √(1 − sin²θ_t)
+/// (principal root), r_∥ = (η cos θ_i − cos θ_t)/(η cos θ_i + cos θ_t),
+/// r_⊥ = (cos θ_i − η cos θ_t)/(cos θ_i + η cos θ_t) (Born & Wolf, Principles of Optics,
+/// 7th ed., §14.2; pbrt-v4 `FrComplex`). In f64. At normal incidence it is
+/// ((n − 1)² + k²)/((n + 1)² + k²); with k = 0 it is [`fresnel_dielectric`] (below the
+/// critical angle). `cos_i` is clamped to [0, 1]; a NaN index gives 1 (a mirror).
+#[inline]
+pub fn fresnel_conductor(cos_i: f32, n: f32, k: f32) -> f32 {
+    if n.is_nan() || k.is_nan() {
+        return 1.0;
+    }
+    let c = f64::from(cos_i.clamp(0.0, 1.0));
+    let eta = Complex::new(f64::from(n), f64::from(k.max(0.0)));
+    let sin2_t = Complex::real((1.0 - c) * (1.0 + c)) / (eta * eta);
+    let cos_t = (Complex::real(1.0) - sin2_t).sqrt();
+    let ci = Complex::real(c);
+    let r_parl = (eta * ci - cos_t) / (eta * ci + cos_t);
+    let r_perp = (ci - eta * cos_t) / (ci + eta * cos_t);
+    let r = 0.5 * (r_parl.norm_sqr() + r_perp.norm_sqr());
+    if r.is_nan() {
+        // 0/0 only when both denominators vanish: η = 0 at grazing incidence.
+        return 1.0;
+    }
+    r.clamp(0.0, 1.0) as f32
+}
+
+/// [`fresnel_conductor`] channel by channel (RGB) or lane by lane (4 wavelengths).
+#[inline]
+pub fn fresnel_conductor_c<C: Carrier>(cos_i: f32, eta: C, k: C) -> C {
+    let (n, k) = (eta.to_lanes(), k.to_lanes());
+    C::from_lanes(std::array::from_fn(|i| {
+        fresnel_conductor(cos_i, n[i], k[i])
+    }))
 }
 
 /// Critical angle θ_c = asin(n_t/n_i) for light going from the denser medium; `None` when

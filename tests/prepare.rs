@@ -91,6 +91,7 @@ fn render_and_converge_options_prepare_the_same_scene() {
         threads: 0,
         accel: Backend::Bvh,
         quiet: true,
+        looks: Vec::new(),
     };
     let a = prepare(&path, &render.prepare_options(None)).expect("render's preparation");
     let b = prepare(&path, &converge.prepare_options(None)).expect("converge's preparation");

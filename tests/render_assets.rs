@@ -78,6 +78,7 @@ fn render_all(files: &[PathBuf], scratch: &str) {
                 env: env.map(Some),
                 measure: Default::default(),
                 preview: Default::default(),
+                looks: Vec::new(),
                 explain: false,
             };
             let summary =

@@ -40,6 +40,7 @@ fn opts(scene: &Path, out: &Path, accel: Backend, threads: usize) -> RenderOptio
         env: None,
         measure: Default::default(),
         preview: Default::default(),
+        looks: Vec::new(),
         explain: false,
     }
 }

@@ -181,6 +181,7 @@ fn render_mean(scene: &Path, env: Option<Option<Environment>>, out: &Path) -> Ve
         env,
         measure: Default::default(),
         preview: Default::default(),
+        looks: Vec::new(),
         explain: false,
     };
     render_command(&opts).expect("render");

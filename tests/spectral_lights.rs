@@ -343,6 +343,7 @@ fn render_under_a_2700_k_light_has_its_colour() {
             env: None,
             measure: Default::default(),
             preview: Default::default(),
+            looks: Vec::new(),
             explain: false,
         };
         render_command(&opts).expect("render").image
@@ -422,6 +423,7 @@ fn spectral_render_under_a_2700_k_light_has_the_planckian_chromaticity() {
         env: None,
         measure: Default::default(),
         preview: Default::default(),
+        looks: Vec::new(),
         explain: false,
     };
     let image = render_command(&opts).expect("render").image;

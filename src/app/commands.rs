@@ -101,9 +101,10 @@ pub fn converge(opts: &ConvergeOptions) -> Result<()> {
     Ok(())
 }
 
-/// `iris info`: prints the scene's description and the render plan.
-pub fn info(scene: &Path) -> Result<()> {
-    print!("{}", super::info_command(scene)?);
+/// `iris info`: prints the scene's description and the render plan (after any `--stone` /
+/// `--metal` overrides).
+pub fn info(scene: &Path, looks: &[crate::prepare::looks::LookFlag]) -> Result<()> {
+    print!("{}", super::info_command_with(scene, looks)?);
     Ok(())
 }
 

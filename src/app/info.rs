@@ -5,12 +5,16 @@
 //!
 //! Each section of the text is written by its own function, in the order printed: header,
 //! meshes, materials, lights (with the file's environment), cameras, warnings, render plan.
+//! With `--stone` / `--metal` the description is the one after those overrides (as
+//! `iris render` sees it); without, a file with no transmissive material gets a note
+//! suggesting `--stone` and naming the materials it would change.
 
 use crate::accel::Backend;
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::integrator::Method;
 use crate::plan::SpectralMode;
+use crate::prepare::looks::{self, LookFlag};
 use crate::scene::desc::{
     CameraDesc, EnvironmentDesc, LightDesc, MaterialDesc, Projection, SceneDesc,
 };
@@ -19,7 +23,14 @@ use std::path::Path;
 
 /// `iris info`: a human-readable description of the scene.
 pub fn info_command(path: &Path) -> Result<String> {
-    let desc = crate::load::load_scene(path)?;
+    info_command_with(path, &[])
+}
+
+/// `iris info` with `--stone` / `--metal` flags: the scene as `iris render` with those flags
+/// sees it ([`crate::prepare::looks`]).
+pub fn info_command_with(path: &Path, flags: &[LookFlag]) -> Result<String> {
+    let mut desc = crate::load::load_scene(path)?;
+    let applied = looks::apply(&mut desc, flags)?;
     let mut s = String::new();
     write_header(&mut s, path, &desc);
     write_meshes(&mut s, &desc);
@@ -27,13 +38,58 @@ pub fn info_command(path: &Path) -> Result<String> {
     write_lights(&mut s, &desc);
     write_cameras(&mut s, &desc.cameras);
     write_warnings(&mut s, &desc.warnings);
-    match info_plan(path) {
+    match info_plan(path, flags) {
         Ok(plan) => s.push_str(&plan),
         Err(e) => {
             let _ = writeln!(s, "render plan: unavailable ({e})");
         }
     }
+    for a in &applied {
+        let _ = writeln!(s, "note: {a}");
+    }
+    if flags.is_empty() {
+        if let Some(hint) = stone_hint(&desc) {
+            let _ = writeln!(s, "note: {hint}");
+        }
+    }
     Ok(s)
+}
+
+/// The `--stone` suggestion for a file whose meshes use no transmissive material (an
+/// artist's gem with a viewer's placeholder material), naming the materials a bare
+/// `--stone diamond` would change; `None` when some mesh is transmissive.
+fn stone_hint(desc: &SceneDesc) -> Option<String> {
+    let used: Vec<&MaterialDesc> = desc
+        .materials
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| desc.meshes.iter().any(|m| m.material == Some(*i)))
+        .map(|(_, m)| m)
+        .collect();
+    if used
+        .iter()
+        .any(|m| m.transmission > 0.0 && m.metallic < 1.0)
+    {
+        return None;
+    }
+    let mut names: Vec<&str> = used.iter().take(4).map(|m| m.name.as_str()).collect();
+    if desc.meshes.iter().any(|m| m.material.is_none()) {
+        names.push("the default material");
+    }
+    if used.len() > 4 {
+        names.push("…");
+    }
+    let one = match used.len() {
+        0 | 1 => String::new(),
+        _ => " (`--stone diamond=NAME` for one of them, `--metal gold=NAME` for a setting)"
+            .to_string(),
+    };
+    Some(format!(
+        "no transmissive material: if this is a gem, `--stone diamond` makes {} a diamond{one}; \
+         stones: {}",
+        names.join(", "),
+        looks::stone_names()
+    ))
 }
 
 /// `FILE: N meshes, T triangles`.
@@ -94,6 +150,14 @@ fn write_material(s: &mut String, m: &MaterialDesc) {
             m.attenuation_color.y,
             m.attenuation_color.z,
             m.attenuation_distance
+        );
+    }
+    if let Some(metal) = m.conductor {
+        let (n, k) = metal.eta_k(crate::spectrum::ior::LAMBDA_D);
+        let _ = write!(
+            s,
+            " measured metal {} (n {n:.3}, k {k:.3} at 587.6 nm)",
+            metal.name()
         );
     }
     if m.priority != 0 {
@@ -239,16 +303,17 @@ fn write_warnings(s: &mut String, warnings: &[String]) {
     }
 }
 
-/// The render plan of `iris render SCENE` with default flags (auto method, auto spectral,
+/// The render plan of `iris render SCENE` with default flags and `flags` (auto method, auto spectral,
 /// the file's environment), with its costs measured, and what the preparation decided (the
 /// notes `iris render` and `iris converge` print), for `iris info`.
-fn info_plan(path: &Path) -> Result<String> {
+fn info_plan(path: &Path, flags: &[LookFlag]) -> Result<String> {
     let (w, h) = crate::plan::PROBE_SIZE;
     let prepared = crate::prepare::prepare(
         path,
         &crate::prepare::PrepareOptions {
             accel: Backend::Auto,
             size: Some((w, h)),
+            looks: flags.to_vec(),
             ..Default::default()
         },
     )?;

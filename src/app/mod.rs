@@ -17,5 +17,5 @@ pub use crate::prepare::default_preview_scene;
 pub use crate::prepare::input::{check_size, default_size, load, resolve_environment, MAX_PIXELS};
 pub use crate::preview::{choose_camera, choose_camera_view, PreviewOptions};
 pub use diff::{diff_command, DiffSummary};
-pub use info::info_command;
+pub use info::{info_command, info_command_with};
 pub use render::{render_command, RenderJob, RenderOptions, RenderSummary};

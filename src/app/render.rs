@@ -63,6 +63,8 @@ pub struct RenderOptions {
     pub measure: MeasureOptions,
     /// The drop-in preview choices (`--studio`, `--ground`, `--view`, `--background`).
     pub preview: PreviewOptions,
+    /// `--stone` / `--metal` material overrides, in order ([`crate::prepare::looks`]).
+    pub looks: Vec<crate::prepare::looks::LookFlag>,
     /// `--explain`: measure the plan's costs before rendering (a 32×24 probe render each
     /// way and 10 000 photons, [`crate::plan::Plan::measure_costs`]).
     pub explain: bool,
@@ -94,6 +96,7 @@ impl RenderOptions {
             spectral: SpectralMode::Auto,
             measure: MeasureOptions::default(),
             preview: PreviewOptions::default(),
+            looks: Vec::new(),
             explain: false,
         }
     }
@@ -110,6 +113,7 @@ impl RenderOptions {
             camera: self.camera.clone(),
             size: self.size.or(reference_size),
             preview: self.preview,
+            looks: self.looks.clone(),
         }
     }
 
@@ -326,11 +330,17 @@ impl<'a> RenderJob<'a> {
         let reached_target = recorder.reached_target;
         rows.append(&mut recorder.rows);
         let measure_notes = measure.write_outputs(&rows, &opts.scene)?;
-        let mut notes: Vec<String> = prepared.notes.iter().map(ToString::to_string).collect();
+        let mut notes: Vec<String> = prepared.looks.iter().map(ToString::to_string).collect();
+        notes.extend(prepared.notes.iter().map(ToString::to_string));
         notes.extend(plan.method_note.clone());
         if settings.spectral {
             notes.push(match opts.spectral {
                 SpectralMode::On => "spectral transport (--spectral on)".into(),
+                _ if scene.materials.iter().any(|m| m.conductor().is_some()) => {
+                    "spectral transport: the scene has measured metals, dispersive materials \
+                     or spectral lights (--spectral off for RGB)"
+                        .into()
+                }
                 _ => "spectral transport: the scene has dispersive materials or spectral \
                       lights (--spectral off for RGB)"
                     .into(),

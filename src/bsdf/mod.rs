@@ -1,6 +1,6 @@
-//! Scattering functions (BSDFs) for path tracing: Lambert, GGX conductor, smooth/rough
-//! dielectric, thin dielectric and the glTF metallic-roughness mix. A closed enum, no trait
-//! objects.
+//! Scattering functions (BSDFs) for path tracing: Lambert, GGX conductor (Schlick from a
+//! colour, or a measured metal's complex index), smooth/rough dielectric, thin dielectric
+//! and the glTF metallic-roughness mix. A closed enum, no trait objects.
 //!
 //! Frame: every direction is in the **local shading frame**, z = the surface's OUTWARD
 //! normal (outside of the object is z > 0); unit vectors point AWAY from the surface.
@@ -18,6 +18,7 @@ mod pbr;
 #[cfg(test)]
 mod tests;
 
+use crate::optics::{fresnel_conductor_c, fresnel_schlick};
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
 
@@ -61,6 +62,18 @@ pub enum Bsdf<C = Vec3> {
     Conductor {
         /// Normal-incidence reflectance.
         f0: C,
+        /// GGX α.
+        alpha: f32,
+    },
+    /// GGX microfacet conductor with the exact Fresnel reflectance of a complex index
+    /// η + ik per channel or wavelength ([`crate::optics::fresnel_conductor`]): a measured
+    /// metal ([`crate::spectrum::Metal`]), whose colour is its k(λ) and n(λ), not a tint.
+    /// `alpha < SMOOTH_ALPHA` ⇒ a delta mirror.
+    ComplexConductor {
+        /// Real part n of the metal's index, relative to the outside.
+        eta: C,
+        /// Extinction coefficient k (≥ 0).
+        k: C,
         /// GGX α.
         alpha: f32,
     },
@@ -137,7 +150,9 @@ impl<C: Carrier> Bsdf<C> {
     pub fn is_delta(&self) -> bool {
         match *self {
             Bsdf::Lambert { .. } | Bsdf::GltfPbr { .. } => false,
-            Bsdf::Conductor { alpha, .. } => alpha < SMOOTH_ALPHA,
+            Bsdf::Conductor { alpha, .. } | Bsdf::ComplexConductor { alpha, .. } => {
+                alpha < SMOOTH_ALPHA
+            }
             Bsdf::Dielectric { eta, alpha, .. } => alpha < SMOOTH_ALPHA || eta == 1.0,
             Bsdf::ThinDielectric { .. } => true,
         }
@@ -150,7 +165,12 @@ impl<C: Carrier> Bsdf<C> {
         }
         match *self {
             Bsdf::Lambert { albedo } => pbr::lambert_eval(albedo, wo, wi),
-            Bsdf::Conductor { f0, alpha } => pbr::conductor_eval(f0, alpha, wo, wi),
+            Bsdf::Conductor { f0, alpha } => {
+                pbr::conductor_eval(|c| fresnel_schlick(f0, c), alpha, wo, wi)
+            }
+            Bsdf::ComplexConductor { eta, k, alpha } => {
+                pbr::conductor_eval(|c| fresnel_conductor_c(c, eta, k), alpha, wo, wi)
+            }
             Bsdf::Dielectric { eta, alpha, tint } => {
                 dielectric::rough_eval(eta, alpha, tint, wo, wi, mode)
             }
@@ -166,7 +186,9 @@ impl<C: Carrier> Bsdf<C> {
         }
         match *self {
             Bsdf::Lambert { .. } => pbr::lambert_pdf(wo, wi),
-            Bsdf::Conductor { alpha, .. } => pbr::conductor_pdf(alpha, wo, wi),
+            Bsdf::Conductor { alpha, .. } | Bsdf::ComplexConductor { alpha, .. } => {
+                pbr::conductor_pdf(alpha, wo, wi)
+            }
             Bsdf::Dielectric { eta, alpha, .. } => dielectric::rough_pdf(eta, alpha, wo, wi),
             Bsdf::ThinDielectric { .. } => 0.0,
             Bsdf::GltfPbr { .. } => self.gltf().map_or(0.0, |g| g.pdf(wo, wi)),
@@ -179,9 +201,20 @@ impl<C: Carrier> Bsdf<C> {
     pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample<C>> {
         match *self {
             Bsdf::Lambert { albedo } => pbr::lambert_sample(albedo, wo, u),
-            Bsdf::Conductor { f0, alpha } => {
-                pbr::conductor_sample(f0, alpha, alpha < SMOOTH_ALPHA, wo, u)
-            }
+            Bsdf::Conductor { f0, alpha } => pbr::conductor_sample(
+                |c| fresnel_schlick(f0, c),
+                alpha,
+                alpha < SMOOTH_ALPHA,
+                wo,
+                u,
+            ),
+            Bsdf::ComplexConductor { eta, k, alpha } => pbr::conductor_sample(
+                |c| fresnel_conductor_c(c, eta, k),
+                alpha,
+                alpha < SMOOTH_ALPHA,
+                wo,
+                u,
+            ),
             Bsdf::Dielectric { eta, alpha, tint } => {
                 if alpha < SMOOTH_ALPHA || eta == 1.0 {
                     dielectric::smooth_sample(eta, tint, wo, uc, mode)

@@ -1,5 +1,6 @@
-//! Opaque reflection lobes: Lambert, the GGX conductor with Schlick Fresnel, and the glTF
-//! metallic-roughness mix (glTF 2.0 spec Appendix B + KHR_materials_specular).
+//! Opaque reflection lobes: Lambert, the GGX conductor (with any Fresnel term: Schlick from
+//! a colour, or the exact complex one of a measured metal), and the glTF metallic-roughness
+//! mix (glTF 2.0 spec Appendix B + KHR_materials_specular).
 //!
 //! Frame: local shading frame, z = normal. All lobes here are two-sided reflection: they are
 //! non-zero only when `wo` and `wi` lie in the same hemisphere and use |cos θ|. Densities
@@ -101,10 +102,16 @@ fn ggx_reflect_sample(ggx: Ggx, wo: Vec3, u: Vec2) -> Option<Vec3> {
     same_hemisphere(wo, wi).then_some(wi)
 }
 
-/// Rough conductor f = D·G2·F_schlick(f0, |wo·wm|)/(4|cos θo||cos θi|).
-pub(crate) fn conductor_eval<C: Carrier>(f0: C, alpha: f32, wo: Vec3, wi: Vec3) -> C {
+/// Rough conductor f = D·G2·F(|wo·wm|)/(4|cos θo||cos θi|), `fresnel` giving the Fresnel
+/// reflectance at a cosine.
+pub(crate) fn conductor_eval<C: Carrier>(
+    fresnel: impl Fn(f32) -> C,
+    alpha: f32,
+    wo: Vec3,
+    wi: Vec3,
+) -> C {
     match ggx_spec(Ggx { alpha }, wo, wi) {
-        Some((s, cos_h)) => fresnel_schlick(f0, cos_h) * s,
+        Some((s, cos_h)) => fresnel(cos_h) * s,
         None => C::ZERO,
     }
 }
@@ -117,7 +124,7 @@ pub(crate) fn conductor_pdf(alpha: f32, wo: Vec3, wi: Vec3) -> f32 {
 /// Rough conductor sample (VNDF reflection); smooth (α below the delta threshold) gives the
 /// mirror direction with f = F/|cos θi|, pdf 1.
 pub(crate) fn conductor_sample<C: Carrier>(
-    f0: C,
+    fresnel: impl Fn(f32) -> C,
     alpha: f32,
     smooth: bool,
     wo: Vec3,
@@ -130,7 +137,7 @@ pub(crate) fn conductor_sample<C: Carrier>(
         let wi = Vec3::new(-wo.x, -wo.y, wo.z);
         return Some(BsdfSample {
             wi,
-            f: fresnel_schlick(f0, wo.z.abs()) / wi.z.abs(),
+            f: fresnel(wo.z.abs()) / wi.z.abs(),
             pdf: 1.0,
             delta: true,
             transmission: false,
@@ -141,7 +148,7 @@ pub(crate) fn conductor_sample<C: Carrier>(
     let pdf = ggx_reflect_pdf(ggx, wo, wi);
     (pdf > 0.0 && pdf.is_finite()).then(|| BsdfSample {
         wi,
-        f: conductor_eval(f0, alpha, wo, wi),
+        f: conductor_eval(fresnel, alpha, wo, wi),
         pdf,
         delta: false,
         transmission: false,

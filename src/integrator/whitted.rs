@@ -2,7 +2,7 @@
 //! splits into a reflected and a refracted branch weighted by the exact Fresnel equations
 //! (total internal reflection sends everything to the reflected branch); opaque surfaces
 //! get direct light (punctual, emissive triangles, environment); smooth metals recurse as
-//! mirrors. Entering vs exiting comes from `front_face`; each branch carries the stack of
+//! mirrors (Schlick from the base colour, or a measured metal's complex Fresnel). Entering vs exiting comes from `front_face`; each branch carries the stack of
 //! media it is inside ([`crate::medium`]), so η is the ratio of the indices on the two
 //! sides (glass → water is 1.33/1.5, not 1.33/1), and Beer–Lambert absorption applies to
 //! the medium a segment actually crossed.
@@ -18,7 +18,7 @@
 use super::Context;
 use crate::math::Ray;
 use crate::medium::MediumStack;
-use crate::optics::{fresnel_dielectric, fresnel_schlick, reflect, refract};
+use crate::optics::{fresnel_conductor_c, fresnel_dielectric, fresnel_schlick, reflect, refract};
 use crate::scene::desc::AlphaMode;
 use crate::scene::Scene;
 use crate::shading::{self, Arrival};
@@ -133,8 +133,12 @@ fn shade<C: Carrier>(
             };
             let r = reflect(hit.wo, n);
             if r.dot(hit.ng) * hit.wo.dot(hit.ng) > 0.0 {
-                let base = C::reflectance(sp.base_color, &path.lambda);
-                let f = fresnel_schlick(base, hit.wo.dot(n)) * sp.metallic;
+                let cos = hit.wo.dot(n);
+                let fresnel = match mat.conductor_index::<C>(&path.lambda) {
+                    Some((eta, k)) => fresnel_conductor_c(cos, eta, k),
+                    None => fresnel_schlick(C::reflectance(sp.base_color, &path.lambda), cos),
+                };
+                let f = fresnel * sp.metallic;
                 o += branch(
                     scene,
                     hit.spawn_ray(r),

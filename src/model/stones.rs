@@ -11,17 +11,22 @@
 //! |---|---|---|---|
 //! | diamond | 2.417 | 55 | GIA Gem Reference Guide (RI 2.417); refractiveindex.info, C (diamond), Phillip & Taft 1964: V_d ≈ 55 |
 //! | sapphire, ruby (corundum) | 1.770 | 72 | GIA Gem Reference Guide (RI 1.762–1.770); refractiveindex.info, Al₂O₃ ordinary ray, Malitson 1962: V_d ≈ 72 |
+//! | emerald (beryl) | 1.583 | 72 | GIA Gem Reference Guide (RI 1.577–1.583, ordinary 1.583; dispersion 0.014 between the B and G lines); V_d estimated as (n_d − 1)/(0.58 × 0.014): n_F − n_C is 0.58 of n_G − n_B for corundum, diamond and fused silica (their Sellmeier fits in `spectrum::ior`) |
 //! | cubic zirconia | 2.16 | 28 | GIA Gem Reference Guide (RI 2.15–2.18); refractiveindex.info, ZrO₂:Y₂O₃, Wood & Nassau 1982: V_d ≈ 28 |
 //! | quartz | 1.544 | 70 | GIA Gem Reference Guide (RI 1.544–1.553, ordinary 1.544); refractiveindex.info, SiO₂ ordinary ray, Ghosh 1999: V_d ≈ 70 |
 //! | crown glass (N-BK7) | 1.5168 | 64.17 | SCHOTT N-BK7 data sheet |
 //!
 //! Colours (linear RGB `attenuationColor` reached after `attenuationDistance`) are visual
-//! choices, not measured spectra: ruby (0.9, 0.08, 0.16) and sapphire (0.12, 0.25, 0.9),
-//! both over 4 mm, so a 6.5 mm stone is saturated but not black.
+//! choices, not measured spectra: ruby (0.9, 0.08, 0.16), sapphire (0.12, 0.25, 0.9) and
+//! emerald (0.12, 0.7, 0.3), all over 4 mm, so a 6.5 mm stone is saturated but not black.
+//!
+//! The same table makes any model a stone (`iris render --stone NAME`,
+//! [`crate::prepare::looks`]): [`Stone::material_desc`].
 
 use super::scene::{GenMaterial, GenVolume};
 use crate::error::{Error, Result};
-use glam::Vec3;
+use crate::scene::desc::MaterialDesc;
+use glam::{Vec3, Vec4};
 
 /// A named gem material.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -32,6 +37,8 @@ pub enum Stone {
     Sapphire,
     /// Red corundum.
     Ruby,
+    /// Green beryl.
+    Emerald,
     /// Cubic zirconia (yttria-stabilised ZrO₂), colourless.
     CubicZirconia,
     /// Colourless (rock crystal) quartz.
@@ -41,10 +48,11 @@ pub enum Stone {
 }
 
 /// Every stone, in the order the CLI lists them.
-pub const STONES: [Stone; 6] = [
+pub const STONES: [Stone; 7] = [
     Stone::Diamond,
     Stone::Sapphire,
     Stone::Ruby,
+    Stone::Emerald,
     Stone::CubicZirconia,
     Stone::Quartz,
     Stone::CrownGlass,
@@ -60,6 +68,7 @@ impl Stone {
             Stone::Diamond => "diamond",
             Stone::Sapphire => "sapphire",
             Stone::Ruby => "ruby",
+            Stone::Emerald => "emerald",
             Stone::CubicZirconia => "cubic-zirconia",
             Stone::Quartz => "quartz",
             Stone::CrownGlass => "crown-glass",
@@ -86,6 +95,7 @@ impl Stone {
         match self {
             Stone::Diamond => 2.417,
             Stone::Sapphire | Stone::Ruby => 1.770,
+            Stone::Emerald => 1.583,
             Stone::CubicZirconia => 2.16,
             Stone::Quartz => 1.544,
             Stone::CrownGlass => 1.5168,
@@ -96,7 +106,7 @@ impl Stone {
     pub fn abbe(self) -> f32 {
         match self {
             Stone::Diamond => 55.0,
-            Stone::Sapphire | Stone::Ruby => 72.0,
+            Stone::Sapphire | Stone::Ruby | Stone::Emerald => 72.0,
             Stone::CubicZirconia => 28.0,
             Stone::Quartz => 70.0,
             Stone::CrownGlass => 64.17,
@@ -113,6 +123,7 @@ impl Stone {
         match self {
             Stone::Ruby => Some(Vec3::new(0.9, 0.08, 0.16)),
             Stone::Sapphire => Some(Vec3::new(0.12, 0.25, 0.9)),
+            Stone::Emerald => Some(Vec3::new(0.12, 0.7, 0.3)),
             _ => None,
         }
     }
@@ -123,6 +134,7 @@ impl Stone {
             Stone::Diamond => "Diamond",
             Stone::Sapphire => "Sapphire",
             Stone::Ruby => "Ruby",
+            Stone::Emerald => "Emerald",
             Stone::CubicZirconia => "Cubic zirconia",
             Stone::Quartz => "Quartz",
             Stone::CrownGlass => "Crown glass N-BK7",
@@ -143,6 +155,35 @@ impl Stone {
             });
         }
         m
+    }
+}
+
+impl Stone {
+    /// The stone as a render material, what `--stone` puts on a model
+    /// ([`crate::prepare::looks`]): the same values as [`Stone::material`] — smooth
+    /// (roughness 0), transmission 1, KHR_materials_ior n_d, KHR_materials_dispersion
+    /// 20/V_d, a volume (thickness 1: any value > 0 makes the mesh bound a medium in Iris;
+    /// only rasterisers read the number) — with coloured stones reaching their attenuation
+    /// colour after `colour_distance` metres. Everything else is the glTF default: white,
+    /// not metallic, untextured, not emissive, opaque alpha. `name` names it in messages.
+    pub fn material_desc(self, name: String, colour_distance: f32) -> MaterialDesc {
+        let (attenuation_color, attenuation_distance) = match self.attenuation() {
+            Some(c) => (c, colour_distance),
+            None => (Vec3::ONE, f32::INFINITY),
+        };
+        MaterialDesc {
+            name,
+            base_color: Vec4::ONE,
+            metallic: 0.0,
+            roughness: 0.0,
+            ior: self.n_d(),
+            dispersion: self.dispersion(),
+            transmission: 1.0,
+            thickness: 1.0,
+            attenuation_color,
+            attenuation_distance,
+            ..MaterialDesc::default()
+        }
     }
 }
 

@@ -92,6 +92,11 @@ fn seed_colours<C: Carrier>(bsdf: &Bsdf<C>) -> (C, C, C) {
     match *bsdf {
         Bsdf::Lambert { albedo } => (albedo, C::ZERO, C::ZERO),
         Bsdf::Conductor { f0, .. } => (C::ZERO, f0, C::ZERO),
+        Bsdf::ComplexConductor { eta, k, .. } => (
+            C::ZERO,
+            crate::optics::fresnel_conductor_c(1.0, eta, k),
+            C::ZERO,
+        ),
         Bsdf::GltfPbr {
             base,
             metallic,

@@ -3,7 +3,8 @@
 //! reason naming its evidence (material and mesh names, counts).
 //!
 //! Stages, in print order:
-//! - **transport**: spectral (4 wavelengths, CIE film) or RGB — [`SpectralMode::resolve`].
+//! - **transport**: spectral (4 wavelengths, CIE film) or RGB — [`SpectralMode::resolve`]
+//!   (dispersive materials, measured metals, named emission spectra).
 //! - **photons**: a photon pass (SPPM / photon map / the hybrid's caustic map) or not —
 //!   [`resolve_method`], whose `auto` choice among path, hybrid and SPPM rests on
 //!   [`has_caustic_paths`] and the caustic share of the hybrid's probe (fixed-seed probe
@@ -36,8 +37,9 @@ use std::fmt::Write as _;
 /// `--spectral auto|on|off`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum SpectralMode {
-    /// Spectral transport when a material is dispersive or a light or emissive material names
-    /// a spectrum (`iris_spectrum`), RGB otherwise.
+    /// Spectral transport when a material is dispersive or a measured metal (`--metal`:
+    /// its colour is n(λ), k(λ)), or a light or emissive material names a spectrum
+    /// (`iris_spectrum`); RGB otherwise.
     #[default]
     Auto,
     /// Always spectral.
@@ -63,11 +65,9 @@ impl SpectralMode {
             SpectralMode::On => true,
             SpectralMode::Off => false,
             SpectralMode::Auto => {
-                scene
-                    .materials
-                    .iter()
-                    .any(|m| m.is_dispersive() || m.emitter_shape().is_some())
-                    || scene.light_shapes.iter().any(Option::is_some)
+                scene.materials.iter().any(|m| {
+                    m.is_dispersive() || m.emitter_shape().is_some() || m.conductor().is_some()
+                }) || scene.light_shapes.iter().any(Option::is_some)
             }
         }
     }

@@ -58,11 +58,15 @@ fn names<'a>(list: impl IntoIterator<Item = &'a str>) -> String {
 pub(super) fn transport(ev: &Evidence, spectral: SpectralMode, spectral_on: bool) -> Stage {
     let (scene, mats) = (ev.scene, |f: &dyn Fn(&Material) -> bool| ev.mats(f));
     let dispersive = mats(&|m: &Material| m.is_dispersive());
+    let metals = mats(&|m: &Material| m.conductor().is_some());
     let spectral_emitters = mats(&|m: &Material| m.emitter_shape().is_some());
     let spectral_lights = scene.light_shapes.iter().filter(|s| s.is_some()).count();
     let mut evidence = Vec::new();
     if !dispersive.is_empty() {
         evidence.push(format!("dispersive materials {}", names(dispersive)));
+    }
+    if !metals.is_empty() {
+        evidence.push(format!("measured metals {}", names(metals)));
     }
     if !spectral_emitters.is_empty() {
         evidence.push(format!("spectral emitters {}", names(spectral_emitters)));

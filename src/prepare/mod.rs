@@ -2,7 +2,8 @@
 //! `iris info` and the benches render or describe for a scene file and its flags.
 //!
 //! Order, all on the scene description ([`crate::scene::desc::SceneDesc`]): load and
-//! validate the file; decide the `--ground` floor ([`crate::studio::ground::decide`]); set
+//! validate the file; replace materials by `--stone` / `--metal` ([`looks`]); decide the
+//! `--ground` floor ([`crate::studio::ground::decide`]); set
 //! the environment light (`--env`, else the file's `iris_environment`); fix the image size
 //! (the flag, else the reference's, else [`input::default_size`]); pick the file's
 //! camera or frame the model's vertices ([`crate::preview::choose_camera_in`]); when the
@@ -19,6 +20,8 @@ mod note;
 pub use note::Note;
 
 pub mod input;
+pub mod looks;
+pub mod select;
 
 use crate::accel::Backend;
 use crate::error::Result;
@@ -44,6 +47,8 @@ pub struct PrepareOptions {
     pub size: Option<(u32, u32)>,
     /// Studio, ground, view and background choices.
     pub preview: PreviewOptions,
+    /// `--stone` and `--metal` flags, in order ([`looks`]).
+    pub looks: Vec<looks::LookFlag>,
 }
 
 /// A scene ready to render: built, lit, with its camera and image size.
@@ -61,6 +66,9 @@ pub struct Prepared {
     pub notes: Vec<Note>,
     /// How the camera was chosen, when Iris chose it.
     pub camera_note: Option<Note>,
+    /// What each `--stone` / `--metal` flag changed, in flag order (printed before the
+    /// notes).
+    pub looks: Vec<looks::Applied>,
 }
 
 impl Prepared {
@@ -79,6 +87,7 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
     let preview = &opts.preview;
     let start = Instant::now();
     let mut desc = crate::load::load_scene(path)?;
+    let looks = looks::apply(&mut desc, &opts.looks)?;
     let (add_floor, floor) = if preview.ground_mode() != preview.ground {
         (false, Floor::CoversBackground)
     } else {
@@ -125,6 +134,7 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
         load_time,
         notes: notes.into_iter().flatten().collect(),
         camera_note: camera_note.map(Note::Camera),
+        looks,
     })
 }
 

@@ -29,7 +29,7 @@ pub use added::{AddedLights, SpotKey};
 pub use emission::{effective_color, EmissionSpectrum, BLACKBODY_KELVIN, SUN_KELVIN};
 
 use crate::light::env::Environment;
-use crate::spectrum::{IorModel as SpectralIor, UnknownIorName};
+use crate::spectrum::{IorModel as SpectralIor, Metal, UnknownIorName};
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -206,6 +206,11 @@ pub struct MaterialDesc {
     pub dispersion: f32,
     /// An explicit IOR model (extras / MTL keys); overrides `ior` and `dispersion`.
     pub ior_model: Option<ExplicitIor>,
+    /// A measured metal (`--metal`, [`crate::prepare`]'s material override): the surface is
+    /// an opaque conductor with that metal's spectral complex index n(λ) + ik(λ) and GGX
+    /// roughness `roughness`; `base_color` is then only the colour other renderers and
+    /// the RGB fallbacks show. Loaders leave it `None`.
+    pub conductor: Option<Metal>,
     /// glTF doubleSided.
     pub double_sided: bool,
     /// glTF alphaMode / alphaCutoff.
@@ -235,6 +240,7 @@ impl Default for MaterialDesc {
             specular_color: Vec3::ONE,
             dispersion: 0.0,
             ior_model: None,
+            conductor: None,
             double_sided: false,
             alpha_mode: AlphaMode::Opaque,
         }

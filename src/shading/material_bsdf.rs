@@ -1,5 +1,6 @@
-//! The BSDF a material has at a hit ([`crate::bsdf`]): glTF metallic-roughness (Appendix B
-//! of the glTF 2.0 spec, with KHR_materials_specular), a smooth or rough dielectric with η
+//! The BSDF a material has at a hit ([`crate::bsdf`]): a measured metal's conductor, glTF
+//! metallic-roughness (Appendix B of the glTF 2.0 spec, with KHR_materials_specular), a
+//! smooth or rough dielectric with η
 //! from the path's media, a thin-walled transmission; and which BSDFs the photon methods
 //! treat as diffuse (where photons are gathered and caustic paths end).
 //!
@@ -13,9 +14,17 @@ use crate::medium::{self, MediumStack};
 use crate::scene::Scene;
 use crate::spectrum::Carrier;
 
-/// The surface BSDF of an opaque (non-transmitting) shading point: glTF metallic-roughness
-/// with KHR_materials_specular.
+/// The surface BSDF of an opaque (non-transmitting) shading point: a measured metal's
+/// complex-index conductor ([`Material::conductor_index`], GGX α = roughness²), else glTF
+/// metallic-roughness with KHR_materials_specular.
 pub fn surface_bsdf<C: Carrier>(mat: &Material, sp: &ShadingPoint, l: &C::Lambda) -> Bsdf<C> {
+    if let Some((eta, k)) = mat.conductor_index::<C>(l) {
+        return Bsdf::ComplexConductor {
+            eta,
+            k,
+            alpha: sp.roughness * sp.roughness,
+        };
+    }
     let d = &mat.desc;
     Bsdf::GltfPbr {
         base: C::reflectance(sp.base_color, l),
@@ -139,9 +148,9 @@ pub fn is_diffuse_like<C: Carrier>(b: &Bsdf<C>) -> bool {
         Bsdf::GltfPbr {
             metallic, alpha, ..
         } => metallic < 1.0 || alpha >= GLOSSY_ALPHA,
-        Bsdf::Conductor { alpha, .. } | Bsdf::Dielectric { alpha, .. } => {
-            !b.is_delta() && alpha >= GLOSSY_ALPHA
-        }
+        Bsdf::Conductor { alpha, .. }
+        | Bsdf::ComplexConductor { alpha, .. }
+        | Bsdf::Dielectric { alpha, .. } => !b.is_delta() && alpha >= GLOSSY_ALPHA,
         Bsdf::ThinDielectric { .. } => false,
     }
 }

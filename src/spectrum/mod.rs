@@ -10,6 +10,8 @@
 //!   RGB illuminant, blackbody, D65), with emission normalised to a requested luminance.
 //! - [`ior`]: index-of-refraction models (constant, KHR_materials_dispersion, Cauchy,
 //!   Sellmeier) and named materials.
+//! - [`metals`]: complex indices n(λ) + ik(λ) of jewellery metals (measured tables in
+//!   `metals_data.rs`, with their sources) and their RGB stand-ins.
 //!
 //! Units everywhere: wavelength λ in nm (vacuum); the IOR formulas that are defined in µm
 //! convert internally. Spectral values are f32; table sums accumulate in f64.
@@ -21,6 +23,8 @@ pub mod cie;
 mod cie_data;
 mod fit;
 pub mod ior;
+pub mod metals;
+mod metals_data;
 pub mod sampled;
 pub mod spectra;
 pub mod upsample;
@@ -28,6 +32,7 @@ pub mod wavelengths;
 
 pub use carrier::{Carrier, EmitterShape, Lambdas};
 pub use ior::{IorModel, UnknownIorName};
+pub use metals::Metal;
 pub use sampled::SampledSpectrum;
 pub use spectra::Spectrum;
 pub use upsample::{RgbIlluminant, RgbReflectance};

@@ -76,12 +76,14 @@ pub struct ConvergeOptions {
     pub accel: Backend,
     /// No progress output.
     pub quiet: bool,
+    /// `--stone` / `--metal` material overrides, in order ([`crate::prepare::looks`]).
+    pub looks: Vec<crate::prepare::looks::LookFlag>,
 }
 
 impl ConvergeOptions {
     /// The preparation `iris render` would make of the same file and flags (no `--env`, no
-    /// `--camera`, the default drop-in preview); `reference_size` is the reference image's
-    /// size, used when `--size` is not given.
+    /// `--camera`, the default drop-in preview, the same `--stone` / `--metal`);
+    /// `reference_size` is the reference image's size, used when `--size` is not given.
     pub fn prepare_options(
         &self,
         reference_size: Option<(u32, u32)>,
@@ -89,6 +91,7 @@ impl ConvergeOptions {
         crate::prepare::PrepareOptions {
             accel: self.accel,
             size: self.size.or(reference_size),
+            looks: self.looks.clone(),
             ..Default::default()
         }
     }
@@ -150,7 +153,9 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
     // preview: floor, studio, framing), from the one preparation.
     let reference_size = given_reference.as_ref().map(|r| (r.width, r.height));
     let prepared = crate::prepare::prepare(&opts.scene, &opts.prepare_options(reference_size))?;
-    let notes: Vec<String> = prepared.notes().iter().map(ToString::to_string).collect();
+    let notes: Vec<String> = (prepared.looks.iter().map(ToString::to_string))
+        .chain(prepared.notes().iter().map(ToString::to_string))
+        .collect();
     let (scene, cam_desc, (w, h), load_time) = (
         prepared.scene,
         prepared.camera,

@@ -137,6 +137,7 @@ fn read_material(
         }),
         dispersion: dispersion(ctx, m, &element)?,
         ior_model: explicit_ior(ctx, m, &element)?,
+        conductor: None,
         priority: priority(ctx, m, &element)?,
         double_sided: m.double_sided(),
         alpha_mode,
