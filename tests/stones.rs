@@ -282,7 +282,7 @@ fn the_sketchfab_diamond_becomes_a_diamond() {
     let Some(root) = common::shared_assets() else {
         return;
     };
-    let path = root.join("assets/gems/DiamondLowPoly/diamond.glb");
+    let path = root.join("gems/DiamondLowPoly/diamond.glb");
     let opts = |looks: Vec<LookFlag>| PrepareOptions {
         size: Some((32, 24)),
         looks,

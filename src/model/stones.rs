@@ -221,5 +221,27 @@ mod tests {
         assert_eq!(v.attenuation_distance, Some(COLOUR_DISTANCE));
         let s = Stone::Sapphire.material(0.004).volume.expect("volume");
         assert!(s.attenuation_color.z > s.attenuation_color.x);
+        let e = Stone::Emerald.material(0.004).volume.expect("volume");
+        assert!(e.attenuation_color.y > e.attenuation_color.x.max(e.attenuation_color.z));
+    }
+
+    /// `--stone` materials carry the same numbers as the glTF `iris gem` writes.
+    #[test]
+    fn render_materials_match_the_gem_materials() {
+        for st in STONES {
+            let (g, d) = (st.material(0.004), st.material_desc("m".into(), 0.002));
+            assert_eq!(Some(d.ior), g.ior);
+            assert_eq!(Some(d.dispersion), g.dispersion);
+            assert_eq!(Some(d.transmission), g.transmission);
+            assert_eq!((d.roughness, d.metallic), (g.roughness, g.metallic));
+            let colour = g
+                .volume
+                .and_then(|v| v.attenuation_distance.map(|_| v.attenuation_color));
+            match colour {
+                Some(c) => assert_eq!((d.attenuation_color, d.attenuation_distance), (c, 0.002)),
+                None => assert!(d.attenuation_distance.is_infinite()),
+            }
+            assert!(d.thickness > 0.0 && d.conductor.is_none());
+        }
     }
 }
