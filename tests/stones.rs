@@ -3,10 +3,10 @@
 //! with a placeholder material (the shared `DiamondLowPoly/diamond.glb`) becomes a
 //! transmissive, dispersive diamond that the plan renders spectrally with a caustic method.
 //!
-//! The generated test file has three materials and four meshes:
+//! The generated test file has four materials and five meshes:
 //! `Placeholder` (opaque cyan) on mesh `Gem`; `Setting` (grey metal) on meshes `Prong` and
-//! `Setting`; `Floor` on mesh `Plinth`. The mesh named like a material it does not alone
-//! use makes `=Setting` ambiguous.
+//! `Setting`; `Floor` on mesh `Plinth`; the emissive `Lamp` on mesh `Panel`. The mesh
+//! named like a material it does not alone use makes `=Setting` ambiguous.
 
 mod common;
 
@@ -33,6 +33,8 @@ fn ring_file(dir: &Path) -> PathBuf {
     placeholder.roughness = 0.0;
     let mut setting = GenMaterial::diffuse("Setting", Vec3::splat(0.7));
     setting.metallic = 1.0;
+    let mut lamp = GenMaterial::diffuse("Lamp", Vec3::ZERO);
+    lamp.emissive = Some(Vec3::splat(5.0));
     let scene = GenScene {
         name: "ring".into(),
         // The gem is 6.5 mm across (the size of `iris gem`'s stone); the rest is larger.
@@ -41,11 +43,13 @@ fn ring_file(dir: &Path) -> PathBuf {
             mesh("Prong", cuboid(Vec3::splat(0.001)), 1, 0.01),
             mesh("Setting", cuboid(Vec3::new(0.01, 0.001, 0.01)), 1, 0.03),
             mesh("Plinth", cuboid(Vec3::new(0.05, 0.002, 0.05)), 2, 0.0),
+            mesh("Panel", cuboid(Vec3::new(0.01, 0.0005, 0.01)), 3, -0.05),
         ],
         materials: vec![
             placeholder,
             setting,
             GenMaterial::diffuse("Floor", Vec3::splat(0.8)),
+            lamp,
         ],
         lights: vec![],
         camera: None,
@@ -97,8 +101,9 @@ fn a_bare_flag_changes_every_material_the_others_do_not_name() {
     let before = ring("looks_bare");
     let mut d = before.clone();
     let applied = apply(&mut d, &[stone("diamond"), metal("gold=material:Setting")]).unwrap();
+    // The emissive Lamp (3) stays a light.
     assert_only(&before, &d, &[0, 1, 2]);
-    assert_eq!(d.materials.len(), 3, "no material added");
+    assert_eq!(d.materials.len(), 4, "no material added");
     assert_eq!(mesh_materials(&d), mesh_materials(&before));
     for i in [0, 2] {
         let m = &d.materials[i];
@@ -167,7 +172,7 @@ fn a_mesh_selector_gives_the_mesh_a_material_of_its_own() {
     )
     .unwrap();
     assert_only(&before, &d, &[]);
-    assert_eq!(d.materials.len(), 5);
+    assert_eq!(d.materials.len(), 6);
     let m = mesh_materials(&d);
     assert_eq!(
         m[1], before.meshes[1].material,

@@ -65,6 +65,7 @@ fn stone_hint(desc: &SceneDesc) -> Option<String> {
         .enumerate()
         .filter(|(i, _)| desc.meshes.iter().any(|m| m.material == Some(*i)))
         .map(|(_, m)| m)
+        .filter(|m| !looks::is_emitter(m))
         .collect();
     if used
         .iter()

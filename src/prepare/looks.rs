@@ -15,9 +15,10 @@
 //! - `=SELECTOR` naming materials changes those materials (every mesh using them);
 //!   naming meshes gives those meshes a new material (their old one, which other meshes
 //!   may share, is left as it was);
-//! - a flag without a selector (at most one) changes every material no selector named,
-//!   and gives meshes without a material one; so `--stone diamond --metal gold=Setting`
-//!   makes the material `Setting` gold and everything else diamond;
+//! - a flag without a selector (at most one) changes every material no selector named
+//!   except emissive ones (lights stay lights), and gives meshes without a material one;
+//!   so `--stone diamond --metal gold=Setting` makes the material `Setting` gold and
+//!   everything else that does not glow diamond;
 //! - two selectors naming the same material, or the same mesh, are an error; a mesh named
 //!   by a mesh selector takes that flag even if its material is named by another.
 //!
@@ -207,10 +208,11 @@ pub fn apply(desc: &mut SceneDesc, flags: &[LookFlag]) -> Result<Vec<Applied>> {
         }
     }
     if let Some(&r) = rest.first() {
-        by_material
-            .iter_mut()
-            .filter(|o| o.is_none())
-            .for_each(|o| *o = Some(r));
+        for (owner, m) in by_material.iter_mut().zip(&desc.materials) {
+            if owner.is_none() && !is_emitter(m) {
+                *owner = Some(r);
+            }
+        }
     }
     let mut applied: Vec<Applied> = flags
         .iter()
@@ -279,6 +281,11 @@ pub fn apply(desc: &mut SceneDesc, flags: &[LookFlag]) -> Result<Vec<Applied>> {
         applied[fi].meshes += 1;
     }
     Ok(applied)
+}
+
+/// Whether a material emits light: the selector-less flag leaves it (lights stay lights).
+pub fn is_emitter(m: &MaterialDesc) -> bool {
+    m.emissive.max_element() > 0.0
 }
 
 /// [`COLOUR_DISTANCE`] scaled from the 6.5 mm stone of `iris gem` to the largest
