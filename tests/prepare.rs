@@ -204,7 +204,7 @@ fn variations() -> Vec<Variation> {
             flags: &["--studio", "jeweller"],
             env: None,
             preview: PreviewOptions {
-                studio: Studio::Jeweller,
+                studio: Some(Studio::Jeweller),
                 ..p()
             },
         },
@@ -212,7 +212,7 @@ fn variations() -> Vec<Variation> {
             flags: &["--studio", "none"],
             env: None,
             preview: PreviewOptions {
-                studio: Studio::None,
+                studio: Some(Studio::None),
                 ..p()
             },
         },
@@ -241,7 +241,7 @@ fn variations() -> Vec<Variation> {
             env: None,
             preview: PreviewOptions {
                 ground: GroundMode::Off,
-                studio: Studio::Bright,
+                studio: Some(Studio::Bright),
                 ..p()
             },
         },
