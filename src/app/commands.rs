@@ -43,11 +43,13 @@ pub fn render(opts: &RenderOptions) -> Result<()> {
         s.build_time.as_secs_f64(),
         s.stats.rays as f64 / secs.max(1e-9) / 1e6
     );
-    // What ended the render, then the image's error: estimated, and against the reference.
+    // What ended the render, then the image's error: estimated (unless the end's words
+    // gave it, with the target), and against the reference.
     let mut line = format!("iris: {}", s.end_text());
     // One sample (pass) makes both half images that sample: no estimate then.
     let estimated = s.rows.last().is_some_and(|r| r.samples >= 2);
-    if let Some(e) = s.final_estimate().filter(|_| estimated) {
+    let said = s.target_estimate.is_some();
+    if let Some(e) = s.final_estimate().filter(|_| estimated && !said) {
         line.push_str(&format!(
             "; estimated relative error {:.4}",
             relative_rmse(&e)
