@@ -128,7 +128,7 @@ fn open(path: &Path, env: Option<f32>, backend: Backend) -> Option<(Scene, Camer
         }),
         size: Some((W, H)),
         preview: PreviewOptions {
-            studio: Studio::None,
+            studio: Some(Studio::None),
             ground: GroundMode::Off,
             ..Default::default()
         },

@@ -11,8 +11,8 @@
 use clap::{Parser, Subcommand};
 use iris::accel::Backend;
 use iris::app::converge::{parse_methods, ConvergeOptions};
-use iris::app::SpectralMode;
 use iris::app::{self, RenderOptions};
+use iris::app::{BudgetFlags, SpectralMode};
 use iris::integrator::{CausticMode, Method, PhotonSettings};
 use iris::measure::MeasureOptions;
 use iris::output::{DisplayOptions, Exposure, ToneMap};
@@ -34,7 +34,10 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Render a glTF (.gltf/.glb) or OBJ scene to PNG or EXR.
+    /// Render a glTF (.gltf/.glb) or OBJ scene to PNG or EXR. With no --method, --spp,
+    /// --passes, --time or --target-error: the method --method auto picks, rendered until
+    /// the estimated relative error is 0.03 or for 120 s, whichever comes first (or Ctrl-C),
+    /// the output rewritten as it improves; the last line says what ended it.
     Render(RenderArgs),
     /// Describe a scene: meshes, triangles, materials with their KHR values, lights, cameras.
     Info {
@@ -164,18 +167,22 @@ struct RenderArgs {
     /// (about 18 M pixels, e.g. 4096x4096).
     #[arg(long, value_parser = parse_size)]
     size: Option<(u32, u32)>,
-    /// Samples per pixel, 1 to 1000000.
-    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
-    spp: u32,
-    /// Rendering method: whitted (recursive ray tracing, seed paper §4), path (path tracing
-    /// with next-event estimation and MIS), photon (classic photon mapping: caustic + global
-    /// maps, final gather), sppm (stochastic progressive photon mapping: passes, converges),
-    /// hybrid (the path tracer plus a progressive caustic photon map for light that reaches
-    /// a diffuse surface through specular ones only; one pass per sample, converges), auto
-    /// (SPPM when light can reach a diffuse surface through specular ones, the path tracer
-    /// otherwise; the reason names the caustics' share of the light).
-    #[arg(long, default_value = "whitted", value_parser = Method::parse)]
-    method: Method,
+    /// Samples per pixel, 1 to 1000000: the render stops there (or earlier at --time or
+    /// --target-error). Without --spp and --passes the render is open-ended: it stops at
+    /// --time / --target-error, by default at the estimated relative error 0.03 or after
+    /// 120 s, whichever comes first, and rewrites the output as it goes.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    spp: Option<u32>,
+    /// Rendering method: auto (the default: the path tracer when no light reaches a diffuse
+    /// surface through specular ones, else the hybrid or SPPM by the caustics' share of the
+    /// light; the reason is printed), whitted (recursive ray tracing, seed paper §4), path
+    /// (path tracing with next-event estimation and MIS), photon (classic photon mapping:
+    /// caustic + global maps, final gather), sppm (stochastic progressive photon mapping:
+    /// passes, converges), hybrid (the path tracer plus a progressive caustic photon map for
+    /// light that reaches a diffuse surface through specular ones only; one pass per
+    /// sample, converges).
+    #[arg(long, value_parser = Method::parse)]
+    method: Option<Method>,
     /// Maximum number of bounces (reflections and refractions) per path, 1 to 1024 (also
     /// the Whitted tracer's recursion depth and the photons stored per photon path).
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=i64::from(iris::integrator::MAX_DEPTH)))]
@@ -212,20 +219,26 @@ struct RenderArgs {
     /// materials use n_d).
     #[arg(long, default_value = "auto", value_parser = SpectralMode::parse)]
     spectral: SpectralMode,
-    /// Studio lighting for a file with no light (and no `--env`): `soft` (grey, broad
-    /// softboxes), `jeweller` (dark, small bright strips: fire), `bright` (white high-key),
-    /// or `none` (plain directional key and fill).
-    #[arg(long, default_value = "soft", value_parser = iris::studio::Studio::parse)]
-    studio: iris::studio::Studio,
+    /// Studio lighting (not with `--env`): `soft` (grey, broad softboxes; the default for a
+    /// file with no light of its own), `jeweller` (dark, small bright strips: fire),
+    /// `bright` (white high-key), or `none` (plain directional key and fill). A file that
+    /// brings its own light gets a studio only when this flag names one (added to the
+    /// file's lights).
+    #[arg(long, value_parser = iris::studio::Studio::parse)]
+    studio: Option<iris::studio::Studio>,
     /// White floor under the model: `auto` (for a transmissive model with nothing under
-    /// it), `on` or `off`.
+    /// it, in a file that brings no light of its own), `on` or `off`.
     #[arg(long, default_value = "auto", value_parser = iris::studio::GroundMode::parse)]
     ground: iris::studio::GroundMode,
-    /// SPPM passes, 1 to 10000000 (`--method sppm`; with `--time`, whichever comes first).
-    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=10_000_000))]
-    passes: u32,
+    /// SPPM passes, 1 to 10000000 (with --time or --target-error, whichever comes first).
+    /// Given alone or with --spp, the other count is 4 spp or 64 passes.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=10_000_000))]
+    passes: Option<u32>,
     /// Time budget in seconds (more than 0, at most 10000000): every method stops after the
     /// round of samples (SPPM: the pass) that crosses it, with at least one sample per pixel.
+    /// Without --spp/--passes it is the whole budget (no error target unless given);
+    /// otherwise the first limit reached ends the render. Default without any budget flag:
+    /// 120.
     #[arg(long, value_parser = parse_seconds, allow_hyphen_values = true)]
     time: Option<f64>,
     /// Photons per SPPM or hybrid pass (default: one per pixel) or in total for `--method photon`
@@ -242,7 +255,8 @@ struct RenderArgs {
     alpha: f32,
     /// Write the image so far at the checkpoints (1, 2, 4, … samples, or passes for SPPM)
     /// that are at least K samples or passes after the last one written; K from 1 to
-    /// 10000000.
+    /// 10000000. Without it, an open-ended render (no --spp/--passes) rewrites the image at
+    /// the checkpoints at most every 2 s.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=10_000_000))]
     checkpoint: Option<u32>,
     /// Photon Russian roulette rule: throughput (survivors keep their power), seed (the seed
@@ -268,8 +282,10 @@ struct RenderArgs {
     /// the half-buffer estimate.
     #[arg(long)]
     plot: Option<PathBuf>,
-    /// Stop once the estimated relative RMSE is at or below E, finite and > 0 (upper bound:
-    /// --time, --spp or --passes, whichever comes first).
+    /// Stop once the estimated relative RMSE (half-buffer estimate, from 8 samples or
+    /// passes on) is at or below E, finite and > 0. Upper bound: --time, --spp or
+    /// --passes, whichever comes first; given alone, 120 s. Default without any budget
+    /// flag: 0.03.
     #[arg(long, value_parser = parse_target, allow_hyphen_values = true)]
     target_error: Option<f64>,
     /// No progress bar.
@@ -435,20 +451,29 @@ impl RenderArgs {
     /// The render options (measurement and drop-in preview included) these flags ask for.
     fn options(&self) -> iris::Result<RenderOptions> {
         let a = self.clone();
-        Ok(RenderOptions {
+        let budget = BudgetFlags {
+            method: a.method,
+            spp: a.spp,
+            passes: a.passes,
+            time: a.time.map(std::time::Duration::from_secs_f64),
+            target_error: a.target_error,
+        }
+        .resolve();
+        let options = RenderOptions {
             scene: a.scene,
             output: a.output,
             size: a.size,
-            spp: a.spp,
-            method: a.method,
+            spp: budget.spp,
+            method: budget.method,
             max_depth: a.max_depth,
-            time_limit: a.time.map(std::time::Duration::from_secs_f64),
+            time_limit: budget.time_limit,
             checkpoint: a.checkpoint,
+            watch: budget.open,
             photon: PhotonSettings {
                 photons: a.photons.unwrap_or(0),
                 radius: a.radius,
                 alpha: a.alpha,
-                passes: a.passes,
+                passes: budget.passes,
                 roulette: a.photon_rr,
                 caustic_mode: a.caustics,
                 ..PhotonSettings::default()
@@ -473,7 +498,7 @@ impl RenderArgs {
                 reference: a.reference,
                 report: a.report,
                 plot: a.plot,
-                target_error: a.target_error,
+                target_error: budget.target_error,
             },
             preview: app::PreviewOptions {
                 studio: a.studio,
@@ -483,7 +508,8 @@ impl RenderArgs {
             },
             looks: a.looks.flags()?,
             explain: a.explain,
-        })
+        };
+        Ok(options)
     }
 }
 

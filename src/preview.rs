@@ -143,8 +143,11 @@ pub fn choose_camera_in(
 /// [`crate::output::background`]).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct PreviewOptions {
-    /// Studio preset used when the file has no light and no environment is given.
-    pub studio: crate::studio::Studio,
+    /// `--studio NAME`: `None` (not given) lights a file that has no light of its own with
+    /// the default preset ([`crate::studio::Studio::Soft`]); `Some(preset)` also lights a
+    /// file that has its own (added to its lights, [`crate::prepare`]). Either way only
+    /// without `--env`.
+    pub studio: Option<crate::studio::Studio>,
     /// Whether to add a white floor under the model.
     pub ground: crate::studio::GroundMode,
     /// `--view`: frame the model automatically from this view (else the file's first

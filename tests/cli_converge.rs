@@ -191,7 +191,7 @@ fn target_error_stops_before_the_sample_bound() {
     );
     assert!(o.status.success(), "{}", text(&o.stderr));
     let e = text(&o.stderr);
-    assert!(e.contains("target 0.3 reached"), "{e}");
+    assert!(e.contains("stopped at the error target 0.3"), "{e}");
     let rows = csv(&dir.join("r.csv"));
     let last = rows.last().unwrap();
     let spp: u64 = last[3].parse().unwrap();

@@ -12,17 +12,17 @@ use std::time::{Duration, Instant};
 /// Longest wait for anything in this file: a guard against hangs, not a speed test.
 const HANG: Duration = Duration::from_secs(120);
 
-/// Starts a render that would take hours, waits until it has written its first checkpoint
-/// (`--checkpoint 1`: the image at 1 sample or pass, so the signal handler is installed and
-/// the render is under way, however fast or loaded the machine), sends `signal` (by the
-/// `kill` command: the test crate has no libc) and returns its exit code and stderr.
+/// Starts a render that would take hours (or its default budget's two minutes), waits
+/// until it has written its first checkpoint (`--checkpoint 1`, or the default budget's
+/// first write: the image at 1 sample or pass, so the signal handler is installed and the
+/// render is under way, however fast or loaded the machine), sends `signal` (by the `kill`
+/// command: the test crate has no libc) and returns its exit code and stderr.
 fn interrupt(dir: &Path, extra: &[&str], signal: &str) -> (Option<i32>, String) {
     let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/paper/fig4_5_1_caustics.glb");
     let child = Command::new(env!("CARGO_BIN_EXE_iris"))
         .arg("render")
         .arg(&scene)
         .args(["--size", "64x48", "-o", "out.png", "--threads", "2"])
-        .args(["--checkpoint", "1"])
         .args(extra)
         .current_dir(dir)
         .stdout(Stdio::null())
@@ -48,7 +48,11 @@ fn interrupt(dir: &Path, extra: &[&str], signal: &str) -> (Option<i32>, String) 
 }
 
 fn check_written(dir: &Path, stderr: &str) {
-    assert!(stderr.contains("interrupted"), "{stderr}");
+    // The summary says what ended the render.
+    assert!(
+        stderr.contains("iris: interrupted (Ctrl-C or SIGTERM): the image so far"),
+        "{stderr}"
+    );
     assert_eq!(common::entries(dir), ["out.png"], "{stderr}");
     let img = image::open(dir.join("out.png"))
         .expect("a whole PNG")
@@ -61,7 +65,8 @@ fn check_written(dir: &Path, stderr: &str) {
 #[test]
 fn sigint_writes_the_path_traced_image_so_far() {
     let dir = common::scratch_dir("interrupt_path");
-    let (code, err) = interrupt(&dir, &["--method", "path", "--spp", "1000000"], "-INT");
+    let flags = ["--method", "path", "--spp", "1000000", "--checkpoint", "1"];
+    let (code, err) = interrupt(&dir, &flags, "-INT");
     assert_eq!(code, Some(130), "{err}");
     check_written(&dir, &err);
 }
@@ -69,7 +74,25 @@ fn sigint_writes_the_path_traced_image_so_far() {
 #[test]
 fn sigterm_writes_the_sppm_image_so_far() {
     let dir = common::scratch_dir("interrupt_sppm");
-    let (code, err) = interrupt(&dir, &["--method", "sppm", "--passes", "10000000"], "-TERM");
+    let flags = [
+        "--method",
+        "sppm",
+        "--passes",
+        "10000000",
+        "--checkpoint",
+        "1",
+    ];
+    let (code, err) = interrupt(&dir, &flags, "-TERM");
+    assert_eq!(code, Some(130), "{err}");
+    check_written(&dir, &err);
+}
+
+#[test]
+fn the_default_budget_writes_as_it_goes_and_sigint_keeps_the_image() {
+    // No budget flag: the render would go on to the error target or two minutes, writing
+    // the image as it improves (the first checkpoint at once, which `interrupt` waits for).
+    let dir = common::scratch_dir("interrupt_default");
+    let (code, err) = interrupt(&dir, &[], "-INT");
     assert_eq!(code, Some(130), "{err}");
     check_written(&dir, &err);
 }

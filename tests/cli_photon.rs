@@ -188,6 +188,8 @@ fn auto_picks_hybrid_sppm_or_path() {
             plain.to_str().unwrap(),
             "--method",
             "auto",
+            "--spp",
+            "2",
             "--size",
             "32x24",
             "-q",

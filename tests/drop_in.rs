@@ -1,5 +1,6 @@
 //! The drop-in preview (issue 8): a file with no camera and no light, rendered with no
-//! flags but the size, gives a non-black image in which the model is framed.
+//! flags but the size and a fixed quick budget (Whitted, 4 spp: the default budget renders
+//! until an error target), gives a non-black image in which the model is framed.
 //!
 //! Through the `iris` binary, on models written here: a bare generated round diamond and
 //! emerald (glass: the studio lights them, `--ground auto` adds a floor) and an opaque OBJ
@@ -16,10 +17,13 @@ use std::path::Path;
 const W: u32 = 160;
 const H: u32 = 90;
 
-/// Renders `file` in `dir` with default flags (size and quiet only, plus `extra`).
+/// Renders `file` in `dir` with the default drop-in choices (studio, floor, framing): only
+/// the size, quiet and a fixed quick budget (Whitted, 4 spp; the default budget renders
+/// until an error target or a time limit), plus `extra`.
 fn render(dir: &Path, file: &str, out: &str, extra: &[&str]) -> String {
     let size = format!("{W}x{H}");
     let mut args = vec!["render", file, "-o", out, "--size", &size, "-q"];
+    args.extend(["--method", "whitted", "--spp", "4"]);
     args.extend_from_slice(extra);
     let o = iris(&args, dir);
     assert!(o.status.success(), "{file}: {}", stderr(&o));

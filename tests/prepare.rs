@@ -205,7 +205,7 @@ fn variations() -> Vec<Variation> {
             flags: &["--studio", "jeweller"],
             env: None,
             preview: PreviewOptions {
-                studio: Studio::Jeweller,
+                studio: Some(Studio::Jeweller),
                 ..p()
             },
         },
@@ -213,7 +213,7 @@ fn variations() -> Vec<Variation> {
             flags: &["--studio", "none"],
             env: None,
             preview: PreviewOptions {
-                studio: Studio::None,
+                studio: Some(Studio::None),
                 ..p()
             },
         },
@@ -242,7 +242,7 @@ fn variations() -> Vec<Variation> {
             env: None,
             preview: PreviewOptions {
                 ground: GroundMode::Off,
-                studio: Studio::Bright,
+                studio: Some(Studio::Bright),
                 ..p()
             },
         },

@@ -66,6 +66,7 @@ fn render_all(files: &[PathBuf], scratch: &str) {
                 max_depth: 64,
                 time_limit: None,
                 checkpoint: None,
+                watch: false,
                 photon,
                 accel: Backend::Auto,
                 seed: 1,

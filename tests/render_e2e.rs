@@ -28,6 +28,7 @@ fn opts(scene: &Path, out: &Path, accel: Backend, threads: usize) -> RenderOptio
         max_depth: 64,
         time_limit: None,
         checkpoint: None,
+        watch: false,
         photon: Default::default(),
         accel,
         seed: 7,

@@ -169,6 +169,7 @@ fn render_mean(scene: &Path, env: Option<Option<Environment>>, out: &Path) -> Ve
         max_depth: 4,
         time_limit: None,
         checkpoint: None,
+        watch: false,
         photon: Default::default(),
         accel: Backend::Bvh,
         seed: 1,

@@ -53,7 +53,7 @@ fn render(
         ..RenderOptions::new(scene, Some(out))
     };
     let preview = PreviewOptions {
-        studio,
+        studio: Some(studio),
         ground,
         ..Default::default()
     };
@@ -212,8 +212,31 @@ fn ground_auto_on_for_a_bare_stone_off_for_a_scene_with_a_floor() {
 
 #[test]
 fn a_file_with_lights_keeps_them() {
+    // The gem preview brings its own light (two emissive panels and an environment): the
+    // default studio adds nothing (the authored note says why). An explicit `--studio
+    // jeweller` asks for the studio (issue 18): its two keys join the file's lights, which
+    // stay.
     let dir = common::scratch_dir("studio_lit");
     let preview = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/gems/round_diamond.glb");
+    let prepared = |studio: Option<Studio>| {
+        let opts = RenderOptions {
+            size: Some((W, H)),
+            accel: Backend::Bvh,
+            preview: PreviewOptions {
+                studio,
+                ..Default::default()
+            },
+            ..RenderOptions::new(&preview, None)
+        };
+        iris::prepare::prepare(&preview, &opts.prepare_options(None)).expect("prepare")
+    };
+    let plain = prepared(None);
+    let notes: Vec<String> = plain.notes().iter().map(ToString::to_string).collect();
+    assert!(!notes.iter().any(|n| n.contains("studio `")), "{notes:?}");
+    assert!(
+        notes.iter().any(|n| n.contains("rendered as authored")),
+        "{notes:?}"
+    );
     let (_, s) = render(
         &preview,
         &dir.join("lit.exr"),
@@ -223,9 +246,18 @@ fn a_file_with_lights_keeps_them() {
         1,
     );
     assert!(
-        !s.notes.iter().any(|n| n.contains("studio")),
+        s.notes
+            .iter()
+            .any(|n| n.contains("--studio jeweller: studio environment and 2 key light(s) added")),
         "{:?}",
         s.notes
+    );
+    let jeweller = prepared(Some(Studio::Jeweller));
+    assert_eq!(jeweller.scene.lights.len(), plain.scene.lights.len() + 2);
+    assert_eq!(
+        jeweller.scene.area_lights.len(),
+        plain.scene.area_lights.len(),
+        "the file's emissive panels stay"
     );
 }
 

@@ -8,8 +8,9 @@ use crate::error::Result;
 use crate::measure::relative_rmse;
 use std::path::Path;
 
-/// `iris render`: renders, prints the notes, warnings and a summary line, and the error
-/// estimate (against `--reference` and `--target-error` when given). With `--explain` the
+/// `iris render`: renders, prints the notes, warnings and a summary line, then what ended
+/// the render ([`super::RenderSummary::end_text`]) with the error estimate (and the error
+/// against `--reference` when given). With `--explain` the
 /// plan and its measured costs go to stderr before the render starts.
 pub fn render(opts: &RenderOptions) -> Result<()> {
     let job = super::RenderJob::new(opts)?;
@@ -17,7 +18,6 @@ pub fn render(opts: &RenderOptions) -> Result<()> {
         eprint!("{}", job.plan.text_with_costs());
     }
     let s = job.run()?;
-    let measure = &opts.measure;
     for n in &s.notes {
         eprintln!("note: {n}");
     }
@@ -26,9 +26,6 @@ pub fn render(opts: &RenderOptions) -> Result<()> {
             "warning: {} samples were NaN or infinite and were left out of the image (a numerical failure: please report it with the scene)",
             s.stats.bad_samples
         );
-    }
-    if s.stats.interrupted {
-        eprintln!("iris: interrupted: the image has the samples taken so far");
     }
     let secs = s.stats.time.as_secs_f64();
     let work = s.work_done();
@@ -46,25 +43,27 @@ pub fn render(opts: &RenderOptions) -> Result<()> {
         s.build_time.as_secs_f64(),
         s.stats.rays as f64 / secs.max(1e-9) / 1e6
     );
-    if let Some(e) = s.final_estimate() {
-        let mut line = format!("iris: estimated relative error {:.4}", relative_rmse(&e));
-        if let Some(r) = s.final_error() {
-            line.push_str(&format!(
-                ", against the reference {:.4} (rmse {:.4e}, mae {:.4e})",
-                relative_rmse(&r),
-                r.rmse,
-                r.mae
-            ));
-        }
-        if let Some(t) = measure.target_error {
-            line.push_str(&if s.reached_target {
-                format!(", target {t} reached")
-            } else {
-                format!(", target {t} not reached within the bound")
-            });
-        }
-        eprintln!("{line}");
+    // What ended the render, then the image's error: estimated (unless the end's words
+    // gave it, with the target), and against the reference.
+    let mut line = format!("iris: {}", s.end_text());
+    // One sample (pass) makes both half images that sample: no estimate then.
+    let estimated = s.rows.last().is_some_and(|r| r.samples >= 2);
+    let said = s.target_estimate.is_some();
+    if let Some(e) = s.final_estimate().filter(|_| estimated && !said) {
+        line.push_str(&format!(
+            "; estimated relative error {:.4}",
+            relative_rmse(&e)
+        ));
     }
+    if let Some(r) = s.final_error() {
+        line.push_str(&format!(
+            ", against the reference {:.4} (rmse {:.4e}, mae {:.4e})",
+            relative_rmse(&r),
+            r.rmse,
+            r.mae
+        ));
+    }
+    eprintln!("{line}");
     Ok(())
 }
 

@@ -323,7 +323,7 @@ fn info_plan(path: &Path, flags: &[LookFlag]) -> Result<String> {
     plan.add_file_counts(path);
     plan.measure_costs(scene, &Camera::new(cam, w, h), 0)?;
     let mut s = format!(
-        "{}  (the plan for --method auto; `iris render` defaults to --method whitted)\n",
+        "{}  (the plan for --method auto, `iris render`'s default method)\n",
         plan.text_with_costs()
     );
     for n in prepared.notes() {

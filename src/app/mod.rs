@@ -1,9 +1,10 @@
 //! The commands behind the CLI, as library functions so tests can run them without a
-//! subprocess: `iris render` ([`render`]), `iris converge` ([`converge`]), `iris info`
+//! subprocess: `iris render` ([`render`], with its budget: [`budget`]), `iris converge` ([`converge`]), `iris info`
 //! ([`info`]), `iris diff` ([`diff`]), `iris gallery` ([`gallery`]), and the printing of
 //! each ([`commands`], what `main.rs` calls: one function per command). This is the top of
 //! the crate: nothing below imports it.
 
+pub mod budget;
 pub mod commands;
 pub mod converge;
 pub mod diff;
@@ -16,6 +17,7 @@ pub use crate::plan::SpectralMode;
 pub use crate::prepare::default_preview_scene;
 pub use crate::prepare::input::{check_size, default_size, load, resolve_environment, MAX_PIXELS};
 pub use crate::preview::{choose_camera, choose_camera_view, PreviewOptions};
+pub use budget::{Budget, BudgetFlags};
 pub use diff::{diff_command, DiffSummary};
 pub use info::{info_command, info_command_with};
 pub use render::{render_command, RenderJob, RenderOptions, RenderSummary};

@@ -3,6 +3,7 @@
 //! the summary ([`RenderSummary`]). Images are linear RGB until written; times are
 //! wall-clock.
 
+use super::budget::{Budget, CheckpointWrites, TargetStop};
 use crate::accel::Backend;
 use crate::camera::Camera;
 use crate::error::Result;
@@ -12,9 +13,9 @@ use crate::output::{self, Background, DisplayOptions, ImageRgb};
 use crate::plan::SpectralMode;
 use crate::prepare::input::check_size;
 use crate::preview::PreviewOptions;
-use crate::render::{Control, Progress, RenderSettings, RenderStats};
+use crate::render::{Control, EndReason, Progress, RenderSettings, RenderStats};
 use std::path::{Path, PathBuf};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// Everything `iris render` needs.
 #[derive(Debug, Clone)]
@@ -37,6 +38,10 @@ pub struct RenderOptions {
     /// `--checkpoint K`: write the image at the checkpoints (1, 2, 4, … samples or passes)
     /// that come at least K samples (passes) after the last write.
     pub checkpoint: Option<u32>,
+    /// Without `--checkpoint`: rewrite the output at the checkpoints, throttled
+    /// ([`super::budget::CheckpointWrites`]), so it can be watched; set for an open budget
+    /// ([`Budget::open`]).
+    pub watch: bool,
     /// Photon-mapping settings (`--photons`, `--radius`, `--alpha`, `--passes`, …).
     pub photon: crate::integrator::PhotonSettings,
     /// Acceleration backend.
@@ -71,9 +76,16 @@ pub struct RenderOptions {
 }
 
 impl RenderOptions {
-    /// `iris render SCENE -o OUTPUT` with every other flag at the CLI's default (4 spp,
-    /// Whitted, depth 64, no time limit, automatic backend, seed 0, all threads, the
-    /// file's first camera and environment, automatic spectral transport).
+    /// `iris render SCENE -o OUTPUT --method whitted --spp 4` with every other flag at the
+    /// CLI's default (depth 64, no time limit, automatic backend, seed 0, all threads, the
+    /// file's first camera and environment, automatic spectral transport, the drop-in
+    /// preview's choices).
+    ///
+    /// The library's default budget is this fixed, quick one (the CLI's default before
+    /// issue 18), not the CLI's default: callers (tests, tools, benches) want work bounded
+    /// by counts, whose images do not depend on the machine's speed. `iris render`'s
+    /// default (auto method, render until the error target or the time limit) is
+    /// `RenderOptions::new(..).with_budget(&Budget::default())`.
     pub fn new(scene: &Path, output: Option<&Path>) -> RenderOptions {
         RenderOptions {
             scene: scene.to_path_buf(),
@@ -84,6 +96,7 @@ impl RenderOptions {
             max_depth: 64,
             time_limit: None,
             checkpoint: None,
+            watch: false,
             photon: crate::integrator::PhotonSettings::default(),
             accel: Backend::Auto,
             seed: 0,
@@ -99,6 +112,18 @@ impl RenderOptions {
             looks: Vec::new(),
             explain: false,
         }
+    }
+
+    /// These options with `budget`'s method, counts, time limit and error target, watched
+    /// when the budget is open ([`super::budget`]).
+    pub fn with_budget(mut self, budget: &Budget) -> RenderOptions {
+        self.method = budget.method;
+        self.spp = budget.spp;
+        self.photon.passes = budget.passes;
+        self.time_limit = budget.time_limit;
+        self.measure.target_error = budget.target_error;
+        self.watch = budget.open;
+        self
     }
 
     /// The scene preparation these options (with their drop-in preview choices) ask for;
@@ -148,8 +173,12 @@ pub struct RenderSummary {
     pub notes: Vec<String>,
     /// Report rows: "load", "build", then one "render" row per checkpoint.
     pub rows: Vec<ReportRow>,
-    /// Whether `--target-error` stopped the render.
-    pub reached_target: bool,
+    /// The error target the render had (`--target-error`, or the default target).
+    pub target_error: Option<f64>,
+    /// The last error compared with the target ([`super::budget::stop_error`]), if any.
+    pub target_estimate: Option<f64>,
+    /// The time limit the render had (`--time`, or the default limit).
+    pub time_limit: Option<Duration>,
     /// The method that rendered (`--method auto` resolved).
     pub method: Method,
     /// The render plan the render followed (costs measured with `--explain`).
@@ -181,6 +210,47 @@ impl RenderSummary {
     /// The last checkpoint's half-buffer error estimate.
     pub fn final_estimate(&self) -> Option<ErrorMetrics> {
         self.rows.last().and_then(|r| r.estimate)
+    }
+
+    /// What ended the render ([`RenderStats::end`]).
+    pub fn end(&self) -> EndReason {
+        self.stats.end
+    }
+
+    /// What ended the render, in words: "stopped at the error target 0.03 (estimated
+    /// 0.0187)", "stopped at the time limit 120 s", "interrupted (Ctrl-C or SIGTERM): the
+    /// image so far", "64 spp done".
+    pub fn end_text(&self) -> String {
+        let target = |s: &mut String| {
+            if let (Some(t), Some(e)) = (self.target_error, self.target_estimate) {
+                s.push_str(&format!(" (error target {t}, estimated {e:.4})"));
+            } else if let Some(t) = self.target_error {
+                s.push_str(&format!(" (error target {t} not yet measurable)"));
+            }
+        };
+        match self.stats.end {
+            EndReason::Target => format!(
+                "stopped at the error target {} (estimated {:.4})",
+                self.target_error.unwrap_or(f64::NAN),
+                self.target_estimate.unwrap_or(f64::NAN)
+            ),
+            EndReason::TimeLimit => {
+                let secs = self.time_limit.map_or(f64::NAN, |t| t.as_secs_f64());
+                let mut s = format!("stopped at the time limit {secs} s");
+                target(&mut s);
+                s
+            }
+            EndReason::Interrupted => "interrupted (Ctrl-C or SIGTERM): the image so far".into(),
+            EndReason::Samples => {
+                let unit = if self.method == Method::Sppm {
+                    format!("{} passes", self.stats.passes)
+                } else {
+                    let pixels = u64::from(self.image.width) * u64::from(self.image.height);
+                    format!("{} spp", self.stats.samples / pixels.max(1))
+                };
+                format!("{unit} done")
+            }
+        }
     }
 }
 
@@ -291,8 +361,9 @@ impl<'a> RenderJob<'a> {
         let run = method.name();
         let mut rows =
             crate::measure::report::setup_rows(run, prepared.load_time, scene.accel_build_time);
-        let mut recorder = Recorder::new(run, reference.as_ref(), measure.target_error);
+        let mut recorder = Recorder::new(run, reference.as_ref());
         recorder.verbose = !opts.quiet && measure.any();
+        let mut stop = TargetStop::new(measure.target_error);
         let units = u64::from(opts.units(method));
         // `--background`: the coverage of the camera samples (as many as the render will
         // take at most, up to the pass's cap), computed once before rendering.
@@ -312,22 +383,21 @@ impl<'a> RenderJob<'a> {
                 &opts.display,
             )
         };
-        // `--checkpoint K`: write the image whenever K more units (samples, or SPPM passes:
-        // the driver counts either in `Progress::samples`) are done.
-        let mut last_written = 0u64;
+        // `--checkpoint K` (K more units: samples, or SPPM passes, which the driver counts
+        // in `Progress::samples`) or watching (an open budget): the image so far.
+        let mut writes = CheckpointWrites::new(opts.checkpoint, opts.watch);
         let mut observe = |p: &Progress| -> Result<Control> {
-            if let Some(k) = opts.checkpoint {
-                if !p.done && p.samples >= last_written + u64::from(k) {
-                    write(p.image)?;
-                    last_written = p.samples;
-                }
+            if writes.due(p, Instant::now()) {
+                let start = Instant::now();
+                write(p.image)?;
+                writes.wrote(p, start.elapsed(), Instant::now());
             }
-            recorder.observe(p)
+            recorder.record(p)?;
+            stop.check(p)
         };
         let (image, stats) =
             integrator.render_progressive(scene, &camera, &settings, Some(&mut observe))?;
         write(&image)?;
-        let reached_target = recorder.reached_target;
         rows.append(&mut recorder.rows);
         let measure_notes = measure.write_outputs(&rows, &opts.scene)?;
         let mut notes: Vec<String> = prepared.looks.iter().map(ToString::to_string).collect();
@@ -359,7 +429,9 @@ impl<'a> RenderJob<'a> {
             backend: scene.backend_name(),
             notes,
             rows,
-            reached_target,
+            target_error: measure.target_error,
+            target_estimate: stop.last,
+            time_limit: opts.time_limit,
             method,
             plan,
         })

@@ -17,7 +17,8 @@ pub struct MeasureOptions {
     pub report: Option<PathBuf>,
     /// `--plot out.png|svg`: error against time, log-log.
     pub plot: Option<PathBuf>,
-    /// `--target-error E`: stop once the estimated relative RMSE is ≤ E.
+    /// `--target-error E`: stop once the estimated relative RMSE is ≤ E
+    /// ([`crate::app::budget::TargetStop`]).
     pub target_error: Option<f64>,
 }
 

@@ -1,6 +1,7 @@
 //! Measuring a progressive render: at each checkpoint ([`Progress`], what the renderer shows
 //! its observer), the error against a reference (if one was given) and the half-buffer estimate
-//! (always), as [`ReportRow`]s; the `--target-error` stop; and the `--reference` file checks.
+//! (always), as [`ReportRow`]s; and the `--reference` file checks. (The `--target-error`
+//! stop is `crate::app::budget`'s.)
 //!
 //! Units: times are wall seconds since rendering started (loading and the acceleration build
 //! are their own rows); errors are on the linear image ([`super::metrics`]). The *relative
@@ -71,39 +72,33 @@ pub struct Progress<'a> {
     pub done: bool,
 }
 
-/// Collects one [`ReportRow`] per checkpoint of one run and decides when to stop.
+/// Collects one [`ReportRow`] per checkpoint of one run.
 #[derive(Debug)]
 pub struct Recorder<'a> {
     /// Run name written in the `run` column (the method).
     pub run: String,
     /// The reference, if any.
     pub reference: Option<&'a ImageRgb>,
-    /// Stop once the estimated relative RMSE is at or below this.
-    pub target_error: Option<f64>,
     /// Print one line per checkpoint on stderr.
     pub verbose: bool,
     /// The rows so far ("render" stage only).
     pub rows: Vec<ReportRow>,
-    /// Whether the target error was reached.
-    pub reached_target: bool,
 }
 
 impl<'a> Recorder<'a> {
     /// A recorder for run `run`.
-    pub fn new(run: &str, reference: Option<&'a ImageRgb>, target_error: Option<f64>) -> Self {
+    pub fn new(run: &str, reference: Option<&'a ImageRgb>) -> Self {
         Recorder {
             run: run.to_string(),
             reference,
-            target_error,
             verbose: false,
             rows: Vec::new(),
-            reached_target: false,
         }
     }
 
-    /// Records a checkpoint; returns `true` (stop rendering) when the target error is
-    /// reached.
-    pub fn record(&mut self, p: &Progress) -> Result<bool> {
+    /// Records a checkpoint: its row, with the half-buffer estimate and the error against
+    /// the reference.
+    pub fn record(&mut self, p: &Progress) -> Result<()> {
         let estimate = half_buffer_estimate(p.halves.0, p.halves.1)?;
         let error = match self.reference {
             Some(r) => Some(compare(p.image, r)?),
@@ -134,13 +129,7 @@ impl<'a> Recorder<'a> {
                 checkpoint_line(&self.run, p, &estimate, error.as_ref())
             );
         }
-        let reached = self
-            .target_error
-            .is_some_and(|e| relative_rmse(&estimate) <= e);
-        if reached {
-            self.reached_target = true;
-        }
-        Ok(reached)
+        Ok(())
     }
 
     /// (seconds, error) points for a plot: the error against the reference if there is one,
@@ -188,7 +177,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn recorder_stops_at_the_target_and_merges_the_final_call() {
+    fn recorder_merges_the_final_call() {
         use glam::Vec3;
         let img = |v: f32| ImageRgb {
             width: 2,
@@ -199,7 +188,7 @@ mod tests {
         // estimated relative RMSE is sqrt(0.01/1.01) ≈ 0.0995.
         let (a, b, m) = (img(0.9), img(1.1), img(1.0));
         let reference = img(1.0);
-        let mut rec = Recorder::new("path", Some(&reference), Some(0.1));
+        let mut rec = Recorder::new("path", Some(&reference));
         let progress = |done| Progress {
             image: &m,
             halves: (&a, &b),
@@ -210,8 +199,7 @@ mod tests {
             photons: 0,
             done,
         };
-        assert!(rec.record(&progress(false)).unwrap(), "stop");
-        assert!(rec.reached_target);
+        rec.record(&progress(false)).unwrap();
         rec.record(&progress(true)).unwrap();
         assert_eq!(
             rec.rows.len(),
@@ -221,8 +209,6 @@ mod tests {
         let est = rec.rows[0].estimate.unwrap();
         assert!((relative_rmse(&est) - (0.01f64 / 1.01).sqrt()).abs() < 1e-6);
         assert_eq!(rec.rows[0].error.unwrap().rmse, 0.0);
-        let mut strict = Recorder::new("path", None, Some(0.09));
-        assert!(!strict.record(&progress(false)).unwrap(), "continue");
     }
 
     #[test]

@@ -2,21 +2,25 @@
 //! `iris info` and the benches render or describe for a scene file and its flags.
 //!
 //! Order, all on the scene description ([`crate::scene::desc::SceneDesc`]): load and
-//! validate the file; replace materials by `--stone` / `--metal` ([`looks`]); decide the
-//! `--ground` floor ([`crate::studio::ground::decide`]); set
+//! validate the file; replace materials by `--stone` / `--metal` ([`looks`]); decide
+//! whether it is authored ([`Authored`]: it brings its own light, so the defaults add
+//! neither floor nor studio); decide the `--ground` floor
+//! ([`crate::studio::ground::decide`]); set
 //! the environment light (`--env`, else the file's `iris_environment`); fix the image size
 //! (the flag, else the reference's, else [`input::default_size`]); pick the file's
 //! camera or frame the model's vertices ([`crate::preview::choose_camera_in`]); when the
-//! file has no light and no `--env` is given, write the studio's lights into the
-//! description ([`crate::studio::light`]), placed relative to that camera, else the default
+//! file has no light (or `--studio NAME` asks) and no `--env` is given, write the studio's
+//! lights into the description ([`crate::studio::light`]), placed relative to that camera, else the default
 //! key and fill when nothing lights it ([`crate::scene::lighting::light_if_unlit`]); add
 //! the floor; then [`Scene::build`], once. Nothing changes the scene after the build, and
 //! what was decided is kept as data ([`Note`]). Units: the file's (metres for glTF);
 //! frames: world space, +Y up. Two calls with the same file and options give the same
 //! scene, camera and notes.
 
+mod authored;
 mod note;
 
+pub use authored::Authored;
 pub use note::Note;
 
 pub mod input;
@@ -29,7 +33,7 @@ use crate::light::env::Environment;
 use crate::preview::{choose_camera_in, PreviewOptions};
 use crate::scene::desc::{CameraDesc, SceneDesc};
 use crate::scene::{lighting, Scene};
-use crate::studio::ground::{self, Floor};
+use crate::studio::ground::{self, Floor, GroundMode};
 use input::{check_size, default_size, resolve_environment};
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -88,8 +92,11 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
     let start = Instant::now();
     let mut desc = crate::load::load_scene(path)?;
     let looks = looks::apply(&mut desc, &opts.looks)?;
+    let authored = Authored::of(&desc);
     let (add_floor, floor) = if preview.ground_mode() != preview.ground {
         (false, Floor::CoversBackground)
+    } else if preview.ground == GroundMode::Auto && authored.is_some() {
+        (false, Floor::Authored)
     } else {
         ground::decide(&desc, preview.ground)
     };
@@ -121,11 +128,21 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
     let touching = (scene.touching_triangles > 0).then_some(Note::Touching {
         triangles: scene.touching_triangles,
     });
+    // The authored file's note, when the defaults left something out because of it.
+    let (no_floor, no_studio) = (floor == Floor::Authored, preview.studio.is_none());
+    let authored_note = authored
+        .filter(|_| no_floor || no_studio)
+        .map(|evidence| Note::Authored {
+            evidence,
+            no_floor,
+            no_studio,
+        });
     let notes = [
         scene.default_lights.then_some(Note::KeyFill),
         touching,
         studio,
-        (floor != Floor::NotTransmissive).then_some(Note::Floor(floor)),
+        (!matches!(floor, Floor::NotTransmissive | Floor::Authored)).then_some(Note::Floor(floor)),
+        authored_note,
     ];
     Ok(Prepared {
         scene,
@@ -139,13 +156,22 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
 }
 
 /// Lights a description that brings no light: with the studio when no `--env` is given
-/// (the returned note), else, or for `--studio none`, with the default key and fill.
+/// (the returned note), else, or for `--studio none`, with the default key and fill. An
+/// explicit `--studio NAME` (not `none`) also adds the studio to a file that is lit.
 fn light(desc: &mut SceneDesc, opts: &PrepareOptions, camera: &CameraDesc) -> Option<Note> {
-    let preset = opts.preview.studio;
-    let studio = (opts.env.is_none() && !lighting::is_lit(desc))
+    let explicit = opts.preview.studio;
+    let preset = explicit.unwrap_or_default();
+    let lit = lighting::is_lit(desc);
+    let studio = (opts.env.is_none() && (explicit.is_some() || !lit))
         .then(|| crate::studio::light(desc, preset, camera))
         .flatten()
-        .map(|keys| Note::Studio { preset, keys });
+        .map(|keys| {
+            if lit {
+                Note::StudioAdded { preset, keys }
+            } else {
+                Note::Studio { preset, keys }
+            }
+        });
     lighting::light_if_unlit(desc);
     studio
 }

@@ -3,13 +3,15 @@
 //! text to learn what was decided. The wording (the [`std::fmt::Display`] impl) is the
 //! only place each note is written.
 
+use super::Authored;
 use crate::preview::AutoCamera;
 use crate::studio::ground::Floor;
 use crate::studio::Studio;
 use std::fmt;
 
 /// A decision taken for the user while preparing a scene, in the order
-/// [`super::Prepared::notes`] lists them: lights, touching volumes, studio, floor, camera.
+/// [`super::Prepared::notes`] lists them: lights, touching volumes, studio, floor, the
+/// authored file's note, camera.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Note {
     /// Nothing lights the file: the default key and fill lights were added.
@@ -26,9 +28,28 @@ pub enum Note {
         /// Its number of spot key lights.
         keys: usize,
     },
+    /// `--studio NAME` asked for a studio although the file brings its own light: the
+    /// studio's keys were added to the file's lights and its environment replaces the
+    /// file's.
+    StudioAdded {
+        /// The preset.
+        preset: Studio,
+        /// Its number of spot key lights.
+        keys: usize,
+    },
     /// Whether a floor was added, and why (never [`Floor::NotTransmissive`], which goes
-    /// without saying).
+    /// without saying, nor [`Floor::Authored`], which [`Note::Authored`] says).
     Floor(Floor),
+    /// The file brings its own light: the drop-in additions the defaults would have made
+    /// (the studio, and with `--ground auto` a floor) were left out.
+    Authored {
+        /// What light the file brings.
+        evidence: Authored,
+        /// Whether `--ground auto` left the floor out for this reason.
+        no_floor: bool,
+        /// Whether the default studio was left out (no `--studio NAME` given).
+        no_studio: bool,
+    },
     /// How Iris chose the camera.
     Camera(AutoCamera),
 }
@@ -50,7 +71,30 @@ impl fmt::Display for Note {
                  --studio none for the plain key and fill)",
                 preset.name()
             ),
+            Note::StudioAdded { preset, keys } => write!(
+                f,
+                "--studio {}: studio environment and {keys} key light(s) added to the file's \
+                 own lights",
+                preset.name()
+            ),
             Note::Floor(floor) => f.write_str(floor_text(floor)),
+            Note::Authored {
+                evidence,
+                no_floor,
+                no_studio,
+            } => {
+                let (what, flags) = match (no_studio, no_floor) {
+                    (true, true) => ("no studio or floor", "--studio NAME, --ground on"),
+                    (true, false) => ("no studio", "--studio NAME"),
+                    (false, _) => ("no floor", "--ground on"),
+                };
+                write!(
+                    f,
+                    "the file brings its own light ({}): rendered as authored, {what} added \
+                     ({flags} to add)",
+                    evidence.evidence()
+                )
+            }
             Note::Camera(AutoCamera::View {
                 view,
                 over_file_camera,
@@ -89,6 +133,10 @@ fn floor_text(floor: Floor) -> &'static str {
             "--ground auto: no floor, since it would cover the --background (--ground on to \
              add it)"
         }
+        Floor::Authored => {
+            "--ground auto: the file brings its own light, no floor added (--ground on to add \
+             one)"
+        }
     }
 }
 
@@ -125,6 +173,20 @@ mod tests {
             })
             .to_string(),
             "--view top: framing the model automatically instead of the file's camera"
+        );
+        assert_eq!(
+            Note::Authored {
+                evidence: Authored {
+                    punctual: 2,
+                    emissive: true,
+                    environment: false
+                },
+                no_floor: true,
+                no_studio: true
+            }
+            .to_string(),
+            "the file brings its own light (2 punctual lights, emissive surfaces): rendered as \
+             authored, no studio or floor added (--studio NAME, --ground on to add)"
         );
         assert_eq!(
             Note::Floor(Floor::CoversBackground).to_string(),

@@ -13,13 +13,18 @@
 //!   round that crosses it.
 //! - The observer sees every checkpoint and the end (`done`); [`Control::Stop`] ends the
 //!   render with the image it saw.
+//! - The stats say what ended the render ([`EndReason`]; the order of precedence is the
+//!   enum's docs).
+//! - A target of [`super::OPEN_UNITS`] or more is open-ended (the caller relies on the time
+//!   limit or the observer): the progress bar then shows elapsed time and the time limit,
+//!   not a fraction of the units.
 //!
 //! Times are wall-clock from [`Setup::start`] (work before the first unit, such as photon
 //! maps, counts).
 
 use super::film::Film;
 use super::progress::{estimate_note, progress_bar, relative_error_estimate};
-use super::{Control, Observer, Progress, RenderSettings, RenderStats, Setup};
+use super::{Control, EndReason, Observer, Progress, RenderSettings, RenderStats, Setup};
 use crate::error::Result;
 use indicatif::ProgressBar;
 use std::time::Instant;
@@ -79,13 +84,24 @@ pub fn drive(
     let target = schedule.target.max(1);
     let mut film = Film::new(settings.width, settings.height);
     let unit = if schedule.passes { "passes" } else { "spp" };
-    let bar = progress_bar(settings.quiet, target * film.tiles() as u64, schedule.label);
+    let open = target >= super::OPEN_UNITS;
+    let bar = progress_bar(
+        settings.quiet,
+        (!open).then(|| target * film.tiles() as u64),
+        schedule.label,
+    );
     let env = RoundEnv { stop, bar: &bar };
+    let limit_note = match (open, settings.time_limit) {
+        (true, Some(t)) => format!(", time limit {:.0} s", t.as_secs_f64()),
+        _ => String::new(),
+    };
     let started = Instant::now();
     let (mut done, mut next_checkpoint) = (0u64, 1u64);
     let (mut rays, mut photons, mut bad) = (setup.rays, setup.photons, 0u64);
     let mut estimate = None;
     let mut interrupted;
+    let mut observer_stopped = false;
+    let mut out_of_time;
     loop {
         // Units to the next checkpoint, fewer if the time limit would be crossed.
         let mut n = (next_checkpoint.min(target) - done).min(schedule.max_round.max(1));
@@ -104,10 +120,14 @@ pub fn drive(
         let stop_asked = env.skip(k0);
         done = film.done();
         interrupted = stop_asked && done < target;
-        let message =
-            |e: Option<f64>| format!("{done} {unit}, {rays} rays{note}{}", estimate_note(e));
+        let message = |e: Option<f64>| {
+            format!(
+                "{done} {unit}, {rays} rays{note}{}{limit_note}",
+                estimate_note(e)
+            )
+        };
         bar.set_message(message(estimate));
-        let out_of_time = settings
+        out_of_time = settings
             .time_limit
             .is_some_and(|t| setup.start.elapsed() >= t);
         let finished = done >= target || out_of_time || interrupted;
@@ -136,6 +156,7 @@ pub fn drive(
                 done: finished,
             };
             if obs(&progress)? == Control::Stop {
+                observer_stopped = true;
                 break;
             }
         }
@@ -144,6 +165,16 @@ pub fn drive(
         }
     }
     bar.finish_and_clear();
+    let end = if interrupted {
+        EndReason::Interrupted
+    } else if observer_stopped {
+        EndReason::Target
+    } else if done >= target {
+        EndReason::Samples
+    } else {
+        debug_assert!(out_of_time);
+        EndReason::TimeLimit
+    };
     Ok((
         film.mean(),
         RenderStats {
@@ -153,7 +184,7 @@ pub fn drive(
             photons,
             passes: if schedule.passes { done as u32 } else { 1 },
             bad_samples: bad,
-            interrupted,
+            end,
         },
     ))
 }

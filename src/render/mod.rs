@@ -90,11 +90,41 @@ pub struct RenderStats {
     /// Samples (SPPM: per-pixel pass contributions) dropped because they were NaN or
     /// infinite ([`guard::admit`]); 0 in a healthy render.
     pub bad_samples: u64,
-    /// The render ended early on a stop request ([`guard::request_stop`], SIGINT); the image
-    /// is the mean of the samples taken so far (tiles of the last round may have one round
-    /// more than others).
-    pub interrupted: bool,
+    /// What ended the render ([`EndReason`]).
+    pub end: EndReason,
 }
+
+impl RenderStats {
+    /// Whether the render ended early on a stop request ([`guard::request_stop`], SIGINT);
+    /// the image is then the mean of the samples taken so far (tiles of the last round may
+    /// have one round more than others).
+    pub fn interrupted(&self) -> bool {
+        self.end == EndReason::Interrupted
+    }
+}
+
+/// What ended a progressive render ([`drive`]). When several hold at the last round, the
+/// first in this order is reported: an interruption, the observer's stop, the unit count,
+/// the time limit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EndReason {
+    /// Every unit asked for was taken (`--spp`, or `--passes` for SPPM).
+    Samples,
+    /// The observer answered [`Control::Stop`]: in `iris render` it does so only when the
+    /// estimated error reached the target (`--target-error` or the default target,
+    /// [`crate::app::budget`]).
+    Target,
+    /// The time limit (`--time`, or the default limit) was crossed.
+    TimeLimit,
+    /// A stop request ([`guard::request_stop`]: Ctrl-C, SIGTERM) ended it early.
+    Interrupted,
+}
+
+/// A unit count from which [`drive`] treats the count as open-ended: the progress bar
+/// shows elapsed time and the image's state instead of a fraction of the units (the time
+/// limit or the error target will end the render first). `iris render` without `--spp` or
+/// `--passes` asks for this many ([`crate::app::budget::OPEN_UNITS`]).
+pub const OPEN_UNITS: u64 = 1 << 20;
 
 /// Most worker threads (`--threads`); 0 asks for one per core. Far more threads than
 /// cores only add memory (a stack each) and scheduling, and a pool of 10⁵ threads would

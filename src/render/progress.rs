@@ -58,11 +58,23 @@ pub fn estimate_note(e: Option<f64>) -> String {
 }
 
 /// A progress bar on stderr (hidden with `quiet`): elapsed time, the bar, and a message
-/// (samples or passes done, rays).
-pub fn progress_bar(quiet: bool, len: u64, what: &str) -> ProgressBar {
+/// (samples or passes done, rays). With no length (an open-ended render, ended by time or
+/// error) a spinner with the elapsed time and the message, redrawn every 250 ms.
+pub fn progress_bar(quiet: bool, len: Option<u64>, what: &str) -> ProgressBar {
     if quiet {
         return ProgressBar::hidden();
     }
+    let Some(len) = len else {
+        let b = ProgressBar::new_spinner();
+        b.set_style(
+            ProgressStyle::with_template(&format!(
+                "{{spinner}} {what} [{{elapsed_precise}}] {{msg}}"
+            ))
+            .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+        );
+        b.enable_steady_tick(std::time::Duration::from_millis(250));
+        return b;
+    };
     let b = ProgressBar::new(len);
     b.set_style(
         ProgressStyle::with_template(&format!(

@@ -249,7 +249,7 @@ mod tests {
             "{}",
             stats.bad_samples
         );
-        assert!(!stats.interrupted);
+        assert_eq!(stats.end, crate::render::EndReason::Samples);
     }
 
     #[test]
@@ -264,7 +264,7 @@ mod tests {
         let (img, seen, stats) = render_with(40, 40, 8, u64::MAX, 1, &stop, ind);
         let (four, ..) = render_with(40, 40, 4, u64::MAX, 1, &|| false, ind);
         let (eight, ..) = render_with(40, 40, 8, u64::MAX, 1, &|| false, ind);
-        assert!(stats.interrupted);
+        assert!(stats.interrupted());
         assert_eq!(seen, [1, 2, 4, 4]);
         let tile_of = |i: usize| (i % 40 / 16, i / 40 / 16);
         let mut whole = [[None; 3]; 3];

@@ -17,7 +17,13 @@ use glam::Vec3;
 
 /// Whether the file's description has a punctual light or an emitting triangle.
 pub fn has_own_light(desc: &SceneDesc) -> bool {
-    !desc.lights.is_empty() || desc.meshes.iter().any(|m| mesh_emits(desc, m))
+    !desc.lights.is_empty() || has_emitter(desc)
+}
+
+/// Whether the file's description has an emitting triangle (an emissive material on a
+/// mesh, by [`AreaLights::build`]'s test).
+pub fn has_emitter(desc: &SceneDesc) -> bool {
+    desc.meshes.iter().any(|m| mesh_emits(desc, m))
 }
 
 /// Whether `mesh` has a triangle that [`AreaLights::build`] would keep as an emitter.

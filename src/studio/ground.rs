@@ -95,6 +95,9 @@ pub enum Floor {
     /// `auto` with a `--background` other than the environment: no floor, which would
     /// cover it ([`crate::preview::PreviewOptions::ground_mode`]).
     CoversBackground,
+    /// `auto` on a file that brings its own light ([`crate::prepare::Authored`]): its scene
+    /// is kept as authored, no floor (the preparation's authored note says so).
+    Authored,
 }
 
 impl Floor {

@@ -3,9 +3,11 @@
 //! the model's bounding box and the camera, and an optional white floor ([`ground`]).
 //!
 //! ## When it applies
-//! Only when the file has no punctual light, no emissive material and no environment, and
+//! When the file has no punctual light, no emissive material and no environment, and
 //! `--env` is not given (`--env none` keeps today's directional key/fill lights, as does
-//! `--studio none`). A file's own lights are never replaced.
+//! `--studio none`); for a file that brings its own light only when `--studio NAME` asks
+//! ([`crate::prepare::Authored`]): the keys are then added to the file's lights and the
+//! studio's environment replaces the file's. A file's own lights are never removed.
 //!
 //! ## Frames and units
 //! - World frame: right-handed, +Y up, metres (glTF). Directions of the studio are given

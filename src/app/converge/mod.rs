@@ -273,7 +273,7 @@ fn run_method(
     rows: &mut Vec<ReportRow>,
 ) -> Result<(RunSummary, Curve)> {
     let name = method.name();
-    let mut recorder = Recorder::new(name, Some(reference), None);
+    let mut recorder = Recorder::new(name, Some(reference));
     recorder.verbose = !opts.quiet;
     let mut observe = |p: &Progress| -> Result<Control> { recorder.observe(p) };
     let (image, stats) = job.run(method, &job.base, Some(&mut observe))?;

@@ -1,0 +1,419 @@
+//! How long `iris render` renders (issue 18): the budget the flags ask for, resolved in one
+//! place ([`BudgetFlags::resolve`]); the stop test against an error target ([`stop_error`],
+//! [`TargetStop`]); and when the output is rewritten while the render runs
+//! ([`CheckpointWrites`]).
+//!
+//! ## The rule
+//! | flags given | unit cap (spp; SPPM: passes) | time limit | error target |
+//! |---|---|---|---|
+//! | `--spp N` and/or `--passes N` | N (the other: [`FIXED_SPP`] / [`FIXED_PASSES`]) | `--time` if given | `--target-error` if given |
+//! | `--time T` alone | open | T | none |
+//! | `--target-error E` alone | open | [`DEFAULT_TIME_LIMIT`] | E |
+//! | `--time T --target-error E` | open | T | E |
+//! | none of them | open | [`DEFAULT_TIME_LIMIT`] | [`DEFAULT_TARGET`] |
+//!
+//! "Open" is [`OPEN_UNITS`] (2²⁰) samples per pixel and passes: more than `--spp` accepts,
+//! so the time limit or the target ends the render. Without `--method` the method is
+//! `auto` ([`crate::plan::resolve_method`]); `--method whitted` and the others still work.
+//! An open budget also rewrites the output at the driver's checkpoints (1, 2, 4, …
+//! samples or passes), throttled by [`CheckpointWrites`], so the file can be watched;
+//! `--checkpoint K` replaces that rule by its own.
+//!
+//! ## The stop test
+//! The target is compared with [`stop_error`] at each checkpoint from [`MIN_STOP_UNITS`]
+//! on: today the half-buffer estimate of the relative RMSE of the image as written
+//! ([`crate::measure::metrics::half_buffer_estimate`]), the same number `--target-error`
+//! always used. Checkpoints double, so a render stops at the first power of two whose
+//! image meets the target (or at the end of its time). The estimate sees noise, not bias,
+//! and misses what neither half has found yet (a caustic no sample reached): hence the
+//! minimum count and the time limit as a safety net.
+//!
+//! ## The defaults
+//! [`DEFAULT_TARGET`] and [`DEFAULT_TIME_LIMIT`] are documented in the README ("How long
+//! does a render take"); the measurements behind them are beside the constants. Units:
+//! wall-clock seconds; errors are relative RMSE, `sqrt(rel_mse)` ([`crate::measure`]).
+
+use crate::error::Result;
+use crate::integrator::Method;
+use crate::measure::{metrics::half_buffer_estimate, relative_rmse, Progress};
+use crate::render::Control;
+use std::time::{Duration, Instant};
+
+/// The samples per pixel (and SPPM passes) of an open budget: effectively unbounded
+/// ([`crate::render::OPEN_UNITS`], 2²⁰ = 1 048 576, above `--spp`'s 10⁶ limit), so the
+/// time limit or the error target ends the render. It is also the size of a pixel's Sobol'
+/// block ([`crate::sampler::zsobol`]): a render stopped after N samples takes the first N
+/// of that block, stratified like any prefix of it.
+pub const OPEN_UNITS: u32 = crate::render::OPEN_UNITS as u32;
+
+/// Samples per pixel when only `--passes` fixes the count (the CLI's default before issue 18).
+pub const FIXED_SPP: u32 = 4;
+
+/// SPPM passes when only `--spp` fixes the count (the CLI's default before issue 18).
+pub const FIXED_PASSES: u32 = 64;
+
+/// The error target of a render given no `--spp`, `--passes`, `--time` or
+/// `--target-error`: an estimated relative RMSE ([`stop_error`]) of 0.03.
+///
+/// Measured with `iris render SCENE --time T --checkpoint 1 --report R.csv` (auto method;
+/// the estimate at each checkpoint, each checkpoint's image inspected), on the 2-core
+/// machine shared with other jobs (load average about 10, so times are several times a
+/// quiet machine's):
+/// - Suzanne (Khronos) under the soft studio, 400×300, hybrid: 0.082 at 16 spp (grain
+///   everywhere), 0.045 at 64 spp (specks left in the dark metal), 0.032 at 128 spp (rare
+///   specks), 128 spp after 82 s;
+/// - a grey box and floor under a uniform sky (`tests/default_budget.rs`), 32×24, path:
+///   0.047 at 64 spp, 0.033 at 128, 0.023 at 256, 0.016 at 512: it falls as spp^−1/2;
+/// - the McGuire Cornell box (no camera: framed), 300×300, path: 0.052 at 16 spp, 0.039
+///   at 64, 0.034 at 256 (fireflies from its small light keep it up);
+/// - Fig. 7.1's glass spheres (hybrid, 400×225): 0.146 at 64 spp, 0.12 at 97 spp in
+///   120 s; the glass of water (hybrid, 400×300) 0.16 at 20 spp in 90 s; the bare round
+///   diamond (hybrid, spectral, 800×600) 0.89 at 16 spp in 142 s.
+///
+/// On the quiet machine at the default size (800×600), the box-and-floor scene stops at
+/// the target at 256 spp after 49 s (estimated 0.022; 128 spp were above it), Fig. 7.1's
+/// spheres (800×450) at the time limit with 111 spp, estimated 0.11.
+///
+/// So 0.03 is where the grain of a plain scene has gone at normal viewing size, and what
+/// it costs is known (quadrupling the samples halves the estimate); glass, caustics,
+/// dispersion and small lights stay above it for minutes, and [`DEFAULT_TIME_LIMIT`] ends
+/// those. (The estimate of a denoised image would reach it far sooner; [`stop_error`] is
+/// the one place to change.)
+pub const DEFAULT_TARGET: f64 = 0.03;
+
+/// The time limit of a render given no `--spp`, `--passes` or `--time`: 120 s.
+///
+/// The safety net for scenes that do not reach [`DEFAULT_TARGET`] soon. In its
+/// measurements (under load) about two minutes gave the plain scenes 136–346 spp at 300–400
+/// pixels wide and the glass scenes 20–97 spp: the whole picture, its noise still visible
+/// in the hard cases. A longer render is one flag away (`--time`, `--target-error`); the
+/// default should not keep a preview waiting longer.
+pub const DEFAULT_TIME_LIMIT: Duration = Duration::from_secs(120);
+
+/// The stop test is not applied before this many samples per pixel (SPPM: passes): with
+/// one sample both half images are that sample and the estimate is 0, and with very few a
+/// sparse light path (a caustic, a small light seen through glass) is in neither half.
+pub const MIN_STOP_UNITS: u64 = 8;
+
+/// While watching (an open budget), the output is rewritten at most this often.
+pub const WATCH_INTERVAL: Duration = Duration::from_secs(2);
+
+/// While watching, the time between two writes is also at least this many times the last
+/// write's cost, so writing takes at most 1/20 of the render's time.
+pub const WATCH_COST_FACTOR: u32 = 20;
+
+/// The budget flags of `iris render` as given (`None` = not given).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct BudgetFlags {
+    /// `--method`.
+    pub method: Option<Method>,
+    /// `--spp`.
+    pub spp: Option<u32>,
+    /// `--passes`.
+    pub passes: Option<u32>,
+    /// `--time`.
+    pub time: Option<Duration>,
+    /// `--target-error`.
+    pub target_error: Option<f64>,
+}
+
+/// What a render may spend and when it stops (the module docs' table, resolved).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Budget {
+    /// The method (`auto` when `--method` is not given).
+    pub method: Method,
+    /// Most samples per pixel (not SPPM).
+    pub spp: u32,
+    /// Most SPPM passes.
+    pub passes: u32,
+    /// Stop after the round that crosses this wall time.
+    pub time_limit: Option<Duration>,
+    /// Stop once [`stop_error`] is at or below this.
+    pub target_error: Option<f64>,
+    /// No count was given: the time limit or the target ends the render, and the output is
+    /// rewritten at checkpoints ([`CheckpointWrites`]).
+    pub open: bool,
+}
+
+impl BudgetFlags {
+    /// The budget these flags ask for (the table of the module docs).
+    pub fn resolve(&self) -> Budget {
+        let method = self.method.unwrap_or(Method::Auto);
+        if self.spp.is_some() || self.passes.is_some() {
+            return Budget {
+                method,
+                spp: self.spp.unwrap_or(FIXED_SPP),
+                passes: self.passes.unwrap_or(FIXED_PASSES),
+                time_limit: self.time,
+                target_error: self.target_error,
+                open: false,
+            };
+        }
+        let (time_limit, target_error) = match (self.time, self.target_error) {
+            (Some(t), e) => (t, e),
+            (None, Some(e)) => (DEFAULT_TIME_LIMIT, Some(e)),
+            (None, None) => (DEFAULT_TIME_LIMIT, Some(DEFAULT_TARGET)),
+        };
+        Budget {
+            method,
+            spp: OPEN_UNITS,
+            passes: OPEN_UNITS,
+            time_limit: Some(time_limit),
+            target_error,
+            open: true,
+        }
+    }
+}
+
+impl Default for Budget {
+    /// `iris render SCENE` with no budget flag: auto method, [`DEFAULT_TARGET`],
+    /// [`DEFAULT_TIME_LIMIT`], open count.
+    fn default() -> Self {
+        BudgetFlags::default().resolve()
+    }
+}
+
+/// The error a render's target is compared with, at a checkpoint: the estimated relative
+/// RMSE of the image as written (the half-buffer estimate). `None` when there is nothing
+/// to compare yet. The one place that decides it: a denoised render would compare the
+/// denoised image's estimate here instead.
+pub fn stop_error(p: &Progress) -> Result<Option<f64>> {
+    if p.samples < MIN_STOP_UNITS {
+        return Ok(None);
+    }
+    let estimate = half_buffer_estimate(p.halves.0, p.halves.1)?;
+    Ok(Some(relative_rmse(&estimate)))
+}
+
+/// The error-target stop of one render: compares [`stop_error`] with the target at each
+/// checkpoint and remembers the last value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TargetStop {
+    /// The target (`None`: never stops).
+    pub target: Option<f64>,
+    /// The last [`stop_error`] computed.
+    pub last: Option<f64>,
+}
+
+impl TargetStop {
+    /// A stop at `target`.
+    pub fn new(target: Option<f64>) -> Self {
+        TargetStop { target, last: None }
+    }
+
+    /// [`Control::Stop`] once the checkpoint's [`stop_error`] is at or below the target.
+    pub fn check(&mut self, p: &Progress) -> Result<Control> {
+        let Some(target) = self.target else {
+            return Ok(Control::Continue);
+        };
+        let Some(e) = stop_error(p)? else {
+            return Ok(Control::Continue);
+        };
+        self.last = Some(e);
+        Ok(if e <= target {
+            Control::Stop
+        } else {
+            Control::Continue
+        })
+    }
+}
+
+/// When the output is rewritten during a render: every `--checkpoint K` units, or, for an
+/// open budget ("watch"), at the driver's checkpoints with the first one written at once
+/// and later ones at least [`WATCH_INTERVAL`] and [`WATCH_COST_FACTOR`] × the last write's
+/// cost apart. Never at the end (`done`): the final image is written by the caller.
+#[derive(Debug, Clone)]
+pub struct CheckpointWrites {
+    every: Option<u32>,
+    watch: bool,
+    last_units: u64,
+    last_write: Option<(Instant, Duration)>,
+}
+
+impl CheckpointWrites {
+    /// `--checkpoint K` (`every`), else watching when `watch`, else no writes before the end.
+    pub fn new(every: Option<u32>, watch: bool) -> Self {
+        CheckpointWrites {
+            every,
+            watch,
+            last_units: 0,
+            last_write: None,
+        }
+    }
+
+    /// Whether to write the image of checkpoint `p` at time `now`.
+    pub fn due(&self, p: &Progress, now: Instant) -> bool {
+        if p.done {
+            return false;
+        }
+        if let Some(k) = self.every {
+            return p.samples >= self.last_units + u64::from(k);
+        }
+        self.watch
+            && self.last_write.is_none_or(|(end, cost)| {
+                now.saturating_duration_since(end) >= WATCH_INTERVAL.max(cost * WATCH_COST_FACTOR)
+            })
+    }
+
+    /// Records a write of checkpoint `p` that took `cost` and ended at `end`.
+    pub fn wrote(&mut self, p: &Progress, cost: Duration, end: Instant) {
+        self.last_units = p.samples;
+        self.last_write = Some((end, cost));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::output::ImageRgb;
+    use glam::Vec3;
+
+    fn flags() -> BudgetFlags {
+        BudgetFlags::default()
+    }
+
+    #[test]
+    fn the_table_of_the_module_docs() {
+        let secs = Duration::from_secs;
+        let none = flags().resolve();
+        assert_eq!(none.method, Method::Auto);
+        assert_eq!((none.spp, none.passes), (OPEN_UNITS, OPEN_UNITS));
+        assert_eq!(none.time_limit, Some(DEFAULT_TIME_LIMIT));
+        assert_eq!(none.target_error, Some(DEFAULT_TARGET));
+        assert!(none.open);
+        assert_eq!(Budget::default(), none);
+
+        let time = BudgetFlags {
+            time: Some(secs(30)),
+            ..flags()
+        }
+        .resolve();
+        assert_eq!(
+            (time.spp, time.time_limit, time.target_error),
+            (OPEN_UNITS, Some(secs(30)), None)
+        );
+        assert!(time.open);
+
+        let target = BudgetFlags {
+            target_error: Some(0.05),
+            ..flags()
+        }
+        .resolve();
+        assert_eq!(
+            (target.time_limit, target.target_error),
+            (Some(DEFAULT_TIME_LIMIT), Some(0.05))
+        );
+
+        let both = BudgetFlags {
+            time: Some(secs(5)),
+            target_error: Some(0.1),
+            ..flags()
+        }
+        .resolve();
+        assert_eq!(
+            (both.time_limit, both.target_error),
+            (Some(secs(5)), Some(0.1))
+        );
+
+        let spp = BudgetFlags {
+            spp: Some(16),
+            method: Some(Method::Whitted),
+            ..flags()
+        }
+        .resolve();
+        assert_eq!(spp.method, Method::Whitted);
+        assert_eq!((spp.spp, spp.passes), (16, FIXED_PASSES));
+        assert_eq!(
+            (spp.time_limit, spp.target_error, spp.open),
+            (None, None, false)
+        );
+
+        let passes = BudgetFlags {
+            passes: Some(8),
+            time: Some(secs(2)),
+            ..flags()
+        }
+        .resolve();
+        assert_eq!((passes.spp, passes.passes), (FIXED_SPP, 8));
+        assert_eq!(
+            (passes.time_limit, passes.target_error, passes.open),
+            (Some(secs(2)), None, false)
+        );
+    }
+
+    fn img(v: f32) -> ImageRgb {
+        ImageRgb {
+            width: 2,
+            height: 1,
+            data: vec![Vec3::splat(v); 2],
+        }
+    }
+
+    fn progress<'a>(
+        m: &'a ImageRgb,
+        a: &'a ImageRgb,
+        b: &'a ImageRgb,
+        samples: u64,
+        done: bool,
+    ) -> Progress<'a> {
+        Progress {
+            image: m,
+            halves: (a, b),
+            elapsed: Duration::ZERO,
+            samples,
+            passes: 1,
+            rays: 0,
+            photons: 0,
+            done,
+        }
+    }
+
+    #[test]
+    fn the_target_stop_waits_for_enough_samples() {
+        // Halves 0.9 and 1.1: per channel (a−b)²/4 = 0.01 over m² + 0.01 = 1.01, so the
+        // estimated relative RMSE is sqrt(0.01/1.01) ≈ 0.0995.
+        let (m, a, b) = (img(1.0), img(0.9), img(1.1));
+        let mut stop = TargetStop::new(Some(0.1));
+        let few = progress(&m, &a, &b, MIN_STOP_UNITS - 1, false);
+        assert_eq!(stop.check(&few).unwrap(), Control::Continue);
+        assert_eq!(stop.last, None);
+        let enough = progress(&m, &a, &b, MIN_STOP_UNITS, false);
+        assert_eq!(stop.check(&enough).unwrap(), Control::Stop);
+        assert!((stop.last.unwrap() - (0.01f64 / 1.01).sqrt()).abs() < 1e-6);
+        let mut strict = TargetStop::new(Some(0.09));
+        assert_eq!(strict.check(&enough).unwrap(), Control::Continue);
+        assert_eq!(
+            TargetStop::new(None).check(&enough).unwrap(),
+            Control::Continue
+        );
+    }
+
+    #[test]
+    fn watching_writes_at_once_then_throttles() {
+        let (m, a, b) = (img(1.0), img(1.0), img(1.0));
+        let t0 = Instant::now();
+        let mut w = CheckpointWrites::new(None, true);
+        let p1 = progress(&m, &a, &b, 1, false);
+        assert!(w.due(&p1, t0), "the first checkpoint is written at once");
+        w.wrote(&p1, Duration::from_millis(10), t0);
+        let p2 = progress(&m, &a, &b, 2, false);
+        assert!(!w.due(&p2, t0 + Duration::from_millis(1999)));
+        assert!(w.due(&p2, t0 + WATCH_INTERVAL));
+        // A slow write (200 ms) spaces writes by 20 × 200 ms = 4 s.
+        w.wrote(&p2, Duration::from_millis(200), t0);
+        assert!(!w.due(&p2, t0 + Duration::from_millis(3999)));
+        assert!(w.due(&p2, t0 + Duration::from_secs(4)));
+        assert!(
+            !w.due(&progress(&m, &a, &b, 4, true), t0 + Duration::from_secs(60)),
+            "not at the end"
+        );
+        assert!(!CheckpointWrites::new(None, false).due(&p1, t0));
+        // `--checkpoint 2`: every 2 units, whatever the time.
+        let mut k = CheckpointWrites::new(Some(2), true);
+        assert!(!k.due(&p1, t0));
+        assert!(k.due(&p2, t0));
+        k.wrote(&p2, Duration::from_secs(5), t0);
+        assert!(!k.due(&progress(&m, &a, &b, 3, false), t0));
+        assert!(k.due(&progress(&m, &a, &b, 4, false), t0));
+    }
+}
