@@ -41,6 +41,7 @@ fn opts(scene: &Path, out: &Path, accel: Backend, threads: usize) -> RenderOptio
         measure: Default::default(),
         preview: Default::default(),
         explain: false,
+        denoise: Default::default(),
     }
 }
 

@@ -182,6 +182,7 @@ fn render_mean(scene: &Path, env: Option<Option<Environment>>, out: &Path) -> Ve
         measure: Default::default(),
         preview: Default::default(),
         explain: false,
+        denoise: Default::default(),
     };
     render_command(&opts).expect("render");
     let img = read_exr(out).expect("read");

@@ -56,6 +56,9 @@ pub fn render(opts: &RenderOptions) -> Result<()> {
                 r.mae
             ));
         }
+        if let Some(d) = s.final_denoised_error() {
+            line.push_str(&format!(", denoised {:.4}", relative_rmse(&d)));
+        }
         if let Some(t) = measure.target_error {
             line.push_str(&if s.reached_target {
                 format!(", target {t} reached")

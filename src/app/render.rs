@@ -2,9 +2,17 @@
 //! between plan and render ([`RenderJob`]: flags checked, scene prepared, plan made), and
 //! the summary ([`RenderSummary`]). Images are linear RGB until written; times are
 //! wall-clock.
+//!
+//! Denoising (`--denoise`, [`crate::denoise::mode`]): when the plan's `denoise` stage is
+//! used, the auxiliary pass runs once before rendering, and every write (checkpoints
+//! included) denoises the image then: the PNG shows the denoised image, an EXR under
+//! `--denoise on` gets it as an extra layer. With `--reference` every checkpoint is
+//! denoised so its report row has the denoised error too.
 
+use super::render_denoise::RenderDenoiser;
 use crate::accel::Backend;
 use crate::camera::Camera;
+use crate::denoise::{DenoiseChoice, DenoiseMode};
 use crate::error::Result;
 use crate::integrator::{Integrator, Method};
 use crate::measure::{metrics::ErrorMetrics, report::ReportRow, MeasureOptions, Recorder};
@@ -66,6 +74,8 @@ pub struct RenderOptions {
     /// `--explain`: measure the plan's costs before rendering (a 32×24 probe render each
     /// way and 10 000 photons, [`crate::plan::Plan::measure_costs`]).
     pub explain: bool,
+    /// `--denoise auto|on|off` ([`crate::denoise::mode`]).
+    pub denoise: DenoiseMode,
 }
 
 impl RenderOptions {
@@ -95,6 +105,7 @@ impl RenderOptions {
             measure: MeasureOptions::default(),
             preview: PreviewOptions::default(),
             explain: false,
+            denoise: DenoiseMode::Auto,
         }
     }
 
@@ -150,6 +161,9 @@ pub struct RenderSummary {
     pub method: Method,
     /// The render plan the render followed (costs measured with `--explain`).
     pub plan: crate::plan::Plan,
+    /// The denoised final image, when the render denoised (the PNG shows it; an EXR under
+    /// `--denoise on` holds it as its extra layer).
+    pub denoised: Option<ImageRgb>,
 }
 
 impl RenderSummary {
@@ -178,6 +192,12 @@ impl RenderSummary {
     pub fn final_estimate(&self) -> Option<ErrorMetrics> {
         self.rows.last().and_then(|r| r.estimate)
     }
+
+    /// The last checkpoint's denoised error against the reference (`--reference` while
+    /// denoising).
+    pub fn final_denoised_error(&self) -> Option<ErrorMetrics> {
+        self.rows.last().and_then(|r| r.denoised)
+    }
 }
 
 /// `iris render`: every flag is checked (sizes, bounds, extensions, the reference's file
@@ -195,7 +215,8 @@ pub struct RenderJob<'a> {
     output: PathBuf,
     reference: Option<ImageRgb>,
     prepared: crate::prepare::Prepared,
-    /// The render plan (method and transport resolved).
+    denoise: DenoiseChoice,
+    /// The render plan (method and transport resolved; its last stage is `denoise`).
     pub plan: crate::plan::Plan,
 }
 
@@ -219,6 +240,7 @@ impl<'a> RenderJob<'a> {
             }
         };
         output::check_extension(&output)?;
+        let denoise = crate::denoise::mode::choose(opts.denoise, &output)?;
         let measure = &opts.measure;
         measure.check_flags()?;
         let reference = measure
@@ -241,6 +263,7 @@ impl<'a> RenderJob<'a> {
             )?;
         }
         let mut plan = crate::plan::Plan::new(&prepared.scene, opts.method, opts.spectral);
+        plan.stages.push(denoise.stage());
         if opts.explain {
             plan.add_file_counts(&opts.scene);
             let (pw, ph) = crate::plan::PROBE_SIZE;
@@ -254,6 +277,7 @@ impl<'a> RenderJob<'a> {
             output,
             reference,
             prepared,
+            denoise,
             plan,
         })
     }
@@ -266,6 +290,7 @@ impl<'a> RenderJob<'a> {
             output,
             reference,
             prepared,
+            denoise,
             plan,
         } = self;
         let (scene, (w, h)) = (&prepared.scene, prepared.size);
@@ -299,30 +324,41 @@ impl<'a> RenderJob<'a> {
                 }))
             })
             .transpose()?;
-        let write = |img: &ImageRgb| {
-            output::write_image_with_background(
+        // `--denoise`: the auxiliary pass, once, before rendering.
+        let mut denoiser = RenderDenoiser::new(&denoise, scene, &camera, &settings)?;
+        let write = |img: &ImageRgb, denoised: Option<&ImageRgb>, d: &RenderDenoiser| {
+            let (main, layer) = d.layout(img, denoised);
+            output::write_image_with_layer(
                 &output,
-                img,
+                main,
+                layer,
                 coverage.as_ref(),
                 preview.background,
                 &opts.display,
             )
         };
         // `--checkpoint K`: write the image whenever K more units (samples, or SPPM passes:
-        // the driver counts either in `Progress::samples`) are done.
+        // the driver counts either in `Progress::samples`) are done. With `--reference`
+        // every checkpoint is denoised for the report.
         let mut last_written = 0u64;
+        let measure_denoised = reference.is_some();
         let mut observe = |p: &Progress| -> Result<Control> {
-            if let Some(k) = opts.checkpoint {
-                if !p.done && p.samples >= last_written + u64::from(k) {
-                    write(p.image)?;
-                    last_written = p.samples;
-                }
+            let write_now = opts
+                .checkpoint
+                .is_some_and(|k| !p.done && p.samples >= last_written + u64::from(k));
+            let denoised = denoiser
+                .checkpoint(p.image, write_now || measure_denoised)?
+                .map(|d| (d.image.clone(), d.time));
+            if write_now {
+                write(p.image, denoised.as_ref().map(|d| &d.0), &denoiser)?;
+                last_written = p.samples;
             }
-            recorder.observe(p)
+            recorder.observe_denoised(p, denoised.as_ref().map(|(img, t)| (img, *t)))
         };
         let (image, stats) =
             integrator.render_progressive(scene, &camera, &settings, Some(&mut observe))?;
-        write(&image)?;
+        let denoised = denoiser.finish(&image)?;
+        write(&image, denoised.as_ref().map(|d| &d.image), &denoiser)?;
         let reached_target = recorder.reached_target;
         rows.append(&mut recorder.rows);
         let measure_notes = measure.write_outputs(&rows, &opts.scene)?;
@@ -339,6 +375,7 @@ impl<'a> RenderJob<'a> {
         notes.extend(prepared.camera_note.as_ref().map(|n| n.to_string()));
         notes.extend(scene.warnings.iter().cloned());
         notes.extend(measure_notes);
+        notes.extend(denoised.as_ref().and_then(|d| denoiser.note(d)));
         Ok(RenderSummary {
             output,
             image,
@@ -352,6 +389,7 @@ impl<'a> RenderJob<'a> {
             reached_target,
             method,
             plan,
+            denoised: denoised.map(|d| d.image),
         })
     }
 }

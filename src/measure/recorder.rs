@@ -104,10 +104,25 @@ impl<'a> Recorder<'a> {
     /// Records a checkpoint; returns `true` (stop rendering) when the target error is
     /// reached.
     pub fn record(&mut self, p: &Progress) -> Result<bool> {
+        self.record_denoised(p, None)
+    }
+
+    /// [`Recorder::record`] with the checkpoint's denoised image and the time denoising it
+    /// took, when it was denoised: the row gets that time and, with a reference, the
+    /// denoised image's error.
+    pub fn record_denoised(
+        &mut self,
+        p: &Progress,
+        denoised: Option<(&ImageRgb, Duration)>,
+    ) -> Result<bool> {
         let estimate = half_buffer_estimate(p.halves.0, p.halves.1)?;
         let error = match self.reference {
             Some(r) => Some(compare(p.image, r)?),
             None => None,
+        };
+        let denoised_error = match (self.reference, denoised) {
+            (Some(r), Some((d, _))) => Some(compare(d, r)?),
+            _ => None,
         };
         // A final call (`done`) at the same count as the last checkpoint replaces its row.
         if self
@@ -127,12 +142,15 @@ impl<'a> Recorder<'a> {
             photons: p.photons,
             error,
             estimate: Some(estimate),
+            denoised: denoised_error,
+            denoise_s: denoised.map(|(_, t)| t.as_secs_f64()),
         });
         if self.verbose && !p.done {
-            eprintln!(
-                "{}",
-                checkpoint_line(&self.run, p, &estimate, error.as_ref())
-            );
+            let mut line = checkpoint_line(&self.run, p, &estimate, error.as_ref());
+            if let Some(e) = denoised_error {
+                line.push_str(&format!(" (denoised {:.4})", relative_rmse(&e)));
+            }
+            eprintln!("{line}");
         }
         let reached = self
             .target_error
@@ -160,6 +178,15 @@ pub fn points(rows: &[ReportRow]) -> Vec<(f64, f64)> {
                 .or(r.estimate)
                 .map(|m| (r.wall_s, relative_rmse(&m)))
         })
+        .collect()
+}
+
+/// (seconds, relative RMSE against the reference) of the denoised images of the "render"
+/// rows that have one (`--reference` with denoising active).
+pub fn denoised_points(rows: &[ReportRow]) -> Vec<(f64, f64)> {
+    rows.iter()
+        .filter(|r| r.stage == "render")
+        .filter_map(|r| r.denoised.map(|m| (r.wall_s, relative_rmse(&m))))
         .collect()
 }
 
@@ -242,6 +269,8 @@ mod tests {
             photons: 0,
             error,
             estimate,
+            denoised: None,
+            denoise_s: None,
         };
         // sqrt(0.25) = 0.5 (reference) wins over sqrt(0.04) = 0.2 (estimate).
         assert_eq!(

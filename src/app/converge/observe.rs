@@ -17,4 +17,18 @@ impl Recorder<'_> {
             Control::Continue
         })
     }
+
+    /// [`Recorder::observe`] with the checkpoint's denoised image and its denoising time
+    /// ([`Recorder::record_denoised`]).
+    pub fn observe_denoised(
+        &mut self,
+        p: &Progress,
+        denoised: Option<(&crate::output::ImageRgb, std::time::Duration)>,
+    ) -> Result<Control> {
+        Ok(if self.record_denoised(p, denoised)? {
+            Control::Stop
+        } else {
+            Control::Continue
+        })
+    }
 }
