@@ -109,6 +109,9 @@ pub enum Error {
     /// The requested acceleration backend is unavailable or failed.
     #[error("acceleration structure: {0}")]
     Accel(String),
+    /// The denoiser is unavailable, was given inconsistent buffers, or failed.
+    #[error("denoiser: {0}")]
+    Denoise(String),
     /// An output file could not be written.
     #[error("{path}: cannot write output: {reason}")]
     Output {

@@ -17,16 +17,19 @@
 //! preparation ([`prepare`]: environment, camera, lights, floor written into the
 //! description) → immutable [`scene::Scene`] → the plan ([`plan`], `--method auto`) → an
 //! [`integrator::Integrator`] rendering through the one progressive driver and film
-//! ([`render`]) → PNG/EXR ([`output`]). Commands live in [`app`].
+//! ([`render`]) → denoising of PNG previews ([`denoise`], Open Image Denoise with auxiliary
+//! albedo and normals) → PNG/EXR ([`output`]). Commands live in [`app`].
 //!
-//! `unsafe` appears only in `accel/embree/` (the Embree backend).
+//! `unsafe` appears only in `accel/embree/` and `denoise/oidn.rs`, the two C FFI layers
+//! (Embree; Open Image Denoise).
 #![warn(missing_docs)]
-#![cfg_attr(not(feature = "embree"), forbid(unsafe_code))]
+#![cfg_attr(not(any(feature = "embree", feature = "denoise")), forbid(unsafe_code))]
 
 pub mod accel;
 pub mod app;
 pub mod bsdf;
 pub mod camera;
+pub mod denoise;
 pub mod error;
 pub mod framing;
 pub mod integrator;

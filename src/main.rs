@@ -306,9 +306,15 @@ struct RenderArgs {
     looks: LookArgs,
     /// Print the render plan to stderr before rendering: which stages the scene needs
     /// (spectral or RGB, photons, volumes, textures, acceleration, environment, nested
-    /// media), why, and what each costs (a 32x24 probe render, 10 000 photons).
+    /// media, denoise), why, and what each costs (a 32x24 probe render, 10 000 photons).
     #[arg(long)]
     explain: bool,
+    /// Denoising with Intel Open Image Denoise (albedo and normals of the first
+    /// non-specular surface seen through glass as auxiliary images): `auto` denoises a PNG
+    /// and leaves an EXR raw, `on` denoises a PNG or adds the denoised image to an EXR as
+    /// the layer `denoised` (channels denoised.R, .G, .B), `off` never.
+    #[arg(long, default_value = "auto", value_parser = iris::denoise::DenoiseMode::parse)]
+    denoise: iris::denoise::DenoiseMode,
 }
 
 #[derive(clap::Args)]
@@ -508,6 +514,7 @@ impl RenderArgs {
             },
             looks: a.looks.flags()?,
             explain: a.explain,
+            denoise: a.denoise,
         };
         Ok(options)
     }

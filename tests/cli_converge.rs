@@ -22,7 +22,7 @@ fn text(b: &[u8]) -> String {
 }
 
 /// The documented CSV columns (README "Error against run time").
-const COLUMNS: [&str; 13] = [
+const COLUMNS: [&str; 17] = [
     "run",
     "stage",
     "wall_s",
@@ -36,6 +36,10 @@ const COLUMNS: [&str; 13] = [
     "est_rmse",
     "est_rel_mse",
     "est_mae",
+    "denoised_rmse",
+    "denoised_rel_mse",
+    "denoised_mae",
+    "denoise_s",
 ];
 
 /// Rows of a CSV as cells, header first.

@@ -311,6 +311,7 @@ fn cli_explain_and_info_print_the_plan() {
         "acceleration",
         "environment",
         "nested media",
+        "denoise",
     ] {
         assert!(
             err.contains(&format!("  {stage}")),
@@ -330,7 +331,7 @@ fn cli_explain_and_info_print_the_plan() {
     let text = String::from_utf8_lossy(&info.stdout);
     assert!(info.status.success(), "{}", common::stderr(&info));
     assert!(
-        text.contains("render plan:") && text.contains("  photons"),
+        text.contains("render plan:") && text.contains("  photons") && text.contains("  denoise"),
         "{text}"
     );
 }

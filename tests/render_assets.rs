@@ -81,9 +81,25 @@ fn render_all(files: &[PathBuf], scratch: &str) {
                 preview: Default::default(),
                 looks: Vec::new(),
                 explain: false,
+                // The EXR keeps the raw image; the denoised layer (auxiliary pass through
+                // every asset's glass) must come out finite too.
+                denoise: if iris::denoise::available() {
+                    iris::denoise::DenoiseMode::On
+                } else {
+                    iris::denoise::DenoiseMode::Off
+                },
             };
             let summary =
                 render_command(&opts).unwrap_or_else(|e| panic!("{}: {e}", scene.display()));
+            if let Some(d) = &summary.denoised {
+                let bad = d.data.iter().filter(|p| !p.is_finite()).count();
+                assert_eq!(
+                    bad,
+                    0,
+                    "{} {method:?}: non-finite denoised",
+                    scene.display()
+                );
+            }
             assert_eq!(
                 summary.stats.bad_samples,
                 0,

@@ -43,6 +43,7 @@ fn opts(scene: &Path, out: &Path, accel: Backend, threads: usize) -> RenderOptio
         preview: Default::default(),
         looks: Vec::new(),
         explain: false,
+        denoise: Default::default(),
     }
 }
 

@@ -34,6 +34,11 @@ fn row(run: &str, stage: &str, t: f64, spp: u64, err: Option<ErrorMetrics>) -> R
             rmse: m.rmse * 1.1,
             ..m
         }),
+        denoised: err.map(|m| ErrorMetrics {
+            rmse: m.rmse * 0.5,
+            ..m
+        }),
+        denoise_s: err.map(|_| 0.125),
     }
 }
 
@@ -57,12 +62,12 @@ fn csv_has_documented_columns_and_reads_back() {
     assert_eq!(lines[0], CSV_HEADER);
     assert_eq!(
         CSV_HEADER,
-        "run,stage,wall_s,samples_per_pixel,passes,rays,photons,rmse,rel_mse,mae,est_rmse,est_rel_mse,est_mae"
+        "run,stage,wall_s,samples_per_pixel,passes,rays,photons,rmse,rel_mse,mae,est_rmse,est_rel_mse,est_mae,denoised_rmse,denoised_rel_mse,denoised_mae,denoise_s"
     );
     assert_eq!(lines.len(), 1 + rows.len(), "one line per row:\n{text}");
     for (line, r) in lines[1..].iter().zip(&rows) {
         let cells: Vec<&str> = line.split(',').collect();
-        assert_eq!(cells.len(), 13, "{line}");
+        assert_eq!(cells.len(), 17, "{line}");
         assert_eq!((cells[0], cells[1]), (r.run.as_str(), r.stage.as_str()));
         // Shortest round-trip formatting: the exact values come back.
         assert_eq!(cells[2].parse::<f64>().unwrap(), r.wall_s);
@@ -82,6 +87,8 @@ fn csv_has_documented_columns_and_reads_back() {
         };
         assert_eq!(metrics(&cells[7..10]), r.error);
         assert_eq!(metrics(&cells[10..13]), r.estimate);
+        assert_eq!(metrics(&cells[13..16]), r.denoised);
+        assert_eq!(cells[16].parse::<f64>().ok(), r.denoise_s, "{line}");
     }
     // Rewriting replaces the file (atomic write, no leftovers).
     write_csv(&path, &rows[..1]).expect("rewrite");

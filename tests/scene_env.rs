@@ -184,6 +184,7 @@ fn render_mean(scene: &Path, env: Option<Option<Environment>>, out: &Path) -> Ve
         preview: Default::default(),
         looks: Vec::new(),
         explain: false,
+        denoise: Default::default(),
     };
     render_command(&opts).expect("render");
     let img = read_exr(out).expect("read");

@@ -346,6 +346,7 @@ fn render_under_a_2700_k_light_has_its_colour() {
             preview: Default::default(),
             looks: Vec::new(),
             explain: false,
+            denoise: Default::default(),
         };
         render_command(&opts).expect("render").image
     };
@@ -427,6 +428,7 @@ fn spectral_render_under_a_2700_k_light_has_the_planckian_chromaticity() {
         preview: Default::default(),
         looks: Vec::new(),
         explain: false,
+        denoise: Default::default(),
     };
     let image = render_command(&opts).expect("render").image;
     let mean = image.data.iter().fold(Vec3::ZERO, |a, p| a + *p) / image.data.len() as f32;

@@ -63,6 +63,9 @@ pub fn render(opts: &RenderOptions) -> Result<()> {
             r.mae
         ));
     }
+    if let Some(d) = s.final_denoised_error() {
+        line.push_str(&format!(", denoised {:.4}", relative_rmse(&d)));
+    }
     eprintln!("{line}");
     Ok(())
 }

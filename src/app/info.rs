@@ -320,6 +320,9 @@ fn info_plan(path: &Path, flags: &[LookFlag]) -> Result<String> {
     )?;
     let (scene, cam) = (&prepared.scene, &prepared.camera);
     let mut plan = crate::plan::Plan::new(scene, Method::Auto, SpectralMode::Auto);
+    // `iris render`'s default output is a PNG under --denoise auto.
+    let denoise = crate::denoise::mode::choose(Default::default(), Path::new("render.png"))?;
+    plan.stages.push(denoise.stage());
     plan.add_file_counts(path);
     plan.measure_costs(scene, &Camera::new(cam, w, h), 0)?;
     let mut s = format!(

@@ -11,6 +11,7 @@ pub mod diff;
 pub mod gallery;
 pub mod info;
 pub mod render;
+mod render_denoise;
 
 pub use crate::measure::MeasureOptions;
 pub use crate::plan::SpectralMode;

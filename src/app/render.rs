@@ -2,10 +2,18 @@
 //! between plan and render ([`RenderJob`]: flags checked, scene prepared, plan made), and
 //! the summary ([`RenderSummary`]). Images are linear RGB until written; times are
 //! wall-clock.
+//!
+//! Denoising (`--denoise`, [`crate::denoise::mode`]): when the plan's `denoise` stage is
+//! used, the auxiliary pass runs once before rendering, and every write (checkpoints
+//! included) denoises the image then: the PNG shows the denoised image, an EXR under
+//! `--denoise on` gets it as an extra layer. With `--reference` every checkpoint is
+//! denoised so its report row has the denoised error too.
 
 use super::budget::{Budget, CheckpointWrites, TargetStop};
+use super::render_denoise::RenderDenoiser;
 use crate::accel::Backend;
 use crate::camera::Camera;
+use crate::denoise::{DenoiseChoice, DenoiseMode};
 use crate::error::Result;
 use crate::integrator::{Integrator, Method};
 use crate::measure::{metrics::ErrorMetrics, report::ReportRow, MeasureOptions, Recorder};
@@ -73,6 +81,8 @@ pub struct RenderOptions {
     /// `--explain`: measure the plan's costs before rendering (a 32×24 probe render each
     /// way and 10 000 photons, [`crate::plan::Plan::measure_costs`]).
     pub explain: bool,
+    /// `--denoise auto|on|off` ([`crate::denoise::mode`]).
+    pub denoise: DenoiseMode,
 }
 
 impl RenderOptions {
@@ -111,6 +121,7 @@ impl RenderOptions {
             preview: PreviewOptions::default(),
             looks: Vec::new(),
             explain: false,
+            denoise: DenoiseMode::Auto,
         }
     }
 
@@ -183,6 +194,9 @@ pub struct RenderSummary {
     pub method: Method,
     /// The render plan the render followed (costs measured with `--explain`).
     pub plan: crate::plan::Plan,
+    /// The denoised final image, when the render denoised (the PNG shows it; an EXR under
+    /// `--denoise on` holds it as its extra layer).
+    pub denoised: Option<ImageRgb>,
 }
 
 impl RenderSummary {
@@ -252,6 +266,12 @@ impl RenderSummary {
             }
         }
     }
+
+    /// The last checkpoint's denoised error against the reference (`--reference` while
+    /// denoising).
+    pub fn final_denoised_error(&self) -> Option<ErrorMetrics> {
+        self.rows.last().and_then(|r| r.denoised)
+    }
 }
 
 /// `iris render`: every flag is checked (sizes, bounds, extensions, the reference's file
@@ -269,7 +289,8 @@ pub struct RenderJob<'a> {
     output: PathBuf,
     reference: Option<ImageRgb>,
     prepared: crate::prepare::Prepared,
-    /// The render plan (method and transport resolved).
+    denoise: DenoiseChoice,
+    /// The render plan (method and transport resolved; its last stage is `denoise`).
     pub plan: crate::plan::Plan,
 }
 
@@ -293,6 +314,7 @@ impl<'a> RenderJob<'a> {
             }
         };
         output::check_extension(&output)?;
+        let denoise = crate::denoise::mode::choose(opts.denoise, &output)?;
         let measure = &opts.measure;
         measure.check_flags()?;
         let reference = measure
@@ -315,6 +337,7 @@ impl<'a> RenderJob<'a> {
             )?;
         }
         let mut plan = crate::plan::Plan::new(&prepared.scene, opts.method, opts.spectral);
+        plan.stages.push(denoise.stage());
         if opts.explain {
             plan.add_file_counts(&opts.scene);
             let (pw, ph) = crate::plan::PROBE_SIZE;
@@ -328,6 +351,7 @@ impl<'a> RenderJob<'a> {
             output,
             reference,
             prepared,
+            denoise,
             plan,
         })
     }
@@ -340,6 +364,7 @@ impl<'a> RenderJob<'a> {
             output,
             reference,
             prepared,
+            denoise,
             plan,
         } = self;
         let (scene, (w, h)) = (&prepared.scene, prepared.size);
@@ -374,30 +399,41 @@ impl<'a> RenderJob<'a> {
                 }))
             })
             .transpose()?;
-        let write = |img: &ImageRgb| {
-            output::write_image_with_background(
+        // `--denoise`: the auxiliary pass, once, before rendering.
+        let mut denoiser = RenderDenoiser::new(&denoise, scene, &camera, &settings)?;
+        let write = |img: &ImageRgb, denoised: Option<&ImageRgb>, d: &RenderDenoiser| {
+            let (main, layer) = d.layout(img, denoised);
+            output::write_image_with_layer(
                 &output,
-                img,
+                main,
+                layer,
                 coverage.as_ref(),
                 preview.background,
                 &opts.display,
             )
         };
         // `--checkpoint K` (K more units: samples, or SPPM passes, which the driver counts
-        // in `Progress::samples`) or watching (an open budget): the image so far.
+        // in `Progress::samples`) or watching (an open budget): the image so far. With
+        // `--reference` every checkpoint is denoised for the report.
         let mut writes = CheckpointWrites::new(opts.checkpoint, opts.watch);
+        let measure_denoised = reference.is_some();
         let mut observe = |p: &Progress| -> Result<Control> {
-            if writes.due(p, Instant::now()) {
+            let write_now = writes.due(p, Instant::now());
+            let denoised = denoiser
+                .checkpoint(p.image, write_now || measure_denoised)?
+                .map(|d| (d.image.clone(), d.time));
+            if write_now {
                 let start = Instant::now();
-                write(p.image)?;
+                write(p.image, denoised.as_ref().map(|d| &d.0), &denoiser)?;
                 writes.wrote(p, start.elapsed(), Instant::now());
             }
-            recorder.record(p)?;
+            recorder.record_denoised(p, denoised.as_ref().map(|(img, t)| (img, *t)))?;
             stop.check(p)
         };
         let (image, stats) =
             integrator.render_progressive(scene, &camera, &settings, Some(&mut observe))?;
-        write(&image)?;
+        let denoised = denoiser.finish(&image)?;
+        write(&image, denoised.as_ref().map(|d| &d.image), &denoiser)?;
         rows.append(&mut recorder.rows);
         let measure_notes = measure.write_outputs(&rows, &opts.scene)?;
         let mut notes: Vec<String> = prepared.looks.iter().map(ToString::to_string).collect();
@@ -419,6 +455,7 @@ impl<'a> RenderJob<'a> {
         notes.extend(prepared.camera_note.as_ref().map(|n| n.to_string()));
         notes.extend(scene.warnings.iter().cloned());
         notes.extend(measure_notes);
+        notes.extend(denoised.as_ref().and_then(|d| denoiser.note(d)));
         Ok(RenderSummary {
             output,
             image,
@@ -434,6 +471,7 @@ impl<'a> RenderJob<'a> {
             time_limit: opts.time_limit,
             method,
             plan,
+            denoised: denoised.map(|d| d.image),
         })
     }
 }

@@ -22,5 +22,6 @@ pub mod report;
 pub use levels::{levels_table, LEVELS};
 pub use options::{check_plot_extension, file_name, MeasureOptions};
 pub use recorder::{
-    check_reference_size, points, read_reference_file, relative_rmse, Progress, Recorder,
+    check_reference_size, denoised_points, points, read_reference_file, relative_rmse, Progress,
+    Recorder,
 };

@@ -3,7 +3,7 @@
 //! Units: wall-clock seconds; errors on the linear image.
 
 use super::plot::{plot_error_vs_time, Series};
-use super::recorder::points;
+use super::recorder::{denoised_points, points};
 use super::report::{write_csv, ReportRow};
 use crate::error::{Error, Result};
 use std::path::{Path, PathBuf};
@@ -82,14 +82,24 @@ impl MeasureOptions {
                 } else {
                     "estimated relative RMSE (half buffers)"
                 };
+                let mut series = vec![Series {
+                    label: label.to_string(),
+                    points,
+                }];
+                // With denoising and a reference: the denoised image's error, second curve.
+                let denoised = denoised_points(rows);
+                if !denoised.is_empty() {
+                    series[0].label = format!("{label}, raw");
+                    series.push(Series {
+                        label: format!("{label}, denoised"),
+                        points: denoised,
+                    });
+                }
                 plot_error_vs_time(
                     path,
                     &format!("{}: error against time", file_name(scene)),
                     y,
-                    &[Series {
-                        label: label.to_string(),
-                        points,
-                    }],
+                    &series,
                 )?;
             }
         }

@@ -96,13 +96,28 @@ impl<'a> Recorder<'a> {
         }
     }
 
-    /// Records a checkpoint: its row, with the half-buffer estimate and the error against
-    /// the reference.
+    /// Records a checkpoint; returns `true` (stop rendering) when the target error is
+    /// reached.
     pub fn record(&mut self, p: &Progress) -> Result<()> {
+        self.record_denoised(p, None)
+    }
+
+    /// [`Recorder::record`] with the checkpoint's denoised image and the time denoising it
+    /// took, when it was denoised: the row gets that time and, with a reference, the
+    /// denoised image's error.
+    pub fn record_denoised(
+        &mut self,
+        p: &Progress,
+        denoised: Option<(&ImageRgb, Duration)>,
+    ) -> Result<()> {
         let estimate = half_buffer_estimate(p.halves.0, p.halves.1)?;
         let error = match self.reference {
             Some(r) => Some(compare(p.image, r)?),
             None => None,
+        };
+        let denoised_error = match (self.reference, denoised) {
+            (Some(r), Some((d, _))) => Some(compare(d, r)?),
+            _ => None,
         };
         // A final call (`done`) at the same count as the last checkpoint replaces its row.
         if self
@@ -122,12 +137,15 @@ impl<'a> Recorder<'a> {
             photons: p.photons,
             error,
             estimate: Some(estimate),
+            denoised: denoised_error,
+            denoise_s: denoised.map(|(_, t)| t.as_secs_f64()),
         });
         if self.verbose && !p.done {
-            eprintln!(
-                "{}",
-                checkpoint_line(&self.run, p, &estimate, error.as_ref())
-            );
+            let mut line = checkpoint_line(&self.run, p, &estimate, error.as_ref());
+            if let Some(e) = denoised_error {
+                line.push_str(&format!(" (denoised {:.4})", relative_rmse(&e)));
+            }
+            eprintln!("{line}");
         }
         Ok(())
     }
@@ -149,6 +167,15 @@ pub fn points(rows: &[ReportRow]) -> Vec<(f64, f64)> {
                 .or(r.estimate)
                 .map(|m| (r.wall_s, relative_rmse(&m)))
         })
+        .collect()
+}
+
+/// (seconds, relative RMSE against the reference) of the denoised images of the "render"
+/// rows that have one (`--reference` with denoising active).
+pub fn denoised_points(rows: &[ReportRow]) -> Vec<(f64, f64)> {
+    rows.iter()
+        .filter(|r| r.stage == "render")
+        .filter_map(|r| r.denoised.map(|m| (r.wall_s, relative_rmse(&m))))
         .collect()
 }
 
@@ -228,6 +255,8 @@ mod tests {
             photons: 0,
             error,
             estimate,
+            denoised: None,
+            denoise_s: None,
         };
         // sqrt(0.25) = 0.5 (reference) wins over sqrt(0.04) = 0.2 (estimate).
         assert_eq!(

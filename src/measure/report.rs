@@ -10,6 +10,10 @@
 //! - `rmse, rel_mse, mae`: error against a reference ([`super::metrics::compare`]);
 //!   `est_*`: the reference-free half-buffer estimate
 //!   ([`super::metrics::half_buffer_estimate`]). Empty cells where not computed.
+//! - `denoised_rmse, denoised_rel_mse, denoised_mae`: the denoised image's error against the
+//!   reference (`--reference` with denoising active, [`crate::denoise`]); `denoise_s`: wall
+//!   seconds the denoiser took at that checkpoint (auxiliary pass not included; it runs
+//!   once, before rendering). Empty when the checkpoint was not denoised.
 //!
 //! Numbers are written with Rust's shortest round-trip formatting, so `str::parse::<f64>` /
 //! `parse::<u64>` read back the exact values (NaN and infinities as `NaN`, `inf`, `-inf`).
@@ -22,7 +26,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 /// The CSV header line (without the line end); the column order of every row.
-pub const CSV_HEADER: &str = "run,stage,wall_s,samples_per_pixel,passes,rays,photons,rmse,rel_mse,mae,est_rmse,est_rel_mse,est_mae";
+pub const CSV_HEADER: &str = "run,stage,wall_s,samples_per_pixel,passes,rays,photons,rmse,rel_mse,mae,est_rmse,est_rel_mse,est_mae,denoised_rmse,denoised_rel_mse,denoised_mae,denoise_s";
 
 /// One line of the report: a checkpoint of a run, or a load/build stage.
 #[derive(Debug, Clone, PartialEq)]
@@ -45,6 +49,10 @@ pub struct ReportRow {
     pub error: Option<ErrorMetrics>,
     /// Reference-free estimate from two half images, if available.
     pub estimate: Option<ErrorMetrics>,
+    /// The denoised image's error against the reference, when both exist.
+    pub denoised: Option<ErrorMetrics>,
+    /// Wall seconds the denoiser took at this checkpoint, when it ran.
+    pub denoise_s: Option<f64>,
 }
 
 /// Appends `field` as one CSV cell, quoting it when needed (RFC 4180 §2.6–2.7).
@@ -85,6 +93,13 @@ pub fn format_csv(rows: &[ReportRow]) -> String {
         );
         push_metrics(&mut out, r.error.as_ref());
         push_metrics(&mut out, r.estimate.as_ref());
+        push_metrics(&mut out, r.denoised.as_ref());
+        match r.denoise_s {
+            Some(t) => {
+                let _ = write!(out, ",{t}");
+            }
+            None => out.push(','),
+        }
         out.push('\n');
     }
     out
@@ -113,6 +128,8 @@ pub fn setup_rows(
         photons: 0,
         error: None,
         estimate: None,
+        denoised: None,
+        denoise_s: None,
     };
     vec![
         row("load", load_and_build.saturating_sub(build)),
@@ -136,16 +153,18 @@ mod tests {
             photons: 0,
             error: None,
             estimate: None,
+            denoised: None,
+            denoise_s: None,
         }];
         let csv = format_csv(&rows);
         assert_eq!(
             csv,
-            format!("{CSV_HEADER}\n\"path, \"\"bvh\"\"\",load,0.25,0,0,0,0,,,,,,\n")
+            format!("{CSV_HEADER}\n\"path, \"\"bvh\"\"\",load,0.25,0,0,0,0,,,,,,,,,,\n")
         );
     }
 
     #[test]
-    fn header_has_thirteen_columns() {
-        assert_eq!(CSV_HEADER.split(',').count(), 13);
+    fn header_has_seventeen_columns() {
+        assert_eq!(CSV_HEADER.split(',').count(), 17);
     }
 }

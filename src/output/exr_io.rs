@@ -2,7 +2,10 @@
 //!
 //! Files hold three 32-bit float channels `R`, `G`, `B` with linear Rec.709/sRGB-primary
 //! values exactly as rendered (no exposure, no tone map), ZIP-compressed (lossless), so a
-//! write → read round trip is bit-exact, including non-finite values.
+//! write → read round trip is bit-exact, including non-finite values. An extra image (the
+//! denoised one, `--denoise on`) goes into the same part as the channels `NAME.R`,
+//! `NAME.G`, `NAME.B` (OpenEXR's layer naming); readers that look for `R`, `G`, `B` (this
+//! module's [`decode`] too) see the main image.
 //! Pixel (x, y) is row-major with y = 0 the top row, matching the EXR data window.
 
 use super::ImageRgb;
@@ -58,6 +61,95 @@ pub fn encode_rgba(img: &ImageRgb, alpha: &[f32]) -> std::result::Result<Vec<u8>
         .to_buffered(Cursor::new(&mut bytes))
         .map_err(|e| e.to_string())?;
     Ok(bytes)
+}
+
+/// Encodes `img` (with `alpha` when given, colour premultiplied) plus the extra image
+/// `layer` = (name, image of the same size) as channels `name.R`, `name.G`, `name.B`.
+/// Lengths were checked.
+pub fn encode_with_layer(
+    img: &ImageRgb,
+    alpha: Option<&[f32]>,
+    (name, extra): (&str, &ImageRgb),
+) -> std::result::Result<Vec<u8>, String> {
+    let plane = |img: &ImageRgb, k: usize| img.data.iter().map(|p| p[k]).collect::<Vec<f32>>();
+    let mut list = Vec::with_capacity(7);
+    for (k, c) in ["R", "G", "B"].into_iter().enumerate() {
+        list.push(AnyChannel::new(c, FlatSamples::F32(plane(img, k))));
+        list.push(AnyChannel::new(
+            format!("{name}.{c}").as_str(),
+            FlatSamples::F32(plane(extra, k)),
+        ));
+    }
+    if let Some(a) = alpha {
+        list.push(AnyChannel::new("A", FlatSamples::F32(a.to_vec())));
+    }
+    let layer = Layer::new(
+        (img.width as usize, img.height as usize),
+        LayerAttributes::named(if alpha.is_some() { "rgba" } else { "rgb" }),
+        Encoding::SMALL_LOSSLESS,
+        AnyChannels::sort(SmallVec::from_vec(list)),
+    );
+    let mut bytes = Vec::new();
+    Image::from_layer(layer)
+        .write()
+        .to_buffered(Cursor::new(&mut bytes))
+        .map_err(|e| e.to_string())?;
+    Ok(bytes)
+}
+
+/// Reads the channels `name.R`, `name.G`, `name.B` of the first layer holding them (the
+/// extra image [`encode_with_layer`] writes) at full resolution.
+pub fn decode_layer(path: &Path, name: &str) -> std::result::Result<ImageRgb, LoadError> {
+    let bytes = std::fs::read(path)
+        .map_err(|e| LoadError::new(path, "", LoadErrorKind::Io, e.to_string()))?;
+    let parse = |e: exr::error::Error| {
+        LoadError::new(
+            path,
+            format!("layer {name}"),
+            LoadErrorKind::Parse,
+            e.to_string(),
+        )
+    };
+    let meta = MetaData::read_from_buffered(Cursor::new(&bytes), false).map_err(parse)?;
+    if meta
+        .headers
+        .iter()
+        .any(|h| h.layer_size.width() as u64 * h.layer_size.height() as u64 > MAX_PIXELS)
+    {
+        return Err(LoadError::new(
+            path,
+            format!("layer {name}"),
+            LoadErrorKind::TooLarge,
+            format!("more than {MAX_PIXELS} pixels"),
+        ));
+    }
+    let channel = |c: &str| format!("{name}.{c}");
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .specific_channels()
+        .required(channel("R").as_str())
+        .required(channel("G").as_str())
+        .required(channel("B").as_str())
+        .collect_pixels(
+            |res: Vec2<usize>, _| ImageRgb {
+                width: res.width() as u32,
+                height: res.height() as u32,
+                data: vec![glam::Vec3::ZERO; res.area()],
+            },
+            |img: &mut ImageRgb, pos: Vec2<usize>, (r, g, b): (f32, f32, f32)| {
+                let i = pos.y() * img.width as usize + pos.x();
+                if let Some(p) = img.data.get_mut(i) {
+                    *p = glam::Vec3::new(r, g, b);
+                }
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .non_parallel()
+        .from_buffered(Cursor::new(&bytes))
+        .map_err(parse)?;
+    Ok(image.layer_data.channel_data.pixels)
 }
 
 /// Reads the first RGB layer of an EXR file at its full resolution.

@@ -146,6 +146,21 @@ pub fn write_image_with_background(
     bg: Background,
     opts: &DisplayOptions,
 ) -> Result<()> {
+    write_image_with_layer(path, img, None, coverage, bg, opts)
+}
+
+/// [`write_image_with_background`] with, for EXR, an extra image `layer` = (name, image)
+/// written as the channels `name.R`, `name.G`, `name.B` ([`exr_io::encode_with_layer`];
+/// composited with the same background). The extra image must have the main image's size
+/// ([`Error::Output`] otherwise); a PNG cannot hold it ([`Error::Usage`]).
+pub fn write_image_with_layer(
+    path: &Path,
+    img: &ImageRgb,
+    layer: Option<(&str, &ImageRgb)>,
+    coverage: Option<&Coverage>,
+    bg: Background,
+    opts: &DisplayOptions,
+) -> Result<()> {
     let format = format_of(path)?;
     let output_err = |reason: String| Error::Output {
         path: path.to_path_buf(),
@@ -188,6 +203,32 @@ pub fn write_image_with_background(
             ))
         }
     };
+    if let Some((name, extra)) = layer {
+        if format == Format::Png {
+            return Err(Error::Usage(format!(
+                "{}: a PNG cannot hold the extra layer `{name}` (write .exr)",
+                path.display()
+            )));
+        }
+        if (extra.width, extra.height) != (img.width, img.height)
+            || extra.data.len() != img.data.len()
+        {
+            return Err(output_err(format!(
+                "layer `{name}` is {}x{} but the image is {}x{}",
+                extra.width, extra.height, img.width, img.height
+            )));
+        }
+        let bytes = match cov {
+            None => exr_io::encode_with_layer(img, None, (name, extra)),
+            Some(c) => {
+                let (out, alpha) = background::composite_linear(img, c, bg);
+                let (extra, _) = background::composite_linear(extra, c, bg);
+                exr_io::encode_with_layer(&out, alpha.as_deref(), (name, &extra))
+            }
+        }
+        .map_err(output_err)?;
+        return atomic::write_file_atomic(path, &bytes);
+    }
     let bytes = match (format, cov) {
         (Format::Png, None) => encode_png(img, opts).map_err(output_err)?,
         (Format::Exr, None) => exr_io::encode(img).map_err(output_err)?,
@@ -210,6 +251,12 @@ pub fn write_image_with_background(
 /// not a valid EXR with RGB channels, `TooLarge` beyond [`exr_io::MAX_PIXELS`].
 pub fn read_exr(path: &Path) -> Result<ImageRgb> {
     Ok(exr_io::decode(path)?)
+}
+
+/// Reads the extra layer `name` of an EXR file ([`write_image_with_layer`]): the channels
+/// `name.R`, `name.G`, `name.B`. Errors as [`read_exr`]; `Parse` when the layer is missing.
+pub fn read_exr_layer(path: &Path, name: &str) -> Result<ImageRgb> {
+    Ok(exr_io::decode_layer(path, name)?)
 }
 
 /// Display-transforms and PNG-encodes the image in memory.

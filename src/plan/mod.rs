@@ -19,6 +19,9 @@
 //! - **environment**: none, uniform (uniform sphere sampling) or a map (importance-sampled).
 //! - **nested media**: contact probes at hits on triangles marked
 //!   [`TriangleData::TOUCHES`] by `scene/contact.rs` (and `scene/thin.rs`).
+//! - **denoise**: added by the caller that knows the output ([`crate::app::RenderJob`],
+//!   `iris info` for the default PNG), not by [`Plan::new`]:
+//!   [`crate::denoise::DenoiseChoice::stage`].
 //!
 //! Costs ([`Plan::measure_costs`], for `--explain` and `iris info`) are measured on the
 //! scene itself — a 32×24, 1 spp probe render with RGB and with spectral transport, and

@@ -160,7 +160,7 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
 /// explicit `--studio NAME` (not `none`) also adds the studio to a file that is lit.
 fn light(desc: &mut SceneDesc, opts: &PrepareOptions, camera: &CameraDesc) -> Option<Note> {
     let explicit = opts.preview.studio;
-    let preset = explicit.unwrap_or_default();
+    let preset = explicit.unwrap_or_else(|| crate::studio::default_for(desc));
     let lit = lighting::is_lit(desc);
     let studio = (opts.env.is_none() && (explicit.is_some() || !lit))
         .then(|| crate::studio::light(desc, preset, camera))

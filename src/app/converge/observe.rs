@@ -13,4 +13,15 @@ impl Recorder<'_> {
         self.record(p)?;
         Ok(Control::Continue)
     }
+
+    /// [`Recorder::observe`] with the checkpoint's denoised image and its denoising time
+    /// ([`Recorder::record_denoised`]); always [`Control::Continue`].
+    pub fn observe_denoised(
+        &mut self,
+        p: &Progress,
+        denoised: Option<(&crate::output::ImageRgb, std::time::Duration)>,
+    ) -> Result<Control> {
+        self.record_denoised(p, denoised)?;
+        Ok(Control::Continue)
+    }
 }
