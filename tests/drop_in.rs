@@ -47,7 +47,13 @@ fn mean_where(img: &image::RgbImage, keep: impl Fn(u32, u32) -> bool) -> f64 {
 fn check(dir: &Path, file: &str, glass: bool) {
     let notes = render(dir, file, "lit.png", &[]);
     assert!(notes.contains("no camera in the file"), "{file}: {notes}");
-    assert!(notes.contains("studio `soft`"), "{file}: {notes}");
+    // The default studio: `jeweller` for a gem (transmissive, dispersive), else `soft`.
+    let preset = if glass {
+        "studio `jeweller`"
+    } else {
+        "studio `soft`"
+    };
+    assert!(notes.contains(preset), "{file}: {notes}");
     assert_eq!(
         notes.contains("white floor added"),
         glass,

@@ -109,21 +109,21 @@ fn render_and_converge_options_prepare_the_same_scene() {
         a.camera.world_from_camera, b.camera.world_from_camera,
         "same framing"
     );
-    // And it is the drop-in preview: the studio lights the stone and a floor is added.
+    // And it is the drop-in preview: the studio (jeweller, the default for a gem) lights the stone and a floor is added.
     let n = a
         .notes()
         .iter()
         .map(ToString::to_string)
         .collect::<Vec<_>>()
         .join("\n");
-    assert!(n.contains("studio `soft`"), "{n}");
+    assert!(n.contains("studio `jeweller`"), "{n}");
     assert!(n.contains("white floor added"), "{n}");
     assert_eq!(
         a.notes(),
         [
             Note::Studio {
-                preset: Studio::Soft,
-                keys: 1
+                preset: Studio::Jeweller,
+                keys: 2
             },
             Note::Floor(Floor::UnderGlass),
             Note::Camera(AutoCamera::NoCamera),
@@ -266,7 +266,7 @@ fn each_variation_prepares_what_it_says_in_the_library_and_on_the_command_line()
     let no_camera = Note::Camera(AutoCamera::NoCamera);
     let expected = [
         vec![
-            studio(Studio::Soft, 1),
+            studio(Studio::Jeweller, 2),
             Note::Floor(Floor::UnderGlass),
             no_camera,
         ],
@@ -278,14 +278,18 @@ fn each_variation_prepares_what_it_says_in_the_library_and_on_the_command_line()
         vec![Note::KeyFill, Note::Floor(Floor::UnderGlass), no_camera],
         vec![Note::Floor(Floor::UnderGlass), no_camera],
         vec![Note::KeyFill, Note::Floor(Floor::UnderGlass), no_camera],
-        vec![studio(Studio::Soft, 1), Note::Floor(Floor::On), no_camera],
+        vec![
+            studio(Studio::Jeweller, 2),
+            Note::Floor(Floor::On),
+            no_camera,
+        ],
         vec![
             studio(Studio::Bright, 1),
             Note::Floor(Floor::Off),
             no_camera,
         ],
         vec![
-            studio(Studio::Soft, 1),
+            studio(Studio::Jeweller, 2),
             Note::Floor(Floor::CoversBackground),
             Note::Camera(AutoCamera::View {
                 view: View::Top,

@@ -67,7 +67,7 @@ impl fmt::Display for Note {
             ),
             Note::Studio { preset, keys } => write!(
                 f,
-                "no light in the file: studio `{}` (soft environment and {keys} key light(s); \
+                "no light in the file: studio `{}` (studio environment and {keys} key light(s); \
                  --studio none for the plain key and fill)",
                 preset.name()
             ),
@@ -158,7 +158,7 @@ mod tests {
                 keys: 2
             }
             .to_string(),
-            "no light in the file: studio `jeweller` (soft environment and 2 key light(s); \
+            "no light in the file: studio `jeweller` (studio environment and 2 key light(s); \
              --studio none for the plain key and fill)"
         );
         assert_eq!(
