@@ -222,22 +222,14 @@ fn denoised_estimate_is_below_the_raw_estimate() {
 fn cli_denoise_on_without_the_feature_is_a_usage_error() {
     let dir = common::scratch_dir("denoise_cli_nofeature");
     let scene = asset(SPHERES);
-    let out = common::iris(
-        &[
-            "render",
-            scene.to_str().unwrap(),
-            "--size",
-            "16x12",
-            "--spp",
-            "1",
-            "-q",
-            "--denoise",
-            "on",
-            "-o",
-            "x.png",
-        ],
-        &dir,
-    );
+    // A 16x12, 1-spp render of the spheres to x.png with `extra` flags.
+    let render = |extra: &[&str]| {
+        let mut args = vec!["render", scene.to_str().unwrap(), "--size", "16x12"];
+        args.extend(["--spp", "1", "-q", "-o", "x.png"]);
+        args.extend_from_slice(extra);
+        common::iris(&args, &dir)
+    };
+    let out = render(&["--denoise", "on"]);
     let err = common::stderr(&out);
     assert!(!out.status.success(), "{err}");
     assert!(
@@ -246,21 +238,7 @@ fn cli_denoise_on_without_the_feature_is_a_usage_error() {
     );
     assert!(common::entries(&dir).is_empty(), "nothing written");
     // auto renders the raw image and the plan says why.
-    let out = common::iris(
-        &[
-            "render",
-            scene.to_str().unwrap(),
-            "--size",
-            "16x12",
-            "--spp",
-            "1",
-            "-q",
-            "--explain",
-            "-o",
-            "x.png",
-        ],
-        &dir,
-    );
+    let out = render(&["--explain"]);
     let err = common::stderr(&out);
     assert!(out.status.success(), "{err}");
     assert!(

@@ -97,76 +97,24 @@ pub fn encode_with_layer(
     Ok(bytes)
 }
 
-/// Reads the channels `name.R`, `name.G`, `name.B` of the first layer holding them (the
-/// extra image [`encode_with_layer`] writes) at full resolution.
-pub fn decode_layer(path: &Path, name: &str) -> std::result::Result<ImageRgb, LoadError> {
+/// The file's bytes, once every layer's size is within [`MAX_PIXELS`]; errors name the
+/// file and the element: `parsed` for a header that does not parse, `sized(i)` for layer
+/// `i` that is too large.
+fn read_checked(
+    path: &Path,
+    parsed: &str,
+    sized: impl Fn(usize) -> String,
+) -> std::result::Result<Vec<u8>, LoadError> {
     let bytes = std::fs::read(path)
         .map_err(|e| LoadError::new(path, "", LoadErrorKind::Io, e.to_string()))?;
-    let parse = |e: exr::error::Error| {
-        LoadError::new(
-            path,
-            format!("layer {name}"),
-            LoadErrorKind::Parse,
-            e.to_string(),
-        )
-    };
-    let meta = MetaData::read_from_buffered(Cursor::new(&bytes), false).map_err(parse)?;
-    if meta
-        .headers
-        .iter()
-        .any(|h| h.layer_size.width() as u64 * h.layer_size.height() as u64 > MAX_PIXELS)
-    {
-        return Err(LoadError::new(
-            path,
-            format!("layer {name}"),
-            LoadErrorKind::TooLarge,
-            format!("more than {MAX_PIXELS} pixels"),
-        ));
-    }
-    let channel = |c: &str| format!("{name}.{c}");
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .specific_channels()
-        .required(channel("R").as_str())
-        .required(channel("G").as_str())
-        .required(channel("B").as_str())
-        .collect_pixels(
-            |res: Vec2<usize>, _| ImageRgb {
-                width: res.width() as u32,
-                height: res.height() as u32,
-                data: vec![glam::Vec3::ZERO; res.area()],
-            },
-            |img: &mut ImageRgb, pos: Vec2<usize>, (r, g, b): (f32, f32, f32)| {
-                let i = pos.y() * img.width as usize + pos.x();
-                if let Some(p) = img.data.get_mut(i) {
-                    *p = glam::Vec3::new(r, g, b);
-                }
-            },
-        )
-        .first_valid_layer()
-        .all_attributes()
-        .non_parallel()
-        .from_buffered(Cursor::new(&bytes))
-        .map_err(parse)?;
-    Ok(image.layer_data.channel_data.pixels)
-}
-
-/// Reads the first RGB layer of an EXR file at its full resolution.
-pub fn decode(path: &Path) -> std::result::Result<ImageRgb, LoadError> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| LoadError::new(path, "", LoadErrorKind::Io, e.to_string()))?;
-    let parse =
-        |e: exr::error::Error| LoadError::new(path, "", LoadErrorKind::Parse, e.to_string());
-
-    let meta = MetaData::read_from_buffered(Cursor::new(&bytes), false).map_err(parse)?;
+    let meta = MetaData::read_from_buffered(Cursor::new(&bytes), false)
+        .map_err(|e| parse_error(path, parsed.to_string(), e))?;
     for (i, header) in meta.headers.iter().enumerate() {
         let size = header.layer_size;
-        let pixels = size.width() as u64 * size.height() as u64;
-        if pixels > MAX_PIXELS {
+        if size.width() as u64 * size.height() as u64 > MAX_PIXELS {
             return Err(LoadError::new(
                 path,
-                format!("layer {i}"),
+                sized(i),
                 LoadErrorKind::TooLarge,
                 format!(
                     "{}×{} pixels exceeds the limit of {MAX_PIXELS}",
@@ -176,27 +124,67 @@ pub fn decode(path: &Path) -> std::result::Result<ImageRgb, LoadError> {
             ));
         }
     }
+    Ok(bytes)
+}
 
+/// A parse error of the EXR reader, naming the file and `element`.
+fn parse_error(path: &Path, element: String, e: exr::error::Error) -> LoadError {
+    LoadError::new(path, element, LoadErrorKind::Parse, e.to_string())
+}
+
+/// An all-black image of the layer's resolution, for the reader to fill.
+fn new_image(res: Vec2<usize>) -> ImageRgb {
+    ImageRgb {
+        width: res.width() as u32,
+        height: res.height() as u32,
+        data: vec![glam::Vec3::ZERO; res.area()],
+    }
+}
+
+/// Stores one pixel the reader decoded (positions outside the image are ignored).
+fn set_pixel(img: &mut ImageRgb, pos: Vec2<usize>, (r, g, b): (f32, f32, f32)) {
+    let i = pos.y() * img.width as usize + pos.x();
+    if let Some(p) = img.data.get_mut(i) {
+        *p = glam::Vec3::new(r, g, b);
+    }
+}
+
+/// Reads the channels `name.R`, `name.G`, `name.B` of the first layer holding them (the
+/// extra image [`encode_with_layer`] writes) at full resolution.
+pub fn decode_layer(path: &Path, name: &str) -> std::result::Result<ImageRgb, LoadError> {
+    let element = format!("layer {name}");
+    let bytes = read_checked(path, &element, |_| element.clone())?;
+    let channel = |c: &str| format!("{name}.{c}");
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .specific_channels()
+        .required(channel("R").as_str())
+        .required(channel("G").as_str())
+        .required(channel("B").as_str())
+        .collect_pixels(|res: Vec2<usize>, _| new_image(res), set_pixel)
+        .first_valid_layer()
+        .all_attributes()
+        .non_parallel()
+        .from_buffered(Cursor::new(&bytes))
+        .map_err(|e| parse_error(path, element.clone(), e))?;
+    Ok(image.layer_data.channel_data.pixels)
+}
+
+/// Reads the first RGB layer of an EXR file at its full resolution.
+pub fn decode(path: &Path) -> std::result::Result<ImageRgb, LoadError> {
+    let bytes = read_checked(path, "", |i| format!("layer {i}"))?;
     let image = read()
         .no_deep_data()
         .largest_resolution_level()
         .rgb_channels(
-            |res: Vec2<usize>, _: &RgbChannels| ImageRgb {
-                width: res.width() as u32,
-                height: res.height() as u32,
-                data: vec![glam::Vec3::ZERO; res.area()],
-            },
-            |img: &mut ImageRgb, pos: Vec2<usize>, (r, g, b): (f32, f32, f32)| {
-                let i = pos.y() * img.width as usize + pos.x();
-                if let Some(p) = img.data.get_mut(i) {
-                    *p = glam::Vec3::new(r, g, b);
-                }
-            },
+            |res: Vec2<usize>, _: &RgbChannels| new_image(res),
+            set_pixel,
         )
         .first_valid_layer()
         .all_attributes()
         .non_parallel()
         .from_buffered(Cursor::new(&bytes))
-        .map_err(parse)?;
+        .map_err(|e| parse_error(path, String::new(), e))?;
     Ok(image.layer_data.channel_data.pixels)
 }
