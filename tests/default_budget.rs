@@ -206,3 +206,38 @@ fn time_alone_is_the_whole_budget_on_the_command_line() {
     );
     assert!(dir.join("t.png").is_file());
 }
+
+#[cfg(feature = "denoise")]
+#[test]
+fn a_denoised_png_stops_on_the_denoised_estimate() {
+    // What the output shows decides the stop: the PNG preview is denoised (`--denoise
+    // auto`), so its target is met by the denoised image's estimate, at fewer samples than
+    // the raw EXR of the same render needs; the EXR's stop is unchanged (raw estimate).
+    let dir = common::scratch_dir("budget_denoised");
+    let scene = easy_scene(&dir);
+    let flags = BudgetFlags {
+        time: Some(HANG_GUARD),
+        target_error: Some(DEFAULT_TARGET),
+        ..Default::default()
+    };
+    let png = render(&scene, &dir.join("d.png"), flags);
+    let exr = render(&scene, &dir.join("d.exr"), flags);
+    assert_eq!(png.end(), EndReason::Target, "{}", png.end_text());
+    assert_eq!(exr.end(), EndReason::Target, "{}", exr.end_text());
+    assert!(png.target_denoised && !exr.target_denoised);
+    assert!(png.denoised.is_some(), "the PNG is denoised");
+    let (n_png, n_exr) = (spp(&png), spp(&exr));
+    assert!(
+        n_png < n_exr,
+        "denoised stop at {n_png} spp, raw at {n_exr} spp"
+    );
+    assert!(n_png >= MIN_STOP_UNITS, "{n_png} spp");
+    // The PNG's estimate is the denoised one: below the target, and below the raw
+    // estimate of the same checkpoint (the report's `estimate` column stays raw).
+    let e = png.target_estimate.expect("an estimate");
+    let raw_last = relative_rmse(&png.rows.last().unwrap().estimate.unwrap());
+    assert!(e <= DEFAULT_TARGET && e < raw_last, "{e} vs raw {raw_last}");
+    let text = png.end_text();
+    assert!(text.contains("for the denoised image"), "{text}");
+    eprintln!("denoised stop: {n_png} spp ({e:.4}; raw {raw_last:.4}); raw stop: {n_exr} spp");
+}

@@ -21,11 +21,20 @@
 //!
 //! ## The stop test
 //! The target is compared with [`stop_error`] at each checkpoint from [`MIN_STOP_UNITS`]
-//! on: today the half-buffer estimate of the relative RMSE of the image as written
-//! ([`crate::measure::metrics::half_buffer_estimate`]), the same number `--target-error`
-//! always used. Checkpoints double, so a render stops at the first power of two whose
-//! image meets the target (or at the end of its time). The estimate sees noise, not bias,
-//! and misses what neither half has found yet (a caustic no sample reached): hence the
+//! on: the half-buffer estimate of the relative RMSE of the image as written
+//! ([`StopImage`]):
+//! - a raw image (an EXR, `--denoise off`, a build without the denoiser): the estimate
+//!   from the two half images ([`crate::measure::metrics::half_buffer_estimate`]), the
+//!   number `--target-error` always used;
+//! - a denoised image (the PNG preview under `--denoise auto|on`): the same estimate from
+//!   the two half images each denoised with the render's auxiliary images
+//!   ([`crate::denoise::denoised_estimate`]), so the render stops when the picture it
+//!   writes is clean, far sooner than the raw image would be.
+//!
+//! Checkpoints double, so a render stops at the first power of two whose image meets the
+//! target (or at the end of its time). The estimate sees noise, not bias (a denoised
+//! image's blur of a caustic edge or a sparkle is bias: BENCHMARKS.md measures it), and
+//! misses what neither half has found yet (a caustic no sample reached): hence the
 //! minimum count and the time limit as a safety net.
 //!
 //! ## The defaults
@@ -33,6 +42,7 @@
 //! does a render take"); the measurements behind them are beside the constants. Units:
 //! wall-clock seconds; errors are relative RMSE, `sqrt(rel_mse)` ([`crate::measure`]).
 
+use crate::denoise::{denoised_estimate, AuxImages};
 use crate::error::Result;
 use crate::integrator::Method;
 use crate::measure::{metrics::half_buffer_estimate, relative_rmse, Progress};
@@ -77,8 +87,9 @@ pub const FIXED_PASSES: u32 = 64;
 /// So 0.03 is where the grain of a plain scene has gone at normal viewing size, and what
 /// it costs is known (quadrupling the samples halves the estimate); glass, caustics,
 /// dispersion and small lights stay above it for minutes, and [`DEFAULT_TIME_LIMIT`] ends
-/// those. (The estimate of a denoised image would reach it far sooner; [`stop_error`] is
-/// the one place to change.)
+/// those when the output is raw. A denoised PNG is judged by its own estimate
+/// ([`StopImage::Denoised`]), which reaches 0.03 far sooner: measured in BENCHMARKS.md
+/// ("The default stop on the denoised image").
 pub const DEFAULT_TARGET: f64 = 0.03;
 
 /// The time limit of a render given no `--spp`, `--passes` or `--time`: 120 s.
@@ -173,16 +184,29 @@ impl Default for Budget {
     }
 }
 
+/// Which image the stop test estimates: the one the output file shows.
+#[derive(Debug, Clone, Copy)]
+pub enum StopImage<'a> {
+    /// The raw image (an EXR, `--denoise off`).
+    Raw,
+    /// The denoised image, filtered with these auxiliary images (the PNG preview).
+    Denoised(Option<&'a AuxImages>),
+}
+
 /// The error a render's target is compared with, at a checkpoint: the estimated relative
-/// RMSE of the image as written (the half-buffer estimate). `None` when there is nothing
-/// to compare yet. The one place that decides it: a denoised render would compare the
-/// denoised image's estimate here instead.
-pub fn stop_error(p: &Progress) -> Result<Option<f64>> {
+/// RMSE of `what` (the module docs' stop test). `None` when there is nothing to compare
+/// yet (fewer than [`MIN_STOP_UNITS`] units, or halves of different sizes).
+pub fn stop_error(p: &Progress, what: StopImage) -> Result<Option<f64>> {
     if p.samples < MIN_STOP_UNITS {
         return Ok(None);
     }
-    let estimate = half_buffer_estimate(p.halves.0, p.halves.1)?;
-    Ok(Some(relative_rmse(&estimate)))
+    match what {
+        StopImage::Raw => {
+            let estimate = half_buffer_estimate(p.halves.0, p.halves.1)?;
+            Ok(Some(relative_rmse(&estimate)))
+        }
+        StopImage::Denoised(aux) => denoised_estimate(p.halves, aux),
+    }
 }
 
 /// The error-target stop of one render: compares [`stop_error`] with the target at each
@@ -193,23 +217,31 @@ pub struct TargetStop {
     pub target: Option<f64>,
     /// The last [`stop_error`] computed.
     pub last: Option<f64>,
+    /// Whether `last` is the estimate of a denoised image.
+    pub denoised: bool,
 }
 
 impl TargetStop {
     /// A stop at `target`.
     pub fn new(target: Option<f64>) -> Self {
-        TargetStop { target, last: None }
+        TargetStop {
+            target,
+            last: None,
+            denoised: false,
+        }
     }
 
-    /// [`Control::Stop`] once the checkpoint's [`stop_error`] is at or below the target.
-    pub fn check(&mut self, p: &Progress) -> Result<Control> {
+    /// [`Control::Stop`] once the checkpoint's [`stop_error`] of `what` is at or below the
+    /// target.
+    pub fn check(&mut self, p: &Progress, what: StopImage) -> Result<Control> {
         let Some(target) = self.target else {
             return Ok(Control::Continue);
         };
-        let Some(e) = stop_error(p)? else {
+        let Some(e) = stop_error(p, what)? else {
             return Ok(Control::Continue);
         };
         self.last = Some(e);
+        self.denoised = matches!(what, StopImage::Denoised(_));
         Ok(if e <= target {
             Control::Stop
         } else {
@@ -375,15 +407,20 @@ mod tests {
         let (m, a, b) = (img(1.0), img(0.9), img(1.1));
         let mut stop = TargetStop::new(Some(0.1));
         let few = progress(&m, &a, &b, MIN_STOP_UNITS - 1, false);
-        assert_eq!(stop.check(&few).unwrap(), Control::Continue);
+        assert_eq!(stop.check(&few, StopImage::Raw).unwrap(), Control::Continue);
         assert_eq!(stop.last, None);
         let enough = progress(&m, &a, &b, MIN_STOP_UNITS, false);
-        assert_eq!(stop.check(&enough).unwrap(), Control::Stop);
+        assert_eq!(stop.check(&enough, StopImage::Raw).unwrap(), Control::Stop);
         assert!((stop.last.unwrap() - (0.01f64 / 1.01).sqrt()).abs() < 1e-6);
         let mut strict = TargetStop::new(Some(0.09));
-        assert_eq!(strict.check(&enough).unwrap(), Control::Continue);
         assert_eq!(
-            TargetStop::new(None).check(&enough).unwrap(),
+            strict.check(&enough, StopImage::Raw).unwrap(),
+            Control::Continue
+        );
+        assert_eq!(
+            TargetStop::new(None)
+                .check(&enough, StopImage::Raw)
+                .unwrap(),
             Control::Continue
         );
     }

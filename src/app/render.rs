@@ -188,6 +188,9 @@ pub struct RenderSummary {
     pub target_error: Option<f64>,
     /// The last error compared with the target ([`super::budget::stop_error`]), if any.
     pub target_estimate: Option<f64>,
+    /// Whether [`Self::target_estimate`] is the estimate of the denoised image (a denoised
+    /// PNG's stop test, [`super::budget::StopImage`]).
+    pub target_denoised: bool,
     /// The time limit the render had (`--time`, or the default limit).
     pub time_limit: Option<Duration>,
     /// The method that rendered (`--method auto` resolved).
@@ -232,19 +235,24 @@ impl RenderSummary {
     }
 
     /// What ended the render, in words: "stopped at the error target 0.03 (estimated
-    /// 0.0187)", "stopped at the time limit 120 s", "interrupted (Ctrl-C or SIGTERM): the
+    /// 0.0187)" (", for the denoised image" when the stop test judged the denoised PNG), "stopped at the time limit 120 s", "interrupted (Ctrl-C or SIGTERM): the
     /// image so far", "64 spp done".
     pub fn end_text(&self) -> String {
+        let of = if self.target_denoised {
+            " for the denoised image"
+        } else {
+            ""
+        };
         let target = |s: &mut String| {
             if let (Some(t), Some(e)) = (self.target_error, self.target_estimate) {
-                s.push_str(&format!(" (error target {t}, estimated {e:.4})"));
+                s.push_str(&format!(" (error target {t}, estimated {e:.4}{of})"));
             } else if let Some(t) = self.target_error {
                 s.push_str(&format!(" (error target {t} not yet measurable)"));
             }
         };
         match self.stats.end {
             EndReason::Target => format!(
-                "stopped at the error target {} (estimated {:.4})",
+                "stopped at the error target {} (estimated {:.4}{of})",
                 self.target_error.unwrap_or(f64::NAN),
                 self.target_estimate.unwrap_or(f64::NAN)
             ),
@@ -428,7 +436,7 @@ impl<'a> RenderJob<'a> {
                 writes.wrote(p, start.elapsed(), Instant::now());
             }
             recorder.record_denoised(p, denoised.as_ref().map(|(img, t)| (img, *t)))?;
-            stop.check(p)
+            stop.check(p, denoiser.stop_image())
         };
         let (image, stats) =
             integrator.render_progressive(scene, &camera, &settings, Some(&mut observe))?;
@@ -468,6 +476,7 @@ impl<'a> RenderJob<'a> {
             rows,
             target_error: measure.target_error,
             target_estimate: stop.last,
+            target_denoised: stop.denoised,
             time_limit: opts.time_limit,
             method,
             plan,

@@ -5,6 +5,7 @@
 //! reuses it when the render ended on that image; what the written file holds; the note.
 //! Images are linear RGB; times are wall-clock.
 
+use super::budget::StopImage;
 use crate::camera::Camera;
 use crate::denoise::{aux, AuxImages, DenoiseChoice, Denoised, EXR_LAYER};
 use crate::error::Result;
@@ -50,6 +51,16 @@ impl<'a> RenderDenoiser<'a> {
     /// Whether this render denoises.
     pub(super) fn runs(&self) -> bool {
         self.choice.runs()
+    }
+
+    /// The image the stop test estimates ([`StopImage`]): the denoised one when the written
+    /// image is denoised (a PNG), else the raw one (an EXR keeps its raw main image).
+    pub(super) fn stop_image(&self) -> StopImage<'_> {
+        if self.choice.image {
+            StopImage::Denoised(self.aux.as_ref().map(|a| &a.0))
+        } else {
+            StopImage::Raw
+        }
     }
 
     /// Denoises `image` when `needed` and the render denoises, keeping the result.
