@@ -123,9 +123,11 @@ struct GalleryArgs {
     /// 2^26 pixels (8192x8192).
     #[arg(long, default_value = "576x324", value_parser = parse_size)]
     size: (u32, u32),
-    /// Time limit of each image's render, seconds: more than 0, at most 10000000.
-    #[arg(long, default_value_t = 20.0, value_parser = parse_seconds)]
-    time: f64,
+    /// Time limit of each image's render, seconds (more than 0, at most 10000000): the
+    /// whole budget, as `iris render --time`. Default: `iris render`'s default budget
+    /// (estimated error 0.03 of the written image, or 120 s).
+    #[arg(long, value_parser = parse_seconds)]
+    time: Option<f64>,
     /// Render only the entries whose name contains SUBSTR (repeatable).
     #[arg(long, value_name = "SUBSTR")]
     only: Vec<String>,
@@ -552,7 +554,7 @@ impl GalleryArgs {
         iris::app::gallery::GalleryOptions {
             out: self.out.clone(),
             size: self.size,
-            time: std::time::Duration::from_secs_f64(self.time),
+            time: self.time.map(std::time::Duration::from_secs_f64),
             only: self.only.clone(),
             quiet: self.quiet,
             command: args.join(" "),

@@ -79,6 +79,13 @@ fn gallery_renders_selected_entries_and_writes_the_page() {
     assert_eq!(times.len(), 2, "{page}");
     assert!(times.iter().all(|t| *t > 0.0 && *t < 60.0), "{times:?}");
     assert!(page.contains("- method: "), "{page}");
+    // What ended each render is said (`--time` alone is the whole budget).
+    assert_eq!(
+        page.matches("- stopped at the time limit 0.3 s").count(),
+        2,
+        "{page}"
+    );
+    assert!(page.contains("--size 48x32 --time 0.3`"), "{page}");
     assert!(page.contains("cores"), "machine header missing: {page}");
     assert!(!page.contains("compare_dispersion"), "--only was ignored");
     let pngs = common::entries(&out)
@@ -161,4 +168,54 @@ fn missing_shared_assets_are_noted_unless_required() {
     );
     assert!(!o.status.success(), "IRIS_REQUIRE_SHARED=1 must fail");
     assert!(stderr(&o).contains("IRIS_REQUIRE_SHARED"), "{}", stderr(&o));
+}
+
+#[test]
+fn a_before_image_in_the_folder_makes_a_before_after_pair() {
+    // `oval_ruby` has a before caption: with `oval_ruby_before.png` in the folder the page
+    // shows the pair (and never rewrites the before image); `fig4_4_1_prism` has none.
+    let out = scratch_dir("gallery_pair");
+    let before = out.join("oval_ruby_before.png");
+    image::RgbImage::from_pixel(4, 3, image::Rgb([200, 10, 10]))
+        .save(&before)
+        .expect("write the before image");
+    let bytes = std::fs::read(&before).unwrap();
+    std::fs::write(out.join("fig4_4_1_prism_before.png"), &bytes).unwrap();
+    let out_s = out.to_string_lossy().into_owned();
+    let o = iris(
+        &[
+            "gallery",
+            "--out",
+            &out_s,
+            "--size",
+            "32x24",
+            "--time",
+            "0.2",
+            "--only",
+            "oval_ruby",
+            "--only",
+            "fig4_4_1",
+            "-q",
+        ],
+        root(),
+    );
+    assert!(o.status.success(), "gallery failed: {}", stderr(&o));
+    let page = std::fs::read_to_string(out.join("README.md")).expect("page written");
+    assert!(
+        page.contains(
+            "| ![oval_ruby before](oval_ruby_before.png) | ![oval_ruby](oval_ruby.png) |"
+        ),
+        "{page}"
+    );
+    assert!(page.contains("Iris before issue 18"), "{page}");
+    assert_eq!(page.matches("| before | now |").count(), 1, "{page}");
+    assert!(
+        page.contains("![fig4_4_1_prism](fig4_4_1_prism.png)"),
+        "{page}"
+    );
+    assert_eq!(
+        std::fs::read(&before).unwrap(),
+        bytes,
+        "before image untouched"
+    );
 }

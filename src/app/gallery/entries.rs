@@ -23,6 +23,8 @@ pub struct Entry {
     pub origin: Origin,
     /// One sentence on what the scene shows.
     pub about: &'static str,
+    /// What `<name>_before.png` (committed beside the image) shows, for a before/after pair.
+    pub before: Option<&'static str>,
 }
 
 /// The gallery, in page order: the seed paper's figure scenes, the gems, then the Khronos
@@ -34,77 +36,90 @@ pub const ENTRIES: &[Entry] = &[
         path: "assets/paper/fig4_4_1_prism.glb",
         origin: Origin::Project,
         about: "Paper Fig. 4.4.1: a glass prism (IOR 1.5) on a checker floor, seen obliquely so internal reflections show.",
+        before: None,
     },
     Entry {
         name: "fig4_5_1_caustics",
         path: "assets/paper/fig4_5_1_caustics.glb",
         origin: Origin::Project,
         about: "Paper Fig. 4.5.1: a glass sphere and a prism under one point light, with their caustics.",
+        before: None,
     },
     Entry {
         name: "fig5_3_1_prism_beam",
         path: "assets/scenes/fig5_3_1_prism_beam.glb",
         origin: Origin::Project,
         about: "Paper Fig. 5.3.1: a white beam through an N-BK7 prism at minimum deviation onto a screen.",
+        before: None,
     },
     Entry {
         name: "fig5_3_1_rainbow",
         path: "assets/scenes/fig5_3_1_rainbow.glb",
         origin: Origin::Project,
         about: "Paper Fig. 5.3.1: sunlight through a slit and an N-BK7 prism; the spectrum is a caustic on the screen.",
+        before: None,
     },
     Entry {
         name: "fig7_1_spheres",
         path: "assets/paper/fig7_1_spheres.glb",
         origin: Origin::Project,
         about: "Paper Fig. 7.1: three glass spheres of IOR 1.2, 1.4 and 1.6 before a checker backdrop.",
+        before: None,
     },
     Entry {
         name: "fig7_2_bubble",
         path: "assets/paper/fig7_2_bubble.glb",
         origin: Origin::Project,
         about: "Paper Fig. 7.2: an air bubble under water (relative IOR 0.8): total internal reflection darkens the rim.",
+        before: None,
     },
     Entry {
         name: "round_diamond",
         path: "assets/gems/round_diamond.glb",
         origin: Origin::Project,
         about: "A round brilliant diamond (`iris gem --cut round --stone diamond`) in the preview scene.",
+        before: Some("Iris before issue 18 (2026-12-02): `--method auto --time 20`, raw (no denoiser)"),
     },
     Entry {
         name: "oval_ruby",
         path: "assets/gems/oval_ruby.glb",
         origin: Origin::Project,
         about: "An oval brilliant ruby (`iris gem --cut oval --stone ruby`) in the preview scene.",
+        before: Some("Iris before issue 18 (2026-12-02): `--method auto --time 20`, raw (no denoiser)"),
     },
     Entry {
         name: "emerald_sapphire",
         path: "assets/gems/emerald_sapphire.glb",
         origin: Origin::Project,
         about: "An emerald-cut sapphire (`iris gem --cut emerald --stone sapphire`) in the preview scene.",
+        before: None,
     },
     Entry {
         name: "pear_cubic_zirconia",
         path: "assets/gems/pear_cubic_zirconia.glb",
         origin: Origin::Project,
         about: "A pear brilliant in cubic zirconia (`iris gem --cut pear --stone cubic-zirconia`) in the preview scene.",
+        before: None,
     },
     Entry {
         name: "round_diamond_bare",
         path: "assets/gems/round_diamond_bare.glb",
         origin: Origin::Project,
         about: "The drop-in preview: `iris gem --cut round --stone diamond --bare` writes the stone alone (no camera, light or floor, like most artists' files); Iris frames it from the three-quarter view, lights it with studio `soft` and adds the white floor.",
+        before: None,
     },
     Entry {
         name: "dispersion_test",
         path: "khronos/DispersionTest/DispersionTest.glb",
         origin: Origin::Shared,
         about: "Khronos DispersionTest: 25 prisms, IOR 1.0 to 2.42 (rows, bottom to top) by dispersion 0 to 5 (columns).",
+        before: None,
     },
     Entry {
         name: "compare_dispersion",
         path: "khronos/CompareDispersion/CompareDispersion.glb",
         origin: Origin::Shared,
         about: "Khronos CompareDispersion: two faceted IOR 2.42 spheres, without (left) and with dispersion 5 (right).",
+        before: None,
     },
 ];

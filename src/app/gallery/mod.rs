@@ -4,13 +4,19 @@
 //! of shared third-party files, the method chosen, the render plan, the render time and the
 //! samples or passes taken.
 //!
-//! Each entry is rendered exactly as `iris render FILE --method auto --size WxH --time SECS
-//! --spp 4096 --passes 4096` would: the same app-level function
-//! ([`crate::app::render_command`], called only from [`render_entry`]), the CLI's
-//! defaults for every other flag (one photon per pixel and pass, ACES tone map, automatic
-//! exposure, the file's camera, lights and environment, else the drop-in preview's framing,
-//! studio and floor), so the plan and the `--method auto` choice shown are the real ones. The time limit is per entry, wall-clock seconds; as in `iris render`, it ends the
-//! render after the round (SPPM: pass) that crosses it.
+//! Each entry is rendered exactly as `iris render FILE --size WxH` would (with `--time T`
+//! when the gallery is given one): the same app-level function
+//! ([`crate::app::render_command`], called only from [`render_entry`]) and the CLI's
+//! defaults for every other flag: the default budget ([`crate::app::budget`]: `--method
+//! auto`, rendered until the estimated error of the written image, the denoised PNG, is
+//! 0.03, or 120 s), one photon per pixel and pass, ACES tone map, automatic exposure, the
+//! file's camera, lights and environment, else the drop-in preview's framing, studio
+//! (jeweller for gems) and floor. So the plan, the `--method auto` choice and the stop
+//! shown are what a user gets with no flags.
+//!
+//! Before/after pairs: an entry with a [`Entry::before`] caption whose `<name>_before.png`
+//! is in the output directory (a committed image from an earlier Iris, never rewritten
+//! here) is shown beside the new image.
 //!
 //! Paths: project entries are relative to the current directory, which must be the project
 //! root (where `assets/` is); shared entries are relative to the shared asset folder
@@ -24,9 +30,9 @@
 //! [`crate::output::atomic::write_file_atomic`]); a `--only` pattern that matches no entry
 //! is an error before anything renders; the page lists the entries in [`ENTRIES`] order.
 
+use crate::app::budget::BudgetFlags;
 use crate::app::{self, RenderOptions, RenderSummary};
 use crate::error::{Error, Result};
-use crate::integrator::{Method, PhotonSettings};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -41,8 +47,9 @@ pub struct GalleryOptions {
     pub out: PathBuf,
     /// Image size, pixels.
     pub size: (u32, u32),
-    /// Time limit of each entry's render.
-    pub time: Duration,
+    /// Time limit of each entry's render (`--time`, the whole budget); `None`: the default
+    /// budget of `iris render`.
+    pub time: Option<Duration>,
     /// Keep the entries whose name contains one of these (case-insensitive); all if empty.
     pub only: Vec<String>,
     /// No progress output.
@@ -123,27 +130,22 @@ pub fn select(only: &[String]) -> Result<Vec<Entry>> {
         .collect())
 }
 
-/// Samples per pixel (or SPPM passes) a gallery render may take: high enough that the time
-/// limit ends it.
-const SAMPLE_CAP: u32 = 4096;
-
-/// Renders `scene` to `output` as `iris render SCENE --method auto --size WxH --time SECS
-/// --spp 4096 --passes 4096 -o OUTPUT` would (every other flag at its CLI default, so the
-/// drop-in preview's studio, floor and framing apply): the time limit, not the sample
-/// count, ends each render. The one call of the app-level render in this module.
+/// Renders `scene` to `output` as `iris render SCENE --size WxH [--time T] -o OUTPUT`
+/// would (every other flag at its CLI default, so the default budget and the drop-in
+/// preview's studio, floor and framing apply). The one call of the app-level render in
+/// this module.
 fn render_entry(scene: &Path, output: &Path, opts: &GalleryOptions) -> Result<RenderSummary> {
+    let budget = BudgetFlags {
+        time: opts.time,
+        ..BudgetFlags::default()
+    }
+    .resolve();
     let render = RenderOptions {
         size: Some(opts.size),
-        spp: SAMPLE_CAP,
-        method: Method::Auto,
-        time_limit: Some(opts.time),
-        photon: PhotonSettings {
-            passes: SAMPLE_CAP,
-            ..PhotonSettings::default()
-        },
         quiet: opts.quiet,
         ..RenderOptions::new(scene, Some(output))
-    };
+    }
+    .with_budget(&budget);
     app::render_command(&render)
 }
 
@@ -231,18 +233,25 @@ fn page_text(
     let _ = writeln!(
         s,
         "Produced by `{}` (Iris {}) on a machine with {cores} cores ({} {}). Each image is \
-         `iris render FILE --method auto --size {}x{} --time {} --spp {SAMPLE_CAP} --passes \
-         {SAMPLE_CAP}` with every other flag at its default (a file without camera or light \
-         gets the drop-in preview's framing, studio and floor), so the time limit ends each \
-         render; the render time is the wall-clock time of the render loop (loading and \
-         the acceleration build are listed apart).\n",
+         `iris render FILE --size {}x{}{}` with every other flag at its default: {} (a file \
+         without camera or light gets the drop-in preview's framing, studio and floor; the \
+         PNG is denoised). The render time is the wall-clock time of the render loop \
+         (loading and the acceleration build are listed apart); the line under it says \
+         what ended the render.\n",
         opts.command,
         env!("CARGO_PKG_VERSION"),
         std::env::consts::OS,
         std::env::consts::ARCH,
         opts.size.0,
         opts.size.1,
-        opts.time.as_secs_f64()
+        opts.time
+            .map_or(String::new(), |t| format!(" --time {}", t.as_secs_f64())),
+        match opts.time {
+            Some(_) => "the time limit ends each render",
+            None =>
+                "`--method auto`, rendered until the estimated relative error of the \
+                     written (denoised) image is 0.03 or for 120 s",
+        }
     );
     if let Some(msg) = shared_missing {
         let _ = writeln!(s, "**Note:** {msg}.\n");
@@ -254,7 +263,21 @@ fn page_text(
             |f| f.to_string_lossy().into_owned(),
         );
         let _ = writeln!(s, "## {}\n", r.entry.name);
-        let _ = writeln!(s, "![{}]({file})\n", r.entry.name);
+        let before = format!("{}_before.png", r.entry.name);
+        match r.entry.before {
+            Some(caption) if opts.out.join(&before).is_file() => {
+                let _ = writeln!(s, "| before | now |\n|---|---|");
+                let _ = writeln!(
+                    s,
+                    "| ![{0} before]({before}) | ![{0}]({file}) |\n| {caption} | these \
+                     defaults (below) |\n",
+                    r.entry.name
+                );
+            }
+            _ => {
+                let _ = writeln!(s, "![{}]({file})\n", r.entry.name);
+            }
+        }
         let _ = writeln!(s, "{}\n", r.entry.about);
         match r.entry.origin {
             Origin::Project => {
@@ -292,6 +315,7 @@ fn page_text(
             sum.image.height,
             sum.triangles
         );
+        let _ = writeln!(s, "- {}", sum.end_text());
         let _ = writeln!(s, "\n```text\n{}```\n", sum.plan.text());
         if !sum.notes.is_empty() {
             let _ = writeln!(s, "Notes from the render:\n");
