@@ -53,6 +53,9 @@ enum Command {
         image: PathBuf,
         /// Reference image.
         reference: PathBuf,
+        /// Fail (exit 1) unless every stored value is bit-identical to the reference's.
+        #[arg(long)]
+        exact: bool,
     },
     /// Render a scene with several methods for the same time budget and compare their error
     /// against time: DIR/<method>.exr/.png, DIR/report.csv, DIR/convergence.png, and which
@@ -440,7 +443,11 @@ fn run(cli: Cli) -> iris::Result<()> {
         Command::Render(a) => app::commands::render(&a.options()?),
         Command::Converge(a) => app::commands::converge(&a.options()?),
         Command::Info { scene, looks } => app::commands::info(&scene, &looks.flags()?),
-        Command::Diff { image, reference } => app::commands::diff(&image, &reference),
+        Command::Diff {
+            image,
+            reference,
+            exact,
+        } => app::commands::diff(&image, &reference, exact),
         Command::Gem(a) => {
             let spec = iris::model::cuts::preview::GemSpec {
                 cut: a.cut,

@@ -215,6 +215,23 @@ fn diff_measures_rmse_and_rejects_size_mismatch() {
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("c.exr") && err.contains("a.exr"), "{err}");
+    // `--exact`: bit-identical passes, any differing value fails and says how many.
+    assert_eq!((same.differing, d.differing), (0, 12));
+    let exact = |x: &std::path::Path, y: &std::path::Path| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_iris"))
+            .args(["diff", "--exact"])
+            .arg(x)
+            .arg(y)
+            .output()
+            .unwrap()
+    };
+    assert!(exact(&a, &a).status.success());
+    let out = exact(&b, &a);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("12 pixels differ"),
+        "{err}"
+    );
 }
 
 /// Issue 15: every numeric flag has a documented bound (its `--help` text). An absurd value

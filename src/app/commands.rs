@@ -112,12 +112,21 @@ pub fn info(scene: &Path, looks: &[crate::prepare::looks::LookFlag]) -> Result<(
 
 /// `iris diff`: prints RMSE, relative RMSE, relative MSE and the means of an image and its
 /// reference.
-pub fn diff(image: &Path, reference: &Path) -> Result<()> {
+pub fn diff(image: &Path, reference: &Path, exact: bool) -> Result<()> {
     let d = super::diff_command(image, reference)?;
     println!(
-        "rmse {:.6e} relative {:.6e} relmse {:.6e} mean {:.6e} reference mean {:.6e}",
-        d.rmse, d.relative_rmse, d.rel_mse, d.mean, d.reference_mean
+        "rmse {:.6e} relative {:.6e} relmse {:.6e} mean {:.6e} reference mean {:.6e} \
+         differing pixels {}",
+        d.rmse, d.relative_rmse, d.rel_mse, d.mean, d.reference_mean, d.differing
     );
+    if exact && d.differing > 0 {
+        return Err(crate::error::Error::Usage(format!(
+            "{} and {} are not bit-identical: {} pixels differ (--exact)",
+            image.display(),
+            reference.display(),
+            d.differing
+        )));
+    }
     Ok(())
 }
 

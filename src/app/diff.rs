@@ -19,6 +19,9 @@ pub struct DiffSummary {
     pub mean: f64,
     /// Mean value of the reference.
     pub reference_mean: f64,
+    /// Pixels whose stored values differ from the reference's in any bit (`--exact`: a
+    /// merge of shards against one render, say).
+    pub differing: u64,
 }
 
 /// `iris diff IMAGE REFERENCE`: error of an EXR against a reference EXR of the same size.
@@ -38,6 +41,12 @@ pub fn diff_command(image: &Path, reference: &Path) -> Result<DiffSummary> {
     }
     let n = (a.data.len() * 3).max(1) as f64;
     let (mut se, mut sa, mut sb) = (0f64, 0f64, 0f64);
+    let differing = a
+        .data
+        .iter()
+        .zip(&b.data)
+        .filter(|(p, q)| p.to_array().map(f32::to_bits) != q.to_array().map(f32::to_bits))
+        .count() as u64;
     for (p, q) in a.data.iter().zip(&b.data) {
         let (p, q) = (p.as_dvec3(), q.as_dvec3());
         se += (p - q).length_squared();
@@ -57,5 +66,6 @@ pub fn diff_command(image: &Path, reference: &Path) -> Result<DiffSummary> {
         },
         mean: sa / n,
         reference_mean,
+        differing,
     })
 }
