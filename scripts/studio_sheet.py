@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The side-by-side renders behind the default gem studio (BENCHMARKS.md, "Default studio
 for gems"): the four bare diamond cuts (rows) under soft, jeweller and bright (columns),
-the same renders scripts/studio_choice.sh measures (288x216, path tracer, 256 spp, seed 2).
+the same render settings as scripts/studio_choice.sh (288x216, path tracer, 256 spp, seed 2;
+the PNG denoised, as a preview is).
 
 usage: scripts/studio_sheet.py IRIS_BIN OUTDIR SHEET.png   (needs Pillow)
 Renders what is missing in OUTDIR (the .glb cuts and the *_4N.png images), then writes the

@@ -239,5 +239,12 @@ fn a_denoised_png_stops_on_the_denoised_estimate() {
     assert!(e <= DEFAULT_TARGET && e < raw_last, "{e} vs raw {raw_last}");
     let text = png.end_text();
     assert!(text.contains("for the denoised image"), "{text}");
+    assert!(
+        png.notes
+            .iter()
+            .any(|n| n.starts_with("error target checked on the denoised image at ")),
+        "the stop test's cost is noted: {:?}",
+        png.notes
+    );
     eprintln!("denoised stop: {n_png} spp ({e:.4}; raw {raw_last:.4}); raw stop: {n_exr} spp");
 }

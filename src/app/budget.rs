@@ -219,6 +219,9 @@ pub struct TargetStop {
     pub last: Option<f64>,
     /// Whether `last` is the estimate of a denoised image.
     pub denoised: bool,
+    /// Checks made, and the wall time they took (two filter runs each for a denoised
+    /// image): the stop test's own cost, reported in the render's notes.
+    pub checks: (u32, Duration),
 }
 
 impl TargetStop {
@@ -228,6 +231,7 @@ impl TargetStop {
             target,
             last: None,
             denoised: false,
+            checks: (0, Duration::ZERO),
         }
     }
 
@@ -237,9 +241,11 @@ impl TargetStop {
         let Some(target) = self.target else {
             return Ok(Control::Continue);
         };
+        let start = Instant::now();
         let Some(e) = stop_error(p, what)? else {
             return Ok(Control::Continue);
         };
+        self.checks = (self.checks.0 + 1, self.checks.1 + start.elapsed());
         self.last = Some(e);
         self.denoised = matches!(what, StopImage::Denoised(_));
         Ok(if e <= target {

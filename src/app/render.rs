@@ -464,6 +464,14 @@ impl<'a> RenderJob<'a> {
         notes.extend(scene.warnings.iter().cloned());
         notes.extend(measure_notes);
         notes.extend(denoised.as_ref().and_then(|d| denoiser.note(d)));
+        if stop.denoised {
+            notes.push(format!(
+                "error target checked on the denoised image at {} checkpoints (both halves \
+                 denoised each time: {:.2} s)",
+                stop.checks.0,
+                stop.checks.1.as_secs_f64()
+            ));
+        }
         Ok(RenderSummary {
             output,
             image,
