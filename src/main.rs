@@ -75,6 +75,48 @@ enum Command {
     /// Render the gallery (the paper's figure scenes, the gems, the Khronos dispersion
     /// samples) into DIR/<name>.png with a Markdown page DIR/README.md (plan, method, time).
     Gallery(GalleryArgs),
+    /// Render a turntable: the model turning once (360°) about the vertical axis through
+    /// its centre under fixed lights and a fixed camera, as a jeweller's rotating stage
+    /// does, in --frames N frames DIR/frame_0000.png … (numbered from 0; frame F turned by
+    /// 360°·F/N), then an animated preview DIR/turntable.png (APNG, lossless; --gif adds
+    /// DIR/turntable.gif). Every `iris render` flag applies to each frame; every frame has
+    /// the same --seed, and `--method auto` is decided on frame 0 for all. --frame F renders
+    /// one frame (one job of an array); --assemble only checks that every frame is there
+    /// (naming the missing ones, writing nothing then) and writes the animation.
+    #[command(mut_arg("output", |a| a
+        .required(true)
+        .value_name("DIR")
+        .help("Output directory for the frames and the animation (created if missing)")))]
+    // Per-image measurements: refused by `iris turntable` (app::turntable::check).
+    #[command(mut_arg("reference", |a| a.hide(true)))]
+    #[command(mut_arg("report", |a| a.hide(true)))]
+    #[command(mut_arg("plot", |a| a.hide(true)))]
+    Turntable(TurntableArgs),
+}
+
+#[derive(clap::Args)]
+struct TurntableArgs {
+    /// Frames in the whole turn, 1 to 10000.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(iris::prepare::turntable::MAX_FRAMES)))]
+    frames: u32,
+    /// Render only frame F (0 to frames − 1) and no animation.
+    #[arg(long, value_name = "F", conflicts_with = "assemble")]
+    frame: Option<u32>,
+    /// Render nothing: check that every frame is in DIR and write the animation.
+    #[arg(long)]
+    assemble: bool,
+    /// Frames per second of the animation, 1 to 50 (GIF rounds the delay to whole
+    /// centiseconds).
+    #[arg(long, default_value_t = 12, value_parser = clap::value_parser!(u32).range(1..=i64::from(iris::output::animation::MAX_FPS)))]
+    fps: u32,
+    /// Also write each frame as linear EXR (DIR/frame_0000.exr).
+    #[arg(long)]
+    exr: bool,
+    /// Also write the animation as GIF (DIR/turntable.gif; 256 colours a frame, lossy).
+    #[arg(long)]
+    gif: bool,
+    #[command(flatten)]
+    render: RenderArgs,
 }
 
 /// `--stone`, `--metal`, `--metal-roughness`: material overrides for render, converge, info.
@@ -459,6 +501,7 @@ fn run(cli: Cli) -> iris::Result<()> {
         }
         Command::Gallery(a) => app::commands::gallery(&a.options()),
         Command::GenAssets { dir } => app::commands::gen_assets(&dir),
+        Command::Turntable(a) => app::commands::turntable(&a.options()?),
     }
 }
 
@@ -524,8 +567,34 @@ impl RenderArgs {
             looks: a.looks.flags()?,
             explain: a.explain,
             denoise: a.denoise,
+            spin: None,
+            exr_copy: None,
         };
         Ok(options)
+    }
+}
+
+impl TurntableArgs {
+    /// The turntable options: the render flags of every frame and the turntable's own.
+    fn options(&self) -> iris::Result<app::turntable::TurntableOptions> {
+        use app::turntable::Step;
+        let render = self.render.options()?;
+        let dir = render.output.clone().ok_or_else(|| {
+            iris::Error::Usage("iris turntable needs -o DIR, the frames' directory".into())
+        })?;
+        Ok(app::turntable::TurntableOptions {
+            render,
+            dir,
+            frames: self.frames,
+            step: match (self.frame, self.assemble) {
+                (Some(f), _) => Step::Frame(f),
+                (None, true) => Step::Assemble,
+                (None, false) => Step::All,
+            },
+            fps: self.fps,
+            exr: self.exr,
+            gif: self.gif,
+        })
     }
 }
 

@@ -88,6 +88,8 @@ fn render_all(files: &[PathBuf], scratch: &str) {
                 } else {
                     iris::denoise::DenoiseMode::Off
                 },
+                spin: None,
+                exr_copy: None,
             };
             let summary =
                 render_command(&opts).unwrap_or_else(|e| panic!("{}: {e}", scene.display()));

@@ -44,6 +44,8 @@ fn opts(scene: &Path, out: &Path, accel: Backend, threads: usize) -> RenderOptio
         looks: Vec::new(),
         explain: false,
         denoise: Default::default(),
+        spin: None,
+        exr_copy: None,
     }
 }
 

@@ -70,6 +70,77 @@ pub fn render(opts: &RenderOptions) -> Result<()> {
     Ok(())
 }
 
+/// `iris turntable`: renders the frames (each frame's turn and output, then its summary
+/// line; the first frame's notes), then says where the animation went, or which frame an
+/// interruption stopped.
+pub fn turntable(opts: &super::turntable::TurntableOptions) -> Result<()> {
+    use super::turntable::{turntable_command, Event};
+    let total = opts.frames;
+    let mut first = true;
+    let s = turntable_command(opts, |event| match event {
+        Event::Note(n) => eprintln!("note: {n}"),
+        Event::Starting {
+            frame,
+            degrees,
+            plan,
+        } => {
+            if let Some(p) = plan {
+                eprint!("{p}");
+            }
+            if !opts.render.quiet {
+                eprintln!(
+                    "iris: frame {frame} of {total} (0–{}), {degrees:.2}°",
+                    total - 1
+                );
+            }
+        }
+        Event::Done {
+            frame,
+            output,
+            summary,
+        } => {
+            if first {
+                for n in &summary.notes {
+                    eprintln!("note: {n}");
+                }
+                first = false;
+            }
+            eprintln!(
+                "iris: frame {frame} -> {}: {}x{}, {}, render {:.2} s; {}",
+                output.display(),
+                summary.image.width,
+                summary.image.height,
+                summary.work_done(),
+                summary.stats.time.as_secs_f64(),
+                summary.end_text()
+            );
+        }
+    })?;
+    if let Some(f) = s.interrupted {
+        eprintln!(
+            "iris: interrupted (Ctrl-C or SIGTERM) during frame {f}: its partial image was \
+             removed; {} frame(s) done, no animation written (render the rest with --frame F, \
+             then --assemble)",
+            s.rendered.len()
+        );
+    }
+    if let Some(a) = &s.assembled {
+        eprintln!(
+            "iris: {} frames {}x{} at {} fps -> {}{}",
+            a.frames,
+            a.size.0,
+            a.size.1,
+            a.fps,
+            a.apng.display(),
+            a.gif
+                .as_ref()
+                .map(|g| format!(" and {}", g.display()))
+                .unwrap_or_default()
+        );
+    }
+    Ok(())
+}
+
 /// `iris converge`: runs every method for the same time, prints one line per run, the
 /// table of who reached each error level first, and the files written.
 pub fn converge(opts: &ConvergeOptions) -> Result<()> {

@@ -1,6 +1,7 @@
 //! The commands behind the CLI, as library functions so tests can run them without a
 //! subprocess: `iris render` ([`render`], with its budget: [`budget`]), `iris converge` ([`converge`]), `iris info`
-//! ([`info`]), `iris diff` ([`diff`]), `iris gallery` ([`gallery`]), and the printing of
+//! ([`info`]), `iris diff` ([`diff`]), `iris gallery` ([`gallery`]), `iris turntable`
+//! ([`turntable`]), and the printing of
 //! each ([`commands`], what `main.rs` calls: one function per command). This is the top of
 //! the crate: nothing below imports it.
 
@@ -12,6 +13,7 @@ pub mod gallery;
 pub mod info;
 pub mod render;
 mod render_denoise;
+pub mod turntable;
 
 pub use crate::measure::MeasureOptions;
 pub use crate::plan::SpectralMode;

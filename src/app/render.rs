@@ -83,6 +83,12 @@ pub struct RenderOptions {
     pub explain: bool,
     /// `--denoise auto|on|off` ([`crate::denoise::mode`]).
     pub denoise: DenoiseMode,
+    /// A turntable frame (`iris turntable`): the model turned about the vertical axis
+    /// ([`crate::prepare::turntable`]); `None` = as the file has it.
+    pub spin: Option<crate::prepare::turntable::Spin>,
+    /// Also write the final image to this `.exr` (linear; under `--denoise on` with the
+    /// denoised layer, as `iris render -o FILE.exr` writes it), after the main output.
+    pub exr_copy: Option<PathBuf>,
 }
 
 impl RenderOptions {
@@ -122,6 +128,8 @@ impl RenderOptions {
             looks: Vec::new(),
             explain: false,
             denoise: DenoiseMode::Auto,
+            spin: None,
+            exr_copy: None,
         }
     }
 
@@ -150,6 +158,7 @@ impl RenderOptions {
             size: self.size.or(reference_size),
             preview: self.preview,
             looks: self.looks.clone(),
+            spin: self.spin,
         }
     }
 
@@ -322,6 +331,9 @@ impl<'a> RenderJob<'a> {
             }
         };
         output::check_extension(&output)?;
+        if let Some(exr) = &opts.exr_copy {
+            output::check_extension(exr)?;
+        }
         let denoise = crate::denoise::mode::choose(opts.denoise, &output)?;
         let measure = &opts.measure;
         measure.check_flags()?;
@@ -442,6 +454,20 @@ impl<'a> RenderJob<'a> {
             integrator.render_progressive(scene, &camera, &settings, Some(&mut observe))?;
         let denoised = denoiser.finish(&image)?;
         write(&image, denoised.as_ref().map(|d| &d.image), &denoiser)?;
+        if let Some(exr) = &opts.exr_copy {
+            let layer = denoised
+                .as_ref()
+                .filter(|_| opts.denoise == DenoiseMode::On)
+                .map(|d| (crate::denoise::EXR_LAYER, &d.image));
+            output::write_image_with_layer(
+                exr,
+                &image,
+                layer,
+                coverage.as_ref(),
+                preview.background,
+                &opts.display,
+            )?;
+        }
         rows.append(&mut recorder.rows);
         let measure_notes = measure.write_outputs(&rows, &opts.scene)?;
         let mut notes: Vec<String> = prepared.looks.iter().map(ToString::to_string).collect();

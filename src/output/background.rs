@@ -153,6 +153,33 @@ pub fn composite_linear(
     )
 }
 
+/// The straight colours of the covered pixels (α > 0), from per-pixel straight colours.
+fn covered_straight(straight: &[Vec3], cov: &Coverage) -> Vec<Vec3> {
+    straight
+        .iter()
+        .zip(&cov.alpha)
+        .filter(|(_, &a)| a > 0.0)
+        .map(|(&c, _)| c)
+        .collect()
+}
+
+/// The pixels `--exposure auto` measures for the background `bg`: the whole image for
+/// [`Background::Environment`] (or without coverage), else the straight colour M/α of the
+/// covered pixels, the model alone (as [`display_bytes`] does).
+pub fn exposure_pixels(img: &ImageRgb, cov: Option<&Coverage>, bg: Background) -> Vec<Vec3> {
+    match (bg, cov) {
+        (Background::Environment, _) | (_, None) => img.data.clone(),
+        (_, Some(cov)) => {
+            let straight: Vec<Vec3> = model_part(img, cov)
+                .iter()
+                .zip(&cov.alpha)
+                .map(|(&m, &a)| if a > 0.0 { m / a } else { Vec3::ZERO })
+                .collect();
+            covered_straight(&straight, cov)
+        }
+    }
+}
+
 /// 8-bit display bytes: RGB8 for a colour background, RGBA8 (straight alpha) for
 /// transparent. Returns `(bytes, has_alpha)`.
 pub fn display_bytes(
@@ -173,12 +200,7 @@ pub fn display_bytes(
     let exposure = match opts.exposure {
         Exposure::Ev(e) => Exposure::Ev(e),
         Exposure::Auto => {
-            let covered: Vec<Vec3> = straight
-                .iter()
-                .zip(&cov.alpha)
-                .filter(|(_, &a)| a > 0.0)
-                .map(|(&c, _)| c)
-                .collect();
+            let covered = covered_straight(&straight, cov);
             let probe = ImageRgb {
                 width: covered.len() as u32,
                 height: 1,

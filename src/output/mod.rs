@@ -7,11 +7,13 @@
 //!
 //! - With `--background` ([`background`]): a flat colour or alpha (PNG RGBA8 with straight
 //!   alpha, EXR RGBA with premultiplied colour) from the image's coverage.
+//! - Frame sequences (`iris turntable`) become an animated APNG or GIF ([`animation`]).
 //!
 //! The format is chosen by the extension (case-insensitive). Every file is written
 //! atomically ([`atomic`]): temporary file in the same directory, fsync, rename; a failed
 //! write leaves neither a partial output nor a temporary file. Errors name the path.
 
+pub mod animation;
 pub mod atomic;
 pub mod background;
 pub mod exr_io;

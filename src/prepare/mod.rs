@@ -12,7 +12,9 @@
 //! file has no light (or `--studio NAME` asks) and no `--env` is given, write the studio's
 //! lights into the description ([`crate::studio::light`]), placed relative to that camera, else the default
 //! key and fill when nothing lights it ([`crate::scene::lighting::light_if_unlit`]); add
-//! the floor; then [`Scene::build`], once. Nothing changes the scene after the build, and
+//! the floor; for a turntable frame (`spin`), turn the file's meshes ([`turntable`]: every
+//! decision above is taken on the unturned model, so it is the same in every frame, and
+//! the automatic camera frames the turn's bounding cylinder); then [`Scene::build`], once. Nothing changes the scene after the build, and
 //! what was decided is kept as data ([`Note`]). Units: the file's (metres for glTF);
 //! frames: world space, +Y up. Two calls with the same file and options give the same
 //! scene, camera and notes.
@@ -26,6 +28,7 @@ pub use note::Note;
 pub mod input;
 pub mod looks;
 pub mod select;
+pub mod turntable;
 
 use crate::accel::Backend;
 use crate::error::Result;
@@ -53,6 +56,9 @@ pub struct PrepareOptions {
     pub preview: PreviewOptions,
     /// `--stone` and `--metal` flags, in order ([`looks`]).
     pub looks: Vec<looks::LookFlag>,
+    /// A turntable frame (`iris turntable`): the model turned about the vertical axis
+    /// ([`turntable`]); `None` = as the file has it.
+    pub spin: Option<turntable::Spin>,
 }
 
 /// A scene ready to render: built, lit, with its camera and image size.
@@ -66,7 +72,7 @@ pub struct Prepared {
     /// Load, validation and build time.
     pub load_time: Duration,
     /// What was decided about the scene, in order: default lights, touching volumes,
-    /// studio, floor.
+    /// studio, floor, the authored file's note, the turntable frame.
     pub notes: Vec<Note>,
     /// How the camera was chosen, when Iris chose it.
     pub camera_note: Option<Note>,
@@ -92,6 +98,10 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
     let start = Instant::now();
     let mut desc = crate::load::load_scene(path)?;
     let looks = looks::apply(&mut desc, &opts.looks)?;
+    let turn = opts
+        .spin
+        .map(|spin| turntable::Turn::new(&desc, spin))
+        .transpose()?;
     let authored = Authored::of(&desc);
     let (add_floor, floor) = if preview.ground_mode() != preview.ground {
         (false, Floor::CoversBackground)
@@ -108,11 +118,12 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
     let (camera, camera_note) = choose_camera_in(
         &desc.cameras,
         &desc.source,
-        || {
-            meshes
+        || match &turn {
+            Some(t) => t.framing_points(meshes),
+            None => meshes
                 .iter()
                 .flat_map(|m| m.positions.iter().copied())
-                .collect()
+                .collect(),
         },
         opts.camera.as_deref(),
         preview.view,
@@ -122,6 +133,9 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
     let build_start = Instant::now();
     if add_floor {
         ground::add_ground(&mut desc);
+    }
+    if let Some(t) = &turn {
+        t.apply(&mut desc);
     }
     let scene = Scene::build(desc, opts.accel)?;
     let load_time = load_time + build_start.elapsed();
@@ -143,6 +157,7 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
         studio,
         (!matches!(floor, Floor::NotTransmissive | Floor::Authored)).then_some(Note::Floor(floor)),
         authored_note,
+        turn.map(|t| t.note(camera_note.is_some())),
     ];
     Ok(Prepared {
         scene,

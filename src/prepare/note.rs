@@ -11,7 +11,7 @@ use std::fmt;
 
 /// A decision taken for the user while preparing a scene, in the order
 /// [`super::Prepared::notes`] lists them: lights, touching volumes, studio, floor, the
-/// authored file's note, camera.
+/// authored file's note, turntable, camera.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Note {
     /// Nothing lights the file: the default key and fill lights were added.
@@ -49,6 +49,20 @@ pub enum Note {
         no_floor: bool,
         /// Whether the default studio was left out (no `--studio NAME` given).
         no_studio: bool,
+    },
+    /// A turntable frame ([`super::turntable`]): the file's meshes that do not emit turned
+    /// about the vertical axis.
+    Turntable {
+        /// The frame, from 0.
+        frame: u32,
+        /// Frames in the whole turn.
+        frames: u32,
+        /// Meshes turned.
+        turned: usize,
+        /// Emissive meshes left in place (lights stay).
+        fixed: usize,
+        /// Whether the automatic camera framed the turn's bounding cylinder.
+        framed: bool,
     },
     /// How Iris chose the camera.
     Camera(AutoCamera),
@@ -95,6 +109,32 @@ impl fmt::Display for Note {
                     evidence.evidence()
                 )
             }
+            Note::Turntable {
+                frame,
+                frames,
+                turned,
+                fixed,
+                framed,
+            } => {
+                let degrees =
+                    super::turntable::Spin::new(frame, frames).map_or(f64::NAN, |s| s.degrees());
+                write!(
+                    f,
+                    "turntable frame {frame} of {frames} (0–{}): the model ({turned} mesh{}) turned {}° \
+                     about the vertical axis through its centre; camera, lights, floor and \
+                     studio fixed",
+                    frames.saturating_sub(1),
+                    if turned == 1 { "" } else { "es" },
+                    format_degrees(degrees)
+                )?;
+                if fixed > 0 {
+                    write!(f, "; {fixed} emissive mesh(es) stay with the lights")?;
+                }
+                if framed {
+                    f.write_str("; framed on the bounding cylinder of the whole turn")?;
+                }
+                Ok(())
+            }
             Note::Camera(AutoCamera::View {
                 view,
                 over_file_camera,
@@ -113,6 +153,15 @@ impl fmt::Display for Note {
                  (--view front|top|side|threequarter)",
             ),
         }
+    }
+}
+
+/// `90`, `51.43`: whole degrees without decimals, others to two.
+fn format_degrees(d: f64) -> String {
+    if d.fract() == 0.0 {
+        format!("{d:.0}")
+    } else {
+        format!("{d:.2}")
     }
 }
 
@@ -187,6 +236,19 @@ mod tests {
             .to_string(),
             "the file brings its own light (2 punctual lights, emissive surfaces): rendered as \
              authored, no studio or floor added (--studio NAME, --ground on to add)"
+        );
+        assert_eq!(
+            Note::Turntable {
+                frame: 1,
+                frames: 7,
+                turned: 2,
+                fixed: 1,
+                framed: true
+            }
+            .to_string(),
+            "turntable frame 1 of 7 (0–6): the model (2 meshes) turned 51.43° about the vertical \
+             axis through its centre; camera, lights, floor and studio fixed; 1 emissive \
+             mesh(es) stay with the lights; framed on the bounding cylinder of the whole turn"
         );
         assert_eq!(
             Note::Floor(Floor::CoversBackground).to_string(),

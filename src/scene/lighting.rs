@@ -27,7 +27,7 @@ pub fn has_emitter(desc: &SceneDesc) -> bool {
 }
 
 /// Whether `mesh` has a triangle that [`AreaLights::build`] would keep as an emitter.
-fn mesh_emits(desc: &SceneDesc, mesh: &super::desc::MeshDesc) -> bool {
+pub fn mesh_emits(desc: &SceneDesc, mesh: &super::desc::MeshDesc) -> bool {
     // A mesh without a material uses the default one, which does not emit.
     let Some(mat) = mesh.material.and_then(|i| desc.materials.get(i)) else {
         return false;
