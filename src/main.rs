@@ -72,6 +72,37 @@ enum Command {
     /// Render the gallery (the paper's figure scenes, the gems, the Khronos dispersion
     /// samples) into DIR/<name>.png with a Markdown page DIR/README.md (plan, method, time).
     Gallery(GalleryArgs),
+    /// Merge the partial images of a render's shards (iris render --shard I/N -o PART.exr)
+    /// into its image: checks they belong to one render (scene, method, seed, size,
+    /// options) and that no sample is missing or twice; with a fixed --spp/--passes the
+    /// result is bit for bit one iris render of all the samples.
+    Merge(MergeArgs),
+}
+
+#[derive(clap::Args)]
+struct MergeArgs {
+    /// The shards' partial images.
+    #[arg(required = true)]
+    parts: Vec<PathBuf>,
+    /// Output file: .exr (linear) or .png (tone-mapped).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Write the merge's error row as CSV (iris render's columns, stage `merge`).
+    #[arg(long)]
+    report: Option<PathBuf>,
+    /// Reference EXR (same size): the merged image's error against it.
+    #[arg(long)]
+    reference: Option<PathBuf>,
+    /// Merge what is there when shards (or samples) are missing, and say how many samples
+    /// each pixel got.
+    #[arg(long)]
+    allow_partial: bool,
+    /// PNG exposure: `auto` (log-average luminance to 0.18) or stops in [-64, 64], e.g. -1.5.
+    #[arg(long, default_value = "auto", value_parser = parse_exposure, allow_hyphen_values = true)]
+    exposure: Exposure,
+    /// PNG tone map: aces, reinhard, clamp.
+    #[arg(long, default_value = "aces", value_parser = ToneMap::parse)]
+    tonemap: ToneMap,
 }
 
 /// `--stone`, `--metal`, `--metal-roughness`: material overrides for render, converge, info.
@@ -309,6 +340,12 @@ struct RenderArgs {
     /// media, denoise), why, and what each costs (a 32x24 probe render, 10 000 photons).
     #[arg(long)]
     explain: bool,
+    /// Render only shard I of N (1 ≤ I ≤ N, counted from 1 like Slurm array indices) and
+    /// write a partial image (-o PART.exr) for `iris merge`: with --spp/--passes T the
+    /// units ⌊(I−1)T/N⌋..⌊I·T/N⌋; without, a segment of the Sobol' block until --time or
+    /// --target-error (each per shard). Written only at the end.
+    #[arg(long, value_name = "I/N", value_parser = parse_shard)]
+    shard: Option<iris::app::shard::Shard>,
     /// Denoising with Intel Open Image Denoise (albedo and normals of the first
     /// non-specular surface seen through glass as auxiliary images): `auto` denoises a PNG
     /// and leaves an EXR raw, `on` denoises a PNG or adds the denoised image to an EXR as
@@ -354,6 +391,10 @@ struct ConvergeArgs {
     quiet: bool,
     #[command(flatten)]
     looks: LookArgs,
+}
+
+fn parse_shard(s: &str) -> Result<iris::app::shard::Shard, String> {
+    iris::app::shard::Shard::parse(s).map_err(|e| e.to_string())
 }
 
 fn parse_target(s: &str) -> Result<f64, String> {
@@ -450,6 +491,17 @@ fn run(cli: Cli) -> iris::Result<()> {
         }
         Command::Gallery(a) => app::commands::gallery(&a.options()),
         Command::GenAssets { dir } => app::commands::gen_assets(&dir),
+        Command::Merge(a) => app::commands::merge(&iris::app::merge::MergeOptions {
+            parts: a.parts,
+            output: a.output,
+            report: a.report,
+            reference: a.reference,
+            allow_partial: a.allow_partial,
+            display: DisplayOptions {
+                exposure: a.exposure,
+                tonemap: a.tonemap,
+            },
+        }),
     }
 }
 
@@ -515,6 +567,7 @@ impl RenderArgs {
             looks: a.looks.flags()?,
             explain: a.explain,
             denoise: a.denoise,
+            shard: a.shard,
         };
         Ok(options)
     }

@@ -44,6 +44,7 @@ fn opts(scene: &Path, out: &Path, accel: Backend, threads: usize) -> RenderOptio
         looks: Vec::new(),
         explain: false,
         denoise: Default::default(),
+        shard: None,
     }
 }
 

@@ -10,8 +10,11 @@ pub mod converge;
 pub mod diff;
 pub mod gallery;
 pub mod info;
+pub mod merge;
 pub mod render;
 mod render_denoise;
+pub mod shard;
+pub mod shard_id;
 
 pub use crate::measure::MeasureOptions;
 pub use crate::plan::SpectralMode;

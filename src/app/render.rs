@@ -83,6 +83,9 @@ pub struct RenderOptions {
     pub explain: bool,
     /// `--denoise auto|on|off` ([`crate::denoise::mode`]).
     pub denoise: DenoiseMode,
+    /// `--shard I/N`: render only this shard's units and write a partial image
+    /// ([`super::shard`]).
+    pub shard: Option<super::shard::Shard>,
 }
 
 impl RenderOptions {
@@ -122,6 +125,7 @@ impl RenderOptions {
             looks: Vec::new(),
             explain: false,
             denoise: DenoiseMode::Auto,
+            shard: None,
         }
     }
 
@@ -274,6 +278,15 @@ impl RenderSummary {
     }
 }
 
+/// "samples" or "passes": what `method` counts in units.
+pub fn unit_name(method: Method) -> &'static str {
+    if method == Method::Sppm {
+        "passes"
+    } else {
+        "samples"
+    }
+}
+
 /// `iris render`: every flag is checked (sizes, bounds, extensions, the reference's file
 /// and size) before rendering; the image, then the CSV, then the plot are written, each
 /// atomically. The same as [`RenderJob::new`] then [`RenderJob::run`].
@@ -314,6 +327,7 @@ impl<'a> RenderJob<'a> {
             }
         };
         output::check_extension(&output)?;
+        super::shard::check_flags(opts, &output)?;
         let denoise = crate::denoise::mode::choose(opts.denoise, &output)?;
         let measure = &opts.measure;
         measure.check_flags()?;
@@ -346,6 +360,9 @@ impl<'a> RenderJob<'a> {
         }
         crate::integrator::check_memory(w, h, plan.method)?;
         measure.check_checkpoints(opts.units(plan.method))?;
+        if let Some(shard) = opts.shard {
+            shard.range(u64::from(opts.units(plan.method)), unit_name(plan.method))?;
+        }
         Ok(RenderJob {
             opts,
             output,
@@ -384,6 +401,23 @@ impl<'a> RenderJob<'a> {
         };
         let (measure, preview) = (&opts.measure, &opts.preview);
         let run = method.name();
+        // `--shard`: the units to take and the render's identity, before rendering.
+        let total = integrator.total_units(&settings);
+        let shard = opts
+            .shard
+            .map(|s| -> Result<_> {
+                let range = s.range(total, unit_name(method))?;
+                let identity = super::shard_id::identity(
+                    opts,
+                    scene,
+                    &prepared.camera,
+                    (w, h),
+                    (method, plan.spectral),
+                    (total < crate::render::OPEN_UNITS).then_some(total),
+                )?;
+                Ok((s, range, identity))
+            })
+            .transpose()?;
         let mut rows =
             crate::measure::report::setup_rows(run, prepared.load_time, scene.accel_build_time);
         let mut recorder = Recorder::new(run, reference.as_ref());
@@ -415,7 +449,7 @@ impl<'a> RenderJob<'a> {
         // `--checkpoint K` (K more units: samples, or SPPM passes, which the driver counts
         // in `Progress::samples`) or watching (an open budget): the image so far. With
         // `--reference` every checkpoint is denoised for the report.
-        let mut writes = CheckpointWrites::new(opts.checkpoint, opts.watch);
+        let mut writes = CheckpointWrites::new(opts.checkpoint, opts.watch && shard.is_none());
         let measure_denoised = reference.is_some();
         let mut observe = |p: &Progress| -> Result<Control> {
             let write_now = writes.due(p, Instant::now());
@@ -430,10 +464,35 @@ impl<'a> RenderJob<'a> {
             recorder.record_denoised(p, denoised.as_ref().map(|(img, t)| (img, *t)))?;
             stop.check(p)
         };
-        let (image, stats) =
-            integrator.render_progressive(scene, &camera, &settings, Some(&mut observe))?;
+        let range = shard.as_ref().map(|s| s.1.clone());
+        let (film, stats) =
+            integrator.render_units(scene, &camera, &settings, range, Some(&mut observe))?;
+        let image = film.mean();
         let denoised = denoiser.finish(&image)?;
-        write(&image, denoised.as_ref().map(|d| &d.image), &denoiser)?;
+        let mut shard_note = None;
+        if let Some((s, range, identity)) = shard {
+            let header = super::shard::ShardHeader::new(
+                identity,
+                &opts.scene,
+                s,
+                (range.clone(), film.done()),
+                &stats,
+            );
+            output::partial::write(&output, &header.entries(), &film.exact())?;
+            shard_note = Some(format!(
+                "shard {s}: {} {}..{} of {} (iris merge adds the shards' partial images)",
+                unit_name(method),
+                range.start,
+                range.end,
+                if total < crate::render::OPEN_UNITS {
+                    total.to_string()
+                } else {
+                    "an open budget".into()
+                }
+            ));
+        } else {
+            write(&image, denoised.as_ref().map(|d| &d.image), &denoiser)?;
+        }
         rows.append(&mut recorder.rows);
         let measure_notes = measure.write_outputs(&rows, &opts.scene)?;
         let mut notes: Vec<String> = prepared.looks.iter().map(ToString::to_string).collect();
@@ -456,6 +515,7 @@ impl<'a> RenderJob<'a> {
         notes.extend(scene.warnings.iter().cloned());
         notes.extend(measure_notes);
         notes.extend(denoised.as_ref().and_then(|d| denoiser.note(d)));
+        notes.extend(shard_note);
         Ok(RenderSummary {
             output,
             image,
