@@ -194,8 +194,8 @@ struct RenderArgs {
     #[arg(short, long)]
     output: Option<PathBuf>,
     /// Image size WxH, e.g. 800x600 (default 800 wide at the camera's aspect): at most 2^26
-    /// pixels (8192x8192), and for `--method sppm` at most 8 GiB of per-pixel buffers
-    /// (about 18 M pixels, e.g. 4096x4096).
+    /// pixels (8192x8192) and 8 GiB of per-pixel buffers (about 55 M pixels, e.g.
+    /// 8192x6400; for `--method sppm` about 19 M pixels, e.g. 4096x4096).
     #[arg(long, value_parser = parse_size)]
     size: Option<(u32, u32)>,
     /// Samples per pixel, 1 to 1000000: the render stops there (or earlier at --time or
@@ -371,7 +371,8 @@ struct ConvergeArgs {
     #[arg(short, long)]
     output: PathBuf,
     /// Image size WxH (default: the reference's, else 800 wide at the camera's aspect); at
-    /// most 2^26 pixels (8192x8192), SPPM at most 8 GiB of per-pixel buffers.
+    /// most 2^26 pixels (8192x8192) and 8 GiB of per-pixel buffers (about 55 M pixels;
+    /// SPPM 19 M).
     #[arg(long, value_parser = parse_size)]
     size: Option<(u32, u32)>,
     /// Random seed of the runs.

@@ -88,6 +88,7 @@ fn render_all(files: &[PathBuf], scratch: &str) {
                 } else {
                     iris::denoise::DenoiseMode::Off
                 },
+                shard: None,
             };
             let summary =
                 render_command(&opts).unwrap_or_else(|e| panic!("{}: {e}", scene.display()));

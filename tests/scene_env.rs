@@ -185,6 +185,7 @@ fn render_mean(scene: &Path, env: Option<Option<Environment>>, out: &Path) -> Ve
         looks: Vec::new(),
         explain: false,
         denoise: Default::default(),
+        shard: None,
     };
     render_command(&opts).expect("render");
     let img = read_exr(out).expect("read");

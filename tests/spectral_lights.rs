@@ -347,6 +347,7 @@ fn render_under_a_2700_k_light_has_its_colour() {
             looks: Vec::new(),
             explain: false,
             denoise: Default::default(),
+            shard: None,
         };
         render_command(&opts).expect("render").image
     };
@@ -429,6 +430,7 @@ fn spectral_render_under_a_2700_k_light_has_the_planckian_chromaticity() {
         looks: Vec::new(),
         explain: false,
         denoise: Default::default(),
+        shard: None,
     };
     let image = render_command(&opts).expect("render").image;
     let mean = image.data.iter().fold(Vec3::ZERO, |a, p| a + *p) / image.data.len() as f32;

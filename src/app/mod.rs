@@ -1,5 +1,6 @@
 //! The commands behind the CLI, as library functions so tests can run them without a
-//! subprocess: `iris render` ([`render`], with its budget: [`budget`]), `iris converge` ([`converge`]), `iris info`
+//! subprocess: `iris render` ([`render`], with its budget: [`budget`]; `--shard`:
+//! [`shard`], [`shard_id`]), `iris merge` ([`merge`]), `iris converge` ([`converge`]), `iris info`
 //! ([`info`]), `iris diff` ([`diff`]), `iris gallery` ([`gallery`]), and the printing of
 //! each ([`commands`], what `main.rs` calls: one function per command). This is the top of
 //! the crate: nothing below imports it.

@@ -64,21 +64,17 @@ impl std::fmt::Write for HashWriter {
 /// environment. Deterministic for a given Iris build (no hash maps are involved).
 pub fn content_sha256(scene: &Scene) -> String {
     let mut h = HashWriter(Sha256::new());
+    let mut bytes = Vec::new();
     for v in scene.positions.iter().chain(&scene.normals) {
-        for c in v.to_array() {
-            h.0.update(c.to_bits().to_le_bytes());
-        }
+        bytes.extend(v.to_array().iter().flat_map(|c| c.to_bits().to_le_bytes()));
     }
     for uv in &scene.uvs {
-        for c in uv.to_array() {
-            h.0.update(c.to_bits().to_le_bytes());
-        }
+        bytes.extend(uv.to_array().iter().flat_map(|c| c.to_bits().to_le_bytes()));
     }
     for (t, m) in scene.triangles.iter().zip(&scene.triangle_material) {
-        for i in t.iter().chain([m]) {
-            h.0.update(i.to_le_bytes());
-        }
+        bytes.extend(t.iter().chain([m]).flat_map(|i| i.to_le_bytes()));
     }
+    h.0.update(&bytes);
     let _ = write!(
         h,
         "{:?}{:?}{:?}{:?}{:?}",

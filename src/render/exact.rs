@@ -47,7 +47,7 @@ impl ExactImage {
     /// checked them; a mismatch adds the common prefix only).
     pub fn add(&mut self, other: &ExactImage) {
         for (s, o) in self.sums.iter_mut().zip(&other.sums) {
-            *s = [s[0].add(o[0]), s[1].add(o[1])];
+            *s = [s[0] + o[0], s[1] + o[1]];
         }
         for (u, o) in self.units.iter_mut().zip(&other.units) {
             *u = [u[0] + o[0], u[1] + o[1]];

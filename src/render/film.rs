@@ -71,7 +71,7 @@ impl FilmTile<'_> {
     pub fn add(&mut self, i: usize, unit: u64, v: DVec3, bad: &mut u64) {
         let v = guard::admit(v, bad);
         let s = &mut self.sums[i][(unit % 2) as usize];
-        *s = s.add(FixedRgb::from_dvec3(v));
+        *s = *s + FixedRgb::from_dvec3(v);
     }
 
     /// Marks the tile as having taken every unit before `end` (absolute index) from the

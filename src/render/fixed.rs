@@ -57,14 +57,6 @@ impl FixedRgb {
         ])
     }
 
-    /// `self + o`, componentwise (wrapping: associative and commutative).
-    #[inline]
-    pub fn add(self, o: FixedRgb) -> FixedRgb {
-        let [a, b, c] = self.0;
-        let [x, y, z] = o.0;
-        FixedRgb([a.wrapping_add(x), b.wrapping_add(y), c.wrapping_add(z)])
-    }
-
     /// The value in floating point (each component rounded once).
     #[inline]
     pub fn to_dvec3(self) -> DVec3 {
@@ -83,6 +75,18 @@ impl FixedRgb {
     }
 }
 
+impl std::ops::Add for FixedRgb {
+    type Output = FixedRgb;
+
+    /// Componentwise, wrapping: associative and commutative.
+    #[inline]
+    fn add(self, o: FixedRgb) -> FixedRgb {
+        let [a, b, c] = self.0;
+        let [x, y, z] = o.0;
+        FixedRgb([a.wrapping_add(x), b.wrapping_add(y), c.wrapping_add(z)])
+    }
+}
+
 /// A pixel's two halves (units of even and odd absolute index).
 pub type PixelSums = [FixedRgb; 2];
 
@@ -95,7 +99,7 @@ pub fn parity_counts(first: u64, n: u64) -> [u64; 2] {
 /// The mean of both halves of a pixel holding `n` units.
 #[inline]
 pub fn pixel_mean(s: &PixelSums, n: u64) -> Vec3 {
-    s[0].add(s[1]).mean(n)
+    (s[0] + s[1]).mean(n)
 }
 
 #[cfg(test)]
@@ -113,12 +117,12 @@ mod tests {
             })
             .collect();
         let sum = |order: &mut dyn Iterator<Item = &DVec3>| {
-            order.fold(FixedRgb::ZERO, |s, v| s.add(FixedRgb::from_dvec3(*v)))
+            order.fold(FixedRgb::ZERO, |s, v| s + FixedRgb::from_dvec3(*v))
         };
         let forward = sum(&mut vals.iter());
         let backward = sum(&mut vals.iter().rev());
         let (a, b) = vals.split_at(77);
-        let split = sum(&mut b.iter()).add(sum(&mut a.iter()));
+        let split = sum(&mut b.iter()) + sum(&mut a.iter());
         assert_eq!(forward, backward);
         assert_eq!(forward, split);
         let f64_sum = |v: &[DVec3]| v.iter().map(|v| v.x).sum::<f64>();
@@ -148,7 +152,7 @@ mod tests {
         // 2^25 additions of the largest admitted value, by doubling.
         let mut s = FixedRgb::from_dvec3(DVec3::splat(LIMIT));
         for _ in 0..25 {
-            s = s.add(s);
+            s = s + s;
         }
         assert_eq!(s.to_dvec3().x, LIMIT * (1u64 << 25) as f64);
         assert!(s.0[0] > 0);

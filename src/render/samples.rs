@@ -45,11 +45,11 @@ pub fn pixel_sampler(settings: &RenderSettings, spp: u64) -> PixelSampler {
 }
 
 /// The sample loop of the per-sample methods: samples k = 0, 1, … per pixel (or the
-/// absolute `range` of a shard), each a jittered camera ray (the pixel centre when `spp` =
-/// 1) estimated by `estimate(ray, u_lambda, ctx)` (linear RGB), in rounds to checkpoints 1,
-/// 2, 4, … (see the module docs). `setup` is the work done before (photon maps): its start
-/// time, rays and photons count in the progress and the stats. Runs on the current rayon
-/// pool.
+/// absolute `range` of a shard), each a jittered camera ray (the pixel centre for a single
+/// sample per pixel) estimated by `estimate(ray, u_lambda, ctx)` (linear RGB), in rounds to
+/// the checkpoints (see the module docs). `setup` is the work done before (photon maps):
+/// its start time, rays and photons count in the progress and the stats. Runs on the
+/// current rayon pool.
 pub fn render_samples(
     camera: &Camera,
     settings: &RenderSettings,
