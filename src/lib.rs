@@ -18,7 +18,9 @@
 //! description) → immutable [`scene::Scene`] → the plan ([`plan`], `--method auto`) → an
 //! [`integrator::Integrator`] rendering through the one progressive driver and film
 //! ([`render`]) → denoising of PNG previews ([`denoise`], Open Image Denoise with auxiliary
-//! albedo and normals) → PNG/EXR ([`output`]). Commands live in [`app`].
+//! albedo and normals) → PNG/EXR ([`output`]). Commands live in [`app`]. The film's sums
+//! are exact ([`render::fixed`]), so a render cut into shards ([`app::shard`]) merges
+//! bit for bit ([`app::merge`]).
 //!
 //! `unsafe` appears only in `accel/embree/` and `denoise/oidn.rs`, the two C FFI layers
 //! (Embree; Open Image Denoise).

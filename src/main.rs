@@ -92,6 +92,37 @@ enum Command {
     #[command(mut_arg("report", |a| a.hide(true)))]
     #[command(mut_arg("plot", |a| a.hide(true)))]
     Turntable(TurntableArgs),
+    /// Merge the partial images of a render's shards (iris render --shard I/N -o PART.exr)
+    /// into its image: checks they belong to one render (scene, method, seed, size,
+    /// options) and that no sample is missing or twice; with a fixed --spp/--passes the
+    /// result is bit for bit one iris render of all the samples.
+    Merge(MergeArgs),
+}
+
+#[derive(clap::Args)]
+struct MergeArgs {
+    /// The shards' partial images.
+    #[arg(required = true)]
+    parts: Vec<PathBuf>,
+    /// Output file: .exr (linear) or .png (tone-mapped).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Write the merge's error row as CSV (iris render's columns, stage `merge`).
+    #[arg(long)]
+    report: Option<PathBuf>,
+    /// Reference EXR (same size): the merged image's error against it.
+    #[arg(long)]
+    reference: Option<PathBuf>,
+    /// Merge what is there when shards (or samples) are missing, and say how many samples
+    /// each pixel got.
+    #[arg(long)]
+    allow_partial: bool,
+    /// PNG exposure: `auto` (log-average luminance to 0.18) or stops in [-64, 64], e.g. -1.5.
+    #[arg(long, default_value = "auto", value_parser = parse_exposure, allow_hyphen_values = true)]
+    exposure: Exposure,
+    /// PNG tone map: aces, reinhard, clamp.
+    #[arg(long, default_value = "aces", value_parser = ToneMap::parse)]
+    tonemap: ToneMap,
 }
 
 #[derive(clap::Args)]
@@ -210,8 +241,8 @@ struct RenderArgs {
     #[arg(short, long)]
     output: Option<PathBuf>,
     /// Image size WxH, e.g. 800x600 (default 800 wide at the camera's aspect): at most 2^26
-    /// pixels (8192x8192), and for `--method sppm` at most 8 GiB of per-pixel buffers
-    /// (about 18 M pixels, e.g. 4096x4096).
+    /// pixels (8192x8192) and 8 GiB of per-pixel buffers (about 55 M pixels, e.g.
+    /// 8192x6400; for `--method sppm` about 19 M pixels, e.g. 4096x4096).
     #[arg(long, value_parser = parse_size)]
     size: Option<(u32, u32)>,
     /// Samples per pixel, 1 to 1000000: the render stops there (or earlier at --time or
@@ -356,6 +387,12 @@ struct RenderArgs {
     /// media, denoise), why, and what each costs (a 32x24 probe render, 10 000 photons).
     #[arg(long)]
     explain: bool,
+    /// Render only shard I of N (1 ≤ I ≤ N, counted from 1 like Slurm array indices) and
+    /// write a partial image (-o PART.exr) for `iris merge`: with --spp/--passes T the
+    /// units ⌊(I−1)T/N⌋..⌊I·T/N⌋; without, a segment of the Sobol' block until --time or
+    /// --target-error (each per shard). Written only at the end.
+    #[arg(long, value_name = "I/N", value_parser = parse_shard)]
+    shard: Option<iris::app::shard::Shard>,
     /// Denoising with Intel Open Image Denoise (albedo and normals of the first
     /// non-specular surface seen through glass as auxiliary images): `auto` denoises a PNG
     /// and leaves an EXR raw, `on` denoises a PNG or adds the denoised image to an EXR as
@@ -381,7 +418,8 @@ struct ConvergeArgs {
     #[arg(short, long)]
     output: PathBuf,
     /// Image size WxH (default: the reference's, else 800 wide at the camera's aspect); at
-    /// most 2^26 pixels (8192x8192), SPPM at most 8 GiB of per-pixel buffers.
+    /// most 2^26 pixels (8192x8192) and 8 GiB of per-pixel buffers (about 55 M pixels;
+    /// SPPM 19 M).
     #[arg(long, value_parser = parse_size)]
     size: Option<(u32, u32)>,
     /// Random seed of the runs.
@@ -401,6 +439,10 @@ struct ConvergeArgs {
     quiet: bool,
     #[command(flatten)]
     looks: LookArgs,
+}
+
+fn parse_shard(s: &str) -> Result<iris::app::shard::Shard, String> {
+    iris::app::shard::Shard::parse(s).map_err(|e| e.to_string())
 }
 
 fn parse_target(s: &str) -> Result<f64, String> {
@@ -502,6 +544,17 @@ fn run(cli: Cli) -> iris::Result<()> {
         Command::Gallery(a) => app::commands::gallery(&a.options()),
         Command::GenAssets { dir } => app::commands::gen_assets(&dir),
         Command::Turntable(a) => app::commands::turntable(&a.options()?),
+        Command::Merge(a) => app::commands::merge(&iris::app::merge::MergeOptions {
+            parts: a.parts,
+            output: a.output,
+            report: a.report,
+            reference: a.reference,
+            allow_partial: a.allow_partial,
+            display: DisplayOptions {
+                exposure: a.exposure,
+                tonemap: a.tonemap,
+            },
+        }),
     }
 }
 
@@ -569,6 +622,7 @@ impl RenderArgs {
             denoise: a.denoise,
             spin: None,
             exr_copy: None,
+            shard: a.shard,
         };
         Ok(options)
     }

@@ -90,6 +90,7 @@ fn render_all(files: &[PathBuf], scratch: &str) {
                 },
                 spin: None,
                 exr_copy: None,
+                shard: None,
             };
             let summary =
                 render_command(&opts).unwrap_or_else(|e| panic!("{}: {e}", scene.display()));

@@ -46,6 +46,7 @@ fn opts(scene: &Path, out: &Path, accel: Backend, threads: usize) -> RenderOptio
         denoise: Default::default(),
         spin: None,
         exr_copy: None,
+        shard: None,
     }
 }
 

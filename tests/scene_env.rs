@@ -187,6 +187,7 @@ fn render_mean(scene: &Path, env: Option<Option<Environment>>, out: &Path) -> Ve
         denoise: Default::default(),
         spin: None,
         exr_copy: None,
+        shard: None,
     };
     render_command(&opts).expect("render");
     let img = read_exr(out).expect("read");

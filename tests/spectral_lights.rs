@@ -349,6 +349,7 @@ fn render_under_a_2700_k_light_has_its_colour() {
             denoise: Default::default(),
             spin: None,
             exr_copy: None,
+            shard: None,
         };
         render_command(&opts).expect("render").image
     };
@@ -433,6 +434,7 @@ fn spectral_render_under_a_2700_k_light_has_the_planckian_chromaticity() {
         denoise: Default::default(),
         spin: None,
         exr_copy: None,
+        shard: None,
     };
     let image = render_command(&opts).expect("render").image;
     let mean = image.data.iter().fold(Vec3::ZERO, |a, p| a + *p) / image.data.len() as f32;

@@ -141,6 +141,56 @@ pub fn turntable(opts: &super::turntable::TurntableOptions) -> Result<()> {
     Ok(())
 }
 
+/// `iris merge`: merges the parts, then prints what was merged, the samples per pixel, the
+/// estimated error (and against `--reference`), and the missing ranges under
+/// `--allow-partial`.
+pub fn merge(opts: &super::merge::MergeOptions) -> Result<()> {
+    let s = super::merge::merge_command(opts)?;
+    for m in &s.missing {
+        eprintln!("warning: {m} (--allow-partial: merged without them)");
+    }
+    if s.counts.2 > 0 {
+        eprintln!(
+            "warning: {} samples were NaN, infinite or out of range and were left out of the parts",
+            s.counts.2
+        );
+    }
+    let total = s
+        .total
+        .map_or("an open budget".to_string(), |t| format!("{t} {}", s.unit));
+    let (lo, hi) = s.units_per_pixel;
+    let per_pixel = if lo == hi {
+        format!("{lo} {} per pixel", s.unit)
+    } else {
+        format!("{lo} to {hi} {} per pixel", s.unit)
+    };
+    let mut line = format!(
+        "iris: merged {} of {} shards of {total} ({}) -> {}: {}x{}, {per_pixel}",
+        s.parts,
+        s.shards,
+        s.method,
+        s.output.display(),
+        s.image.width,
+        s.image.height
+    );
+    if let Some(e) = &s.estimate {
+        line.push_str(&format!(
+            "; estimated relative error {:.4}",
+            relative_rmse(e)
+        ));
+    }
+    if let Some(r) = &s.error {
+        line.push_str(&format!(
+            ", against the reference {:.4} (rmse {:.4e}, mae {:.4e})",
+            relative_rmse(r),
+            r.rmse,
+            r.mae
+        ));
+    }
+    eprintln!("{line}");
+    Ok(())
+}
+
 /// `iris converge`: runs every method for the same time, prints one line per run, the
 /// table of who reached each error level first, and the files written.
 pub fn converge(opts: &ConvergeOptions) -> Result<()> {

@@ -1,5 +1,6 @@
 //! The commands behind the CLI, as library functions so tests can run them without a
-//! subprocess: `iris render` ([`render`], with its budget: [`budget`]), `iris converge` ([`converge`]), `iris info`
+//! subprocess: `iris render` ([`render`], with its budget: [`budget`]; `--shard`:
+//! [`shard`], [`shard_id`]), `iris merge` ([`merge`]), `iris converge` ([`converge`]), `iris info`
 //! ([`info`]), `iris diff` ([`diff`]), `iris gallery` ([`gallery`]), `iris turntable`
 //! ([`turntable`]), and the printing of
 //! each ([`commands`], what `main.rs` calls: one function per command). This is the top of
@@ -11,8 +12,11 @@ pub mod converge;
 pub mod diff;
 pub mod gallery;
 pub mod info;
+pub mod merge;
 pub mod render;
 mod render_denoise;
+pub mod shard;
+pub mod shard_id;
 pub mod turntable;
 
 pub use crate::measure::MeasureOptions;

@@ -89,6 +89,9 @@ pub struct RenderOptions {
     /// Also write the final image to this `.exr` (linear; under `--denoise on` with the
     /// denoised layer, as `iris render -o FILE.exr` writes it), after the main output.
     pub exr_copy: Option<PathBuf>,
+    /// `--shard I/N`: render only this shard's units and write a partial image
+    /// ([`super::shard`]).
+    pub shard: Option<super::shard::Shard>,
 }
 
 impl RenderOptions {
@@ -130,6 +133,7 @@ impl RenderOptions {
             denoise: DenoiseMode::Auto,
             spin: None,
             exr_copy: None,
+            shard: None,
         }
     }
 
@@ -291,6 +295,15 @@ impl RenderSummary {
     }
 }
 
+/// "samples" or "passes": what `method` counts in units.
+pub fn unit_name(method: Method) -> &'static str {
+    if method == Method::Sppm {
+        "passes"
+    } else {
+        "samples"
+    }
+}
+
 /// `iris render`: every flag is checked (sizes, bounds, extensions, the reference's file
 /// and size) before rendering; the image, then the CSV, then the plot are written, each
 /// atomically. The same as [`RenderJob::new`] then [`RenderJob::run`].
@@ -334,6 +347,7 @@ impl<'a> RenderJob<'a> {
         if let Some(exr) = &opts.exr_copy {
             output::check_extension(exr)?;
         }
+        super::shard::check_flags(opts, &output)?;
         let denoise = crate::denoise::mode::choose(opts.denoise, &output)?;
         let measure = &opts.measure;
         measure.check_flags()?;
@@ -366,6 +380,9 @@ impl<'a> RenderJob<'a> {
         }
         crate::integrator::check_memory(w, h, plan.method)?;
         measure.check_checkpoints(opts.units(plan.method))?;
+        if let Some(shard) = opts.shard {
+            shard.range(u64::from(opts.units(plan.method)), unit_name(plan.method))?;
+        }
         Ok(RenderJob {
             opts,
             output,
@@ -404,6 +421,23 @@ impl<'a> RenderJob<'a> {
         };
         let (measure, preview) = (&opts.measure, &opts.preview);
         let run = method.name();
+        // `--shard`: the units to take and the render's identity, before rendering.
+        let total = integrator.total_units(&settings);
+        let shard = opts
+            .shard
+            .map(|s| -> Result<_> {
+                let range = s.range(total, unit_name(method))?;
+                let identity = super::shard_id::identity(
+                    opts,
+                    scene,
+                    &prepared.camera,
+                    (w, h),
+                    (method, plan.spectral),
+                    (total < crate::render::OPEN_UNITS).then_some(total),
+                )?;
+                Ok((s, range, identity))
+            })
+            .transpose()?;
         let mut rows =
             crate::measure::report::setup_rows(run, prepared.load_time, scene.accel_build_time);
         let mut recorder = Recorder::new(run, reference.as_ref());
@@ -435,7 +469,7 @@ impl<'a> RenderJob<'a> {
         // `--checkpoint K` (K more units: samples, or SPPM passes, which the driver counts
         // in `Progress::samples`) or watching (an open budget): the image so far. With
         // `--reference` every checkpoint is denoised for the report.
-        let mut writes = CheckpointWrites::new(opts.checkpoint, opts.watch);
+        let mut writes = CheckpointWrites::new(opts.checkpoint, opts.watch && shard.is_none());
         let measure_denoised = reference.is_some();
         let mut observe = |p: &Progress| -> Result<Control> {
             let write_now = writes.due(p, Instant::now());
@@ -450,23 +484,48 @@ impl<'a> RenderJob<'a> {
             recorder.record_denoised(p, denoised.as_ref().map(|(img, t)| (img, *t)))?;
             stop.check(p, denoiser.stop_image())
         };
-        let (image, stats) =
-            integrator.render_progressive(scene, &camera, &settings, Some(&mut observe))?;
+        let range = shard.as_ref().map(|s| s.1.clone());
+        let (film, stats) =
+            integrator.render_units(scene, &camera, &settings, range, Some(&mut observe))?;
+        let image = film.mean();
         let denoised = denoiser.finish(&image)?;
-        write(&image, denoised.as_ref().map(|d| &d.image), &denoiser)?;
-        if let Some(exr) = &opts.exr_copy {
-            let layer = denoised
-                .as_ref()
-                .filter(|_| opts.denoise == DenoiseMode::On)
-                .map(|d| (crate::denoise::EXR_LAYER, &d.image));
-            output::write_image_with_layer(
-                exr,
-                &image,
-                layer,
-                coverage.as_ref(),
-                preview.background,
-                &opts.display,
-            )?;
+        let mut shard_note = None;
+        if let Some((s, range, identity)) = shard {
+            let header = super::shard::ShardHeader::new(
+                identity,
+                &opts.scene,
+                s,
+                (range.clone(), film.done()),
+                &stats,
+            );
+            output::partial::write(&output, &header.entries(), &film.exact())?;
+            shard_note = Some(format!(
+                "shard {s}: {} {}..{} of {} (iris merge adds the shards' partial images)",
+                unit_name(method),
+                range.start,
+                range.end,
+                if total < crate::render::OPEN_UNITS {
+                    total.to_string()
+                } else {
+                    "an open budget".into()
+                }
+            ));
+        } else {
+            write(&image, denoised.as_ref().map(|d| &d.image), &denoiser)?;
+            if let Some(exr) = &opts.exr_copy {
+                let layer = denoised
+                    .as_ref()
+                    .filter(|_| opts.denoise == DenoiseMode::On)
+                    .map(|d| (crate::denoise::EXR_LAYER, &d.image));
+                output::write_image_with_layer(
+                    exr,
+                    &image,
+                    layer,
+                    coverage.as_ref(),
+                    preview.background,
+                    &opts.display,
+                )?;
+            }
         }
         rows.append(&mut recorder.rows);
         let measure_notes = measure.write_outputs(&rows, &opts.scene)?;
@@ -498,6 +557,7 @@ impl<'a> RenderJob<'a> {
                 stop.checks.1.as_secs_f64()
             ));
         }
+        notes.extend(shard_note);
         Ok(RenderSummary {
             output,
             image,

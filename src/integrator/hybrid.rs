@@ -26,37 +26,43 @@
 //! So `--spp N` is N passes of one sample per pixel and N caustic maps; the image after N
 //! passes is a pure function of the seed (pixels are independent, the map is built in
 //! fixed chunks), whatever the thread count or the split into rounds.
+//!
+//! Shards (`range`, [`crate::app::shard`]): as in SPPM, pass p needs from earlier passes
+//! only the radius r₀² · Πᵢ₌₁..ₚ (i + α)/(i + 1). A shard starting at p₀ > 0 traces pass 0's
+//! caustic photons (not its camera samples) for r₀, then applies the p₀ factors in order:
+//! its passes are bit for bit those of one render.
 
 use super::caustic::{self, CausticMap};
 use super::light_trace::{self, Splatter};
 use super::path::{self, CausticSplit, StopAt};
+use super::sppm::pass_wavelength_variate;
 use super::{CausticMode, CausticSettings, Context};
 use crate::camera::Camera;
 use crate::error::Result;
-use crate::output::ImageRgb;
 use crate::render::{
     drive, guard, pixel_sampler, primary_ray, Film, Observer, RenderSettings, RenderStats, Round,
-    Schedule, Setup,
+    Setup,
 };
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
-/// Renders with the hybrid: `settings.spp` passes of one sample per pixel, fewer if the time
-/// limit or the observer stops it.
+/// Renders with the hybrid: `settings.spp` passes of one sample per pixel (a shard: the
+/// passes `range`, absolute indices), fewer if the time limit or the observer stops it.
 pub fn render(
     scene: &Scene,
     camera: &Camera,
     max_depth: u32,
     cs: &CausticSettings,
     settings: &RenderSettings,
+    range: Option<std::ops::Range<u64>>,
     observer: Option<Observer>,
-) -> Result<(ImageRgb, RenderStats)> {
+) -> Result<(Film, RenderStats)> {
     if settings.spectral {
-        run::<SampledSpectrum>(scene, camera, max_depth, cs, settings, observer)
+        run::<SampledSpectrum>(scene, camera, max_depth, cs, settings, range, observer)
     } else {
-        run::<Vec3>(scene, camera, max_depth, cs, settings, observer)
+        run::<Vec3>(scene, camera, max_depth, cs, settings, range, observer)
     }
 }
 
@@ -85,8 +91,9 @@ fn run<C: Carrier>(
     max_depth: u32,
     cs: &CausticSettings,
     settings: &RenderSettings,
+    range: Option<std::ops::Range<u64>>,
     observer: Option<Observer>,
-) -> Result<(ImageRgb, RenderStats)> {
+) -> Result<(Film, RenderStats)> {
     let pixels = u64::from(settings.width) * u64::from(settings.height);
     let n_photons = caustic::photons_per_pass(cs.photons, pixels);
     let emitter = caustic::emitter(scene);
@@ -101,16 +108,36 @@ fn run<C: Carrier>(
             cs.mode == CausticMode::Light,
         ),
     };
-    let schedule = Schedule {
-        target: u64::from(settings.spp.max(1)),
-        max_round: 1,
-        passes: false,
-        label: "hybrid",
-    };
+    let schedule =
+        crate::render::schedule(u64::from(settings.spp.max(1)), range, 1, false, "hybrid");
+    let mut setup = Setup::now();
+    if schedule.first > 0 {
+        // A shard: the radius of its first pass, as one render reaches it (pass 0's
+        // photons choose r₀ unless --radius gave it).
+        if !emitter.is_empty() && cs.radius.is_none() {
+            let lambda = C::sample_lambda(pass_wavelength_variate(0, settings.seed));
+            let (rays, _) = map.trace_pass::<C>(
+                scene,
+                &emitter,
+                settings.seed,
+                0,
+                n_photons,
+                lambda,
+                max_depth,
+                None,
+            )?;
+            setup.rays += rays;
+            setup.photons += n_photons;
+        }
+        map.begin_gather(|ph| initial_radius(scene, camera, settings, ph));
+        for p in 0..schedule.first {
+            map.end_pass(p as u32);
+        }
+    }
     drive(
         settings,
         schedule,
-        Setup::now(),
+        setup,
         observer,
         &guard::stop_requested,
         |film, k0, _k1, env| {
@@ -119,10 +146,7 @@ fn run<C: Carrier>(
             }
             let pass = k0 as u32;
             // 1. The pass's wavelengths (SPPM's golden-ratio sequence over passes).
-            let u_l =
-                (0.5 + pass as f64 * 0.618_033_988_749_895 + (settings.seed % 1024) as f64 * 0.1)
-                    .fract() as f32;
-            let lambda = C::sample_lambda(u_l.min(1.0 - f32::EPSILON));
+            let lambda = C::sample_lambda(pass_wavelength_variate(pass, settings.seed));
             // 2. The caustic map.
             let mut round = Round::default();
             let mut splats = Vec::new();
@@ -176,7 +200,6 @@ fn camera_pass<C: Carrier>(
     (map, splats, mode): (&CausticMap, Option<&[Vec3]>, CausticMode),
     film: &mut Film,
 ) -> (u64, u64) {
-    let half = (pass % 2) as usize;
     let sampler = pixel_sampler(settings, u64::from(settings.spp.max(1)));
     let gather = |s: &crate::shading::Surface<C>, l: &C::Lambda| map.density(s, l, false);
     let later = |s: &crate::shading::Surface<C>, l: &C::Lambda| map.density(s, l, true);
@@ -193,9 +216,9 @@ fn camera_pass<C: Carrier>(
     };
     let width = settings.width as usize;
     film.par_tiles_mut()
-        .map(|tile| {
+        .map(|mut tile| {
             let (mut rays, mut bad) = (0, 0);
-            for i in 0..tile.sums.len() {
+            for i in 0..tile.slots() {
                 let Some((x, y)) = tile.pixel(i) else {
                     continue;
                 };
@@ -217,10 +240,10 @@ fn camera_pass<C: Carrier>(
                 if let Some(img) = splats {
                     rgb += img[y as usize * width + x as usize];
                 }
-                tile.sums[i][half] += guard::admit(rgb, &mut bad).as_dvec3();
+                tile.add(i, u64::from(pass), rgb.as_dvec3(), &mut bad);
                 rays += ctx.rays;
             }
-            *tile.count = u64::from(pass) + 1;
+            tile.done_until(u64::from(pass) + 1);
             (rays, bad)
         })
         .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1))

@@ -16,7 +16,7 @@ use crate::error::{Error, Result};
 use crate::math::Ray;
 use crate::output::ImageRgb;
 pub use crate::render::Context;
-use crate::render::{render_samples, Observer, RenderSettings, RenderStats, Setup};
+use crate::render::{render_samples, Film, Observer, RenderSettings, RenderStats, Setup};
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::Vec3;
@@ -24,6 +24,7 @@ pub use settings::{
     check_depth, CausticMode, CausticSettings, PhotonMapSettings, PhotonSettings, SppmSettings,
     StoreBudget, MAX_DEPTH, MAX_PHOTONS, MAX_STORED_PHOTONS,
 };
+use std::ops::Range;
 
 /// The rendering method (`--method`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -227,7 +228,7 @@ impl Integrator {
     }
 
     /// Renders progressively through the one driver ([`crate::render::drive`]), stopping at
-    /// `settings.spp` samples per pixel (path, Whitted, photon), the SPPM passes,
+    /// `settings.spp` samples per pixel (path, Whitted, photon, hybrid), the SPPM passes,
     /// `settings.time_limit`, or when the observer says [`crate::render::Control::Stop`] —
     /// whichever first. The observer is called at checkpoints 1, 2, 4, 8, … samples (or
     /// passes) and at the end (`done`). Runs on its own pool of `settings.threads`.
@@ -238,30 +239,77 @@ impl Integrator {
         settings: &RenderSettings,
         observer: Option<Observer>,
     ) -> Result<(ImageRgb, RenderStats)> {
+        let (film, stats) = self.render_units(scene, camera, settings, None, observer)?;
+        Ok((film.mean(), stats))
+    }
+
+    /// The units a whole render takes: SPPM's passes, else `settings.spp` (samples per
+    /// pixel; the hybrid's passes).
+    pub fn total_units(&self, settings: &RenderSettings) -> u64 {
+        match self {
+            Integrator::Sppm { sppm, .. } => u64::from(sppm.passes.max(1)),
+            _ => u64::from(settings.spp.max(1)),
+        }
+    }
+
+    /// [`Integrator::render_progressive`] of the units `range` only (absolute indices
+    /// within `0..`[`Integrator::total_units`]; `None` = all): a shard. Unit k of a shard is
+    /// unit k of the whole render (the sampler's blocks are the whole render's; SPPM and
+    /// the hybrid compute the whole render's radius sequence up to the shard's first
+    /// pass), so the shards' exact sums add up to the whole render's
+    /// ([`crate::render::ExactImage::add`]). Returns the film.
+    pub fn render_units(
+        &self,
+        scene: &Scene,
+        camera: &Camera,
+        settings: &RenderSettings,
+        range: Option<Range<u64>>,
+        observer: Option<Observer>,
+    ) -> Result<(Film, RenderStats)> {
         self.check()?;
         check_memory(settings.width, settings.height, self.method())?;
+        let total = self.total_units(settings);
+        if let Some(r) = &range {
+            if r.start >= r.end || r.end > total {
+                return Err(Error::Usage(format!(
+                    "units {}..{} are not a part of the render's {total}",
+                    r.start, r.end
+                )));
+            }
+        }
         let pool = crate::render::thread_pool(settings)?;
         match self {
             Integrator::Whitted { .. } | Integrator::Path { .. } => pool.install(|| {
-                render_samples(camera, settings, Setup::now(), observer, |ray, u, ctx| {
-                    if settings.spectral {
-                        self.sample::<SampledSpectrum>(scene, ray, u, ctx)
-                    } else {
-                        self.sample::<Vec3>(scene, ray, u, ctx)
-                    }
-                })
+                render_samples(
+                    camera,
+                    settings,
+                    range,
+                    Setup::now(),
+                    observer,
+                    |ray, u, ctx| {
+                        if settings.spectral {
+                            self.sample::<SampledSpectrum>(scene, ray, u, ctx)
+                        } else {
+                            self.sample::<Vec3>(scene, ray, u, ctx)
+                        }
+                    },
+                )
             }),
             Integrator::PhotonMap { max_depth, photons } => pool.install(|| {
-                photon_map::render(scene, camera, *max_depth, photons, settings, observer)
+                photon_map::render(
+                    scene, camera, *max_depth, photons, settings, range, observer,
+                )
             }),
-            Integrator::Sppm { max_depth, sppm } => {
-                pool.install(|| sppm::render(scene, camera, *max_depth, sppm, settings, observer))
-            }
+            Integrator::Sppm { max_depth, sppm } => pool.install(|| {
+                sppm::render(scene, camera, *max_depth, sppm, settings, range, observer)
+            }),
             Integrator::Hybrid {
                 max_depth,
                 caustics,
             } => pool.install(|| {
-                hybrid::render(scene, camera, *max_depth, caustics, settings, observer)
+                hybrid::render(
+                    scene, camera, *max_depth, caustics, settings, range, observer,
+                )
             }),
         }
     }
@@ -287,7 +335,7 @@ impl Integrator {
 /// visible point).
 pub fn bytes_per_pixel(method: Method) -> u64 {
     use std::mem::size_of;
-    let common = size_of::<[glam::DVec3; 2]>() + 3 * size_of::<Vec3>() + 16 + 8;
+    let common = size_of::<crate::render::fixed::PixelSums>() + 3 * size_of::<Vec3>() + 16 + 8;
     let extra = match method {
         Method::Sppm => size_of::<Option<path::VisiblePoint<SampledSpectrum>>>(),
         _ => 0,

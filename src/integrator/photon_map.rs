@@ -38,12 +38,11 @@ use crate::camera::Camera;
 use crate::error::Result;
 use crate::math::{Frame, Ray, Rng};
 use crate::medium::MediumStack;
-use crate::output::ImageRgb;
 use crate::photon::emit::{PhotonEmitter, PhotonNumbers, DEFAULT_AIM};
 use crate::photon::kdtree::PhotonMap;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
-use crate::render::{render_samples, Observer, RenderSettings, RenderStats, Setup};
+use crate::render::{render_samples, Film, Observer, RenderSettings, RenderStats, Setup};
 use crate::scene::Scene;
 use crate::shading::{self, Event};
 use crate::spectrum::{Carrier, SampledSpectrum};
@@ -269,14 +268,17 @@ impl PhotonMaps {
 
 /// Renders with classic photon mapping: builds the maps once, then takes camera samples in
 /// progressive rounds ([`render_samples`]; the observer sees checkpoints 1, 2, 4, … spp).
+/// A shard (`range`, absolute sample indices) builds the same maps (a pure function of the
+/// seed and the scene) and takes its share of the camera samples.
 pub fn render(
     scene: &Scene,
     camera: &Camera,
     max_depth: u32,
     ps: &PhotonMapSettings,
     settings: &RenderSettings,
+    range: Option<std::ops::Range<u64>>,
     observer: Option<Observer>,
-) -> Result<(ImageRgb, RenderStats)> {
+) -> Result<(Film, RenderStats)> {
     let start = Instant::now();
     let n = if ps.photons > 0 {
         ps.photons
@@ -309,20 +311,27 @@ pub fn render(
         rays: maps.rays,
         photons: maps.emitted,
     };
-    render_samples(camera, settings, setup, observer, |ray, _u_lambda, ctx| {
-        let (ld, vp) = path::camera_path::<Vec3>(
-            scene,
-            ray,
-            max_depth,
-            (),
-            StopAt::Diffuse,
-            path::CausticSplit::None,
-            ctx,
-        );
-        let Some(vp) = vp else {
-            return ld;
-        };
-        let mut buf = Vec::with_capacity(k.0.max(k.1));
-        ld + vp.beta * maps.indirect(scene, &vp, k, ctx, &mut buf)
-    })
+    render_samples(
+        camera,
+        settings,
+        range,
+        setup,
+        observer,
+        |ray, _u_lambda, ctx| {
+            let (ld, vp) = path::camera_path::<Vec3>(
+                scene,
+                ray,
+                max_depth,
+                (),
+                StopAt::Diffuse,
+                path::CausticSplit::None,
+                ctx,
+            );
+            let Some(vp) = vp else {
+                return ld;
+            };
+            let mut buf = Vec::with_capacity(k.0.max(k.1));
+            ld + vp.beta * maps.indirect(scene, &vp, k, ctx, &mut buf)
+        },
+    )
 }

@@ -26,6 +26,14 @@
 //! The initial radius, unless given, is 2 pixel footprints at the median visible point of
 //! the first pass.
 //!
+//! Shards (`range`, [`crate::app::shard`]): pass p depends on nothing from earlier passes
+//! but the radius (visible points, photons and the grid are rebuilt every pass; the
+//! wavelengths, camera samples and photon numbers are functions of p), and the radius of
+//! pass p is r₀² · Πᵢ₌₁..ₚ (i + α)/(i + 1). A shard starting at p₀ > 0 computes r₀ as pass 0
+//! does (pass 0's camera paths only, not added to its film: one path per pixel) and
+//! applies the same p₀ factors in the same order, so its passes are bit for bit those of
+//! one render, and the merge of the shards is exact.
+//!
 //! Progress: each pass adds its per-pixel estimate (direct + photons) to the one film
 //! ([`crate::render::Film`], pass p in half p mod 2) through the one progressive driver
 //! ([`crate::render::drive`], one pass per round): checkpoints after 1, 2, 4, … passes, the
@@ -44,14 +52,13 @@ use crate::bsdf::TransportMode;
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::math::Rng;
-use crate::output::ImageRgb;
 use crate::photon::emit::{PhotonEmitter, PhotonNumbers, DEFAULT_AIM};
 use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
 use crate::render::{
     drive, guard, pixel_sampler, primary_ray, Film, Observer, RenderSettings, RenderStats, Round,
-    Schedule, Setup, TILE_PIXELS,
+    Setup, TILE_PIXELS,
 };
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
@@ -61,20 +68,29 @@ use rayon::prelude::*;
 /// Photons traced per parallel work item (the split is fixed, so results are deterministic).
 const CHUNK: u64 = 4096;
 
-/// Renders with SPPM: `passes` passes, fewer if the time limit or the observer stops it.
+/// Renders with SPPM: `passes` passes (a shard: the passes `range`, absolute indices),
+/// fewer if the time limit or the observer stops it.
 pub fn render(
     scene: &Scene,
     camera: &Camera,
     max_depth: u32,
     sppm: &SppmSettings,
     settings: &RenderSettings,
+    range: Option<std::ops::Range<u64>>,
     observer: Option<Observer>,
-) -> Result<(ImageRgb, RenderStats)> {
+) -> Result<(Film, RenderStats)> {
     if settings.spectral {
-        run::<SampledSpectrum>(scene, camera, max_depth, sppm, settings, observer)
+        run::<SampledSpectrum>(scene, camera, max_depth, sppm, settings, range, observer)
     } else {
-        run::<Vec3>(scene, camera, max_depth, sppm, settings, observer)
+        run::<Vec3>(scene, camera, max_depth, sppm, settings, range, observer)
     }
+}
+
+/// The hero variate of pass `pass`'s shared wavelengths: a golden-ratio sequence over
+/// passes, offset by the seed (SPPM and the hybrid).
+pub fn pass_wavelength_variate(pass: u32, seed: u64) -> f32 {
+    let u = (0.5 + pass as f64 * 0.618_033_988_749_895 + (seed % 1024) as f64 * 0.1).fract();
+    (u as f32).min(1.0 - f32::EPSILON)
 }
 
 /// The radius-sequence factor of pass `i` (1-based): r²ᵢ₊₁ / r²ᵢ = (i + α)/(i + 1).
@@ -126,8 +142,9 @@ fn run<C: Carrier>(
     max_depth: u32,
     ps: &SppmSettings,
     settings: &RenderSettings,
+    range: Option<std::ops::Range<u64>>,
     observer: Option<Observer>,
-) -> Result<(ImageRgb, RenderStats)> {
+) -> Result<(Film, RenderStats)> {
     let n_pix = settings.width as u64 * settings.height as u64;
     let n_photons = if ps.photons > 0 {
         ps.photons
@@ -145,17 +162,38 @@ fn run<C: Carrier>(
         grid: HashGrid::new(),
         r2: ps.radius.map(|r| (r as f64) * (r as f64)),
     };
-    let schedule = Schedule {
-        target: ps.passes.max(1) as u64,
-        max_round: 1,
-        passes: true,
-        label: "sppm passes",
-    };
+    let schedule =
+        crate::render::schedule(u64::from(ps.passes.max(1)), range, 1, true, "sppm passes");
+    let mut setup = Setup::now();
+    if schedule.first > 0 {
+        // A shard: the radius of its first pass, as one render reaches it.
+        if state.r2.is_none() {
+            let mut scratch = Film::new(settings.width, settings.height, 0);
+            state.vps.resize(scratch.slots(), None);
+            let lambda = C::sample_lambda(pass_wavelength_variate(0, settings.seed));
+            let passes = (0, ps.passes.max(1));
+            let (rays, _) = camera_pass(
+                scene,
+                camera,
+                max_depth,
+                settings,
+                passes,
+                lambda,
+                &mut scratch,
+                &mut state.vps,
+            );
+            setup.rays += rays;
+            state.radius(scene, camera, settings);
+        }
+        for p in 0..schedule.first {
+            state.r2 = state.r2.map(|x| x * radius2_factor(p as u32 + 1, ps.alpha));
+        }
+    }
     let stop = &guard::stop_requested;
     drive(
         settings,
         schedule,
-        Setup::now(),
+        setup,
         observer,
         stop,
         |film, k0, _k1, env| {
@@ -164,11 +202,8 @@ fn run<C: Carrier>(
             }
             let pass = k0 as u32;
             let mut round = Round::default();
-            // 1. The pass's wavelengths: a golden-ratio sequence over passes.
-            let u_l =
-                (0.5 + pass as f64 * 0.618_033_988_749_895 + (settings.seed % 1024) as f64 * 0.1)
-                    .fract() as f32;
-            let lambda = C::sample_lambda(u_l.min(1.0 - f32::EPSILON));
+            // 1. The pass's wavelengths.
+            let lambda = C::sample_lambda(pass_wavelength_variate(pass, settings.seed));
             // 2. Camera paths: direct light into the film, visible points per slot.
             state.vps.resize(film.slots(), None);
             let direct = camera_pass(
@@ -221,11 +256,10 @@ fn camera_pass<C: Carrier>(
     film: &mut Film,
     vps: &mut [Option<VisiblePoint<C>>],
 ) -> (u64, u64) {
-    let half = (pass % 2) as usize;
     let sampler = pixel_sampler(settings, u64::from(passes));
     film.par_tiles_mut()
         .zip(vps.par_chunks_mut(TILE_PIXELS))
-        .map(|(tile, vp_tile)| {
+        .map(|(mut tile, vp_tile)| {
             let (mut rays, mut bad) = (0, 0);
             for (i, slot) in vp_tile.iter_mut().enumerate() {
                 let Some((x, y)) = tile.pixel(i) else {
@@ -245,7 +279,7 @@ fn camera_pass<C: Carrier>(
                     path::CausticSplit::None,
                     &mut ctx,
                 );
-                tile.sums[i][half] += guard::admit(l.to_rgb(&lambda), &mut bad).as_dvec3();
+                tile.add(i, u64::from(pass), l.to_rgb(&lambda).as_dvec3(), &mut bad);
                 *slot = vp;
                 rays += ctx.rays;
             }
@@ -341,22 +375,21 @@ impl<C: Carrier> Passes<C> {
     /// `pass mod 2` (L = β Σ f Φ / (π r²)) and marks the pass done in every tile. Returns
     /// the bad samples.
     fn gather_pass(&mut self, film: &mut Film, pass: u32, r: f32) -> u64 {
-        let half = (pass % 2) as usize;
         self.grid.rebuild(&self.photons, r);
         let area = std::f64::consts::PI * self.r2.unwrap_or(0.0);
         let (photons, grid) = (&self.photons, &self.grid);
         film.par_tiles_mut()
             .zip(self.vps.par_chunks(TILE_PIXELS))
-            .map(|(tile, vp_tile)| {
+            .map(|(mut tile, vp_tile)| {
                 let mut bad = 0;
                 for (i, vp) in vp_tile.iter().enumerate() {
                     if let (Some(vp), true) = (vp, area > 0.0) {
                         let phi = gather(vp, photons, grid, r);
-                        let l = guard::admit((vp.beta * phi).to_rgb(&vp.lambda), &mut bad);
-                        tile.sums[i][half] += l.as_dvec3() / area;
+                        let l = (vp.beta * phi).to_rgb(&vp.lambda).as_dvec3() / area;
+                        tile.add(i, u64::from(pass), l, &mut bad);
                     }
                 }
-                *tile.count = pass as u64 + 1;
+                tile.done_until(u64::from(pass) + 1);
                 bad
             })
             .sum()

@@ -100,7 +100,7 @@ pub fn encode_with_layer(
 /// The file's bytes, once every layer's size is within [`MAX_PIXELS`]; errors name the
 /// file and the element: `parsed` for a header that does not parse, `sized(i)` for layer
 /// `i` that is too large.
-fn read_checked(
+pub(super) fn read_checked(
     path: &Path,
     parsed: &str,
     sized: impl Fn(usize) -> String,

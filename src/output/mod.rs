@@ -17,6 +17,7 @@ pub mod animation;
 pub mod atomic;
 pub mod background;
 pub mod exr_io;
+pub mod partial;
 pub mod tonemap;
 
 use crate::error::{Error, Result};

@@ -5,6 +5,9 @@
 //! half-buffer error estimate, the observer called at checkpoints, and the stats.
 //!
 //! Invariants:
+//! - Units have absolute indices: a render takes `first..first + target` (`first` > 0 for a
+//!   shard, [`crate::app::shard`]); the step gets absolute `k0..k1`, and the film, the
+//!   checkpoints and the progress count units from `first`.
 //! - A round covers units `k0..k1`; the method's step adds exactly those units to every
 //!   tile it renders (a stop request may skip whole tiles of a round after the first, never
 //!   part of a tile), so the image after N units does not depend on how rounds were split.
@@ -15,9 +18,9 @@
 //!   render with the image it saw.
 //! - The stats say what ended the render ([`EndReason`]; the order of precedence is the
 //!   enum's docs).
-//! - A target of [`super::OPEN_UNITS`] or more is open-ended (the caller relies on the time
-//!   limit or the observer): the progress bar then shows elapsed time and the time limit,
-//!   not a fraction of the units.
+//! - An open schedule ([`Schedule::open`]: a render of [`super::OPEN_UNITS`] units, or a
+//!   shard of one) relies on the time limit or the observer: the progress bar then shows
+//!   elapsed time and the time limit, not a fraction of the units.
 //!
 //! Times are wall-clock from [`Setup::start`] (work before the first unit, such as photon
 //! maps, counts).
@@ -32,8 +35,12 @@ use std::time::Instant;
 /// How a method's units are scheduled.
 #[derive(Debug, Clone, Copy)]
 pub struct Schedule {
-    /// Units to take (at least 1).
+    /// The absolute index of the first unit (0 unless the render is a shard).
+    pub first: u64,
+    /// Units to take from `first` on (at least 1).
     pub target: u64,
+    /// Open-ended: the time limit or the observer is expected to end the render first.
+    pub open: bool,
     /// Most units per round (1 for SPPM: a pass is a round).
     pub max_round: u64,
     /// Whether units are passes (SPPM: `Progress::passes` counts them) or samples.
@@ -60,19 +67,23 @@ pub struct RoundEnv<'a> {
     /// Asked before each tile of a round after the first; `true` skips the rest of the
     /// round's tiles and ends the render.
     pub stop: &'a (dyn Fn() -> bool + Sync),
+    /// The absolute index of the render's first unit.
+    pub first: u64,
     /// The progress bar; its length is `target · tiles`: a step adds 1 per tile and unit.
     pub bar: &'a ProgressBar,
 }
 
 impl RoundEnv<'_> {
-    /// Whether a tile of round `k0..` should be skipped (never in the first round).
+    /// Whether a tile of round `k0..` (absolute) should be skipped (never in the first
+    /// round).
     pub fn skip(&self, k0: u64) -> bool {
-        k0 > 0 && (self.stop)()
+        k0 > self.first && (self.stop)()
     }
 }
 
-/// Renders progressively: calls `step(film, k0, k1, env)` for rounds of units until the
-/// schedule's target, the time limit, a stop request or the observer ends it.
+/// Renders progressively: calls `step(film, k0, k1, env)` for rounds of units (absolute
+/// indices) until the schedule's target, the time limit, a stop request or the observer
+/// ends it. Returns the film (its exact sums, for a shard's partial image) and the stats.
 pub fn drive(
     settings: &RenderSettings,
     schedule: Schedule,
@@ -80,17 +91,22 @@ pub fn drive(
     mut observer: Option<Observer>,
     stop: &(dyn Fn() -> bool + Sync),
     mut step: impl FnMut(&mut Film, u64, u64, &RoundEnv) -> Result<Round>,
-) -> Result<(crate::output::ImageRgb, RenderStats)> {
+) -> Result<(Film, RenderStats)> {
     let target = schedule.target.max(1);
-    let mut film = Film::new(settings.width, settings.height);
+    let first = schedule.first;
+    let mut film = Film::new(settings.width, settings.height, first);
     let unit = if schedule.passes { "passes" } else { "spp" };
-    let open = target >= super::OPEN_UNITS;
+    let open = schedule.open;
     let bar = progress_bar(
         settings.quiet,
         (!open).then(|| target * film.tiles() as u64),
         schedule.label,
     );
-    let env = RoundEnv { stop, bar: &bar };
+    let env = RoundEnv {
+        stop,
+        first,
+        bar: &bar,
+    };
     let limit_note = match (open, settings.time_limit) {
         (true, Some(t)) => format!(", time limit {:.0} s", t.as_secs_f64()),
         _ => String::new(),
@@ -110,7 +126,7 @@ pub fn drive(
             let left = limit.saturating_sub(setup.start.elapsed()).as_secs_f64();
             n = n.min(((left / per_unit.max(1e-12)) as u64).max(1));
         }
-        let k0 = done;
+        let k0 = first + done;
         let round = step(&mut film, k0, k0 + n, &env)?;
         rays += round.rays;
         photons += round.photons;
@@ -175,16 +191,14 @@ pub fn drive(
         debug_assert!(out_of_time);
         EndReason::TimeLimit
     };
-    Ok((
-        film.mean(),
-        RenderStats {
-            time: setup.start.elapsed(),
-            rays,
-            samples: film.pixel_samples(),
-            photons,
-            passes: if schedule.passes { done as u32 } else { 1 },
-            bad_samples: bad,
-            end,
-        },
-    ))
+    let stats = RenderStats {
+        time: setup.start.elapsed(),
+        rays,
+        samples: film.pixel_samples(),
+        photons,
+        passes: if schedule.passes { done as u32 } else { 1 },
+        bad_samples: bad,
+        end,
+    };
+    Ok((film, stats))
 }

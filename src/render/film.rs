@@ -1,8 +1,14 @@
 //! The film: per-pixel sums of linear RGB radiance (W·sr⁻¹·m⁻² per channel) kept in two
 //! halves, the one accumulator of every method (per-sample methods add sample k to half
-//! k mod 2; SPPM adds pass p to half p mod 2).
+//! k mod 2; SPPM and the hybrid add pass p to half p mod 2).
 //!
 //! Invariants:
+//! - Every value enters through [`FilmTile::add`]: the guard ([`super::guard::admit`])
+//!   drops non-finite and out-of-range values, and the sums are exact fixed-point integers
+//!   ([`super::fixed`]), so they do not depend on the order of additions: a shard's sums
+//!   added to the others' are the sums of one render of all the units.
+//! - A film takes the units `first..`, by absolute index (`first` > 0 for a shard): unit k
+//!   goes to half k mod 2 and draws the sampler's index k.
 //! - Storage is tile by tile (`TILE²` slots per tile, row-major inside the tile; slots
 //!   outside the image stay zero), so each parallel tile owns one contiguous chunk.
 //! - Each tile counts the units (samples or passes) it has taken; all tiles hold the same
@@ -13,6 +19,9 @@
 //! Colour conversion happens before a value reaches the film (spectral samples are turned
 //! into RGB by [`crate::spectrum::Carrier::to_rgb`] in the sample step).
 
+use super::exact::{half_means, ExactImage};
+use super::fixed::{parity_counts, pixel_mean, FixedRgb, PixelSums};
+use super::guard;
 use crate::output::ImageRgb;
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
@@ -27,7 +36,8 @@ pub struct Film {
     width: u32,
     height: u32,
     tiles_x: u32,
-    sums: Vec<[DVec3; 2]>,
+    first: u64,
+    sums: Vec<PixelSums>,
     counts: Vec<u64>,
 }
 
@@ -37,10 +47,9 @@ pub struct Film {
 pub struct FilmTile<'a> {
     /// The tile's top-left pixel.
     pub origin: (u32, u32),
-    /// Per-slot sums of the two halves.
-    pub sums: &'a mut [[DVec3; 2]],
-    /// Units (samples or passes) this tile has taken.
-    pub count: &'a mut u64,
+    sums: &'a mut [PixelSums],
+    count: &'a mut u64,
+    first: u64,
     size: (u32, u32),
 }
 
@@ -48,6 +57,27 @@ impl FilmTile<'_> {
     /// The pixel of slot `i`, or `None` outside the image.
     pub fn pixel(&self, i: usize) -> Option<(u32, u32)> {
         pixel_of(self.origin, self.size, i)
+    }
+
+    /// Slots in the tile ([`TILE_PIXELS`]).
+    pub fn slots(&self) -> usize {
+        self.sums.len()
+    }
+
+    /// Adds `v` (linear RGB) to slot `i`'s half `unit mod 2` (`unit` is the absolute unit
+    /// index), unless the guard refuses it ([`guard::admit`]: NaN, infinite or beyond the
+    /// fixed-point range), which counts it in `bad`. The one way into the film.
+    #[inline]
+    pub fn add(&mut self, i: usize, unit: u64, v: DVec3, bad: &mut u64) {
+        let v = guard::admit(v, bad);
+        let s = &mut self.sums[i][(unit % 2) as usize];
+        *s = *s + FixedRgb::from_dvec3(v);
+    }
+
+    /// Marks the tile as having taken every unit before `end` (absolute index) from the
+    /// film's first.
+    pub fn done_until(&mut self, end: u64) {
+        *self.count = end.saturating_sub(self.first);
     }
 }
 
@@ -64,15 +94,17 @@ fn pixel_of(origin: (u32, u32), size: (u32, u32), i: usize) -> Option<(u32, u32)
 }
 
 impl Film {
-    /// An empty film of `width × height` pixels.
-    pub fn new(width: u32, height: u32) -> Self {
+    /// An empty film of `width × height` pixels taking the units `first..` (absolute
+    /// indices; 0 unless it renders a shard).
+    pub fn new(width: u32, height: u32, first: u64) -> Self {
         let tiles_x = width.div_ceil(TILE);
         let tiles = tiles_x as usize * height.div_ceil(TILE) as usize;
         Film {
             width,
             height,
             tiles_x,
-            sums: vec![[DVec3::ZERO; 2]; tiles * TILE_PIXELS],
+            first,
+            sums: vec![[FixedRgb::ZERO; 2]; tiles * TILE_PIXELS],
             counts: vec![0; tiles],
         }
     }
@@ -88,6 +120,11 @@ impl Film {
         self.sums.len()
     }
 
+    /// The absolute index of the film's first unit.
+    pub fn first(&self) -> u64 {
+        self.first
+    }
+
     /// The top-left pixel of tile `t`.
     fn origin(&self, t: usize) -> (u32, u32) {
         tile_origin(self.tiles_x, t)
@@ -95,7 +132,7 @@ impl Film {
 
     /// The tiles, in parallel, for one round.
     pub fn par_tiles_mut(&mut self) -> impl IndexedParallelIterator<Item = FilmTile<'_>> {
-        let (tiles_x, size) = (self.tiles_x, (self.width, self.height));
+        let (tiles_x, size, first) = (self.tiles_x, (self.width, self.height), self.first);
         self.sums
             .par_chunks_mut(TILE_PIXELS)
             .zip(self.counts.par_iter_mut())
@@ -104,44 +141,63 @@ impl Film {
                 origin: tile_origin(tiles_x, t),
                 sums,
                 count,
+                first,
                 size,
             })
     }
 
-    /// The image `f(sums, units of the pixel's tile)` in row-major order.
-    fn image(&self, f: impl Fn(&[DVec3; 2], u64) -> DVec3) -> ImageRgb {
+    /// Calls `f(pixel index, sums, units of the pixel's tile)` for every pixel.
+    fn for_each_pixel(&self, mut f: impl FnMut(usize, &PixelSums, u64)) {
         let (w, h) = (self.width, self.height);
-        let mut data = vec![Vec3::ZERO; w as usize * h as usize];
         for (t, tile) in self.sums.chunks(TILE_PIXELS).enumerate() {
             let origin = self.origin(t);
             for (i, s) in tile.iter().enumerate() {
                 if let Some((x, y)) = pixel_of(origin, (w, h), i) {
-                    data[(y * w + x) as usize] = f(s, self.counts[t]).as_vec3();
+                    f((y * w + x) as usize, s, self.counts[t]);
                 }
             }
         }
-        ImageRgb {
-            width: w,
-            height: h,
-            data,
-        }
+    }
+
+    /// The image `f(sums, units of the pixel's tile)` in row-major order.
+    fn image(&self, f: impl Fn(&PixelSums, u64) -> Vec3) -> ImageRgb {
+        let mut img = ImageRgb::new(self.width, self.height);
+        self.for_each_pixel(|i, s, n| img.data[i] = f(s, n));
+        img
     }
 
     /// The mean of every pixel's units.
     pub fn mean(&self) -> ImageRgb {
-        self.image(|s, n| (s[0] + s[1]) / n.max(1) as f64)
+        self.image(pixel_mean)
     }
 
-    /// The two halves' means (of n units, half 0 has ⌈n/2⌉, half 1 ⌊n/2⌋; an empty half 1
-    /// is a copy of half 0, so error estimates from one unit are 0).
+    /// The two halves' means: units of even and of odd absolute index. When some pixel
+    /// has an empty half (one unit, or a shard of one), both are the mean, so error
+    /// estimates are 0 then ([`ExactImage::halves`], the same rule).
     pub fn halves(&self) -> (ImageRgb, ImageRgb) {
-        let a = self.image(|s, n| s[0] / n.div_ceil(2).max(1) as f64);
-        let b = if self.counts.iter().all(|&n| n >= 2) {
-            self.image(|s, n| s[1] / (n / 2) as f64)
-        } else {
-            a.clone()
-        };
+        let first = self.first;
+        if self
+            .counts
+            .iter()
+            .any(|&n| parity_counts(first, n).contains(&0))
+        {
+            let m = self.mean();
+            return (m.clone(), m);
+        }
+        let a = self.image(|s, n| half_means(s, parity_counts(first, n)).0);
+        let b = self.image(|s, n| half_means(s, parity_counts(first, n)).1);
         (a, b)
+    }
+
+    /// The exact sums and per-pixel unit counts in row-major order, for a partial image
+    /// ([`crate::output::partial`]).
+    pub fn exact(&self) -> ExactImage {
+        let mut e = ExactImage::new(self.width, self.height);
+        self.for_each_pixel(|i, s, n| {
+            e.sums[i] = *s;
+            e.units[i] = parity_counts(self.first, n);
+        });
+        e
     }
 
     /// The units every tile has reached.
@@ -168,7 +224,7 @@ mod tests {
 
     #[test]
     fn slots_map_to_every_pixel_once() {
-        let mut film = Film::new(37, 20);
+        let mut film = Film::new(37, 20, 0);
         let mut seen = vec![0u32; 37 * 20];
         let tiles: Vec<Vec<Option<(u32, u32)>>> = film
             .par_tiles_mut()
@@ -183,21 +239,61 @@ mod tests {
         assert!(seen.iter().all(|&n| n == 1));
     }
 
+    /// A film of 3×2 pixels given units `first..first + n` of value 4 (even index) and 2
+    /// (odd index), one round.
+    fn film_of(first: u64, n: u64) -> Film {
+        let mut film = Film::new(3, 2, first);
+        film.par_tiles_mut().for_each(|mut t| {
+            let mut bad = 0;
+            for i in 0..t.slots() {
+                for k in first..first + n {
+                    let v = if k % 2 == 0 { 4.0 } else { 2.0 };
+                    t.add(i, k, DVec3::splat(v), &mut bad);
+                }
+            }
+            t.done_until(first + n);
+        });
+        film
+    }
+
     #[test]
     fn halves_split_units_by_parity() {
-        let mut film = Film::new(3, 2);
-        film.par_tiles_mut().for_each(|t| {
-            for s in t.sums.iter_mut() {
-                // Three units: 1 and 3 in half 0, 2 in half 1.
-                *s = [DVec3::splat(4.0), DVec3::splat(2.0)];
-            }
-            *t.count = 3;
-        });
-        assert_eq!(film.mean().data[0], Vec3::splat(2.0));
+        // Three units: 0 and 2 in half 0, 1 in half 1.
+        let film = film_of(0, 3);
+        assert_eq!(film.mean().data[0], Vec3::splat(10.0 / 3.0));
         let (a, b) = film.halves();
-        assert_eq!(a.data[5], Vec3::splat(2.0));
+        assert_eq!(a.data[5], Vec3::splat(4.0));
         assert_eq!(b.data[5], Vec3::splat(2.0));
         assert_eq!(film.done(), 3);
         assert_eq!(film.pixel_samples(), 18);
+        // A shard from unit 5: 5, 7 odd, 6 even.
+        let film = film_of(5, 3);
+        assert_eq!(film.mean().data[1], Vec3::splat(8.0 / 3.0));
+        let (a, b) = film.halves();
+        assert_eq!((a.data[1], b.data[1]), (Vec3::splat(4.0), Vec3::splat(2.0)));
+        assert_eq!(film.exact().units[1], [1, 2]);
+        // One unit: both halves are the mean.
+        let film = film_of(3, 1);
+        let (a, b) = film.halves();
+        assert_eq!((a.data[2], b.data[2]), (Vec3::splat(2.0), Vec3::splat(2.0)));
+    }
+
+    #[test]
+    fn the_guard_keeps_bad_values_out() {
+        let mut film = Film::new(2, 1, 0);
+        let mut bad = 0;
+        for mut t in film.par_tiles_mut().collect::<Vec<_>>() {
+            t.add(0, 0, DVec3::new(1.0, f64::NAN, 0.0), &mut bad);
+            t.add(
+                0,
+                1,
+                DVec3::splat(2.0 * super::super::fixed::LIMIT),
+                &mut bad,
+            );
+            t.add(0, 2, DVec3::splat(0.5), &mut bad);
+            t.done_until(3);
+        }
+        assert_eq!(bad, 2);
+        assert_eq!(film.mean().data[0], Vec3::splat(0.5 / 3.0));
     }
 }

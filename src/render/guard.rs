@@ -5,15 +5,17 @@
 //!   ([`super::RenderStats::bad_samples`]) and replaced by zero, as pbrt-v4's film does
 //!   (`RGBFilm::AddSample` drops non-finite values; Pharr, Jakob & Humphreys, "Physically
 //!   Based Rendering", 4th ed., §5.4.2), so one failure costs one sample instead of painting
-//!   a pixel. The CLI reports the count; the test suite asserts it is 0 on every asset.
-//!   Negative components are legitimate (spectra outside the sRGB gamut) and pass.
+//!   a pixel. A component beyond the film's fixed-point range ([`super::fixed::LIMIT`],
+//!   2⁴⁰ ≈ 1.1·10¹², far above any light Iris renders) is refused the same way. The CLI
+//!   reports the count; the test suite asserts it is 0 on every asset. Negative components
+//!   are legitimate (spectra outside the sRGB gamut) and pass.
 //! - **Interruption.** [`request_stop`] is a process-wide stop request (SIGINT in the CLI):
 //!   the per-sample methods finish the tiles already started and skip the rest of the
 //!   round, SPPM ends after the current pass; the render returns the image so far with
 //!   [`super::RenderStats::interrupted`] set. The first round (pass) always completes, so an
 //!   interrupted render still has an image.
 
-use glam::Vec3;
+use glam::DVec3;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The process-wide stop request.
@@ -30,14 +32,16 @@ pub fn stop_requested() -> bool {
     STOP.load(Ordering::Relaxed)
 }
 
-/// `v` if all its components are finite, else zero with `bad` incremented.
+/// `v` if all its components are finite and within ±[`super::fixed::LIMIT`], else zero
+/// with `bad` incremented ([`super::FilmTile::add`] calls it for every value).
 #[inline]
-pub fn admit(v: Vec3, bad: &mut u64) -> Vec3 {
-    if v.is_finite() {
+pub fn admit(v: DVec3, bad: &mut u64) -> DVec3 {
+    // `max_element` skips NaN; `is_finite` catches it.
+    if v.abs().max_element() <= super::fixed::LIMIT && v.is_finite() {
         v
     } else {
         *bad += 1;
-        Vec3::ZERO
+        DVec3::ZERO
     }
 }
 
@@ -49,23 +53,31 @@ mod tests {
     fn non_finite_samples_are_counted_and_zeroed() {
         let mut bad = 0;
         assert_eq!(
-            admit(Vec3::new(1.0, -0.5, 2.0), &mut bad),
-            Vec3::new(1.0, -0.5, 2.0)
+            admit(DVec3::new(1.0, -0.5, 2.0), &mut bad),
+            DVec3::new(1.0, -0.5, 2.0)
         );
         assert_eq!(bad, 0);
         for v in [
-            Vec3::new(f32::NAN, 0.0, 0.0),
-            Vec3::new(0.0, f32::INFINITY, 0.0),
-            Vec3::new(0.0, 0.0, f32::NEG_INFINITY),
+            DVec3::new(f64::NAN, 0.0, 0.0),
+            DVec3::new(0.0, f64::INFINITY, 0.0),
+            DVec3::new(0.0, 0.0, f64::NEG_INFINITY),
         ] {
-            assert_eq!(admit(v, &mut bad), Vec3::ZERO);
+            assert_eq!(admit(v, &mut bad), DVec3::ZERO);
         }
         assert_eq!(bad, 3);
-        // The largest finite value is a (very bright) sample, not a bad one.
+        // The film's largest value is a (very bright) sample, not a bad one; beyond it the
+        // fixed-point sums could not hold it.
+        let limit = super::super::fixed::LIMIT;
         assert_eq!(
-            admit(Vec3::splat(f32::MAX), &mut bad),
-            Vec3::splat(f32::MAX)
+            admit(DVec3::new(limit, -limit, 0.0), &mut bad),
+            DVec3::new(limit, -limit, 0.0)
         );
         assert_eq!(bad, 3);
+        assert_eq!(admit(DVec3::splat(f32::MAX as f64), &mut bad), DVec3::ZERO);
+        assert_eq!(
+            admit(DVec3::new(0.0, -2.0 * limit, 0.0), &mut bad),
+            DVec3::ZERO
+        );
+        assert_eq!(bad, 5);
     }
 }

@@ -21,6 +21,9 @@
 //!   low and unbiased.
 //! - Sample k goes to half k mod 2: the two half images are independent estimates used to
 //!   estimate the error without a reference.
+//! - The film's sums are exact ([`fixed`]), so a render may take any contiguous range of
+//!   its units (a shard: [`Schedule::first`]), and the shards' sums add up to the sums of
+//!   one render of them all ([`ExactImage::add`]).
 //!
 //! Images are linear RGB (radiance, W·sr⁻¹·m⁻² per channel); times are wall-clock.
 
@@ -30,11 +33,14 @@ use std::time::Duration;
 
 pub mod coverage;
 pub mod driver;
+pub mod exact;
 pub mod film;
+pub mod fixed;
 pub mod guard;
 pub mod progress;
 mod samples;
 pub use driver::{drive, Round, RoundEnv, Schedule};
+pub use exact::ExactImage;
 pub use film::{Film, FilmTile, TILE, TILE_PIXELS};
 pub use progress::{
     estimate_note, progress_bar, relative_error_estimate, Control, Observer, Progress, Setup,
@@ -125,6 +131,28 @@ pub enum EndReason {
 /// limit or the error target will end the render first). `iris render` without `--spp` or
 /// `--passes` asks for this many ([`crate::app::budget::OPEN_UNITS`]).
 pub const OPEN_UNITS: u64 = 1 << 20;
+
+/// The schedule of a render of `total` units (samples per pixel, or passes) that takes
+/// `range` of them (absolute indices; `None` = all), in rounds of at most `max_round`.
+/// Open-ended when `total` is [`OPEN_UNITS`] or more.
+pub fn schedule(
+    total: u64,
+    range: Option<std::ops::Range<u64>>,
+    max_round: u64,
+    passes: bool,
+    label: &'static str,
+) -> Schedule {
+    let total = total.max(1);
+    let range = range.unwrap_or(0..total);
+    Schedule {
+        first: range.start,
+        target: range.end.saturating_sub(range.start).max(1),
+        open: total >= OPEN_UNITS,
+        max_round,
+        passes,
+        label,
+    }
+}
 
 /// Most worker threads (`--threads`); 0 asks for one per core. Far more threads than
 /// cores only add memory (a stack each) and scheduling, and a pool of 10⁵ threads would

@@ -5,13 +5,12 @@
 //! N samples independent of the round split and the thread count. Units: linear RGB
 //! radiance; pixel (x, y) has its centre at (x + ½, y + ½) in raster space.
 
-use super::driver::{drive, Round, RoundEnv, Schedule};
+use super::driver::{drive, Round, RoundEnv};
 use super::film::Film;
 use super::{guard, Context, Observer, RenderSettings, RenderStats, Setup};
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::math::Ray;
-use crate::output::ImageRgb;
 use crate::sampler::{PixelSampler, SampleStream};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -45,24 +44,26 @@ pub fn pixel_sampler(settings: &RenderSettings, spp: u64) -> PixelSampler {
     )
 }
 
-/// The sample loop of the per-sample methods: samples k = 0, 1, … per pixel, each a jittered
-/// camera ray (the pixel centre when `spp` = 1) estimated by `estimate(ray, u_lambda, ctx)`
-/// (linear RGB), in rounds to checkpoints 1, 2, 4, … (see the module docs). `setup` is the
-/// work done before (photon maps): its start time, rays and photons count in the progress
-/// and the stats. Runs on the current rayon pool.
+/// The sample loop of the per-sample methods: samples k = 0, 1, … per pixel (or the
+/// absolute `range` of a shard), each a jittered camera ray (the pixel centre for a single
+/// sample per pixel) estimated by `estimate(ray, u_lambda, ctx)` (linear RGB), in rounds to
+/// the checkpoints (see the module docs). `setup` is the work done before (photon maps):
+/// its start time, rays and photons count in the progress and the stats. Runs on the
+/// current rayon pool.
 pub fn render_samples(
     camera: &Camera,
     settings: &RenderSettings,
+    range: Option<std::ops::Range<u64>>,
     setup: Setup,
     observer: Option<Observer>,
     estimate: impl Fn(&Ray, f32, &mut Context) -> Vec3 + Sync,
-) -> Result<(ImageRgb, RenderStats)> {
+) -> Result<(Film, RenderStats)> {
     sample_rounds(
         camera,
         settings,
+        (range, u64::MAX),
         setup,
         observer,
-        u64::MAX,
         &guard::stop_requested,
         estimate,
     )
@@ -75,20 +76,15 @@ pub fn render_samples(
 fn sample_rounds(
     camera: &Camera,
     settings: &RenderSettings,
+    (range, max_round): (Option<std::ops::Range<u64>>, u64),
     setup: Setup,
     observer: Option<Observer>,
-    max_round: u64,
     stop: &(dyn Fn() -> bool + Sync),
     estimate: impl Fn(&Ray, f32, &mut Context) -> Vec3 + Sync,
-) -> Result<(ImageRgb, RenderStats)> {
+) -> Result<(Film, RenderStats)> {
     let target = settings.spp.max(1) as u64;
     let sampler = pixel_sampler(settings, target);
-    let schedule = Schedule {
-        target,
-        max_round,
-        passes: false,
-        label: "rendering",
-    };
+    let schedule = super::schedule(target, range, max_round, false, "rendering");
     drive(
         settings,
         schedule,
@@ -109,8 +105,8 @@ fn sample_rounds(
     )
 }
 
-/// Samples `k0..k1` of every pixel, tiles in parallel (a tile skipped on a stop request
-/// keeps its count).
+/// Samples `k0..k1` (absolute indices) of every pixel, tiles in parallel (a tile skipped
+/// on a stop request keeps its count).
 fn round(
     camera: &Camera,
     sampler: &PixelSampler,
@@ -122,7 +118,7 @@ fn round(
 ) -> Round {
     let (rays, bad) = film
         .par_tiles_mut()
-        .map(|tile| {
+        .map(|mut tile| {
             if env.skip(k0) {
                 return (0, 0);
             }
@@ -131,7 +127,7 @@ fn round(
                 sample: sampler.start(0, 0, 0),
                 rays: 0,
             };
-            for i in 0..tile.sums.len() {
+            for i in 0..tile.slots() {
                 let Some((x, y)) = tile.pixel(i) else {
                     continue;
                 };
@@ -144,12 +140,12 @@ fn round(
                     } else {
                         0.0
                     };
-                    let l = guard::admit(estimate(&ray, u_lambda, &mut ctx), &mut bad);
-                    tile.sums[i][(k % 2) as usize] += l.as_dvec3();
+                    let l = estimate(&ray, u_lambda, &mut ctx);
+                    tile.add(i, k, l.as_dvec3(), &mut bad);
                     rays += ctx.rays;
                 }
             }
-            *tile.count = k1;
+            tile.done_until(k1);
             env.bar.inc(k1 - k0);
             (rays, bad)
         })
@@ -165,6 +161,7 @@ fn round(
 mod tests {
     use super::*;
     use crate::camera::look_at;
+    use crate::output::ImageRgb;
     use crate::render::{Control, Progress};
     use crate::sampler::SamplerKind;
     use crate::scene::desc::{CameraDesc, Projection};
@@ -189,6 +186,22 @@ mod tests {
         stop: &(dyn Fn() -> bool + Sync),
         sampler: SamplerKind,
     ) -> (ImageRgb, Vec<u64>, RenderStats) {
+        let (film, seen, stats) = render_range(w, h, spp, None, max_round, threads, stop, sampler);
+        (film.mean(), seen, stats)
+    }
+
+    /// [`render_with`] of the samples `range` only, returning the film.
+    #[allow(clippy::too_many_arguments)]
+    fn render_range(
+        w: u32,
+        h: u32,
+        spp: u32,
+        range: Option<std::ops::Range<u64>>,
+        max_round: u64,
+        threads: usize,
+        stop: &(dyn Fn() -> bool + Sync),
+        sampler: SamplerKind,
+    ) -> (Film, Vec<u64>, RenderStats) {
         let settings = RenderSettings {
             width: w,
             height: h,
@@ -215,14 +228,14 @@ mod tests {
             Ok(Control::Continue)
         };
         let pool = super::super::thread_pool(&settings).unwrap();
-        let (img, stats) = pool
+        let (film, stats) = pool
             .install(|| {
                 sample_rounds(
                     &camera,
                     &settings,
+                    (range, max_round),
                     Setup::now(),
                     Some(&mut obs),
-                    max_round,
                     stop,
                     |ray, u, ctx| {
                         if ray.dir.x > 0.3 && u < 0.01 {
@@ -235,7 +248,37 @@ mod tests {
                 )
             })
             .unwrap();
-        (img, seen, stats)
+        (film, seen, stats)
+    }
+
+    #[test]
+    fn shards_of_the_samples_add_up_to_the_whole_render() {
+        for sampler in [ZSOBOL, SamplerKind::Independent] {
+            let never = &|| false;
+            let (whole, ..) = render_range(19, 13, 23, None, u64::MAX, 2, never, sampler);
+            let mut merged = crate::render::ExactImage::new(19, 13);
+            // Shards in any order, with their own round splits.
+            for (range, max_round) in [(15..23, 3), (0..8, u64::MAX), (8..15, 1)] {
+                let (film, seen, stats) = render_range(
+                    19,
+                    13,
+                    23,
+                    Some(range.clone()),
+                    max_round,
+                    1,
+                    never,
+                    sampler,
+                );
+                assert_eq!(film.first(), range.start);
+                assert_eq!(film.done(), range.end - range.start);
+                assert_eq!(*seen.last().unwrap(), range.end - range.start);
+                assert_eq!(stats.samples, 19 * 13 * (range.end - range.start));
+                merged.add(&film.exact());
+            }
+            assert_eq!(merged, whole.exact(), "{sampler:?}");
+            assert_eq!(merged.mean(), whole.mean());
+            assert_eq!(merged.halves(), whole.halves());
+        }
     }
 
     #[test]
