@@ -17,6 +17,7 @@ pub mod render;
 mod render_denoise;
 pub mod shard;
 pub mod shard_id;
+pub mod summary;
 pub mod turntable;
 
 pub use crate::measure::MeasureOptions;

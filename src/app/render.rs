@@ -1,6 +1,6 @@
 //! `iris render` as a library call: the options ([`RenderOptions`], every flag), the job
 //! between plan and render ([`RenderJob`]: flags checked, scene prepared, plan made), and
-//! the summary ([`RenderSummary`]). Images are linear RGB until written; times are
+//! the summary ([`RenderSummary`], in [`super::summary`]). Images are linear RGB until written; times are
 //! wall-clock.
 //!
 //! Denoising (`--denoise`, [`crate::denoise::mode`]): when the plan's `denoise` stage is
@@ -11,17 +11,18 @@
 
 use super::budget::{Budget, CheckpointWrites, TargetStop};
 use super::render_denoise::RenderDenoiser;
+pub use super::summary::RenderSummary;
 use crate::accel::Backend;
 use crate::camera::Camera;
 use crate::denoise::{DenoiseChoice, DenoiseMode};
 use crate::error::Result;
 use crate::integrator::{Integrator, Method};
-use crate::measure::{metrics::ErrorMetrics, report::ReportRow, MeasureOptions, Recorder};
+use crate::measure::{MeasureOptions, Recorder};
 use crate::output::{self, Background, DisplayOptions, ImageRgb};
 use crate::plan::SpectralMode;
 use crate::prepare::input::check_size;
 use crate::preview::PreviewOptions;
-use crate::render::{Control, EndReason, Progress, RenderSettings, RenderStats};
+use crate::render::{Control, Progress, RenderSettings};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -173,125 +174,6 @@ impl RenderOptions {
         } else {
             self.spp
         }
-    }
-}
-
-/// What a render did, for the one-line summary.
-#[derive(Debug, Clone)]
-pub struct RenderSummary {
-    /// Where the image went.
-    pub output: PathBuf,
-    /// The linear image.
-    pub image: ImageRgb,
-    /// Render figures.
-    pub stats: RenderStats,
-    /// Scene load + validation time.
-    pub load_time: Duration,
-    /// Acceleration build time.
-    pub build_time: Duration,
-    /// Triangles.
-    pub triangles: usize,
-    /// Backend name.
-    pub backend: &'static str,
-    /// Decisions taken for the user and loader warnings.
-    pub notes: Vec<String>,
-    /// Report rows: "load", "build", then one "render" row per checkpoint.
-    pub rows: Vec<ReportRow>,
-    /// The error target the render had (`--target-error`, or the default target).
-    pub target_error: Option<f64>,
-    /// The last error compared with the target ([`super::budget::stop_error`]), if any.
-    pub target_estimate: Option<f64>,
-    /// Whether [`Self::target_estimate`] is the estimate of the denoised image (a denoised
-    /// PNG's stop test, [`super::budget::StopImage`]).
-    pub target_denoised: bool,
-    /// The time limit the render had (`--time`, or the default limit).
-    pub time_limit: Option<Duration>,
-    /// The method that rendered (`--method auto` resolved).
-    pub method: Method,
-    /// The render plan the render followed (costs measured with `--explain`).
-    pub plan: crate::plan::Plan,
-    /// The denoised final image, when the render denoised (the PNG shows it; an EXR under
-    /// `--denoise on` holds it as its extra layer).
-    pub denoised: Option<ImageRgb>,
-}
-
-impl RenderSummary {
-    /// The last checkpoint's error against the reference (with `--reference`).
-    pub fn final_error(&self) -> Option<ErrorMetrics> {
-        self.rows.last().and_then(|r| r.error)
-    }
-
-    /// "12 spp" or "40 passes, 9216000 photons": the work the render did, as `iris render`
-    /// and the gallery print it.
-    pub fn work_done(&self) -> String {
-        let pixels = u64::from(self.image.width) * u64::from(self.image.height);
-        let spp = self.stats.samples / pixels.max(1);
-        match self.method {
-            Method::Sppm => format!(
-                "{} passes, {} photons",
-                self.stats.passes, self.stats.photons
-            ),
-            Method::Photon => format!("{spp} spp, {} photons", self.stats.photons),
-            Method::Hybrid => format!("{spp} spp, {} caustic photons", self.stats.photons),
-            _ => format!("{spp} spp"),
-        }
-    }
-
-    /// The last checkpoint's half-buffer error estimate.
-    pub fn final_estimate(&self) -> Option<ErrorMetrics> {
-        self.rows.last().and_then(|r| r.estimate)
-    }
-
-    /// What ended the render ([`RenderStats::end`]).
-    pub fn end(&self) -> EndReason {
-        self.stats.end
-    }
-
-    /// What ended the render, in words: "stopped at the error target 0.03 (estimated
-    /// 0.0187)" (", for the denoised image" when the stop test judged the denoised PNG), "stopped at the time limit 120 s", "interrupted (Ctrl-C or SIGTERM): the
-    /// image so far", "64 spp done".
-    pub fn end_text(&self) -> String {
-        let of = if self.target_denoised {
-            " for the denoised image"
-        } else {
-            ""
-        };
-        let target = |s: &mut String| {
-            if let (Some(t), Some(e)) = (self.target_error, self.target_estimate) {
-                s.push_str(&format!(" (error target {t}, estimated {e:.4}{of})"));
-            } else if let Some(t) = self.target_error {
-                s.push_str(&format!(" (error target {t} not yet measurable)"));
-            }
-        };
-        match self.stats.end {
-            EndReason::Target => format!(
-                "stopped at the error target {} (estimated {:.4}{of})",
-                self.target_error.unwrap_or(f64::NAN),
-                self.target_estimate.unwrap_or(f64::NAN)
-            ),
-            EndReason::TimeLimit => {
-                let secs = self.time_limit.map_or(f64::NAN, |t| t.as_secs_f64());
-                let mut s = format!("stopped at the time limit {secs} s");
-                target(&mut s);
-                s
-            }
-            EndReason::Interrupted => "interrupted (Ctrl-C or SIGTERM): the image so far".into(),
-            EndReason::Samples => {
-                let unit = if self.method == Method::Sppm {
-                    format!("{} passes", self.stats.passes)
-                } else {
-                    let pixels = u64::from(self.image.width) * u64::from(self.image.height);
-                    format!("{} spp", self.stats.samples / pixels.max(1))
-                };
-                format!("{unit} done")
-            }
-        }
-    }
-
-    /// The last checkpoint's denoised error against the reference (`--reference` while
-    /// denoising).
-    pub fn final_denoised_error(&self) -> Option<ErrorMetrics> {
-        self.rows.last().and_then(|r| r.denoised)
     }
 }
 
