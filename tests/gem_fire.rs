@@ -92,38 +92,49 @@ fn scene_of(file: &std::path::Path, keep: bool, backend: Backend) -> (Scene, Cam
     (scene, Camera::new(&cam, W, H), stone as u32)
 }
 
-/// Renders with spectral transport; returns the images after N, 2N and 4N samples.
-fn render(scene: &Scene, camera: &Camera) -> [ImageRgb; 3] {
-    let settings = RenderSettings {
+/// The settings of these renders: spectral transport, seed 7, `spp` samples.
+fn settings(spp: u64) -> RenderSettings {
+    RenderSettings {
         width: W,
         height: H,
-        spp: 4 * N as u32,
+        spp: spp as u32,
         seed: 7,
         threads: 0,
         quiet: true,
         spectral: true,
         time_limit: None,
         sampler: Default::default(),
-    };
-    // Whitted (the CLI's default method): dielectrics split deterministically into the
-    // reflected and refracted branches, so the only noise is the pixel position and the
-    // wavelengths.
+    }
+}
+
+/// Renders with Whitted (the CLI's former default: dielectrics split deterministically into
+/// the reflected and refracted branches, so the only noise is the pixel position and the
+/// wavelengths) up to the last of `counts`; returns the image at each of `counts` (powers
+/// of two: the driver's checkpoints).
+fn render_at(scene: &Scene, camera: &Camera, counts: &[u64]) -> Vec<ImageRgb> {
     let integrator = Integrator::new(Method::Whitted, 64, &PhotonSettings::default())
         .expect("a resolved method");
-    let mut shots = Vec::new();
+    let mut shots: Vec<(u64, ImageRgb)> = Vec::new();
     let mut observe = |p: &Progress| -> iris::Result<Control> {
-        if p.samples == N || p.samples == 2 * N || (p.samples == 4 * N && p.done) {
-            shots.push(p.image.clone());
+        if counts.contains(&p.samples) && shots.last().is_none_or(|(k, _)| *k != p.samples) {
+            shots.push((p.samples, p.image.clone()));
         }
         Ok(Control::Continue)
     };
+    let last = *counts.last().expect("a count");
     let (_, stats) = integrator
-        .render_progressive(scene, camera, &settings, Some(&mut observe))
+        .render_progressive(scene, camera, &settings(last), Some(&mut observe))
         .expect("render");
     assert_eq!(stats.bad_samples, 0);
-    shots
+    assert_eq!(shots.len(), counts.len(), "one image per count");
+    shots.into_iter().map(|(_, img)| img).collect()
+}
+
+/// The images after N, 2N and 4N samples.
+fn render(scene: &Scene, camera: &Camera) -> [ImageRgb; 3] {
+    render_at(scene, camera, &[N, 2 * N, 4 * N])
         .try_into()
-        .expect("checkpoints at N, 2N and 4N samples")
+        .expect("three images")
 }
 
 /// Pixels whose centre ray first hits the stone.
@@ -288,30 +299,8 @@ fn denoised_fire(file: &std::path::Path) {
                 .map(|&i| luminance(plain_shots[2].data[i]))
                 .collect(),
         );
-    let settings = RenderSettings {
-        width: W,
-        height: H,
-        spp: FIRE_SPP[2] as u32,
-        seed: 7,
-        threads: 0,
-        quiet: true,
-        spectral: true,
-        time_limit: None,
-        sampler: Default::default(),
-    };
-    let integrator = Integrator::new(Method::Whitted, 64, &PhotonSettings::default())
-        .expect("a resolved method");
-    let mut shots = Vec::new();
-    let mut observe = |p: &Progress| -> iris::Result<Control> {
-        if FIRE_SPP.contains(&p.samples) {
-            shots.push(p.image.clone());
-        }
-        Ok(Control::Continue)
-    };
-    integrator
-        .render_progressive(&with, &camera, &settings, Some(&mut observe))
-        .expect("render");
-    assert_eq!(shots.len(), FIRE_SPP.len(), "one image per count");
+    let settings = settings(FIRE_SPP[2]);
+    let shots = render_at(&with, &camera, &FIRE_SPP);
     let rays = iris::denoise::aux::aux_samples(settings.spp);
     let aux = iris::denoise::aux::aux_pass(&with, &camera, &settings, rays);
     let reference = chroma(&shots[2], &mask, y0);
