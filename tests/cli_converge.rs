@@ -188,7 +188,10 @@ fn target_error_stops_before_the_sample_bound() {
             "--report",
             "r.csv",
             "-o",
-            "a.png",
+            // EXR: the raw image is what is written, so the report's (raw) estimate is the
+            // number the stop test compared (a PNG is judged by its denoised image:
+            // tests/default_budget.rs).
+            "a.exr",
             "-q",
         ],
         &dir,
@@ -196,6 +199,7 @@ fn target_error_stops_before_the_sample_bound() {
     assert!(o.status.success(), "{}", text(&o.stderr));
     let e = text(&o.stderr);
     assert!(e.contains("stopped at the error target 0.3"), "{e}");
+    assert!(!e.contains("for the denoised image"), "{e}");
     let rows = csv(&dir.join("r.csv"));
     let last = rows.last().unwrap();
     let spp: u64 = last[3].parse().unwrap();
