@@ -71,7 +71,6 @@ pub fn encode_with_layer(
     alpha: Option<&[f32]>,
     (name, extra): (&str, &ImageRgb),
 ) -> std::result::Result<Vec<u8>, String> {
-    let plane = |img: &ImageRgb, k: usize| img.data.iter().map(|p| p[k]).collect::<Vec<f32>>();
     let mut list = Vec::with_capacity(7);
     for (k, c) in ["R", "G", "B"].into_iter().enumerate() {
         list.push(AnyChannel::new(c, FlatSamples::F32(plane(img, k))));
@@ -83,9 +82,29 @@ pub fn encode_with_layer(
     if let Some(a) = alpha {
         list.push(AnyChannel::new("A", FlatSamples::F32(a.to_vec())));
     }
-    let layer = Layer::new(
+    encode_channels(
         (img.width as usize, img.height as usize),
         LayerAttributes::named(if alpha.is_some() { "rgba" } else { "rgb" }),
+        list,
+    )
+}
+
+/// Channel `k` (0 = R, 1 = G, 2 = B) of `img`, row-major.
+pub(super) fn plane(img: &ImageRgb, k: usize) -> Vec<f32> {
+    img.data.iter().map(|p| p[k]).collect()
+}
+
+/// One lossless layer of `size` with `attributes` and the channels `list` (sorted by name,
+/// as EXR stores them), encoded to bytes: the one writer of flat-channel EXRs (images with
+/// extra layers, partial images).
+pub(super) fn encode_channels(
+    size: (usize, usize),
+    attributes: LayerAttributes,
+    list: Vec<AnyChannel<FlatSamples>>,
+) -> std::result::Result<Vec<u8>, String> {
+    let layer = Layer::new(
+        size,
+        attributes,
         Encoding::SMALL_LOSSLESS,
         AnyChannels::sort(SmallVec::from_vec(list)),
     );

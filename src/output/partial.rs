@@ -18,7 +18,7 @@
 //! ([`read`] says so, naming it).
 
 use super::atomic::write_file_atomic;
-use super::exr_io::read_checked;
+use super::exr_io::{encode_channels, plane, read_checked};
 use crate::error::{Error, LoadError, LoadErrorKind, Result};
 use crate::render::ExactImage;
 use exr::prelude::*;
@@ -75,8 +75,7 @@ pub fn encode(entries: &[(String, String)], exact: &ExactImage) -> Result<Vec<u8
     let mean = exact.mean();
     let mut list = Vec::with_capacity(29);
     for (k, c) in ["R", "G", "B"].into_iter().enumerate() {
-        let plane = mean.data.iter().map(|p| p[k]).collect();
-        list.push(AnyChannel::new(c, FlatSamples::F32(plane)));
+        list.push(AnyChannel::new(c, FlatSamples::F32(plane(&mean, k))));
     }
     for half in 0..2 {
         for c in 0..3 {
@@ -106,18 +105,8 @@ pub fn encode(entries: &[(String, String)], exact: &ExactImage) -> Result<Vec<u8
     attributes
         .other
         .insert(self::text(ATTRIBUTE)?, AttributeValue::TextVector(text));
-    let layer = Layer::new(
-        (w, h),
-        attributes,
-        Encoding::SMALL_LOSSLESS,
-        AnyChannels::sort(SmallVec::from_vec(list)),
-    );
-    let mut bytes = Vec::new();
-    Image::from_layer(layer)
-        .write()
-        .to_buffered(Cursor::new(&mut bytes))
-        .map_err(|e| Error::Usage(format!("cannot encode the partial image: {e}")))?;
-    Ok(bytes)
+    encode_channels((w, h), attributes, list)
+        .map_err(|e| Error::Usage(format!("cannot encode the partial image: {e}")))
 }
 
 /// An EXR text (ASCII by construction).
