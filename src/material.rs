@@ -54,8 +54,9 @@ pub struct ShadingPoint {
 }
 
 fn lookup(images: &[ImageDesc], tex: Option<TextureRef>, uv: Vec2, enc: Encoding) -> Vec4 {
-    match tex.and_then(|t| images.get(t.image)) {
-        Some(img) => texture::sample(img, uv, enc),
+    let Some(t) = tex else { return Vec4::ONE };
+    match images.get(t.image) {
+        Some(img) => texture::sample(img, t.transform.transform_point2(uv), enc),
         None => Vec4::ONE,
     }
 }

@@ -28,6 +28,7 @@ mod material;
 mod mesh;
 mod scene;
 mod source;
+mod texture_transform;
 mod uri;
 
 use super::files::Files;
@@ -47,6 +48,7 @@ const READ_EXTENSIONS: &[&str] = &[
     "KHR_materials_dispersion",
     "KHR_lights_punctual",
     "KHR_mesh_quantization",
+    "KHR_texture_transform",
 ];
 
 /// Required extensions without which the geometry itself cannot be read.

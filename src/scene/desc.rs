@@ -102,6 +102,20 @@ pub struct TextureRef {
     pub image: usize,
     /// Which texture-coordinate set (only 0 is read; others fall back to 0 with a warning).
     pub texcoord: u32,
+    /// KHR_texture_transform of this reference, applied to the texture coordinate before
+    /// the lookup (identity without the extension).
+    pub transform: glam::Affine2,
+}
+
+impl TextureRef {
+    /// A reference to `image` through texture-coordinate set `texcoord`, untransformed.
+    pub fn new(image: usize, texcoord: u32) -> Self {
+        TextureRef {
+            image,
+            texcoord,
+            transform: glam::Affine2::IDENTITY,
+        }
+    }
 }
 
 /// A decoded image, 8 bits per channel RGBA, **as stored in the file** (colour textures are

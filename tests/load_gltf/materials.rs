@@ -162,3 +162,57 @@ fn lights_and_cameras_in_world_space() {
     );
     assert_eq!(desc.cameras[1].name, "camera 1");
 }
+
+/// KHR_texture_transform: the transform and its texCoord override reach the material, the
+/// shaded colour follows the transformed coordinate, and a bad value names the material.
+#[test]
+fn texture_transform_moves_the_lookup() {
+    let dir = common::scratch_dir("gltf_texture_transform");
+    let mut doc = cube_doc();
+    doc["extensionsUsed"] = json!(["KHR_texture_transform"]);
+    doc["images"] = json!([{"uri": data_uri("image/png", &png_2x2())}]);
+    doc["textures"] = json!([{"source": 0}]);
+    // Texel centres: red (0.25, 0.25), green (0.75, 0.25), blue (0.25, 0.75).
+    // offset (0.5, 0) moves a lookup at the red texel's centre onto the green one.
+    doc["materials"] = json!([
+        {"name": "Shifted", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0,
+         "extensions": {"KHR_texture_transform": {"offset": [0.5, 0.0], "texCoord": 0}}}}}
+    ]);
+    doc["meshes"][0]["primitives"][0]["material"] = json!(0);
+    let desc = load(&write_json(&dir, "shifted.gltf", &doc));
+    let m = material(&desc, "Shifted");
+    let t = m.base_color_texture.expect("texture");
+    let moved = t.transform.transform_point2(glam::Vec2::new(0.25, 0.25));
+    assert!(
+        (moved - glam::Vec2::new(0.75, 0.25)).length() < 1e-6,
+        "{moved}"
+    );
+    let mat = iris::material::Material::new(m.clone());
+    let c = mat
+        .shade(glam::Vec2::new(0.25, 0.25), &desc.images)
+        .base_color;
+    assert!(
+        c.y > 0.99 && c.x < 0.01 && c.z < 0.01,
+        "expected green, got {c}"
+    );
+    assert!(
+        !desc
+            .warnings
+            .iter()
+            .any(|w| w.contains("KHR_texture_transform")),
+        "{:?}",
+        desc.warnings
+    );
+
+    // A texCoord override of 1 is reported like a texture info's own texCoord 1.
+    doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]
+        ["KHR_texture_transform"]["texCoord"] = json!(1);
+    let desc = load(&write_json(&dir, "texcoord1.gltf", &doc));
+    assert_eq!(
+        material(&desc, "Shifted")
+            .base_color_texture
+            .unwrap()
+            .texcoord,
+        1
+    );
+}

@@ -26,7 +26,7 @@
 //!   naming the element and `extras.iris_spectrum`.
 
 use super::source::ImageCache;
-use super::{label, Ctx, Warnings};
+use super::{label, texture_transform, Ctx, Warnings};
 use crate::error::{LoadError, LoadErrorKind};
 use crate::scene::desc::{
     AlphaMode, EmissionSpectrum, ExplicitIor, ImageDesc, MaterialDesc, TextureRef,
@@ -77,13 +77,24 @@ fn read_material(
             return Ok(None);
         };
         let image = images.get(ctx, info.texture().source().index())?;
-        let texcoord = info.tex_coord();
+        let (transform, texcoord_override) = texture_transform::of_info(&info).map_err(|e| {
+            ctx.error(
+                &element,
+                LoadErrorKind::InvalidValue,
+                format!("{slot}: {e}"),
+            )
+        })?;
+        let texcoord = texcoord_override.unwrap_or(info.tex_coord());
         if texcoord != 0 {
             warnings
                 .texcoord_sets
                 .push(format!("{element} {slot} (texCoord {texcoord})"));
         }
-        Ok(Some(TextureRef { image, texcoord }))
+        Ok(Some(TextureRef {
+            image,
+            texcoord,
+            transform,
+        }))
     };
 
     let pbr = m.pbr_metallic_roughness();

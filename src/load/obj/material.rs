@@ -202,7 +202,7 @@ pub(super) fn to_material(
         let path = lib.parent().unwrap_or(Path::new("")).join(file);
         m.base_color_texture = images
             .get(&path, files, &m.name)
-            .map(|image| TextureRef { image, texcoord: 0 });
+            .map(|image| TextureRef::new(image, 0));
     }
     Ok(m)
 }

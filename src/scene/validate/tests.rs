@@ -77,10 +77,7 @@ fn material_and_texture_indices() {
     assert_eq!(k, LoadErrorKind::IndexOutOfRange);
     assert!(msg.contains("\"tri\""), "{msg}");
     let mut d = scene();
-    d.materials[0].emissive_texture = Some(TextureRef {
-        image: 0,
-        texcoord: 0,
-    });
+    d.materials[0].emissive_texture = Some(TextureRef::new(0, 0));
     let (k, msg) = err_kind(d);
     assert_eq!(k, LoadErrorKind::IndexOutOfRange);
     assert!(
