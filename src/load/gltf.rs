@@ -24,6 +24,7 @@
 //! cameras).
 
 mod accessor;
+mod instancing;
 mod material;
 mod mesh;
 mod scene;
@@ -49,6 +50,7 @@ const READ_EXTENSIONS: &[&str] = &[
     "KHR_lights_punctual",
     "KHR_mesh_quantization",
     "KHR_texture_transform",
+    "EXT_mesh_gpu_instancing",
 ];
 
 /// Required extensions without which the geometry itself cannot be read.

@@ -16,7 +16,10 @@
 //!   extras keys are ignored.
 //! - The graph is walked without recursion; a cycle (depth beyond the node count) is a
 //!   `Parse` error and runaway instancing a `TooLarge` error, so hostile files end cleanly.
+//! - EXT_mesh_gpu_instancing: a node's mesh is placed once per instance
+//!   ([`super::instancing`]); each placement is a mesh named `… primitive P instance I`.
 
+use super::instancing::instance_transforms;
 use super::mesh::{instantiate, read_primitive, Primitive};
 use super::{label, Ctx, Warnings, MAX_TRIANGLES};
 use crate::error::{LoadError, LoadErrorKind};
@@ -67,6 +70,7 @@ pub(super) fn read_scene_graph(
 
         if let Some(mesh) = node.mesh() {
             let mesh_label = format!("{node_label} {}", label("mesh", mesh.index(), mesh.name()));
+            let instances = instance_transforms(ctx, &node, world, &node_label)?;
             for prim in mesh.primitives() {
                 let element = format!("{mesh_label} primitive {}", prim.index());
                 let read = match primitives.get(&(mesh.index(), prim.index())) {
@@ -79,16 +83,25 @@ pub(super) fn read_scene_graph(
                 };
                 match read.as_ref() {
                     Primitive::Triangles(local) => {
-                        triangles = triangles.saturating_add(local.triangle_count());
-                        vertices = vertices.saturating_add(local.vertex_count());
-                        if triangles > MAX_TRIANGLES || vertices > MAX_TRIANGLES {
-                            return Err(ctx.error(
-                                element,
-                                LoadErrorKind::TooLarge,
-                                format!("the scene exceeds {MAX_TRIANGLES} triangles or vertices"),
-                            ));
+                        for (i, at) in instances.iter().enumerate() {
+                            triangles = triangles.saturating_add(local.triangle_count());
+                            vertices = vertices.saturating_add(local.vertex_count());
+                            if triangles > MAX_TRIANGLES || vertices > MAX_TRIANGLES {
+                                return Err(ctx.error(
+                                    element,
+                                    LoadErrorKind::TooLarge,
+                                    format!(
+                                        "the scene exceeds {MAX_TRIANGLES} triangles or vertices"
+                                    ),
+                                ));
+                            }
+                            let name = if instances.len() > 1 {
+                                format!("{element} instance {i}")
+                            } else {
+                                element.clone()
+                            };
+                            desc.meshes.push(instantiate(local, at, name));
                         }
-                        desc.meshes.push(instantiate(local, &world, element));
                     }
                     Primitive::Skipped(mode) => warnings
                         .skipped_primitives
