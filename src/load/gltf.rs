@@ -30,6 +30,7 @@ mod mesh;
 mod scene;
 mod source;
 mod texture_transform;
+mod unlit;
 mod uri;
 
 use super::files::Files;
@@ -51,6 +52,7 @@ const READ_EXTENSIONS: &[&str] = &[
     "KHR_mesh_quantization",
     "KHR_texture_transform",
     "EXT_mesh_gpu_instancing",
+    "KHR_materials_unlit",
 ];
 
 /// Required extensions without which the geometry itself cannot be read.

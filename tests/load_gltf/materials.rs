@@ -216,3 +216,49 @@ fn texture_transform_moves_the_lookup() {
         1
     );
 }
+
+/// KHR_materials_unlit: the base colour (factor and texture) becomes the emission and the
+/// surface reflects nothing; other materials are untouched.
+#[test]
+fn unlit_emits_its_base_colour() {
+    let dir = common::scratch_dir("gltf_unlit");
+    let mut doc = cube_doc();
+    doc["extensionsUsed"] = json!(["KHR_materials_unlit"]);
+    doc["images"] = json!([{"uri": data_uri("image/png", &png_2x2())}]);
+    doc["textures"] = json!([{"source": 0}]);
+    doc["materials"] = json!([
+        {"name": "Flat", "extensions": {"KHR_materials_unlit": {}},
+         "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.25, 1.0, 0.75],
+            "baseColorTexture": {"index": 0}, "metallicFactor": 1.0}},
+        {"name": "Lit", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.25, 1.0, 1.0]}}
+    ]);
+    let mut second = doc["meshes"][0]["primitives"][0].clone();
+    doc["meshes"][0]["primitives"][0]["material"] = json!(0);
+    second["material"] = json!(1);
+    doc["meshes"][0]["primitives"]
+        .as_array_mut()
+        .unwrap()
+        .push(second);
+    let desc = load(&write_json(&dir, "unlit.gltf", &doc));
+    assert!(desc.warnings.is_empty(), "{:?}", desc.warnings);
+    let flat = material(&desc, "Flat");
+    assert_eq!(flat.emissive, Vec3::new(0.5, 0.25, 1.0));
+    assert_eq!(flat.emissive_texture.map(|t| t.image), Some(0));
+    assert_eq!(flat.base_color, glam::Vec4::new(0.0, 0.0, 0.0, 0.75));
+    assert_eq!(
+        (flat.metallic, flat.specular, flat.transmission),
+        (0.0, 0.0, 0.0)
+    );
+    // The shaded emission at the red texel is the factor times red.
+    let sp = iris::material::Material::new(flat.clone())
+        .shade(glam::Vec2::new(0.25, 0.25), &desc.images);
+    assert!(
+        (sp.emissive - Vec3::new(0.5, 0.0, 0.0)).length() < 1e-3,
+        "{}",
+        sp.emissive
+    );
+    assert_eq!(sp.base_color, Vec3::ZERO);
+    let lit = material(&desc, "Lit");
+    assert_eq!(lit.emissive, Vec3::ZERO);
+    assert_eq!(lit.base_color, glam::Vec4::new(0.5, 0.25, 1.0, 1.0));
+}

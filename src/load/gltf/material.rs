@@ -26,7 +26,7 @@
 //!   naming the element and `extras.iris_spectrum`.
 
 use super::source::ImageCache;
-use super::{label, texture_transform, Ctx, Warnings};
+use super::{label, texture_transform, unlit, Ctx, Warnings};
 use crate::error::{LoadError, LoadErrorKind};
 use crate::scene::desc::{
     AlphaMode, EmissionSpectrum, ExplicitIor, ImageDesc, MaterialDesc, TextureRef,
@@ -154,7 +154,7 @@ fn read_material(
         alpha_mode,
         name: element,
     };
-    Ok((material, skipped))
+    Ok((unlit::apply(m, material), skipped))
 }
 
 /// `KHR_materials_dispersion.dispersion` (default 0).
