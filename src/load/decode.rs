@@ -1,4 +1,4 @@
-//! Texture decoding shared by the glTF and OBJ/MTL loaders: PNG, JPEG (and Radiance HDR,
+//! Texture decoding shared by the glTF and OBJ/MTL loaders: PNG, JPEG, WebP (and Radiance HDR,
 //! which the `image` crate also recognises) → row-major RGBA8, top row first, **as
 //! stored** (no sRGB decoding; see [`crate::texture`]).
 //!

@@ -29,6 +29,7 @@ mod material;
 mod mesh;
 mod scene;
 mod source;
+mod texture_source;
 mod texture_transform;
 mod unlit;
 mod uri;
@@ -53,6 +54,7 @@ const READ_EXTENSIONS: &[&str] = &[
     "KHR_texture_transform",
     "EXT_mesh_gpu_instancing",
     "KHR_materials_unlit",
+    "EXT_texture_webp",
 ];
 
 /// Required extensions without which the geometry itself cannot be read.
@@ -155,6 +157,7 @@ struct Warnings {
     skipped_primitives: Vec<String>,
     no_position: Vec<String>,
     texcoord_sets: Vec<String>,
+    undecodable_textures: Vec<String>,
 }
 
 impl Warnings {
@@ -172,6 +175,12 @@ impl Warnings {
             out.push(format!(
                 "extensionsRequired lists extensions Iris cannot honour; rendering without them: {}",
                 names.join(", ")
+            ));
+        }
+        if !self.undecodable_textures.is_empty() {
+            out.push(format!(
+                "textures with only a KTX2/Basis image (KHR_texture_basisu, not decoded) are left out: {}",
+                short_list(&self.undecodable_textures)
             ));
         }
         if !self.skipped_primitives.is_empty() {
@@ -292,7 +301,12 @@ fn validate_document(path: &Path, doc: &gltf::Document) -> Result<(), LoadError>
     let mut problems: Vec<(String, Error)> = Vec::new();
     root.validate(root, gltf::json::Path::new, &mut |where_, error| {
         let where_ = where_().to_string();
+        let texture_source = where_
+            .strip_prefix("textures[")
+            .and_then(|rest| rest.strip_suffix("].source"))
+            .and_then(|i| i.parse::<usize>().ok());
         let tolerated = (error == Error::Unsupported && where_.starts_with("extensionsRequired"))
+            || texture_source.is_some_and(|i| texture_source::tolerates_missing_source(doc, i))
             || (where_.contains("attributes[\"POSITION\"]")
                 && (where_.ends_with(".min")
                     || where_.ends_with(".max")

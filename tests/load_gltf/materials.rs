@@ -262,3 +262,49 @@ fn unlit_emits_its_base_colour() {
     assert_eq!(lit.emissive, Vec3::ZERO);
     assert_eq!(lit.base_color, glam::Vec4::new(0.5, 0.25, 1.0, 1.0));
 }
+
+/// EXT_texture_webp (a glTF-Transform file whose texture has only a WebP source) decodes to
+/// the same texels as the PNG it was made from; a texture with only a KTX2 image
+/// (KHR_texture_basisu, not decoded) is left out with one warning naming the material.
+#[test]
+fn webp_textures_decode_and_ktx2_only_textures_are_left_out() {
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/textures");
+    let png = load(&data.join("checker_png.glb"));
+    let webp = load(&data.join("checker_webp.glb"));
+    assert!(webp.warnings.is_empty(), "{:?}", webp.warnings);
+    assert_eq!(png.images.len(), 1);
+    assert_eq!(webp.images.len(), 1);
+    let (a, b) = (&png.images[0], &webp.images[0]);
+    assert_eq!((a.width, a.height), (b.width, b.height));
+    // Lossless WebP: the very same texels.
+    assert_eq!(a.rgba8, b.rgba8);
+    assert!(webp.materials[0].base_color_texture.is_some());
+
+    // The same document with the texture turned into a KTX2-only one.
+    let dir = common::scratch_dir("gltf_ktx2");
+    let mut doc = cube_doc();
+    doc["extensionsUsed"] = json!(["KHR_texture_basisu"]);
+    doc["extensionsRequired"] = json!(["KHR_texture_basisu"]);
+    doc["images"] = json!([{"uri": "never_read.ktx2", "mimeType": "image/ktx2"}]);
+    doc["textures"] = json!([{"extensions": {"KHR_texture_basisu": {"source": 0}}}]);
+    doc["materials"] =
+        json!([{"name": "Basis", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]);
+    doc["meshes"][0]["primitives"][0]["material"] = json!(0);
+    let desc = load(&write_json(&dir, "ktx2.gltf", &doc));
+    assert!(material(&desc, "Basis").base_color_texture.is_none());
+    let ktx: Vec<_> = desc
+        .warnings
+        .iter()
+        .filter(|w| w.contains("KTX2"))
+        .collect();
+    assert_eq!(ktx.len(), 1, "{:?}", desc.warnings);
+    assert!(
+        ktx[0].contains("material 0 \"Basis\" baseColorTexture"),
+        "{}",
+        ktx[0]
+    );
+    // A texture with neither a source nor a format extension is still invalid.
+    doc["textures"] = json!([{}]);
+    let err = iris::load::load_scene(&write_json(&dir, "nosource.gltf", &doc)).unwrap_err();
+    assert!(err.to_string().contains("textures[0].source"), "{err}");
+}

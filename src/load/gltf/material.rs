@@ -26,7 +26,7 @@
 //!   naming the element and `extras.iris_spectrum`.
 
 use super::source::ImageCache;
-use super::{label, texture_transform, unlit, Ctx, Warnings};
+use super::{label, texture_source, texture_transform, unlit, Ctx, Warnings};
 use crate::error::{LoadError, LoadErrorKind};
 use crate::scene::desc::{
     AlphaMode, EmissionSpectrum, ExplicitIor, ImageDesc, MaterialDesc, TextureRef,
@@ -76,7 +76,13 @@ fn read_material(
             skipped += 1;
             return Ok(None);
         };
-        let image = images.get(ctx, info.texture().source().index())?;
+        let Some(source) = texture_source::image_of(ctx.doc, &info.texture()) else {
+            warnings
+                .undecodable_textures
+                .push(format!("{element} {slot}"));
+            return Ok(None);
+        };
+        let image = images.get(ctx, source)?;
         let (transform, texcoord_override) = texture_transform::of_info(&info).map_err(|e| {
             ctx.error(
                 &element,

@@ -4,7 +4,7 @@
 //! Buffers are loaded one by one so that a missing or short buffer is reported as
 //! `buffer N "name"` with the file it should have come from. A buffer keeps exactly
 //! `byteLength` bytes. Images are decoded lazily (only those a material uses) with the
-//! `image` crate (PNG, JPEG) into RGBA8, **as stored** (no sRGB decoding here), with the
+//! `image` crate (PNG, JPEG, WebP) into RGBA8, **as stored** (no sRGB decoding here), with the
 //! size limits of [`crate::load::decode`]. External files are read through
 //! [`Files`] (regular files only).
 
