@@ -29,6 +29,7 @@ mod material;
 mod mesh;
 mod scene;
 mod source;
+mod spec_gloss;
 mod texture_source;
 mod texture_transform;
 mod unlit;
@@ -55,6 +56,7 @@ const READ_EXTENSIONS: &[&str] = &[
     "EXT_mesh_gpu_instancing",
     "KHR_materials_unlit",
     "EXT_texture_webp",
+    "KHR_materials_pbrSpecularGlossiness",
 ];
 
 /// Required extensions without which the geometry itself cannot be read.
@@ -158,6 +160,7 @@ struct Warnings {
     no_position: Vec<String>,
     texcoord_sets: Vec<String>,
     undecodable_textures: Vec<String>,
+    spec_gloss_textures: Vec<String>,
 }
 
 impl Warnings {
@@ -181,6 +184,12 @@ impl Warnings {
             out.push(format!(
                 "textures with only a KTX2/Basis image (KHR_texture_basisu, not decoded) are left out: {}",
                 short_list(&self.undecodable_textures)
+            ));
+        }
+        if !self.spec_gloss_textures.is_empty() {
+            out.push(format!(
+                "KHR_materials_pbrSpecularGlossiness is approximated without its specularGlossinessTexture (factors only): {}",
+                short_list(&self.spec_gloss_textures)
             ));
         }
         if !self.skipped_primitives.is_empty() {

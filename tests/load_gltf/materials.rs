@@ -308,3 +308,40 @@ fn webp_textures_decode_and_ktx2_only_textures_are_left_out() {
     let err = iris::load::load_scene(&write_json(&dir, "nosource.gltf", &doc)).unwrap_err();
     assert!(err.to_string().contains("textures[0].source"), "{err}");
 }
+
+/// KHR_materials_pbrSpecularGlossiness is approximated: diffuse → base colour (factor and
+/// texture), 1 − glossiness → roughness, specularFactor → the glTF-PBR f0 through
+/// KHR_materials_specular's colour; a specularGlossinessTexture is named in one warning.
+#[test]
+fn specular_glossiness_maps_to_metallic_roughness() {
+    let dir = common::scratch_dir("gltf_spec_gloss");
+    let mut doc = cube_doc();
+    doc["extensionsUsed"] = json!(["KHR_materials_pbrSpecularGlossiness"]);
+    doc["images"] = json!([{"uri": data_uri("image/png", &png_2x2())}]);
+    doc["textures"] = json!([{"source": 0}]);
+    doc["materials"] = json!([
+        {"name": "Old", "extensions": {"KHR_materials_pbrSpecularGlossiness": {
+            "diffuseFactor": [0.5, 0.4, 0.3, 1.0], "diffuseTexture": {"index": 0},
+            "specularFactor": [0.02, 0.04, 0.08], "glossinessFactor": 0.75,
+            "specularGlossinessTexture": {"index": 0}}}}
+    ]);
+    doc["meshes"][0]["primitives"][0]["material"] = json!(0);
+    let desc = load(&write_json(&dir, "specgloss.gltf", &doc));
+    let m = material(&desc, "Old");
+    assert_eq!(m.base_color, glam::Vec4::new(0.5, 0.4, 0.3, 1.0));
+    assert_eq!(m.base_color_texture.map(|t| t.image), Some(0));
+    assert_eq!(
+        (m.metallic, m.roughness, m.ior, m.specular),
+        (0.0, 0.25, 1.5, 1.0)
+    );
+    // f0 = ((1.5 − 1)/(1.5 + 1))² · colour = 0.04 · colour = specularFactor.
+    let f0 = m.specular_color * 0.04;
+    assert!((f0 - Vec3::new(0.02, 0.04, 0.08)).length() < 1e-6, "{f0}");
+    let w: Vec<_> = desc
+        .warnings
+        .iter()
+        .filter(|w| w.contains("specularGlossinessTexture"))
+        .collect();
+    assert_eq!(w.len(), 1, "{:?}", desc.warnings);
+    assert!(w[0].contains("material 0 \"Old\""), "{}", w[0]);
+}

@@ -26,7 +26,7 @@
 //!   naming the element and `extras.iris_spectrum`.
 
 use super::source::ImageCache;
-use super::{label, texture_source, texture_transform, unlit, Ctx, Warnings};
+use super::{label, spec_gloss, texture_source, texture_transform, unlit, Ctx, Warnings};
 use crate::error::{LoadError, LoadErrorKind};
 use crate::scene::desc::{
     AlphaMode, EmissionSpectrum, ExplicitIor, ImageDesc, MaterialDesc, TextureRef,
@@ -108,6 +108,11 @@ fn read_material(
     let metallic_roughness_texture =
         texture("metallicRoughnessTexture", pbr.metallic_roughness_texture())?;
     let emissive_texture = texture("emissiveTexture", m.emissive_texture())?;
+    let spec_gloss = m.pbr_specular_glossiness();
+    let diffuse_texture = texture(
+        "diffuseTexture",
+        spec_gloss.as_ref().and_then(|s| s.diffuse_texture()),
+    )?;
     let transmission = m.transmission();
     let transmission_texture = texture(
         "transmissionTexture",
@@ -160,6 +165,10 @@ fn read_material(
         alpha_mode,
         name: element,
     };
+    let (material, dropped) = spec_gloss::apply(spec_gloss.as_ref(), diffuse_texture, material);
+    if dropped {
+        warnings.spec_gloss_textures.push(material.name.clone());
+    }
     Ok((unlit::apply(m, material), skipped))
 }
 
