@@ -25,6 +25,7 @@
 
 mod accessor;
 mod material;
+mod material_layers;
 mod mesh;
 mod scene;
 mod source;
@@ -149,6 +150,8 @@ struct Warnings {
     skipped_primitives: Vec<String>,
     no_position: Vec<String>,
     texcoord_sets: Vec<String>,
+    /// Material properties read but not rendered (e.g. a clearcoat normal map).
+    ignored_properties: Vec<String>,
 }
 
 impl Warnings {
@@ -184,6 +187,12 @@ impl Warnings {
             out.push(format!(
                 "textures using texCoord != 0 are sampled with TEXCOORD_0: {}",
                 short_list(&self.texcoord_sets)
+            ));
+        }
+        if !self.ignored_properties.is_empty() {
+            out.push(format!(
+                "material properties Iris does not render, ignored: {}",
+                short_list(&self.ignored_properties)
             ));
         }
         out
@@ -264,12 +273,14 @@ fn check_extensions(
                 "required compressed-geometry extension; Iris cannot decode it (re-export without compression)",
             ));
         }
-        if !READ_EXTENSIONS.contains(ext) {
+        if !READ_EXTENSIONS.contains(ext) && !material_layers::LAYER_EXTENSIONS.contains(ext) {
             warnings.unhonoured_required.insert((*ext).to_string());
         }
     }
     for ext in doc.extensions_used() {
-        if !READ_EXTENSIONS.contains(&ext) && !required.contains(ext) {
+        let read =
+            READ_EXTENSIONS.contains(&ext) || material_layers::LAYER_EXTENSIONS.contains(&ext);
+        if !read && !required.contains(ext) {
             warnings.unsupported_extensions.insert(ext.to_string());
         }
     }

@@ -25,6 +25,7 @@
 //!   colour / `emissiveFactor` then acts as a filter. Anything else is `InvalidValue`
 //!   naming the element and `extras.iris_spectrum`.
 
+use super::material_layers;
 use super::source::ImageCache;
 use super::{label, Ctx, Warnings};
 use crate::error::{LoadError, LoadErrorKind};
@@ -68,22 +69,25 @@ fn read_material(
 ) -> Result<(MaterialDesc, usize), LoadError> {
     let element = label("material", index, m.name());
     let mut skipped = 0;
+    let mut texcoord_sets = Vec::new();
+    // (slot, glTF image index, texCoord) → the decoded image's reference.
+    let mut by_image =
+        |slot: &str, source: usize, texcoord: u32| -> Result<Option<TextureRef>, LoadError> {
+            let Some(images) = images.as_deref_mut() else {
+                skipped += 1;
+                return Ok(None);
+            };
+            let image = images.get(ctx, source)?;
+            if texcoord != 0 {
+                texcoord_sets.push(format!("{element} {slot} (texCoord {texcoord})"));
+            }
+            Ok(Some(TextureRef { image, texcoord }))
+        };
     let mut texture = |slot: &str,
                        info: Option<gltf::texture::Info<'_>>|
      -> Result<Option<TextureRef>, LoadError> {
         let Some(info) = info else { return Ok(None) };
-        let Some(images) = images.as_deref_mut() else {
-            skipped += 1;
-            return Ok(None);
-        };
-        let image = images.get(ctx, info.texture().source().index())?;
-        let texcoord = info.tex_coord();
-        if texcoord != 0 {
-            warnings
-                .texcoord_sets
-                .push(format!("{element} {slot} (texCoord {texcoord})"));
-        }
-        Ok(Some(TextureRef { image, texcoord }))
+        by_image(slot, info.texture().source().index(), info.tex_coord())
     };
 
     let pbr = m.pbr_metallic_roughness();
@@ -96,6 +100,9 @@ fn read_material(
         "transmissionTexture",
         transmission.as_ref().and_then(|t| t.transmission_texture()),
     )?;
+
+    let layers = material_layers::read_layers(ctx, m, &element, &mut by_image, warnings)?;
+    warnings.texcoord_sets.append(&mut texcoord_sets);
 
     let defaults = MaterialDesc::default();
     let volume = m.volume();
@@ -141,6 +148,7 @@ fn read_material(
         priority: priority(ctx, m, &element)?,
         double_sided: m.double_sided(),
         alpha_mode,
+        layers,
         name: element,
     };
     Ok((material, skipped))
