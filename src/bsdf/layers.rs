@@ -8,9 +8,11 @@
 //! reflection when `wo` and `wi` share a hemisphere, diffuse transmission otherwise: a thin
 //! wall, which never changes the medium). Densities are per unit solid angle.
 //!
+//! ```text
 //! f = cc·F_c(|wo·h|)·D_c·G_c/(4|cos θo||cos θi|)                       (clearcoat)
 //!   + a_c · (sheenColor·f_sheen + a_s · (f_diffuse + f_specular))    (reflection)
 //! f = a_c · a_s · (1 − metallic) · dt · dtColor/π · (1 − max F_d)      (transmission)
+//! ```
 //! - f_diffuse = (1 − metallic)·(1 − dt)·base/π·(1 − max F_d(|wo·h|)), f_specular as in
 //!   `Gltf::eval` (glTF 2.0 Appendix B.3.5; the diffuse-transmission mix is the extension's
 //!   `mix(diffuse_brdf, diffuse_btdf, diffuseTransmission)`). For a transmission pair, h is
@@ -90,9 +92,14 @@ impl<C: Carrier> Layers<C> {
 
     /// Whether every layer is absent (the BSDF is then exactly the glTF BRDF).
     pub fn is_none(&self) -> bool {
-        !(self.clearcoat > 0.0)
-            && !(self.sheen_color.max_element() > 0.0)
-            && !(self.diffuse_transmission > 0.0)
+        let present = |v: f32| v > 0.0;
+        ![
+            self.clearcoat,
+            self.sheen_color.max_element(),
+            self.diffuse_transmission,
+        ]
+        .into_iter()
+        .any(present)
     }
 }
 
@@ -222,7 +229,7 @@ impl<C: Carrier> Layered<C> {
             diffuse * self.dt * self.dt_color.average(),
         ];
         let total: f32 = w.iter().sum();
-        if !(total > 0.0) {
+        if total.is_nan() || total <= 0.0 {
             // Black everywhere: sample the cosine lobe (f is 0 anyway).
             return [0.0, 0.0, 1.0, 0.0];
         }
