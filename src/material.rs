@@ -17,7 +17,7 @@
 //! ([`Material::conductor_index`]); its base colour is not used for shading.
 
 use crate::scene::desc::{
-    effective_color, AlphaMode, ExplicitIor, ImageDesc, MaterialDesc, TextureRef,
+    effective_color, AlphaMode, ExplicitIor, ImageDesc, LayerPoint, MaterialDesc, TextureRef,
 };
 use crate::spectrum::{self, ior::KNOWN_NAMES};
 use crate::spectrum::{Carrier, EmitterShape, Metal};
@@ -51,6 +51,8 @@ pub struct ShadingPoint {
     pub transmission: f32,
     /// Emitted radiance, linear RGB.
     pub emissive: Vec3,
+    /// KHR_materials_clearcoat, _sheen and _diffuse_transmission at this point.
+    pub layers: LayerPoint,
 }
 
 fn lookup(images: &[ImageDesc], tex: Option<TextureRef>, uv: Vec2, enc: Encoding) -> Vec4 {
@@ -114,6 +116,7 @@ impl Material {
             roughness: (d.roughness * mr.y).clamp(0.0, 1.0),
             transmission: (d.transmission * tr.x).clamp(0.0, 1.0) * (1.0 - metallic),
             emissive: self.emission() * em.truncate(),
+            layers: d.layers.shade(uv, images),
         }
     }
 

@@ -15,6 +15,8 @@ mod fixtures;
 mod fuzz;
 #[path = "load_gltf/geometry.rs"]
 mod geometry;
+#[path = "load_gltf/layers.rs"]
+mod layers;
 #[path = "load_gltf/materials.rs"]
 mod materials;
 

@@ -172,6 +172,30 @@ fn write_material(s: &mut String, m: &MaterialDesc) {
             m.specular_color.to_array()
         );
     }
+    let l = &m.layers;
+    if l.clearcoat > 0.0 {
+        let _ = write!(
+            s,
+            " clearcoat {} roughness {}",
+            l.clearcoat, l.clearcoat_roughness
+        );
+    }
+    if l.sheen_color != glam::Vec3::ZERO {
+        let _ = write!(
+            s,
+            " sheen {:?} roughness {}",
+            l.sheen_color.to_array(),
+            l.sheen_roughness
+        );
+    }
+    if l.diffuse_transmission > 0.0 {
+        let _ = write!(
+            s,
+            " diffuse transmission {} color {:?}",
+            l.diffuse_transmission,
+            l.diffuse_transmission_color.to_array()
+        );
+    }
     if m.emissive != glam::Vec3::ZERO {
         let _ = write!(s, " emissive {:?}", m.emissive.to_array());
     }

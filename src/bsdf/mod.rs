@@ -13,14 +13,19 @@ mod dielectric;
 mod energy;
 #[cfg(test)]
 mod energy_tests;
+mod layers;
+#[cfg(test)]
+mod layers_tests;
 pub mod microfacet;
 mod pbr;
+pub mod sheen;
 #[cfg(test)]
 mod tests;
 
 use crate::optics::{fresnel_conductor_c, fresnel_schlick};
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
+pub use layers::{coat_fresnel, Layers};
 
 /// GGX α below which a lobe is treated as perfectly smooth (delta).
 pub const SMOOTH_ALPHA: f32 = 1e-3;
@@ -115,6 +120,8 @@ pub enum Bsdf<C = Vec3> {
         specular: f32,
         /// KHR_materials_specular colour.
         specular_color: C,
+        /// KHR_materials_clearcoat, _sheen and _diffuse_transmission ([`layers`]).
+        layers: Layers<C>,
     },
 }
 
@@ -134,6 +141,7 @@ impl<C: Carrier> Bsdf<C> {
                 ior,
                 specular,
                 specular_color,
+                ..
             } => Some(pbr::Gltf::new(
                 base,
                 metallic,
@@ -142,6 +150,17 @@ impl<C: Carrier> Bsdf<C> {
                 specular,
                 specular_color,
             )),
+            _ => None,
+        }
+    }
+
+    /// The layered glTF BSDF when any KHR layer is present (`None` otherwise: the plain
+    /// glTF BRDF, unchanged).
+    fn layered(&self) -> Option<layers::Layered<C>> {
+        match self {
+            Bsdf::GltfPbr { layers, .. } if !layers.is_none() => {
+                Some(layers::Layered::new(self.gltf()?, layers))
+            }
             _ => None,
         }
     }
@@ -175,7 +194,10 @@ impl<C: Carrier> Bsdf<C> {
                 dielectric::rough_eval(eta, alpha, tint, wo, wi, mode)
             }
             Bsdf::ThinDielectric { .. } => C::ZERO,
-            Bsdf::GltfPbr { .. } => self.gltf().map_or(C::ZERO, |g| g.eval(wo, wi)),
+            Bsdf::GltfPbr { .. } => match self.layered() {
+                Some(l) => l.eval(wo, wi),
+                None => self.gltf().map_or(C::ZERO, |g| g.eval(wo, wi)),
+            },
         }
     }
 
@@ -191,7 +213,10 @@ impl<C: Carrier> Bsdf<C> {
             }
             Bsdf::Dielectric { eta, alpha, .. } => dielectric::rough_pdf(eta, alpha, wo, wi),
             Bsdf::ThinDielectric { .. } => 0.0,
-            Bsdf::GltfPbr { .. } => self.gltf().map_or(0.0, |g| g.pdf(wo, wi)),
+            Bsdf::GltfPbr { .. } => match self.layered() {
+                Some(l) => l.pdf(wo, wi),
+                None => self.gltf().map_or(0.0, |g| g.pdf(wo, wi)),
+            },
         }
     }
 
@@ -223,7 +248,10 @@ impl<C: Carrier> Bsdf<C> {
                 }
             }
             Bsdf::ThinDielectric { eta, tint } => dielectric::thin_sample(eta, tint, wo, uc),
-            Bsdf::GltfPbr { .. } => self.gltf()?.sample(wo, uc, u),
+            Bsdf::GltfPbr { .. } => match self.layered() {
+                Some(l) => l.sample(wo, uc, u),
+                None => self.gltf()?.sample(wo, uc, u),
+            },
         }
     }
 }

@@ -20,7 +20,7 @@ pub const GLTF_MIN_ALPHA: f32 = 1e-2;
 /// Cosine-weighted hemisphere direction on `wo`'s side (Malley's method, pbrt-v4 §A.5.3,
 /// with the concentric map replaced by the polar one), pdf |cos θ|/π.
 #[inline]
-fn cosine_hemisphere(wo: Vec3, u: Vec2) -> Vec3 {
+pub(super) fn cosine_hemisphere(wo: Vec3, u: Vec2) -> Vec3 {
     let r = u.x.sqrt();
     let phi = 2.0 * PI * u.y;
     let z = (1.0 - u.x).max(0.0).sqrt();
@@ -62,7 +62,7 @@ pub(crate) fn lambert_sample<C: Carrier>(albedo: C, wo: Vec3, u: Vec2) -> Option
 /// Half vector of a reflection pair, faced to +z (`None` when degenerate or not a
 /// reflection).
 #[inline]
-fn half_reflect(wo: Vec3, wi: Vec3) -> Option<Vec3> {
+pub(super) fn half_reflect(wo: Vec3, wi: Vec3) -> Option<Vec3> {
     if !same_hemisphere(wo, wi) {
         return None;
     }
@@ -76,7 +76,7 @@ fn half_reflect(wo: Vec3, wi: Vec3) -> Option<Vec3> {
 /// Cook–Torrance specular term D·G2/(4|cos θo||cos θi|) without Fresnel (Walter 2007,
 /// eq. 20), and |wo·wm| for the Fresnel term.
 #[inline]
-fn ggx_spec(ggx: Ggx, wo: Vec3, wi: Vec3) -> Option<(f32, f32)> {
+pub(super) fn ggx_spec(ggx: Ggx, wo: Vec3, wi: Vec3) -> Option<(f32, f32)> {
     let wm = half_reflect(wo, wi)?;
     let s = ggx.d(wm) * ggx.g(wo, wi) / (4.0 * wo.z.abs() * wi.z.abs());
     Some((s, wo.dot(wm).abs()))
@@ -85,7 +85,7 @@ fn ggx_spec(ggx: Ggx, wo: Vec3, wi: Vec3) -> Option<(f32, f32)> {
 /// pdf of reflecting a visible normal: D_wo(wm)/(4|wo·wm|) (Walter 2007, eq. 14;
 /// Heitz 2018, eq. 17).
 #[inline]
-fn ggx_reflect_pdf(ggx: Ggx, wo: Vec3, wi: Vec3) -> f32 {
+pub(super) fn ggx_reflect_pdf(ggx: Ggx, wo: Vec3, wi: Vec3) -> f32 {
     match half_reflect(wo, wi) {
         Some(wm) => ggx.pdf_visible(wo, wm) / (4.0 * wo.dot(wm).abs()),
         None => 0.0,
@@ -94,7 +94,7 @@ fn ggx_reflect_pdf(ggx: Ggx, wo: Vec3, wi: Vec3) -> f32 {
 
 /// Reflects `wo` about a visible normal; `None` when it lands under the surface.
 #[inline]
-fn ggx_reflect_sample(ggx: Ggx, wo: Vec3, u: Vec2) -> Option<Vec3> {
+pub(super) fn ggx_reflect_sample(ggx: Ggx, wo: Vec3, u: Vec2) -> Option<Vec3> {
     if wo.z == 0.0 {
         return None;
     }
@@ -194,7 +194,7 @@ impl<C: Carrier> Gltf<C> {
 
     /// Schlick with f90 (KHR_materials_specular): F0 + (F90 − F0)(1 − cos)^5.
     #[inline]
-    fn fresnel_d(&self, cos: f32) -> C {
+    pub(super) fn fresnel_d(&self, cos: f32) -> C {
         self.f0 + (C::splat(self.f90) - self.f0) * (1.0 - cos.clamp(0.0, 1.0)).powi(5)
     }
 

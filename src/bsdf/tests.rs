@@ -41,7 +41,7 @@ use chi2::chi2_pvalue;
 use hv_bins::{Bins, Lobe, Node};
 use std::f64::consts::PI;
 
-mod chi2;
+pub(super) mod chi2;
 mod hv_bins;
 
 const R: TransportMode = TransportMode::Radiance;
@@ -144,6 +144,7 @@ fn gltf(metallic: f32) -> Bsdf {
         ior: 1.5,
         specular: 1.0,
         specular_color: Vec3::ONE,
+        layers: Layers::none(),
     }
 }
 

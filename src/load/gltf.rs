@@ -26,6 +26,7 @@
 mod accessor;
 mod instancing;
 mod material;
+mod material_layers;
 mod mesh;
 mod scene;
 mod source;
@@ -161,6 +162,8 @@ struct Warnings {
     texcoord_sets: Vec<String>,
     undecodable_textures: Vec<String>,
     spec_gloss_textures: Vec<String>,
+    /// Material properties read but not rendered (e.g. a clearcoat normal map).
+    ignored_properties: Vec<String>,
 }
 
 impl Warnings {
@@ -208,6 +211,12 @@ impl Warnings {
             out.push(format!(
                 "textures using texCoord != 0 are sampled with TEXCOORD_0: {}",
                 short_list(&self.texcoord_sets)
+            ));
+        }
+        if !self.ignored_properties.is_empty() {
+            out.push(format!(
+                "material properties Iris does not render, ignored: {}",
+                short_list(&self.ignored_properties)
             ));
         }
         out
@@ -288,12 +297,14 @@ fn check_extensions(
                 "required compressed-geometry extension; Iris cannot decode it (re-export without compression)",
             ));
         }
-        if !READ_EXTENSIONS.contains(ext) {
+        if !READ_EXTENSIONS.contains(ext) && !material_layers::LAYER_EXTENSIONS.contains(ext) {
             warnings.unhonoured_required.insert((*ext).to_string());
         }
     }
     for ext in doc.extensions_used() {
-        if !READ_EXTENSIONS.contains(&ext) && !required.contains(ext) {
+        let read =
+            READ_EXTENSIONS.contains(&ext) || material_layers::LAYER_EXTENSIONS.contains(&ext);
+        if !read && !required.contains(ext) {
             warnings.unsupported_extensions.insert(ext.to_string());
         }
     }

@@ -24,9 +24,11 @@
 
 mod added;
 mod emission;
+mod layers;
 
 pub use added::{AddedLights, SpotKey};
 pub use emission::{effective_color, EmissionSpectrum, BLACKBODY_KELVIN, SUN_KELVIN};
+pub use layers::{LayerDesc, LayerPoint};
 
 use crate::light::env::Environment;
 use crate::spectrum::{IorModel as SpectralIor, Metal, UnknownIorName};
@@ -229,6 +231,8 @@ pub struct MaterialDesc {
     pub double_sided: bool,
     /// glTF alphaMode / alphaCutoff.
     pub alpha_mode: AlphaMode,
+    /// KHR_materials_clearcoat, _sheen and _diffuse_transmission ([`LayerDesc`]).
+    pub layers: LayerDesc,
 }
 
 impl Default for MaterialDesc {
@@ -257,6 +261,7 @@ impl Default for MaterialDesc {
             conductor: None,
             double_sided: false,
             alpha_mode: AlphaMode::Opaque,
+            layers: LayerDesc::default(),
         }
     }
 }

@@ -7,10 +7,11 @@
 //! Directions are unit vectors in the local frame of the outward shading normal; η is the
 //! ratio n_inside / n_outside, the outside being the normal's side.
 
-use crate::bsdf::Bsdf;
+use crate::bsdf::{Bsdf, Layers};
 use crate::interaction::{CoincidentSet, SurfaceHit};
 use crate::material::{Material, ShadingPoint};
 use crate::medium::{self, MediumStack};
+use crate::scene::desc::LayerPoint;
 use crate::scene::Scene;
 use crate::spectrum::Carrier;
 
@@ -33,6 +34,23 @@ pub fn surface_bsdf<C: Carrier>(mat: &Material, sp: &ShadingPoint, l: &C::Lambda
         ior: mat.ior(),
         specular: d.specular,
         specular_color: C::reflectance(d.specular_color, l),
+        layers: layers::<C>(&sp.layers, l),
+    }
+}
+
+/// The KHR layers of a shading point for the BSDF (colours upsampled as reflectances;
+/// α = clearcoat roughness², sheen α = sheen roughness as the sheen spec writes it).
+fn layers<C: Carrier>(p: &LayerPoint, l: &C::Lambda) -> Layers<C> {
+    if p.clearcoat <= 0.0 && p.sheen_color.max_element() <= 0.0 && p.diffuse_transmission <= 0.0 {
+        return Layers::none();
+    }
+    Layers {
+        clearcoat: p.clearcoat,
+        clearcoat_alpha: p.clearcoat_roughness * p.clearcoat_roughness,
+        sheen_color: C::reflectance(p.sheen_color, l),
+        sheen_alpha: p.sheen_roughness,
+        diffuse_transmission: p.diffuse_transmission,
+        diffuse_transmission_color: C::reflectance(p.diffuse_transmission_color, l),
     }
 }
 
@@ -145,9 +163,13 @@ pub const GLOSSY_ALPHA: f32 = 0.25;
 pub fn is_diffuse_like<C: Carrier>(b: &Bsdf<C>) -> bool {
     match *b {
         Bsdf::Lambert { .. } => true,
+        // A coat over a diffuse base is still gathered on; a sheen is a diffuse-like lobe.
         Bsdf::GltfPbr {
-            metallic, alpha, ..
-        } => metallic < 1.0 || alpha >= GLOSSY_ALPHA,
+            metallic,
+            alpha,
+            layers,
+            ..
+        } => metallic < 1.0 || alpha >= GLOSSY_ALPHA || layers.sheen_color.max_element() > 0.0,
         Bsdf::Conductor { alpha, .. }
         | Bsdf::ComplexConductor { alpha, .. }
         | Bsdf::Dielectric { alpha, .. } => !b.is_delta() && alpha >= GLOSSY_ALPHA,

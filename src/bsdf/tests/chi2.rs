@@ -103,7 +103,7 @@ fn incomplete_gamma_matches_closed_forms() {
 
 /// χ² test of observed vs expected counts (plus a "no sample" cell); merges cells with
 /// expected < 5 (Mitsuba `ChiSquareTest`). Returns the p-value.
-pub(super) fn chi2_pvalue(obs: &[f64], exp: &[f64]) -> f64 {
+pub(in crate::bsdf) fn chi2_pvalue(obs: &[f64], exp: &[f64]) -> f64 {
     let (mut chi2, mut dof) = (0.0, 0usize);
     let (mut po, mut pe) = (0.0, 0.0);
     for (&o, &e) in obs.iter().zip(exp) {

@@ -25,6 +25,7 @@
 //!   colour / `emissiveFactor` then acts as a filter. Anything else is `InvalidValue`
 //!   naming the element and `extras.iris_spectrum`.
 
+use super::material_layers;
 use super::source::ImageCache;
 use super::{label, spec_gloss, texture_source, texture_transform, unlit, Ctx, Warnings};
 use crate::error::{LoadError, LoadErrorKind};
@@ -68,21 +69,36 @@ fn read_material(
 ) -> Result<(MaterialDesc, usize), LoadError> {
     let element = label("material", index, m.name());
     let mut skipped = 0;
-    let mut texture = |slot: &str,
-                       info: Option<gltf::texture::Info<'_>>|
+    let mut texcoord_sets = Vec::new();
+    let mut undecodable = Vec::new();
+    // (slot, glTF texture, texCoord, KHR_texture_transform) → the decoded image's reference.
+    let mut by_texture = |slot: &str,
+                          tex: &gltf::Texture<'_>,
+                          texcoord: u32,
+                          transform: glam::Affine2|
      -> Result<Option<TextureRef>, LoadError> {
-        let Some(info) = info else { return Ok(None) };
         let Some(images) = images.as_deref_mut() else {
             skipped += 1;
             return Ok(None);
         };
-        let Some(source) = texture_source::image_of(ctx.doc, &info.texture()) else {
-            warnings
-                .undecodable_textures
-                .push(format!("{element} {slot}"));
+        let Some(source) = texture_source::image_of(ctx.doc, tex) else {
+            undecodable.push(format!("{element} {slot}"));
             return Ok(None);
         };
         let image = images.get(ctx, source)?;
+        if texcoord != 0 {
+            texcoord_sets.push(format!("{element} {slot} (texCoord {texcoord})"));
+        }
+        Ok(Some(TextureRef {
+            image,
+            texcoord,
+            transform,
+        }))
+    };
+    let mut texture = |slot: &str,
+                       info: Option<gltf::texture::Info<'_>>|
+     -> Result<Option<TextureRef>, LoadError> {
+        let Some(info) = info else { return Ok(None) };
         let (transform, texcoord_override) = texture_transform::of_info(&info).map_err(|e| {
             ctx.error(
                 &element,
@@ -91,16 +107,7 @@ fn read_material(
             )
         })?;
         let texcoord = texcoord_override.unwrap_or(info.tex_coord());
-        if texcoord != 0 {
-            warnings
-                .texcoord_sets
-                .push(format!("{element} {slot} (texCoord {texcoord})"));
-        }
-        Ok(Some(TextureRef {
-            image,
-            texcoord,
-            transform,
-        }))
+        by_texture(slot, &info.texture(), texcoord, transform)
     };
 
     let pbr = m.pbr_metallic_roughness();
@@ -118,6 +125,10 @@ fn read_material(
         "transmissionTexture",
         transmission.as_ref().and_then(|t| t.transmission_texture()),
     )?;
+
+    let layers = material_layers::read_layers(ctx, m, &element, &mut by_texture, warnings)?;
+    warnings.texcoord_sets.append(&mut texcoord_sets);
+    warnings.undecodable_textures.append(&mut undecodable);
 
     let defaults = MaterialDesc::default();
     let volume = m.volume();
@@ -163,6 +174,7 @@ fn read_material(
         priority: priority(ctx, m, &element)?,
         double_sided: m.double_sided(),
         alpha_mode,
+        layers,
         name: element,
     };
     let (material, dropped) = spec_gloss::apply(spec_gloss.as_ref(), diffuse_texture, material);
