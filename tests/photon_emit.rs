@@ -330,10 +330,7 @@ fn area_light_applies_the_emissive_texture_at_the_sampled_uv() {
         .map(|p| Vec2::new((p.x + half) / (2.0 * half), (p.z + half) / (2.0 * half)))
         .collect();
     let mut mat = emitter(le, false);
-    mat.emissive_texture = Some(TextureRef {
-        image: 0,
-        texcoord: 0,
-    });
+    mat.emissive_texture = Some(TextureRef::new(0, 0));
     let img = ImageDesc {
         name: "bw".into(),
         width: 2,

@@ -105,7 +105,7 @@ pub(super) fn instance_transforms(
                     let q = Quat::from_array(v[i]);
                     let len = q.length();
                     // Quantized quaternions are only approximately unit length.
-                    if !(len > 0.5 && len < 1.5) || !q.is_finite() {
+                    if !(len > 0.5 && len < 1.5 && q.is_finite()) {
                         return Err(invalid(format!(
                             "ROTATION of instance {i} is not a unit quaternion ({:?})",
                             v[i]
