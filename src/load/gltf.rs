@@ -270,10 +270,7 @@ fn parse(path: &Path, bytes: &[u8]) -> Result<gltf::Gltf, LoadError> {
 
 /// Applies the extension policy: required or used extensions that Iris does not read
 /// become (one) warning each.
-fn check_extensions(
-    doc: &gltf::Document,
-    warnings: &mut Warnings,
-) {
+fn check_extensions(doc: &gltf::Document, warnings: &mut Warnings) {
     let required: BTreeSet<&str> = doc.extensions_required().collect();
     for ext in &required {
         if !READ_EXTENSIONS.contains(ext) {

@@ -88,7 +88,12 @@ pub(super) fn read_draco(
         .get("bufferView")
         .and_then(Value::as_u64)
         .and_then(|v| usize::try_from(v).ok())
-        .ok_or_else(|| fail(LoadErrorKind::Parse, "bufferView is missing or not an index".into()))?;
+        .ok_or_else(|| {
+            fail(
+                LoadErrorKind::Parse,
+                "bufferView is missing or not an index".into(),
+            )
+        })?;
     let view = ctx.doc.views().nth(view_index).ok_or_else(|| {
         fail(
             LoadErrorKind::IndexOutOfRange,
@@ -150,7 +155,12 @@ pub(super) fn read_draco(
     }
 
     let mesh = std::panic::catch_unwind(|| draco_oxide_decoder::decode_mesh(bytes))
-        .map_err(|_| fail(LoadErrorKind::Parse, "the Draco decoder panicked on this data".into()))?
+        .map_err(|_| {
+            fail(
+                LoadErrorKind::Parse,
+                "the Draco decoder panicked on this data".into(),
+            )
+        })?
         .map_err(|e| fail(LoadErrorKind::Parse, format!("invalid Draco data: {e}")))?;
 
     let mut out = DracoPrimitive::default();
@@ -162,7 +172,9 @@ pub(super) fn read_draco(
             .ok_or_else(|| {
                 fail(
                     LoadErrorKind::Parse,
-                    format!("{semantic} refers to Draco attribute {id}, which the stream does not have"),
+                    format!(
+                        "{semantic} refers to Draco attribute {id}, which the stream does not have"
+                    ),
                 )
             })?;
         let values = attribute_values(attribute, acc)
@@ -172,7 +184,10 @@ pub(super) fn read_draco(
     let mut faces: Vec<u32> = Vec::with_capacity(mesh.faces.len().saturating_mul(3));
     for &p in mesh.faces.iter().flatten() {
         let p = u32::try_from(usize::from(p)).map_err(|_| {
-            fail(LoadErrorKind::TooLarge, "a decoded face index exceeds 32 bits".into())
+            fail(
+                LoadErrorKind::TooLarge,
+                "a decoded face index exceeds 32 bits".into(),
+            )
         })?;
         faces.push(p);
     }
@@ -247,14 +262,19 @@ fn attribute_ids(ext: &Value) -> Result<Vec<(String, usize)>, String> {
             id.as_u64()
                 .and_then(|v| usize::try_from(v).ok())
                 .map(|id| (name.clone(), id))
-                .ok_or_else(|| format!("attribute id of {name} is not a non-negative integer: {id}"))
+                .ok_or_else(|| {
+                    format!("attribute id of {name} is not a non-negative integer: {id}")
+                })
         })
         .collect()
 }
 
 /// One Draco attribute as `f32` vectors per point, converted like the accessor's own
 /// component type would be (normalized integers with the glTF table).
-fn attribute_values(attribute: &Attribute, acc: &gltf::Accessor<'_>) -> Result<Vec<Vec<f32>>, String> {
+fn attribute_values(
+    attribute: &Attribute,
+    acc: &gltf::Accessor<'_>,
+) -> Result<Vec<Vec<f32>>, String> {
     let n = attribute.get_num_components();
     let expected = acc.dimensions().multiplicity();
     if n != expected {
@@ -381,7 +401,11 @@ mod tests {
 
     #[test]
     fn garbage_is_an_error_not_a_panic() {
-        for data in [&b""[..], b"DRACO", b"DRACO\x02\x02\x01\x01\x00\x00\xff\xff\xff\xff"] {
+        for data in [
+            &b""[..],
+            b"DRACO",
+            b"DRACO\x02\x02\x01\x01\x00\x00\xff\xff\xff\xff",
+        ] {
             let r = std::panic::catch_unwind(|| draco_oxide_decoder::decode_mesh(data));
             assert!(matches!(r, Ok(Err(_))), "{data:?}");
         }

@@ -87,8 +87,8 @@ pub(super) fn read_primitive(
         None => read_floats::<3>(ctx, &position_acc).map_err(|e| wrap("POSITION", e))?,
     }
     .into_iter()
-        .map(Vec3::from)
-        .collect();
+    .map(Vec3::from)
+    .collect();
     let n = positions.len();
     let vertex_count = u32::try_from(n).map_err(|_| {
         ctx.error(

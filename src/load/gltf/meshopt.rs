@@ -122,7 +122,11 @@ pub(super) fn decode_views(
                 ),
             ));
         }
-        if view.length() > c.length.saturating_mul(MAX_EXPANSION).saturating_add(1 << 16) {
+        if view.length()
+            > c.length
+                .saturating_mul(MAX_EXPANSION)
+                .saturating_add(1 << 16)
+        {
             return Err(fail(
                 LoadErrorKind::TooLarge,
                 format!(
@@ -209,9 +213,9 @@ fn parse(ext: &Value, name: &str) -> Result<Compressed, String> {
         Mode::Attributes if s == 0 || s % 4 != 0 || s > 256 => Err(format!(
             "byteStride {s} is invalid for ATTRIBUTES (a multiple of 4 from 4 to 256)"
         )),
-        Mode::Triangles | Mode::Indices if s != 2 && s != 4 => Err(format!(
-            "byteStride {s} is invalid for {mode:?} (2 or 4)"
-        )),
+        Mode::Triangles | Mode::Indices if s != 2 && s != 4 => {
+            Err(format!("byteStride {s} is invalid for {mode:?} (2 or 4)"))
+        }
         Mode::Triangles if c.count % 3 != 0 => Err(format!(
             "count {} is not a multiple of 3 for TRIANGLES",
             c.count
@@ -223,9 +227,9 @@ fn parse(ext: &Value, name: &str) -> Result<Compressed, String> {
             Filter::Octahedral | Filter::Color if s != 4 && s != 8 => {
                 Err(format!("byteStride {s} is invalid for {filter:?} (4 or 8)"))
             }
-            Filter::Quaternion if s != 8 => Err(format!(
-                "byteStride {s} is invalid for QUATERNION (8)"
-            )),
+            Filter::Quaternion if s != 8 => {
+                Err(format!("byteStride {s} is invalid for QUATERNION (8)"))
+            }
             _ => Ok(c),
         },
     }
@@ -278,11 +282,7 @@ impl<const N: usize> Default for Vertex<N> {
 }
 
 /// The vertex codec for a runtime stride: one [`Vertex<N>`] instantiation per valid stride.
-fn decode_vertices(
-    source: &[u8],
-    count: usize,
-    stride: usize,
-) -> Result<Vec<u8>, meshopt::Error> {
+fn decode_vertices(source: &[u8], count: usize, stride: usize) -> Result<Vec<u8>, meshopt::Error> {
     macro_rules! strides {
         ($($n:literal)*) => {
             match stride {
@@ -378,9 +378,17 @@ mod tests {
             assert!(e.is_err(), "{stride} {count} {mode} {filter} accepted");
         }
         assert!(parse(&ext(4, 3, "ATTRIBUTES", "COLOR"), NAMES[1]).is_ok());
-        assert!(parse(&json!({"buffer": 0, "byteLength": 1, "byteStride": 4}), name).is_err());
-        assert!(parse(&json!({"buffer": -1, "byteLength": 1, "byteStride": 4, "count": 1,
-                              "mode": "ATTRIBUTES"}), name).is_err());
+        assert!(parse(
+            &json!({"buffer": 0, "byteLength": 1, "byteStride": 4}),
+            name
+        )
+        .is_err());
+        assert!(parse(
+            &json!({"buffer": -1, "byteLength": 1, "byteStride": 4, "count": 1,
+                              "mode": "ATTRIBUTES"}),
+            name
+        )
+        .is_err());
     }
 
     #[test]
