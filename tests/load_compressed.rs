@@ -261,6 +261,14 @@ fn assert_scene_matches_source(file: &Path, source: &Path, pos_bits: u32) {
     let c = load(file);
     let s = load(source);
     assert_eq!(c.meshes.len(), s.meshes.len(), "{}", file.display());
+    let meshopt =
+        file.to_string_lossy().contains("_c") || file.to_string_lossy().contains("meshopt");
+    assert_eq!(
+        c.compressed.meshopt_views > 0,
+        meshopt,
+        "{}",
+        file.display()
+    );
     let step = extent(&s) / ((1u64 << pos_bits) - 1) as f32;
     let normal_step = 4.0 / 127.0;
     // Material labels are `material N "name"`; exporters may renumber, so compare names.
@@ -295,11 +303,11 @@ fn read_glb(path: &Path) -> (Value, Vec<u8>) {
 /// Writes a GLB with `json` and `bin`.
 fn write_glb(path: &Path, json: &Value, bin: &[u8]) {
     let mut j = serde_json::to_vec(json).expect("json");
-    while j.len() % 4 != 0 {
+    while !j.len().is_multiple_of(4) {
         j.push(b' ');
     }
     let mut bin = bin.to_vec();
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let total = 12 + 8 + j.len() + 8 + bin.len();

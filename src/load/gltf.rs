@@ -35,7 +35,7 @@ mod uri;
 
 use super::files::Files;
 use crate::error::{LoadError, LoadErrorKind};
-use crate::scene::desc::SceneDesc;
+use crate::scene::desc::{CompressedGeometry, SceneDesc};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
@@ -108,6 +108,10 @@ pub fn load_gltf_bytes(
 
     let mut desc = SceneDesc {
         source: path.to_path_buf(),
+        compressed: CompressedGeometry {
+            draco_primitives: draco::compressed_primitives(parsed.document.as_json()),
+            meshopt_views: ctx.decoded.views.len(),
+        },
         ..SceneDesc::default()
     };
     // The scene graph first: only materials some mesh instance uses get their textures

@@ -234,6 +234,19 @@ pub(super) fn read_draco(
     Ok(Some(out))
 }
 
+/// How many primitives of the file carry the extension.
+pub(super) fn compressed_primitives(root: &gltf::json::Root) -> usize {
+    root.meshes
+        .iter()
+        .flat_map(|m| &m.primitives)
+        .filter(|p| {
+            p.extensions
+                .as_ref()
+                .is_some_and(|e| e.others.contains_key(NAME))
+        })
+        .count()
+}
+
 /// Accessors used by primitives that carry the extension (their attributes and indices):
 /// the spec lets these have no `bufferView`.
 pub(super) fn accessors_without_views(root: &gltf::json::Root) -> Vec<usize> {

@@ -210,13 +210,13 @@ fn parse(ext: &Value, name: &str) -> Result<Compressed, String> {
     };
     let s = c.stride;
     match mode {
-        Mode::Attributes if s == 0 || s % 4 != 0 || s > 256 => Err(format!(
+        Mode::Attributes if s == 0 || !s.is_multiple_of(4) || s > 256 => Err(format!(
             "byteStride {s} is invalid for ATTRIBUTES (a multiple of 4 from 4 to 256)"
         )),
         Mode::Triangles | Mode::Indices if s != 2 && s != 4 => {
             Err(format!("byteStride {s} is invalid for {mode:?} (2 or 4)"))
         }
-        Mode::Triangles if c.count % 3 != 0 => Err(format!(
+        Mode::Triangles if !c.count.is_multiple_of(3) => Err(format!(
             "count {} is not a multiple of 3 for TRIANGLES",
             c.count
         )),
