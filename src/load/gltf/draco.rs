@@ -25,7 +25,10 @@
 //! no C++ toolchain or cmake in CI, adds no `unsafe` to Iris, and decodes Blender's
 //! exports (tests/load_compressed.rs compares them with their uncompressed twins). Its
 //! caveats: it is an alpha, and it does use `unsafe` internally (unchecked indexing in
-//! its attribute traversal); it is fuzzed through Iris's glTF target.
+//! its attribute traversal); it is fuzzed through Iris's glTF target, which found one
+//! defect Iris cannot bound from outside: an unchecked u32 orientation count in its
+//! texture-coordinate prediction makes it allocate up to 4 GiB before failing
+//! (fuzz/open/README.md).
 //!
 //! Hostile input: the decoder's own errors become [`LoadError`]s; a panic inside it is
 //! caught ([`std::panic::catch_unwind`]) and reported the same way. Before decoding, the
