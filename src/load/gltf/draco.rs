@@ -25,10 +25,11 @@
 //! no C++ toolchain or cmake in CI, adds no `unsafe` to Iris, and decodes Blender's
 //! exports (tests/load_compressed.rs compares them with their uncompressed twins). Its
 //! caveats: it is an alpha, and it does use `unsafe` internally (unchecked indexing in
-//! its attribute traversal); it is fuzzed through Iris's glTF target, which found one
-//! defect Iris cannot bound from outside: an unchecked u32 orientation count in its
-//! texture-coordinate prediction makes it allocate up to 4 GiB before failing
-//! (fuzz/open/README.md).
+//! its attribute traversal); it is fuzzed through Iris's glTF target, which found defects
+//! Iris cannot bound from outside: stream-declared sizes that the decoder allocates
+//! unchecked (up to GiBs before failing, and one allocation failure that aborts the
+//! process). See fuzz/open/README.md; until they are fixed upstream, a hostile Draco
+//! file is not held to the loader's no-abort standard.
 //!
 //! Hostile input: the decoder's own errors become [`LoadError`]s; a panic inside it is
 //! caught ([`std::panic::catch_unwind`]) and reported the same way. Before decoding, the
