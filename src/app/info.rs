@@ -93,7 +93,7 @@ fn stone_hint(desc: &SceneDesc) -> Option<String> {
     ))
 }
 
-/// `FILE: N meshes, T triangles`.
+/// `FILE: N meshes, T triangles`, then what was compressed, if anything.
 fn write_header(s: &mut String, path: &Path, desc: &SceneDesc) {
     let tris: usize = desc.meshes.iter().map(|m| m.indices.len()).sum();
     let _ = writeln!(
@@ -103,6 +103,14 @@ fn write_header(s: &mut String, path: &Path, desc: &SceneDesc) {
         desc.meshes.len(),
         tris
     );
+    let c = desc.compressed;
+    if c.draco_primitives > 0 || c.meshopt_views > 0 {
+        let _ = writeln!(
+            s,
+            "geometry: {} primitives Draco-compressed, {} meshopt-compressed buffer views",
+            c.draco_primitives, c.meshopt_views
+        );
+    }
 }
 
 /// `meshes:`, one line per mesh: triangle count and material name.

@@ -80,7 +80,7 @@ fn check_png_palette(bytes: &[u8]) -> Result<(), String> {
     while rest.len() >= 8 {
         let len = u32::from_be_bytes([rest[0], rest[1], rest[2], rest[3]]) as usize;
         let kind = &rest[4..8];
-        if kind == b"PLTE" && (len == 0 || len % 3 != 0 || len > 768) {
+        if kind == b"PLTE" && (len == 0 || !len.is_multiple_of(3) || len > 768) {
             return Err(format!(
                 "invalid PNG: its PLTE chunk is {len} bytes (1 to 256 RGB entries of 3 bytes)"
             ));

@@ -14,20 +14,23 @@
 //! file and the element (`buffer 0 "geo"`, `material 2 "Glass"`, …).
 //!
 //! Extension policy: the KHR material extensions listed in `READ_EXTENSIONS`,
-//! KHR_lights_punctual and KHR_mesh_quantization (any accessor component type is read)
-//! are honoured; other used extensions are listed in one warning; required compressed
-//! geometry (Draco, meshopt) is an `Unsupported` error, other unknown required extensions
-//! only warn.
+//! KHR_lights_punctual, KHR_mesh_quantization (any accessor component type is read),
+//! and compressed geometry (KHR_draco_mesh_compression, EXT_/KHR_meshopt_compression)
+//! are honoured; other used extensions are listed in one warning, and unknown required
+//! extensions only warn.
 //!
-//! Submodules: `uri` (data/relative URIs), `source` (buffers and images), `accessor`
-//! (typed accessor reads), `mesh` (primitives), `material`, `scene` (node graph, lights,
-//! cameras).
+//! Submodules: `uri` (data/relative URIs), `source` (buffers and images), `meshopt`
+//! (compressed buffer views, decoded before anything reads a view), `accessor` (typed
+//! accessor reads), `draco` (Draco-compressed primitives), `mesh` (primitives),
+//! `material`, `scene` (node graph, lights, cameras).
 
 mod accessor;
+mod draco;
 mod instancing;
 mod material;
 mod material_layers;
 mod mesh;
+mod meshopt;
 mod scene;
 mod source;
 mod spec_gloss;
@@ -38,7 +41,7 @@ mod uri;
 
 use super::files::Files;
 use crate::error::{LoadError, LoadErrorKind};
-use crate::scene::desc::SceneDesc;
+use crate::scene::desc::{CompressedGeometry, SceneDesc};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
@@ -58,10 +61,10 @@ const READ_EXTENSIONS: &[&str] = &[
     "KHR_materials_unlit",
     "EXT_texture_webp",
     "KHR_materials_pbrSpecularGlossiness",
+    "KHR_draco_mesh_compression",
+    "EXT_meshopt_compression",
+    "KHR_meshopt_compression",
 ];
-
-/// Required extensions without which the geometry itself cannot be read.
-const GEOMETRY_EXTENSIONS: &[&str] = &["KHR_draco_mesh_compression", "EXT_meshopt_compression"];
 
 /// Upper bound on triangles (and on vertices) over the whole flattened scene.
 const MAX_TRIANGLES: usize = 1 << 27;
@@ -88,24 +91,38 @@ pub fn load_gltf_bytes(
 ) -> Result<SceneDesc, LoadError> {
     let parsed = parse(path, bytes)?;
     let mut warnings = Warnings::default();
-    check_extensions(path, &parsed.document, &mut warnings)?;
+    check_extensions(&parsed.document, &mut warnings);
     validate_document(path, &parsed.document)?;
 
     let base_dir = path
         .parent()
         .map(Path::to_path_buf)
         .unwrap_or_else(|| PathBuf::from("."));
-    let buffers = source::load_buffers(path, &base_dir, files, &parsed.document, parsed.blob)?;
+    let mut decoded = meshopt::DecodedViews::default();
+    let buffers = source::load_buffers(
+        path,
+        &base_dir,
+        files,
+        &parsed.document,
+        parsed.blob,
+        &mut decoded.fallback,
+    )?;
+    meshopt::decode_views(path, &parsed.document, &buffers, &mut decoded)?;
     let ctx = Ctx {
         path,
         base_dir,
         files,
         doc: &parsed.document,
         buffers,
+        decoded,
     };
 
     let mut desc = SceneDesc {
         source: path.to_path_buf(),
+        compressed: CompressedGeometry {
+            draco_primitives: draco::compressed_primitives(parsed.document.as_json()),
+            meshopt_views: ctx.decoded.views.len(),
+        },
         ..SceneDesc::default()
     };
     // The scene graph first: only materials some mesh instance uses get their textures
@@ -122,14 +139,15 @@ pub fn load_gltf_bytes(
 }
 
 /// What every reader needs: the file (for errors), where relative URIs start, where
-/// referenced files are read from, the document, and the loaded buffer bytes (index =
-/// glTF buffer index).
+/// referenced files are read from, the document, the loaded buffer bytes (index =
+/// glTF buffer index) and the meshopt-decoded buffer views.
 struct Ctx<'a> {
     path: &'a Path,
     base_dir: PathBuf,
     files: Files<'a>,
     doc: &'a gltf::Document,
     buffers: Vec<Vec<u8>>,
+    decoded: meshopt::DecodedViews,
 }
 
 impl Ctx<'_> {
@@ -164,6 +182,7 @@ struct Warnings {
     spec_gloss_textures: Vec<String>,
     /// Material properties read but not rendered (e.g. a clearcoat normal map).
     ignored_properties: Vec<String>,
+    draco_points: Vec<String>,
 }
 
 impl Warnings {
@@ -205,6 +224,12 @@ impl Warnings {
             out.push(format!(
                 "skipped primitives without a POSITION attribute: {}",
                 short_list(&self.no_position)
+            ));
+        }
+        if !self.draco_points.is_empty() {
+            out.push(format!(
+                "Draco decoding produced more points than the accessors declare; the decoded meshes are used: {}",
+                short_list(&self.draco_points)
             ));
         }
         if !self.texcoord_sets.is_empty() {
@@ -280,23 +305,11 @@ fn parse(path: &Path, bytes: &[u8]) -> Result<gltf::Gltf, LoadError> {
     })
 }
 
-/// Applies the extension policy: compressed geometry that is required is an error; other
-/// required or used extensions that Iris does not read become (one) warning each.
-fn check_extensions(
-    path: &Path,
-    doc: &gltf::Document,
-    warnings: &mut Warnings,
-) -> Result<(), LoadError> {
+/// Applies the extension policy: required or used extensions that Iris does not read
+/// become (one) warning each.
+fn check_extensions(doc: &gltf::Document, warnings: &mut Warnings) {
     let required: BTreeSet<&str> = doc.extensions_required().collect();
     for ext in &required {
-        if GEOMETRY_EXTENSIONS.contains(ext) {
-            return Err(LoadError::new(
-                path,
-                format!("extension {ext:?}"),
-                LoadErrorKind::Unsupported,
-                "required compressed-geometry extension; Iris cannot decode it (re-export without compression)",
-            ));
-        }
         if !READ_EXTENSIONS.contains(ext) && !material_layers::LAYER_EXTENSIONS.contains(ext) {
             warnings.unhonoured_required.insert((*ext).to_string());
         }
@@ -308,16 +321,20 @@ fn check_extensions(
             warnings.unsupported_extensions.insert(ext.to_string());
         }
     }
-    Ok(())
 }
 
 /// Runs the `gltf-json` structural validation (index ranges, enum values, required
-/// fields). Ignored: its objection to required extensions (handled above), and accessor
-/// `min`/`max` or a missing POSITION (Iris reads neither bound and skips such primitives).
+/// fields). Ignored: its objection to required extensions (handled above), accessor
+/// `min`/`max` or a missing POSITION (Iris reads neither bound and skips such primitives),
+/// and the missing `bufferView` of accessors that a Draco-compressed primitive fills.
 fn validate_document(path: &Path, doc: &gltf::Document) -> Result<(), LoadError> {
     use gltf::json::validation::{Error, Validate};
     let root = doc.as_json();
     precheck_attributes(path, root)?;
+    let draco_accessors: BTreeSet<String> = draco::accessors_without_views(root)
+        .into_iter()
+        .map(|i| format!("accessors[{i}].bufferView"))
+        .collect();
     let mut problems: Vec<(String, Error)> = Vec::new();
     root.validate(root, gltf::json::Path::new, &mut |where_, error| {
         let where_ = where_().to_string();
@@ -327,6 +344,7 @@ fn validate_document(path: &Path, doc: &gltf::Document) -> Result<(), LoadError>
             .and_then(|i| i.parse::<usize>().ok());
         let tolerated = (error == Error::Unsupported && where_.starts_with("extensionsRequired"))
             || texture_source.is_some_and(|i| texture_source::tolerates_missing_source(doc, i))
+            || (error == Error::Missing && draco_accessors.contains(&where_))
             || (where_.contains("attributes[\"POSITION\"]")
                 && (where_.ends_with(".min")
                     || where_.ends_with(".max")

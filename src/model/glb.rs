@@ -161,7 +161,7 @@ impl Writer {
 
     /// Appends a 4-byte-aligned buffer view; returns its index.
     fn view(&mut self, bytes: &[u8], target: u32) -> usize {
-        while self.bin.len() % 4 != 0 {
+        while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
         self.views.push(json!({
@@ -216,10 +216,10 @@ fn insert_array(root: &mut Map<String, Value>, key: &str, items: Vec<Value>) {
 
 /// Header + JSON chunk + BIN chunk (omitted when empty).
 fn assemble(mut json: Vec<u8>, mut bin: Vec<u8>) -> Result<Vec<u8>> {
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let bin_chunk = if bin.is_empty() { 0 } else { 8 + bin.len() };

@@ -178,7 +178,7 @@ impl Turn {
     /// updates `subject_bounds` when a floor was added. Frame 0 (and every multiple of
     /// 360°) leaves `desc` untouched.
     pub(super) fn apply(&self, desc: &mut SceneDesc) {
-        if self.spin.frame % self.spin.frames == 0 {
+        if self.spin.frame.is_multiple_of(self.spin.frames) {
             return;
         }
         let (s, c) = self.spin.sin_cos();

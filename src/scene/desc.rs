@@ -68,6 +68,17 @@ pub struct SceneDesc {
     /// Bounds of the file's own geometry (min, max) when Iris added geometry to it (the
     /// `--ground` floor, [`crate::studio::ground`]); `None` = the bounds of every mesh.
     pub subject_bounds: Option<(Vec3, Vec3)>,
+    /// Compressed geometry the loader decoded (glTF), shown by `iris info`.
+    pub compressed: CompressedGeometry,
+}
+
+/// How much of a file's geometry was stored compressed (all zero for plain files).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct CompressedGeometry {
+    /// Mesh primitives with KHR_draco_mesh_compression.
+    pub draco_primitives: usize,
+    /// Buffer views decoded from EXT_/KHR_meshopt_compression.
+    pub meshopt_views: usize,
 }
 
 /// An environment light named by the scene file (glTF scene `extras.iris_environment`).

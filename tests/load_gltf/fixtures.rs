@@ -129,11 +129,11 @@ pub fn base64(bytes: &[u8]) -> String {
 /// A GLB container (glTF 2.0 §4.4): JSON chunk padded with spaces, BIN chunk with zeros.
 pub fn glb(doc: &Value, bin: &[u8]) -> Vec<u8> {
     let mut json = serde_json::to_vec(doc).expect("serialize");
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
     let mut bin = bin.to_vec();
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let total = 12 + 8 + json.len() + 8 + bin.len();

@@ -242,7 +242,7 @@ fn unsigned(bytes: &[u8], ty: DataType) -> u32 {
 }
 
 /// One component as `f32`, applying the normalization table in the module docs.
-fn component(bytes: &[u8], ty: DataType, normalized: bool) -> f32 {
+pub(super) fn component(bytes: &[u8], ty: DataType, normalized: bool) -> f32 {
     match (ty, normalized) {
         (DataType::F32, _) => f32::from_le_bytes(le(bytes)),
         (DataType::I8, false) => f32::from(i8::from_le_bytes(le(bytes))),

@@ -5,12 +5,15 @@
 //!   formulas (§3.7.2.1); POINTS and LINE* are skipped (reported by the caller).
 //! - Attributes read: POSITION (required to render), NORMAL, TEXCOORD_0; missing indices
 //!   mean `0..count`. Every index is checked against the vertex count here.
+//! - KHR_draco_mesh_compression: the attributes the extension lists and the indices come
+//!   from the decoded Draco mesh ([`super::draco`]); the others are read as usual.
 //! - World transform `M`: positions `M·p`; normals by the inverse transpose of the upper
 //!   3×3, `M⁻ᵀ = cof(M)/det(M)`, computed as `sign(det)·cof(M)` and normalised so a
 //!   singular matrix cannot produce infinities. When `det(M) < 0` each triangle's last two
 //!   indices are swapped, keeping counter-clockwise winding seen from outside.
 
 use super::accessor::{read_floats, read_indices, AccessorError};
+use super::draco::read_draco;
 use super::Ctx;
 use crate::error::{LoadError, LoadErrorKind};
 use crate::scene::desc::MeshDesc;
@@ -26,6 +29,8 @@ pub(super) struct LocalPrimitive {
     uvs: Vec<Vec2>,
     triangles: Vec<[u32; 3]>,
     material: Option<usize>,
+    /// Draco only: `(decoded, declared)` point counts when the decoder made more points.
+    pub(super) extra_points: Option<(usize, usize)>,
 }
 
 impl LocalPrimitive {
@@ -73,12 +78,17 @@ pub(super) fn read_primitive(
     };
     let wrap =
         |what: &str, e: AccessorError| ctx.error(element, e.kind, format!("{what}: {}", e.detail));
+    let draco = read_draco(ctx, prim, element)?;
+    let from_draco2 = |semantic: &str| draco.as_ref().and_then(|d| d.get::<2>(semantic));
+    let from_draco3 = |semantic: &str| draco.as_ref().and_then(|d| d.get::<3>(semantic));
 
-    let positions: Vec<Vec3> = read_floats::<3>(ctx, &position_acc)
-        .map_err(|e| wrap("POSITION", e))?
-        .into_iter()
-        .map(Vec3::from)
-        .collect();
+    let positions: Vec<Vec3> = match from_draco3("POSITION") {
+        Some(values) => values,
+        None => read_floats::<3>(ctx, &position_acc).map_err(|e| wrap("POSITION", e))?,
+    }
+    .into_iter()
+    .map(Vec3::from)
+    .collect();
     let n = positions.len();
     let vertex_count = u32::try_from(n).map_err(|_| {
         ctx.error(
@@ -99,32 +109,36 @@ pub(super) fn read_primitive(
             ))
         }
     };
-    let normals: Vec<Vec3> = match prim.get(&Semantic::Normals) {
-        Some(acc) => read_floats::<3>(ctx, &acc)
+    let normals: Vec<Vec3> = match (prim.get(&Semantic::Normals), from_draco3("NORMAL")) {
+        (_, Some(values)) => values.into_iter().map(Vec3::from).collect(),
+        (Some(acc), None) => read_floats::<3>(ctx, &acc)
             .map_err(|e| wrap("NORMAL", e))?
             .into_iter()
             .map(Vec3::from)
             .collect(),
-        None => Vec::new(),
+        (None, None) => Vec::new(),
     };
     if !normals.is_empty() {
         same_length("NORMAL", normals.len())?;
     }
-    let uvs: Vec<Vec2> = match prim.get(&Semantic::TexCoords(0)) {
-        Some(acc) => read_floats::<2>(ctx, &acc)
+    let uvs: Vec<Vec2> = match (prim.get(&Semantic::TexCoords(0)), from_draco2("TEXCOORD_0")) {
+        (_, Some(values)) => values.into_iter().map(Vec2::from).collect(),
+        (Some(acc), None) => read_floats::<2>(ctx, &acc)
             .map_err(|e| wrap("TEXCOORD_0", e))?
             .into_iter()
             .map(Vec2::from)
             .collect(),
-        None => Vec::new(),
+        (None, None) => Vec::new(),
     };
     if !uvs.is_empty() {
         same_length("TEXCOORD_0", uvs.len())?;
     }
 
-    let indices = match prim.indices() {
-        Some(acc) => read_indices(ctx, &acc).map_err(|e| wrap("indices", e))?,
-        None => (0..vertex_count).collect(),
+    let extra_points = draco.as_ref().and_then(|d| d.extra_points);
+    let indices = match (prim.indices(), draco) {
+        (_, Some(d)) => d.indices,
+        (Some(acc), None) => read_indices(ctx, &acc).map_err(|e| wrap("indices", e))?,
+        (None, None) => (0..vertex_count).collect(),
     };
     if let Some((i, &bad)) = indices.iter().enumerate().find(|(_, &v)| v >= vertex_count) {
         return Err(ctx.error(
@@ -141,6 +155,7 @@ pub(super) fn read_primitive(
         uvs,
         triangles: assemble(mode, &indices),
         material: prim.material().index(),
+        extra_points,
     }))
 }
 
@@ -251,6 +266,7 @@ mod tests {
             uvs: Vec::new(),
             triangles: vec![[0, 1, 2]],
             material: None,
+            extra_points: None,
         };
         let mirror = Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0));
         let mesh = instantiate(&local, &mirror, "m".into());

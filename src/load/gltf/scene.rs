@@ -77,6 +77,13 @@ pub(super) fn read_scene_graph(
                     Some(read) => Rc::clone(read),
                     None => {
                         let read = Rc::new(read_primitive(ctx, &prim, &element)?);
+                        if let Primitive::Triangles(local) = read.as_ref() {
+                            if let Some((decoded, declared)) = local.extra_points {
+                                warnings.draco_points.push(format!(
+                                    "{element} ({decoded} points, accessors say {declared})"
+                                ));
+                            }
+                        }
                         primitives.insert((mesh.index(), prim.index()), Rc::clone(&read));
                         read
                     }

@@ -15,19 +15,27 @@ use crate::load::decode::decode_rgba8;
 use crate::load::files::Files;
 use crate::scene::desc::ImageDesc;
 use gltf::buffer::Source;
-use std::collections::HashMap;
+use std::collections::{BTreeSet, HashMap};
 use std::path::Path;
 
-/// Loads every buffer of `doc`; index `i` of the result is glTF buffer `i`.
+/// Loads every buffer of `doc`; index `i` of the result is glTF buffer `i`. Meshopt
+/// fallback buffers (see [`super::meshopt`]) are not loaded: they stay empty and their
+/// indices are added to `fallback`.
 pub(super) fn load_buffers(
     path: &Path,
     base_dir: &Path,
     files: Files<'_>,
     doc: &gltf::Document,
     mut blob: Option<Vec<u8>>,
+    fallback: &mut BTreeSet<usize>,
 ) -> Result<Vec<Vec<u8>>, LoadError> {
     let mut out = Vec::new();
     for buffer in doc.buffers() {
+        if super::meshopt::is_fallback(&buffer) {
+            fallback.insert(buffer.index());
+            out.push(Vec::new());
+            continue;
+        }
         let element = label("buffer", buffer.index(), buffer.name());
         let missing = |detail: String| {
             LoadError::new(path, element.clone(), LoadErrorKind::MissingBuffer, detail)
@@ -64,12 +72,22 @@ pub(super) fn load_buffers(
     Ok(out)
 }
 
-/// The bytes of buffer view `view`, or why they are not there.
+/// The bytes of buffer view `view` (decoded, for a meshopt-compressed view), or why they
+/// are not there.
 pub(super) fn view_bytes<'c>(
     ctx: &'c Ctx<'_>,
     view: &gltf::buffer::View<'_>,
 ) -> Result<&'c [u8], String> {
+    if let Some(decoded) = ctx.decoded.views.get(&view.index()) {
+        return Ok(decoded);
+    }
     let buffer = view.buffer().index();
+    if ctx.decoded.fallback.contains(&buffer) {
+        return Err(format!(
+            "buffer view {} refers to buffer {buffer}, a meshopt fallback buffer without data, and has no EXT_meshopt_compression data of its own",
+            view.index()
+        ));
+    }
     let data = ctx.buffers.get(buffer).ok_or_else(|| {
         format!(
             "buffer view {} refers to missing buffer {buffer}",
