@@ -51,6 +51,8 @@ pub struct ShadingPoint {
     pub transmission: f32,
     /// Emitted radiance, linear RGB.
     pub emissive: Vec3,
+    /// KHR_materials_iridescence / KHR_materials_anisotropy, textures applied.
+    pub film: crate::shading::film::FilmPoint,
 }
 
 fn lookup(images: &[ImageDesc], tex: Option<TextureRef>, uv: Vec2, enc: Encoding) -> Vec4 {
@@ -113,6 +115,7 @@ impl Material {
             roughness: (d.roughness * mr.y).clamp(0.0, 1.0),
             transmission: (d.transmission * tr.x).clamp(0.0, 1.0) * (1.0 - metallic),
             emissive: self.emission() * em.truncate(),
+            film: crate::shading::film::FilmPoint::shade(&d.film, uv, images),
         }
     }
 

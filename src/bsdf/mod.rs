@@ -9,17 +9,22 @@
 //! lobes have `eval = pdf = 0` and are only reachable through [`Bsdf::sample`], whose
 //! `f`/`pdf` then carry the delta's weight (f·|cos θi|/pdf is the throughput factor).
 
+pub mod anisotropic;
 mod dielectric;
 mod energy;
 #[cfg(test)]
 mod energy_tests;
+pub mod film;
 pub mod microfacet;
 mod pbr;
 #[cfg(test)]
 mod tests;
+pub mod thin_film;
 
 use crate::optics::{fresnel_conductor_c, fresnel_schlick};
 use crate::spectrum::Carrier;
+use anisotropic::Microfacet;
+pub use film::{FilmLobe, Iridescence};
 use glam::{Vec2, Vec3};
 
 /// GGX α below which a lobe is treated as perfectly smooth (delta).
@@ -76,6 +81,8 @@ pub enum Bsdf<C = Vec3> {
         k: C,
         /// GGX α.
         alpha: f32,
+        /// KHR_materials_iridescence / KHR_materials_anisotropy ([`film`]).
+        film: FilmLobe,
     },
     /// Smooth (alpha < 1e-3 ⇒ delta lobes) or rough GGX dielectric (Walter 2007, with
     /// Turquin 2019 multiple-scattering compensation: energy-conserving, not reciprocal), with
@@ -115,7 +122,20 @@ pub enum Bsdf<C = Vec3> {
         specular: f32,
         /// KHR_materials_specular colour.
         specular_color: C,
+        /// KHR_materials_iridescence / KHR_materials_anisotropy ([`film`]).
+        film: FilmLobe,
     },
+}
+
+/// A measured metal's Fresnel reflectance, mixed with a thin film's on that metal when
+/// the material is iridescent.
+#[inline]
+fn complex_fresnel<C: Carrier>(cos: f32, eta: C, k: C, film: &FilmLobe) -> C {
+    let plain = fresnel_conductor_c(cos, eta, k);
+    match film.iridescence {
+        Some(ir) => ir.mix(plain, cos, eta, k),
+        None => plain,
+    }
 }
 
 /// Both directions on the same side of the surface.
@@ -134,6 +154,7 @@ impl<C: Carrier> Bsdf<C> {
                 ior,
                 specular,
                 specular_color,
+                film,
             } => Some(pbr::Gltf::new(
                 base,
                 metallic,
@@ -141,6 +162,7 @@ impl<C: Carrier> Bsdf<C> {
                 ior,
                 specular,
                 specular_color,
+                film,
             )),
             _ => None,
         }
@@ -150,8 +172,10 @@ impl<C: Carrier> Bsdf<C> {
     pub fn is_delta(&self) -> bool {
         match *self {
             Bsdf::Lambert { .. } | Bsdf::GltfPbr { .. } => false,
-            Bsdf::Conductor { alpha, .. } | Bsdf::ComplexConductor { alpha, .. } => {
-                alpha < SMOOTH_ALPHA
+            Bsdf::Conductor { alpha, .. } => alpha < SMOOTH_ALPHA,
+            // Anisotropy widens the lobe along x (α_x = mix(α, 1, s²)): never a delta.
+            Bsdf::ComplexConductor { alpha, film, .. } => {
+                alpha < SMOOTH_ALPHA && film.anisotropy <= 0.0
             }
             Bsdf::Dielectric { eta, alpha, .. } => alpha < SMOOTH_ALPHA || eta == 1.0,
             Bsdf::ThinDielectric { .. } => true,
@@ -165,12 +189,23 @@ impl<C: Carrier> Bsdf<C> {
         }
         match *self {
             Bsdf::Lambert { albedo } => pbr::lambert_eval(albedo, wo, wi),
-            Bsdf::Conductor { f0, alpha } => {
-                pbr::conductor_eval(|c| fresnel_schlick(f0, c), alpha, wo, wi)
-            }
-            Bsdf::ComplexConductor { eta, k, alpha } => {
-                pbr::conductor_eval(|c| fresnel_conductor_c(c, eta, k), alpha, wo, wi)
-            }
+            Bsdf::Conductor { f0, alpha } => pbr::conductor_eval(
+                |c| fresnel_schlick(f0, c),
+                Microfacet::khr(alpha, 0.0),
+                wo,
+                wi,
+            ),
+            Bsdf::ComplexConductor {
+                eta,
+                k,
+                alpha,
+                film,
+            } => pbr::conductor_eval(
+                |c| complex_fresnel(c, eta, k, &film),
+                Microfacet::khr(alpha, film.anisotropy),
+                wo,
+                wi,
+            ),
             Bsdf::Dielectric { eta, alpha, tint } => {
                 dielectric::rough_eval(eta, alpha, tint, wo, wi, mode)
             }
@@ -186,8 +221,11 @@ impl<C: Carrier> Bsdf<C> {
         }
         match *self {
             Bsdf::Lambert { .. } => pbr::lambert_pdf(wo, wi),
-            Bsdf::Conductor { alpha, .. } | Bsdf::ComplexConductor { alpha, .. } => {
-                pbr::conductor_pdf(alpha, wo, wi)
+            Bsdf::Conductor { alpha, .. } => {
+                pbr::conductor_pdf(Microfacet::khr(alpha, 0.0), wo, wi)
+            }
+            Bsdf::ComplexConductor { alpha, film, .. } => {
+                pbr::conductor_pdf(Microfacet::khr(alpha, film.anisotropy), wo, wi)
             }
             Bsdf::Dielectric { eta, alpha, .. } => dielectric::rough_pdf(eta, alpha, wo, wi),
             Bsdf::ThinDielectric { .. } => 0.0,
@@ -203,15 +241,20 @@ impl<C: Carrier> Bsdf<C> {
             Bsdf::Lambert { albedo } => pbr::lambert_sample(albedo, wo, u),
             Bsdf::Conductor { f0, alpha } => pbr::conductor_sample(
                 |c| fresnel_schlick(f0, c),
-                alpha,
+                Microfacet::khr(alpha, 0.0),
                 alpha < SMOOTH_ALPHA,
                 wo,
                 u,
             ),
-            Bsdf::ComplexConductor { eta, k, alpha } => pbr::conductor_sample(
-                |c| fresnel_conductor_c(c, eta, k),
+            Bsdf::ComplexConductor {
+                eta,
+                k,
                 alpha,
-                alpha < SMOOTH_ALPHA,
+                film,
+            } => pbr::conductor_sample(
+                |c| complex_fresnel(c, eta, k, &film),
+                Microfacet::khr(alpha, film.anisotropy),
+                self.is_delta(),
                 wo,
                 u,
             ),

@@ -25,6 +25,7 @@
 
 mod accessor;
 mod material;
+mod material_film;
 mod mesh;
 mod scene;
 mod source;
@@ -45,6 +46,8 @@ const READ_EXTENSIONS: &[&str] = &[
     "KHR_materials_specular",
     "KHR_materials_emissive_strength",
     "KHR_materials_dispersion",
+    "KHR_materials_iridescence",
+    "KHR_materials_anisotropy",
     "KHR_lights_punctual",
     "KHR_mesh_quantization",
 ];

@@ -24,9 +24,11 @@
 
 mod added;
 mod emission;
+mod film;
 
 pub use added::{AddedLights, SpotKey};
 pub use emission::{effective_color, EmissionSpectrum, BLACKBODY_KELVIN, SUN_KELVIN};
+pub use film::{AnisotropyDesc, FilmDesc, IridescenceDesc};
 
 use crate::light::env::Environment;
 use crate::spectrum::{IorModel as SpectralIor, Metal, UnknownIorName};
@@ -89,6 +91,9 @@ pub struct MeshDesc {
     pub normals: Vec<Vec3>,
     /// Per-vertex texture coordinates (TEXCOORD_0), or empty.
     pub uvs: Vec<Vec2>,
+    /// Per-vertex tangents (glTF TANGENT: xyz unit, w = ±1 the bitangent sign), world
+    /// space, or empty.
+    pub tangents: Vec<Vec4>,
     /// Triangles as vertex indices, counter-clockwise seen from outside.
     pub indices: Vec<[u32; 3]>,
     /// Index into `SceneDesc::materials`; `None` uses the default material.
@@ -215,6 +220,8 @@ pub struct MaterialDesc {
     pub double_sided: bool,
     /// glTF alphaMode / alphaCutoff.
     pub alpha_mode: AlphaMode,
+    /// KHR_materials_iridescence and KHR_materials_anisotropy.
+    pub film: FilmDesc,
 }
 
 impl Default for MaterialDesc {
@@ -243,6 +250,7 @@ impl Default for MaterialDesc {
             conductor: None,
             double_sided: false,
             alpha_mode: AlphaMode::Opaque,
+            film: FilmDesc::default(),
         }
     }
 }

@@ -23,6 +23,7 @@ pub fn surface_bsdf<C: Carrier>(mat: &Material, sp: &ShadingPoint, l: &C::Lambda
             eta,
             k,
             alpha: sp.roughness * sp.roughness,
+            film: sp.film.lobe::<C>(l),
         };
     }
     let d = &mat.desc;
@@ -33,6 +34,7 @@ pub fn surface_bsdf<C: Carrier>(mat: &Material, sp: &ShadingPoint, l: &C::Lambda
         ior: mat.ior(),
         specular: d.specular,
         specular_color: C::reflectance(d.specular_color, l),
+        film: sp.film.lobe::<C>(l),
     }
 }
 

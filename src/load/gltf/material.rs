@@ -10,6 +10,7 @@
 //! - `KHR_materials_volume.attenuationDistance` defaults to +∞ (never 0).
 //! - `KHR_materials_dispersion.dispersion` (= 20/V_d) is read from the raw extension JSON,
 //!   which the `gltf` crate does not type.
+//! - KHR_materials_iridescence and KHR_materials_anisotropy: `super::material_film`.
 //! - Material `extras` (the README's "IOR models"): `{"iris_glass": "N-BK7"}` names a
 //!   built-in Sellmeier glass (`spectrum::ior::KNOWN_NAMES`, case-insensitive) and gives
 //!   `ExplicitIor::Glass`; `{"cauchy": {"b": B, "c": C}}` gives `ExplicitIor::Cauchy`
@@ -97,6 +98,14 @@ fn read_material(
         transmission.as_ref().and_then(|t| t.transmission_texture()),
     )?;
 
+    let film = super::material_film::read_film(
+        ctx,
+        m,
+        &element,
+        images.as_deref_mut(),
+        &mut skipped,
+        warnings,
+    )?;
     let defaults = MaterialDesc::default();
     let volume = m.volume();
     let specular = m.specular();
@@ -141,6 +150,7 @@ fn read_material(
         priority: priority(ctx, m, &element)?,
         double_sided: m.double_sided(),
         alpha_mode,
+        film,
         name: element,
     };
     Ok((material, skipped))

@@ -3,8 +3,13 @@
 //!
 //! - Modes: TRIANGLES; TRIANGLE_STRIP and TRIANGLE_FAN are converted with the spec's
 //!   formulas (§3.7.2.1); POINTS and LINE* are skipped (reported by the caller).
-//! - Attributes read: POSITION (required to render), NORMAL, TEXCOORD_0; missing indices
-//!   mean `0..count`. Every index is checked against the vertex count here.
+//! - Attributes read: POSITION (required to render), NORMAL, TEXCOORD_0, TANGENT (only with
+//!   NORMAL, as the spec requires; non-finite components are an error, w keeps only its
+//!   sign ±1); missing indices mean `0..count`. Every index is checked against the vertex
+//!   count here.
+//! - Tangents transform with `M` (they are surface directions); the bitangent sign w is
+//!   recomputed so that w·(n′ × t′) still points along `M·(w·(n × t))` (a mirroring
+//!   transform flips it).
 //! - World transform `M`: positions `M·p`; normals by the inverse transpose of the upper
 //!   3×3, `M⁻ᵀ = cof(M)/det(M)`, computed as `sign(det)·cof(M)` and normalised so a
 //!   singular matrix cannot produce infinities. When `det(M) < 0` each triangle's last two
@@ -14,7 +19,7 @@ use super::accessor::{read_floats, read_indices, AccessorError};
 use super::Ctx;
 use crate::error::{LoadError, LoadErrorKind};
 use crate::scene::desc::MeshDesc;
-use glam::{Mat3, Mat4, Vec2, Vec3};
+use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 use gltf::mesh::Mode;
 use gltf::Semantic;
 
@@ -24,6 +29,7 @@ pub(super) struct LocalPrimitive {
     positions: Vec<Vec3>,
     normals: Vec<Vec3>,
     uvs: Vec<Vec2>,
+    tangents: Vec<Vec4>,
     triangles: Vec<[u32; 3]>,
     material: Option<usize>,
 }
@@ -121,6 +127,29 @@ pub(super) fn read_primitive(
     if !uvs.is_empty() {
         same_length("TEXCOORD_0", uvs.len())?;
     }
+    let tangents: Vec<Vec4> = match prim.get(&Semantic::Tangents) {
+        // The spec: without normals, provided tangents must be ignored.
+        Some(acc) if !normals.is_empty() => read_floats::<4>(ctx, &acc)
+            .map_err(|e| wrap("TANGENT", e))?
+            .into_iter()
+            .map(Vec4::from)
+            .collect(),
+        _ => Vec::new(),
+    };
+    if !tangents.is_empty() {
+        same_length("TANGENT", tangents.len())?;
+        if let Some((i, t)) = tangents.iter().enumerate().find(|(_, t)| !t.is_finite()) {
+            return Err(ctx.error(
+                element,
+                LoadErrorKind::InvalidValue,
+                format!("TANGENT {i} = {t} is not finite"),
+            ));
+        }
+    }
+    let tangents = tangents
+        .into_iter()
+        .map(|t| t.truncate().extend(if t.w < 0.0 { -1.0 } else { 1.0 }))
+        .collect();
 
     let indices = match prim.indices() {
         Some(acc) => read_indices(ctx, &acc).map_err(|e| wrap("indices", e))?,
@@ -139,6 +168,7 @@ pub(super) fn read_primitive(
         positions,
         normals,
         uvs,
+        tangents,
         triangles: assemble(mode, &indices),
         material: prim.material().index(),
     }))
@@ -181,7 +211,7 @@ pub(super) fn instantiate(local: &LocalPrimitive, world: &Mat4, name: String) ->
         .iter()
         .map(|&p| world.transform_point3(p))
         .collect();
-    let normals = local
+    let normals: Vec<Vec3> = local
         .normals
         .iter()
         .map(|&n| {
@@ -194,6 +224,23 @@ pub(super) fn instantiate(local: &LocalPrimitive, world: &Mat4, name: String) ->
             }
         })
         .collect();
+    let tangents = local
+        .tangents
+        .iter()
+        .zip(&local.normals)
+        .zip(&normals)
+        .map(|((&t, &n), &n_world)| {
+            let t3 = t.truncate();
+            let b_world = linear * (n.cross(t3) * t.w);
+            let t_world = linear * t3;
+            let w = if n_world.cross(t_world).dot(b_world) < 0.0 {
+                -1.0
+            } else {
+                1.0
+            };
+            t_world.normalize_or_zero().extend(w)
+        })
+        .collect();
     let indices = if det < 0.0 {
         local.triangles.iter().map(|&[a, b, c]| [a, c, b]).collect()
     } else {
@@ -204,6 +251,7 @@ pub(super) fn instantiate(local: &LocalPrimitive, world: &Mat4, name: String) ->
         positions,
         normals,
         uvs: local.uvs.clone(),
+        tangents,
         indices,
         material: local.material,
     }
@@ -249,6 +297,7 @@ mod tests {
             positions: vec![Vec3::X, Vec3::Y, Vec3::Z],
             normals: vec![Vec3::ONE; 3],
             uvs: Vec::new(),
+            tangents: Vec::new(),
             triangles: vec![[0, 1, 2]],
             material: None,
         };
