@@ -314,6 +314,7 @@ mod tests {
             }),
             extras: None,
             light_extras: vec![Some(serde_json::json!({"iris_spectrum": "sun"}))],
+            mesh_uvs: Vec::new(),
         }
     }
 

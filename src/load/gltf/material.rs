@@ -98,14 +98,7 @@ fn read_material(
         transmission.as_ref().and_then(|t| t.transmission_texture()),
     )?;
 
-    let film = super::material_film::read_film(
-        ctx,
-        m,
-        &element,
-        images.as_deref_mut(),
-        &mut skipped,
-        warnings,
-    )?;
+    let film = super::material_film::read_film(ctx, m, &element, images, &mut skipped, warnings)?;
     let defaults = MaterialDesc::default();
     let volume = m.volume();
     let specular = m.specular();

@@ -29,14 +29,14 @@ pub(super) fn read_film(
     ctx: &Ctx<'_>,
     m: &gltf::Material<'_>,
     element: &str,
-    mut images: Option<&mut ImageCache>,
+    images: Option<&mut ImageCache>,
     skipped: &mut usize,
     warnings: &mut Warnings,
 ) -> Result<FilmDesc, LoadError> {
     let mut reader = Reader {
         ctx,
         element,
-        images: images.as_deref_mut(),
+        images,
         skipped,
         warnings,
     };

@@ -164,11 +164,14 @@ impl FilmDesc {
         parts.join("; ")
     }
 
-    /// One warning naming the meshes whose anisotropic material has neither TANGENT nor
-    /// TEXCOORD_0, so their brushing direction falls back to an arbitrary (deterministic)
-    /// frame; `None` when there are none.
-    pub fn tangentless_warning(desc: &SceneDesc) -> Option<String> {
-        let names: Vec<&str> = desc
+    /// What the film extensions cannot do in this scene, one warning per kind: meshes
+    /// whose anisotropic material has neither TANGENT nor TEXCOORD_0 (the brushing
+    /// direction falls back to an arbitrary, deterministic frame), and iridescent materials
+    /// that transmit (the film is applied to the opaque lobes' reflection only; the
+    /// transmissive lobe keeps the plain dielectric Fresnel).
+    pub fn scene_warnings(desc: &SceneDesc) -> Vec<String> {
+        let mut out = Vec::new();
+        let tangentless: Vec<&str> = desc
             .meshes
             .iter()
             .filter(|m| {
@@ -180,18 +183,33 @@ impl FilmDesc {
             })
             .map(|m| m.name.as_str())
             .collect();
-        (!names.is_empty()).then(|| {
-            let shown: Vec<&str> = names.iter().take(6).copied().collect();
-            let more = names.len().saturating_sub(6);
-            let tail = if more > 0 {
-                format!(" and {more} more")
-            } else {
-                String::new()
-            };
-            format!(
-                "KHR_materials_anisotropy without TANGENT or TEXCOORD_0: the brushing direction is arbitrary on {}{tail}",
-                shown.join(", ")
-            )
-        })
+        if !tangentless.is_empty() {
+            out.push(format!(
+                "KHR_materials_anisotropy without TANGENT or TEXCOORD_0: the brushing direction is arbitrary on {}",
+                short(&tangentless)
+            ));
+        }
+        let transmissive: Vec<&str> = desc
+            .materials
+            .iter()
+            .filter(|m| m.transmission > 0.0 && m.film.iridescence.is_some_and(|i| i.factor > 0.0))
+            .map(|m| m.name.as_str())
+            .collect();
+        if !transmissive.is_empty() {
+            out.push(format!(
+                "KHR_materials_iridescence on transmissive materials is applied to their opaque reflection only (the transmission lobe keeps the plain Fresnel): {}",
+                short(&transmissive)
+            ));
+        }
+        out
+    }
+}
+
+/// The first six names, then how many more.
+fn short(names: &[&str]) -> String {
+    let shown = names.iter().take(6).copied().collect::<Vec<_>>().join(", ");
+    match names.len().saturating_sub(6) {
+        0 => shown,
+        more => format!("{shown} and {more} more"),
     }
 }
