@@ -163,3 +163,61 @@ fn barycentrics(p: [Vec3; 3], q: Vec3) -> [f32; 3] {
     let w2 = (p[1] - p[0]).cross(q - p[0]).dot(n) / area;
     [1.0 - w1 - w2, w1, w2]
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uv_tangent_is_dp_du() {
+        // u grows along +X, v along +Z (any scale, any triangle of the map).
+        let p = [
+            Vec3::ZERO,
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(0.0, 0.0, 3.0),
+        ];
+        let uv = [Vec2::ZERO, Vec2::new(1.0, 0.0), Vec2::new(0.0, 1.0)];
+        assert!((uv_tangent(p, uv).unwrap() - Vec3::X).length() < 1e-6);
+        // Swapped parametrisation: u along +Z.
+        let uv = [Vec2::ZERO, Vec2::new(0.0, 1.0), Vec2::new(1.0, 0.0)];
+        assert!((uv_tangent(p, uv).unwrap() - Vec3::Z).length() < 1e-6);
+        assert!(uv_tangent(p, [Vec2::ZERO; 3]).is_none());
+        let w = barycentrics(p, Vec3::new(0.5, 0.0, 1.5));
+        assert!((w[0] - 0.25).abs() < 1e-6 && (w[1] - 0.25).abs() < 1e-6);
+    }
+
+    #[test]
+    fn rotation_turns_the_frame_about_the_normal() {
+        let film = |rotation: f32| {
+            let desc = FilmDesc {
+                iridescence: None,
+                anisotropy: Some(crate::scene::desc::AnisotropyDesc {
+                    strength: 0.5,
+                    rotation,
+                    texture: None,
+                }),
+            };
+            FilmPoint::shade(&desc, Vec2::ZERO, &[])
+        };
+        let n = Vec3::Y;
+        // Tangent +X, bitangent sign +1: B = n × T = −Z.
+        let f0 = anisotropy_frame(n, Vec3::X, 1.0, film(0.0).direction).unwrap();
+        assert!((f0.s - Vec3::X).length() < 1e-6);
+        let f1 =
+            anisotropy_frame(n, Vec3::X, 1.0, film(std::f32::consts::FRAC_PI_2).direction).unwrap();
+        assert!((f1.s - Vec3::NEG_Z).length() < 1e-6, "{:?}", f1.s);
+        // The bitangent sign mirrors it; the frame stays right-handed with z = n.
+        let f2 = anisotropy_frame(
+            n,
+            Vec3::X,
+            -1.0,
+            film(std::f32::consts::FRAC_PI_2).direction,
+        )
+        .unwrap();
+        assert!((f2.s - Vec3::Z).length() < 1e-6);
+        for f in [f0, f1, f2] {
+            assert!((f.s.cross(f.t) - f.n).length() < 1e-6);
+        }
+        assert_eq!(film(0.0).anisotropy, 0.5);
+    }
+}
