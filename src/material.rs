@@ -53,6 +53,8 @@ pub struct ShadingPoint {
     pub emissive: Vec3,
     /// KHR_materials_clearcoat, _sheen and _diffuse_transmission at this point.
     pub layers: LayerPoint,
+    /// KHR_materials_iridescence / KHR_materials_anisotropy, textures applied.
+    pub film: crate::shading::film::FilmPoint,
 }
 
 fn lookup(images: &[ImageDesc], tex: Option<TextureRef>, uv: Vec2, enc: Encoding) -> Vec4 {
@@ -117,6 +119,7 @@ impl Material {
             transmission: (d.transmission * tr.x).clamp(0.0, 1.0) * (1.0 - metallic),
             emissive: self.emission() * em.truncate(),
             layers: d.layers.shade(uv, images),
+            film: crate::shading::film::FilmPoint::shade(&d.film, uv, images),
         }
     }
 

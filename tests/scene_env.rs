@@ -41,6 +41,7 @@ fn scene(extras: Option<Value>) -> GenScene {
         }),
         extras,
         light_extras: Vec::new(),
+        mesh_uvs: Vec::new(),
     }
 }
 

@@ -55,6 +55,7 @@ fn ring_file(dir: &Path) -> PathBuf {
         camera: None,
         extras: None,
         light_extras: vec![],
+        mesh_uvs: vec![],
     };
     let path = dir.join("ring.glb");
     iris::model::glb::write_glb(&path, &scene).expect("write ring.glb");

@@ -161,6 +161,10 @@ fn write_material(s: &mut String, m: &MaterialDesc) {
             m.attenuation_distance
         );
     }
+    let film = m.film.describe();
+    if !film.is_empty() {
+        let _ = write!(s, " {film}");
+    }
     if let Some(metal) = m.conductor {
         let (n, k) = metal.eta_k(crate::spectrum::ior::LAMBDA_D);
         let _ = write!(

@@ -9,10 +9,12 @@
 //! lobes have `eval = pdf = 0` and are only reachable through [`Bsdf::sample`], whose
 //! `f`/`pdf` then carry the delta's weight (f·|cos θi|/pdf is the throughput factor).
 
+pub mod anisotropic;
 mod dielectric;
 mod energy;
 #[cfg(test)]
 mod energy_tests;
+pub mod film;
 mod layers;
 #[cfg(test)]
 mod layers_tests;
@@ -21,9 +23,12 @@ mod pbr;
 pub mod sheen;
 #[cfg(test)]
 mod tests;
+pub mod thin_film;
 
 use crate::optics::{fresnel_conductor_c, fresnel_schlick};
 use crate::spectrum::Carrier;
+use anisotropic::Microfacet;
+pub use film::{FilmLobe, Iridescence};
 use glam::{Vec2, Vec3};
 pub use layers::{coat_fresnel, Layers};
 
@@ -81,6 +86,8 @@ pub enum Bsdf<C = Vec3> {
         k: C,
         /// GGX α.
         alpha: f32,
+        /// KHR_materials_iridescence / KHR_materials_anisotropy ([`film`]).
+        film: FilmLobe,
     },
     /// Smooth (alpha < 1e-3 ⇒ delta lobes) or rough GGX dielectric (Walter 2007, with
     /// Turquin 2019 multiple-scattering compensation: energy-conserving, not reciprocal), with
@@ -122,7 +129,20 @@ pub enum Bsdf<C = Vec3> {
         specular_color: C,
         /// KHR_materials_clearcoat, _sheen and _diffuse_transmission ([`layers`]).
         layers: Layers<C>,
+        /// KHR_materials_iridescence / KHR_materials_anisotropy ([`film`]).
+        film: FilmLobe,
     },
+}
+
+/// A measured metal's Fresnel reflectance, mixed with a thin film's on that metal when
+/// the material is iridescent.
+#[inline]
+fn complex_fresnel<C: Carrier>(cos: f32, eta: C, k: C, film: &FilmLobe) -> C {
+    let plain = fresnel_conductor_c(cos, eta, k);
+    match film.iridescence {
+        Some(ir) => ir.mix(plain, cos, eta, k),
+        None => plain,
+    }
 }
 
 /// Both directions on the same side of the surface.
@@ -141,6 +161,7 @@ impl<C: Carrier> Bsdf<C> {
                 ior,
                 specular,
                 specular_color,
+                film,
                 ..
             } => Some(pbr::Gltf::new(
                 base,
@@ -149,6 +170,7 @@ impl<C: Carrier> Bsdf<C> {
                 ior,
                 specular,
                 specular_color,
+                film,
             )),
             _ => None,
         }
@@ -169,8 +191,10 @@ impl<C: Carrier> Bsdf<C> {
     pub fn is_delta(&self) -> bool {
         match *self {
             Bsdf::Lambert { .. } | Bsdf::GltfPbr { .. } => false,
-            Bsdf::Conductor { alpha, .. } | Bsdf::ComplexConductor { alpha, .. } => {
-                alpha < SMOOTH_ALPHA
+            Bsdf::Conductor { alpha, .. } => alpha < SMOOTH_ALPHA,
+            // Anisotropy widens the lobe along x (α_x = mix(α, 1, s²)): never a delta.
+            Bsdf::ComplexConductor { alpha, film, .. } => {
+                alpha < SMOOTH_ALPHA && film.anisotropy <= 0.0
             }
             Bsdf::Dielectric { eta, alpha, .. } => alpha < SMOOTH_ALPHA || eta == 1.0,
             Bsdf::ThinDielectric { .. } => true,
@@ -184,12 +208,23 @@ impl<C: Carrier> Bsdf<C> {
         }
         match *self {
             Bsdf::Lambert { albedo } => pbr::lambert_eval(albedo, wo, wi),
-            Bsdf::Conductor { f0, alpha } => {
-                pbr::conductor_eval(|c| fresnel_schlick(f0, c), alpha, wo, wi)
-            }
-            Bsdf::ComplexConductor { eta, k, alpha } => {
-                pbr::conductor_eval(|c| fresnel_conductor_c(c, eta, k), alpha, wo, wi)
-            }
+            Bsdf::Conductor { f0, alpha } => pbr::conductor_eval(
+                |c| fresnel_schlick(f0, c),
+                Microfacet::khr(alpha, 0.0),
+                wo,
+                wi,
+            ),
+            Bsdf::ComplexConductor {
+                eta,
+                k,
+                alpha,
+                film,
+            } => pbr::conductor_eval(
+                |c| complex_fresnel(c, eta, k, &film),
+                Microfacet::khr(alpha, film.anisotropy),
+                wo,
+                wi,
+            ),
             Bsdf::Dielectric { eta, alpha, tint } => {
                 dielectric::rough_eval(eta, alpha, tint, wo, wi, mode)
             }
@@ -208,8 +243,11 @@ impl<C: Carrier> Bsdf<C> {
         }
         match *self {
             Bsdf::Lambert { .. } => pbr::lambert_pdf(wo, wi),
-            Bsdf::Conductor { alpha, .. } | Bsdf::ComplexConductor { alpha, .. } => {
-                pbr::conductor_pdf(alpha, wo, wi)
+            Bsdf::Conductor { alpha, .. } => {
+                pbr::conductor_pdf(Microfacet::khr(alpha, 0.0), wo, wi)
+            }
+            Bsdf::ComplexConductor { alpha, film, .. } => {
+                pbr::conductor_pdf(Microfacet::khr(alpha, film.anisotropy), wo, wi)
             }
             Bsdf::Dielectric { eta, alpha, .. } => dielectric::rough_pdf(eta, alpha, wo, wi),
             Bsdf::ThinDielectric { .. } => 0.0,
@@ -228,15 +266,20 @@ impl<C: Carrier> Bsdf<C> {
             Bsdf::Lambert { albedo } => pbr::lambert_sample(albedo, wo, u),
             Bsdf::Conductor { f0, alpha } => pbr::conductor_sample(
                 |c| fresnel_schlick(f0, c),
-                alpha,
+                Microfacet::khr(alpha, 0.0),
                 alpha < SMOOTH_ALPHA,
                 wo,
                 u,
             ),
-            Bsdf::ComplexConductor { eta, k, alpha } => pbr::conductor_sample(
-                |c| fresnel_conductor_c(c, eta, k),
+            Bsdf::ComplexConductor {
+                eta,
+                k,
                 alpha,
-                alpha < SMOOTH_ALPHA,
+                film,
+            } => pbr::conductor_sample(
+                |c| complex_fresnel(c, eta, k, &film),
+                Microfacet::khr(alpha, film.anisotropy),
+                self.is_delta(),
                 wo,
                 u,
             ),

@@ -6,7 +6,8 @@
 //! non-zero only when `wo` and `wi` lie in the same hemisphere and use |cos θ|. Densities
 //! are per unit solid angle.
 
-use super::microfacet::Ggx;
+use super::anisotropic::Microfacet;
+use super::film::{ior_from_f0, FilmLobe};
 use super::{same_hemisphere, BsdfSample};
 use crate::optics::{fresnel_schlick, reflect};
 use crate::spectrum::Carrier;
@@ -76,7 +77,8 @@ pub(super) fn half_reflect(wo: Vec3, wi: Vec3) -> Option<Vec3> {
 /// Cook–Torrance specular term D·G2/(4|cos θo||cos θi|) without Fresnel (Walter 2007,
 /// eq. 20), and |wo·wm| for the Fresnel term.
 #[inline]
-pub(super) fn ggx_spec(ggx: Ggx, wo: Vec3, wi: Vec3) -> Option<(f32, f32)> {
+pub(super) fn ggx_spec(ggx: impl Into<Microfacet>, wo: Vec3, wi: Vec3) -> Option<(f32, f32)> {
+    let ggx: Microfacet = ggx.into();
     let wm = half_reflect(wo, wi)?;
     let s = ggx.d(wm) * ggx.g(wo, wi) / (4.0 * wo.z.abs() * wi.z.abs());
     Some((s, wo.dot(wm).abs()))
@@ -85,7 +87,8 @@ pub(super) fn ggx_spec(ggx: Ggx, wo: Vec3, wi: Vec3) -> Option<(f32, f32)> {
 /// pdf of reflecting a visible normal: D_wo(wm)/(4|wo·wm|) (Walter 2007, eq. 14;
 /// Heitz 2018, eq. 17).
 #[inline]
-pub(super) fn ggx_reflect_pdf(ggx: Ggx, wo: Vec3, wi: Vec3) -> f32 {
+pub(super) fn ggx_reflect_pdf(ggx: impl Into<Microfacet>, wo: Vec3, wi: Vec3) -> f32 {
+    let ggx: Microfacet = ggx.into();
     match half_reflect(wo, wi) {
         Some(wm) => ggx.pdf_visible(wo, wm) / (4.0 * wo.dot(wm).abs()),
         None => 0.0,
@@ -94,7 +97,8 @@ pub(super) fn ggx_reflect_pdf(ggx: Ggx, wo: Vec3, wi: Vec3) -> f32 {
 
 /// Reflects `wo` about a visible normal; `None` when it lands under the surface.
 #[inline]
-pub(super) fn ggx_reflect_sample(ggx: Ggx, wo: Vec3, u: Vec2) -> Option<Vec3> {
+pub(super) fn ggx_reflect_sample(ggx: impl Into<Microfacet>, wo: Vec3, u: Vec2) -> Option<Vec3> {
+    let ggx: Microfacet = ggx.into();
     if wo.z == 0.0 {
         return None;
     }
@@ -106,26 +110,26 @@ pub(super) fn ggx_reflect_sample(ggx: Ggx, wo: Vec3, u: Vec2) -> Option<Vec3> {
 /// reflectance at a cosine.
 pub(crate) fn conductor_eval<C: Carrier>(
     fresnel: impl Fn(f32) -> C,
-    alpha: f32,
+    ggx: Microfacet,
     wo: Vec3,
     wi: Vec3,
 ) -> C {
-    match ggx_spec(Ggx { alpha }, wo, wi) {
+    match ggx_spec(ggx, wo, wi) {
         Some((s, cos_h)) => fresnel(cos_h) * s,
         None => C::ZERO,
     }
 }
 
 /// Rough conductor pdf (VNDF reflection).
-pub(crate) fn conductor_pdf(alpha: f32, wo: Vec3, wi: Vec3) -> f32 {
-    ggx_reflect_pdf(Ggx { alpha }, wo, wi)
+pub(crate) fn conductor_pdf(ggx: Microfacet, wo: Vec3, wi: Vec3) -> f32 {
+    ggx_reflect_pdf(ggx, wo, wi)
 }
 
 /// Rough conductor sample (VNDF reflection); smooth (α below the delta threshold) gives the
 /// mirror direction with f = F/|cos θi|, pdf 1.
 pub(crate) fn conductor_sample<C: Carrier>(
     fresnel: impl Fn(f32) -> C,
-    alpha: f32,
+    ggx: Microfacet,
     smooth: bool,
     wo: Vec3,
     u: Vec2,
@@ -143,12 +147,11 @@ pub(crate) fn conductor_sample<C: Carrier>(
             transmission: false,
         });
     }
-    let ggx = Ggx { alpha };
     let wi = ggx_reflect_sample(ggx, wo, u)?;
     let pdf = ggx_reflect_pdf(ggx, wo, wi);
     (pdf > 0.0 && pdf.is_finite()).then(|| BsdfSample {
         wi,
-        f: conductor_eval(fresnel, alpha, wo, wi),
+        f: conductor_eval(fresnel, ggx, wo, wi),
         pdf,
         delta: false,
         transmission: false,
@@ -160,11 +163,13 @@ pub(crate) fn conductor_sample<C: Carrier>(
 pub(crate) struct Gltf<C: Carrier> {
     pub base: C,
     pub metallic: f32,
-    pub ggx: Ggx,
+    pub ggx: Microfacet,
     /// Dielectric F0 = min(((ior−1)/(ior+1))²·specular_color, 1)·specular.
     pub f0: C,
     /// Dielectric F90 = specular.
     pub f90: f32,
+    /// Iridescence and anisotropy ([`super::film`]).
+    pub film: FilmLobe,
 }
 
 impl<C: Carrier> Gltf<C> {
@@ -175,6 +180,7 @@ impl<C: Carrier> Gltf<C> {
         ior: f32,
         specular: f32,
         specular_color: C,
+        film: FilmLobe,
     ) -> Self {
         let f0_ior = if ior.is_finite() {
             ((ior - 1.0) / (ior + 1.0)).powi(2)
@@ -184,18 +190,39 @@ impl<C: Carrier> Gltf<C> {
         Gltf {
             base,
             metallic: metallic.clamp(0.0, 1.0),
-            ggx: Ggx {
-                alpha: alpha.max(GLTF_MIN_ALPHA),
-            },
+            ggx: Microfacet::khr(alpha.max(GLTF_MIN_ALPHA), film.anisotropy),
             f0: (specular_color * f0_ior).min(C::ONE) * specular,
             f90: specular,
+            film,
         }
     }
 
     /// Schlick with f90 (KHR_materials_specular): F0 + (F90 − F0)(1 − cos)^5.
     #[inline]
+    /// With KHR_materials_iridescence: mixed with the film's reflectance on a substrate of
+    /// index from F0/specular, times `specular` ([`super::film`]).
     pub(super) fn fresnel_d(&self, cos: f32) -> C {
-        self.f0 + (C::splat(self.f90) - self.f0) * (1.0 - cos.clamp(0.0, 1.0)).powi(5)
+        let plain = self.f0 + (C::splat(self.f90) - self.f0) * (1.0 - cos.clamp(0.0, 1.0)).powi(5);
+        match self.film.iridescence {
+            Some(film) if self.f90 > 0.0 => {
+                let eta = ior_from_f0(self.f0 / self.f90);
+                let r = film.reflectance(cos, eta, C::ZERO) * self.f90;
+                plain.lerp(r, film.factor)
+            }
+            _ => plain,
+        }
+    }
+
+    /// The metal lobe's Fresnel: Schlick with F0 = base colour, mixed with the film's
+    /// reflectance on a substrate of index from the base colour (KHR_materials_iridescence).
+    fn fresnel_m(&self, cos: f32) -> C {
+        let plain = fresnel_schlick(self.base, cos);
+        match self.film.iridescence {
+            Some(film) if self.metallic > 0.0 => {
+                film.mix(plain, cos, ior_from_f0(self.base), C::ZERO)
+            }
+            _ => plain,
+        }
     }
 
     /// f = mix((1 − max F_d)·base/π + F_d·spec, F_schlick(base)·spec, metallic)
@@ -206,7 +233,7 @@ impl<C: Carrier> Gltf<C> {
         };
         let fd = self.fresnel_d(cos_h);
         let dielectric = self.base * FRAC_1_PI * (1.0 - fd.max_element()) + fd * s;
-        let metal = fresnel_schlick(self.base, cos_h) * s;
+        let metal = self.fresnel_m(cos_h) * s;
         dielectric.lerp(metal, self.metallic)
     }
 

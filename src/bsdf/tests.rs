@@ -42,6 +42,7 @@ use hv_bins::{Bins, Lobe, Node};
 use std::f64::consts::PI;
 
 pub(super) mod chi2;
+mod film;
 mod hv_bins;
 
 const R: TransportMode = TransportMode::Radiance;
@@ -145,6 +146,7 @@ fn gltf(metallic: f32) -> Bsdf {
         specular: 1.0,
         specular_color: Vec3::ONE,
         layers: Layers::none(),
+        film: FilmLobe::NONE,
     }
 }
 
@@ -315,6 +317,7 @@ fn albedo_sampling_matches_quadrature() {
         eta: Vec3::new(0.18, 0.45, 1.4),
         k: Vec3::new(3.0, 2.4, 1.85),
         alpha: 0.3,
+        film: FilmLobe::NONE,
     };
     for deg in [20.0, 70.0] {
         let (mc, q) = albedos(&gold, wo_at(deg, false), R, 11);

@@ -28,6 +28,7 @@ mod accessor;
 mod draco;
 mod instancing;
 mod material;
+mod material_film;
 mod material_layers;
 mod mesh;
 mod meshopt;
@@ -54,6 +55,8 @@ const READ_EXTENSIONS: &[&str] = &[
     "KHR_materials_specular",
     "KHR_materials_emissive_strength",
     "KHR_materials_dispersion",
+    "KHR_materials_iridescence",
+    "KHR_materials_anisotropy",
     "KHR_lights_punctual",
     "KHR_mesh_quantization",
     "KHR_texture_transform",

@@ -183,6 +183,7 @@ fn to_meshes(
             positions: vec3s(&mesh.positions),
             normals,
             uvs,
+            tangents: Vec::new(),
             indices: mesh
                 .indices
                 .chunks_exact(3)

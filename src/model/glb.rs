@@ -6,7 +6,8 @@
 //!
 //! - One buffer (the BIN chunk). Per distinct geometry three buffer views/accessors:
 //!   POSITION (`VEC3` f32, with the `min`/`max` the spec requires), NORMAL (`VEC3` f32) and
-//!   indices (`SCALAR` u32); every view starts on a 4-byte boundary. Meshes with identical
+//!   indices (`SCALAR` u32), plus TEXCOORD_0 (`VEC2` f32) when `GenScene::mesh_uvs` gives
+//!   one; every view starts on a 4-byte boundary. Meshes with identical
 //!   geometry share accessors (e.g. three spheres with different materials).
 //! - One node per mesh (optional `translation`), per light and for the camera; materials
 //!   (emissive radiance as `emissiveFactor` × `KHR_materials_emissive_strength`), lights
@@ -41,10 +42,12 @@ pub fn encode_glb(scene: &GenScene) -> Result<Vec<u8>> {
     scene.validate()?;
     let mut w = Writer::default();
     for (i, m) in scene.meshes.iter().enumerate() {
+        let uvs = |k: usize| scene.mesh_uvs.get(k).cloned().flatten();
         let shared = scene.meshes[..i]
             .iter()
-            .position(|o| o.geometry == m.geometry);
-        let prim = w.primitive(&m.geometry, shared, m.material);
+            .enumerate()
+            .position(|(k, o)| o.geometry == m.geometry && uvs(k) == uvs(i));
+        let prim = w.primitive(&m.geometry, uvs(i).as_deref(), shared, m.material);
         w.meshes.push(json!({"name": m.name, "primitives": [prim]}));
         let mut node = Map::new();
         node.insert("name".into(), json!(m.name));
@@ -137,7 +140,13 @@ struct Writer {
 impl Writer {
     /// The primitive JSON for the next mesh, reusing the accessors of mesh `shared` (an
     /// earlier mesh with identical geometry) if given.
-    fn primitive(&mut self, geometry: &TriMesh, shared: Option<usize>, material: usize) -> Value {
+    fn primitive(
+        &mut self,
+        geometry: &TriMesh,
+        uvs: Option<&[glam::Vec2]>,
+        shared: Option<usize>,
+        material: usize,
+    ) -> Value {
         let found = shared.and_then(|j| self.attributes.get(j)).cloned();
         let (attributes, indices) = match found {
             Some(found) => found,
@@ -148,6 +157,10 @@ impl Writer {
                 if !geometry.normals.is_empty() {
                     let nrm = self.accessor_vec3(&geometry.normals, false);
                     attrs.insert("NORMAL".into(), json!(nrm));
+                }
+                if let Some(uvs) = uvs {
+                    let tex = self.accessor_vec2(uvs);
+                    attrs.insert("TEXCOORD_0".into(), json!(tex));
                 }
                 (
                     Value::Object(attrs),
@@ -190,6 +203,19 @@ impl Writer {
             acc.insert("max".into(), vec3(max));
         }
         self.accessors.push(Value::Object(acc));
+        self.accessors.len() - 1
+    }
+
+    fn accessor_vec2(&mut self, data: &[glam::Vec2]) -> usize {
+        let bytes: Vec<u8> = data
+            .iter()
+            .flat_map(|v| v.to_array())
+            .flat_map(f32::to_le_bytes)
+            .collect();
+        let view = self.view(&bytes, ARRAY_BUFFER);
+        self.accessors.push(json!({
+            "bufferView": view, "componentType": FLOAT, "count": data.len(), "type": "VEC2"
+        }));
         self.accessors.len() - 1
     }
 
@@ -288,6 +314,7 @@ mod tests {
             }),
             extras: None,
             light_extras: vec![Some(serde_json::json!({"iris_spectrum": "sun"}))],
+            mesh_uvs: Vec::new(),
         }
     }
 

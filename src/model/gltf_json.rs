@@ -80,7 +80,29 @@ pub(super) fn material(m: &GenMaterial, used: &mut BTreeSet<&'static str>) -> Va
             json!({"dispersion": num(d)}),
         );
     }
+    if let Some(i) = &m.film.iridescence {
+        ext.insert(
+            "KHR_materials_iridescence".into(),
+            json!({
+                "iridescenceFactor": num(i.factor),
+                "iridescenceIor": num(i.ior),
+                "iridescenceThicknessMinimum": num(i.thickness_min),
+                "iridescenceThicknessMaximum": num(i.thickness_max),
+            }),
+        );
+    }
+    if let Some(a) = &m.film.anisotropy {
+        ext.insert(
+            "KHR_materials_anisotropy".into(),
+            json!({
+                "anisotropyStrength": num(a.strength),
+                "anisotropyRotation": num(a.rotation),
+            }),
+        );
+    }
     for name in [
+        "KHR_materials_iridescence",
+        "KHR_materials_anisotropy",
         "KHR_materials_emissive_strength",
         "KHR_materials_ior",
         "KHR_materials_transmission",

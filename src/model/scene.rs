@@ -11,7 +11,8 @@
 
 use super::shapes::TriMesh;
 use crate::error::{Error, Result};
-use glam::{Vec3, Vec4};
+use crate::scene::desc::FilmDesc;
+use glam::{Vec2, Vec3, Vec4};
 
 /// A whole generated scene.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -31,6 +32,9 @@ pub struct GenScene {
     /// `extras` of `lights[i]` (e.g. `{"iris_spectrum": "sun"}`); missing entries = none.
     /// Must not be longer than `lights`.
     pub light_extras: Vec<Option<serde_json::Value>>,
+    /// TEXCOORD_0 of `meshes[i]` (one per position; glTF's v-down convention); missing
+    /// entries = none. Must not be longer than `meshes`.
+    pub mesh_uvs: Vec<Option<Vec<Vec2>>>,
 }
 
 /// A mesh instance: geometry, material and placement.
@@ -81,6 +85,9 @@ pub struct GenMaterial {
     /// Emitted radiance, linear RGB (may exceed 1): written as `emissiveFactor` = colour /
     /// max component and `KHR_materials_emissive_strength` = max component.
     pub emissive: Option<Vec3>,
+    /// KHR_materials_iridescence / KHR_materials_anisotropy (factors only: the writer
+    /// writes no textures).
+    pub film: FilmDesc,
 }
 
 impl GenMaterial {
@@ -97,6 +104,7 @@ impl GenMaterial {
             dispersion: None,
             extras: None,
             emissive: None,
+            film: FilmDesc::default(),
         }
     }
 
@@ -127,6 +135,7 @@ impl GenMaterial {
             dispersion: None,
             extras: None,
             emissive: None,
+            film: FilmDesc::default(),
         }
     }
 }
@@ -220,6 +229,19 @@ impl GenScene {
         if self.light_extras.len() > self.lights.len() {
             return Err(bad("light extras", "more entries than lights"));
         }
+        if self.mesh_uvs.len() > self.meshes.len() {
+            return Err(bad("mesh uvs", "more entries than meshes"));
+        }
+        for (i, uvs) in self.mesh_uvs.iter().enumerate() {
+            let Some(uvs) = uvs else { continue };
+            let el = format!("mesh {i} uvs");
+            if uvs.len() != self.meshes[i].geometry.positions.len() {
+                return Err(bad(&el, "not one per position"));
+            }
+            if !uvs.iter().all(|uv| uv.is_finite()) {
+                return Err(bad(&el, "non-finite texture coordinate"));
+            }
+        }
         if let Some(c) = &self.camera {
             check_camera(c)?;
         }
@@ -276,6 +298,10 @@ fn check_material(i: usize, m: &GenMaterial) -> Result<()> {
     }
     if !m.dispersion.is_none_or(|d| d.is_finite() && d >= 0.0) {
         return Err(bad(&el, "dispersion must be finite and ≥ 0"));
+    }
+    m.film.check().map_err(|e| bad(&el, e))?;
+    if !m.film.textures().is_empty() {
+        return Err(bad(&el, "the writer writes no textures"));
     }
     if !m
         .emissive

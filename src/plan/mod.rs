@@ -69,11 +69,23 @@ impl SpectralMode {
             SpectralMode::Off => false,
             SpectralMode::Auto => {
                 scene.materials.iter().any(|m| {
-                    m.is_dispersive() || m.emitter_shape().is_some() || m.conductor().is_some()
+                    m.is_dispersive()
+                        || m.emitter_shape().is_some()
+                        || m.conductor().is_some()
+                        || is_iridescent(m)
                 }) || scene.light_shapes.iter().any(Option::is_some)
             }
         }
     }
+}
+
+/// Whether a material has a thin film (KHR_materials_iridescence, factor > 0): an
+/// interference colour that spectral transport renders per wavelength.
+pub(crate) fn is_iridescent(m: &crate::material::Material) -> bool {
+    m.desc
+        .film
+        .iridescence
+        .is_some_and(|i| i.factor > 0.0 && i.thickness_max > 0.0)
 }
 
 /// Resolves [`Method::Auto`] for `scene` among the path tracer, the hybrid and SPPM, from

@@ -61,7 +61,11 @@ pub(super) fn transport(ev: &Evidence, spectral: SpectralMode, spectral_on: bool
     let metals = mats(&|m: &Material| m.conductor().is_some());
     let spectral_emitters = mats(&|m: &Material| m.emitter_shape().is_some());
     let spectral_lights = scene.light_shapes.iter().filter(|s| s.is_some()).count();
+    let iridescent = mats(&|m: &Material| super::is_iridescent(m));
     let mut evidence = Vec::new();
+    if !iridescent.is_empty() {
+        evidence.push(format!("iridescent materials {}", names(iridescent)));
+    }
     if !dispersive.is_empty() {
         evidence.push(format!("dispersive materials {}", names(dispersive)));
     }

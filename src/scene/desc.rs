@@ -24,10 +24,12 @@
 
 mod added;
 mod emission;
+mod film;
 mod layers;
 
 pub use added::{AddedLights, SpotKey};
 pub use emission::{effective_color, EmissionSpectrum, BLACKBODY_KELVIN, SUN_KELVIN};
+pub use film::{AnisotropyDesc, FilmDesc, IridescenceDesc};
 pub use layers::{LayerDesc, LayerPoint};
 
 use crate::light::env::Environment;
@@ -102,6 +104,9 @@ pub struct MeshDesc {
     pub normals: Vec<Vec3>,
     /// Per-vertex texture coordinates (TEXCOORD_0), or empty.
     pub uvs: Vec<Vec2>,
+    /// Per-vertex tangents (glTF TANGENT: xyz unit, w = ±1 the bitangent sign), world
+    /// space, or empty.
+    pub tangents: Vec<Vec4>,
     /// Triangles as vertex indices, counter-clockwise seen from outside.
     pub indices: Vec<[u32; 3]>,
     /// Index into `SceneDesc::materials`; `None` uses the default material.
@@ -244,6 +249,8 @@ pub struct MaterialDesc {
     pub alpha_mode: AlphaMode,
     /// KHR_materials_clearcoat, _sheen and _diffuse_transmission ([`LayerDesc`]).
     pub layers: LayerDesc,
+    /// KHR_materials_iridescence and KHR_materials_anisotropy.
+    pub film: FilmDesc,
 }
 
 impl Default for MaterialDesc {
@@ -273,6 +280,7 @@ impl Default for MaterialDesc {
             double_sided: false,
             alpha_mode: AlphaMode::Opaque,
             layers: LayerDesc::default(),
+            film: FilmDesc::default(),
         }
     }
 }

@@ -52,6 +52,10 @@ pub struct Scene {
     pub normals: Vec<Vec3>,
     /// Per-vertex texture coordinates (zero where the mesh has none).
     pub uvs: Vec<Vec2>,
+    /// Per-vertex glTF tangents (xyz, w = bitangent sign ±1; zero where the mesh has
+    /// none), or empty when no mesh has any. Read only for anisotropic materials
+    /// ([`crate::shading::film`]).
+    pub tangents: Vec<glam::Vec4>,
     /// Triangles (global vertex indices), CCW seen from outside.
     pub triangles: Vec<[u32; 3]>,
     /// Material index per triangle.
@@ -157,6 +161,7 @@ impl Scene {
             positions: g.positions,
             normals: g.normals,
             uvs: g.uvs,
+            tangents: g.tangents,
             triangles: g.triangles,
             triangle_material: g.triangle_material,
             triangle_data: g.triangle_data,
@@ -204,6 +209,7 @@ struct Geometry {
     positions: Vec<Vec3>,
     normals: Vec<Vec3>,
     uvs: Vec<Vec2>,
+    tangents: Vec<glam::Vec4>,
     triangles: Vec<[u32; 3]>,
     triangle_material: Vec<u32>,
     triangle_data: Vec<TriangleData>,
@@ -225,6 +231,11 @@ impl Geometry {
         let mut triangle_mesh = Vec::with_capacity(total_t);
         let mut triangle_data = Vec::with_capacity(total_t);
         let mut meshes = Vec::with_capacity(desc.meshes.len());
+        let any_tangents = desc
+            .meshes
+            .iter()
+            .any(|m| !m.tangents.is_empty() && m.tangents.len() == m.positions.len());
+        let mut tangents = Vec::with_capacity(if any_tangents { total_v } else { 0 });
         let default_material = desc.materials.len() as u32;
         for (mi, m) in desc.meshes.iter().enumerate() {
             let base = positions.len() as u32;
@@ -239,6 +250,13 @@ impl Geometry {
                 uvs.extend_from_slice(&m.uvs);
             } else {
                 uvs.extend(std::iter::repeat_n(Vec2::ZERO, m.positions.len()));
+            }
+            if any_tangents {
+                if m.tangents.len() == m.positions.len() {
+                    tangents.extend_from_slice(&m.tangents);
+                } else {
+                    tangents.extend(std::iter::repeat_n(glam::Vec4::ZERO, m.positions.len()));
+                }
             }
             meshes.push(MeshInfo {
                 name: m.name.clone(),
@@ -269,6 +287,7 @@ impl Geometry {
             positions,
             normals,
             uvs,
+            tangents,
             triangles: order.iter().map(|&i| triangles[i]).collect(),
             triangle_material: order.iter().map(|&i| triangle_material[i]).collect(),
             triangle_data: order.iter().map(|&i| triangle_data[i]).collect(),

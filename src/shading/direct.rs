@@ -74,7 +74,7 @@ pub fn direct_light<C: Carrier>(
     } else {
         (-hit.ns, -hit.ng)
     };
-    let frame = Frame::from_normal(hit.ns);
+    let frame = super::film::shading_frame(scene, hit, &at.sp.film);
     let r = Receiver {
         scene,
         bsdf: surface_bsdf(mat, &at.sp, lambda),

@@ -24,6 +24,7 @@ pub fn surface_bsdf<C: Carrier>(mat: &Material, sp: &ShadingPoint, l: &C::Lambda
             eta,
             k,
             alpha: sp.roughness * sp.roughness,
+            film: sp.film.lobe::<C>(l),
         };
     }
     let d = &mat.desc;
@@ -34,6 +35,7 @@ pub fn surface_bsdf<C: Carrier>(mat: &Material, sp: &ShadingPoint, l: &C::Lambda
         ior: mat.ior(),
         specular: d.specular,
         specular_color: C::reflectance(d.specular_color, l),
+        film: sp.film.lobe::<C>(l),
         layers: layers::<C>(&sp.layers, l),
     }
 }

@@ -199,7 +199,7 @@ impl<C: Carrier> Arrival<'_, C> {
                 _ => *beta = beta.keep_hero(lambda),
             }
         }
-        let frame = Frame::from_normal(self.hit.ns);
+        let frame = super::film::shading_frame(scene, &self.hit, &self.sp.film);
         Event::Scatter(Surface {
             hit: self.hit,
             bsdf,

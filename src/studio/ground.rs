@@ -217,6 +217,7 @@ pub fn add_ground(desc: &mut SceneDesc) {
         normals: vec![Vec3::Y; 4],
         positions,
         uvs: Vec::new(),
+        tangents: Vec::new(),
         indices: vec![[0, 1, 2], [0, 2, 3]],
         material: Some(desc.materials.len() - 1),
     });

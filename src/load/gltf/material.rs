@@ -10,6 +10,7 @@
 //! - `KHR_materials_volume.attenuationDistance` defaults to +∞ (never 0).
 //! - `KHR_materials_dispersion.dispersion` (= 20/V_d) is read from the raw extension JSON,
 //!   which the `gltf` crate does not type.
+//! - KHR_materials_iridescence and KHR_materials_anisotropy: `super::material_film`.
 //! - Material `extras` (the README's "IOR models"): `{"iris_glass": "N-BK7"}` names a
 //!   built-in Sellmeier glass (`spectrum::ior::KNOWN_NAMES`, case-insensitive) and gives
 //!   `ExplicitIor::Glass`; `{"cauchy": {"b": B, "c": C}}` gives `ExplicitIor::Cauchy`
@@ -127,9 +128,10 @@ fn read_material(
     )?;
 
     let layers = material_layers::read_layers(ctx, m, &element, &mut by_texture, warnings)?;
+
+    let film = super::material_film::read_film(ctx, m, &element, &mut by_texture, warnings)?;
     warnings.texcoord_sets.append(&mut texcoord_sets);
     warnings.undecodable_textures.append(&mut undecodable);
-
     let defaults = MaterialDesc::default();
     let volume = m.volume();
     let specular = m.specular();
@@ -175,6 +177,7 @@ fn read_material(
         double_sided: m.double_sided(),
         alpha_mode,
         layers,
+        film,
         name: element,
     };
     let (material, dropped) = spec_gloss::apply(spec_gloss.as_ref(), diffuse_texture, material);

@@ -3,8 +3,13 @@
 //!
 //! - Modes: TRIANGLES; TRIANGLE_STRIP and TRIANGLE_FAN are converted with the spec's
 //!   formulas (§3.7.2.1); POINTS and LINE* are skipped (reported by the caller).
-//! - Attributes read: POSITION (required to render), NORMAL, TEXCOORD_0; missing indices
-//!   mean `0..count`. Every index is checked against the vertex count here.
+//! - Attributes read: POSITION (required to render), NORMAL, TEXCOORD_0, TANGENT (only with
+//!   NORMAL, as the spec requires; non-finite components are an error, w keeps only its
+//!   sign ±1); missing indices mean `0..count`. Every index is checked against the vertex
+//!   count here.
+//! - Tangents transform with `M` (they are surface directions); the bitangent sign w is
+//!   recomputed so that w·(n′ × t′) still points along `M·(w·(n × t))` (a mirroring
+//!   transform flips it).
 //! - KHR_draco_mesh_compression: the attributes the extension lists and the indices come
 //!   from the decoded Draco mesh ([`super::draco`]); the others are read as usual.
 //! - World transform `M`: positions `M·p`; normals by the inverse transpose of the upper
@@ -17,7 +22,7 @@ use super::draco::read_draco;
 use super::Ctx;
 use crate::error::{LoadError, LoadErrorKind};
 use crate::scene::desc::MeshDesc;
-use glam::{Mat3, Mat4, Vec2, Vec3};
+use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 use gltf::mesh::Mode;
 use gltf::Semantic;
 
@@ -27,6 +32,7 @@ pub(super) struct LocalPrimitive {
     positions: Vec<Vec3>,
     normals: Vec<Vec3>,
     uvs: Vec<Vec2>,
+    tangents: Vec<Vec4>,
     triangles: Vec<[u32; 3]>,
     material: Option<usize>,
     /// Draco only: `(decoded, declared)` point counts when the decoder made more points.
@@ -133,6 +139,29 @@ pub(super) fn read_primitive(
     if !uvs.is_empty() {
         same_length("TEXCOORD_0", uvs.len())?;
     }
+    let tangents: Vec<Vec4> = match prim.get(&Semantic::Tangents) {
+        // The spec: without normals, provided tangents must be ignored.
+        Some(acc) if !normals.is_empty() => read_floats::<4>(ctx, &acc)
+            .map_err(|e| wrap("TANGENT", e))?
+            .into_iter()
+            .map(Vec4::from)
+            .collect(),
+        _ => Vec::new(),
+    };
+    if !tangents.is_empty() {
+        same_length("TANGENT", tangents.len())?;
+        if let Some((i, t)) = tangents.iter().enumerate().find(|(_, t)| !t.is_finite()) {
+            return Err(ctx.error(
+                element,
+                LoadErrorKind::InvalidValue,
+                format!("TANGENT {i} = {t} is not finite"),
+            ));
+        }
+    }
+    let tangents = tangents
+        .into_iter()
+        .map(|t| t.truncate().extend(if t.w < 0.0 { -1.0 } else { 1.0 }))
+        .collect();
 
     let extra_points = draco.as_ref().and_then(|d| d.extra_points);
     let indices = match (prim.indices(), draco) {
@@ -153,6 +182,7 @@ pub(super) fn read_primitive(
         positions,
         normals,
         uvs,
+        tangents,
         triangles: assemble(mode, &indices),
         material: prim.material().index(),
         extra_points,
@@ -196,7 +226,7 @@ pub(super) fn instantiate(local: &LocalPrimitive, world: &Mat4, name: String) ->
         .iter()
         .map(|&p| world.transform_point3(p))
         .collect();
-    let normals = local
+    let normals: Vec<Vec3> = local
         .normals
         .iter()
         .map(|&n| {
@@ -209,6 +239,23 @@ pub(super) fn instantiate(local: &LocalPrimitive, world: &Mat4, name: String) ->
             }
         })
         .collect();
+    let tangents = local
+        .tangents
+        .iter()
+        .zip(&local.normals)
+        .zip(&normals)
+        .map(|((&t, &n), &n_world)| {
+            let t3 = t.truncate();
+            let b_world = linear * (n.cross(t3) * t.w);
+            let t_world = linear * t3;
+            let w = if n_world.cross(t_world).dot(b_world) < 0.0 {
+                -1.0
+            } else {
+                1.0
+            };
+            t_world.normalize_or_zero().extend(w)
+        })
+        .collect();
     let indices = if det < 0.0 {
         local.triangles.iter().map(|&[a, b, c]| [a, c, b]).collect()
     } else {
@@ -219,6 +266,7 @@ pub(super) fn instantiate(local: &LocalPrimitive, world: &Mat4, name: String) ->
         positions,
         normals,
         uvs: local.uvs.clone(),
+        tangents,
         indices,
         material: local.material,
     }
@@ -264,6 +312,7 @@ mod tests {
             positions: vec![Vec3::X, Vec3::Y, Vec3::Z],
             normals: vec![Vec3::ONE; 3],
             uvs: Vec::new(),
+            tangents: Vec::new(),
             triangles: vec![[0, 1, 2]],
             material: None,
             extra_points: None,

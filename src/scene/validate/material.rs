@@ -65,6 +65,18 @@ pub(super) fn check_material(
             ));
         }
     }
+    // KHR_materials_iridescence / KHR_materials_anisotropy (`FilmDesc::check`).
+    for (field, t) in m.film.textures() {
+        if t.image >= image_count {
+            return Err(invalid(
+                LoadErrorKind::IndexOutOfRange,
+                format!("{field} refers to image {} ({image_count} images)", t.image),
+            ));
+        }
+    }
+    m.film
+        .check()
+        .map_err(|detail| invalid(LoadErrorKind::InvalidValue, detail))?;
 
     let cutoff = match m.alpha_mode {
         AlphaMode::Mask(c) => c,
