@@ -9,6 +9,7 @@
 //! [`GenScene::validate`] rejects anything that would give an invalid or lossy file
 //! (non-finite numbers, out-of-range indices, degenerate cameras) with [`Error::Usage`].
 
+use super::layers::GenLayers;
 use super::shapes::TriMesh;
 use crate::error::{Error, Result};
 use glam::{Vec3, Vec4};
@@ -81,6 +82,10 @@ pub struct GenMaterial {
     /// Emitted radiance, linear RGB (may exceed 1): written as `emissiveFactor` = colour /
     /// max component and `KHR_materials_emissive_strength` = max component.
     pub emissive: Option<Vec3>,
+    /// KHR_materials_clearcoat, _sheen and _diffuse_transmission (none by default).
+    pub layers: GenLayers,
+    /// glTF `doubleSided` (written only when true), e.g. a thin sheet seen from both sides.
+    pub double_sided: bool,
 }
 
 impl GenMaterial {
@@ -97,6 +102,8 @@ impl GenMaterial {
             dispersion: None,
             extras: None,
             emissive: None,
+            layers: GenLayers::default(),
+            double_sided: false,
         }
     }
 
@@ -127,6 +134,8 @@ impl GenMaterial {
             dispersion: None,
             extras: None,
             emissive: None,
+            layers: GenLayers::default(),
+            double_sided: false,
         }
     }
 }
@@ -258,7 +267,7 @@ fn check_mesh(i: usize, m: &GenMesh, materials: usize) -> Result<()> {
 }
 
 /// Material `i`: factors in their glTF ranges, finite non-negative ior, dispersion and
-/// emission, valid volume parameters.
+/// emission, valid volume and layer parameters.
 fn check_material(i: usize, m: &GenMaterial) -> Result<()> {
     let el = format!("material {i} \"{}\"", m.name);
     let c = m.base_color;
@@ -294,6 +303,9 @@ fn check_material(i: usize, m: &GenMaterial) -> Result<()> {
         if !ok {
             return Err(bad(&el, "invalid volume parameters"));
         }
+    }
+    if let Err(property) = m.layers.check() {
+        return Err(bad(&el, format!("{property} outside [0, 1]")));
     }
     Ok(())
 }

@@ -11,15 +11,18 @@
 //!   prism rainbow; [`focus_bench`]: the ball-lens test scene (not an asset);
 //!   [`bench`](mod@bench): the caustic sphere of the tests and benchmarks (not an asset).
 //! - [`gems`]: the `iris gem` previews shipped in `assets/gems/`.
+//! - [`materials`]: the clearcoat, sheen and diffuse-transmission test scenes shipped in
+//!   `assets/materials/`.
 //!
-//! [`write_all_assets`]`(root)` regenerates them into `root/paper/`, `root/scenes/` and
-//! `root/gems/` (`iris gen-assets assets`).
+//! [`write_all_assets`]`(root)` regenerates them into `root/paper/`, `root/scenes/`,
+//! `root/gems/` and `root/materials/` (`iris gen-assets assets`).
 
 pub mod bench;
 pub mod caustic;
 pub mod demos;
 pub mod focus_bench;
 pub mod gems;
+pub mod materials;
 pub mod paper;
 mod parts;
 pub mod rainbow;
@@ -39,11 +42,15 @@ pub const SCENES_DIR: &str = "scenes";
 /// Sub-directory of the asset root holding the `iris gem` preview scenes.
 pub const GEMS_DIR: &str = "gems";
 
-/// Writes every generated asset under `root`: [`PAPER_DIR`], [`SCENES_DIR`] and [`GEMS_DIR`]
-/// (directories created as needed, files written atomically); returns the paths written.
+/// Sub-directory of the asset root holding the material-layer test scenes.
+pub const MATERIALS_DIR: &str = "materials";
+
+/// Writes every generated asset under `root`: [`PAPER_DIR`], [`SCENES_DIR`], [`GEMS_DIR`] and
+/// [`MATERIALS_DIR`] (directories created as needed, files written atomically); returns the paths written.
 pub fn write_all_assets(root: &Path) -> Result<Vec<PathBuf>> {
     let mut written = write_paper_scenes(&root.join(PAPER_DIR))?;
     written.extend(write_scene_assets(&root.join(SCENES_DIR))?);
     written.extend(gems::write_gem_assets(&root.join(GEMS_DIR))?);
+    written.extend(materials::write_material_assets(&root.join(MATERIALS_DIR))?);
     Ok(written)
 }
