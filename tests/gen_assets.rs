@@ -6,7 +6,9 @@
 //! with the glass; the prism beam must meet the prism at minimum deviation. The caustic
 //! scenes (Fig. 4.5.1, the sun-through-a-slit rainbow, the gem under a spot) must have
 //! their delta lights where their docs say, the rainbow's baffle must shade all but the
-//! slit, and violet must land beyond red along the exported dispersion direction.
+//! slit, and violet must land beyond red along the exported dispersion direction. The
+//! material-layer test scenes (`assets/materials/`) must equal a regeneration, stay under
+//! 50 KB and carry their layer extensions, a camera and their own lights, no environment.
 //!
 //! To regenerate the committed files after changing the generator:
 //! `IRIS_BLESS_ASSETS=1 cargo test --release --no-default-features --test gen_assets`
@@ -1004,4 +1006,65 @@ fn focus_bench_loads_with_its_light_plate_and_screen() {
         .find(|m| m.transmission == 1.0)
         .expect("glass");
     assert_eq!(glass.ior, 1.5);
+}
+
+#[test]
+fn committed_material_scenes_match_regeneration() {
+    use iris::scenes::material_layers::{write_material_assets, MATERIAL_SCENES};
+    let scratch = common::scratch_dir("gen_assets_materials");
+    let written = write_material_assets(&scratch).expect("generate");
+    assert_eq!(written.len(), MATERIAL_SCENES.len());
+    let dir = asset_root().join(iris::scenes::MATERIALS_DIR);
+    for ((name, _), path) in MATERIAL_SCENES.iter().zip(&written) {
+        assert_eq!(path.file_name().and_then(|n| n.to_str()), Some(*name));
+        let committed = std::fs::read(dir.join(name)).unwrap_or_else(|e| {
+            panic!("assets/materials/{name}: {e} (regenerate with IRIS_BLESS_ASSETS=1)")
+        });
+        let fresh = std::fs::read(path).expect("read regenerated");
+        assert!(
+            fresh == committed,
+            "assets/materials/{name} differs from a regeneration; regenerate with IRIS_BLESS_ASSETS=1"
+        );
+        assert!(
+            committed.len() < 50_000,
+            "{name}: {} bytes",
+            committed.len()
+        );
+        let gltf = gltf::Gltf::from_slice(&committed).expect("valid GLB");
+        let used: Vec<&str> = gltf.extensions_used().collect();
+        let layer = match *name {
+            "clearcoat.glb" => "KHR_materials_clearcoat",
+            "sheen.glb" => "KHR_materials_sheen",
+            "diffuse_transmission.glb" => "KHR_materials_diffuse_transmission",
+            other => panic!("unexpected material scene {other}"),
+        };
+        assert!(used.contains(&layer), "{name}: {used:?}");
+        assert!(
+            used.contains(&"KHR_materials_emissive_strength")
+                || used.contains(&"KHR_lights_punctual")
+        );
+        assert!(
+            !used.contains(&"KHR_materials_dispersion"),
+            "{name}: dispersion"
+        );
+        assert_eq!(gltf.cameras().count(), 1, "{name}: camera");
+        let scene_extras = gltf.scenes().next().and_then(|s| s.extras().clone());
+        assert!(
+            scene_extras.is_none(),
+            "{name}: scene extras (environment?)"
+        );
+        let desc = iris::load::load_scene(path).expect("loads");
+        assert!(
+            iris::scene::lighting::has_own_light(&desc),
+            "{name}: no light of its own"
+        );
+        assert!(
+            desc.environment_light.is_none() && desc.environment.is_none(),
+            "{name}: environment"
+        );
+    }
+    assert_eq!(
+        std::fs::read_dir(&scratch).expect("ls").count(),
+        MATERIAL_SCENES.len()
+    );
 }

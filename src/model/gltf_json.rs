@@ -1,6 +1,7 @@
 //! glTF JSON for the non-geometry parts of a [`GenScene`](super::scene::GenScene):
-//! materials (with their KHR extensions), KHR_lights_punctual lights and the camera, plus
-//! the number formatting shared with [`super::glb`].
+//! materials (with their KHR extensions; the layer extensions' JSON is
+//! [`super::layers`]'s), KHR_lights_punctual lights and the camera, plus the number
+//! formatting shared with [`super::glb`].
 //!
 //! Frames: lights and cameras look down their node's local −Z with +Y up (glTF 2.0 §3.10
 //! "Cameras", KHR_lights_punctual "Adding Light Instances to Nodes"), so their nodes carry
@@ -113,8 +114,12 @@ pub(super) fn material(m: &GenMaterial, used: &mut BTreeSet<&'static str>) -> Va
             used.insert(name);
         }
     }
+    m.layers.write(&mut ext, used);
     if !ext.is_empty() {
         out.insert("extensions".into(), Value::Object(ext));
+    }
+    if m.double_sided {
+        out.insert("doubleSided".into(), json!(true));
     }
     if let Some(x) = &m.extras {
         out.insert("extras".into(), x.clone());

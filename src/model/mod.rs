@@ -11,7 +11,8 @@
 //!   interface vertices exactly).
 //! - [`gem`]: the round brilliant cut; [`cuts`]: the cuts of `iris gem` (round
 //!   brilliant, emerald, oval, pear) and their preview scene; [`stones`]: named gem materials.
-//! - [`scene`]: the in-memory scene model ([`GenScene`]) in Iris's conventions.
+//! - [`scene`]: the in-memory scene model ([`GenScene`]) in Iris's conventions;
+//!   [`layers`]: its materials' clearcoat, sheen and diffuse-transmission layers.
 //! - [`glb`]: the deterministic GLB writer (its glTF JSON for cameras, lights and
 //!   materials in `gltf_json`).
 
@@ -20,9 +21,11 @@ pub mod gem;
 pub mod glb;
 mod gltf_json;
 pub mod lathe;
+pub mod layers;
 pub mod scene;
 pub mod shapes;
 pub mod stones;
 
 pub use glb::{encode_glb, write_glb};
+pub use layers::{GenClearcoat, GenDiffuseTransmission, GenLayers, GenSheen};
 pub use scene::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene, GenVolume};

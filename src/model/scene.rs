@@ -9,6 +9,7 @@
 //! [`GenScene::validate`] rejects anything that would give an invalid or lossy file
 //! (non-finite numbers, out-of-range indices, degenerate cameras) with [`Error::Usage`].
 
+use super::layers::GenLayers;
 use super::shapes::TriMesh;
 use crate::error::{Error, Result};
 use crate::scene::desc::FilmDesc;
@@ -88,6 +89,10 @@ pub struct GenMaterial {
     /// KHR_materials_iridescence / KHR_materials_anisotropy (factors only: the writer
     /// writes no textures).
     pub film: FilmDesc,
+    /// KHR_materials_clearcoat, _sheen and _diffuse_transmission (none by default).
+    pub layers: GenLayers,
+    /// glTF `doubleSided` (written only when true), e.g. a thin sheet seen from both sides.
+    pub double_sided: bool,
 }
 
 impl GenMaterial {
@@ -105,6 +110,8 @@ impl GenMaterial {
             extras: None,
             emissive: None,
             film: FilmDesc::default(),
+            layers: GenLayers::default(),
+            double_sided: false,
         }
     }
 
@@ -136,6 +143,8 @@ impl GenMaterial {
             extras: None,
             emissive: None,
             film: FilmDesc::default(),
+            layers: GenLayers::default(),
+            double_sided: false,
         }
     }
 }
@@ -280,7 +289,7 @@ fn check_mesh(i: usize, m: &GenMesh, materials: usize) -> Result<()> {
 }
 
 /// Material `i`: factors in their glTF ranges, finite non-negative ior, dispersion and
-/// emission, valid volume parameters.
+/// emission, valid volume and layer parameters.
 fn check_material(i: usize, m: &GenMaterial) -> Result<()> {
     let el = format!("material {i} \"{}\"", m.name);
     let c = m.base_color;
@@ -320,6 +329,9 @@ fn check_material(i: usize, m: &GenMaterial) -> Result<()> {
         if !ok {
             return Err(bad(&el, "invalid volume parameters"));
         }
+    }
+    if let Err(property) = m.layers.check() {
+        return Err(bad(&el, format!("{property} outside [0, 1]")));
     }
     Ok(())
 }

@@ -11,7 +11,9 @@
 //!   prism rainbow; [`focus_bench`]: the ball-lens test scene (not an asset);
 //!   [`bench`](mod@bench): the caustic sphere of the tests and benchmarks (not an asset).
 //! - [`gems`]: the `iris gem` previews shipped in `assets/gems/`.
-//! - [`materials`]: iridescence and anisotropy test scenes shipped in `assets/materials/`.
+//! - [`materials`]: iridescence and anisotropy test scenes, and [`material_layers`]: the
+//!   clearcoat, sheen and diffuse-transmission test scenes, both shipped in
+//!   `assets/materials/`.
 //!
 //! [`write_all_assets`]`(root)` regenerates them into `root/paper/`, `root/scenes/`,
 //! `root/gems/` and `root/materials/` (`iris gen-assets assets`).
@@ -21,6 +23,7 @@ pub mod caustic;
 pub mod demos;
 pub mod focus_bench;
 pub mod gems;
+pub mod material_layers;
 pub mod materials;
 pub mod paper;
 mod parts;
@@ -51,5 +54,8 @@ pub fn write_all_assets(root: &Path) -> Result<Vec<PathBuf>> {
     written.extend(write_scene_assets(&root.join(SCENES_DIR))?);
     written.extend(gems::write_gem_assets(&root.join(GEMS_DIR))?);
     written.extend(materials::write_material_assets(&root.join(MATERIALS_DIR))?);
+    written.extend(material_layers::write_material_assets(
+        &root.join(MATERIALS_DIR),
+    )?);
     Ok(written)
 }
