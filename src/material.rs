@@ -51,6 +51,10 @@ pub struct ShadingPoint {
     pub transmission: f32,
     /// Emitted radiance, linear RGB.
     pub emissive: Vec3,
+    /// KHR_materials_specular factor, texture applied.
+    pub specular: f32,
+    /// KHR_materials_specular colour (linear), texture applied.
+    pub specular_color: Vec3,
     /// KHR_materials_clearcoat, _sheen and _diffuse_transmission at this point.
     pub layers: LayerPoint,
     /// KHR_materials_iridescence / KHR_materials_anisotropy, textures applied.
@@ -118,6 +122,10 @@ impl Material {
             roughness: (d.roughness * mr.y).clamp(0.0, 1.0),
             transmission: (d.transmission * tr.x).clamp(0.0, 1.0) * (1.0 - metallic),
             emissive: self.emission() * em.truncate(),
+            // KHR_materials_specular: specularTexture's A, specularColorTexture's RGB (sRGB).
+            specular: d.specular * lookup(images, d.specular_texture, uv, Encoding::Linear).w,
+            specular_color: d.specular_color
+                * lookup(images, d.specular_color_texture, uv, Encoding::Srgb).truncate(),
             layers: d.layers.shade(uv, images),
             film: crate::shading::film::FilmPoint::shade(&d.film, uv, images),
         }

@@ -234,6 +234,10 @@ pub struct MaterialDesc {
     pub specular: f32,
     /// KHR_materials_specular specularColorFactor (linear).
     pub specular_color: Vec3,
+    /// KHR_materials_specular `specularTexture` (A channel multiplies `specular`).
+    pub specular_texture: Option<TextureRef>,
+    /// KHR_materials_specular `specularColorTexture` (sRGB RGB multiplies `specular_color`).
+    pub specular_color_texture: Option<TextureRef>,
     /// KHR_materials_dispersion `dispersion` = 20/Abbe number.
     pub dispersion: f32,
     /// An explicit IOR model (extras / MTL keys); overrides `ior` and `dispersion`.
@@ -274,6 +278,8 @@ impl Default for MaterialDesc {
             attenuation_distance: f32::INFINITY,
             specular: 1.0,
             specular_color: Vec3::ONE,
+            specular_texture: None,
+            specular_color_texture: None,
             dispersion: 0.0,
             ior_model: None,
             conductor: None,

@@ -27,14 +27,13 @@ pub fn surface_bsdf<C: Carrier>(mat: &Material, sp: &ShadingPoint, l: &C::Lambda
             film: sp.film.lobe::<C>(l),
         };
     }
-    let d = &mat.desc;
     Bsdf::GltfPbr {
         base: C::reflectance(sp.base_color, l),
         metallic: sp.metallic,
         alpha: sp.roughness * sp.roughness,
         ior: mat.ior(),
-        specular: d.specular,
-        specular_color: C::reflectance(d.specular_color, l),
+        specular: sp.specular,
+        specular_color: C::reflectance(sp.specular_color, l),
         film: sp.film.lobe::<C>(l),
         layers: layers::<C>(&sp.layers, l),
     }

@@ -121,6 +121,17 @@ fn read_material(
         "diffuseTexture",
         spec_gloss.as_ref().and_then(|s| s.diffuse_texture()),
     )?;
+    let specular_ext = m.specular();
+    let specular_texture = texture(
+        "specularTexture",
+        specular_ext.as_ref().and_then(|s| s.specular_texture()),
+    )?;
+    let specular_color_texture = texture(
+        "specularColorTexture",
+        specular_ext
+            .as_ref()
+            .and_then(|s| s.specular_color_texture()),
+    )?;
     let transmission = m.transmission();
     let transmission_texture = texture(
         "transmissionTexture",
@@ -170,6 +181,8 @@ fn read_material(
         specular_color: specular.as_ref().map_or(defaults.specular_color, |s| {
             Vec3::from(s.specular_color_factor())
         }),
+        specular_texture,
+        specular_color_texture,
         dispersion: dispersion(ctx, m, &element)?,
         ior_model: explicit_ior(ctx, m, &element)?,
         conductor: None,
