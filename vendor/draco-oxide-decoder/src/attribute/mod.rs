@@ -837,6 +837,13 @@ fn parse_payload<'a>(
             ),
         }
     } else {
+        // Iris patch (IRIS-PATCHES.md, P5): raw corrections are 4 bytes each, so the
+        // stream must hold them all before they size the vector.
+        if num_values.saturating_mul(n) > reader.remaining() / 4 {
+            return Err(Err::MalformedAttribute(
+                "raw corrections exceed the remaining stream",
+            ));
+        }
         let mut out = Vec::with_capacity(num_values * n);
         for _ in 0..num_values * n {
             out.push(i32::read_from(reader)?);
@@ -904,6 +911,12 @@ fn read_raw_values(
     }
     // Gated types cannot reach here: descriptors declaring them were rejected
     // at parse, so their fall-through to the error arm is dead code.
+    // Iris patch (IRIS-PATCHES.md, P5): each value takes `size()` bytes of the stream.
+    if num_values.saturating_mul(n) > reader.remaining() / component_type.size().max(1) {
+        return Err(Err::MalformedAttribute(
+            "raw values exceed the remaining stream",
+        ));
+    }
     let mut out = Vec::with_capacity(num_values * n);
     for _ in 0..num_values * n {
         out.push(match component_type {

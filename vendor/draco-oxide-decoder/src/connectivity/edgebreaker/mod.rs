@@ -45,8 +45,18 @@ pub fn decode(reader: &mut Reader<'_>) -> Result<EdgebreakerConnectivity, Err> {
     if counts.num_attribute_data > 8 {
         return Err(Err::Unimplemented);
     }
+    // Iris patch (IRIS-PATCHES.md, P3): every encoded symbol builds one face and every
+    // split symbol is an encoded symbol, so a stream declaring more is malformed; checked
+    // here, before `max_num_vertices` sizes the valence and hole tables.
+    if counts.num_encoded_symbols > counts.num_faces
+        || counts.num_encoded_split_symbols > counts.num_encoded_symbols
+    {
+        return Err(Err::MalformedConnectivity(
+            "symbol counts exceed the face count",
+        ));
+    }
 
-    let splits = decode_topology_splits(reader)?;
+    let splits = decode_topology_splits(reader, counts.num_faces)?;
     let max_num_vertices = counts.num_encoded_vertices + counts.num_encoded_split_symbols;
 
     match traversal_type {

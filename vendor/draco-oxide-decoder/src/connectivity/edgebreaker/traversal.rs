@@ -62,8 +62,20 @@ pub struct TopologySplit {
 
 /// Decodes the topology-split stream: leb128 count, delta-coded id pairs,
 /// one edge bit per split.
-pub fn decode_topology_splits(reader: &mut Reader<'_>) -> Result<Vec<TopologySplit>, Err> {
+///
+/// Iris patch (IRIS-PATCHES.md, P4): the count is at most `num_faces` (as Google's
+/// `DecodeHoleAndTopologySplitEvents` checks) and at most half the remaining bytes (each
+/// split takes two leb128s), before it sizes the split list.
+pub fn decode_topology_splits(
+    reader: &mut Reader<'_>,
+    num_faces: usize,
+) -> Result<Vec<TopologySplit>, Err> {
     let num_splits = leb128_read(reader)? as usize;
+    if num_splits > num_faces || num_splits > reader.remaining() / 2 {
+        return Err(Err::MalformedConnectivity(
+            "topology split count exceeds the face count or the stream",
+        ));
+    }
     let mut splits = Vec::with_capacity(num_splits);
 
     let mut last_source = 0usize;
