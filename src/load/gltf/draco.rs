@@ -25,11 +25,12 @@
 //! no C++ toolchain or cmake in CI, adds no `unsafe` to Iris, and decodes Blender's
 //! exports (tests/load_compressed.rs compares them with their uncompressed twins). Its
 //! caveats: it is an alpha, and it does use `unsafe` internally (unchecked indexing in
-//! its attribute traversal); it is fuzzed through Iris's glTF target, which found defects
-//! Iris cannot bound from outside: stream-declared sizes that the decoder allocates
-//! unchecked (up to GiBs before failing, and one allocation failure that aborts the
-//! process). See fuzz/open/README.md; until they are fixed upstream, a hostile Draco
-//! file is not held to the loader's no-abort standard.
+//! its attribute traversal). Iris builds a patched copy (`vendor/draco-oxide-decoder`,
+//! wired by `[patch.crates-io]`; the changes are listed in its `IRIS-PATCHES.md`): fuzzing
+//! through Iris's glTF target found stream-declared sizes the decoder allocated unchecked
+//! (up to 1.8 GB, and one allocation failure that aborted the process), and the patch
+//! bounds each such count by the remaining stream, the declared faces or values, or an
+//! absolute cap, so those inputs (fuzz/regressions/gltf/draco_*.glb) end in clean errors.
 //!
 //! Hostile input: the decoder's own errors become [`LoadError`]s; a panic inside it is
 //! caught ([`std::panic::catch_unwind`]) and reported the same way. Before decoding, the
