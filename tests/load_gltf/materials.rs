@@ -345,3 +345,43 @@ fn specular_glossiness_maps_to_metallic_roughness() {
     assert_eq!(w.len(), 1, "{:?}", desc.warnings);
     assert!(w[0].contains("material 0 \"Old\""), "{}", w[0]);
 }
+
+/// KHR_materials_specular textures: specularTexture's alpha scales the factor and
+/// specularColorTexture's (sRGB) colour scales the colour at the shading point.
+#[test]
+fn specular_textures_scale_the_factors() {
+    let dir = common::scratch_dir("gltf_specular_textures");
+    let mut doc = cube_doc();
+    doc["extensionsUsed"] = json!(["KHR_materials_specular"]);
+    doc["images"] = json!([{"uri": data_uri("image/png", &png_2x2())}]);
+    doc["textures"] = json!([{"source": 0}]);
+    doc["materials"] = json!([{"name": "Spec", "extensions": {"KHR_materials_specular": {
+        "specularFactor": 0.5, "specularTexture": {"index": 0},
+        "specularColorFactor": [1.0, 0.5, 1.0], "specularColorTexture": {"index": 0}}}}]);
+    doc["meshes"][0]["primitives"][0]["material"] = json!(0);
+    let desc = load(&write_json(&dir, "spec.gltf", &doc));
+    let m = material(&desc, "Spec");
+    assert!(m.specular_texture.is_some() && m.specular_color_texture.is_some());
+    let mat = iris::material::Material::new(m.clone());
+    // Texel (1, 1) is (9, 9, 9, 128): alpha 128/255, colour sRGB 9 ≈ 0.00273 linear.
+    let sp = mat.shade(glam::Vec2::new(0.75, 0.75), &desc.images);
+    assert!(
+        (sp.specular - 0.5 * 128.0 / 255.0).abs() < 1e-3,
+        "{}",
+        sp.specular
+    );
+    let c9 = 9.0f32 / 255.0 / 12.92;
+    assert!(
+        (sp.specular_color - Vec3::new(c9, 0.5 * c9, c9)).length() < 1e-4,
+        "{}",
+        sp.specular_color
+    );
+    // The red texel keeps the full factor and the colour's red channel.
+    let sp = mat.shade(glam::Vec2::new(0.25, 0.25), &desc.images);
+    assert!((sp.specular - 0.5).abs() < 1e-6);
+    assert!(
+        (sp.specular_color - Vec3::new(1.0, 0.0, 0.0)).length() < 1e-5,
+        "{}",
+        sp.specular_color
+    );
+}
