@@ -35,6 +35,7 @@ mod meshopt;
 mod scene;
 mod source;
 mod spec_gloss;
+mod texture_info;
 mod texture_source;
 mod texture_transform;
 mod unlit;

@@ -13,7 +13,8 @@
 //! sources, `KHR_texture_transform`, texCoord warnings).
 
 use super::material_layers::TextureFn;
-use super::{texture_transform, Ctx, Warnings};
+use super::texture_info::texture_info;
+use super::{Ctx, Warnings};
 use crate::error::{LoadError, LoadErrorKind};
 use crate::scene::desc::{AnisotropyDesc, FilmDesc, IridescenceDesc, TextureRef};
 use serde_json::{Map, Value};
@@ -101,40 +102,12 @@ impl Reader<'_, '_, '_> {
         let Some(info) = obj.get(key) else {
             return Ok(None);
         };
-        let slot = format!("{ext}.{key}");
-        let info = info
-            .as_object()
-            .ok_or_else(|| self.invalid(format!("{slot} must be a textureInfo object")))?;
-        let count = self.ctx.doc.textures().len();
-        let index = info
-            .get("index")
-            .and_then(Value::as_u64)
-            .ok_or_else(|| self.invalid(format!("{slot}.index must be a texture index")))?;
-        let texture = usize::try_from(index)
-            .ok()
-            .and_then(|i| self.ctx.doc.textures().nth(i))
-            .ok_or_else(|| {
-                self.ctx.error(
-                    self.element,
-                    LoadErrorKind::IndexOutOfRange,
-                    format!("{slot}.index {index} is not below the texture count {count}"),
-                )
-            })?;
-        let texcoord = match info.get("texCoord") {
-            None => 0,
-            Some(v) => v
-                .as_u64()
-                .and_then(|t| u32::try_from(t).ok())
-                .ok_or_else(|| self.invalid(format!("{slot}.texCoord must be an integer")))?,
-        };
-        let (transform, texcoord_override) =
-            texture_transform::of_json(&Value::Object(info.clone()))
-                .map_err(|e| self.invalid(format!("{slot}: {e}")))?;
-        (self.texture)(
-            &slot,
-            &texture,
-            texcoord_override.unwrap_or(texcoord),
-            transform,
+        texture_info(
+            self.ctx,
+            self.element,
+            &format!("{ext}.{key}"),
+            info,
+            self.texture,
         )
     }
 

@@ -17,7 +17,8 @@
 //! colour that is not 3 numbers in [0, 1], a texture that is not `{"index": i}` with a
 //! texture `i` of the file (`IndexOutOfRange` when there is no such texture).
 
-use super::{texture_transform, Ctx, Warnings};
+use super::texture_info::texture_info;
+use super::{Ctx, Warnings};
 use crate::error::{LoadError, LoadErrorKind};
 use crate::scene::desc::{LayerDesc, TextureRef};
 use glam::Vec3;
@@ -90,35 +91,13 @@ impl Ext<'_, '_> {
         let Some(v) = self.obj.get(key) else {
             return Ok(None);
         };
-        let index = v
-            .get("index")
-            .and_then(Value::as_u64)
-            .ok_or_else(|| self.invalid(key, format!("= {v} must be {{\"index\": i, …}}")))?;
-        let texcoord = match v.get("texCoord") {
-            None => 0,
-            Some(t) => t
-                .as_u64()
-                .and_then(|t| u32::try_from(t).ok())
-                .ok_or_else(|| {
-                    self.invalid(key, format!("texCoord = {t} must be an integer ≥ 0"))
-                })?,
-        };
-        let (transform, texcoord_override) =
-            texture_transform::of_json(v).map_err(|e| self.invalid(key, e))?;
-        let tex = usize::try_from(index)
-            .ok()
-            .and_then(|i| self.ctx.doc.textures().nth(i))
-            .ok_or_else(|| {
-                self.ctx.error(
-                    self.element,
-                    LoadErrorKind::IndexOutOfRange,
-                    format!(
-                        "{}.{key} refers to texture {index}, which does not exist",
-                        self.name
-                    ),
-                )
-            })?;
-        texture(key, &tex, texcoord_override.unwrap_or(texcoord), transform)
+        texture_info(
+            self.ctx,
+            self.element,
+            &format!("{}.{key}", self.name),
+            v,
+            texture,
+        )
     }
 }
 
