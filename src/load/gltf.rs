@@ -26,6 +26,7 @@
 
 mod accessor;
 mod draco;
+mod draco_header;
 mod instancing;
 mod material;
 mod material_film;

@@ -34,11 +34,13 @@
 //!
 //! Hostile input: the decoder's own errors become [`LoadError`]s; a panic inside it is
 //! caught ([`std::panic::catch_unwind`]) and reported the same way. Before decoding, the
-//! stream's header counts (faces, vertices) are read here and must agree with the
-//! accessors, and the accessors' counts may be at most [`MAX_EXPANSION`] elements per
+//! stream's header counts (faces, vertices; `draco_header`, which refuses a stream whose
+//! counts it cannot read) must agree with the accessors, and the accessors' counts (or,
+//! without indices, the corners) may be at most [`MAX_EXPANSION`] elements per
 //! compressed byte, so a small file cannot ask the decoder for gigabytes.
 
 use super::accessor::component;
+use super::draco_header::header_counts;
 use super::source::view_bytes;
 use super::Ctx;
 use crate::error::{LoadError, LoadErrorKind};
@@ -140,23 +142,27 @@ pub(super) fn read_draco(
             ),
         ));
     }
-    if let Some(header) = sniff_counts(bytes) {
-        let faces_ok = index_count.is_none_or(|n| Some(n) == header.faces.checked_mul(3));
-        let points_ok = wanted
-            .iter()
-            .all(|(_, _, acc)| header.vertices <= acc.count());
-        if !faces_ok || !points_ok {
-            return Err(fail(
-                LoadErrorKind::Parse,
-                format!(
-                    "the Draco stream has {} faces and {} vertices, which disagree with the accessors ({} indices, {} points)",
-                    header.faces,
-                    header.vertices,
-                    index_count.map_or("no".to_string(), |n| n.to_string()),
-                    wanted.first().map_or(0, |(_, _, acc)| acc.count())
-                ),
-            ));
-        }
+    let header = header_counts(bytes).map_err(|d| fail(LoadErrorKind::Parse, d))?;
+    // Without an indices accessor the faces are bounded by the byte budget instead.
+    let corners = header.faces.checked_mul(3);
+    let faces_ok = match index_count {
+        Some(n) => corners == Some(n),
+        None => corners.is_some_and(|c| c <= budget),
+    };
+    let points_ok = wanted
+        .iter()
+        .all(|(_, _, acc)| header.vertices <= acc.count());
+    if !faces_ok || !points_ok {
+        return Err(fail(
+            LoadErrorKind::Parse,
+            format!(
+                "the Draco stream has {} faces and {} vertices, which disagree with the accessors ({} indices, {} points)",
+                header.faces,
+                header.vertices,
+                index_count.map_or("no".to_string(), |n| n.to_string()),
+                wanted.first().map_or(0, |(_, _, acc)| acc.count())
+            ),
+        ));
     }
 
     let mesh = std::panic::catch_unwind(|| draco_oxide_decoder::decode_mesh(bytes))
@@ -337,86 +343,8 @@ fn attribute_values(
     }
 }
 
-/// Face and vertex counts from a Draco 2.2 mesh header, when it has no metadata section
-/// (Draco bitstream spec: header, then the sequential or Edgebreaker connectivity header).
-struct HeaderCounts {
-    faces: usize,
-    vertices: usize,
-}
-
-/// Reads [`HeaderCounts`]; `None` when the stream is not a plain 2.2 mesh header (the
-/// decoder then reports the problem itself).
-fn sniff_counts(bytes: &[u8]) -> Option<HeaderCounts> {
-    if bytes.get(..5)? != b"DRACO" || bytes.get(5..8)? != [2, 2, 1] {
-        return None;
-    }
-    let method = *bytes.get(8)?;
-    let flags = u16::from_le_bytes([*bytes.get(9)?, *bytes.get(10)?]);
-    if flags & 0x8000 != 0 {
-        return None;
-    }
-    let mut at = 11;
-    match method {
-        // Sequential: num_faces, num_points (varints).
-        0 => {
-            let faces = varint(bytes, &mut at)?;
-            let vertices = varint(bytes, &mut at)?;
-            Some(HeaderCounts { faces, vertices })
-        }
-        // Edgebreaker: traversal type (u8), num_encoded_vertices, num_faces.
-        1 => {
-            at += 1;
-            let vertices = varint(bytes, &mut at)?;
-            let faces = varint(bytes, &mut at)?;
-            Some(HeaderCounts { faces, vertices })
-        }
-        _ => None,
-    }
-}
-
-/// An unsigned LEB128 varint at `*at` (at most 64 bits).
-fn varint(bytes: &[u8], at: &mut usize) -> Option<usize> {
-    let mut value: u64 = 0;
-    for shift in (0..64).step_by(7) {
-        let b = *bytes.get(*at)?;
-        *at += 1;
-        value |= u64::from(b & 0x7f).checked_shl(shift)?;
-        if b & 0x80 == 0 {
-            return usize::try_from(value).ok();
-        }
-    }
-    None
-}
-
 #[cfg(test)]
 mod tests {
-    use super::*;
-
-    #[test]
-    fn header_counts_are_read_from_both_connectivity_methods() {
-        let mut seq = b"DRACO\x02\x02\x01\x00\x00\x00".to_vec();
-        seq.extend([0x96, 0x01, 5]); // 150 faces, 5 points
-        let c = sniff_counts(&seq).expect("sequential");
-        assert_eq!((c.faces, c.vertices), (150, 5));
-        let mut eb = b"DRACO\x02\x02\x01\x01\x00\x00".to_vec();
-        eb.extend([0, 8, 12]); // traversal 0, 8 vertices, 12 faces
-        let c = sniff_counts(&eb).expect("edgebreaker");
-        assert_eq!((c.faces, c.vertices), (12, 8));
-        eb[10] = 0x80; // metadata flag: counts unknown
-        assert!(sniff_counts(&eb).is_none());
-        assert!(sniff_counts(b"DRACO\x02\x02").is_none());
-        assert!(sniff_counts(b"DRECO\x02\x02\x01\x00\x00\x00\x01\x01").is_none());
-    }
-
-    #[test]
-    fn varints_stop_at_overflow_and_truncation() {
-        let mut at = 0;
-        assert_eq!(varint(&[0xe5, 0x8e, 0x26], &mut at), Some(624_485));
-        assert_eq!(at, 3);
-        assert_eq!(varint(&[0x80, 0x80], &mut 0), None);
-        assert_eq!(varint(&[0xff; 11], &mut 0), None);
-    }
-
     #[test]
     fn garbage_is_an_error_not_a_panic() {
         for data in [
