@@ -11,6 +11,12 @@
 //! connectivity header: sequential `num_faces, num_points`, Edgebreaker traversal type
 //! (u8), `num_encoded_vertices, num_faces` (all LEB128).
 //!
+//! The fields are read as the vendored decoder reads them (`header.rs`, `metadata.rs`,
+//! the sequential and Edgebreaker connectivity headers: same order, LEB128 values, u8
+//! name lengths, nesting cap); where the decoder is looser (LEB128 values longer than
+//! ten bytes) this reader refuses, so counts read here are the counts the decoder uses.
+//! The decoder's parsers are private to it, and calling them would mean a sixth patch.
+//!
 //! Invariant: every stream the decoder would accept has readable counts here. A stream
 //! whose counts cannot be read is refused with the reason, never handed to the decoder
 //! unbounded (fuzzing found a metadata-flagged stream whose unchecked face count made the
