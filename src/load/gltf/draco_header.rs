@@ -17,10 +17,11 @@
 //! ten bytes) this reader refuses, so counts read here are the counts the decoder uses.
 //! The decoder's parsers are private to it, and calling them would mean a sixth patch.
 //!
-//! Invariant: every stream the decoder would accept has readable counts here. A stream
-//! whose counts cannot be read is refused with the reason, never handed to the decoder
-//! unbounded (fuzzing found a metadata-flagged stream whose unchecked face count made the
-//! decoder ask for 7.5 EB and abort: fuzz/regressions/gltf/draco_metadata_faces.glb).
+//! Invariant: every stream the decoder would accept (bar over-long LEB128 values, which no
+//! encoder writes) has readable counts here. A stream whose counts cannot be read is
+//! refused with the reason, never handed to the decoder unbounded (fuzzing found a
+//! metadata-flagged stream whose unchecked face count made the decoder ask for 7.5 EB
+//! and abort: fuzz/regressions/gltf/draco_metadata_faces.glb).
 
 /// Face and vertex counts from a Draco 2.2 mesh stream's connectivity header.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
