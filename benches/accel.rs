@@ -424,7 +424,7 @@ fn shared_scenes(c: &mut Criterion) {
         };
         let sets = [
             ("coherent", camera_rays(first)),
-            ("incoherent", box_rays(first.bounds.0, first.bounds.1)),
+            ("incoherent", box_rays(first.bounds().0, first.bounds().1)),
         ];
         let trace = |scene: &iris::scene::Scene, (o, d): (Vec3, Vec3)| {
             scene

@@ -11,7 +11,7 @@
 //! - [`SurfaceHit::spawn_ray`] and [`SurfaceHit::spawn_ray_to`] hold the **only ray-offset
 //!   rule** in the crate: the origin moves along `ng`, to the side the new ray leaves from,
 //!   by [`OFFSET_SCALE`] × the largest coordinate magnitude of the hit triangle's vertices
-//!   (which bound the hit position's). The error of a hit point computed from barycentrics
+//!   (which bound the hit position's; [`Triangle::offset`]). The error of a hit point computed from barycentrics
 //!   is a few ulps of those magnitudes, so the offset is scale-free: a model at 1e-4 m and
 //!   at 1e4 m behaves the same (Wächter & Binder 2019, "A Fast and Robust Method for
 //!   Avoiding Self-Intersection", Ray Tracing Gems ch. 6, offset the origin by a multiple of
@@ -26,18 +26,11 @@
 //!   (otherwise the ray spawned past the first face would start behind the second and never
 //!   see it).
 
-use crate::accel::HitList;
+use crate::material::TexCoords;
 use crate::math::Ray;
-use crate::scene::{Scene, TriangleData};
-use glam::{Vec2, Vec3};
-
-/// Offset distance per unit of coordinate magnitude: 2^-18 ≈ 3.8e-6, i.e. 32 ulps of f32.
-pub const OFFSET_SCALE: f32 = 1.0 / 262_144.0;
-
-/// Half-length of the coincidence probe per unit of coordinate magnitude: 16 offsets
-/// (2^-14 ≈ 6.1e-5). Faces closer than this along the normal are one interface; a real gap
-/// that thin is below what the offset rule can resolve anyway.
-pub const MERGE_SCALE: f32 = 16.0 * OFFSET_SCALE;
+use crate::scene::triangle::{geometric_normal, MERGE_SCALE, OFFSET_SCALE};
+use crate::scene::{Scene, Triangle};
+use glam::Vec3;
 
 /// Most surfaces merged into one interface with a hit (besides the hit itself).
 pub const MAX_COINCIDENT: usize = 4;
@@ -93,8 +86,8 @@ pub struct SurfaceHit {
     pub ng: Vec3,
     /// Unit shading normal, on the same side as `ng`.
     pub ns: Vec3,
-    /// Texture coordinates.
-    pub uv: Vec2,
+    /// Texture coordinates (TEXCOORD_0 and TEXCOORD_1).
+    pub uv: TexCoords,
     /// Triangle index.
     pub prim: u32,
     /// Material index.
@@ -138,52 +131,27 @@ impl SurfaceHit {
     }
 }
 
-/// The unit geometric normal `normalize((p1−p0)×(p2−p0))` of a triangle, or `None` when it
-/// has none (zero area, or non-finite corners). Tiny triangles whose f32 cross product
-/// underflows (edges below ~1e-10 of any unit: |e|⁴ < f32::MIN_POSITIVE) are rescaled by
-/// their longest edge component first, so the normal is scale-free like the offset rule.
-/// Validation drops every triangle for which this is `None`, so hits never see one.
-#[inline]
-pub fn geometric_normal([p0, p1, p2]: [Vec3; 3]) -> Option<Vec3> {
-    let (e1, e2) = (p1 - p0, p2 - p0);
-    let n = e1.cross(e2);
-    let rcp = n.length_recip();
-    if rcp.is_finite() && rcp > 0.0 {
-        return Some(n * rcp);
-    }
-    // Rare path: rescale (exact for a power of two) and retry.
-    let m = e1.abs().max(e2.abs()).max_element();
-    if m.is_nan() || m <= 0.0 || m.is_infinite() {
-        return None;
-    }
-    let s = 2f32.powi(-m.log2().floor() as i32);
-    let n = (e1 * s).cross(e2 * s);
-    let rcp = n.length_recip();
-    (rcp.is_finite() && rcp > 0.0).then(|| n * rcp)
-}
-
 impl Scene {
     /// A ray leaving the point `p` of triangle `prim` in direction `dir` (photons emitted
     /// from an emissive triangle), offset by the same rule as [`SurfaceHit::spawn_ray`].
     pub fn spawn_from_triangle(&self, prim: u32, p: Vec3, dir: Vec3) -> Ray {
-        let [p0, p1, p2] = self.triangle_data[prim as usize].p;
-        let ng = geometric_normal([p0, p1, p2]).unwrap_or(Vec3::Z);
-        let mag = p0.abs().max(p1.abs()).max(p2.abs()).max_element();
+        let t = self.triangle(prim);
+        let ng = geometric_normal(t.p).unwrap_or(Vec3::Z);
         let side = if dir.dot(ng) >= 0.0 { 1.0 } else { -1.0 };
-        Ray::new(p + ng * (side * mag * OFFSET_SCALE), dir)
+        Ray::new(p + ng * (side * t.magnitude() * OFFSET_SCALE), dir)
     }
 
     /// Builds the hit record for a raw backend hit.
     fn make_hit(&self, ray: &Ray, t: f32, prim: u32, u: f32, v: f32) -> SurfaceHit {
-        let td = &self.triangle_data[prim as usize];
-        let [p0, p1, p2] = td.p;
+        let tri = self.triangle(prim);
+        let [p0, p1, p2] = tri.p;
         let w = 1.0 - u - v;
         let p = p0 * w + p1 * u + p2 * v;
         let ng = geometric_normal([p0, p1, p2]).unwrap_or(Vec3::Z);
-        let ns = if td.info & TriangleData::HAS_NORMALS != 0 {
-            let [i0, i1, i2] = self.triangles[prim as usize].map(|i| i as usize);
-            let n = (self.normals[i0] * w + self.normals[i1] * u + self.normals[i2] * v)
-                .normalize_or(ng);
+        let ns = if tri.has(Triangle::HAS_NORMALS) {
+            let normals = &self.vertices().normals;
+            let [i0, i1, i2] = tri.vertices.map(|i| i as usize);
+            let n = (normals[i0] * w + normals[i1] * u + normals[i2] * v).normalize_or(ng);
             if n.dot(ng) < 0.0 {
                 -n
             } else {
@@ -192,31 +160,27 @@ impl Scene {
         } else {
             ng
         };
-        let uv = if td.info & TriangleData::HAS_UVS != 0 {
-            let [i0, i1, i2] = self.triangles[prim as usize].map(|i| i as usize);
-            self.uvs[i0] * w + self.uvs[i1] * u + self.uvs[i2] * v
-        } else {
-            Vec2::ZERO
-        };
-        let mag = p0.abs().max(p1.abs()).max(p2.abs()).max_element();
         let inv_len = ray.dir.length_recip();
         SurfaceHit {
             t: t / inv_len,
             p,
             ng,
             ns,
-            uv,
+            uv: self.tex_coords(prim, [w, u, v]),
             prim,
-            material: td.material(),
+            material: tri.material(),
             front_face: ray.dir.dot(ng) < 0.0,
             wo: -ray.dir * inv_len,
-            offset: mag * OFFSET_SCALE,
+            offset: tri.offset(),
         }
     }
 
     /// Whether the hit is an alpha cut-out to be skipped.
     fn is_cut_out(&self, hit: &SurfaceHit) -> bool {
-        self.has_cutouts && self.materials[hit.material as usize].is_cut_out(hit.uv, &self.images)
+        self.has_cutouts()
+            && self
+                .material(hit.material)
+                .is_cut_out(&self.textures_at(hit.uv))
     }
 
     /// The closest visible surface along `ray`, skipping alpha cut-outs. A ray with a
@@ -229,7 +193,7 @@ impl Scene {
         let mut r = *ray;
         let mut travelled = 0.0;
         for _ in 0..MAX_CUTOUTS {
-            let raw = self.accel.closest(r.origin, r.dir, r.t_max)?;
+            let raw = self.accel().closest(r.origin, r.dir, r.t_max)?;
             let mut hit = self.make_hit(&r, raw.t, raw.prim, raw.u, raw.v);
             if !self.is_cut_out(&hit) {
                 if travelled > 0.0 {
@@ -255,12 +219,12 @@ impl Scene {
     /// The probe is a segment along the hit's normal through `p`, ±[`MERGE_SCALE`] × the
     /// hit triangle's coordinate magnitude, so it finds coincident faces whatever the
     /// incoming ray's angle. Alpha cut-outs are ignored. Only triangles marked
-    /// [`TriangleData::TOUCHES`] at scene build ([`crate::scene::contact`]) are probed: a
+    /// [`Triangle::TOUCHES`] at scene build ([`crate::scene::contact`]) are probed: a
     /// scene without touching objects pays nothing.
     pub fn coincident(&self, hit: &SurfaceHit) -> (SurfaceHit, CoincidentSet) {
         let mut set = CoincidentSet::default();
         let mut out = *hit;
-        let touches = self.triangle_data[hit.prim as usize].info & TriangleData::TOUCHES != 0;
+        let touches = self.triangle(hit.prim).has(Triangle::TOUCHES);
         if !touches {
             return (out, set);
         }
@@ -295,29 +259,14 @@ impl Scene {
         (out, set)
     }
 
-    /// Every surface crossing the segment `p ± half·ng` (the coincidence probe), with the
-    /// probe ray (from `p + half·ng` along `−ng`).
-    pub(crate) fn probe(&self, p: Vec3, ng: Vec3, half: f32) -> (Ray, HitList) {
-        let probe = Ray {
-            origin: p + ng * half,
-            dir: -ng,
-            t_max: 2.0 * half,
-        };
-        if half.is_nan() || half <= 0.0 {
-            return (probe, HitList::default());
-        }
-        let hits = self.accel.all_hits(probe.origin, probe.dir, probe.t_max);
-        (probe, hits)
-    }
-
     /// Whether anything opaque blocks `ray` within `[0, t_max)`. A ray with a non-finite
     /// origin or direction is blocked (no light arrives along it).
     pub fn occluded(&self, ray: &Ray) -> bool {
         if !ray.is_valid() {
             return true;
         }
-        if !self.has_cutouts {
-            return self.accel.occluded(ray.origin, ray.dir, ray.t_max);
+        if !self.has_cutouts() {
+            return self.accel().occluded(ray.origin, ray.dir, ray.t_max);
         }
         self.intersect(ray).is_some()
     }

@@ -56,6 +56,5 @@ pub mod scenes;
 pub mod shading;
 pub mod spectrum;
 pub mod studio;
-pub mod texture;
 
 pub use error::{Error, LoadError, LoadErrorKind, Result};

@@ -138,12 +138,12 @@ pub fn crossing(
     media: MediumStack,
     ior: impl Fn(u32) -> f32,
 ) -> (f32, f32, MediumStack) {
-    let priority = |m: u32| scene.materials[m as usize].desc.priority;
+    let priority = |m: u32| scene.materials()[m as usize].desc.priority;
     let mut crossings =
         [(hit.material, hit.front_face, priority(hit.material)); 1 + MAX_COINCIDENT];
     let mut n = 1;
     for c in coincident.iter() {
-        if scene.materials[c.material as usize].is_volume() {
+        if scene.materials()[c.material as usize].is_volume() {
             crossings[n] = (c.material, c.front_face, priority(c.material));
             n += 1;
         }

@@ -21,17 +21,16 @@ use std::path::Path;
 /// `--ground` floor ([`crate::studio::ground::GROUND_MESH`]).
 fn subject_points(scene: &Scene) -> Vec<Vec3> {
     let ground = scene
-        .meshes
+        .meshes()
         .iter()
         .position(|m| m.name == ground::GROUND_MESH);
     match ground {
-        None => scene.positions.clone(),
+        None => scene.positions().to_vec(),
         Some(g) => scene
-            .triangles
+            .triangles()
             .iter()
-            .zip(&scene.triangle_mesh)
-            .filter(|(_, &m)| m as usize != g)
-            .flat_map(|(t, _)| t.iter().map(|&i| scene.positions[i as usize]))
+            .filter(|t| t.mesh as usize != g)
+            .flat_map(|t| t.vertices.map(|i| scene.positions()[i as usize]))
             .collect(),
     }
 }
@@ -70,8 +69,8 @@ pub fn choose_camera_view(
     aspect: f32,
 ) -> Result<(CameraDesc, Option<AutoCamera>)> {
     choose_camera_in(
-        &scene.cameras,
-        &scene.source,
+        &scene.cameras(),
+        &scene.source(),
         || subject_points(scene),
         choice,
         view,

@@ -112,7 +112,7 @@ fn prepared(path: &Path, preview: PreviewOptions) -> Prepared {
 }
 
 fn has_floor(p: &Prepared) -> bool {
-    p.scene.meshes.iter().any(|m| m.name == GROUND_MESH)
+    p.scene.meshes().iter().any(|m| m.name == GROUND_MESH)
 }
 
 fn ground(mode: GroundMode) -> PreviewOptions {
@@ -170,9 +170,9 @@ fn a_lit_file_gets_no_floor_and_auto_picks_the_same_method() {
     assert_eq!(m_auto, m_off, "{why_auto:?} vs {why_off:?}");
     assert_eq!(why_auto, why_off);
     // No light was added: the slit is the only light.
-    assert_eq!(auto.scene.lights.len(), off.scene.lights.len());
-    assert!(auto.scene.environment.is_none());
-    assert!(!auto.scene.default_lights);
+    assert_eq!(auto.scene.lights().len(), off.scene.lights().len());
+    assert!(auto.scene.environment().is_none());
+    assert!(!auto.scene.default_lights());
 }
 
 #[test]
@@ -199,8 +199,8 @@ fn an_explicit_studio_lights_a_lit_file_too() {
         ]
     );
     // The jeweller's two spot keys join the file's lights; its environment is added.
-    assert_eq!(lit.scene.lights.len(), plain.scene.lights.len() + 2);
-    assert!(lit.scene.environment.is_some());
+    assert_eq!(lit.scene.lights().len(), plain.scene.lights().len() + 2);
+    assert!(lit.scene.environment().is_some());
     // `--studio none` asks for no studio: nothing changes, and the note still explains.
     let none = prepared(
         &path,
@@ -210,7 +210,7 @@ fn an_explicit_studio_lights_a_lit_file_too() {
         },
     );
     assert!(!has_floor(&none));
-    assert_eq!(none.scene.lights.len(), plain.scene.lights.len());
+    assert_eq!(none.scene.lights().len(), plain.scene.lights().len());
     assert!(
         none.notes().iter().any(|n| matches!(
             n,

@@ -276,7 +276,7 @@ fn obj_with_degenerate_faces_and_bad_normals_is_repaired() {
     assert_eq!(desc.meshes[0].indices.len(), 4);
     for backend in backends() {
         let scene = Scene::build(desc.clone(), backend).expect("build");
-        assert!(scene.normals.iter().all(|n| n.is_finite()));
+        assert!(scene.vertices().normals.iter().all(|n| n.is_finite()));
     }
 }
 
@@ -516,7 +516,7 @@ fn winding_repair_cost_on_the_largest_shared_assets() {
             eprintln!(
                 "  {backend:?}: scene build {:.1} ms (accel {:.1} ms)",
                 start.elapsed().as_secs_f64() * 1e3,
-                scene.accel_build_time.as_secs_f64() * 1e3
+                scene.accel_build_time().as_secs_f64() * 1e3
             );
         }
         for w in &v.warnings {

@@ -10,8 +10,9 @@ use iris::accel::Backend;
 use iris::camera::{look_at, Camera};
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::light::env::Environment;
+use iris::material::MaterialDesc;
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
+use iris::scene::desc::{CameraDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 
 fn transmitted(thickness: f32, distance: f32, color: Vec3, backend: Backend) -> Vec3 {

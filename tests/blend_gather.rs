@@ -18,9 +18,10 @@ use common::mesh;
 use glam::{Mat3, Vec3, Vec4};
 use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::material::{AlphaMode, MaterialDesc};
 use iris::model::shapes;
 use iris::render::RenderSettings;
-use iris::scene::desc::{AlphaMode, CameraDesc, LightDesc, MaterialDesc, Projection, SceneDesc};
+use iris::scene::desc::{CameraDesc, LightDesc, Projection, SceneDesc};
 
 const W: u32 = 48;
 const H: u32 = 36;

@@ -19,10 +19,11 @@ mod common;
 
 use glam::Vec3;
 use iris::accel::Backend;
+use iris::material::{ExplicitIor, MaterialDesc};
 use iris::math::Ray;
 use iris::medium::MediumStack;
 use iris::optics::{reflect, refract};
-use iris::scene::desc::{ExplicitIor, MaterialDesc, MeshDesc, SceneDesc};
+use iris::scene::desc::{MeshDesc, SceneDesc};
 use iris::scene::Scene;
 use iris::shading;
 use iris::spectrum::{Carrier, IorModel, Lambdas, SampledSpectrum, SampledWavelengths};

@@ -87,7 +87,7 @@ fn iridescent_sphere_changes_hue_with_view_angle() {
     let path = asset("film_iridescence_render", "iridescence_sphere.glb");
     let desc = load_scene(&path).expect("load");
     let mut plain = desc.clone();
-    if let Some(i) = plain.materials[0].film.iridescence.as_mut() {
+    if let Some(i) = plain.materials[0].iridescence.as_mut() {
         i.factor = 0.0;
     }
     let size = 32;
@@ -171,7 +171,7 @@ fn brushed_plate_highlight_follows_the_rotation() {
         size,
     );
     let mut iso = desc;
-    if let Some(a) = iso.materials[0].film.anisotropy.as_mut() {
+    if let Some(a) = iso.materials[0].anisotropy.as_mut() {
         a.strength = 0.0;
     }
     let (x2, y2) = highlight_moments(&render(iso, size, 16, false), size);

@@ -86,13 +86,13 @@ fn every_view_frames_gems_plates_and_rods_at_every_scale() {
         for (name, p, t) in models(scale) {
             let path = common::write_obj(&dir, &name, &p, &t);
             let (scene, _) = app::load(&path, Backend::Auto).expect("load");
-            assert!(scene.cameras.is_empty());
+            assert!(scene.cameras().is_empty());
             for view in [None].into_iter().chain(VIEWS.map(Some)) {
                 // Projection of the vertices: exact fit, 80 % in the limiting direction.
                 let (desc, _) =
                     app::choose_camera_view(&scene, None, view, w as f32 / h as f32).unwrap();
                 let (lo, hi) =
-                    projected_box(&scene.positions, &desc, w as f32 / h as f32).expect("in front");
+                    projected_box(scene.positions(), &desc, w as f32 / h as f32).expect("in front");
                 let span = 0.5 * (hi - lo).max_element();
                 // f32 camera matrices at 1e4 m: 1e-3 of the frame is far below a pixel.
                 assert!((span - FILL).abs() < 1e-3, "{name} {view:?}: {span}");

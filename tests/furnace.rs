@@ -26,8 +26,9 @@ mod common;
 use glam::Vec3;
 use iris::camera::{look_at, Camera};
 use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::material::MaterialDesc;
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, MaterialDesc, Projection};
+use iris::scene::desc::{CameraDesc, Projection};
 
 /// The camera 4 m from the unit sphere at the origin.
 fn furnace_camera() -> CameraDesc {

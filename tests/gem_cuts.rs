@@ -12,7 +12,8 @@
 mod common;
 
 use glam::{DVec3, Vec3};
-use iris::scene::desc::{MaterialDesc, MeshDesc, SceneDesc};
+use iris::material::MaterialDesc;
+use iris::scene::desc::{MeshDesc, SceneDesc};
 use iris::scenes::gems::{write_gem_assets, GEM_ASSETS};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};

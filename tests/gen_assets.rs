@@ -585,7 +585,7 @@ fn prism_beam_meets_the_prism_at_minimum_deviation_and_spreads_on_the_screen() {
         .expect("prism material");
     assert_eq!(
         glass.ior_model,
-        Some(iris::scene::desc::ExplicitIor::Glass("N-BK7".into()))
+        Some(iris::material::ExplicitIor::Glass("N-BK7".into()))
     );
     assert_eq!((glass.ior, glass.transmission), (1.5168, 1.0));
     assert!(glass.thickness > 0.0);
@@ -865,7 +865,7 @@ fn rainbow_sun_passes_only_the_slit_and_violet_lands_beyond_red() {
         .expect("prism");
     assert_eq!(
         glass.ior_model,
-        Some(iris::scene::desc::ExplicitIor::Glass("N-BK7".into()))
+        Some(iris::material::ExplicitIor::Glass("N-BK7".into()))
     );
     assert_eq!((glass.ior, glass.transmission), (1.5168, 1.0));
     let model = glass.spectral_ior().expect("known glass");

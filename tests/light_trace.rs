@@ -17,11 +17,12 @@ use glam::Vec3;
 use iris::camera::{look_at, Camera};
 use iris::integrator::light_trace::Splatter;
 use iris::integrator::{CausticMode, Integrator, Method, PhotonSettings};
+use iris::material::MaterialDesc;
 use iris::output::ImageRgb;
 use iris::photon::emit::PhotonEmitter;
 use iris::photon::trace::{self, Roulette, TraceSettings};
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
+use iris::scene::desc::{CameraDesc, LightDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 
 const W: u32 = 48;

@@ -21,7 +21,8 @@ mod layers;
 mod materials;
 
 use iris::load::read_scene;
-use iris::scene::desc::{MaterialDesc, SceneDesc};
+use iris::material::MaterialDesc;
+use iris::scene::desc::SceneDesc;
 use iris::{LoadError, LoadErrorKind};
 use std::path::{Path, PathBuf};
 

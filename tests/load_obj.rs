@@ -4,7 +4,8 @@
 mod common;
 
 use iris::load::load_scene;
-use iris::scene::desc::{ExplicitIor, MaterialDesc, SceneDesc};
+use iris::material::{ExplicitIor, MaterialDesc};
+use iris::scene::desc::SceneDesc;
 use iris::LoadErrorKind;
 use std::path::{Path, PathBuf};
 

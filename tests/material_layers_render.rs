@@ -378,7 +378,7 @@ fn lit_diamond(mut desc: SceneDesc) -> (SceneDesc, CameraDesc) {
         (centre - at).normalize(),
     ));
     let panel = iris::model::shapes::ground_plane(0.5 * dist, 0.5 * dist).transformed(turn, at);
-    desc.materials.push(iris::scene::desc::MaterialDesc {
+    desc.materials.push(iris::material::MaterialDesc {
         name: "panel".into(),
         base_color: glam::Vec4::new(0.0, 0.0, 0.0, 1.0),
         emissive: Vec3::splat(5.0),

@@ -16,10 +16,11 @@ mod common;
 use glam::Vec3;
 use iris::camera::{look_at, Camera};
 use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::material::MaterialDesc;
 use iris::optics::{fresnel_conductor, fresnel_dielectric};
 use iris::plan::SpectralMode;
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, MaterialDesc, Projection};
+use iris::scene::desc::{CameraDesc, Projection};
 use iris::spectrum::cie::{cmf, xyz_to_linear_srgb, CIE_Y_INTEGRAL};
 use iris::spectrum::metals::METALS;
 use iris::spectrum::{Metal, RgbIlluminant};
@@ -179,10 +180,13 @@ fn gold_bsdf_reflects_r0_per_wavelength() {
     use iris::bsdf::TransportMode;
     use iris::spectrum::{Lambdas, SampledSpectrum, SampledWavelengths};
     let mat = iris::material::Material::new(gold(Vec3::new(0.0, 1.0, 1.0)));
-    let sp = mat.shade(glam::Vec2::ZERO, &[]);
+    let sp = mat.shade(&iris::material::TextureContext::new(
+        &[],
+        Default::default(),
+    ));
     for i in 0..16 {
         let l = Lambdas::new(SampledWavelengths::sample_uniform(i as f32 / 16.0));
-        let bsdf = iris::shading::surface_bsdf::<SampledSpectrum>(&mat, &sp, &l);
+        let bsdf = mat.opaque_bsdf::<SampledSpectrum>(&sp, &l);
         let s = bsdf
             .sample(
                 Vec3::Z,

@@ -22,10 +22,11 @@ mod common;
 
 use glam::{Vec2, Vec3};
 use iris::accel::Backend;
+use iris::material::MaterialDesc;
 use iris::math::Ray;
 use iris::medium::MediumStack;
 use iris::optics::refract;
-use iris::scene::desc::{MaterialDesc, MeshDesc, SceneDesc};
+use iris::scene::desc::{MeshDesc, SceneDesc};
 use iris::scene::Scene;
 use iris::shading;
 
@@ -321,14 +322,14 @@ fn water_against_an_opaque_wall_meets_the_wall() {
 
 #[test]
 fn only_the_shared_faces_are_marked_as_touching() {
-    use iris::scene::TriangleData;
+    use iris::scene::Triangle;
     for backend in backends() {
         for (shift, want) in [(0.0f32, 4usize), (1e-6, 4), (1e-3, 0)] {
             let scene = scene(backend, shift, false);
             let marked = scene
-                .triangle_data
+                .triangles()
                 .iter()
-                .filter(|t| t.info & TriangleData::TOUCHES != 0)
+                .filter(|t| t.has(Triangle::TOUCHES))
                 .count();
             // The diagonal is two triangles in each prism.
             assert_eq!(marked, want, "{backend:?} shift {shift}");
@@ -393,7 +394,7 @@ fn cornell_water_beams_refract_into_the_water_and_reach_the_floor() {
     for backend in backends() {
         let (scene, _) = iris::app::load(&path, backend).unwrap();
         let water = scene
-            .materials
+            .materials()
             .iter()
             .position(|m| m.desc.name.contains("water"))
             .expect("a water material") as u32;
@@ -427,7 +428,7 @@ fn cornell_water_beams_refract_into_the_water_and_reach_the_floor() {
             let next = scene
                 .intersect(&hit.spawn_ray(out))
                 .expect("something below");
-            let name = &scene.materials[next.material as usize].desc.name;
+            let name = &scene.materials()[next.material as usize].desc.name;
             assert_ne!(
                 next.material, water,
                 "{backend:?}: re-hit the water surface"

@@ -311,7 +311,7 @@ fn flux_onto_the_glass_matches_the_formulas() {
 /// The lamp of [`scene`] (half-size 0.05 at (1, 0.8, 0), facing −Y): flux onto the sphere.
 fn lamp_flux_onto_sphere(c: Vec3, r: f32) -> f64 {
     let s = scene(false);
-    let le = s.materials[2].emission().x as f64;
+    let le = s.materials()[2].emission().x as f64;
     let (centre, half, m) = (Vec3::new(1.0, 0.8, 0.0), 0.05f32, 64);
     let cell = (2.0 * half / m as f32).powi(2) as f64;
     let mut sum = 0.0;
@@ -366,7 +366,7 @@ fn without_caustic_makers_aiming_changes_nothing() {
     let t = Targets::from_triangles(vec![]);
     assert!(t.is_empty());
     let (mut desc, _) = iris::scenes::bench::caustic_sphere(None);
-    desc.materials[0] = iris::scene::desc::MaterialDesc {
+    desc.materials[0] = iris::material::MaterialDesc {
         metallic: 0.0,
         ..Default::default()
     };

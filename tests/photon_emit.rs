@@ -9,9 +9,10 @@
 use glam::{Vec2, Vec3};
 use iris::light::env::{luminance, EnvMap, Environment};
 use iris::light::Light;
+use iris::material::{ImageDesc, MaterialDesc, TextureRef};
 use iris::math::Rng;
 use iris::photon::emit::{EmittedPhoton, PhotonEmitter, DISC_MARGIN};
-use iris::scene::desc::{ImageDesc, MaterialDesc, MeshDesc, SceneDesc, TextureRef};
+use iris::scene::desc::{MeshDesc, SceneDesc};
 use iris::scene::Scene;
 use std::f32::consts::PI;
 
@@ -139,7 +140,7 @@ fn close(a: Vec3, b: Vec3, rel: f32) -> bool {
 
 /// Bounding-sphere centre and disc radius, recomputed from the scene's bounds.
 fn disc(s: &Scene) -> (Vec3, f32, f32) {
-    let (lo, hi) = s.bounds;
+    let (lo, hi) = s.bounds();
     let big_r = 0.5 * (hi - lo).length();
     (0.5 * (lo + hi), DISC_MARGIN * big_r, big_r)
 }

@@ -15,9 +15,10 @@ mod common;
 use glam::{Vec2, Vec3};
 use iris::camera::{look_at, Camera};
 use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::material::MaterialDesc;
 use iris::photon::emit::PhotonEmitter;
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
+use iris::scene::desc::{CameraDesc, LightDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 
 const RHO: f32 = 0.5;

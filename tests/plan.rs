@@ -11,9 +11,10 @@ use iris::accel::Backend;
 use iris::app::SpectralMode;
 use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::material::{ExplicitIor, MaterialDesc};
 use iris::plan::Plan;
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, ExplicitIor, MaterialDesc, SceneDesc};
+use iris::scene::desc::{CameraDesc, SceneDesc};
 use iris::scene::Scene;
 use std::path::{Path, PathBuf};
 

@@ -39,7 +39,7 @@ fn notes(stderr: &str) -> Vec<String> {
 /// (its radiance in the six axis directions) and the camera.
 #[derive(Debug, PartialEq)]
 struct Seen {
-    lights: Vec<iris::light::Light>,
+    lights: Vec<iris::light::PunctualLight>,
     default_lights: bool,
     triangles: usize,
     positions: Vec<Vec3>,
@@ -52,14 +52,14 @@ struct Seen {
 fn seen(scene: &Scene, camera: &iris::scene::desc::CameraDesc) -> Seen {
     let dirs = [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z];
     Seen {
-        lights: scene.lights.clone(),
-        default_lights: scene.default_lights,
+        lights: scene.lights().to_vec(),
+        default_lights: scene.default_lights(),
         triangles: scene.triangle_count(),
-        positions: scene.positions.clone(),
-        bounds: scene.bounds,
-        subject_bounds: scene.subject_bounds,
+        positions: scene.positions().to_vec(),
+        bounds: scene.bounds(),
+        subject_bounds: scene.subject_bounds(),
         environment: scene
-            .environment
+            .environment()
             .as_ref()
             .map(|e| dirs.iter().map(|&d| e.eval(d)).collect()),
         camera: camera.world_from_camera,
@@ -103,8 +103,11 @@ fn render_and_converge_options_prepare_the_same_scene() {
     assert_eq!(seen(&scene, &camera), seen_prepared(&a), "render and info");
     assert_eq!(a.size, b.size);
     assert_eq!(a.scene.triangle_count(), b.scene.triangle_count());
-    assert_eq!(a.scene.lights.len(), b.scene.lights.len());
-    assert_eq!(a.scene.environment.is_some(), b.scene.environment.is_some());
+    assert_eq!(a.scene.lights().len(), b.scene.lights().len());
+    assert_eq!(
+        a.scene.environment().is_some(),
+        b.scene.environment().is_some()
+    );
     assert_eq!(
         a.camera.world_from_camera, b.camera.world_from_camera,
         "same framing"
@@ -130,13 +133,13 @@ fn render_and_converge_options_prepare_the_same_scene() {
         ]
     );
     assert!(
-        a.scene.environment.is_some(),
+        a.scene.environment().is_some(),
         "the studio's softbox environment"
     );
     // The same preparation twice is the same scene (nothing depends on call order).
     let c = prepare(&path, &converge.prepare_options(None)).expect("again");
     assert_eq!(c.notes(), b.notes());
-    assert_eq!(c.scene.positions, b.scene.positions);
+    assert_eq!(c.scene.positions(), b.scene.positions());
 }
 
 #[test]

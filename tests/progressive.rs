@@ -9,10 +9,11 @@ mod common;
 use glam::Vec3;
 use iris::camera::{look_at, Camera};
 use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::material::MaterialDesc;
 use iris::output::ImageRgb;
 use iris::render::{Control, Progress, RenderSettings, RenderStats};
 use iris::sampler::SamplerKind;
-use iris::scene::desc::{CameraDesc, MaterialDesc, Projection};
+use iris::scene::desc::{CameraDesc, Projection};
 use iris::scene::Scene;
 use std::time::{Duration, Instant};
 

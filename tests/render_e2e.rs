@@ -272,7 +272,7 @@ fn emissive_triangles_light_the_cornell_box() {
 /// 20 % or more.
 #[test]
 fn lambertian_sphere_in_uniform_environment_has_albedo_radiance() {
-    let scene = common::sphere_in_white_environment(iris::scene::desc::MaterialDesc {
+    let scene = common::sphere_in_white_environment(iris::material::MaterialDesc {
         name: "white".into(),
         base_color: glam::Vec4::new(0.8, 0.8, 0.8, 1.0),
         metallic: 0.0,
@@ -280,7 +280,7 @@ fn lambertian_sphere_in_uniform_environment_has_albedo_radiance() {
         ..Default::default()
     });
     assert!(
-        scene.lights.is_empty(),
+        scene.lights().is_empty(),
         "the environment replaces the default lights"
     );
     let cam = iris::camera::Camera::new(

@@ -14,8 +14,9 @@ mod common;
 use glam::{DVec3, Vec3};
 use iris::camera::{look_at, Camera};
 use iris::integrator::Integrator;
+use iris::material::{ExplicitIor, MaterialDesc};
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, ExplicitIor, MaterialDesc, Projection, SceneDesc};
+use iris::scene::desc::{CameraDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 
 /// Rough glass with strong Cauchy dispersion.

@@ -30,14 +30,15 @@ use iris::bsdf::{Bsdf, TransportMode};
 use iris::camera::{look_at, Camera};
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::light::env::Environment;
+use iris::material::MaterialDesc;
 use iris::math::{Frame, Ray, Rng};
 use iris::medium::MediumStack;
 use iris::model::gem::Brilliant;
 use iris::model::shapes::{cuboid, ground_plane, TriMesh};
 use iris::optics::refract;
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
-use iris::scene::{Scene, TriangleData};
+use iris::scene::desc::{CameraDesc, LightDesc, MeshDesc, Projection, SceneDesc};
+use iris::scene::{Scene, Triangle};
 use iris::shading;
 
 const N_DIAMOND: f32 = 2.417;
@@ -225,10 +226,7 @@ fn offset_rule_holds_on_the_gem_at_every_scale() {
             };
             let scene = build(desc, backend);
             // A lone convex stone has no thin part: nothing is probed for partners.
-            assert!(scene
-                .triangle_data
-                .iter()
-                .all(|td| td.info & TriangleData::TOUCHES == 0));
+            assert!(scene.triangles().iter().all(|t| !t.has(Triangle::TOUCHES)));
             let mut rng = Rng::new(&[scale.to_bits() as u64]);
             let mut failures = Vec::new();
             for i in 0..5000 {
@@ -326,7 +324,7 @@ fn slab_scene(m: f32, thickness: f32, backend: Backend) -> (Scene, Vec3) {
 
 #[test]
 fn thin_slab_keeps_direction_and_shifts_by_the_plate_formula() {
-    let offset_scale = iris::interaction::OFFSET_SCALE;
+    let offset_scale = iris::scene::triangle::OFFSET_SCALE;
     for backend in backends() {
         for m in [1e-4f32, 1.0, 1e4] {
             for rel in [1e-3f32, 1e-6] {
@@ -335,11 +333,11 @@ fn thin_slab_keeps_direction_and_shifts_by_the_plate_formula() {
                 // Only a slab thinner than the merge distance is a "thin sheet" whose two
                 // sides are probed together; the 1e-3 one is resolved face by face.
                 let touching = scene
-                    .triangle_data
+                    .triangles()
                     .iter()
-                    .filter(|td| td.info & TriangleData::TOUCHES != 0)
+                    .filter(|t| t.has(Triangle::TOUCHES))
                     .count();
-                let thin = t < 2.0 * iris::interaction::MERGE_SCALE * m;
+                let thin = t < 2.0 * iris::scene::triangle::MERGE_SCALE * m;
                 assert_eq!(
                     touching,
                     if thin { 4 } else { 0 },

@@ -214,7 +214,7 @@ fn khr_dispersion_20_and_1000_load_and_stay_finite() {
 }
 
 fn absorbing(distance: f32, color: Vec3) -> Material {
-    Material::new(iris::scene::desc::MaterialDesc {
+    Material::new(iris::material::MaterialDesc {
         attenuation_color: color,
         attenuation_distance: distance,
         ..common::clear_glass("absorbing", 1.5)

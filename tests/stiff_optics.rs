@@ -247,7 +247,7 @@ fn first_interface(scene: &Scene, ray: &Ray) -> Option<(Vec3, Vec3, f32, Bsdf, F
     let hit = scene.intersect(ray)?;
     let (hit, co) = shading::meet(scene, hit);
     let (n_i, n_t, _, _) = shading::interface::<Vec3>(scene, &hit, &co, MediumStack::new(), &());
-    let sp = scene.materials[hit.material as usize].shade(hit.uv, &scene.images);
+    let sp = scene.materials()[hit.material as usize].shade(&scene.textures_at(hit.uv));
     let (bsdf, _, _) =
         shading::bsdf_at::<Vec3>(scene, &hit, &co, &sp, MediumStack::new(), 0.0, &());
     let n = if hit.front_face { hit.ns } else { -hit.ns };

@@ -39,10 +39,11 @@ use iris::accel::Backend;
 use iris::camera::{look_at, Camera};
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::light::env::Environment;
+use iris::material::MaterialDesc;
 use iris::model::shapes::{checkerboard, cuboid, ground_plane, icosphere, quarter_turn_x, TriMesh};
 use iris::output::ImageRgb;
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, LightDesc, MaterialDesc, Projection, SceneDesc};
+use iris::scene::desc::{CameraDesc, LightDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 use serde_json::json;
 

@@ -310,9 +310,9 @@ fn the_sketchfab_diamond_becomes_a_diamond() {
     let stoned = prepare(&path, &opts(vec![stone("diamond")])).expect("prepare");
     let used: Vec<_> = stoned
         .scene
-        .triangle_material
+        .triangles()
         .iter()
-        .map(|&m| &stoned.scene.materials[m as usize])
+        .map(|t| stoned.scene.material(t.material()))
         .filter(|m| m.desc.name.contains("--stone"))
         .collect();
     assert!(!used.is_empty());

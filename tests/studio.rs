@@ -203,9 +203,10 @@ fn ground_auto_on_for_a_bare_stone_off_for_a_scene_with_a_floor() {
     assert!(note.contains("white floor added"), "{note}");
     let scene = &prepared.scene;
     let size = |b: (glam::Vec3, glam::Vec3)| (b.1 - b.0).length();
-    assert!(size(scene.bounds) > 10.0 * size(scene.subject_bounds));
+    assert!(size(scene.bounds()) > 10.0 * size(scene.subject_bounds()));
     assert_eq!(
-        scene.bounds.0.y, scene.subject_bounds.0.y,
+        scene.bounds().0.y,
+        scene.subject_bounds().0.y,
         "floor touches the culet"
     );
 }
@@ -253,10 +254,13 @@ fn a_file_with_lights_keeps_them() {
         s.notes
     );
     let jeweller = prepared(Some(Studio::Jeweller));
-    assert_eq!(jeweller.scene.lights.len(), plain.scene.lights.len() + 2);
     assert_eq!(
-        jeweller.scene.area_lights.len(),
-        plain.scene.area_lights.len(),
+        jeweller.scene.lights().len(),
+        plain.scene.lights().len() + 2
+    );
+    assert_eq!(
+        jeweller.scene.area_lights().len(),
+        plain.scene.area_lights().len(),
         "the file's emissive panels stay"
     );
 }

@@ -526,8 +526,8 @@ fn auto_method_and_framing_are_decided_once_for_every_frame() {
         // The floor is the same floor.
         assert_eq!(floor_points(&p.scene), floor_points(&zero.scene));
         assert_eq!(
-            format!("{:?}", p.scene.lights),
-            format!("{:?}", zero.scene.lights)
+            format!("{:?}", p.scene.lights()),
+            format!("{:?}", zero.scene.lights())
         );
     }
     let notes: Vec<String> = zero.notes().iter().map(ToString::to_string).collect();
@@ -542,15 +542,14 @@ fn auto_method_and_framing_are_decided_once_for_every_frame() {
 /// The vertices of a built scene's triangles that are (`floor`) or are not the floor.
 fn points(scene: &iris::scene::Scene, floor: bool) -> Vec<Vec3> {
     let g = scene
-        .meshes
+        .meshes()
         .iter()
         .position(|m| m.name == iris::studio::ground::GROUND_MESH);
     scene
-        .triangles
+        .triangles()
         .iter()
-        .zip(&scene.triangle_mesh)
-        .filter(|(_, &m)| (Some(m as usize) == g) == floor)
-        .flat_map(|(t, _)| t.iter().map(|&i| scene.positions[i as usize]))
+        .filter(|t| (Some(t.mesh as usize) == g) == floor)
+        .flat_map(|t| t.vertices.map(|i| scene.positions()[i as usize]))
         .collect()
 }
 

@@ -18,8 +18,9 @@ use glam::Vec3;
 use iris::accel::Backend;
 use iris::camera::{look_at, Camera};
 use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::material::MaterialDesc;
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
+use iris::scene::desc::{CameraDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 use iris::spectrum::cie::{chromaticity, linear_srgb_to_xyz};
 

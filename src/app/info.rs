@@ -13,11 +13,10 @@ use crate::accel::Backend;
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::integrator::Method;
+use crate::material::MaterialDesc;
 use crate::plan::SpectralMode;
 use crate::prepare::looks::{self, LookFlag};
-use crate::scene::desc::{
-    CameraDesc, EnvironmentDesc, LightDesc, MaterialDesc, Projection, SceneDesc,
-};
+use crate::scene::desc::{CameraDesc, EnvironmentDesc, LightDesc, Projection, SceneDesc};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -161,9 +160,9 @@ fn write_material(s: &mut String, m: &MaterialDesc) {
             m.attenuation_distance
         );
     }
-    let film = m.film.describe();
-    if !film.is_empty() {
-        let _ = write!(s, " {film}");
+    let extensions = m.describe_extensions();
+    if !extensions.is_empty() {
+        let _ = write!(s, " {extensions}");
     }
     if let Some(metal) = m.conductor {
         let (n, k) = metal.eta_k(crate::spectrum::ior::LAMBDA_D);
@@ -373,7 +372,7 @@ fn info_plan(path: &Path, flags: &[LookFlag]) -> Result<String> {
 
 /// `spectrum D65 (sRGB [1.000 1.000 1.000])`: an emitter's `iris_spectrum` and the colour
 /// the RGB renderer gives it (luminance 1, before the file's colour filter).
-fn spectrum_note(spectrum: crate::scene::desc::EmissionSpectrum) -> String {
+fn spectrum_note(spectrum: crate::spectrum::EmissionSpectrum) -> String {
     let c = spectrum.linear_srgb();
     format!(
         "spectrum {spectrum} (sRGB [{:.3} {:.3} {:.3}])",

@@ -321,7 +321,7 @@ impl<'a> RenderJob<'a> {
             })
             .transpose()?;
         let mut rows =
-            crate::measure::report::setup_rows(run, prepared.load_time, scene.accel_build_time);
+            crate::measure::report::setup_rows(run, prepared.load_time, scene.accel_build_time());
         let mut recorder = Recorder::new(run, reference.as_ref());
         recorder.verbose = !opts.quiet && measure.any();
         let mut stop = TargetStop::new(measure.target_error);
@@ -417,7 +417,7 @@ impl<'a> RenderJob<'a> {
         if settings.spectral {
             notes.push(match opts.spectral {
                 SpectralMode::On => "spectral transport (--spectral on)".into(),
-                _ if scene.materials.iter().any(|m| m.conductor().is_some()) => {
+                _ if scene.materials().iter().any(|m| m.conductor().is_some()) => {
                     "spectral transport: the scene has measured metals, dispersive materials \
                      or spectral lights (--spectral off for RGB)"
                         .into()
@@ -428,7 +428,7 @@ impl<'a> RenderJob<'a> {
             });
         }
         notes.extend(prepared.camera_note.as_ref().map(|n| n.to_string()));
-        notes.extend(scene.warnings.iter().cloned());
+        notes.extend(scene.warnings().iter().cloned());
         notes.extend(measure_notes);
         notes.extend(denoised.as_ref().and_then(|d| denoiser.note(d)));
         if stop.denoised {
@@ -445,7 +445,7 @@ impl<'a> RenderJob<'a> {
             image,
             stats,
             load_time: prepared.load_time,
-            build_time: scene.accel_build_time,
+            build_time: scene.accel_build_time(),
             triangles: scene.triangle_count(),
             backend: scene.backend_name(),
             notes,

@@ -58,27 +58,39 @@ impl std::fmt::Write for HashWriter {
     }
 }
 
-/// SHA-256 of the render scene's content: vertex positions, normals and texture
-/// coordinates, triangles and their materials (as little-endian bits), then the `Debug`
-/// text of the materials, texture images (with their texels), lights, light spectra and
-/// environment. Deterministic for a given Iris build (no hash maps are involved).
+/// SHA-256 of the render scene's content: vertex positions, normals, both sets of texture
+/// coordinates and tangents, triangles and their materials (as little-endian bits), then
+/// the `Debug` text of the materials, texture images (with their texels), lights (with
+/// their spectra) and environment. Deterministic for a given Iris build (no hash maps are
+/// involved).
 pub fn content_sha256(scene: &Scene) -> String {
     let mut h = HashWriter(Sha256::new());
     let mut bytes = Vec::new();
-    for v in scene.positions.iter().chain(&scene.normals) {
-        bytes.extend(v.to_array().iter().flat_map(|c| c.to_bits().to_le_bytes()));
+    let v = scene.vertices();
+    let floats = |values: &[f32], bytes: &mut Vec<u8>| {
+        bytes.extend(values.iter().flat_map(|c| c.to_bits().to_le_bytes()));
+    };
+    for p in v.positions.iter().chain(&v.normals) {
+        floats(&p.to_array(), &mut bytes);
     }
-    for uv in &scene.uvs {
-        bytes.extend(uv.to_array().iter().flat_map(|c| c.to_bits().to_le_bytes()));
+    for uv in v.uvs.iter().chain(&v.uvs1) {
+        floats(&uv.to_array(), &mut bytes);
     }
-    for (t, m) in scene.triangles.iter().zip(&scene.triangle_material) {
-        bytes.extend(t.iter().chain([m]).flat_map(|i| i.to_le_bytes()));
+    for t in &v.tangents {
+        floats(&t.to_array(), &mut bytes);
+    }
+    for t in scene.triangles() {
+        let m = t.material();
+        bytes.extend(t.vertices.iter().chain([&m]).flat_map(|i| i.to_le_bytes()));
     }
     h.0.update(&bytes);
     let _ = write!(
         h,
-        "{:?}{:?}{:?}{:?}{:?}",
-        scene.materials, scene.images, scene.lights, scene.light_shapes, scene.environment
+        "{:?}{:?}{:?}{:?}",
+        scene.materials(),
+        scene.images(),
+        scene.lights(),
+        scene.environment()
     );
     hex(&h.0.finalize())
 }

@@ -99,7 +99,7 @@ fn features(scene: &Scene, ray: &crate::math::Ray, sample: &mut SampleStream) ->
     for _ in 0..(2 * AUX_MAX_DELTA + 2) {
         let Some(at) = arrive::<Vec3>(scene, &ray, &media, &(), &mut rays) else {
             let env = scene
-                .environment
+                .environment()
                 .as_ref()
                 .map_or(Vec3::ZERO, |e| e.eval(ray.dir.normalize()));
             return (beta * clamp01(env), Vec3::ZERO);

@@ -78,7 +78,7 @@ fn initial_radius(
     let o = camera.generate_ray(Vec2::new(w, h) * 0.5).origin;
     let mut d: Vec<f32> = photons.iter().map(|p| p.position().distance(o)).collect();
     if d.is_empty() {
-        return 0.01 * (scene.bounds.1 - scene.bounds.0).length();
+        return 0.01 * (scene.bounds().1 - scene.bounds().0).length();
     }
     let mid = d.len() / 2;
     let (_, m, _) = d.select_nth_unstable_by(mid, f32::total_cmp);

@@ -1,6 +1,6 @@
 //! Unidirectional path tracing (`--method path`, Kajiya 1986; pbrt-v4 `PathIntegrator`):
-//! at each non-delta hit, next-event estimation toward one light chosen uniformly among the
-//! punctual lights, the emissive triangles and the environment, combined with BSDF sampling
+//! at each non-delta hit, next-event estimation toward one light chosen by the scene's light
+//! sampler ([`crate::light::sampler`]), combined with BSDF sampling
 //! by multiple importance sampling (power heuristic, Veach 1997). Delta bounces (smooth
 //! glass, mirrors) do not use up the `max_depth` budget: they are counted separately up to
 //! [`MAX_DELTA_BOUNCES`], so a gem's internal reflections are not cut short. Russian
@@ -18,6 +18,7 @@
 use super::Context;
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::interaction::SurfaceHit;
+use crate::light::LightId;
 use crate::math::{Frame, Ray};
 use crate::medium::MediumStack;
 use crate::sampler::Bounce;
@@ -36,9 +37,9 @@ fn mis(a: f32, b: f32) -> f32 {
     }
 }
 
-/// Next-event estimation at `s`: one light, chosen uniformly among the light groups.
-/// With `use_mis` false the light sample gets the full weight (the path stops here, so
-/// BSDF sampling will not find the light).
+/// Next-event estimation at `s`: one light, chosen by the scene's light sampler
+/// ([`Scene::light_sampler`](crate::scene::Scene)). With `use_mis` false the light sample
+/// gets the full weight (the path stops here, so BSDF sampling will not find the light).
 fn next_event<C: Carrier>(
     scene: &Scene,
     s: &Surface<C>,
@@ -48,25 +49,17 @@ fn next_event<C: Carrier>(
     rays: &mut u64,
 ) -> C {
     let hit = &s.hit;
-    let n_punctual = scene.lights.len();
-    let has_area = !scene.area_lights.is_empty();
-    let has_env = scene.environment.is_some();
-    let groups = n_punctual + has_area as usize + has_env as usize;
-    if groups == 0 {
+    let sampler = &scene.light_sampler();
+    if sampler.is_empty() {
         return C::ZERO;
     }
-    let p_sel = 1.0 / groups as f32;
-    let k = ((u.light_choice() * groups as f32) as usize).min(groups - 1);
+    let Some(choice) = sampler.sample(u.light_choice()) else {
+        return C::ZERO;
+    };
+    let p_sel = choice.pmf;
     let up = u.light_position();
     let uc = u.light_member();
-    let sample = if k < n_punctual {
-        lights::punctual(scene, hit, k)
-    } else if has_area && k == n_punctual {
-        lights::area(scene, hit, uc, up)
-    } else {
-        lights::environment(scene, hit, up)
-    };
-    let Some(ls) = sample else {
+    let Some(ls) = lights::sample(scene, hit, choice.light, uc, up) else {
         return C::ZERO;
     };
     // The light's pdf includes choosing its group.
@@ -185,17 +178,17 @@ struct Prev {
 }
 
 /// The environment seen along an escaped ray, times `beta`, MIS-weighted against the light
-/// sampling of the previous bounce (`p_sel`: the probability of choosing one light group);
+/// sampling of the previous bounce (the light sampler's probability of the environment);
 /// `None` without an environment.
 fn escaped<C: Carrier>(
     scene: &Scene,
     ray: &Ray,
     prev: &Prev,
-    p_sel: f32,
     beta: C,
     lambda: &C::Lambda,
 ) -> Option<C> {
-    let env = scene.environment.as_ref()?;
+    let env = scene.environment()?;
+    let p_sel = scene.light_sampler().pmf(LightId::Environment);
     let d = ray.dir.normalize();
     let w = if prev.delta {
         1.0
@@ -206,12 +199,12 @@ fn escaped<C: Carrier>(
 }
 
 /// Emission of the surface arrived at (its emitting side only), times `beta`, MIS-weighted
-/// like [`escaped`]; `None` if it does not emit toward the path.
+/// like [`escaped`] with the probability of the emissive group; `None` if it does not emit
+/// toward the path.
 fn emitted<C: Carrier>(
     scene: &Scene,
     at: &Arrival<'_, C>,
     prev: &Prev,
-    p_sel: f32,
     beta: C,
     lambda: &C::Lambda,
 ) -> Option<C> {
@@ -222,10 +215,8 @@ fn emitted<C: Carrier>(
     let w = if prev.delta {
         1.0
     } else {
-        let lp = p_sel
-            * scene
-                .area_lights
-                .pdf(&scene.triangle_data, hit.prim, prev.p, hit.p);
+        let lp = scene.light_sampler().pmf(LightId::Area)
+            * scene.area_lights().pdf(hit.prim, prev.p, hit.p);
         mis(prev.pdf, lp)
     };
     Some(beta * C::emitted(at.sp.emissive, mat.emitter_shape(), lambda) * w)
@@ -280,10 +271,6 @@ fn trace<C: Carrier>(
         pdf: 0.0,
         p: ray.origin,
     };
-    let groups = scene.lights.len()
-        + !scene.area_lights.is_empty() as usize
-        + scene.environment.is_some() as usize;
-    let p_sel = if groups > 0 { 1.0 / groups as f32 } else { 0.0 };
     // Delta bounces since the last non-delta bounce (None before the first): ≥ 1 when
     // emission found now closes a D S+ L chain, the caustic map's share.
     let mut since_diffuse: Option<u32> = None;
@@ -294,13 +281,13 @@ fn trace<C: Carrier>(
         // tracing's) share when the path is split.
         let caustic = !matches!(split, CausticSplit::None) && since_diffuse.unwrap_or(0) > 0;
         let Some(at) = shading::arrive::<C>(scene, &ray, &media, &lambda, &mut ctx.rays) else {
-            if let (Some(e), false) = (escaped(scene, &ray, &prev, p_sel, beta, &lambda), caustic) {
+            if let (Some(e), false) = (escaped(scene, &ray, &prev, beta, &lambda), caustic) {
                 l += e;
             }
             break;
         };
         beta *= at.transmittance;
-        if let (Some(e), false) = (emitted(scene, &at, &prev, p_sel, beta, &lambda), caustic) {
+        if let (Some(e), false) = (emitted(scene, &at, &prev, beta, &lambda), caustic) {
             l += e;
         }
         let mut u = ctx.sample.bounce(vertex);

@@ -292,7 +292,7 @@ pub fn render(
     let (caustic, global, rays) = build_maps(scene, n, &ts, settings.seed, settings.spectral)?;
     let max_r = ps.radius.unwrap_or_else(|| {
         // 16 pixel footprints at the distance of the scene's centre.
-        let c = 0.5 * (scene.bounds.0 + scene.bounds.1);
+        let c = 0.5 * (scene.bounds().0 + scene.bounds().1);
         let o = camera
             .generate_ray(Vec2::new(settings.width as f32, settings.height as f32) * 0.5)
             .origin;

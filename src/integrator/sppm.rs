@@ -359,7 +359,7 @@ impl<C: Carrier> Passes<C> {
             let o = camera.generate_ray(Vec2::new(w, h) * 0.5).origin;
             let mut d: Vec<f32> = self.vps.iter().flatten().map(|v| v.p.distance(o)).collect();
             let r = if d.is_empty() {
-                0.01 * (scene.bounds.1 - scene.bounds.0).length()
+                0.01 * (scene.bounds().1 - scene.bounds().0).length()
             } else {
                 let mid = d.len() / 2;
                 let (_, m, _) = d.select_nth_unstable_by(mid, f32::total_cmp);

@@ -16,10 +16,10 @@
 //! so a gem's branching stays bounded; `max_depth` bounds the recursion.
 
 use super::Context;
+use crate::material::AlphaMode;
 use crate::math::Ray;
 use crate::medium::MediumStack;
 use crate::optics::{fresnel_conductor_c, fresnel_dielectric, fresnel_schlick, reflect, refract};
-use crate::scene::desc::AlphaMode;
 use crate::scene::Scene;
 use crate::shading::{self, Arrival};
 use crate::spectrum::Carrier;
@@ -74,7 +74,7 @@ fn trace<C: Carrier>(scene: &Scene, ray: &Ray, path: Path<C>, w: C, ctx: &mut Co
     }
     let Some(at) = shading::arrive::<C>(scene, ray, &path.media, &path.lambda, &mut ctx.rays)
     else {
-        return scene.environment.as_ref().map_or(C::ZERO, |e| {
+        return scene.environment().map_or(C::ZERO, |e| {
             C::illuminant(e.eval(ray.dir.normalize()), &path.lambda)
         });
     };

@@ -13,6 +13,8 @@
 pub mod area;
 pub mod env;
 pub mod punctual;
+pub mod sampler;
 
 pub(crate) use punctual::range_window;
-pub use punctual::{default_lights, Light, LightSample};
+pub use punctual::{default_lights, Light, LightSample, PunctualLight};
+pub use sampler::{LightChoice, LightId, LightSampler};

@@ -5,14 +5,25 @@
 //! E⊥ (lux), so a surface with BRDF f receives radiance f·E⊥·cos θ. Range falloff and spot
 //! cone falloff follow the spec's recommended formulas.
 //!
-//! Colour: a light with an `iris_spectrum` ([`crate::scene::desc::EmissionSpectrum`]) emits
+//! Colour: a light with an `iris_spectrum` ([`crate::spectrum::EmissionSpectrum`]) emits
 //! `intensity × color × linear_srgb(spectrum)`, the spectrum's sRGB colour normalised to
-//! luminance 1, so its luminous intensity is unchanged ([`LightDesc::effective_color`]).
+//! luminance 1, so its luminous intensity is unchanged; spectral transport emits the
+//! spectrum's exact shape ([`PunctualLight::shape`]).
 
-use crate::scene::desc::LightDesc;
+use crate::spectrum::EmitterShape;
 use glam::Vec3;
 
-/// A light of the render scene.
+/// A punctual light of the render scene with its spectral shape.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PunctualLight {
+    /// The light in RGB terms.
+    pub light: Light,
+    /// The exact spectral shape of a light that names one (`iris_spectrum`), for spectral
+    /// transport; `None` upsamples the RGB intensity.
+    pub shape: Option<EmitterShape>,
+}
+
+/// A punctual light in RGB terms.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Light {
     /// Isotropic point light.
@@ -80,47 +91,6 @@ fn toward(position: Vec3, p: Vec3) -> Option<(Vec3, f32, f32)> {
 }
 
 impl Light {
-    /// Converts a validated description.
-    pub fn from_desc(d: &LightDesc) -> Light {
-        let color = d.effective_color();
-        match d {
-            LightDesc::Point {
-                position,
-                intensity,
-                range,
-                ..
-            } => Light::Point {
-                position: *position,
-                intensity: color * *intensity,
-                range: *range,
-            },
-            LightDesc::Spot {
-                position,
-                direction,
-                intensity,
-                range,
-                inner_cone,
-                outer_cone,
-                ..
-            } => Light::Spot {
-                position: *position,
-                direction: direction.normalize_or(Vec3::NEG_Z),
-                intensity: color * *intensity,
-                cos_inner: inner_cone.cos(),
-                cos_outer: outer_cone.cos(),
-                range: *range,
-            },
-            LightDesc::Directional {
-                direction,
-                intensity,
-                ..
-            } => Light::Directional {
-                direction: direction.normalize_or(Vec3::NEG_Y),
-                illuminance: color * *intensity,
-            },
-        }
-    }
-
     /// Illumination at `p`, or `None` if the light cannot reach it (outside the cone or
     /// range, or at the light's own position).
     pub fn sample_li(&self, p: Vec3) -> Option<LightSample> {

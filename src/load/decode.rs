@@ -1,6 +1,6 @@
 //! Texture decoding shared by the glTF and OBJ/MTL loaders: PNG, JPEG, WebP (and Radiance HDR,
 //! which the `image` crate also recognises) → row-major RGBA8, top row first, **as
-//! stored** (no sRGB decoding; see [`crate::texture`]).
+//! stored** (no sRGB decoding; see [`crate::material::texture`]).
 //!
 //! Sizes are checked from the header before any pixel is decoded: at most
 //! [`MAX_TEXTURE_TEXELS`] texels, and the decoder's own allocation limit
@@ -8,7 +8,7 @@
 //! samples), so a header claiming 10⁵ × 10⁵ pixels is an error, not an allocation.
 
 use crate::error::LoadErrorKind;
-use crate::scene::desc::ImageDesc;
+use crate::material::ImageDesc;
 use image::ImageDecoder;
 use std::io::Cursor;
 use std::sync::Arc;

@@ -28,8 +28,8 @@ mod accessor;
 mod draco;
 mod draco_header;
 mod instancing;
+mod iridescence_anisotropy;
 mod material;
-mod material_film;
 mod material_layers;
 mod mesh;
 mod meshopt;
@@ -239,7 +239,7 @@ impl Warnings {
         }
         if !self.texcoord_sets.is_empty() {
             out.push(format!(
-                "textures using texCoord != 0 are sampled with TEXCOORD_0: {}",
+                "textures using texCoord 2 or higher are sampled with TEXCOORD_0 (Iris reads TEXCOORD_0 and TEXCOORD_1): {}",
                 short_list(&self.texcoord_sets)
             ));
         }

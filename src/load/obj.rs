@@ -25,7 +25,8 @@ mod scan;
 
 use super::files::Files;
 use crate::error::{LoadError, LoadErrorKind};
-use crate::scene::desc::{MaterialDesc, MeshDesc, SceneDesc};
+use crate::material::MaterialDesc;
+use crate::scene::desc::{MeshDesc, SceneDesc};
 use glam::{Vec2, Vec3};
 use mtl::RawMtl;
 use std::cell::RefCell;
@@ -183,6 +184,7 @@ fn to_meshes(
             positions: vec3s(&mesh.positions),
             normals,
             uvs,
+            uvs1: Vec::new(),
             tangents: Vec::new(),
             indices: mesh
                 .indices

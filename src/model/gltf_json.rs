@@ -81,7 +81,7 @@ pub(super) fn material(m: &GenMaterial, used: &mut BTreeSet<&'static str>) -> Va
             json!({"dispersion": num(d)}),
         );
     }
-    if let Some(i) = &m.film.iridescence {
+    if let Some(i) = &m.iridescence {
         ext.insert(
             "KHR_materials_iridescence".into(),
             json!({
@@ -92,7 +92,7 @@ pub(super) fn material(m: &GenMaterial, used: &mut BTreeSet<&'static str>) -> Va
             }),
         );
     }
-    if let Some(a) = &m.film.anisotropy {
+    if let Some(a) = &m.anisotropy {
         ext.insert(
             "KHR_materials_anisotropy".into(),
             json!({

@@ -12,7 +12,7 @@
 use super::layers::GenLayers;
 use super::shapes::TriMesh;
 use crate::error::{Error, Result};
-use crate::scene::desc::FilmDesc;
+use crate::material::{AnisotropyDesc, IridescenceDesc};
 use glam::{Vec2, Vec3, Vec4};
 
 /// A whole generated scene.
@@ -86,9 +86,10 @@ pub struct GenMaterial {
     /// Emitted radiance, linear RGB (may exceed 1): written as `emissiveFactor` = colour /
     /// max component and `KHR_materials_emissive_strength` = max component.
     pub emissive: Option<Vec3>,
-    /// KHR_materials_iridescence / KHR_materials_anisotropy (factors only: the writer
-    /// writes no textures).
-    pub film: FilmDesc,
+    /// KHR_materials_iridescence (factors only: the writer writes no textures).
+    pub iridescence: Option<IridescenceDesc>,
+    /// KHR_materials_anisotropy (factors only: the writer writes no textures).
+    pub anisotropy: Option<AnisotropyDesc>,
     /// KHR_materials_clearcoat, _sheen and _diffuse_transmission (none by default).
     pub layers: GenLayers,
     /// glTF `doubleSided` (written only when true), e.g. a thin sheet seen from both sides.
@@ -109,7 +110,8 @@ impl GenMaterial {
             dispersion: None,
             extras: None,
             emissive: None,
-            film: FilmDesc::default(),
+            iridescence: None,
+            anisotropy: None,
             layers: GenLayers::default(),
             double_sided: false,
         }
@@ -142,7 +144,8 @@ impl GenMaterial {
             dispersion: None,
             extras: None,
             emissive: None,
-            film: FilmDesc::default(),
+            iridescence: None,
+            anisotropy: None,
             layers: GenLayers::default(),
             double_sided: false,
         }
@@ -308,9 +311,17 @@ fn check_material(i: usize, m: &GenMaterial) -> Result<()> {
     if !m.dispersion.is_none_or(|d| d.is_finite() && d >= 0.0) {
         return Err(bad(&el, "dispersion must be finite and ≥ 0"));
     }
-    m.film.check().map_err(|e| bad(&el, e))?;
-    if !m.film.textures().is_empty() {
-        return Err(bad(&el, "the writer writes no textures"));
+    if let Some(i) = &m.iridescence {
+        i.check().map_err(|e| bad(&el, e))?;
+        if i.textures().iter().any(|(_, t)| t.is_some()) {
+            return Err(bad(&el, "the writer writes no textures"));
+        }
+    }
+    if let Some(a) = &m.anisotropy {
+        a.check().map_err(|e| bad(&el, e))?;
+        if a.texture.is_some() {
+            return Err(bad(&el, "the writer writes no textures"));
+        }
     }
     if !m
         .emissive

@@ -25,7 +25,7 @@
 
 use super::scene::{GenMaterial, GenVolume};
 use crate::error::{Error, Result};
-use crate::scene::desc::MaterialDesc;
+use crate::material::MaterialDesc;
 use glam::{Vec3, Vec4};
 
 /// A named gem material.

@@ -164,9 +164,9 @@ fn split(mut tris: Vec<[Vec3; 3]>) -> (Vec<[Vec3; 3]>, Vec<[Vec3; 3]>) {
 impl Targets {
     /// The bounding spheres of `scene`'s caustic makers (none when there are none).
     pub fn new(scene: &Scene) -> Targets {
-        let makers: Vec<bool> = scene.materials.iter().map(is_caustic_maker).collect();
+        let makers: Vec<bool> = scene.materials().iter().map(is_caustic_maker).collect();
         let tris: Vec<[Vec3; 3]> = scene
-            .triangle_data
+            .triangles()
             .iter()
             .filter(|t| makers.get(t.material() as usize).copied().unwrap_or(false))
             .filter(|t| t.p.iter().all(|v| v.is_finite()))

@@ -57,9 +57,10 @@ use super::aim::Targets;
 pub use super::aim::{Aim, DEFAULT_AIM};
 use super::flux::{area_flux, area_point, environment_integral, punctual_flux};
 pub use super::numbers::PhotonNumbers;
-use crate::interaction::OFFSET_SCALE;
 use crate::light::env::luminance;
+use crate::light::sampler::{LightId, LightSampler};
 use crate::math::{Ray, Rng};
+use crate::scene::triangle::OFFSET_SCALE;
 use crate::scene::Scene;
 use crate::spectrum::EmitterShape;
 use glam::{Vec2, Vec3};
@@ -90,24 +91,13 @@ pub struct EmittedPhoton<'a> {
     pub range: Option<f32>,
 }
 
-/// A group of lights chosen as one by the light selection.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Source {
-    /// `scene.lights[k]`.
-    Punctual(usize),
-    /// All emissive triangles (`scene.area_lights` picks one by power).
-    Area,
-    /// `scene.environment`.
-    Environment,
-}
-
 /// Chooses lights by power and emits photons from them (see the module docs).
 #[derive(Debug, Clone)]
 pub struct PhotonEmitter {
-    /// Lights with positive power, their RGB flux and their selection probability.
-    sources: Vec<(Source, Vec3, f32)>,
-    /// Cumulative selection probability (last entry 1).
-    cdf: Vec<f32>,
+    /// The lights with positive power, chosen by the luminance of their flux.
+    sampler: LightSampler,
+    /// The RGB flux of each light of `sampler`, in its order.
+    flux: Vec<Vec3>,
     /// Σ flux.
     total: Vec3,
     /// Bounding-sphere centre of the scene.
@@ -121,7 +111,7 @@ pub struct PhotonEmitter {
 impl PhotonEmitter {
     /// Collects the scene's lights and their flux.
     pub fn new(scene: &Scene) -> PhotonEmitter {
-        let (lo, hi) = scene.bounds;
+        let (lo, hi) = scene.bounds();
         let (centre, radius) = if lo.is_finite() && hi.is_finite() && lo.cmple(hi).all() {
             let half = 0.5 * (hi - lo).length();
             // A point-like scene still gets a disc of positive area.
@@ -130,27 +120,34 @@ impl PhotonEmitter {
         } else {
             (Vec3::ZERO, 0.0)
         };
-        let mut candidates: Vec<(Source, Vec3)> = scene
-            .lights
+        let mut candidates: Vec<(LightId, Vec3)> = scene
+            .lights()
             .iter()
             .enumerate()
-            .map(|(k, l)| (Source::Punctual(k), punctual_flux(l, radius)))
+            .map(|(k, l)| (LightId::Punctual(k as u32), punctual_flux(&l.light, radius)))
             .collect();
-        if !scene.area_lights.is_empty() {
-            candidates.push((Source::Area, area_flux(scene)));
+        if !scene.area_lights().is_empty() {
+            candidates.push((LightId::Area, area_flux(scene)));
         }
-        if let Some(env) = &scene.environment {
+        if let Some(env) = &scene.environment() {
             let flux = environment_integral(env) * (PI * radius * radius);
-            candidates.push((Source::Environment, flux));
+            candidates.push((LightId::Environment, flux));
         }
         candidates.retain(|(_, f)| {
             let y = luminance(*f);
             f.is_finite() && y.is_finite() && y > 0.0
         });
-        let (sources, cdf, total) = selection(candidates);
+        let total = candidates.iter().map(|(_, f)| *f).sum();
+        let flux = candidates.iter().map(|(_, f)| *f).collect();
+        let sampler = LightSampler::by_power(
+            candidates
+                .iter()
+                .map(|&(id, f)| (id, luminance(f)))
+                .collect(),
+        );
         PhotonEmitter {
-            sources,
-            cdf,
+            sampler,
+            flux,
             total,
             centre,
             radius,
@@ -165,7 +162,12 @@ impl PhotonEmitter {
 
     /// No light emits (zero power).
     pub fn is_empty(&self) -> bool {
-        self.sources.is_empty()
+        self.sampler.is_empty()
+    }
+
+    /// The light choice photons are emitted with (by the luminance of each light's flux).
+    pub fn sampler(&self) -> &LightSampler {
+        &self.sampler
     }
 
     /// Σ of the lights' emitted flux, linear RGB, computed analytically (not by sampling).
@@ -221,10 +223,8 @@ impl PhotonEmitter {
         u: [f32; 5],
         aim: Aim,
     ) -> Option<EmittedPhoton<'a>> {
-        if self.sources.is_empty() {
-            return None;
-        }
-        let (u_light, u_pos, u_dir) = (u[0], Vec2::new(u[1], u[2]), Vec2::new(u[3], u[4]));
+        let choice = self.sampler.sample(u[0])?;
+        let (u_pos, u_dir) = (Vec2::new(u[1], u[2]), Vec2::new(u[3], u[4]));
         let only = aim == Aim::Only;
         let a = if self.targets.is_empty() {
             if only {
@@ -234,22 +234,16 @@ impl PhotonEmitter {
         } else {
             aim.fraction()
         };
-        let k = self
-            .cdf
-            .partition_point(|&c| c <= u_light)
-            .min(self.sources.len() - 1);
-        let (source, flux, prob) = self.sources[k];
-        // Reuse u_light within the chosen interval (for the triangle choice).
-        let lo = if k == 0 { 0.0 } else { self.cdf[k - 1] };
-        let u_sub = ((u_light - lo) / prob).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
+        let (flux, prob) = (self.flux[choice.index], choice.pmf);
         let mix = Mix { a, only };
-        let photon = match source {
-            Source::Punctual(i) => {
-                let shape = scene.light_shapes.get(i).and_then(Option::as_ref);
-                self.punctual(&scene.lights[i], flux, u_pos, u_dir, shape, mix)
+        let photon = match choice.light {
+            LightId::Punctual(i) => {
+                let l = &scene.lights()[i as usize];
+                self.punctual(&l.light, flux, u_pos, u_dir, l.shape.as_ref(), mix)
             }
-            Source::Area => {
-                let pt = area_point(scene, u_sub, u_pos)?;
+            LightId::Area => {
+                // The rest of the light's number picks the triangle.
+                let pt = area_point(scene, choice.u_rest, u_pos)?;
                 let (dir, ratio) = self.mix_direction(
                     pt.point,
                     mix,
@@ -264,8 +258,8 @@ impl PhotonEmitter {
                     range: None,
                 })
             }
-            Source::Environment => {
-                let s = scene.environment.as_ref()?.sample(u_dir)?;
+            LightId::Environment => {
+                let s = scene.environment()?.sample(u_dir)?;
                 let (origin, area) = self.distant_origin(-s.wi, u_pos, mix)?;
                 Some(EmittedPhoton {
                     ray: Ray::new(origin, -s.wi),
@@ -279,26 +273,4 @@ impl PhotonEmitter {
         (power.is_finite() && power.max_element() > 0.0)
             .then_some(EmittedPhoton { power, ..photon })
     }
-}
-
-/// The light selection over `candidates` (source, flux): each chosen with probability
-/// proportional to its flux's luminance. Returns (source, flux, probability) per source,
-/// the CDF (last entry exactly 1) and the total flux.
-#[allow(clippy::type_complexity)]
-fn selection(candidates: Vec<(Source, Vec3)>) -> (Vec<(Source, Vec3, f32)>, Vec<f32>, Vec3) {
-    let lum_total: f64 = candidates.iter().map(|(_, f)| luminance(*f) as f64).sum();
-    let mut cdf = Vec::with_capacity(candidates.len());
-    let mut sources = Vec::with_capacity(candidates.len());
-    let (mut acc, mut total) = (0.0f64, Vec3::ZERO);
-    for (s, f) in candidates {
-        let y = luminance(f) as f64;
-        acc += y;
-        cdf.push((acc / lum_total) as f32);
-        sources.push((s, f, (y / lum_total) as f32));
-        total += f;
-    }
-    if let Some(last) = cdf.last_mut() {
-        *last = 1.0;
-    }
-    (sources, cdf, total)
 }

@@ -9,8 +9,7 @@
 use crate::light::env::{luminance, Environment};
 use crate::light::Light;
 use crate::math::Frame;
-use crate::scene::{Scene, TriangleData};
-use crate::texture::{self, Encoding};
+use crate::scene::Scene;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -111,10 +110,9 @@ pub(super) fn environment_integral(env: &Environment) -> Vec3 {
 /// the triangles [`crate::light::area::AreaLights`] selects from.
 pub(super) fn area_flux(scene: &Scene) -> Vec3 {
     let mut sum = [0.0f64; 3];
-    for t in &scene.triangle_data {
-        let Some(mat) = scene.materials.get(t.material() as usize) else {
-            continue;
-        };
+    for e in scene.area_lights().emitters() {
+        let t = scene.triangle(e.prim);
+        let mat = scene.material(t.material());
         let le = mat.emission();
         let area = 0.5 * (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]).length();
         let sides = if mat.desc.double_sided { 2.0 } else { 1.0 };
@@ -150,26 +148,9 @@ pub(super) struct AreaPoint<'a> {
 /// A point on the emissive triangles: `u` picks the triangle by power, `u_pos` the point
 /// uniformly by area.
 pub(super) fn area_point(scene: &Scene, u: f32, u_pos: Vec2) -> Option<AreaPoint<'_>> {
-    let e = scene
-        .area_lights
-        .sample_point(&scene.triangle_data, u, u_pos)?;
-    let t = scene.triangle_data.get(e.prim as usize)?;
-    let mat = scene.materials.get(t.material() as usize)?;
-    let mut le = mat.emission();
-    if let (Some(tex), true) = (
-        mat.desc.emissive_texture,
-        t.info & TriangleData::HAS_UVS != 0,
-    ) {
-        let vi = scene.triangles.get(e.prim as usize)?;
-        let uv = vi
-            .iter()
-            .zip(e.bary)
-            .map(|(&i, b)| scene.uvs.get(i as usize).copied().unwrap_or(Vec2::ZERO) * b)
-            .sum();
-        if let Some(img) = scene.images.get(tex.image) {
-            le *= texture::sample(img, uv, Encoding::Srgb).truncate();
-        }
-    }
+    let e = scene.area_lights().sample_point(u, u_pos)?;
+    let mat = scene.material(scene.triangle(e.prim).material());
+    let le = scene.emission_at(e.prim, e.bary);
     Some(AreaPoint {
         prim: e.prim,
         point: e.point,

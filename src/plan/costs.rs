@@ -106,7 +106,7 @@ impl Plan {
                     .into(),
                 "acceleration" => format!(
                     "built in {:.1} ms ({backend})",
-                    scene.accel_build_time.as_secs_f64() * 1e3
+                    scene.accel_build_time().as_secs_f64() * 1e3
                 ),
                 "environment" => "not measured".into(),
                 _ => "BENCHMARKS.md 'Path tracer on real scenes': 0.45 us per probe on Embree, \

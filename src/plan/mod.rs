@@ -18,7 +18,7 @@
 //!   a node are loaded).
 //! - **environment**: none, uniform (uniform sphere sampling) or a map (importance-sampled).
 //! - **nested media**: contact probes at hits on triangles marked
-//!   [`TriangleData::TOUCHES`] by `scene/contact.rs` (and `scene/thin.rs`).
+//!   [`crate::scene::Triangle::TOUCHES`] by `scene/contact.rs` (and `scene/thin.rs`).
 //! - **denoise**: added by the caller that knows the output ([`crate::app::RenderJob`],
 //!   `iris info` for the default PNG), not by [`Plan::new`]:
 //!   [`crate::denoise::DenoiseChoice::stage`].
@@ -68,24 +68,15 @@ impl SpectralMode {
             SpectralMode::On => true,
             SpectralMode::Off => false,
             SpectralMode::Auto => {
-                scene.materials.iter().any(|m| {
+                scene.materials().iter().any(|m| {
                     m.is_dispersive()
                         || m.emitter_shape().is_some()
                         || m.conductor().is_some()
-                        || is_iridescent(m)
-                }) || scene.light_shapes.iter().any(Option::is_some)
+                        || m.desc.is_iridescent()
+                }) || scene.lights().iter().any(|l| l.shape.is_some())
             }
         }
     }
-}
-
-/// Whether a material has a thin film (KHR_materials_iridescence, factor > 0): an
-/// interference colour that spectral transport renders per wavelength.
-pub(crate) fn is_iridescent(m: &crate::material::Material) -> bool {
-    m.desc
-        .film
-        .iridescence
-        .is_some_and(|i| i.factor > 0.0 && i.thickness_max > 0.0)
 }
 
 /// Resolves [`Method::Auto`] for `scene` among the path tracer, the hybrid and SPPM, from
@@ -166,7 +157,7 @@ pub fn resolve_method(method: Method, scene: &Scene) -> (Method, Option<String>)
 /// [`ROUGH_GLASS`]), by its label (`material N "name"`), if any.
 fn rough_glass(scene: &Scene) -> Option<String> {
     scene
-        .materials
+        .materials()
         .iter()
         .enumerate()
         .find(|(_, m)| m.is_transmissive() && m.desc.roughness > ROUGH_GLASS)

@@ -8,7 +8,7 @@ use crate::light::env::Environment;
 use crate::material::Material;
 use crate::photon::emit::{PhotonEmitter, DEFAULT_AIM};
 use crate::photon::trace::has_caustic_paths;
-use crate::scene::{Scene, TriangleData};
+use crate::scene::{Scene, Triangle};
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
 
@@ -21,9 +21,9 @@ pub(super) struct Evidence<'a> {
 impl<'a> Evidence<'a> {
     pub fn new(scene: &'a Scene) -> Self {
         let used = scene
-            .triangle_material
+            .triangles()
             .iter()
-            .map(|&m| m as usize)
+            .map(|t| t.material() as usize)
             .collect();
         Evidence { scene, used }
     }
@@ -32,7 +32,7 @@ impl<'a> Evidence<'a> {
     fn materials(&self) -> impl Iterator<Item = &'a Material> + '_ {
         self.used
             .iter()
-            .filter_map(|&i| self.scene.materials.get(i))
+            .filter_map(|&i| self.scene.materials().get(i))
     }
 
     /// Names of the used materials for which `f` holds.
@@ -60,8 +60,8 @@ pub(super) fn transport(ev: &Evidence, spectral: SpectralMode, spectral_on: bool
     let dispersive = mats(&|m: &Material| m.is_dispersive());
     let metals = mats(&|m: &Material| m.conductor().is_some());
     let spectral_emitters = mats(&|m: &Material| m.emitter_shape().is_some());
-    let spectral_lights = scene.light_shapes.iter().filter(|s| s.is_some()).count();
-    let iridescent = mats(&|m: &Material| super::is_iridescent(m));
+    let spectral_lights = scene.lights().iter().filter(|l| l.shape.is_some()).count();
+    let iridescent = mats(&|m: &Material| m.desc.is_iridescent());
     let mut evidence = Vec::new();
     if !iridescent.is_empty() {
         evidence.push(format!("iridescent materials {}", names(iridescent)));
@@ -198,7 +198,7 @@ pub(super) fn textures(ev: &Evidence) -> Stage {
             referenced.insert(t.image);
         }
     }
-    let decoded = scene.images.len();
+    let decoded = scene.images().len();
     let mut reason = format!(
         "{} of {decoded} decoded images referenced by materials on triangles",
         referenced.len()
@@ -210,11 +210,11 @@ pub(super) fn textures(ev: &Evidence) -> Stage {
             decoded - referenced.len()
         );
     }
-    if scene.skipped_textures > 0 {
+    if scene.skipped_textures() > 0 {
         let _ = write!(
             reason,
             "; {} texture slots of materials on no mesh left undecoded",
-            scene.skipped_textures
+            scene.skipped_textures()
         );
     }
     Stage {
@@ -233,7 +233,7 @@ pub(super) fn acceleration(scene: &Scene) -> Stage {
         reason: format!(
             "{} triangles in {} meshes (one per node instance and primitive, or OBJ group), {}",
             scene.triangle_count(),
-            scene.meshes.len(),
+            scene.meshes().len(),
             scene.backend_name()
         ),
         cost: None,
@@ -242,7 +242,7 @@ pub(super) fn acceleration(scene: &Scene) -> Stage {
 
 /// Environment: none, uniform or an importance-sampled map.
 pub(super) fn environment(scene: &Scene) -> Stage {
-    let (env_used, reason) = match &scene.environment {
+    let (env_used, reason) = match &scene.environment() {
         None => (
             false,
             "none (no iris_environment in the file, no --env)".into(),
@@ -276,10 +276,10 @@ pub(super) fn nested_media(ev: &Evidence) -> Stage {
     let (scene, mats) = (ev.scene, |f: &dyn Fn(&Material) -> bool| ev.mats(f));
     let mut touching = 0usize;
     let mut touching_meshes = BTreeSet::new();
-    for (t, data) in scene.triangle_data.iter().enumerate() {
-        if data.info & TriangleData::TOUCHES != 0 {
+    for t in scene.triangles() {
+        if t.has(Triangle::TOUCHES) {
             touching += 1;
-            touching_meshes.insert(scene.triangle_mesh[t] as usize);
+            touching_meshes.insert(t.mesh as usize);
         }
     }
     let volumetric = mats(&|m: &Material| m.is_volume()).len();
@@ -293,7 +293,7 @@ pub(super) fn nested_media(ev: &Evidence) -> Stage {
                 names(
                     touching_meshes
                         .iter()
-                        .filter_map(|&m| scene.meshes.get(m))
+                        .filter_map(|&m| scene.meshes().get(m))
                         .map(|m| m.name.as_str())
                 )
             )

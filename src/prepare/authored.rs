@@ -64,7 +64,8 @@ impl Authored {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::desc::{EnvironmentDesc, MaterialDesc, MeshDesc};
+    use crate::material::MaterialDesc;
+    use crate::scene::desc::{EnvironmentDesc, MeshDesc};
     use glam::Vec3;
 
     fn quad(material: Option<usize>) -> MeshDesc {

@@ -31,9 +31,10 @@
 
 use super::select::{pick, Picked, Selector};
 use crate::error::{Error, Result};
+use crate::material::MaterialDesc;
 use crate::model::cuts::DEFAULT_SIZE_MM;
 use crate::model::stones::{Stone, COLOUR_DISTANCE, STONES};
-use crate::scene::desc::{MaterialDesc, MeshDesc, SceneDesc};
+use crate::scene::desc::{MeshDesc, SceneDesc};
 use crate::spectrum::metals::{Metal, METALS};
 use glam::Vec3;
 

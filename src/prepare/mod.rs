@@ -139,8 +139,8 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
     }
     let scene = Scene::build(desc, opts.accel)?;
     let load_time = load_time + build_start.elapsed();
-    let touching = (scene.touching_triangles > 0).then_some(Note::Touching {
-        triangles: scene.touching_triangles,
+    let touching = (scene.touching_triangles() > 0).then_some(Note::Touching {
+        triangles: scene.touching_triangles(),
     });
     // The authored file's note, when the defaults left something out because of it.
     let (no_floor, no_studio) = (floor == Floor::Authored, preview.studio.is_none());
@@ -152,7 +152,7 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
             no_studio,
         });
     let notes = [
-        scene.default_lights.then_some(Note::KeyFill),
+        scene.default_lights().then_some(Note::KeyFill),
         touching,
         studio,
         (!matches!(floor, Floor::NotTransmissive | Floor::Authored)).then_some(Note::Floor(floor)),

@@ -18,7 +18,7 @@ pub enum Note {
     KeyFill,
     /// This many triangles lie on another object's faces.
     Touching {
-        /// Triangles marked [`crate::scene::TriangleData::TOUCHES`].
+        /// Triangles marked [`crate::scene::Triangle::TOUCHES`].
         triangles: usize,
     },
     /// Nothing lights the file: a studio preset lights it.

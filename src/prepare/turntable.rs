@@ -224,7 +224,7 @@ impl Turn {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::desc::MaterialDesc;
+    use crate::material::MaterialDesc;
 
     fn mesh(positions: Vec<Vec3>, material: Option<usize>) -> MeshDesc {
         MeshDesc {

@@ -44,7 +44,7 @@ pub fn coverage(
                     let ray = primary_ray(camera, x, y, settings.spp <= 1, &mut sample);
                     if scene.intersect(&ray).is_some() {
                         hits += 1;
-                    } else if let Some(e) = &scene.environment {
+                    } else if let Some(e) = &scene.environment() {
                         let l = e.eval(ray.dir.normalize());
                         if l.is_finite() {
                             env += l;

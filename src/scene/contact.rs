@@ -2,13 +2,13 @@
 //! layer's coincident-surface probe ([`Scene::coincident`]), so that only hits where two
 //! objects really share a face pay for it.
 //!
-//! A triangle is marked [`TriangleData::TOUCHES`] when a face of a *different mesh* — or of
+//! A triangle is marked [`Triangle::TOUCHES`] when a face of a *different mesh* — or of
 //! its own mesh facing the other way, the two sides of a sheet thinner than the merge
 //! distance (candidates from [`super::thin`]) — crosses
-//! the normal segment `q ± MERGE_SCALE·mag·ng` through one of four points `q` of it (the
-//! centroid and the points at barycentrics (2/3, 1/6, 1/6) and permutations), where `mag` is
-//! its largest vertex coordinate magnitude — the same probe and distance the intersection
-//! layer uses at render time; the face found is marked too. Only triangles of volumetric
+//! the normal segment `q ± d·ng` through one of four points `q` of it (the centroid and the
+//! points at barycentrics (2/3, 1/6, 1/6) and permutations), where `d` is its merge distance
+//! ([`Triangle::merge_distance`]) — the same probe ([`Scene::probe`]) and distance the
+//! intersection layer uses at render time; the face found is marked too. Only triangles of volumetric
 //! materials are probed (the only hits that look for partners), and only those whose
 //! bounding box, grown by the merge distance, overlaps another mesh's: a lone gem costs
 //! nothing. Four points per triangle catch faces that cover a quarter or so of it; a
@@ -17,11 +17,7 @@
 //!
 //! [`Scene::coincident`]: crate::scene::Scene::coincident
 
-use super::{Scene, TriangleData};
-// An upward import, on purpose: the last step of `Scene::build` marks touching faces with
-// the intersection layer's own merge distance and coincident-surface probe, so build time
-// and render time use one rule (the design card: one layer, one offset rule).
-use crate::interaction::MERGE_SCALE;
+use super::{Scene, Triangle};
 use glam::Vec3;
 use rayon::prelude::*;
 
@@ -66,36 +62,31 @@ impl Aabb {
     }
 }
 
-/// Marks [`TriangleData::TOUCHES`] on every triangle that shares a face with another mesh
-/// or lies on the other side of a thin sheet of its own mesh (a step of
+/// Marks [`Triangle::TOUCHES`] on every triangle that shares a face with another mesh or
+/// lies on the other side of a thin sheet of its own mesh (a step of
 /// [`Scene::build`](super::Scene::build), on the scene it is building); returns how many
 /// triangles are marked.
 pub(super) fn mark_touching(scene: &mut Scene) -> usize {
     let n_mesh = scene.meshes.len();
-    let volume = |i: usize| {
-        let m = scene.triangle_data[i].material() as usize;
-        scene.materials[m].is_volume()
-    };
-    let thin = super::thin::sheet_candidates(&scene.triangle_data, &scene.triangle_mesh, volume);
+    let volume = |t: &Triangle| scene.material(t.material()).is_volume();
+    let thin = super::thin::sheet_candidates(&scene.triangles, |i| volume(&scene.triangles[i]));
     let mut boxes = vec![Aabb::empty(); n_mesh];
-    for (td, &m) in scene.triangle_data.iter().zip(&scene.triangle_mesh) {
-        boxes[m as usize] = boxes[m as usize].union(Aabb::of(&td.p));
+    for t in &scene.triangles {
+        boxes[t.mesh as usize] = boxes[t.mesh as usize].union(Aabb::of(&t.p));
     }
     let s: &Scene = scene;
     let probed = |i: usize| -> Vec<u32> {
-        let td = &s.triangle_data[i];
-        let mesh = s.triangle_mesh[i];
-        if !s.materials[td.material() as usize].is_volume() {
+        let t = &s.triangles[i];
+        if !volume(t) {
             return Vec::new();
         }
-        let [p0, p1, p2] = td.p;
-        let mag = p0.abs().max(p1.abs()).max(p2.abs()).max_element();
-        let half = mag * MERGE_SCALE;
-        let bb = Aabb::of(&td.p).grown(half);
+        let [p0, p1, p2] = t.p;
+        let half = t.merge_distance();
+        let bb = Aabb::of(&t.p).grown(half);
         let near_other = boxes
             .iter()
             .enumerate()
-            .any(|(k, b)| k as u32 != mesh && b.overlaps(&bb));
+            .any(|(k, b)| k as u32 != t.mesh && b.overlaps(&bb));
         let ng = (p1 - p0).cross(p2 - p0).normalize_or_zero();
         if (!near_other && !thin[i]) || ng == Vec3::ZERO {
             return Vec::new();
@@ -111,9 +102,10 @@ pub(super) fn mark_touching(scene: &mut Scene) -> usize {
         for q in points {
             let (_, hits) = s.probe(q, ng, half);
             for h in hits.as_slice() {
-                let [o0, o1, o2] = s.triangle_data[h.prim as usize].p;
+                let other = s.triangle(h.prim);
+                let [o0, o1, o2] = other.p;
                 let facing_back = (o1 - o0).cross(o2 - o0).dot(ng) < 0.0;
-                if s.triangle_mesh[h.prim as usize] != mesh || facing_back {
+                if other.mesh != t.mesh || facing_back {
                     found.push(h.prim);
                 }
             }
@@ -123,16 +115,16 @@ pub(super) fn mark_touching(scene: &mut Scene) -> usize {
         }
         found
     };
-    let marked: Vec<u32> = (0..s.triangle_data.len())
+    let marked: Vec<u32> = (0..s.triangles.len())
         .into_par_iter()
         .flat_map_iter(probed)
         .collect();
     for &i in &marked {
-        scene.triangle_data[i as usize].info |= TriangleData::TOUCHES;
+        scene.triangles[i as usize].info |= Triangle::TOUCHES;
     }
     scene
-        .triangle_data
+        .triangles
         .iter()
-        .filter(|t| t.info & TriangleData::TOUCHES != 0)
+        .filter(|t| t.has(Triangle::TOUCHES))
         .count()
 }

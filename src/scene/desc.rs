@@ -23,20 +23,14 @@
 //! ([`crate::prepare`] writes them; loaders leave them empty).
 
 mod added;
-mod emission;
-mod film;
-mod layers;
 
 pub use added::{AddedLights, SpotKey};
-pub use emission::{effective_color, EmissionSpectrum, BLACKBODY_KELVIN, SUN_KELVIN};
-pub use film::{AnisotropyDesc, FilmDesc, IridescenceDesc};
-pub use layers::{LayerDesc, LayerPoint};
 
 use crate::light::env::Environment;
-use crate::spectrum::{IorModel as SpectralIor, Metal, UnknownIorName};
+use crate::material::{ImageDesc, MaterialDesc};
+use crate::spectrum::EmissionSpectrum;
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use std::path::PathBuf;
-use std::sync::Arc;
 
 /// A whole scene as read from a file.
 #[derive(Debug, Clone, Default)]
@@ -104,6 +98,9 @@ pub struct MeshDesc {
     pub normals: Vec<Vec3>,
     /// Per-vertex texture coordinates (TEXCOORD_0), or empty.
     pub uvs: Vec<Vec2>,
+    /// Per-vertex second texture coordinates (TEXCOORD_1), or empty; read only where a
+    /// material on the mesh samples set 1.
+    pub uvs1: Vec<Vec2>,
     /// Per-vertex tangents (glTF TANGENT: xyz unit, w = ±1 the bitangent sign), world
     /// space, or empty.
     pub tangents: Vec<Vec4>,
@@ -111,205 +108,6 @@ pub struct MeshDesc {
     pub indices: Vec<[u32; 3]>,
     /// Index into `SceneDesc::materials`; `None` uses the default material.
     pub material: Option<usize>,
-}
-
-/// A reference from a material to a texture image.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TextureRef {
-    /// Index into `SceneDesc::images`.
-    pub image: usize,
-    /// Which texture-coordinate set (only 0 is read; others fall back to 0 with a warning).
-    pub texcoord: u32,
-    /// KHR_texture_transform of this reference, applied to the texture coordinate before
-    /// the lookup (identity without the extension).
-    pub transform: glam::Affine2,
-}
-
-impl TextureRef {
-    /// A reference to `image` through texture-coordinate set `texcoord`, untransformed.
-    pub fn new(image: usize, texcoord: u32) -> Self {
-        TextureRef {
-            image,
-            texcoord,
-            transform: glam::Affine2::IDENTITY,
-        }
-    }
-}
-
-/// A decoded image, 8 bits per channel RGBA, **as stored in the file** (colour textures are
-/// sRGB-encoded; the material decides how to decode each channel).
-#[derive(Debug, Clone)]
-pub struct ImageDesc {
-    /// Name for messages (`image 2 "checker.png"`).
-    pub name: String,
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// Row-major RGBA8 texels, top row first, `width*height*4` bytes.
-    pub rgba8: Arc<Vec<u8>>,
-}
-
-/// How the base colour's alpha is used (glTF `alphaMode`).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub enum AlphaMode {
-    /// Alpha ignored.
-    #[default]
-    Opaque,
-    /// Alpha below the cutoff makes the surface invisible.
-    Mask(f32),
-    /// Alpha blends (treated as stochastic coverage).
-    Blend,
-}
-
-/// An IOR model given explicitly by the scene (glTF material `extras`, Iris MTL keys).
-/// It takes precedence over KHR_materials_dispersion; see [`MaterialDesc::spectral_ior`].
-#[derive(Debug, Clone, PartialEq)]
-pub enum ExplicitIor {
-    /// The seed paper's Cauchy form n(λ) = b + c/λ², λ in micrometres (material extras
-    /// `{"cauchy": {"b": 1.5, "c": 0.0042}}`, MTL `cauchy_b`/`cauchy_c`).
-    Cauchy {
-        /// Constant term b.
-        b: f32,
-        /// Coefficient c in µm².
-        c: f32,
-    },
-    /// A named Sellmeier glass from [`crate::spectrum::ior::KNOWN_NAMES`], as written
-    /// (extras `{"iris_glass": "N-BK7"}`, MTL `iris_glass N-BK7`); names are
-    /// case-insensitive and validation rejects unknown ones.
-    Glass(String),
-    /// Sellmeier coefficients given directly (extras `{"sellmeier": {"b": [..], "c": [..]}}`,
-    /// up to 4 terms, C_i in µm²); unused terms are 0. Validation rejects a resonance
-    /// √C_i inside the sampled wavelength range.
-    Sellmeier {
-        /// Oscillator strengths B_i.
-        b: [f32; 4],
-        /// Resonance wavelengths squared C_i, µm².
-        c: [f32; 4],
-    },
-}
-
-/// A material in glTF metallic-roughness terms plus the KHR extensions Iris reads.
-/// Defaults are the glTF spec defaults.
-#[derive(Debug, Clone, PartialEq)]
-pub struct MaterialDesc {
-    /// Name for messages, e.g. `material 4 "Glass"`.
-    pub name: String,
-    /// Linear RGBA base colour factor.
-    pub base_color: Vec4,
-    /// Base colour texture (sRGB).
-    pub base_color_texture: Option<TextureRef>,
-    /// Metallic factor in [0,1].
-    pub metallic: f32,
-    /// Perceptual roughness factor in [0,1].
-    pub roughness: f32,
-    /// Metallic (B) / roughness (G) texture (linear).
-    pub metallic_roughness_texture: Option<TextureRef>,
-    /// Linear emissive colour, already multiplied by KHR_materials_emissive_strength.
-    pub emissive: Vec3,
-    /// Emissive texture (sRGB).
-    pub emissive_texture: Option<TextureRef>,
-    /// Spectral shape of the emission (extras / MTL `iris_spectrum`); `None` upsamples the
-    /// RGB `emissive` as an illuminant. See [`EmissionSpectrum`] for how the two combine.
-    pub emission_spectrum: Option<EmissionSpectrum>,
-    /// Nested-media priority where volumes overlap (extras / MTL `iris_priority`, default
-    /// 0): inside an overlap the path is in the medium of highest priority (Schmidt & Budge
-    /// 2002; see [`crate::medium`]).
-    pub priority: i32,
-    /// Index of refraction (KHR_materials_ior, default 1.5). The value 0 is the spec's
-    /// special mode: infinite IOR, Fresnel = 1, no dispersion. Otherwise unused when
-    /// `ior_model` is given (it is then the fallback other renderers read).
-    pub ior: f32,
-    /// KHR_materials_transmission factor in [0,1].
-    pub transmission: f32,
-    /// Transmission texture (R channel).
-    pub transmission_texture: Option<TextureRef>,
-    /// KHR_materials_volume thicknessFactor: 0 = thin-walled, > 0 = the mesh bounds a volume.
-    pub thickness: f32,
-    /// KHR_materials_volume attenuation colour (linear RGB).
-    pub attenuation_color: Vec3,
-    /// KHR_materials_volume attenuation distance (world units), +∞ by default.
-    pub attenuation_distance: f32,
-    /// KHR_materials_specular specularFactor.
-    pub specular: f32,
-    /// KHR_materials_specular specularColorFactor (linear).
-    pub specular_color: Vec3,
-    /// KHR_materials_specular `specularTexture` (A channel multiplies `specular`).
-    pub specular_texture: Option<TextureRef>,
-    /// KHR_materials_specular `specularColorTexture` (sRGB RGB multiplies `specular_color`).
-    pub specular_color_texture: Option<TextureRef>,
-    /// KHR_materials_dispersion `dispersion` = 20/Abbe number.
-    pub dispersion: f32,
-    /// An explicit IOR model (extras / MTL keys); overrides `ior` and `dispersion`.
-    pub ior_model: Option<ExplicitIor>,
-    /// A measured metal (`--metal`, [`crate::prepare`]'s material override): the surface is
-    /// an opaque conductor with that metal's spectral complex index n(λ) + ik(λ) and GGX
-    /// roughness `roughness`; `base_color` is then only the colour other renderers and
-    /// the RGB fallbacks show. Loaders leave it `None`.
-    pub conductor: Option<Metal>,
-    /// glTF doubleSided.
-    pub double_sided: bool,
-    /// glTF alphaMode / alphaCutoff.
-    pub alpha_mode: AlphaMode,
-    /// KHR_materials_clearcoat, _sheen and _diffuse_transmission ([`LayerDesc`]).
-    pub layers: LayerDesc,
-    /// KHR_materials_iridescence and KHR_materials_anisotropy.
-    pub film: FilmDesc,
-}
-
-impl Default for MaterialDesc {
-    fn default() -> Self {
-        MaterialDesc {
-            name: "default material".into(),
-            base_color: Vec4::ONE,
-            base_color_texture: None,
-            metallic: 1.0,
-            roughness: 1.0,
-            metallic_roughness_texture: None,
-            emissive: Vec3::ZERO,
-            emissive_texture: None,
-            emission_spectrum: None,
-            priority: 0,
-            ior: 1.5,
-            transmission: 0.0,
-            transmission_texture: None,
-            thickness: 0.0,
-            attenuation_color: Vec3::ONE,
-            attenuation_distance: f32::INFINITY,
-            specular: 1.0,
-            specular_color: Vec3::ONE,
-            specular_texture: None,
-            specular_color_texture: None,
-            dispersion: 0.0,
-            ior_model: None,
-            conductor: None,
-            double_sided: false,
-            alpha_mode: AlphaMode::Opaque,
-            layers: LayerDesc::default(),
-            film: FilmDesc::default(),
-        }
-    }
-}
-
-impl MaterialDesc {
-    /// The one n(λ) model this material refracts with. Precedence: `ior == 0` (the
-    /// KHR_materials_ior infinite-IOR mode: `Constant(+∞)`, no dispersion, whatever else is
-    /// given) > the explicit model (`ior_model`) > KHR_materials_dispersion (`dispersion > 0`,
-    /// `ior` as n_d; `ior` 1 stays constant) > `Constant(ior)`. Errs only on an unknown
-    /// glass name; the value checks are [`crate::scene::validate`]'s.
-    pub fn spectral_ior(&self) -> Result<SpectralIor, UnknownIorName> {
-        if self.ior == 0.0 {
-            return Ok(SpectralIor::Constant(f32::INFINITY));
-        }
-        match &self.ior_model {
-            Some(ExplicitIor::Glass(name)) => SpectralIor::named(name),
-            Some(ExplicitIor::Cauchy { b, c }) => Ok(SpectralIor::Cauchy { b: *b, c: *c }),
-            Some(ExplicitIor::Sellmeier { b, c }) => Ok(SpectralIor::Sellmeier { b: *b, c: *c }),
-            // n_d = 1 makes the KHR formula's (n_d − 1) factor vanish: n ≡ 1, not dispersive.
-            None if self.ior == 1.0 => Ok(SpectralIor::Constant(1.0)),
-            None => Ok(SpectralIor::from_khr(self.ior, self.dispersion)),
-        }
-    }
 }
 
 /// A punctual light (KHR_lights_punctual) in world space.
@@ -406,7 +204,7 @@ impl LightDesc {
     /// The colour the RGB transport multiplies the intensity by:
     /// `color` × [`EmissionSpectrum::linear_srgb`] with a spectrum, else `color`.
     pub fn effective_color(&self) -> Vec3 {
-        effective_color(self.color(), self.spectrum())
+        crate::spectrum::effective_color(self.color(), self.spectrum())
     }
 }
 

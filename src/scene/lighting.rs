@@ -7,12 +7,10 @@
 //! and the built scene always agree on it. Units: candela, lux and nits as in
 //! [`crate::light`]; frames: world space.
 
-use super::desc::{AddedLights, SceneDesc, SpotKey};
-use super::triangle::TriangleData;
+use super::desc::{AddedLights, LightDesc, SceneDesc, SpotKey};
 use crate::light::area::AreaLights;
-use crate::light::{self, Light};
+use crate::light::{self, Light, PunctualLight};
 use crate::material::Material;
-use crate::spectrum::EmitterShape;
 use glam::Vec3;
 
 /// Whether the file's description has a punctual light or an emitting triangle.
@@ -38,18 +36,11 @@ pub fn mesh_emits(desc: &SceneDesc, mesh: &super::desc::MeshDesc) -> bool {
     }
     let m = Material::new(mat.clone());
     let (le, two_sided) = (m.emission(), m.desc.double_sided);
-    let tris: Vec<TriangleData> = mesh
-        .indices
-        .iter()
-        .filter_map(|t| {
-            let p = t.map(|i| mesh.positions.get(i as usize).copied());
-            Some(TriangleData {
-                p: [p[0]?, p[1]?, p[2]?],
-                info: 0,
-            })
-        })
-        .collect();
-    !AreaLights::build(&tris, |_| (le, two_sided)).is_empty()
+    let tris = mesh.indices.iter().enumerate().filter_map(|(k, t)| {
+        let p = t.map(|i| mesh.positions.get(i as usize).copied());
+        Some((k as u32, [p[0]?, p[1]?, p[2]?], 0))
+    });
+    !AreaLights::build(tris, |_| (le, two_sided)).is_empty()
 }
 
 /// Whether anything lights the description: its own lights or emitters, an environment
@@ -84,33 +75,77 @@ pub fn spot(k: &SpotKey) -> Light {
     }
 }
 
-/// The lights to render `desc` with: its own punctual lights, then the added ones; and
-/// parallel to them, the exact spectral shape of each light that names one.
-pub fn render_lights(desc: &SceneDesc) -> (Vec<Light>, Vec<Option<EmitterShape>>) {
-    let mut lights: Vec<Light> = desc.lights.iter().map(Light::from_desc).collect();
-    let mut shapes: Vec<Option<EmitterShape>> = desc
-        .lights
-        .iter()
-        .map(|l| {
-            l.spectrum()
-                .map(|s| s.emitter_shape(l.color() * l.intensity()))
-        })
-        .collect();
+/// The lights to render `desc` with: its own punctual lights, each with the exact spectral
+/// shape of a light that names one, then the added ones.
+pub fn render_lights(desc: &SceneDesc) -> Vec<PunctualLight> {
+    let own = desc.lights.iter().map(|l| PunctualLight {
+        light: render_light(l),
+        shape: l
+            .spectrum()
+            .map(|s| s.emitter_shape(l.color() * l.intensity())),
+    });
     let added = match &desc.added_lights {
         AddedLights::None => Vec::new(),
         AddedLights::KeyFill => light::default_lights(),
         AddedLights::Studio(keys) => keys.iter().map(spot).collect(),
     };
-    shapes.extend(std::iter::repeat_n(None, added.len()));
-    lights.extend(added);
-    (lights, shapes)
+    own.chain(
+        added
+            .into_iter()
+            .map(|light| PunctualLight { light, shape: None }),
+    )
+    .collect()
+}
+
+/// The render light of a validated description: colour × intensity (the colour including
+/// the spectrum's sRGB colour, [`LightDesc::effective_color`]), unit directions, cosines
+/// of the cone angles.
+fn render_light(d: &LightDesc) -> Light {
+    let color = d.effective_color();
+    match d {
+        LightDesc::Point {
+            position,
+            intensity,
+            range,
+            ..
+        } => Light::Point {
+            position: *position,
+            intensity: color * *intensity,
+            range: *range,
+        },
+        LightDesc::Spot {
+            position,
+            direction,
+            intensity,
+            range,
+            inner_cone,
+            outer_cone,
+            ..
+        } => Light::Spot {
+            position: *position,
+            direction: direction.normalize_or(Vec3::NEG_Z),
+            intensity: color * *intensity,
+            cos_inner: inner_cone.cos(),
+            cos_outer: outer_cone.cos(),
+            range: *range,
+        },
+        LightDesc::Directional {
+            direction,
+            intensity,
+            ..
+        } => Light::Directional {
+            direction: direction.normalize_or(Vec3::NEG_Y),
+            illuminance: color * *intensity,
+        },
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::light::env::Environment;
-    use crate::scene::desc::{MaterialDesc, MeshDesc};
+    use crate::material::MaterialDesc;
+    use crate::scene::desc::MeshDesc;
 
     fn quad(material: Option<usize>, h: f32) -> MeshDesc {
         MeshDesc {
@@ -155,8 +190,8 @@ mod tests {
         assert_eq!(d.added_lights, AddedLights::KeyFill);
         // Once lit, it stays as it is.
         assert!(!light_if_unlit(&mut d));
-        let (lights, shapes) = render_lights(&d);
+        let lights = render_lights(&d);
         assert_eq!(lights.len(), light::default_lights().len());
-        assert_eq!(shapes.len(), lights.len());
+        assert!(lights.iter().all(|l| l.shape.is_none()));
     }
 }

@@ -1,34 +1,39 @@
 //! Scenes: the plain description loaders produce ([`desc`]), its validation
 //! ([`validate`]), and the immutable render [`Scene`] that integrators read.
 //!
-//! A `Scene` holds every triangle of every mesh in one world-space array (so a triangle id
-//! from a backend indexes it directly), sorted by the Morton code of the centroids so that
-//! nearby hits read nearby memory (`triangle_mesh` says which mesh each came from), per-vertex shading data, materials, lights,
-//! cameras and the acceleration structure. It is built once, from a description that
-//! already holds everything Iris adds (environment light, studio or default lights, floor:
-//! [`desc::AddedLights`], [`lighting`]), and never mutated; rays reach it only through
-//! [`crate::interaction`].
+//! A `Scene` holds every triangle of every mesh as one record in one world-space array
+//! ([`Triangle`]: corners, material, vertex indices, mesh; so a triangle id from a backend
+//! indexes it directly), sorted by the Morton code of the centroids so that nearby hits read
+//! nearby memory ([`geometry`]); the per-vertex shading data; materials; lights (the punctual
+//! ones with their spectral shapes, the emissive triangles, the environment and the one
+//! light choice, [`LightSampler`]); cameras and the acceleration structure. It is built once,
+//! from a description that already holds everything Iris adds (environment light, studio or
+//! default lights, floor: [`desc::AddedLights`], [`lighting`]), and never mutated: its fields
+//! are private and read through methods. Rays reach it only through [`crate::interaction`].
 
 pub mod contact;
 pub mod desc;
+pub mod geometry;
 pub mod lighting;
 mod thin;
 pub mod triangle;
 pub mod validate;
 pub mod winding;
 
-pub use triangle::TriangleData;
+pub use geometry::Vertices;
+pub use triangle::Triangle;
 
-use crate::accel::{Accel, Backend};
+use crate::accel::{Accel, Backend, HitList};
 use crate::error::Result;
 use crate::light::area::AreaLights;
 use crate::light::env::Environment;
-use crate::light::Light;
-use crate::material::Material;
-use crate::spectrum::EmitterShape;
-use desc::{AddedLights, CameraDesc, ImageDesc, MaterialDesc, SceneDesc};
-use glam::{Vec2, Vec3};
-use std::path::PathBuf;
+use crate::light::{Light, LightId, LightSampler, PunctualLight};
+use crate::material::{ImageDesc, Material, MaterialDesc, TexCoords, TextureContext};
+use crate::math::Ray;
+use desc::{AddedLights, CameraDesc, SceneDesc};
+use geometry::Geometry;
+use glam::Vec3;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 /// Per-mesh bookkeeping.
@@ -42,66 +47,29 @@ pub struct MeshInfo {
     pub has_normals: bool,
 }
 
-/// The immutable render scene.
+/// The immutable render scene (see the module docs).
 pub struct Scene {
-    /// The file the scene came from.
-    pub source: PathBuf,
-    /// World-space vertex positions of all meshes.
-    pub positions: Vec<Vec3>,
-    /// Per-vertex unit shading normals (zero where the mesh has none).
-    pub normals: Vec<Vec3>,
-    /// Per-vertex texture coordinates (zero where the mesh has none).
-    pub uvs: Vec<Vec2>,
-    /// Per-vertex glTF tangents (xyz, w = bitangent sign ±1; zero where the mesh has
-    /// none), or empty when no mesh has any. Read only for anisotropic materials
-    /// ([`crate::shading::film`]).
-    pub tangents: Vec<glam::Vec4>,
-    /// Triangles (global vertex indices), CCW seen from outside.
-    pub triangles: Vec<[u32; 3]>,
-    /// Material index per triangle.
-    pub triangle_material: Vec<u32>,
-    /// Positions and material per triangle, for building hits.
-    pub triangle_data: Vec<TriangleData>,
-    /// Mesh index per triangle.
-    pub triangle_mesh: Vec<u32>,
-    /// Meshes.
-    pub meshes: Vec<MeshInfo>,
-    /// Materials; the last one is the default material.
-    pub materials: Vec<Material>,
-    /// Texture images.
-    pub images: Vec<ImageDesc>,
-    /// Texture slots the loader did not decode: their material is on no mesh.
-    pub skipped_textures: usize,
-    /// Lights: the file's, then those Iris added ([`desc::AddedLights`]: the default
-    /// key/fill lights when nothing else lights the scene, or a studio's keys).
-    pub lights: Vec<Light>,
-    /// The exact spectral shape of each light that names one (`iris_spectrum`), for
-    /// spectral transport; parallel to `lights`.
-    pub light_shapes: Vec<Option<EmitterShape>>,
-    /// Emissive triangles, sampled for direct light.
-    pub area_lights: AreaLights,
-    /// Light from infinitely far away (`--env`, the file's, or a studio's), if any.
-    pub environment: Option<Environment>,
-    /// Whether the default key/fill lights were added (nothing else lit the scene).
-    pub default_lights: bool,
-    /// Cameras from the file.
-    pub cameras: Vec<CameraDesc>,
-    /// World bounding box (min, max).
-    pub bounds: (Vec3, Vec3),
-    /// Bounds of the file's own geometry, which cameras frame and the studio lights: equal
-    /// to `bounds` unless a floor was added ([`crate::studio::ground`]).
-    pub subject_bounds: (Vec3, Vec3),
-    /// Loader, validation and environment-map warnings.
-    pub warnings: Vec<String>,
-    /// Triangles on which another object's face lies ([`TriangleData::TOUCHES`]: touching
-    /// volumes are crossed as one interface there).
-    pub touching_triangles: usize,
-    /// Whether any material can cut holes (alpha MASK).
-    pub has_cutouts: bool,
-    /// Time spent building the acceleration structure.
-    pub accel_build_time: Duration,
-    /// The acceleration structure (read only by `interaction`).
-    pub(crate) accel: Accel,
+    source: PathBuf,
+    vertices: Vertices,
+    triangles: Vec<Triangle>,
+    meshes: Vec<MeshInfo>,
+    /// The last one is the default material.
+    materials: Vec<Material>,
+    images: Vec<ImageDesc>,
+    skipped_textures: usize,
+    lights: Vec<PunctualLight>,
+    area_lights: AreaLights,
+    environment: Option<Environment>,
+    light_sampler: LightSampler,
+    default_lights: bool,
+    cameras: Vec<CameraDesc>,
+    bounds: (Vec3, Vec3),
+    subject_bounds: (Vec3, Vec3),
+    warnings: Vec<String>,
+    touching_triangles: usize,
+    has_cutouts: bool,
+    accel_build_time: Duration,
+    accel: Accel,
 }
 
 impl Scene {
@@ -124,15 +92,18 @@ impl Scene {
         backend: Backend,
         lights: Vec<Light>,
     ) -> Result<Scene> {
-        let shapes = vec![None; lights.len()];
-        Scene::build_lit(desc, backend, (lights, shapes))
+        let lights = lights
+            .into_iter()
+            .map(|light| PunctualLight { light, shape: None })
+            .collect();
+        Scene::build_lit(desc, backend, lights)
     }
 
     /// [`Scene::build`] with the punctual lights already decided.
     fn build_lit(
         mut desc: SceneDesc,
         backend: Backend,
-        (lights, light_shapes): (Vec<Light>, Vec<Option<EmitterShape>>),
+        lights: Vec<PunctualLight>,
     ) -> Result<Scene> {
         let g = Geometry::gather(&desc);
         let mut materials: Vec<Material> = std::mem::take(&mut desc.materials)
@@ -140,40 +111,39 @@ impl Scene {
             .map(Material::new)
             .collect();
         materials.push(Material::new(MaterialDesc::default()));
-        let bounds = g.positions.iter().fold(
-            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+        let bounds = g.bounds();
+        let area_lights = AreaLights::build(
+            g.triangles
+                .iter()
+                .enumerate()
+                .map(|(i, t)| (i as u32, t.p, t.material())),
+            |m| {
+                let mat = &materials[m as usize];
+                (mat.emission(), mat.desc.double_sided)
+            },
         );
-        let area_lights = AreaLights::build(&g.triangle_data, |m| {
-            let mat = &materials[m as usize];
-            (mat.emission(), mat.desc.double_sided)
-        });
         let mut warnings = desc.warnings;
         if let Some(Environment::Map(m)) = &desc.environment_light {
             warnings.extend(m.warnings().iter().cloned());
         }
         let has_cutouts = materials.iter().any(Material::may_cut_out);
+        let light_sampler = nee_sampler(lights.len(), &area_lights, &desc.environment_light);
         let start = Instant::now();
-        let accel = Accel::build(backend, &g.positions, &g.triangles)?;
+        let indices: Vec<[u32; 3]> = g.triangles.iter().map(|t| t.vertices).collect();
+        let accel = Accel::build(backend, &g.vertices.positions, &indices)?;
         let accel_build_time = start.elapsed();
         let mut scene = Scene {
             source: desc.source,
-            positions: g.positions,
-            normals: g.normals,
-            uvs: g.uvs,
-            tangents: g.tangents,
+            vertices: g.vertices,
             triangles: g.triangles,
-            triangle_material: g.triangle_material,
-            triangle_data: g.triangle_data,
-            triangle_mesh: g.triangle_mesh,
             meshes: g.meshes,
             materials,
             images: desc.images,
             skipped_textures: desc.skipped_textures,
             lights,
-            light_shapes,
             area_lights,
             environment: desc.environment_light,
+            light_sampler,
             default_lights: desc.added_lights == AddedLights::KeyFill,
             cameras: desc.cameras,
             bounds,
@@ -185,11 +155,135 @@ impl Scene {
             accel,
         };
         // The last step of the build: it probes the finished acceleration structure.
-        let touching_triangles = contact::mark_touching(&mut scene);
-        Ok(Scene {
-            touching_triangles,
-            ..scene
-        })
+        scene.touching_triangles = contact::mark_touching(&mut scene);
+        Ok(scene)
+    }
+
+    /// The file the scene came from.
+    pub fn source(&self) -> &Path {
+        &self.source
+    }
+
+    /// The per-vertex attributes, indexed by [`Triangle::vertices`].
+    pub fn vertices(&self) -> &Vertices {
+        &self.vertices
+    }
+
+    /// World-space vertex positions of all meshes.
+    pub fn positions(&self) -> &[Vec3] {
+        &self.vertices.positions
+    }
+
+    /// Every triangle, in the order backends number them.
+    pub fn triangles(&self) -> &[Triangle] {
+        &self.triangles
+    }
+
+    /// Triangle `prim` (an id a backend returned).
+    #[inline]
+    pub fn triangle(&self, prim: u32) -> &Triangle {
+        &self.triangles[prim as usize]
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// The meshes.
+    pub fn meshes(&self) -> &[MeshInfo] {
+        &self.meshes
+    }
+
+    /// The materials; the last one is the default material.
+    pub fn materials(&self) -> &[Material] {
+        &self.materials
+    }
+
+    /// Material `id` (a [`Triangle::material`]).
+    #[inline]
+    pub fn material(&self, id: u32) -> &Material {
+        &self.materials[id as usize]
+    }
+
+    /// The decoded texture images.
+    pub fn images(&self) -> &[ImageDesc] {
+        &self.images
+    }
+
+    /// Texture slots the loader did not decode: their material is on no mesh.
+    pub fn skipped_textures(&self) -> usize {
+        self.skipped_textures
+    }
+
+    /// The punctual lights: the file's, then those Iris added ([`desc::AddedLights`]: the
+    /// default key/fill lights when nothing else lights the scene, or a studio's keys).
+    pub fn lights(&self) -> &[PunctualLight] {
+        &self.lights
+    }
+
+    /// The emissive triangles, sampled for direct light.
+    pub fn area_lights(&self) -> &AreaLights {
+        &self.area_lights
+    }
+
+    /// Light from infinitely far away (`--env`, the file's, or a studio's), if any.
+    pub fn environment(&self) -> Option<&Environment> {
+        self.environment.as_ref()
+    }
+
+    /// The choice of one light for next-event estimation and its MIS weights: the punctual
+    /// lights, the emissive triangles as one group and the environment
+    /// ([`crate::light::sampler`]).
+    pub fn light_sampler(&self) -> &LightSampler {
+        &self.light_sampler
+    }
+
+    /// Whether the default key/fill lights were added (nothing else lit the scene).
+    pub fn default_lights(&self) -> bool {
+        self.default_lights
+    }
+
+    /// Cameras from the file.
+    pub fn cameras(&self) -> &[CameraDesc] {
+        &self.cameras
+    }
+
+    /// World bounding box (min, max).
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        self.bounds
+    }
+
+    /// Bounds of the file's own geometry, which cameras frame and the studio lights: equal
+    /// to [`Scene::bounds`] unless a floor was added ([`crate::studio::ground`]).
+    pub fn subject_bounds(&self) -> (Vec3, Vec3) {
+        self.subject_bounds
+    }
+
+    /// Loader, validation and environment-map warnings.
+    pub fn warnings(&self) -> &[String] {
+        &self.warnings
+    }
+
+    /// Triangles on which another object's face lies ([`Triangle::TOUCHES`]: touching
+    /// volumes are crossed as one interface there).
+    pub fn touching_triangles(&self) -> usize {
+        self.touching_triangles
+    }
+
+    /// Whether any material can cut holes (alpha MASK).
+    pub fn has_cutouts(&self) -> bool {
+        self.has_cutouts
+    }
+
+    /// Time spent building the acceleration structure.
+    pub fn accel_build_time(&self) -> Duration {
+        self.accel_build_time
+    }
+
+    /// The acceleration structure (read by the intersection layer).
+    pub(crate) fn accel(&self) -> &Accel {
+        &self.accel
     }
 
     /// Name of the acceleration backend in use.
@@ -197,137 +291,70 @@ impl Scene {
         self.accel.name()
     }
 
-    /// Number of triangles.
-    pub fn triangle_count(&self) -> usize {
-        self.triangles.len()
+    /// The texture coordinates on triangle `prim` at barycentric weights `b` of its
+    /// vertices 0, 1, 2 (zero on a mesh without TEXCOORD_0; set 1 is set 0 on a mesh
+    /// without TEXCOORD_1).
+    pub fn tex_coords(&self, prim: u32, [b0, b1, b2]: [f32; 3]) -> TexCoords {
+        let Some(t) = self.triangles.get(prim as usize) else {
+            return TexCoords::default();
+        };
+        if !t.has(Triangle::HAS_UVS) {
+            return TexCoords::default();
+        }
+        let [i0, i1, i2] = t.vertices.map(|i| i as usize);
+        let lerp = |set: &[glam::Vec2]| set[i0] * b0 + set[i1] * b1 + set[i2] * b2;
+        let uv0 = lerp(&self.vertices.uvs);
+        let uv1 = if self.vertices.uvs1.is_empty() {
+            uv0
+        } else {
+            lerp(&self.vertices.uvs1)
+        };
+        TexCoords([uv0, uv1])
+    }
+
+    /// The texture context at `uv`: the scene's images, for every texture lookup.
+    pub fn textures_at(&self, uv: TexCoords) -> TextureContext<'_> {
+        TextureContext::new(&self.images, uv)
+    }
+
+    /// The emitted radiance (linear RGB) at barycentric weights `b` of triangle `prim`:
+    /// its material's emission with the emissive texture applied there.
+    pub fn emission_at(&self, prim: u32, b: [f32; 3]) -> Vec3 {
+        let mat = self.material(self.triangle(prim).material());
+        mat.emitted(&self.textures_at(self.tex_coords(prim, b)))
+    }
+
+    /// Every surface crossing the segment `p ± half·ng` (the coincidence probe of the
+    /// intersection layer and of [`contact`]), with the probe ray (from `p + half·ng` along
+    /// `−ng`).
+    pub(crate) fn probe(&self, p: Vec3, ng: Vec3, half: f32) -> (Ray, HitList) {
+        let probe = Ray {
+            origin: p + ng * half,
+            dir: -ng,
+            t_max: 2.0 * half,
+        };
+        if half.is_nan() || half <= 0.0 {
+            return (probe, HitList::default());
+        }
+        let hits = self.accel.all_hits(probe.origin, probe.dir, probe.t_max);
+        (probe, hits)
     }
 }
 
-/// The meshes of a description gathered into the scene's arrays, triangles in Morton
-/// order ([`morton_order`]).
-struct Geometry {
-    positions: Vec<Vec3>,
-    normals: Vec<Vec3>,
-    uvs: Vec<Vec2>,
-    tangents: Vec<glam::Vec4>,
-    triangles: Vec<[u32; 3]>,
-    triangle_material: Vec<u32>,
-    triangle_data: Vec<TriangleData>,
-    triangle_mesh: Vec<u32>,
-    meshes: Vec<MeshInfo>,
-}
-
-impl Geometry {
-    /// Concatenates the meshes of `desc` (a mesh without a material gets the default one,
-    /// index `desc.materials.len()`), then sorts the triangles spatially.
-    fn gather(desc: &SceneDesc) -> Geometry {
-        let total_v: usize = desc.meshes.iter().map(|m| m.positions.len()).sum();
-        let total_t: usize = desc.meshes.iter().map(|m| m.indices.len()).sum();
-        let mut positions = Vec::with_capacity(total_v);
-        let mut normals = Vec::with_capacity(total_v);
-        let mut uvs = Vec::with_capacity(total_v);
-        let mut triangles = Vec::with_capacity(total_t);
-        let mut triangle_material = Vec::with_capacity(total_t);
-        let mut triangle_mesh = Vec::with_capacity(total_t);
-        let mut triangle_data = Vec::with_capacity(total_t);
-        let mut meshes = Vec::with_capacity(desc.meshes.len());
-        let any_tangents = desc
-            .meshes
-            .iter()
-            .any(|m| !m.tangents.is_empty() && m.tangents.len() == m.positions.len());
-        let mut tangents = Vec::with_capacity(if any_tangents { total_v } else { 0 });
-        let default_material = desc.materials.len() as u32;
-        for (mi, m) in desc.meshes.iter().enumerate() {
-            let base = positions.len() as u32;
-            positions.extend_from_slice(&m.positions);
-            let has_normals = m.normals.len() == m.positions.len() && !m.normals.is_empty();
-            if has_normals {
-                normals.extend(m.normals.iter().map(|n| n.normalize_or_zero()));
-            } else {
-                normals.extend(std::iter::repeat_n(Vec3::ZERO, m.positions.len()));
-            }
-            if m.uvs.len() == m.positions.len() {
-                uvs.extend_from_slice(&m.uvs);
-            } else {
-                uvs.extend(std::iter::repeat_n(Vec2::ZERO, m.positions.len()));
-            }
-            if any_tangents {
-                if m.tangents.len() == m.positions.len() {
-                    tangents.extend_from_slice(&m.tangents);
-                } else {
-                    tangents.extend(std::iter::repeat_n(glam::Vec4::ZERO, m.positions.len()));
-                }
-            }
-            meshes.push(MeshInfo {
-                name: m.name.clone(),
-                triangle_count: m.indices.len() as u32,
-                has_normals,
-            });
-            let mat = m.material.map_or(default_material, |i| i as u32);
-            let mut flags = 0;
-            if has_normals {
-                flags |= TriangleData::HAS_NORMALS;
-            }
-            if m.uvs.len() == m.positions.len() && !m.uvs.is_empty() {
-                flags |= TriangleData::HAS_UVS;
-            }
-            for t in &m.indices {
-                triangles.push(t.map(|i| i + base));
-                triangle_data.push(TriangleData {
-                    p: t.map(|i| m.positions[i as usize]),
-                    info: (mat & TriangleData::MATERIAL_MASK) | flags,
-                });
-                triangle_material.push(mat);
-                triangle_mesh.push(mi as u32);
-            }
-        }
-        // Spatial order: hits of neighbouring rays then touch neighbouring memory.
-        let order = morton_order(&triangle_data);
-        Geometry {
-            positions,
-            normals,
-            uvs,
-            tangents,
-            triangles: order.iter().map(|&i| triangles[i]).collect(),
-            triangle_material: order.iter().map(|&i| triangle_material[i]).collect(),
-            triangle_data: order.iter().map(|&i| triangle_data[i]).collect(),
-            triangle_mesh: order.iter().map(|&i| triangle_mesh[i]).collect(),
-            meshes,
-        }
+/// The light choice of next-event estimation: `punctual` point, spot and directional
+/// lights, then the emissive triangles and the environment where the scene has them, each
+/// with the same probability ([`crate::light::sampler`] says why uniform).
+fn nee_sampler(
+    punctual: usize,
+    area: &AreaLights,
+    environment: &Option<Environment>,
+) -> LightSampler {
+    let mut ids: Vec<LightId> = (0..punctual as u32).map(LightId::Punctual).collect();
+    if !area.is_empty() {
+        ids.push(LightId::Area);
     }
-}
-
-/// Spreads the low 10 bits of `v` to every third bit (for a 30-bit 3D Morton code).
-fn spread_bits(v: u32) -> u32 {
-    let mut x = v & 0x3ff;
-    x = (x | (x << 16)) & 0x0300_00ff;
-    x = (x | (x << 8)) & 0x0300_f00f;
-    x = (x | (x << 4)) & 0x030c_30c3;
-    x = (x | (x << 2)) & 0x0924_9249;
-    x
-}
-
-/// Triangle indices sorted by the Morton code of their centroids (ties by index, so the
-/// order is deterministic). Both backends are built over this order.
-fn morton_order(tris: &[TriangleData]) -> Vec<usize> {
-    let (lo, hi) = tris.iter().fold(
-        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-        |(lo, hi), t| {
-            let c = (t.p[0] + t.p[1] + t.p[2]) / 3.0;
-            (lo.min(c), hi.max(c))
-        },
-    );
-    let ext = (hi - lo).max(Vec3::splat(f32::MIN_POSITIVE));
-    let mut keyed: Vec<(u32, usize)> = tris
-        .iter()
-        .enumerate()
-        .map(|(i, t)| {
-            let c = ((t.p[0] + t.p[1] + t.p[2]) / 3.0 - lo) / ext * 1023.0;
-            let q = c.clamp(Vec3::ZERO, Vec3::splat(1023.0)).as_uvec3();
-            let code = spread_bits(q.x) | (spread_bits(q.y) << 1) | (spread_bits(q.z) << 2);
-            (code, i)
-        })
-        .collect();
-    keyed.sort_unstable();
-    keyed.into_iter().map(|(_, i)| i).collect()
+    if environment.is_some() {
+        ids.push(LightId::Environment);
+    }
+    LightSampler::uniform(ids)
 }

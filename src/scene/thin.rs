@@ -1,6 +1,6 @@
 //! Candidates for *thin sheets*: triangles of a mesh with a face of the **same mesh** on
-//! the opposite side within the merge distance ([`MERGE_SCALE`] × coordinate magnitude,
-//! world units), i.e. a slab thinner than the offset rule can resolve. [`super::contact`]
+//! the opposite side within the merge distance ([`Triangle::merge_distance`], world units),
+//! i.e. a slab thinner than the offset rule can resolve. [`super::contact`]
 //! probes only these (besides faces near other meshes) so that a lone gem or glass does not
 //! pay for the probe on every triangle; the probe then decides.
 //!
@@ -13,11 +13,7 @@
 //!
 //! Cost: O(T log T) for T triangles (one sort per bucket and a binary search per triangle).
 
-use super::TriangleData;
-// An upward import, on purpose: the last step of `Scene::build` marks touching faces with
-// the intersection layer's own merge distance and coincident-surface probe, so build time
-// and render time use one rule (the design card: one layer, one offset rule).
-use crate::interaction::{geometric_normal, MERGE_SCALE};
+use super::triangle::{geometric_normal, Triangle};
 use glam::{IVec3, Vec3};
 use std::collections::HashMap;
 
@@ -31,11 +27,7 @@ struct Plane {
 
 /// Per triangle, whether it may face a triangle of its own mesh across a sheet thinner than
 /// the merge distance. `keep(i)` filters the triangles considered (volumetric ones).
-pub(super) fn sheet_candidates(
-    tris: &[TriangleData],
-    mesh_of: &[u32],
-    keep: impl Fn(usize) -> bool,
-) -> Vec<bool> {
+pub(super) fn sheet_candidates(tris: &[Triangle], keep: impl Fn(usize) -> bool) -> Vec<bool> {
     const GRID: f32 = 256.0;
     let key = |n: Vec3| (n * GRID).round().as_ivec3();
     let mut buckets: HashMap<(u32, IVec3), Vec<Plane>> = HashMap::new();
@@ -49,16 +41,13 @@ pub(super) fn sheet_candidates(
         };
         normals[i] = Some(n);
         let [p0, p1, p2] = td.p;
-        let half = p0.abs().max(p1.abs()).max(p2.abs()).max_element() * MERGE_SCALE;
-        buckets
-            .entry((mesh_of[i], key(n)))
-            .or_default()
-            .push(Plane {
-                offset: n.dot(p0),
-                tri: i as u32,
-                lo: p0.min(p1).min(p2) - half,
-                hi: p0.max(p1).max(p2) + half,
-            });
+        let half = td.merge_distance();
+        buckets.entry((td.mesh, key(n))).or_default().push(Plane {
+            offset: n.dot(p0),
+            tri: i as u32,
+            lo: p0.min(p1).min(p2) - half,
+            hi: p0.max(p1).max(p2) + half,
+        });
     }
     for b in buckets.values_mut() {
         b.sort_unstable_by(|a, b| a.offset.total_cmp(&b.offset).then(a.tri.cmp(&b.tri)));
@@ -69,7 +58,7 @@ pub(super) fn sheet_candidates(
             continue;
         };
         let [p0, p1, p2] = td.p;
-        let half = p0.abs().max(p1.abs()).max(p2.abs()).max_element() * MERGE_SCALE;
+        let half = td.merge_distance();
         let (lo, hi) = (p0.min(p1).min(p2), p0.max(p1).max(p2));
         // The opposite plane's offset n'·p' = −n·p (within 2·half).
         let target = -n.dot(p0);
@@ -77,7 +66,7 @@ pub(super) fn sheet_candidates(
         'cells: for dz in -1..=1 {
             for dy in -1..=1 {
                 for dx in -1..=1 {
-                    let Some(b) = buckets.get(&(mesh_of[i], k + IVec3::new(dx, dy, dz))) else {
+                    let Some(b) = buckets.get(&(td.mesh, k + IVec3::new(dx, dy, dz))) else {
                         continue;
                     };
                     let start = b.partition_point(|p| p.offset < target - 2.0 * half);

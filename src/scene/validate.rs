@@ -52,7 +52,7 @@ pub fn validate(mut desc: SceneDesc) -> Result<SceneDesc, LoadError> {
         light::check_camera(&src, i, c)?;
     }
     repair_meshes(&src, &mut desc.meshes, &mut warnings);
-    warnings.extend(crate::scene::desc::FilmDesc::scene_warnings(&desc));
+    warnings.extend(material::extension_warnings(&desc));
     if desc.meshes.is_empty() {
         return Err(LoadError::new(
             &src,

@@ -2,8 +2,9 @@
 //! a white floor lit by a point light or a small area light. Units: metres, candela,
 //! nits; +Y up.
 
+use crate::material::MaterialDesc;
 use crate::model::shapes;
-use crate::scene::desc::{CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
+use crate::scene::desc::{CameraDesc, LightDesc, MeshDesc, Projection, SceneDesc};
 use glam::{Mat3, Vec3};
 
 /// A white Lambertian (no specular layer).

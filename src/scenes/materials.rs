@@ -17,10 +17,10 @@
 //! x for rotation 0; world Z, image y for π/2): the tests measure that.
 
 use crate::error::Result;
+use crate::material::{AnisotropyDesc, IridescenceDesc};
 use crate::model::glb::write_glb;
 use crate::model::scene::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
 use crate::model::shapes::{ground_plane, icosphere};
-use crate::scene::desc::{AnisotropyDesc, FilmDesc, IridescenceDesc};
 use glam::{Vec2, Vec3, Vec4};
 use std::path::{Path, PathBuf};
 
@@ -60,7 +60,7 @@ pub fn iridescence_sphere() -> GenScene {
     let mut m = GenMaterial::diffuse("iridescent dielectric", Vec3::splat(0.05));
     m.roughness = 0.15;
     m.ior = Some(1.5);
-    m.film.iridescence = Some(IridescenceDesc {
+    m.iridescence = Some(IridescenceDesc {
         factor: 1.0,
         ior: 1.3,
         ..Default::default()
@@ -73,7 +73,7 @@ pub fn iridescence_metal() -> GenScene {
     let mut m = GenMaterial::diffuse("iridescent metal", Vec3::splat(0.6));
     m.metallic = 1.0;
     m.roughness = 0.2;
-    m.film.iridescence = Some(IridescenceDesc {
+    m.iridescence = Some(IridescenceDesc {
         factor: 1.0,
         ior: 1.8,
         thickness_min: 300.0,
@@ -95,14 +95,11 @@ pub fn anisotropy_plate(rotation: f32) -> GenScene {
         base_color: Vec4::new(0.9, 0.9, 0.9, 1.0),
         metallic: 1.0,
         roughness: 0.3,
-        film: FilmDesc {
-            iridescence: None,
-            anisotropy: Some(AnisotropyDesc {
-                strength: 0.5,
-                rotation,
-                texture: None,
-            }),
-        },
+        anisotropy: Some(AnisotropyDesc {
+            strength: 0.5,
+            rotation,
+            texture: None,
+        }),
         ..GenMaterial::diffuse("brushed metal", Vec3::ONE)
     };
     GenScene {

@@ -1,16 +1,17 @@
 //! Direct lighting of an opaque hit with shadow rays, the Whitted tracer's light step: every
 //! punctual light, one sample of the emissive triangles and one of the environment, each
-//! through the surface BSDF ([`surface_bsdf`]) seen from the viewer's side. The path tracer
-//! uses its own next-event estimation with MIS instead.
+//! through the material's opaque BSDF ([`crate::material::Material::opaque_bsdf`]) seen
+//! from the viewer's side. The path tracer uses its own next-event estimation with MIS
+//! instead.
 //!
 //! Directions are unit vectors pointing away from the surface (world space, the BSDF's in
 //! the local frame of the shading normal); radiance in the units of the lights (cd and lux
 //! give nits).
 
 use super::lights::{self, LightSample};
-use super::material_bsdf::surface_bsdf;
 use super::step::Arrival;
 use crate::bsdf::{Bsdf, TransportMode};
+use crate::light::LightId;
 use crate::math::Frame;
 use crate::sampler::Bounce;
 use crate::scene::Scene;
@@ -56,9 +57,10 @@ impl<C: Carrier> Receiver<'_, C> {
     }
 }
 
-/// Direct light at an opaque hit, with shadow rays: every punctual light, one sample of the
-/// emissive triangles (the vertex's light member and position numbers) and one of the
-/// environment (its BSDF-direction numbers, which a Whitted vertex never uses otherwise).
+/// Direct light at an opaque hit, with shadow rays: every light of the scene's light sampler
+/// with weight 1 — each punctual light, one sample of the emissive triangles (the vertex's
+/// light member and position numbers) and one of the environment (its BSDF-direction
+/// numbers, which a Whitted vertex never uses otherwise).
 pub fn direct_light<C: Carrier>(
     scene: &Scene,
     at: &Arrival<'_, C>,
@@ -74,27 +76,27 @@ pub fn direct_light<C: Carrier>(
     } else {
         (-hit.ns, -hit.ng)
     };
-    let frame = super::film::shading_frame(scene, hit, &at.sp.film);
+    let frame = super::frame::shading_frame(scene, hit, &at.sp.anisotropy);
     let r = Receiver {
         scene,
-        bsdf: surface_bsdf(mat, &at.sp, lambda),
+        bsdf: mat.opaque_bsdf(&at.sp, lambda),
         lambda: *lambda,
         frame,
         wo: frame.to_local(hit.wo),
         n,
         ng,
     };
-    let mut sum = C::ZERO;
-    for k in 0..scene.lights.len() {
-        sum += r.connect(lights::punctual(scene, hit, k), rays);
-    }
-    // One emissive-triangle sample, then one environment sample.
+    // The numbers of the emissive-triangle sample are drawn at every vertex, those of the
+    // environment sample only where there is one.
     let uc = u.light_member();
     let up = u.light_position();
-    sum += r.connect(lights::area(scene, hit, uc, up), rays);
-    if scene.environment.is_some() {
-        let ud = u.bsdf_direction();
-        sum += r.connect(lights::environment(scene, hit, ud), rays);
+    let mut sum = C::ZERO;
+    for &id in scene.light_sampler().lights() {
+        let ls = match id {
+            LightId::Punctual(_) | LightId::Area => lights::sample(scene, hit, id, uc, up),
+            LightId::Environment => lights::environment(scene, hit, u.bsdf_direction()),
+        };
+        sum += r.connect(ls, rays);
     }
     sum
 }

@@ -15,6 +15,7 @@
 //! `crate::scene`).
 
 use crate::interaction::SurfaceHit;
+use crate::light::LightId;
 use crate::math::Ray;
 use crate::scene::Scene;
 use crate::spectrum::EmitterShape;
@@ -35,9 +36,26 @@ pub struct LightSample<'a> {
     pub pdf: Option<f32>,
 }
 
+/// A sample of light `id` toward `hit`: `uc` picks the emissive triangle, `u` the point on
+/// it or the environment's direction (punctual lights need no numbers).
+pub fn sample<'a>(
+    scene: &'a Scene,
+    hit: &SurfaceHit,
+    id: LightId,
+    uc: f32,
+    u: Vec2,
+) -> Option<LightSample<'a>> {
+    match id {
+        LightId::Punctual(k) => punctual(scene, hit, k as usize),
+        LightId::Area => area(scene, hit, uc, u),
+        LightId::Environment => environment(scene, hit, u),
+    }
+}
+
 /// Punctual light `k`.
 pub fn punctual<'a>(scene: &'a Scene, hit: &SurfaceHit, k: usize) -> Option<LightSample<'a>> {
-    let ls = scene.lights[k].sample_li(hit.p)?;
+    let light = &scene.lights()[k];
+    let ls = light.light.sample_li(hit.p)?;
     let shadow = match ls.position {
         Some(p) => hit.spawn_ray_to(p),
         None => hit.spawn_ray(ls.wi),
@@ -46,21 +64,20 @@ pub fn punctual<'a>(scene: &'a Scene, hit: &SurfaceHit, k: usize) -> Option<Ligh
         wi: ls.wi,
         shadow,
         incident: ls.irradiance,
-        shape: scene.light_shapes.get(k).and_then(Option::as_ref),
+        shape: light.shape.as_ref(),
         pdf: None,
     })
 }
 
-/// A point on the emissive triangles (chosen by power with `uc`, placed with `u`); `None`
-/// when the emitter faces away (single-sided) or the density is degenerate.
+/// A point on the emissive triangles (chosen by power with `uc`, placed with `u`), its
+/// emission textured there; `None` when the emitter faces away (single-sided) or the
+/// density is degenerate.
 pub fn area<'a>(scene: &'a Scene, hit: &SurfaceHit, uc: f32, u: Vec2) -> Option<LightSample<'a>> {
-    let s = scene
-        .area_lights
-        .sample(&scene.triangle_data, hit.p, uc, u)?;
+    let s = scene.area_lights().sample(hit.p, uc, u)?;
     if s.pdf.is_nan() || s.pdf <= 0.0 {
         return None;
     }
-    let mat = &scene.materials[scene.triangle_data[s.prim as usize].material() as usize];
+    let mat = scene.material(scene.triangle(s.prim).material());
     // Single-sided emitters only shine along their outward normal.
     if !mat.desc.double_sided && s.normal.dot(s.wi) >= 0.0 {
         return None;
@@ -68,7 +85,7 @@ pub fn area<'a>(scene: &'a Scene, hit: &SurfaceHit, uc: f32, u: Vec2) -> Option<
     Some(LightSample {
         wi: s.wi,
         shadow: hit.spawn_ray_to(s.point),
-        incident: mat.emission() / s.pdf,
+        incident: scene.emission_at(s.prim, s.bary) / s.pdf,
         shape: mat.emitter_shape(),
         pdf: Some(s.pdf),
     })
@@ -76,7 +93,7 @@ pub fn area<'a>(scene: &'a Scene, hit: &SurfaceHit, uc: f32, u: Vec2) -> Option<
 
 /// An importance-sampled direction of the environment.
 pub fn environment<'a>(scene: &'a Scene, hit: &SurfaceHit, u: Vec2) -> Option<LightSample<'a>> {
-    let s = scene.environment.as_ref()?.sample(u)?;
+    let s = scene.environment()?.sample(u)?;
     Some(LightSample {
         wi: s.wi,
         shadow: hit.spawn_ray(s.wi),

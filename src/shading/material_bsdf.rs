@@ -1,59 +1,17 @@
-//! The BSDF a material has at a hit ([`crate::bsdf`]): a measured metal's conductor, glTF
-//! metallic-roughness (Appendix B of the glTF 2.0 spec, with KHR_materials_specular), a
-//! smooth or rough dielectric with η
-//! from the path's media, a thin-walled transmission; and which BSDFs the photon methods
-//! treat as diffuse (where photons are gathered and caustic paths end).
+//! The BSDF a material has at a hit ([`crate::bsdf`]): the material's opaque BSDF
+//! ([`crate::material::Material::opaque_bsdf`]), a smooth or rough dielectric with η from
+//! the path's media, a thin-walled transmission; and which BSDFs the photon methods treat
+//! as diffuse (where photons are gathered and caustic paths end).
 //!
 //! Directions are unit vectors in the local frame of the outward shading normal; η is the
 //! ratio n_inside / n_outside, the outside being the normal's side.
 
-use crate::bsdf::{Bsdf, Layers};
+use crate::bsdf::Bsdf;
 use crate::interaction::{CoincidentSet, SurfaceHit};
-use crate::material::{Material, ShadingPoint};
+use crate::material::ShadingPoint;
 use crate::medium::{self, MediumStack};
-use crate::scene::desc::LayerPoint;
 use crate::scene::Scene;
 use crate::spectrum::Carrier;
-
-/// The surface BSDF of an opaque (non-transmitting) shading point: a measured metal's
-/// complex-index conductor ([`Material::conductor_index`], GGX α = roughness²), else glTF
-/// metallic-roughness with KHR_materials_specular.
-pub fn surface_bsdf<C: Carrier>(mat: &Material, sp: &ShadingPoint, l: &C::Lambda) -> Bsdf<C> {
-    if let Some((eta, k)) = mat.conductor_index::<C>(l) {
-        return Bsdf::ComplexConductor {
-            eta,
-            k,
-            alpha: sp.roughness * sp.roughness,
-            film: sp.film.lobe::<C>(l),
-        };
-    }
-    Bsdf::GltfPbr {
-        base: C::reflectance(sp.base_color, l),
-        metallic: sp.metallic,
-        alpha: sp.roughness * sp.roughness,
-        ior: mat.ior(),
-        specular: sp.specular,
-        specular_color: C::reflectance(sp.specular_color, l),
-        film: sp.film.lobe::<C>(l),
-        layers: layers::<C>(&sp.layers, l),
-    }
-}
-
-/// The KHR layers of a shading point for the BSDF (colours upsampled as reflectances;
-/// α = clearcoat roughness², sheen α = sheen roughness as the sheen spec writes it).
-fn layers<C: Carrier>(p: &LayerPoint, l: &C::Lambda) -> Layers<C> {
-    if p.clearcoat <= 0.0 && p.sheen_color.max_element() <= 0.0 && p.diffuse_transmission <= 0.0 {
-        return Layers::none();
-    }
-    Layers {
-        clearcoat: p.clearcoat,
-        clearcoat_alpha: p.clearcoat_roughness * p.clearcoat_roughness,
-        sheen_color: C::reflectance(p.sheen_color, l),
-        sheen_alpha: p.sheen_roughness,
-        diffuse_transmission: p.diffuse_transmission,
-        diffuse_transmission_color: C::reflectance(p.diffuse_transmission_color, l),
-    }
-}
 
 /// The BSDF at a hit (one lobe chosen by the transmission weight with `u`) and the media on
 /// the far side of a refraction. At a volume boundary η is the ratio of the indices on the
@@ -74,7 +32,7 @@ pub fn bsdf_at<C: Carrier>(
     u: f32,
     l: &C::Lambda,
 ) -> (Bsdf<C>, MediumStack, bool) {
-    let mat = &scene.materials[hit.material as usize];
+    let mat = &scene.materials()[hit.material as usize];
     if sp.transmission > 0.0 && u < sp.transmission {
         let tint = C::reflectance(sp.base_color, l);
         if !mat.is_volume() {
@@ -99,7 +57,7 @@ pub fn bsdf_at<C: Carrier>(
             dispersive,
         );
     }
-    (surface_bsdf(mat, sp, l), media, false)
+    (mat.opaque_bsdf(sp, l), media, false)
 }
 
 /// The indices on both sides of the volume boundary at `hit` (coincident volume faces
@@ -114,13 +72,13 @@ pub fn interface<C: Carrier>(
     l: &C::Lambda,
 ) -> (f32, f32, MediumStack, bool) {
     let hero = C::hero(l);
-    let disp = |m: u32| scene.materials[m as usize].is_dispersive();
+    let disp = |m: u32| scene.materials()[m as usize].is_dispersive();
     let dispersive = hero.is_some()
         && (disp(hit.material)
             || coincident.iter().any(|c| disp(c.material))
             || media.iter().any(disp));
     let (n_i, n_t, after) = medium::crossing(scene, hit, coincident, media, |m| {
-        scene.materials[m as usize].ior_at(hero, dispersive)
+        scene.materials()[m as usize].ior_at(hero, dispersive)
     });
     (n_i, n_t, after, dispersive)
 }
@@ -149,7 +107,7 @@ pub fn lane_etas(
 ) -> [f32; 4] {
     lanes.map(|nm| {
         let (n_i, n_t, _) = medium::crossing(scene, hit, coincident, media, |m| {
-            scene.materials[m as usize].ior_at(Some(nm), true)
+            scene.materials()[m as usize].ior_at(Some(nm), true)
         });
         bsdf_eta(n_i, n_t, hit.front_face)
     })

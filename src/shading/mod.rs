@@ -4,7 +4,7 @@
 //!   BSDF, the hero wavelength, the shading frame);
 //! - [`material_bsdf`]: the BSDF a material has at a hit, and which BSDFs count as diffuse;
 //! - [`spectral_mis`]: spectral MIS over the 4 wavelengths at rough dispersive interfaces;
-//! - [`film`]: iridescence and anisotropy at a hit, and the tangent frame anisotropy uses;
+//! - [`frame`]: the shading frame at a hit (the tangent frame anisotropy uses);
 //! - [`direct`]: direct light with shadow rays (the Whitted tracer's light step);
 //! - [`lights`]: one light sample toward a hit (punctual, emissive triangles, environment).
 //!
@@ -12,14 +12,12 @@
 //! unless said to be in the local frame of the outward shading normal.
 
 pub mod direct;
-pub mod film;
+pub mod frame;
 pub mod lights;
 pub mod material_bsdf;
 pub mod spectral_mis;
 pub mod step;
 
 pub use direct::direct_light;
-pub use material_bsdf::{
-    bsdf_at, interface, is_diffuse_like, lane_etas, surface_bsdf, GLOSSY_ALPHA,
-};
+pub use material_bsdf::{bsdf_at, interface, is_diffuse_like, lane_etas, GLOSSY_ALPHA};
 pub use step::{arrive, meet, sample_bsdf, Arrival, Event, Surface, MAX_DELTA_BOUNCES};

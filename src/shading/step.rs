@@ -25,11 +25,11 @@ use super::material_bsdf::{bsdf_at, lane_etas};
 use super::spectral_mis;
 use crate::bsdf::{Bsdf, BsdfSample, TransportMode};
 use crate::interaction::{CoincidentSet, SurfaceHit};
+use crate::material::AlphaMode;
 use crate::material::{Material, ShadingPoint};
 use crate::math::{Frame, Ray, Rng};
 use crate::medium::MediumStack;
 use crate::sampler::Bounce;
-use crate::scene::desc::AlphaMode;
 use crate::scene::Scene;
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
@@ -45,13 +45,13 @@ pub const MAX_DELTA_BOUNCES: u32 = 1024;
 /// water — and otherwise the coincident volume faces are returned to be crossed as one
 /// interface. Either way rays leave from the returned hit, which clears all of them.
 pub fn meet(scene: &Scene, hit: SurfaceHit) -> (SurfaceHit, CoincidentSet) {
-    if !scene.materials[hit.material as usize].is_volume() {
+    if !scene.materials()[hit.material as usize].is_volume() {
         return (hit, CoincidentSet::default());
     }
     let (merged, set) = scene.coincident(&hit);
     let solid = set
         .iter()
-        .find(|c| !scene.materials[c.material as usize].is_volume());
+        .find(|c| !scene.materials()[c.material as usize].is_volume());
     match solid {
         Some(solid) => (solid, CoincidentSet::default()),
         None => (merged, set),
@@ -86,12 +86,12 @@ pub fn arrive<'s, C: Carrier>(
     *rays += 1;
     let hit = scene.intersect(ray)?;
     let transmittance = match media.current() {
-        Some(m) => scene.materials[m as usize].transmittance_at::<C>(hit.t, lambda),
+        Some(m) => scene.materials()[m as usize].transmittance_at::<C>(hit.t, lambda),
         None => C::ONE,
     };
     let (hit, coincident) = meet(scene, hit);
-    let mat = &scene.materials[hit.material as usize];
-    let sp = mat.shade(hit.uv, &scene.images);
+    let mat = &scene.materials()[hit.material as usize];
+    let sp = mat.shade(&scene.textures_at(hit.uv));
     Some(Arrival {
         hit,
         coincident,
@@ -199,7 +199,7 @@ impl<C: Carrier> Arrival<'_, C> {
                 _ => *beta = beta.keep_hero(lambda),
             }
         }
-        let frame = super::film::shading_frame(scene, &self.hit, &self.sp.film);
+        let frame = super::frame::shading_frame(scene, &self.hit, &self.sp.anisotropy);
         Event::Scatter(Surface {
             hit: self.hit,
             bsdf,

@@ -334,7 +334,7 @@ impl Carrier for SampledSpectrum {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::desc::EmissionSpectrum;
+    use crate::spectrum::EmissionSpectrum;
 
     /// A named emitter spectrum (2700 K) reaches the path as Planck's law itself, scaled by
     /// the RGB value's ratio to the reference, while the RGB transport keeps the RGB value;

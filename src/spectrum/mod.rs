@@ -21,6 +21,7 @@
 pub mod carrier;
 pub mod cie;
 mod cie_data;
+pub mod emission;
 mod fit;
 pub mod ior;
 pub mod metals;
@@ -31,6 +32,7 @@ pub mod upsample;
 pub mod wavelengths;
 
 pub use carrier::{Carrier, EmitterShape, Lambdas};
+pub use emission::{effective_color, EmissionSpectrum, BLACKBODY_KELVIN, SUN_KELVIN};
 pub use ior::{IorModel, UnknownIorName};
 pub use metals::Metal;
 pub use sampled::SampledSpectrum;

@@ -19,7 +19,8 @@
 //! of a gem does not count, while a table, a plate or a preview floor does.
 
 use crate::error::{Error, Result};
-use crate::scene::desc::{MaterialDesc, MeshDesc, SceneDesc};
+use crate::material::MaterialDesc;
+use crate::scene::desc::{MeshDesc, SceneDesc};
 use glam::{Vec2, Vec3, Vec4};
 
 /// The floor reaches this many bounding radii from the model's centre (half side).
@@ -217,6 +218,7 @@ pub fn add_ground(desc: &mut SceneDesc) {
         normals: vec![Vec3::Y; 4],
         positions,
         uvs: Vec::new(),
+        uvs1: Vec::new(),
         tangents: Vec::new(),
         indices: vec![[0, 1, 2], [0, 2, 3]],
         material: Some(desc.materials.len() - 1),

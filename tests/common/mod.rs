@@ -34,9 +34,7 @@ pub fn scratch_dir(name: &str) -> PathBuf {
 
 /// A unit sphere (icosphere, 5120 triangles, smooth normals) at the origin with one
 /// material, under a uniform environment of radiance 1: the furnace-test scene.
-pub fn sphere_in_white_environment(
-    material: iris::scene::desc::MaterialDesc,
-) -> iris::scene::Scene {
+pub fn sphere_in_white_environment(material: iris::material::MaterialDesc) -> iris::scene::Scene {
     use iris::scene::desc::{MeshDesc, SceneDesc};
     let sphere = iris::model::shapes::icosphere(1.0, 4);
     let desc = SceneDesc {
@@ -70,8 +68,8 @@ pub fn backends() -> Vec<iris::accel::Backend> {
 
 /// A clear, smooth, volumetric dielectric (KHR transmission 1, volume thickness 1) of index
 /// `ior`.
-pub fn clear_glass(name: &str, ior: f32) -> iris::scene::desc::MaterialDesc {
-    iris::scene::desc::MaterialDesc {
+pub fn clear_glass(name: &str, ior: f32) -> iris::material::MaterialDesc {
+    iris::material::MaterialDesc {
         name: name.into(),
         metallic: 0.0,
         roughness: 0.0,
@@ -99,8 +97,8 @@ pub fn mesh(
 }
 
 /// A white Lambertian material: albedo 1, no specular layer.
-pub fn white_lambert() -> iris::scene::desc::MaterialDesc {
-    iris::scene::desc::MaterialDesc {
+pub fn white_lambert() -> iris::material::MaterialDesc {
+    iris::material::MaterialDesc {
         name: "white".into(),
         metallic: 0.0,
         specular: 0.0,

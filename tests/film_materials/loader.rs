@@ -54,7 +54,7 @@ fn every_property_and_texture_is_read() {
                 "anisotropyStrength": 0.6, "anisotropyRotation": 1.25,
                 "anisotropyTexture": {"index": 0}}}}),
     );
-    let film = desc.materials[0].film;
+    let film = &desc.materials[0];
     let i = film.iridescence.expect("iridescence");
     assert_eq!(
         (i.factor, i.ior, i.thickness_min, i.thickness_max),
@@ -82,7 +82,7 @@ fn every_property_and_texture_is_read() {
         json!({"extensions": {"KHR_materials_iridescence": {"iridescenceFactor": 1.0},
                               "KHR_materials_anisotropy": {}}}),
     );
-    let film = desc.materials[0].film;
+    let film = &desc.materials[0];
     let i = film.iridescence.expect("iridescence");
     assert_eq!(
         (i.ior, i.thickness_min, i.thickness_max),
@@ -92,7 +92,7 @@ fn every_property_and_texture_is_read() {
     assert_eq!((a.strength, a.rotation, a.texture), (0.0, 0.0, None));
     // `iris info`'s material line shows both.
     assert_eq!(
-        desc.materials[0].film.describe(),
+        desc.materials[0].describe_extensions(),
         "iridescence 1 (film n 1.3, 100–400 nm); anisotropy 0 (rotation 0 rad)"
     );
 }
@@ -157,7 +157,7 @@ fn bad_values_are_errors_naming_the_material() {
     }
     // NaN cannot be written in JSON: the same rule at validation (other loaders, edits).
     let mut desc = loaded("film_nan", ir(json!({"iridescenceFactor": 1.0})));
-    if let Some(i) = desc.materials[0].film.iridescence.as_mut() {
+    if let Some(i) = desc.materials[0].iridescence.as_mut() {
         i.thickness_max = f32::NAN;
     }
     let e = iris::scene::validate::validate(desc).expect_err("NaN thickness");
@@ -257,7 +257,7 @@ fn sunglasses_lens_iridescence_is_read() {
         .iter()
         .find(|m| m.name.contains("lens_exterior"))
         .expect("lens_exterior");
-    let i = lens.film.iridescence.expect("iridescence read");
+    let i = lens.iridescence.expect("iridescence read");
     assert_eq!((i.factor, i.ior, i.thickness_min), (1.0, 2.0, 100.0));
     assert!((i.thickness_max - 300.01).abs() < 1e-3);
     let mentions: Vec<&String> = desc

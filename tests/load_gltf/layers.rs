@@ -78,7 +78,7 @@ fn layer_parameters_and_textures_are_read() {
     let l = material(&desc, "M").layers;
     assert!(!l.any());
     assert_eq!(l.diffuse_transmission_color, Vec3::ONE);
-    assert_eq!(l, iris::scene::desc::LayerDesc::default());
+    assert_eq!(l, iris::material::LayerDesc::default());
 }
 
 #[test]

@@ -3,7 +3,8 @@
 use super::fixtures::*;
 use super::{common, load, material};
 use glam::{Mat4, Vec3};
-use iris::scene::desc::{ExplicitIor, LightDesc, Projection};
+use iris::material::ExplicitIor;
+use iris::scene::desc::{LightDesc, Projection};
 use serde_json::json;
 
 #[test]
@@ -51,7 +52,7 @@ fn cauchy_ior_and_texture_values_pass_through() {
     assert_eq!(infinite.ior, 0.0);
     assert_eq!(infinite.emissive, Vec3::new(1.0, 0.5, 0.25));
     assert!(infinite.double_sided);
-    assert_eq!(infinite.alpha_mode, iris::scene::desc::AlphaMode::Mask(0.5));
+    assert_eq!(infinite.alpha_mode, iris::material::AlphaMode::Mask(0.5));
     // One decoded image shared by both slots.
     assert_eq!(desc.images.len(), 1);
     assert_eq!((desc.images[0].width, desc.images[0].height), (2, 2));
@@ -189,7 +190,10 @@ fn texture_transform_moves_the_lookup() {
     );
     let mat = iris::material::Material::new(m.clone());
     let c = mat
-        .shade(glam::Vec2::new(0.25, 0.25), &desc.images)
+        .shade(&iris::material::TextureContext::new(
+            &desc.images,
+            iris::material::TexCoords::single(glam::Vec2::new(0.25, 0.25)),
+        ))
         .base_color;
     assert!(
         c.y > 0.99 && c.x < 0.01 && c.z < 0.01,
@@ -250,8 +254,11 @@ fn unlit_emits_its_base_colour() {
         (0.0, 0.0, 0.0)
     );
     // The shaded emission at the red texel is the factor times red.
-    let sp = iris::material::Material::new(flat.clone())
-        .shade(glam::Vec2::new(0.25, 0.25), &desc.images);
+    let sp =
+        iris::material::Material::new(flat.clone()).shade(&iris::material::TextureContext::new(
+            &desc.images,
+            iris::material::TexCoords::single(glam::Vec2::new(0.25, 0.25)),
+        ));
     assert!(
         (sp.emissive - Vec3::new(0.5, 0.0, 0.0)).length() < 1e-3,
         "{}",
@@ -364,7 +371,10 @@ fn specular_textures_scale_the_factors() {
     assert!(m.specular_texture.is_some() && m.specular_color_texture.is_some());
     let mat = iris::material::Material::new(m.clone());
     // Texel (1, 1) is (9, 9, 9, 128): alpha 128/255, colour sRGB 9 ≈ 0.00273 linear.
-    let sp = mat.shade(glam::Vec2::new(0.75, 0.75), &desc.images);
+    let sp = mat.shade(&iris::material::TextureContext::new(
+        &desc.images,
+        iris::material::TexCoords::single(glam::Vec2::new(0.75, 0.75)),
+    ));
     assert!(
         (sp.specular - 0.5 * 128.0 / 255.0).abs() < 1e-3,
         "{}",
@@ -377,7 +387,10 @@ fn specular_textures_scale_the_factors() {
         sp.specular_color
     );
     // The red texel keeps the full factor and the colour's red channel.
-    let sp = mat.shade(glam::Vec2::new(0.25, 0.25), &desc.images);
+    let sp = mat.shade(&iris::material::TextureContext::new(
+        &desc.images,
+        iris::material::TexCoords::single(glam::Vec2::new(0.25, 0.25)),
+    ));
     assert!((sp.specular - 0.5).abs() < 1e-6);
     assert!(
         (sp.specular_color - Vec3::new(1.0, 0.0, 0.0)).length() < 1e-5,

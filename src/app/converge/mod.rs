@@ -183,7 +183,7 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
             (image, Some((method, path)))
         }
     };
-    let mut rows = setup_rows("scene", load_time, scene.accel_build_time);
+    let mut rows = setup_rows("scene", load_time, scene.accel_build_time());
     let mut runs = Vec::new();
     let mut curves = Vec::new();
     for &method in &opts.methods {

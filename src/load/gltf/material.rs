@@ -10,7 +10,7 @@
 //! - `KHR_materials_volume.attenuationDistance` defaults to +∞ (never 0).
 //! - `KHR_materials_dispersion.dispersion` (= 20/V_d) is read from the raw extension JSON,
 //!   which the `gltf` crate does not type.
-//! - KHR_materials_iridescence and KHR_materials_anisotropy: `super::material_film`.
+//! - KHR_materials_iridescence and KHR_materials_anisotropy: `super::iridescence_anisotropy`.
 //! - Material `extras` (the README's "IOR models"): `{"iris_glass": "N-BK7"}` names a
 //!   built-in Sellmeier glass (`spectrum::ior::KNOWN_NAMES`, case-insensitive) and gives
 //!   `ExplicitIor::Glass`; `{"cauchy": {"b": B, "c": C}}` gives `ExplicitIor::Cauchy`
@@ -30,9 +30,9 @@ use super::material_layers;
 use super::source::ImageCache;
 use super::{label, spec_gloss, texture_source, texture_transform, unlit, Ctx, Warnings};
 use crate::error::{LoadError, LoadErrorKind};
-use crate::scene::desc::{
-    AlphaMode, EmissionSpectrum, ExplicitIor, ImageDesc, MaterialDesc, TextureRef,
-};
+use crate::material::texture::TEXCOORD_SETS;
+use crate::material::{AlphaMode, ExplicitIor, ImageDesc, MaterialDesc, TextureRef};
+use crate::spectrum::EmissionSpectrum;
 use glam::{Vec3, Vec4};
 use serde_json::Value;
 
@@ -59,91 +59,179 @@ pub(super) fn read_materials(
     Ok((materials, images.into_images(), skipped))
 }
 
-/// Reads material `index`; with `images` `None` (no mesh uses the material) its textures
-/// are not decoded, and their count is returned beside the material.
-fn read_material(
-    ctx: &Ctx<'_>,
-    index: usize,
-    m: &gltf::Material<'_>,
-    mut images: Option<&mut ImageCache>,
-    warnings: &mut Warnings,
-) -> Result<(MaterialDesc, usize), LoadError> {
-    let element = label("material", index, m.name());
-    let mut skipped = 0;
-    let mut texcoord_sets = Vec::new();
-    let mut undecodable = Vec::new();
-    // (slot, glTF texture, texCoord, KHR_texture_transform) → the decoded image's reference.
-    let mut by_texture = |slot: &str,
-                          tex: &gltf::Texture<'_>,
-                          texcoord: u32,
-                          transform: glam::Affine2|
-     -> Result<Option<TextureRef>, LoadError> {
-        let Some(images) = images.as_deref_mut() else {
-            skipped += 1;
+/// Resolves a material's texture references to decoded images (through the document's
+/// one [`ImageCache`]), counting the slots of an unused material it leaves undecoded and
+/// noting what the loader warns about (texCoord sets, undecodable sources).
+struct TextureResolver<'a> {
+    /// `None` when no mesh uses the material: textures are counted, not decoded.
+    images: Option<&'a mut ImageCache>,
+    element: &'a str,
+    skipped: usize,
+    texcoord_sets: Vec<String>,
+    undecodable: Vec<String>,
+}
+
+impl TextureResolver<'_> {
+    /// (slot, glTF texture, texCoord, KHR_texture_transform) → the decoded image's reference.
+    fn resolve(
+        &mut self,
+        ctx: &Ctx<'_>,
+        slot: &str,
+        tex: &gltf::Texture<'_>,
+        texcoord: u32,
+        transform: glam::Affine2,
+    ) -> Result<Option<TextureRef>, LoadError> {
+        let Some(images) = self.images.as_deref_mut() else {
+            self.skipped += 1;
             return Ok(None);
         };
         let Some(source) = texture_source::image_of(ctx.doc, tex) else {
-            undecodable.push(format!("{element} {slot}"));
+            self.undecodable.push(format!("{} {slot}", self.element));
             return Ok(None);
         };
         let image = images.get(ctx, source)?;
-        if texcoord != 0 {
-            texcoord_sets.push(format!("{element} {slot} (texCoord {texcoord})"));
+        if texcoord >= TEXCOORD_SETS as u32 {
+            self.texcoord_sets
+                .push(format!("{} {slot} (texCoord {texcoord})", self.element));
         }
         Ok(Some(TextureRef {
             image,
             texcoord,
             transform,
         }))
-    };
-    let mut texture = |slot: &str,
-                       info: Option<gltf::texture::Info<'_>>|
-     -> Result<Option<TextureRef>, LoadError> {
+    }
+
+    /// A core `textureInfo` typed by the `gltf` crate, with its KHR_texture_transform (whose
+    /// `texCoord` overrides the info's).
+    fn info(
+        &mut self,
+        ctx: &Ctx<'_>,
+        slot: &str,
+        info: Option<gltf::texture::Info<'_>>,
+    ) -> Result<Option<TextureRef>, LoadError> {
         let Some(info) = info else { return Ok(None) };
         let (transform, texcoord_override) = texture_transform::of_info(&info).map_err(|e| {
             ctx.error(
-                &element,
+                self.element,
                 LoadErrorKind::InvalidValue,
                 format!("{slot}: {e}"),
             )
         })?;
         let texcoord = texcoord_override.unwrap_or(info.tex_coord());
-        by_texture(slot, &info.texture(), texcoord, transform)
+        self.resolve(ctx, slot, &info.texture(), texcoord, transform)
+    }
+}
+
+/// The texture slots of the core material and of the extensions the `gltf` crate types.
+struct CoreTextures {
+    base_color: Option<TextureRef>,
+    metallic_roughness: Option<TextureRef>,
+    emissive: Option<TextureRef>,
+    diffuse: Option<TextureRef>,
+    specular: Option<TextureRef>,
+    specular_color: Option<TextureRef>,
+    transmission: Option<TextureRef>,
+}
+
+impl CoreTextures {
+    fn read(
+        ctx: &Ctx<'_>,
+        m: &gltf::Material<'_>,
+        r: &mut TextureResolver<'_>,
+    ) -> Result<CoreTextures, LoadError> {
+        let pbr = m.pbr_metallic_roughness();
+        let spec_gloss = m.pbr_specular_glossiness();
+        let specular = m.specular();
+        let transmission = m.transmission();
+        Ok(CoreTextures {
+            base_color: r.info(ctx, "baseColorTexture", pbr.base_color_texture())?,
+            metallic_roughness: r.info(
+                ctx,
+                "metallicRoughnessTexture",
+                pbr.metallic_roughness_texture(),
+            )?,
+            emissive: r.info(ctx, "emissiveTexture", m.emissive_texture())?,
+            diffuse: r.info(
+                ctx,
+                "diffuseTexture",
+                spec_gloss.as_ref().and_then(|s| s.diffuse_texture()),
+            )?,
+            specular: r.info(
+                ctx,
+                "specularTexture",
+                specular.as_ref().and_then(|s| s.specular_texture()),
+            )?,
+            specular_color: r.info(
+                ctx,
+                "specularColorTexture",
+                specular.as_ref().and_then(|s| s.specular_color_texture()),
+            )?,
+            transmission: r.info(
+                ctx,
+                "transmissionTexture",
+                transmission.as_ref().and_then(|t| t.transmission_texture()),
+            )?,
+        })
+    }
+}
+
+/// Reads material `index`; with `images` `None` (no mesh uses the material) its textures
+/// are not decoded, and their count is returned beside the material.
+fn read_material(
+    ctx: &Ctx<'_>,
+    index: usize,
+    m: &gltf::Material<'_>,
+    images: Option<&mut ImageCache>,
+    warnings: &mut Warnings,
+) -> Result<(MaterialDesc, usize), LoadError> {
+    let element = label("material", index, m.name());
+    let mut r = TextureResolver {
+        images,
+        element: &element,
+        skipped: 0,
+        texcoord_sets: Vec::new(),
+        undecodable: Vec::new(),
     };
-
-    let pbr = m.pbr_metallic_roughness();
-    let base_color_texture = texture("baseColorTexture", pbr.base_color_texture())?;
-    let metallic_roughness_texture =
-        texture("metallicRoughnessTexture", pbr.metallic_roughness_texture())?;
-    let emissive_texture = texture("emissiveTexture", m.emissive_texture())?;
-    let spec_gloss = m.pbr_specular_glossiness();
-    let diffuse_texture = texture(
-        "diffuseTexture",
-        spec_gloss.as_ref().and_then(|s| s.diffuse_texture()),
-    )?;
-    let specular_ext = m.specular();
-    let specular_texture = texture(
-        "specularTexture",
-        specular_ext.as_ref().and_then(|s| s.specular_texture()),
-    )?;
-    let specular_color_texture = texture(
-        "specularColorTexture",
-        specular_ext
-            .as_ref()
-            .and_then(|s| s.specular_color_texture()),
-    )?;
-    let transmission = m.transmission();
-    let transmission_texture = texture(
-        "transmissionTexture",
-        transmission.as_ref().and_then(|t| t.transmission_texture()),
-    )?;
-
+    let tex = CoreTextures::read(ctx, m, &mut r)?;
+    let mut by_texture = |slot: &str, t: &gltf::Texture<'_>, set: u32, transform| {
+        r.resolve(ctx, slot, t, set, transform)
+    };
     let layers = material_layers::read_layers(ctx, m, &element, &mut by_texture, warnings)?;
+    let (iridescence, anisotropy) = super::iridescence_anisotropy::read_iridescence_anisotropy(
+        ctx,
+        m,
+        &element,
+        &mut by_texture,
+        warnings,
+    )?;
+    warnings.texcoord_sets.append(&mut r.texcoord_sets);
+    warnings.undecodable_textures.append(&mut r.undecodable);
+    let skipped = r.skipped;
+    let material = MaterialDesc {
+        layers,
+        iridescence,
+        anisotropy,
+        ..factors(ctx, m, &element, &tex)?
+    };
+    let (material, dropped) =
+        spec_gloss::apply(m.pbr_specular_glossiness().as_ref(), tex.diffuse, material);
+    if dropped {
+        warnings.spec_gloss_textures.push(material.name.clone());
+    }
+    Ok((unlit::apply(m, material), skipped))
+}
 
-    let film = super::material_film::read_film(ctx, m, &element, &mut by_texture, warnings)?;
-    warnings.texcoord_sets.append(&mut texcoord_sets);
-    warnings.undecodable_textures.append(&mut undecodable);
+/// The material's factors and the Iris extras, with the core texture slots `tex`; the layer
+/// and thin-film extensions at their defaults.
+fn factors(
+    ctx: &Ctx<'_>,
+    m: &gltf::Material<'_>,
+    element: &str,
+    tex: &CoreTextures,
+) -> Result<MaterialDesc, LoadError> {
     let defaults = MaterialDesc::default();
+    let pbr = m.pbr_metallic_roughness();
+    let transmission = m.transmission();
     let volume = m.volume();
     let specular = m.specular();
     let alpha_mode = match m.alpha_mode() {
@@ -152,20 +240,20 @@ fn read_material(
         gltf::material::AlphaMode::Mask => AlphaMode::Mask(m.alpha_cutoff().unwrap_or(0.5)),
         gltf::material::AlphaMode::Blend => AlphaMode::Blend,
     };
-    let material = MaterialDesc {
+    Ok(MaterialDesc {
         base_color: Vec4::from(pbr.base_color_factor()),
-        base_color_texture,
+        base_color_texture: tex.base_color,
         metallic: pbr.metallic_factor(),
         roughness: pbr.roughness_factor(),
-        metallic_roughness_texture,
+        metallic_roughness_texture: tex.metallic_roughness,
         emissive: Vec3::from(m.emissive_factor()) * m.emissive_strength().unwrap_or(1.0),
-        emissive_texture,
-        emission_spectrum: iris_spectrum(ctx, m.extras(), &element)?,
+        emissive_texture: tex.emissive,
+        emission_spectrum: iris_spectrum(ctx, m.extras(), element)?,
         ior: m.ior().unwrap_or(defaults.ior),
         transmission: transmission
             .as_ref()
             .map_or(defaults.transmission, |t| t.transmission_factor()),
-        transmission_texture,
+        transmission_texture: tex.transmission,
         thickness: volume
             .as_ref()
             .map_or(defaults.thickness, |v| v.thickness_factor()),
@@ -181,23 +269,16 @@ fn read_material(
         specular_color: specular.as_ref().map_or(defaults.specular_color, |s| {
             Vec3::from(s.specular_color_factor())
         }),
-        specular_texture,
-        specular_color_texture,
-        dispersion: dispersion(ctx, m, &element)?,
-        ior_model: explicit_ior(ctx, m, &element)?,
-        conductor: None,
-        priority: priority(ctx, m, &element)?,
+        specular_texture: tex.specular,
+        specular_color_texture: tex.specular_color,
+        dispersion: dispersion(ctx, m, element)?,
+        ior_model: explicit_ior(ctx, m, element)?,
+        priority: priority(ctx, m, element)?,
         double_sided: m.double_sided(),
         alpha_mode,
-        layers,
-        film,
-        name: element,
-    };
-    let (material, dropped) = spec_gloss::apply(spec_gloss.as_ref(), diffuse_texture, material);
-    if dropped {
-        warnings.spec_gloss_textures.push(material.name.clone());
-    }
-    Ok((unlit::apply(m, material), skipped))
+        name: element.to_string(),
+        ..defaults
+    })
 }
 
 /// `KHR_materials_dispersion.dispersion` (default 0).

@@ -20,7 +20,7 @@
 use super::texture_info::texture_info;
 use super::{Ctx, Warnings};
 use crate::error::{LoadError, LoadErrorKind};
-use crate::scene::desc::{LayerDesc, TextureRef};
+use crate::material::{LayerDesc, TextureRef};
 use glam::Vec3;
 use serde_json::{Map, Value};
 

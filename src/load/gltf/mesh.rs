@@ -266,6 +266,7 @@ pub(super) fn instantiate(local: &LocalPrimitive, world: &Mat4, name: String) ->
         positions,
         normals,
         uvs: local.uvs.clone(),
+        uvs1: Vec::new(),
         tangents,
         indices,
         material: local.material,

@@ -13,7 +13,7 @@ use super::{label, Ctx};
 use crate::error::{LoadError, LoadErrorKind};
 use crate::load::decode::decode_rgba8;
 use crate::load::files::Files;
-use crate::scene::desc::ImageDesc;
+use crate::material::ImageDesc;
 use gltf::buffer::Source;
 use std::collections::{BTreeSet, HashMap};
 use std::path::Path;

@@ -13,7 +13,7 @@
 //! alpha channel the metallic-roughness texture slots cannot express); a material that has
 //! one is named in the loader's single warning and renders with its factors.
 
-use crate::scene::desc::{MaterialDesc, TextureRef};
+use crate::material::{MaterialDesc, TextureRef};
 use glam::{Vec3, Vec4};
 
 /// `desc` replaced by the approximation when the material has the extension; `diffuse` is

@@ -8,7 +8,7 @@
 use super::material_layers::TextureFn;
 use super::{texture_transform, Ctx};
 use crate::error::{LoadError, LoadErrorKind};
-use crate::scene::desc::TextureRef;
+use crate::material::TextureRef;
 use serde_json::Value;
 
 /// Resolves the textureInfo `v` of property `slot` of material `element`.

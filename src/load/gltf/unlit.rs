@@ -7,7 +7,7 @@
 //! What differs from a rasterizer's unlit: the surface lights its surroundings (it is an
 //! area light in Iris), and the picture's exposure scales it like any emitter.
 
-use crate::scene::desc::MaterialDesc;
+use crate::material::MaterialDesc;
 use glam::Vec3;
 
 /// `desc` turned into the unlit approximation when `m` has KHR_materials_unlit.

@@ -37,7 +37,7 @@ use super::mtl::RawMtl;
 use crate::error::{LoadError, LoadErrorKind};
 use crate::load::decode::decode_rgba8;
 use crate::load::files::Files;
-use crate::scene::desc::{AlphaMode, ExplicitIor, ImageDesc, MaterialDesc, TextureRef};
+use crate::material::{AlphaMode, ExplicitIor, ImageDesc, MaterialDesc, TextureRef};
 use glam::{Vec3, Vec4};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};

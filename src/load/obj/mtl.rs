@@ -5,7 +5,7 @@
 //! numbers and leaves `Tf`, `Tr` and the Iris keys as unparsed strings.
 //!
 //! Values are stored as written (colours are linear RGB, no conversion); the mapping to
-//! [`MaterialDesc`](crate::scene::desc::MaterialDesc) lives in `material.rs`.
+//! [`MaterialDesc`](crate::material::MaterialDesc) lives in `material.rs`.
 //!
 //! Grammar accepted (one statement per line, `#` starts a comment):
 //! - `newmtl NAME`; statements before the first `newmtl` are ignored with a warning;
@@ -28,7 +28,7 @@
 //! material and the line.
 
 use crate::error::{LoadError, LoadErrorKind};
-use crate::scene::desc::EmissionSpectrum;
+use crate::spectrum::EmissionSpectrum;
 use glam::Vec3;
 use std::path::Path;
 

@@ -6,7 +6,7 @@
 //! (`inner = 0.999·outer`) with a warning. Cameras: perspective `0 < yfov < π` and
 //! `aspect > 0` when given, orthographic `xmag`, `ymag` finite and non-zero, a finite
 //! world-from-camera matrix. An `iris_spectrum` blackbody must lie in
-//! [`BLACKBODY_KELVIN`](crate::scene::desc::BLACKBODY_KELVIN). Violations are
+//! [`BLACKBODY_KELVIN`](crate::spectrum::BLACKBODY_KELVIN). Violations are
 //! `InvalidValue` naming the light or camera.
 
 use super::{element, fail};
@@ -138,6 +138,7 @@ mod tests {
     use super::super::validate;
     use crate::error::LoadErrorKind;
     use crate::scene::desc::*;
+    use crate::spectrum::EmissionSpectrum;
     use glam::{Mat4, Vec3};
     use std::f32::consts::FRAC_PI_4;
 

@@ -14,11 +14,12 @@
 //! clamped with one warning per material; a negative specular colour is clamped to 0.
 //! `attenuation_distance > 0`, `thickness ≥ 0`, `dispersion ≥ 0` and `emissive ≥ 0` are
 //! errors when violated (`InvalidValue`), as is an `emission_spectrum` blackbody outside
-//! [`BLACKBODY_KELVIN`](crate::scene::desc::BLACKBODY_KELVIN).
+//! [`BLACKBODY_KELVIN`](crate::spectrum::BLACKBODY_KELVIN).
 
 use super::{element, fail};
 use crate::error::{LoadError, LoadErrorKind};
-use crate::scene::desc::{AlphaMode, ExplicitIor, ImageDesc, MaterialDesc};
+use crate::material::{AlphaMode, ExplicitIor, ImageDesc, MaterialDesc};
+use crate::scene::desc::SceneDesc;
 use crate::spectrum::{LAMBDA_MAX, LAMBDA_MIN};
 use glam::Vec3;
 use std::path::Path;
@@ -51,13 +52,7 @@ pub(super) fn check_material(
 ) -> Result<(), LoadError> {
     let name = element(&m.name, "material", index);
     let invalid = |kind, detail: String| fail(src, &name, kind, detail);
-    let textures = [
-        ("baseColorTexture", m.base_color_texture),
-        ("metallicRoughnessTexture", m.metallic_roughness_texture),
-        ("emissiveTexture", m.emissive_texture),
-        ("transmissionTexture", m.transmission_texture),
-    ];
-    for (field, texture) in textures {
+    for (field, texture) in m.textures() {
         if let Some(t) = texture.filter(|t| t.image >= image_count) {
             return Err(invalid(
                 LoadErrorKind::IndexOutOfRange,
@@ -65,18 +60,13 @@ pub(super) fn check_material(
             ));
         }
     }
-    // KHR_materials_iridescence / KHR_materials_anisotropy (`FilmDesc::check`).
-    for (field, t) in m.film.textures() {
-        if t.image >= image_count {
-            return Err(invalid(
-                LoadErrorKind::IndexOutOfRange,
-                format!("{field} refers to image {} ({image_count} images)", t.image),
-            ));
-        }
+    let extension_rules = [
+        m.iridescence.map(|i| i.check()),
+        m.anisotropy.map(|a| a.check()),
+    ];
+    for rule in extension_rules.into_iter().flatten() {
+        rule.map_err(|detail| invalid(LoadErrorKind::InvalidValue, detail))?;
     }
-    m.film
-        .check()
-        .map_err(|detail| invalid(LoadErrorKind::InvalidValue, detail))?;
 
     let cutoff = match m.alpha_mode {
         AlphaMode::Mask(c) => c,
@@ -230,5 +220,54 @@ fn clamp_factors(m: &mut MaterialDesc, name: &str, warnings: &mut Vec<String>) {
     }
     if !notes.is_empty() {
         warnings.push(format!("{name}: clamped: {}", notes.join(", ")));
+    }
+}
+
+/// What the material extensions cannot do in this scene, one warning per kind: meshes whose
+/// anisotropic material has neither TANGENT nor TEXCOORD_0 (the brushing direction falls
+/// back to an arbitrary, deterministic frame), and iridescent materials that transmit (the
+/// film is applied to the opaque lobes' reflection only; the transmissive lobe keeps the
+/// plain dielectric Fresnel).
+pub(super) fn extension_warnings(desc: &SceneDesc) -> Vec<String> {
+    let mut out = Vec::new();
+    let tangentless: Vec<&str> = desc
+        .meshes
+        .iter()
+        .filter(|m| {
+            m.material
+                .and_then(|i| desc.materials.get(i))
+                .is_some_and(MaterialDesc::is_anisotropic)
+                && m.tangents.is_empty()
+                && m.uvs.is_empty()
+        })
+        .map(|m| m.name.as_str())
+        .collect();
+    if !tangentless.is_empty() {
+        out.push(format!(
+            "KHR_materials_anisotropy without TANGENT or TEXCOORD_0: the brushing direction is arbitrary on {}",
+            short(&tangentless)
+        ));
+    }
+    let transmissive: Vec<&str> = desc
+        .materials
+        .iter()
+        .filter(|m| m.transmission > 0.0 && m.iridescence.is_some_and(|i| i.factor > 0.0))
+        .map(|m| m.name.as_str())
+        .collect();
+    if !transmissive.is_empty() {
+        out.push(format!(
+            "KHR_materials_iridescence on transmissive materials is applied to their opaque reflection only (the transmission lobe keeps the plain Fresnel): {}",
+            short(&transmissive)
+        ));
+    }
+    out
+}
+
+/// The first six names, then how many more.
+fn short(names: &[&str]) -> String {
+    let shown = names.iter().take(6).copied().collect::<Vec<_>>().join(", ");
+    match names.len().saturating_sub(6) {
+        0 => shown,
+        more => format!("{shown} and {more} more"),
     }
 }

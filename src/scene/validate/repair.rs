@@ -9,7 +9,7 @@
 //! 2. **Degenerate triangles**: a repeated vertex index, zero area in exact arithmetic
 //!    (the f64 cross product of f32 inputs, so collinear corners count), or a geometric
 //!    normal the intersection layer cannot compute in f32
-//!    ([`crate::interaction::geometric_normal`]: an edge overflows): dropped. A mesh left with no triangle is removed by the caller.
+//!    ([`crate::scene::triangle::geometric_normal`]: an edge overflows): dropped. A mesh left with no triangle is removed by the caller.
 //! 3. **Winding** ([`crate::scene::winding`]): made consistent per connected component and
 //!    outward on closed ones; flips, open and non-orientable components are reported.
 //! 4. **Shading normals**, per vertex: a non-finite or zero-length normal is replaced by the
@@ -20,8 +20,8 @@
 //! non-zero f32 normal; every used vertex normal is finite and non-zero (or the mesh has
 //! none).
 
-use crate::interaction::geometric_normal;
 use crate::scene::desc::MeshDesc;
+use crate::scene::triangle::geometric_normal;
 use crate::scene::winding;
 use glam::{DVec3, Vec3};
 use std::path::Path;

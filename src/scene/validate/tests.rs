@@ -2,7 +2,9 @@
 
 use super::validate;
 use crate::error::LoadErrorKind;
+use crate::material::{AlphaMode, ExplicitIor, ImageDesc, MaterialDesc, TextureRef};
 use crate::scene::desc::*;
+use crate::spectrum::EmissionSpectrum;
 use glam::{Vec2, Vec3, Vec4};
 use std::sync::Arc;
 

@@ -1,5 +1,9 @@
-//! Render-time materials: the glTF metallic-roughness model plus the KHR extensions, with
-//! textures resolved at a hit into a [`ShadingPoint`]. Colours are linear RGB.
+//! Materials: what a material is as loaded ([`MaterialDesc`], [`desc`]), its KHR layers
+//! ([`layers`]), thin film ([`iridescence`]) and brushed surface ([`anisotropy`]), the
+//! textures it references and the **one** texture lookup ([`texture`]), and the render-time
+//! [`Material`] with its parameters resolved at a surface point ([`ShadingPoint`]) and the
+//! BSDF of an opaque point ([`Material::opaque_bsdf`]). Colours are linear RGB. This module
+//! sits below the scene, shading and photon tracing, which all read materials through it.
 //!
 //! A material is a *dielectric interface* when `transmission > 0` and it is not fully
 //! metallic: volumetric (`thickness > 0`, the mesh bounds a medium: rays bend by Snell's law
@@ -16,13 +20,22 @@
 //! whose complex index n(λ) + ik(λ) comes from [`spectrum::metals`]
 //! ([`Material::conductor_index`]); its base colour is not used for shading.
 
-use crate::scene::desc::{
-    effective_color, AlphaMode, ExplicitIor, ImageDesc, LayerPoint, MaterialDesc, TextureRef,
-};
-use crate::spectrum::{self, ior::KNOWN_NAMES};
-use crate::spectrum::{Carrier, EmitterShape, Metal};
-use crate::texture::{self, Encoding};
-use glam::{Vec2, Vec3, Vec4};
+pub mod anisotropy;
+mod check;
+pub mod desc;
+pub mod iridescence;
+pub mod layers;
+pub mod texture;
+
+pub use anisotropy::{AnisotropyDesc, AnisotropyPoint};
+pub use desc::{describe_ior, AlphaMode, ExplicitIor, MaterialDesc};
+pub use iridescence::{IridescenceDesc, IridescencePoint};
+pub use layers::{LayerDesc, LayerPoint};
+pub use texture::{Encoding, ImageDesc, TexCoords, TextureContext, TextureRef};
+
+use crate::bsdf::{Bsdf, FilmLobe};
+use crate::spectrum::{self, effective_color, Carrier, EmitterShape, Metal};
+use glam::Vec3;
 
 /// One material of the render scene.
 #[derive(Debug, Clone)]
@@ -57,16 +70,10 @@ pub struct ShadingPoint {
     pub specular_color: Vec3,
     /// KHR_materials_clearcoat, _sheen and _diffuse_transmission at this point.
     pub layers: LayerPoint,
-    /// KHR_materials_iridescence / KHR_materials_anisotropy, textures applied.
-    pub film: crate::shading::film::FilmPoint,
-}
-
-fn lookup(images: &[ImageDesc], tex: Option<TextureRef>, uv: Vec2, enc: Encoding) -> Vec4 {
-    let Some(t) = tex else { return Vec4::ONE };
-    match images.get(t.image) {
-        Some(img) => texture::sample(img, t.transform.transform_point2(uv), enc),
-        None => Vec4::ONE,
-    }
+    /// KHR_materials_iridescence at this point (`None` where there is no film).
+    pub iridescence: Option<IridescencePoint>,
+    /// KHR_materials_anisotropy at this point.
+    pub anisotropy: AnisotropyPoint,
 }
 
 impl Material {
@@ -106,14 +113,23 @@ impl Material {
         self.desc.emission_spectrum.map(|s| s.spectrum())
     }
 
-    /// Resolves textures at texture coordinate `uv`.
-    pub fn shade(&self, uv: Vec2, images: &[ImageDesc]) -> ShadingPoint {
+    /// The emitted radiance where textures are evaluated by `tex` (linear RGB, RGB
+    /// transport): [`Material::emission`] × the emissive texture. Camera paths, next-event
+    /// estimation and photon emission all read emission through here.
+    pub fn emitted(&self, tex: &TextureContext) -> Vec3 {
+        self.emission()
+            * tex
+                .lookup(self.desc.emissive_texture, Encoding::Srgb)
+                .truncate()
+    }
+
+    /// The material's parameters where textures are evaluated by `tex`.
+    pub fn shade(&self, tex: &TextureContext) -> ShadingPoint {
         let d = &self.desc;
-        let bc = d.base_color * lookup(images, d.base_color_texture, uv, Encoding::Srgb);
+        let bc = d.base_color * tex.lookup(d.base_color_texture, Encoding::Srgb);
         // glTF: metallic in B, roughness in G of the metallic-roughness texture.
-        let mr = lookup(images, d.metallic_roughness_texture, uv, Encoding::Linear);
-        let em = lookup(images, d.emissive_texture, uv, Encoding::Srgb);
-        let tr = lookup(images, d.transmission_texture, uv, Encoding::Linear);
+        let mr = tex.lookup(d.metallic_roughness_texture, Encoding::Linear);
+        let tr = tex.lookup(d.transmission_texture, Encoding::Linear);
         let metallic = (d.metallic * mr.z).clamp(0.0, 1.0);
         ShadingPoint {
             base_color: bc.truncate().clamp(Vec3::ZERO, Vec3::ONE),
@@ -121,22 +137,26 @@ impl Material {
             metallic,
             roughness: (d.roughness * mr.y).clamp(0.0, 1.0),
             transmission: (d.transmission * tr.x).clamp(0.0, 1.0) * (1.0 - metallic),
-            emissive: self.emission() * em.truncate(),
+            emissive: self.emitted(tex),
             // KHR_materials_specular: specularTexture's A, specularColorTexture's RGB (sRGB).
-            specular: d.specular * lookup(images, d.specular_texture, uv, Encoding::Linear).w,
+            specular: d.specular * tex.lookup(d.specular_texture, Encoding::Linear).w,
             specular_color: d.specular_color
-                * lookup(images, d.specular_color_texture, uv, Encoding::Srgb).truncate(),
-            layers: d.layers.shade(uv, images),
-            film: crate::shading::film::FilmPoint::shade(&d.film, uv, images),
+                * tex
+                    .lookup(d.specular_color_texture, Encoding::Srgb)
+                    .truncate(),
+            layers: d.layers.at(tex),
+            iridescence: d.iridescence.and_then(|i| i.at(tex)),
+            anisotropy: d.anisotropy.map_or(AnisotropyPoint::NONE, |a| a.at(tex)),
         }
     }
 
-    /// Whether a hit at `uv` is cut away by alpha masking (glTF `MASK`).
-    pub fn is_cut_out(&self, uv: Vec2, images: &[ImageDesc]) -> bool {
+    /// Whether a hit where textures are evaluated by `tex` is cut away by alpha masking
+    /// (glTF `MASK`).
+    pub fn is_cut_out(&self, tex: &TextureContext) -> bool {
         match self.desc.alpha_mode {
             AlphaMode::Mask(cutoff) => {
                 let a = self.desc.base_color.w
-                    * lookup(images, self.desc.base_color_texture, uv, Encoding::Srgb).w;
+                    * tex.lookup(self.desc.base_color_texture, Encoding::Srgb).w;
                 a < cutoff
             }
             _ => false,
@@ -227,37 +247,40 @@ impl Material {
             _ => self.ior(),
         }
     }
+
+    /// The BSDF of an opaque (non-transmitting) point with parameters `sp`: a measured
+    /// metal's complex-index conductor ([`Material::conductor_index`], GGX α = roughness²),
+    /// else glTF metallic-roughness (Appendix B of the glTF 2.0 spec) with
+    /// KHR_materials_specular, the layers, iridescence and anisotropy.
+    pub fn opaque_bsdf<C: Carrier>(&self, sp: &ShadingPoint, l: &C::Lambda) -> Bsdf<C> {
+        if let Some((eta, k)) = self.conductor_index::<C>(l) {
+            return Bsdf::ComplexConductor {
+                eta,
+                k,
+                alpha: sp.roughness * sp.roughness,
+                film: sp.lobe::<C>(l),
+            };
+        }
+        Bsdf::GltfPbr {
+            base: C::reflectance(sp.base_color, l),
+            metallic: sp.metallic,
+            alpha: sp.roughness * sp.roughness,
+            ior: self.ior(),
+            specular: sp.specular,
+            specular_color: C::reflectance(sp.specular_color, l),
+            film: sp.lobe::<C>(l),
+            layers: sp.layers.lobes::<C>(l),
+        }
+    }
 }
 
-/// One line describing a material's IOR model for `iris info`, e.g.
-/// `Sellmeier N-BK7 (n_d 1.5168, Abbe 64.2)` or `2.42, KHR dispersion 0.36 (Abbe 55.6)`.
-pub fn describe_ior(desc: &MaterialDesc) -> String {
-    let model = match desc.spectral_ior() {
-        Ok(model) => model,
-        Err(e) => return format!("{} ({e})", desc.ior),
-    };
-    if desc.ior == 0.0 {
-        return "0 (infinite, no dispersion)".to_string();
-    }
-    let optics = format!("n_d {:.4}, Abbe {:.1}", model.n_d(), model.abbe_number());
-    match (&desc.ior_model, model) {
-        (Some(ExplicitIor::Glass(name)), _) => {
-            // The catalogue spelling of the name as written (aliases resolve alike).
-            let same = |k: &&&str| spectrum::IorModel::named(k).ok() == Some(model);
-            let canonical = KNOWN_NAMES
-                .iter()
-                .find(same)
-                .copied()
-                .unwrap_or(name.as_str());
-            format!("Sellmeier {canonical} ({optics})")
+impl ShadingPoint {
+    /// What iridescence and anisotropy add to the reflection lobe at the path's
+    /// wavelengths `l`.
+    pub fn lobe<C: Carrier>(&self, l: &C::Lambda) -> FilmLobe {
+        FilmLobe {
+            iridescence: self.iridescence.map(|i| i.lobe::<C>(l)),
+            anisotropy: self.anisotropy.strength,
         }
-        (Some(ExplicitIor::Sellmeier { .. }), _) => format!("Sellmeier ({optics})"),
-        (_, spectrum::IorModel::Cauchy { b, c }) => format!("Cauchy b {b} c {c} ({optics})"),
-        // The extension defines its Abbe number as 20/D.
-        (_, spectrum::IorModel::KhrDispersion { n_d, dispersion }) => format!(
-            "{n_d}, KHR dispersion {dispersion} (Abbe {:.1})",
-            20.0 / dispersion
-        ),
-        _ => format!("{}", desc.ior),
     }
 }

@@ -1,7 +1,6 @@
-//! KHR_materials_iridescence and KHR_materials_anisotropy at a hit: the parameters with
-//! their textures applied ([`FilmPoint`]), what the BSDF gets from them
-//! ([`FilmPoint::lobe`]), and the shading frame an anisotropic lobe needs
-//! ([`shading_frame`]).
+//! The shading frame at a hit: the local frame of the outward shading normal every BSDF
+//! works in ([`shading_frame`]), turned about the normal to the brushing direction where
+//! the material is anisotropic (KHR_materials_anisotropy, [`crate::material::anisotropy`]).
 //!
 //! Tangent frame (world space, unit vectors): the tangent T is the glTF `TANGENT` attribute
 //! interpolated with the hit's barycentrics when all three vertices carry one (w gives the
@@ -13,96 +12,23 @@
 //! x = normalize(d_x T + d_y B), y = n × x, z = n. Without UVs or tangents (or with a
 //! degenerate UV map) the frame is [`Frame::from_normal`]'s, deterministic; the loader
 //! warns once per file. Isotropic materials always use [`Frame::from_normal`].
-//!
-//! Texture channels (linear): iridescence factor × R of `iridescenceTexture`; thickness =
-//! mix(min, max, G of `iridescenceThicknessTexture`), or the maximum without it;
-//! anisotropy strength × B of `anisotropyTexture`, direction 2·RG − 1 (normalised;
-//! (1, 0) without a texture) rotated by `anisotropyRotation` counter-clockwise.
 
-use crate::bsdf::{FilmLobe, Iridescence};
 use crate::interaction::SurfaceHit;
+use crate::material::AnisotropyPoint;
 use crate::math::Frame;
-use crate::scene::desc::{FilmDesc, ImageDesc, TextureRef};
 use crate::scene::Scene;
-use crate::spectrum::Carrier;
-use crate::texture::{self, Encoding};
-use glam::{Vec2, Vec3, Vec4};
-
-/// The film parameters at one surface point.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct FilmPoint {
-    /// Iridescence: (factor, film IOR, thickness nm), `None` when off here.
-    pub iridescence: Option<(f32, f32, f32)>,
-    /// Anisotropy strength in [0, 1].
-    pub anisotropy: f32,
-    /// Unit anisotropy direction in tangent space (x along T, y along B).
-    pub direction: Vec2,
-}
-
-fn lookup(images: &[ImageDesc], tex: Option<TextureRef>, uv: Vec2) -> Option<Vec4> {
-    let t = tex?;
-    images
-        .get(t.image)
-        .map(|img| texture::sample(img, uv, Encoding::Linear))
-}
-
-impl FilmPoint {
-    /// Resolves `film`'s textures at `uv`.
-    pub fn shade(film: &FilmDesc, uv: Vec2, images: &[ImageDesc]) -> FilmPoint {
-        let iridescence = film.iridescence.and_then(|ir| {
-            let factor = ir.factor * lookup(images, ir.texture, uv).map_or(1.0, |t| t.x);
-            let thickness = match lookup(images, ir.thickness_texture, uv) {
-                Some(t) => ir.thickness_min + (ir.thickness_max - ir.thickness_min) * t.y,
-                None => ir.thickness_max,
-            };
-            let factor = factor.clamp(0.0, 1.0);
-            (factor > 0.0 && thickness > 0.0).then_some((factor, ir.ior, thickness))
-        });
-        let (anisotropy, direction) = match film.anisotropy {
-            Some(a) => {
-                let tex = lookup(images, a.texture, uv);
-                let strength = (a.strength * tex.map_or(1.0, |t| t.z)).clamp(0.0, 1.0);
-                let d = tex.map_or(Vec2::X, |t| Vec2::new(t.x, t.y) * 2.0 - Vec2::ONE);
-                let d = d.try_normalize().unwrap_or(Vec2::X);
-                let (s, c) = a.rotation.sin_cos();
-                let rotated = Vec2::new(c * d.x - s * d.y, s * d.x + c * d.y);
-                (strength, rotated.try_normalize().unwrap_or(Vec2::X))
-            }
-            None => (0.0, Vec2::X),
-        };
-        FilmPoint {
-            iridescence,
-            anisotropy,
-            direction,
-        }
-    }
-
-    /// What the BSDF needs at the path's wavelengths `l`.
-    pub fn lobe<C: Carrier>(&self, l: &C::Lambda) -> FilmLobe {
-        FilmLobe {
-            iridescence: self
-                .iridescence
-                .map(|(factor, ior, thickness)| Iridescence {
-                    factor,
-                    ior,
-                    thickness,
-                    lanes: C::lanes_nm(l),
-                }),
-            anisotropy: self.anisotropy,
-        }
-    }
-}
+use glam::{Vec2, Vec3};
 
 /// The BSDF frame at `hit` (see the module doc): [`Frame::from_normal`] unless the point is
 /// anisotropic.
-pub fn shading_frame(scene: &Scene, hit: &SurfaceHit, film: &FilmPoint) -> Frame {
+pub fn shading_frame(scene: &Scene, hit: &SurfaceHit, aniso: &AnisotropyPoint) -> Frame {
     let n = hit.ns;
     let plain = Frame::from_normal(n);
-    if film.anisotropy <= 0.0 {
+    if aniso.strength <= 0.0 {
         return plain;
     }
     let (t, sign) = tangent(scene, hit).unwrap_or((plain.s, 1.0));
-    anisotropy_frame(n, t, sign, film.direction).unwrap_or(plain)
+    anisotropy_frame(n, t, sign, aniso.direction).unwrap_or(plain)
 }
 
 /// The BSDF frame for unit normal `n`, tangent `t` (any length, not parallel to `n`),
@@ -123,10 +49,15 @@ pub fn anisotropy_frame(n: Vec3, t: Vec3, sign: f32, dir: Vec2) -> Option<Frame>
 /// The surface tangent and bitangent sign at `hit`: the interpolated TANGENT attribute,
 /// else the triangle's ∂p/∂u; `None` without either (or with a degenerate UV map).
 pub fn tangent(scene: &Scene, hit: &SurfaceHit) -> Option<(Vec3, f32)> {
-    let idx = scene.triangles.get(hit.prim as usize)?.map(|i| i as usize);
-    let p = idx.map(|i| scene.positions[i]);
-    if !scene.tangents.is_empty() {
-        let ts = idx.map(|i| scene.tangents[i]);
+    let idx = scene
+        .triangles()
+        .get(hit.prim as usize)?
+        .vertices
+        .map(|i| i as usize);
+    let v = scene.vertices();
+    let p = idx.map(|i| v.positions[i]);
+    if !v.tangents.is_empty() {
+        let ts = idx.map(|i| v.tangents[i]);
         if ts.iter().all(|t| t.w != 0.0) {
             let [w0, w1, w2] = barycentrics(p, hit.p);
             let t = ts[0].truncate() * w0 + ts[1].truncate() * w1 + ts[2].truncate() * w2;
@@ -136,7 +67,7 @@ pub fn tangent(scene: &Scene, hit: &SurfaceHit) -> Option<(Vec3, f32)> {
             }
         }
     }
-    uv_tangent(p, idx.map(|i| scene.uvs[i])).map(|t| (t, 1.0))
+    uv_tangent(p, idx.map(|i| v.uvs[i])).map(|t| (t, 1.0))
 }
 
 /// ∂p/∂u of a triangle from its positions and texture coordinates (pbrt-v4 §6.5.3 "Partial
@@ -189,15 +120,15 @@ mod tests {
     #[test]
     fn rotation_turns_the_frame_about_the_normal() {
         let film = |rotation: f32| {
-            let desc = FilmDesc {
-                iridescence: None,
-                anisotropy: Some(crate::scene::desc::AnisotropyDesc {
-                    strength: 0.5,
-                    rotation,
-                    texture: None,
-                }),
+            let desc = crate::material::AnisotropyDesc {
+                strength: 0.5,
+                rotation,
+                texture: None,
             };
-            FilmPoint::shade(&desc, Vec2::ZERO, &[])
+            desc.at(&crate::material::TextureContext::new(
+                &[],
+                Default::default(),
+            ))
         };
         let n = Vec3::Y;
         // Tangent +X, bitangent sign +1: B = n × T = −Z.
@@ -218,6 +149,6 @@ mod tests {
         for f in [f0, f1, f2] {
             assert!((f.s.cross(f.t) - f.n).length() < 1e-6);
         }
-        assert_eq!(film(0.0).anisotropy, 0.5);
+        assert_eq!(film(0.0).strength, 0.5);
     }
 }

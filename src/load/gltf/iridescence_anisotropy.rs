@@ -1,5 +1,6 @@
 //! KHR_materials_iridescence and KHR_materials_anisotropy, read from the material's raw
-//! extension JSON (the `gltf` crate does not type them) into [`FilmDesc`].
+//! extension JSON (the `gltf` crate does not type them) into [`IridescenceDesc`] and
+//! [`AnisotropyDesc`].
 //!
 //! Properties read (spec defaults when absent): `iridescenceFactor` (0),
 //! `iridescenceTexture` (R), `iridescenceIor` (1.3), `iridescenceThicknessMinimum` (100 nm),
@@ -8,7 +9,7 @@
 //! direction, B strength). A texture is `{"index": i, "texCoord": t}`; `index` must name an
 //! existing texture with an image (`IndexOutOfRange` otherwise). Non-numbers, non-objects
 //! and out-of-range values (NaN, negative thickness, minimum > maximum, factors outside
-//! [0, 1]: [`FilmDesc::check`]) are `InvalidValue` errors naming the material and the
+//! [0, 1]: [`IridescenceDesc::check`], [`AnisotropyDesc::check`]) are `InvalidValue` errors naming the material and the
 //! property. Textures go through the material reader's one texture resolver (WebP/KTX2
 //! sources, `KHR_texture_transform`, texCoord warnings).
 
@@ -16,7 +17,7 @@ use super::material_layers::TextureFn;
 use super::texture_info::texture_info;
 use super::{Ctx, Warnings};
 use crate::error::{LoadError, LoadErrorKind};
-use crate::scene::desc::{AnisotropyDesc, FilmDesc, IridescenceDesc, TextureRef};
+use crate::material::{AnisotropyDesc, IridescenceDesc, TextureRef};
 use serde_json::{Map, Value};
 
 /// Extension names this module reads.
@@ -26,19 +27,20 @@ pub(super) const ANISOTROPY: &str = "KHR_materials_anisotropy";
 
 /// Reads both extensions of material `m` (`element` names it); textures are resolved by
 /// `texture` (which does not decode them for an unused material).
-pub(super) fn read_film(
+pub(super) fn read_iridescence_anisotropy(
     ctx: &Ctx<'_>,
     m: &gltf::Material<'_>,
     element: &str,
     texture: &mut TextureFn<'_>,
     warnings: &mut Warnings,
-) -> Result<FilmDesc, LoadError> {
+) -> Result<(Option<IridescenceDesc>, Option<AnisotropyDesc>), LoadError> {
     let mut reader = Reader {
         ctx,
         element,
         texture,
         warnings,
     };
+    let invalid = |d| ctx.error(element, LoadErrorKind::InvalidValue, d);
     let iridescence = match m.extension_value(IRIDESCENCE) {
         Some(v) => Some(reader.iridescence(v)?),
         None => None,
@@ -47,13 +49,13 @@ pub(super) fn read_film(
         Some(v) => Some(reader.anisotropy(v)?),
         None => None,
     };
-    let film = FilmDesc {
-        iridescence,
-        anisotropy,
-    };
-    film.check()
-        .map_err(|d| ctx.error(element, LoadErrorKind::InvalidValue, d))?;
-    Ok(film)
+    if let Some(i) = &iridescence {
+        i.check().map_err(invalid)?;
+    }
+    if let Some(a) = &anisotropy {
+        a.check().map_err(invalid)?;
+    }
+    Ok((iridescence, anisotropy))
 }
 
 struct Reader<'a, 'c, 't> {

@@ -1,14 +1,16 @@
 //! The KHR material layer extensions of a material ([`LayerDesc`], the `layers` field of
-//! [`super::MaterialDesc`]) and their values at a surface point ([`LayerPoint`]):
+//! [`super::MaterialDesc`]), their values at a surface point ([`LayerPoint`]) and what the
+//! BSDF gets from them ([`LayerPoint::lobes`]):
 //! KHR_materials_clearcoat, KHR_materials_sheen and KHR_materials_diffuse_transmission.
 //! Defaults are the specs' (every layer absent). Factors are in [0, 1] and colours linear
 //! RGB in [0, 1] (the loader rejects anything else); textures multiply the factors, from the
 //! channel each spec names: clearcoat R, clearcoat roughness G, sheen colour RGB (sRGB),
 //! sheen roughness A, diffuse transmission A, diffuse transmission colour RGB (sRGB).
 
-use super::{ImageDesc, TextureRef};
-use crate::texture::{self, Encoding};
-use glam::{Vec2, Vec3, Vec4};
+use super::texture::{Encoding, TextureContext, TextureRef};
+use crate::bsdf::Layers;
+use crate::spectrum::Carrier;
+use glam::Vec3;
 
 /// KHR_materials_clearcoat, _sheen and _diffuse_transmission parameters as loaded.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -75,13 +77,6 @@ pub struct LayerPoint {
     pub diffuse_transmission_color: Vec3,
 }
 
-fn lookup(images: &[ImageDesc], tex: Option<TextureRef>, uv: Vec2, enc: Encoding) -> Vec4 {
-    match tex.and_then(|t| images.get(t.image)) {
-        Some(img) => texture::sample(img, uv, enc),
-        None => Vec4::ONE,
-    }
-}
-
 impl LayerDesc {
     /// Whether any layer is present (a non-zero factor or colour).
     pub fn any(&self) -> bool {
@@ -90,12 +85,34 @@ impl LayerDesc {
             || self.diffuse_transmission > 0.0
     }
 
-    /// The layers at texture coordinate `uv` (untextured materials skip the lookups).
-    pub fn shade(&self, uv: Vec2, images: &[ImageDesc]) -> LayerPoint {
+    /// The texture slots with their glTF property names.
+    pub fn textures(&self) -> [(&'static str, Option<TextureRef>); 6] {
+        [
+            ("clearcoatTexture", self.clearcoat_texture),
+            (
+                "clearcoatRoughnessTexture",
+                self.clearcoat_roughness_texture,
+            ),
+            ("sheenColorTexture", self.sheen_color_texture),
+            ("sheenRoughnessTexture", self.sheen_roughness_texture),
+            (
+                "diffuseTransmissionTexture",
+                self.diffuse_transmission_texture,
+            ),
+            (
+                "diffuseTransmissionColorTexture",
+                self.diffuse_transmission_color_texture,
+            ),
+        ]
+    }
+
+    /// The layers where textures are evaluated by `tex` (untextured materials skip the
+    /// lookups).
+    pub fn at(&self, tex: &TextureContext) -> LayerPoint {
         let unit = |v: f32| v.clamp(0.0, 1.0);
         let colour = |v: Vec3| v.clamp(Vec3::ZERO, Vec3::ONE);
-        let lin = |t| lookup(images, t, uv, Encoding::Linear);
-        let srgb = |t| lookup(images, t, uv, Encoding::Srgb);
+        let lin = |t| tex.lookup(t, Encoding::Linear);
+        let srgb = |t| tex.lookup(t, Encoding::Srgb);
         let mut p = LayerPoint {
             clearcoat: unit(self.clearcoat),
             clearcoat_roughness: unit(self.clearcoat_roughness),
@@ -118,5 +135,27 @@ impl LayerDesc {
             p.diffuse_transmission_color * srgb(self.diffuse_transmission_color_texture).truncate(),
         );
         p
+    }
+}
+
+impl LayerPoint {
+    /// The layers for the BSDF at the path's wavelengths `l` (colours upsampled as
+    /// reflectances; α = clearcoat roughness², sheen α = sheen roughness as the sheen spec
+    /// writes it).
+    pub fn lobes<C: Carrier>(&self, l: &C::Lambda) -> Layers<C> {
+        if self.clearcoat <= 0.0
+            && self.sheen_color.max_element() <= 0.0
+            && self.diffuse_transmission <= 0.0
+        {
+            return Layers::none();
+        }
+        Layers {
+            clearcoat: self.clearcoat,
+            clearcoat_alpha: self.clearcoat_roughness * self.clearcoat_roughness,
+            sheen_color: C::reflectance(self.sheen_color, l),
+            sheen_alpha: self.sheen_roughness,
+            diffuse_transmission: self.diffuse_transmission,
+            diffuse_transmission_color: C::reflectance(self.diffuse_transmission_color, l),
+        }
     }
 }
