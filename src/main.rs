@@ -14,7 +14,6 @@ use clap::{Parser, Subcommand};
 use cli::other_args::*;
 use cli::render_args::*;
 use iris::app;
-use iris::output::DisplayOptions;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -124,10 +123,7 @@ fn run(cli: Cli) -> iris::Result<()> {
             report: a.report,
             reference: a.reference,
             allow_partial: a.allow_partial,
-            display: DisplayOptions {
-                exposure: a.exposure,
-                tonemap: a.tonemap,
-            },
+            display: a.png.display(),
         }),
     }
 }

@@ -14,7 +14,7 @@
 //! Λ(w) = (√(1 + (α_x² x² + α_y² y²)/z²) − 1)/2; with α_x = α_y = α both reduce to the
 //! isotropic forms of [`Ggx`].
 
-use super::microfacet::Ggx;
+use super::microfacet::{visible_frame, visible_normal, Distribution, Ggx};
 use super::SMOOTH_ALPHA;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
@@ -28,6 +28,30 @@ pub struct GgxAniso {
     pub alpha_y: f32,
 }
 
+impl Distribution for GgxAniso {
+    /// D(wm) (see the module doc); 0 for wm.z ≤ 0.
+    #[inline]
+    fn d(&self, wm: Vec3) -> f32 {
+        if wm.z <= 0.0 {
+            return 0.0;
+        }
+        let (ax, ay) = (self.alpha_x, self.alpha_y);
+        let t = (wm.x / ax).powi(2) + (wm.y / ay).powi(2) + wm.z * wm.z;
+        1.0 / (PI * ax * ay * t * t)
+    }
+
+    /// Smith Λ(w) (see the module doc); 0 at grazing.
+    #[inline]
+    fn lambda(&self, w: Vec3) -> f32 {
+        let a2 = (self.alpha_x * w.x).powi(2) + (self.alpha_y * w.y).powi(2);
+        let t = a2 / (w.z * w.z);
+        if !t.is_finite() {
+            return 0.0;
+        }
+        ((1.0 + t).sqrt() - 1.0) * 0.5
+    }
+}
+
 impl GgxAniso {
     /// The KHR_materials_anisotropy roughnesses from the isotropic α and the strength s:
     /// α_x = mix(α, 1, s²), α_y = α (the extension's "Implementation" section).
@@ -39,70 +63,18 @@ impl GgxAniso {
         }
     }
 
-    /// D(wm) (see the module doc); 0 for wm.z ≤ 0.
-    #[inline]
-    pub fn d(&self, wm: Vec3) -> f32 {
-        if wm.z <= 0.0 {
-            return 0.0;
-        }
-        let (ax, ay) = (self.alpha_x, self.alpha_y);
-        let t = (wm.x / ax).powi(2) + (wm.y / ay).powi(2) + wm.z * wm.z;
-        1.0 / (PI * ax * ay * t * t)
-    }
-
-    /// Smith Λ(w) (see the module doc); 0 at grazing.
-    #[inline]
-    pub fn lambda(&self, w: Vec3) -> f32 {
-        let a2 = (self.alpha_x * w.x).powi(2) + (self.alpha_y * w.y).powi(2);
-        let t = a2 / (w.z * w.z);
-        if !t.is_finite() {
-            return 0.0;
-        }
-        ((1.0 + t).sqrt() - 1.0) * 0.5
-    }
-
-    /// G1(w) = 1/(1 + Λ(w)).
-    #[inline]
-    pub fn g1(&self, w: Vec3) -> f32 {
-        1.0 / (1.0 + self.lambda(w))
-    }
-
-    /// Height-correlated G2 = 1/(1 + Λ(wo) + Λ(wi)).
-    #[inline]
-    pub fn g(&self, wo: Vec3, wi: Vec3) -> f32 {
-        1.0 / (1.0 + self.lambda(wo) + self.lambda(wi))
-    }
-
-    /// D_w(wm) = G1(w)/|cos θ_w| · D(wm) · |w·wm|, the pdf of [`GgxAniso::sample_visible`].
-    #[inline]
-    pub fn pdf_visible(&self, w: Vec3, wm: Vec3) -> f32 {
-        if w.z == 0.0 {
-            return 0.0;
-        }
-        self.g1(w) / w.z.abs() * self.d(wm) * w.dot(wm).abs()
-    }
-
-    /// A microfacet normal visible from `w` (from `−w` when `w.z < 0`), Heitz 2018, JCGT
-    /// 7(4), Listing 1, with the stretch (α_x, α_y).
+    /// A microfacet normal visible from `w` (from `−w` when `w.z < 0`) with density
+    /// [`Distribution::pdf_visible`]: Heitz 2018, JCGT 7(4), Listing 1, with the stretch
+    /// (α_x, α_y).
     pub fn sample_visible(&self, w: Vec3, u: Vec2) -> Vec3 {
         let (ax, ay) = (self.alpha_x, self.alpha_y);
-        let mut wh = Vec3::new(ax * w.x, ay * w.y, w.z).normalize();
-        if wh.z < 0.0 {
-            wh = -wh;
-        }
-        let t1 = if wh.z < 0.99999 {
-            Vec3::Z.cross(wh).normalize()
-        } else {
-            Vec3::X
-        };
-        let t2 = wh.cross(t1);
+        let frame = visible_frame(ax, ay, w);
         let r = u.x.sqrt();
         let phi = 2.0 * PI * u.y;
         let p1 = r * phi.cos();
-        let s = 0.5 * (1.0 + wh.z);
+        let s = 0.5 * (1.0 + frame.0.z);
         let p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * r * phi.sin();
-        let nh = p1 * t1 + p2 * t2 + (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt() * wh;
-        Vec3::new(ax * nh.x, ay * nh.y, nh.z.max(1e-6)).normalize()
+        visible_normal(ax, ay, frame, p1, p2)
     }
 }
 
@@ -127,39 +99,30 @@ impl Microfacet {
         }
     }
 
-    /// D(wm).
-    #[inline]
-    pub fn d(&self, wm: Vec3) -> f32 {
-        match self {
-            Microfacet::Iso(g) => g.d(wm),
-            Microfacet::Aniso(g) => g.d(wm),
-        }
-    }
-
-    /// Height-correlated G2.
-    #[inline]
-    pub fn g(&self, wo: Vec3, wi: Vec3) -> f32 {
-        match self {
-            Microfacet::Iso(g) => g.g(wo, wi),
-            Microfacet::Aniso(g) => g.g(wo, wi),
-        }
-    }
-
-    /// Pdf of [`Microfacet::sample_visible`].
-    #[inline]
-    pub fn pdf_visible(&self, w: Vec3, wm: Vec3) -> f32 {
-        match self {
-            Microfacet::Iso(g) => g.pdf_visible(w, wm),
-            Microfacet::Aniso(g) => g.pdf_visible(w, wm),
-        }
-    }
-
     /// Visible-normal sample.
     #[inline]
     pub fn sample_visible(&self, w: Vec3, u: Vec2) -> Vec3 {
         match self {
             Microfacet::Iso(g) => g.sample_visible(w, u),
             Microfacet::Aniso(g) => g.sample_visible(w, u),
+        }
+    }
+}
+
+impl Distribution for Microfacet {
+    #[inline]
+    fn d(&self, wm: Vec3) -> f32 {
+        match self {
+            Microfacet::Iso(g) => g.d(wm),
+            Microfacet::Aniso(g) => g.d(wm),
+        }
+    }
+
+    #[inline]
+    fn lambda(&self, w: Vec3) -> f32 {
+        match self {
+            Microfacet::Iso(g) => g.lambda(w),
+            Microfacet::Aniso(g) => g.lambda(w),
         }
     }
 }

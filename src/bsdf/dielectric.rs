@@ -8,16 +8,16 @@
 //! [`TransportMode::Radiance`] transmission is divided by η'² (η' = n_t/n_i along the path
 //! from `wo` to `wi`, pbrt-v4 §9.5.2). `tint` multiplies transmission only.
 //! The rough interface's `eval`/`sample` include the multiple-scattering compensation of
-//! [`super::energy`] (a factor 1/E_ss(wo); pdf unchanged); `rough_eval_ss` is the
+//! [`super::energy`] (a factor 1/E_ss(wo); pdf unchanged); [`Rough::eval_ss`] is the
 //! single-scatter, reciprocal part.
 
-use super::{same_hemisphere, BsdfSample, TransportMode};
+use super::{reflect_z, same_hemisphere, BsdfSample, TransportMode};
 use crate::optics::{fresnel_either_side as fresnel, reflect, refract};
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
 
 use super::energy;
-use super::microfacet::Ggx;
+use super::microfacet::{Distribution, Ggx};
 
 /// Refraction of `w` through a (micro)surface with normal `n` on either side, reusing
 /// [`crate::optics::refract`] after orienting the interface (pbrt-v4 `Refract`). Returns the
@@ -50,14 +50,7 @@ pub(crate) fn smooth_sample<C: Carrier>(
     let r = fresnel(wo.z, eta);
     let t = 1.0 - r;
     if uc < r {
-        let wi = Vec3::new(-wo.x, -wo.y, wo.z);
-        return Some(BsdfSample {
-            wi,
-            f: C::splat(r / wi.z.abs()),
-            pdf: r,
-            delta: true,
-            transmission: false,
-        });
+        return Some(specular_reflection(wo, r));
     }
     let (wi, etap) = if eta == 1.0 {
         (-wo, 1.0)
@@ -71,13 +64,15 @@ pub(crate) fn smooth_sample<C: Carrier>(
     if mode == TransportMode::Radiance {
         ft /= etap * etap;
     }
-    Some(BsdfSample {
-        wi,
-        f: ft,
-        pdf: t,
-        delta: true,
-        transmission: true,
-    })
+    Some(BsdfSample::delta(wi, ft, t, true))
+}
+
+/// The delta reflection of a smooth interface chosen with probability `r`, its Fresnel
+/// reflectance: f = r/|cos θi|.
+#[inline]
+fn specular_reflection<C: Carrier>(wo: Vec3, r: f32) -> BsdfSample<C> {
+    let wi = reflect_z(wo);
+    BsdfSample::delta(wi, C::splat(r / wi.z.abs()), r, false)
 }
 
 /// Generalised half vector of a rough pair (Walter 2007, eq. 16; pbrt-v4 §9.7.5), faced to
@@ -120,120 +115,100 @@ fn half_vector(eta: f32, wo: Vec3, wi: Vec3) -> Option<(Vec3, f32, bool)> {
     Some((wm, etap, reflect))
 }
 
-/// Rough dielectric with multiple-scattering compensation (Turquin 2019, see
-/// [`super::energy`]): the single-scatter [`rough_eval_ss`] divided by its directional
-/// albedo E_ss(wo), so that ∫ f |cos θi| dωi = 1 (Importance mode, tint 1) for every wo.
-/// Not reciprocal: f(wo, wi)·E(wo) = f(wi, wo)·E(wi).
-pub(crate) fn rough_eval<C: Carrier>(
-    eta: f32,
-    alpha: f32,
-    tint: C,
-    wo: Vec3,
-    wi: Vec3,
-    mode: TransportMode,
-) -> C {
-    let f = rough_eval_ss(eta, alpha, tint, wo, wi, mode);
-    if f == C::ZERO {
-        return f;
-    }
-    f * energy::compensation(eta, alpha, wo)
+/// A rough interface: index ratio `eta`, GGX `alpha`, transmission `tint`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Rough<C: Carrier> {
+    pub eta: f32,
+    pub alpha: f32,
+    pub tint: C,
 }
 
-/// Single-scatter rough dielectric f_ss(wo, wi): Walter 2007 eq. 20 (reflection) and eq. 21
-/// (transmission), with the height-correlated G2 instead of the separable one. Loses the
-/// energy of light scattered more than once between microfacets.
-pub(crate) fn rough_eval_ss<C: Carrier>(
-    eta: f32,
-    alpha: f32,
-    tint: C,
-    wo: Vec3,
-    wi: Vec3,
-    mode: TransportMode,
-) -> C {
-    let Some((wm, etap, refl)) = half_vector(eta, wo, wi) else {
-        return C::ZERO;
-    };
-    let ggx = Ggx { alpha };
-    let f = fresnel(wo.dot(wm), eta);
-    let (co, ci) = (wo.z, wi.z);
-    if refl {
-        return C::splat(ggx.d(wm) * ggx.g(wo, wi) * f / (4.0 * ci * co).abs());
+impl<C: Carrier> Rough<C> {
+    /// f(wo, wi) with multiple-scattering compensation (Turquin 2019, see
+    /// [`super::energy`]): the single-scatter [`Rough::eval_ss`] divided by its directional
+    /// albedo E_ss(wo), so that ∫ f |cos θi| dωi = 1 (Importance mode, tint 1) for every wo.
+    /// Not reciprocal: f(wo, wi)·E(wo) = f(wi, wo)·E(wi).
+    pub fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> C {
+        let f = self.eval_ss(wo, wi, mode);
+        if f == C::ZERO {
+            return f;
+        }
+        f * energy::compensation(self.eta, self.alpha, wo)
     }
-    // Radiance mode divides by η'²; folding it into the denominator,
-    // (wi·wm + wo·wm/η')²·η'² = (η' wi·wm + wo·wm)², keeps 0/0 and ∞/∞ out of extreme
-    // indices (η' = 1e-30 made the denominator +∞ and η'² zero).
-    let (iw, ow) = (wi.dot(wm), wo.dot(wm));
-    let denom = match mode {
-        TransportMode::Radiance => (etap * iw + ow).powi(2),
-        TransportMode::Importance => (iw + ow / etap).powi(2),
-    };
-    let ft = ggx.d(wm) * (1.0 - f) * ggx.g(wo, wi) * (iw * ow / (denom * ci * co)).abs();
-    if !ft.is_finite() {
-        return C::ZERO;
-    }
-    tint * ft
-}
 
-/// Solid-angle pdf of [`rough_sample`]: VNDF density times the Jacobian of the half-vector
-/// map, 1/(4|wo·wm|) for reflection (Walter 2007, eq. 14) and |wi·wm|/(wi·wm + wo·wm/η')²
-/// for transmission (eq. 17), times the R/T choice probability.
-pub(crate) fn rough_pdf(eta: f32, alpha: f32, wo: Vec3, wi: Vec3) -> f32 {
-    let Some((wm, etap, refl)) = half_vector(eta, wo, wi) else {
-        return 0.0;
-    };
-    let ggx = Ggx { alpha };
-    let r = fresnel(wo.dot(wm), eta);
-    let t = 1.0 - r;
-    if refl {
-        ggx.pdf_visible(wo, wm) / (4.0 * wo.dot(wm).abs()) * r
-    } else {
-        let denom = (wi.dot(wm) + wo.dot(wm) / etap).powi(2);
-        ggx.pdf_visible(wo, wm) * wi.dot(wm).abs() / denom * t
+    /// Single-scatter f_ss(wo, wi): Walter 2007 eq. 20 (reflection) and eq. 21
+    /// (transmission), with the height-correlated G2 instead of the separable one. Loses the
+    /// energy of light scattered more than once between microfacets.
+    pub fn eval_ss(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> C {
+        let Some((wm, etap, refl)) = half_vector(self.eta, wo, wi) else {
+            return C::ZERO;
+        };
+        let ggx = Ggx { alpha: self.alpha };
+        let f = fresnel(wo.dot(wm), self.eta);
+        let (co, ci) = (wo.z, wi.z);
+        if refl {
+            return C::splat(ggx.d(wm) * ggx.g(wo, wi) * f / (4.0 * ci * co).abs());
+        }
+        // Radiance mode divides by η'²; folding it into the denominator,
+        // (wi·wm + wo·wm/η')²·η'² = (η' wi·wm + wo·wm)², keeps 0/0 and ∞/∞ out of extreme
+        // indices (η' = 1e-30 made the denominator +∞ and η'² zero).
+        let (iw, ow) = (wi.dot(wm), wo.dot(wm));
+        let denom = match mode {
+            TransportMode::Radiance => (etap * iw + ow).powi(2),
+            TransportMode::Importance => (iw + ow / etap).powi(2),
+        };
+        let ft = ggx.d(wm) * (1.0 - f) * ggx.g(wo, wi) * (iw * ow / (denom * ci * co)).abs();
+        if !ft.is_finite() {
+            return C::ZERO;
+        }
+        self.tint * ft
     }
-}
 
-/// Samples the rough dielectric: a visible microfacet normal (Heitz 2018), then reflection
-/// with probability F(wo·wm), else refraction through that microfacet (TIR ⇒ F = 1).
-/// `None` when the scattered direction ends on the wrong side of the macro-surface.
-pub(crate) fn rough_sample<C: Carrier>(
-    eta: f32,
-    alpha: f32,
-    tint: C,
-    wo: Vec3,
-    uc: f32,
-    u: Vec2,
-    mode: TransportMode,
-) -> Option<BsdfSample<C>> {
-    if wo.z == 0.0 {
-        return None;
+    /// Solid-angle pdf of [`Rough::sample`]: VNDF density times the Jacobian of the
+    /// half-vector map, 1/(4|wo·wm|) for reflection (Walter 2007, eq. 14) and
+    /// |wi·wm|/(wi·wm + wo·wm/η')² for transmission (eq. 17), times the R/T choice
+    /// probability.
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        let Some((wm, etap, refl)) = half_vector(self.eta, wo, wi) else {
+            return 0.0;
+        };
+        let ggx = Ggx { alpha: self.alpha };
+        let r = fresnel(wo.dot(wm), self.eta);
+        let t = 1.0 - r;
+        if refl {
+            ggx.pdf_visible(wo, wm) / (4.0 * wo.dot(wm).abs()) * r
+        } else {
+            let denom = (wi.dot(wm) + wo.dot(wm) / etap).powi(2);
+            ggx.pdf_visible(wo, wm) * wi.dot(wm).abs() / denom * t
+        }
     }
-    let ggx = Ggx { alpha };
-    let wm = ggx.sample_visible(wo, u);
-    let r = fresnel(wo.dot(wm), eta);
-    let (wi, transmission) = if uc < r {
-        let wi = reflect(wo, wm);
-        if !same_hemisphere(wo, wi) {
+
+    /// A visible microfacet normal (Heitz 2018), then reflection with probability
+    /// F(wo·wm), else refraction through that microfacet (TIR ⇒ F = 1). `None` when the
+    /// scattered direction ends on the wrong side of the macro-surface.
+    pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample<C>> {
+        if wo.z == 0.0 {
             return None;
         }
-        (wi, false)
-    } else {
-        let (wi, _) = refract_either(wo, wm, eta)?;
-        if same_hemisphere(wo, wi) || wi.z == 0.0 {
-            return None;
-        }
-        (wi, true)
-    };
-    let pdf = rough_pdf(eta, alpha, wo, wi);
-    if pdf <= 0.0 || !pdf.is_finite() {
-        return None;
+        let wm = Ggx { alpha: self.alpha }.sample_visible(wo, u);
+        let r = fresnel(wo.dot(wm), self.eta);
+        let (wi, transmission) = if uc < r {
+            let wi = reflect(wo, wm);
+            if !same_hemisphere(wo, wi) {
+                return None;
+            }
+            (wi, false)
+        } else {
+            let (wi, _) = refract_either(wo, wm, self.eta)?;
+            if same_hemisphere(wo, wi) || wi.z == 0.0 {
+                return None;
+            }
+            (wi, true)
+        };
+        BsdfSample::lobe(wi, self.pdf(wo, wi), transmission, || {
+            self.eval(wo, wi, mode)
+        })
     }
-    Some(BsdfSample {
-        wi,
-        f: rough_eval(eta, alpha, tint, wo, wi, mode),
-        pdf,
-        delta: false,
-        transmission,
-    })
 }
 
 /// Thin-walled slab (pbrt-v4 `ThinDielectricBxDF`, §9.5.3): the geometric series of
@@ -256,22 +231,9 @@ pub(crate) fn thin_sample<C: Carrier>(
         t = 1.0 - r;
     }
     if uc < r {
-        let wi = Vec3::new(-wo.x, -wo.y, wo.z);
-        Some(BsdfSample {
-            wi,
-            f: C::splat(r / wi.z.abs()),
-            pdf: r,
-            delta: true,
-            transmission: false,
-        })
+        Some(specular_reflection(wo, r))
     } else {
         let wi = -wo;
-        Some(BsdfSample {
-            wi,
-            f: tint * (t / wi.z.abs()),
-            pdf: t,
-            delta: true,
-            transmission: true,
-        })
+        Some(BsdfSample::delta(wi, tint * (t / wi.z.abs()), t, true))
     }
 }

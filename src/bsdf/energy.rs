@@ -44,7 +44,8 @@
 //! glass). Measured for η 1.5, |cos| ≥ 0.1: E(wi)/E(wo) ∈ [0.91, 1.08] at α 0.1,
 //! [0.80, 1.10] at α 0.3, [0.58, 1.23] at α 0.8. Both modes conserve energy.
 
-use super::microfacet::Ggx;
+use super::albedo_table;
+use super::microfacet::{Distribution, Ggx};
 use crate::optics::{fresnel_either_side as fresnel, reflect, refract};
 use glam::{Vec2, Vec3};
 use std::sync::OnceLock;
@@ -192,35 +193,21 @@ fn all_rows() -> Vec<(usize, usize)> {
         .collect()
 }
 
-/// Quantises E ∈ [0, 1] to the file's u16.
-fn quantise(e: f32) -> u16 {
-    (e.clamp(0.0, 1.0) * 65535.0).round() as u16
-}
-
 /// Generates the whole table in the file format (about 1 s of CPU in release).
 pub(crate) fn generate_file() -> Vec<u8> {
     let rows = all_rows();
     let mut q = vec![0u16; LEN];
     for (&(ia, im), col) in rows.iter().zip(compute_rows(&rows)) {
         for (ie, &v) in col.iter().enumerate() {
-            q[(ie * N_ALPHA + ia) * N_MU + im] = quantise(v);
+            q[(ie * N_ALPHA + ia) * N_MU + im] = albedo_table::quantise(v);
         }
     }
     q.iter().flat_map(|v| v.to_le_bytes()).collect()
 }
 
-/// Decodes the embedded table; regenerates it if the file does not have the expected size
-/// (a stale file after a change of the grid constants), so a lookup never fails.
+/// Decodes the embedded table ([`albedo_table::decode`]).
 fn load() -> Vec<f32> {
-    let bytes = if TABLE_FILE.len() == 2 * LEN {
-        TABLE_FILE.to_vec()
-    } else {
-        generate_file()
-    };
-    bytes
-        .chunks_exact(2)
-        .map(|b| u16::from_le_bytes([b[0], b[1]]) as f32 / 65535.0)
-        .collect()
+    albedo_table::decode(TABLE_FILE, LEN, generate_file)
 }
 
 /// Compares the embedded table with a fresh computation of every `stride`-th (α, μ) row;

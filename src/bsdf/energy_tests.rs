@@ -35,7 +35,7 @@ fn energy_case(alpha: f32, eta_eff: f32, mu: f32) -> (Bsdf, Vec3) {
 
 /// Directional albedo in Importance mode (energy) by sampling: (compensated mean, its
 /// standard error, single-scatter mean). Independent of the E_ss table: the single-scatter
-/// weight uses `rough_eval_ss` and the pdf, never `energy::albedo`.
+/// weight uses `Rough::eval_ss` and the pdf, never `energy::albedo`.
 fn energy_albedo(b: &Bsdf, wo: Vec3, n: usize, seed: u64) -> (f64, f64, f64) {
     let Bsdf::Dielectric { eta, alpha, tint } = *b else {
         unreachable!()
@@ -49,7 +49,7 @@ fn energy_albedo(b: &Bsdf, wo: Vec3, n: usize, seed: u64) -> (f64, f64, f64) {
             let w = (s.f.x * s.wi.z.abs() / s.pdf) as f64;
             s1 += w;
             s2 += w * w;
-            let f = dielectric::rough_eval_ss(eta, alpha, tint, wo, s.wi, I);
+            let f = dielectric::Rough { eta, alpha, tint }.eval_ss(wo, s.wi, I);
             ss += (f.x * s.wi.z.abs() / s.pdf) as f64;
         }
     }

@@ -275,13 +275,7 @@ impl<C: Carrier> Layered<C> {
         } else {
             mirror(cosine_hemisphere(wo, u))
         };
-        let pdf = self.pdf(wo, wi);
-        (pdf > 0.0 && pdf.is_finite()).then(|| BsdfSample {
-            wi,
-            f: self.eval(wo, wi),
-            pdf,
-            delta: false,
-            transmission: !same_hemisphere(wo, wi),
-        })
+        let transmission = !same_hemisphere(wo, wi);
+        BsdfSample::lobe(wi, self.pdf(wo, wi), transmission, || self.eval(wo, wi))
     }
 }

@@ -9,6 +9,7 @@
 //! lobes have `eval = pdf = 0` and are only reachable through [`Bsdf::sample`], whose
 //! `f`/`pdf` then carry the delta's weight (f·|cos θi|/pdf is the throughput factor).
 
+mod albedo_table;
 pub mod anisotropic;
 mod dielectric;
 mod energy;
@@ -25,12 +26,12 @@ pub mod sheen;
 mod tests;
 pub mod thin_film;
 
-use crate::optics::{fresnel_conductor_c, fresnel_schlick};
 use crate::spectrum::Carrier;
 use anisotropic::Microfacet;
 pub use film::{FilmLobe, Iridescence};
 use glam::{Vec2, Vec3};
 pub use layers::{coat_fresnel, Layers};
+use pbr::ConductorFresnel;
 
 /// GGX α below which a lobe is treated as perfectly smooth (delta).
 pub const SMOOTH_ALPHA: f32 = 1e-3;
@@ -57,6 +58,46 @@ pub struct BsdfSample<C = Vec3> {
     pub delta: bool,
     /// Whether `wi` is on the other side of the surface from `wo`.
     pub transmission: bool,
+}
+
+impl<C> BsdfSample<C> {
+    /// A sample of a delta lobe: `f` is the delta's coefficient, `pdf` the probability of
+    /// choosing the lobe.
+    #[inline]
+    pub(crate) fn delta(wi: Vec3, f: C, pdf: f32, transmission: bool) -> Self {
+        BsdfSample {
+            wi,
+            f,
+            pdf,
+            delta: true,
+            transmission,
+        }
+    }
+
+    /// A sample of a non-delta lobe: the direction `wi` drawn with solid-angle density `pdf`,
+    /// and `f(wo, wi)` from `f` (evaluated only for a usable sample). `None` when `pdf` is
+    /// not positive and finite.
+    #[inline]
+    pub(crate) fn lobe(
+        wi: Vec3,
+        pdf: f32,
+        transmission: bool,
+        f: impl FnOnce() -> C,
+    ) -> Option<Self> {
+        (pdf > 0.0 && pdf.is_finite()).then(|| BsdfSample {
+            wi,
+            f: f(),
+            pdf,
+            delta: false,
+            transmission,
+        })
+    }
+}
+
+/// The specular reflection of `w` about the shading normal (local frame: z).
+#[inline]
+pub(crate) fn reflect_z(w: Vec3) -> Vec3 {
+    Vec3::new(-w.x, -w.y, w.z)
 }
 
 /// A BSDF at one shading point.
@@ -134,17 +175,6 @@ pub enum Bsdf<C = Vec3> {
     },
 }
 
-/// A measured metal's Fresnel reflectance, mixed with a thin film's on that metal when
-/// the material is iridescent.
-#[inline]
-fn complex_fresnel<C: Carrier>(cos: f32, eta: C, k: C, film: &FilmLobe) -> C {
-    let plain = fresnel_conductor_c(cos, eta, k);
-    match film.iridescence {
-        Some(ir) => ir.mix(plain, cos, eta, k),
-        None => plain,
-    }
-}
-
 /// Both directions on the same side of the surface.
 #[inline]
 pub(crate) fn same_hemisphere(a: Vec3, b: Vec3) -> bool {
@@ -153,27 +183,30 @@ pub(crate) fn same_hemisphere(a: Vec3, b: Vec3) -> bool {
 
 impl<C: Carrier> Bsdf<C> {
     fn gltf(&self) -> Option<pbr::Gltf<C>> {
-        match *self {
-            Bsdf::GltfPbr {
-                base,
-                metallic,
+        pbr::Gltf::of(self)
+    }
+
+    /// The conductor lobe of [`Bsdf::Conductor`] and [`Bsdf::ComplexConductor`].
+    fn conductor(&self) -> Option<pbr::Conductor<C>> {
+        let (fresnel, alpha, anisotropy) = match *self {
+            Bsdf::Conductor { f0, alpha } => (ConductorFresnel::Schlick(f0), alpha, 0.0),
+            Bsdf::ComplexConductor {
+                eta,
+                k,
                 alpha,
-                ior,
-                specular,
-                specular_color,
                 film,
-                ..
-            } => Some(pbr::Gltf::new(
-                base,
-                metallic,
+            } => (
+                ConductorFresnel::Complex { eta, k, film },
                 alpha,
-                ior,
-                specular,
-                specular_color,
-                film,
-            )),
-            _ => None,
-        }
+                film.anisotropy,
+            ),
+            _ => return None,
+        };
+        Some(pbr::Conductor {
+            fresnel,
+            ggx: Microfacet::khr(alpha, anisotropy),
+            smooth: self.is_delta(),
+        })
     }
 
     /// The layered glTF BSDF when any KHR layer is present (`None` otherwise: the plain
@@ -208,25 +241,11 @@ impl<C: Carrier> Bsdf<C> {
         }
         match *self {
             Bsdf::Lambert { albedo } => pbr::lambert_eval(albedo, wo, wi),
-            Bsdf::Conductor { f0, alpha } => pbr::conductor_eval(
-                |c| fresnel_schlick(f0, c),
-                Microfacet::khr(alpha, 0.0),
-                wo,
-                wi,
-            ),
-            Bsdf::ComplexConductor {
-                eta,
-                k,
-                alpha,
-                film,
-            } => pbr::conductor_eval(
-                |c| complex_fresnel(c, eta, k, &film),
-                Microfacet::khr(alpha, film.anisotropy),
-                wo,
-                wi,
-            ),
+            Bsdf::Conductor { .. } | Bsdf::ComplexConductor { .. } => {
+                self.conductor().map_or(C::ZERO, |c| c.eval(wo, wi))
+            }
             Bsdf::Dielectric { eta, alpha, tint } => {
-                dielectric::rough_eval(eta, alpha, tint, wo, wi, mode)
+                dielectric::Rough { eta, alpha, tint }.eval(wo, wi, mode)
             }
             Bsdf::ThinDielectric { .. } => C::ZERO,
             Bsdf::GltfPbr { .. } => match self.layered() {
@@ -243,13 +262,12 @@ impl<C: Carrier> Bsdf<C> {
         }
         match *self {
             Bsdf::Lambert { .. } => pbr::lambert_pdf(wo, wi),
-            Bsdf::Conductor { alpha, .. } => {
-                pbr::conductor_pdf(Microfacet::khr(alpha, 0.0), wo, wi)
+            Bsdf::Conductor { .. } | Bsdf::ComplexConductor { .. } => {
+                self.conductor().map_or(0.0, |c| c.pdf(wo, wi))
             }
-            Bsdf::ComplexConductor { alpha, film, .. } => {
-                pbr::conductor_pdf(Microfacet::khr(alpha, film.anisotropy), wo, wi)
+            Bsdf::Dielectric { eta, alpha, tint } => {
+                dielectric::Rough { eta, alpha, tint }.pdf(wo, wi)
             }
-            Bsdf::Dielectric { eta, alpha, .. } => dielectric::rough_pdf(eta, alpha, wo, wi),
             Bsdf::ThinDielectric { .. } => 0.0,
             Bsdf::GltfPbr { .. } => match self.layered() {
                 Some(l) => l.pdf(wo, wi),
@@ -264,30 +282,14 @@ impl<C: Carrier> Bsdf<C> {
     pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample<C>> {
         match *self {
             Bsdf::Lambert { albedo } => pbr::lambert_sample(albedo, wo, u),
-            Bsdf::Conductor { f0, alpha } => pbr::conductor_sample(
-                |c| fresnel_schlick(f0, c),
-                Microfacet::khr(alpha, 0.0),
-                alpha < SMOOTH_ALPHA,
-                wo,
-                u,
-            ),
-            Bsdf::ComplexConductor {
-                eta,
-                k,
-                alpha,
-                film,
-            } => pbr::conductor_sample(
-                |c| complex_fresnel(c, eta, k, &film),
-                Microfacet::khr(alpha, film.anisotropy),
-                self.is_delta(),
-                wo,
-                u,
-            ),
+            Bsdf::Conductor { .. } | Bsdf::ComplexConductor { .. } => {
+                self.conductor()?.sample(wo, u)
+            }
             Bsdf::Dielectric { eta, alpha, tint } => {
                 if alpha < SMOOTH_ALPHA || eta == 1.0 {
                     dielectric::smooth_sample(eta, tint, wo, uc, mode)
                 } else {
-                    dielectric::rough_sample(eta, alpha, tint, wo, uc, u, mode)
+                    dielectric::Rough { eta, alpha, tint }.sample(wo, uc, u, mode)
                 }
             }
             Bsdf::ThinDielectric { eta, tint } => dielectric::thin_sample(eta, tint, wo, uc),

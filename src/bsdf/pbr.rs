@@ -1,5 +1,5 @@
-//! Opaque reflection lobes: Lambert, the GGX conductor (with any Fresnel term: Schlick from
-//! a colour, or the exact complex one of a measured metal), and the glTF metallic-roughness
+//! Opaque reflection lobes: Lambert, the GGX conductor (Schlick from a colour, or the exact
+//! complex Fresnel term of a measured metal), and the glTF metallic-roughness
 //! mix (glTF 2.0 spec Appendix B + KHR_materials_specular).
 //!
 //! Frame: local shading frame, z = normal. All lobes here are two-sided reflection: they are
@@ -8,8 +8,9 @@
 
 use super::anisotropic::Microfacet;
 use super::film::{ior_from_f0, FilmLobe};
-use super::{same_hemisphere, BsdfSample};
-use crate::optics::{fresnel_schlick, reflect};
+use super::microfacet::Distribution;
+use super::{reflect_z, same_hemisphere, Bsdf, BsdfSample};
+use crate::optics::{fresnel_conductor_c, fresnel_schlick, reflect};
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
 use std::f32::consts::{FRAC_1_PI, PI};
@@ -50,14 +51,7 @@ pub(crate) fn lambert_pdf(wo: Vec3, wi: Vec3) -> f32 {
 /// Cosine-weighted sample of the Lambert lobe.
 pub(crate) fn lambert_sample<C: Carrier>(albedo: C, wo: Vec3, u: Vec2) -> Option<BsdfSample<C>> {
     let wi = cosine_hemisphere(wo, u);
-    let pdf = lambert_pdf(wo, wi);
-    (pdf > 0.0).then(|| BsdfSample {
-        wi,
-        f: albedo * FRAC_1_PI,
-        pdf,
-        delta: false,
-        transmission: false,
-    })
+    BsdfSample::lobe(wi, lambert_pdf(wo, wi), false, || albedo * FRAC_1_PI)
 }
 
 /// Half vector of a reflection pair, faced to +z (`None` when degenerate or not a
@@ -106,56 +100,70 @@ pub(super) fn ggx_reflect_sample(ggx: impl Into<Microfacet>, wo: Vec3, u: Vec2) 
     same_hemisphere(wo, wi).then_some(wi)
 }
 
-/// Rough conductor f = D·G2·F(|wo·wm|)/(4|cos θo||cos θi|), `fresnel` giving the Fresnel
-/// reflectance at a cosine.
-pub(crate) fn conductor_eval<C: Carrier>(
-    fresnel: impl Fn(f32) -> C,
-    ggx: Microfacet,
-    wo: Vec3,
-    wi: Vec3,
-) -> C {
-    match ggx_spec(ggx, wo, wi) {
-        Some((s, cos_h)) => fresnel(cos_h) * s,
-        None => C::ZERO,
+/// The Fresnel reflectance of a conductor lobe.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum ConductorFresnel<C: Carrier> {
+    /// Schlick from the normal-incidence reflectance (a glTF metal's base colour).
+    Schlick(C),
+    /// The exact reflectance of the complex index η + ik of a measured metal, mixed with a
+    /// thin film's on that metal when the material is iridescent.
+    Complex { eta: C, k: C, film: FilmLobe },
+}
+
+impl<C: Carrier> ConductorFresnel<C> {
+    /// The reflectance at the cosine `cos` of the angle of incidence.
+    #[inline]
+    fn at(&self, cos: f32) -> C {
+        match *self {
+            ConductorFresnel::Schlick(f0) => fresnel_schlick(f0, cos),
+            ConductorFresnel::Complex { eta, k, film } => {
+                let plain = fresnel_conductor_c(cos, eta, k);
+                match film.iridescence {
+                    Some(ir) => ir.mix(plain, cos, eta, k),
+                    None => plain,
+                }
+            }
+        }
     }
 }
 
-/// Rough conductor pdf (VNDF reflection).
-pub(crate) fn conductor_pdf(ggx: Microfacet, wo: Vec3, wi: Vec3) -> f32 {
-    ggx_reflect_pdf(ggx, wo, wi)
+/// A GGX conductor: reflection only, f = D·G2·F(|wo·wm|)/(4|cos θo||cos θi|), sampled by
+/// reflecting a visible normal; `smooth` (α below the delta threshold) makes it a delta
+/// mirror.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Conductor<C: Carrier> {
+    pub fresnel: ConductorFresnel<C>,
+    pub ggx: Microfacet,
+    pub smooth: bool,
 }
 
-/// Rough conductor sample (VNDF reflection); smooth (α below the delta threshold) gives the
-/// mirror direction with f = F/|cos θi|, pdf 1.
-pub(crate) fn conductor_sample<C: Carrier>(
-    fresnel: impl Fn(f32) -> C,
-    ggx: Microfacet,
-    smooth: bool,
-    wo: Vec3,
-    u: Vec2,
-) -> Option<BsdfSample<C>> {
-    if wo.z == 0.0 {
-        return None;
+impl<C: Carrier> Conductor<C> {
+    /// f(wo, wi) of the rough lobe.
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> C {
+        match ggx_spec(self.ggx, wo, wi) {
+            Some((s, cos_h)) => self.fresnel.at(cos_h) * s,
+            None => C::ZERO,
+        }
     }
-    if smooth {
-        let wi = Vec3::new(-wo.x, -wo.y, wo.z);
-        return Some(BsdfSample {
-            wi,
-            f: fresnel(wo.z.abs()) / wi.z.abs(),
-            pdf: 1.0,
-            delta: true,
-            transmission: false,
-        });
+
+    /// Solid-angle pdf of the rough lobe (VNDF reflection).
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        ggx_reflect_pdf(self.ggx, wo, wi)
     }
-    let wi = ggx_reflect_sample(ggx, wo, u)?;
-    let pdf = ggx_reflect_pdf(ggx, wo, wi);
-    (pdf > 0.0 && pdf.is_finite()).then(|| BsdfSample {
-        wi,
-        f: conductor_eval(fresnel, ggx, wo, wi),
-        pdf,
-        delta: false,
-        transmission: false,
-    })
+
+    /// A VNDF reflection; when smooth, the mirror direction with f = F/|cos θi|, pdf 1.
+    pub fn sample(&self, wo: Vec3, u: Vec2) -> Option<BsdfSample<C>> {
+        if wo.z == 0.0 {
+            return None;
+        }
+        if self.smooth {
+            let wi = reflect_z(wo);
+            let f = self.fresnel.at(wo.z.abs()) / wi.z.abs();
+            return Some(BsdfSample::delta(wi, f, 1.0, false));
+        }
+        let wi = ggx_reflect_sample(self.ggx, wo, u)?;
+        BsdfSample::lobe(wi, self.pdf(wo, wi), false, || self.eval(wo, wi))
+    }
 }
 
 /// The glTF metallic-roughness BRDF with KHR_materials_specular, already resolved.
@@ -173,28 +181,34 @@ pub(crate) struct Gltf<C: Carrier> {
 }
 
 impl<C: Carrier> Gltf<C> {
-    pub fn new(
-        base: C,
-        metallic: f32,
-        alpha: f32,
-        ior: f32,
-        specular: f32,
-        specular_color: C,
-        film: FilmLobe,
-    ) -> Self {
+    /// The BRDF of a [`Bsdf::GltfPbr`] (`None` for another BSDF).
+    pub fn of(bsdf: &Bsdf<C>) -> Option<Self> {
+        let Bsdf::GltfPbr {
+            base,
+            metallic,
+            alpha,
+            ior,
+            specular,
+            specular_color,
+            film,
+            ..
+        } = *bsdf
+        else {
+            return None;
+        };
         let f0_ior = if ior.is_finite() {
             ((ior - 1.0) / (ior + 1.0)).powi(2)
         } else {
             1.0
         };
-        Gltf {
+        Some(Gltf {
             base,
             metallic: metallic.clamp(0.0, 1.0),
             ggx: Microfacet::khr(alpha.max(GLTF_MIN_ALPHA), film.anisotropy),
             f0: (specular_color * f0_ior).min(C::ONE) * specular,
             f90: specular,
             film,
-        }
+        })
     }
 
     /// Schlick with f90 (KHR_materials_specular): F0 + (F90 − F0)(1 − cos)^5.
@@ -273,13 +287,6 @@ impl<C: Carrier> Gltf<C> {
         } else {
             cosine_hemisphere(wo, u)
         };
-        let pdf = self.pdf(wo, wi);
-        (pdf > 0.0 && pdf.is_finite()).then(|| BsdfSample {
-            wi,
-            f: self.eval(wo, wi),
-            pdf,
-            delta: false,
-            transmission: false,
-        })
+        BsdfSample::lobe(wi, self.pdf(wo, wi), false, || self.eval(wo, wi))
     }
 }

@@ -22,6 +22,7 @@
 //! sheen_table_file_is_current` rewrites it; the tests check it against the quadrature and
 //! against a Monte Carlo estimate of the albedo (`super::layers_tests`).
 
+use super::albedo_table;
 use std::f32::consts::PI;
 use std::sync::OnceLock;
 
@@ -136,24 +137,15 @@ pub(crate) fn generate_file() -> Vec<u8> {
     for ia in 0..N_ALPHA {
         for im in 0..N_MU {
             let e = albedo_quadrature(mu_node(im), alpha_node(ia), Q);
-            let q = (e.clamp(0.0, 1.0) * 65535.0).round() as u16;
-            out.extend_from_slice(&q.to_le_bytes());
+            out.extend_from_slice(&albedo_table::quantise(e).to_le_bytes());
         }
     }
     out
 }
 
-/// Decodes the embedded table, regenerating it if the file has the wrong size.
+/// Decodes the embedded table ([`albedo_table::decode`]).
 fn load() -> Vec<f32> {
-    let bytes = if TABLE_FILE.len() == 2 * LEN {
-        TABLE_FILE.to_vec()
-    } else {
-        generate_file()
-    };
-    bytes
-        .chunks_exact(2)
-        .map(|b| u16::from_le_bytes([b[0], b[1]]) as f32 / 65535.0)
-        .collect()
+    albedo_table::decode(TABLE_FILE, LEN, generate_file)
 }
 
 /// Path of the table file in the source tree (tests).

@@ -30,10 +30,10 @@
 //!   multiple-scattering compensation (2026-12-01, `energy`): 1 within 0.52 % everywhere
 //!   on that grid (worst s.e. 0.19 %); E_ss table vs fine quadrature ≤ 0.23 %.
 //! - Mutation checks (done by hand, reverted): dropping the square of the transmission
-//!   Jacobian denominator in `rough_pdf` fails the χ² and albedo tests (re-checked with the
+//!   Jacobian denominator in `Rough::pdf` fails the χ² and albedo tests (re-checked with the
 //!   half-vector quadrature, which borrows no Jacobian: p = 0, albedo MC 1.256 vs
 //!   quadrature 0.467 for η 1.5, α 0.1 at 20°); dividing by η' instead
-//!   of η'² in `rough_eval` fails the generalised-reciprocity test.
+//!   of η'² in `Rough::eval` fails the generalised-reciprocity test.
 
 use super::*;
 use crate::math::Rng;
@@ -138,6 +138,11 @@ fn wo_at(deg: f64, inside: bool) -> Vec3 {
 }
 
 fn gltf(metallic: f32) -> Bsdf {
+    gltf_with(metallic, FilmLobe::NONE)
+}
+
+/// The test glTF material (orange, roughness 0.3, ior 1.5, no layers) with `film`.
+fn gltf_with(metallic: f32, film: FilmLobe) -> Bsdf {
     Bsdf::GltfPbr {
         base: Vec3::new(0.8, 0.5, 0.2),
         metallic,
@@ -146,7 +151,7 @@ fn gltf(metallic: f32) -> Bsdf {
         specular: 1.0,
         specular_color: Vec3::ONE,
         layers: Layers::none(),
-        film: FilmLobe::NONE,
+        film,
     }
 }
 
@@ -359,7 +364,7 @@ pub(super) fn rand_dir(rng: &mut Rng, upper: bool) -> Vec3 {
 fn eval_ss(b: &Bsdf, wo: Vec3, wi: Vec3, mode: TransportMode) -> Vec3 {
     match *b {
         Bsdf::Dielectric { eta, alpha, tint } if !b.is_delta() => {
-            dielectric::rough_eval_ss(eta, alpha, tint, wo, wi, mode)
+            dielectric::Rough { eta, alpha, tint }.eval_ss(wo, wi, mode)
         }
         _ => b.eval(wo, wi, mode),
     }

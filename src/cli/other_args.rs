@@ -2,11 +2,10 @@
 //! `iris converge`: clap structs and their conversion into the app's options.
 
 use super::parse::*;
-use super::render_args::{LookArgs, RenderArgs};
+use super::render_args::{LookArgs, PngArgs, RenderArgs};
 use iris::accel::Backend;
 use iris::app;
 use iris::app::converge::{parse_methods, ConvergeOptions};
-use iris::output::{Exposure, ToneMap};
 use iris::sampler::SamplerKind;
 use std::path::PathBuf;
 
@@ -28,12 +27,8 @@ pub(crate) struct MergeArgs {
     /// each pixel got.
     #[arg(long)]
     pub(crate) allow_partial: bool,
-    /// PNG exposure: `auto` (log-average luminance to 0.18) or stops in [-64, 64], e.g. -1.5.
-    #[arg(long, default_value = "auto", value_parser = parse_exposure, allow_hyphen_values = true)]
-    pub(crate) exposure: Exposure,
-    /// PNG tone map: aces, reinhard, clamp.
-    #[arg(long, default_value = "aces", value_parser = ToneMap::parse)]
-    pub(crate) tonemap: ToneMap,
+    #[command(flatten)]
+    pub(crate) png: PngArgs,
 }
 
 #[derive(clap::Args)]

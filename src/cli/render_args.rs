@@ -14,6 +14,28 @@ use iris::photon::trace::Roulette;
 use iris::sampler::SamplerKind;
 use std::path::PathBuf;
 
+/// `--exposure`, `--tonemap`: how an 8-bit PNG is made from the linear image (render and
+/// the commands that flatten its flags, merge).
+#[derive(clap::Args, Clone)]
+pub(crate) struct PngArgs {
+    /// PNG exposure: `auto` (log-average luminance to 0.18) or stops in [-64, 64], e.g. -1.5.
+    #[arg(long, default_value = "auto", value_parser = parse_exposure, allow_hyphen_values = true)]
+    pub(crate) exposure: Exposure,
+    /// PNG tone map: aces, reinhard, clamp.
+    #[arg(long, default_value = "aces", value_parser = ToneMap::parse)]
+    pub(crate) tonemap: ToneMap,
+}
+
+impl PngArgs {
+    /// The display options the flags give.
+    pub(crate) fn display(&self) -> DisplayOptions {
+        DisplayOptions {
+            exposure: self.exposure,
+            tonemap: self.tonemap,
+        }
+    }
+}
+
 /// `--stone`, `--metal`, `--metal-roughness`: material overrides for render, converge, info.
 #[derive(clap::Args, Clone, Default)]
 pub(crate) struct LookArgs {
@@ -95,12 +117,8 @@ pub(crate) struct RenderArgs {
     /// Camera name or index from the file.
     #[arg(long)]
     pub(crate) camera: Option<String>,
-    /// PNG exposure: `auto` (log-average luminance to 0.18) or stops in [-64, 64], e.g. -1.5.
-    #[arg(long, default_value = "auto", value_parser = parse_exposure, allow_hyphen_values = true)]
-    pub(crate) exposure: Exposure,
-    /// PNG tone map: aces, reinhard, clamp.
-    #[arg(long, default_value = "aces", value_parser = ToneMap::parse)]
-    pub(crate) tonemap: ToneMap,
+    #[command(flatten)]
+    pub(crate) png: PngArgs,
     /// Environment light: `none`, a grey value or `R,G,B` radiance, or an equirectangular
     /// .exr/.hdr map (+Y up; the image centre looks along −Z). Default: the scene file's
     /// `iris_environment` (glTF scene extras), else none.
@@ -251,10 +269,7 @@ impl RenderArgs {
             sampler: a.sampler,
             threads: a.threads,
             camera: a.camera,
-            display: DisplayOptions {
-                exposure: a.exposure,
-                tonemap: a.tonemap,
-            },
+            display: a.png.display(),
             quiet: a.quiet,
             env: a
                 .env

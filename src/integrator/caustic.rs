@@ -50,7 +50,6 @@
 
 use super::light_trace::{Splat, Splatter};
 use super::{StoreBudget, MAX_PHOTONS};
-use crate::bsdf::TransportMode;
 use crate::error::Result;
 use crate::math::Rng;
 use crate::photon::aim::DEFAULT_AIM;
@@ -250,13 +249,7 @@ impl CausticMap {
             if later_only && ph.flags() & Photon::CAUSTIC != 0 {
                 return;
             }
-            let wi = s.frame.to_local(ph.wi());
-            let f = s.bsdf.eval(s.wo, wi, TransportMode::Radiance);
-            let mut c = f * C::from_lanes(ph.power());
-            if hero && ph.flags() & Photon::HERO_ONLY != 0 {
-                c /= 4.0;
-            }
-            sum += c;
+            sum += super::sppm::photon_term(&s.bsdf, &s.frame, s.wo, hero, ph);
         });
         sum / (std::f64::consts::PI * r2) as f32
     }

@@ -34,19 +34,17 @@
 
 use super::caustic::{self, CausticMap};
 use super::light_trace::{self, Splatter};
-use super::path::{self, CausticSplit, StopAt};
-use super::sppm::pass_wavelength_variate;
-use super::{CausticMode, CausticSettings, Context};
+use super::path::{CausticSplit, StopAt};
+use super::sppm::{first_radius, pass_wavelength_variate, PassPaths};
+use super::{CausticMode, CausticSettings};
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::render::{
-    drive, guard, pixel_sampler, primary_ray, Film, Observer, RenderSettings, RenderStats, Round,
-    Setup,
+    drive, guard, pixel_sampler, Film, Observer, RenderSettings, RenderStats, Round, Setup,
 };
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
-use glam::{Vec2, Vec3};
-use rayon::prelude::*;
+use glam::Vec3;
 
 /// Renders with the hybrid: `settings.spp` passes of one sample per pixel (a shard: the
 /// passes `range`, absolute indices), fewer if the time limit or the observer stops it.
@@ -66,23 +64,19 @@ pub fn render(
     }
 }
 
-/// The first radius: 2 pixel footprints at the median camera distance of `photons`
-/// (1 % of the scene's diagonal without photons).
+/// The first radius: [`first_radius`] at the photons of the pass.
 fn initial_radius(
     scene: &Scene,
     camera: &Camera,
     settings: &RenderSettings,
     photons: &[crate::photon::store::Photon],
 ) -> f32 {
-    let (w, h) = (settings.width as f32, settings.height as f32);
-    let o = camera.generate_ray(Vec2::new(w, h) * 0.5).origin;
-    let mut d: Vec<f32> = photons.iter().map(|p| p.position().distance(o)).collect();
-    if d.is_empty() {
-        return 0.01 * (scene.bounds().1 - scene.bounds().0).length();
-    }
-    let mid = d.len() / 2;
-    let (_, m, _) = d.select_nth_unstable_by(mid, f32::total_cmp);
-    2.0 * super::sppm::pixel_footprint(camera, settings, *m)
+    first_radius(
+        scene,
+        camera,
+        settings,
+        photons.iter().map(|p| p.position()),
+    )
 }
 
 fn run<C: Carrier>(
@@ -200,7 +194,6 @@ fn camera_pass<C: Carrier>(
     (map, splats, mode): (&CausticMap, Option<&[Vec3]>, CausticMode),
     film: &mut Film,
 ) -> (u64, u64) {
-    let sampler = pixel_sampler(settings, u64::from(settings.spp.max(1)));
     let gather = |s: &crate::shading::Surface<C>, l: &C::Lambda| map.density(s, l, false);
     let later = |s: &crate::shading::Surface<C>, l: &C::Lambda| map.density(s, l, true);
     let split = match (splats, mode) {
@@ -214,37 +207,23 @@ fn camera_pass<C: Carrier>(
             direct: Some(&later),
         },
     };
+    let paths = PassPaths {
+        scene,
+        camera,
+        sampler: pixel_sampler(settings, u64::from(settings.spp.max(1))),
+        max_depth,
+        pass,
+        lambda,
+        stop: StopAt::Never,
+        split,
+    };
     let width = settings.width as usize;
-    film.par_tiles_mut()
-        .map(|mut tile| {
-            let (mut rays, mut bad) = (0, 0);
-            for i in 0..tile.slots() {
-                let Some((x, y)) = tile.pixel(i) else {
-                    continue;
-                };
-                let mut ctx = Context {
-                    sample: sampler.start(x, y, u64::from(pass)),
-                    rays: 0,
-                };
-                let ray = primary_ray(camera, x, y, false, &mut ctx.sample);
-                let (l, _) = path::camera_path::<C>(
-                    scene,
-                    &ray,
-                    max_depth,
-                    lambda,
-                    StopAt::Never,
-                    split,
-                    &mut ctx,
-                );
-                let mut rgb = l.to_rgb(&lambda);
-                if let Some(img) = splats {
-                    rgb += img[y as usize * width + x as usize];
-                }
-                tile.add(i, u64::from(pass), rgb.as_dvec3(), &mut bad);
-                rays += ctx.rays;
-            }
-            tile.done_until(u64::from(pass) + 1);
-            (rays, bad)
-        })
-        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1))
+    let mut nothing = vec![(); film.slots()];
+    paths.trace(film, &mut nothing, true, |(x, y), l, _, _| {
+        let mut rgb = l.to_rgb(&lambda);
+        if let Some(img) = splats {
+            rgb += img[y as usize * width + x as usize];
+        }
+        rgb
+    })
 }

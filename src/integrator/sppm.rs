@@ -48,10 +48,10 @@
 
 use super::path::{self, StopAt, VisiblePoint};
 use super::{Context, SppmSettings, StoreBudget, MAX_PHOTONS};
-use crate::bsdf::TransportMode;
+use crate::bsdf::{Bsdf, TransportMode};
 use crate::camera::Camera;
 use crate::error::Result;
-use crate::math::Rng;
+use crate::math::{Frame, Rng};
 use crate::photon::emit::{PhotonEmitter, PhotonNumbers, DEFAULT_AIM};
 use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
@@ -60,6 +60,7 @@ use crate::render::{
     drive, guard, pixel_sampler, primary_ray, Film, Observer, RenderSettings, RenderStats, Round,
     Setup, TILE_PIXELS,
 };
+use crate::sampler::PixelSampler;
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::{Vec2, Vec3};
@@ -108,23 +109,34 @@ pub fn pixel_footprint(camera: &Camera, settings: &RenderSettings, d: f32) -> f3
     (a.origin + da * d).distance(b.origin + db * d)
 }
 
-/// Sum of f · Φ over the photons within `r` of a visible point, with the hero-wavelength
-/// bookkeeping: when both the camera path and the photon kept only the hero (each then
-/// carries 4× the hero lane), the product is divided by 4 once.
+/// Sum of f · Φ over the photons within `r` of a visible point ([`photon_term`]).
 fn gather<C: Carrier>(vp: &VisiblePoint<C>, photons: &[Photon], grid: &HashGrid, r: f32) -> C {
     let mut phi = C::ZERO;
     let vp_hero = C::is_hero_only(&vp.lambda);
     grid.for_each_within(vp.p, r, |i, _d2| {
-        let ph = &photons[i as usize];
-        let wi = vp.frame.to_local(ph.wi());
-        let f = vp.bsdf.eval(vp.wo, wi, TransportMode::Radiance);
-        let mut c = f * C::from_lanes(ph.power());
-        if vp_hero && ph.flags() & Photon::HERO_ONLY != 0 {
-            c /= 4.0;
-        }
-        phi += c;
+        phi += photon_term(&vp.bsdf, &vp.frame, vp.wo, vp_hero, &photons[i as usize]);
     });
     phi
+}
+
+/// f(wo, wiₚ) · Φₚ of the photon `ph` at a camera vertex (`bsdf` in `frame`, `wo` toward
+/// the camera), with the hero-wavelength bookkeeping: when both the camera path (`hero`)
+/// and the photon kept only the hero (each then carries 4× the hero lane), the product is
+/// divided by 4 once.
+pub(super) fn photon_term<C: Carrier>(
+    bsdf: &Bsdf<C>,
+    frame: &Frame,
+    wo: Vec3,
+    hero: bool,
+    ph: &Photon,
+) -> C {
+    let wi = frame.to_local(ph.wi());
+    let f = bsdf.eval(wo, wi, TransportMode::Radiance);
+    let mut c = f * C::from_lanes(ph.power());
+    if hero && ph.flags() & Photon::HERO_ONLY != 0 {
+        c /= 4.0;
+    }
+    c
 }
 
 /// The state SPPM keeps across passes: per film slot the visible point of the current
@@ -256,36 +268,101 @@ fn camera_pass<C: Carrier>(
     film: &mut Film,
     vps: &mut [Option<VisiblePoint<C>>],
 ) -> (u64, u64) {
-    let sampler = pixel_sampler(settings, u64::from(passes));
-    film.par_tiles_mut()
-        .zip(vps.par_chunks_mut(TILE_PIXELS))
-        .map(|(mut tile, vp_tile)| {
-            let (mut rays, mut bad) = (0, 0);
-            for (i, slot) in vp_tile.iter_mut().enumerate() {
-                let Some((x, y)) = tile.pixel(i) else {
-                    continue;
-                };
-                let mut ctx = Context {
-                    sample: sampler.start(x, y, u64::from(pass)),
-                    rays: 0,
-                };
-                let ray = primary_ray(camera, x, y, false, &mut ctx.sample);
-                let (l, vp) = path::camera_path::<C>(
-                    scene,
-                    &ray,
-                    max_depth,
-                    lambda,
-                    StopAt::Diffuse,
-                    path::CausticSplit::None,
-                    &mut ctx,
-                );
-                tile.add(i, u64::from(pass), l.to_rgb(&lambda).as_dvec3(), &mut bad);
-                *slot = vp;
-                rays += ctx.rays;
-            }
-            (rays, bad)
-        })
-        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1))
+    let paths = PassPaths {
+        scene,
+        camera,
+        sampler: pixel_sampler(settings, u64::from(passes)),
+        max_depth,
+        pass,
+        lambda,
+        stop: StopAt::Diffuse,
+        split: path::CausticSplit::None,
+    };
+    paths.trace(film, vps, false, |_, l, vp, slot| {
+        *slot = vp;
+        l.to_rgb(&lambda)
+    })
+}
+
+/// The camera side of one pass of a progressive photon method (SPPM, the hybrid): one path
+/// per pixel, from the pixel's sample `pass` of `sampler` through [`primary_ray`] and
+/// [`path::camera_path`] with `stop` and `split`, at the pass's wavelengths `lambda`.
+pub(super) struct PassPaths<'a, C: Carrier> {
+    pub scene: &'a Scene,
+    pub camera: &'a Camera,
+    pub sampler: PixelSampler,
+    pub max_depth: u32,
+    pub pass: u32,
+    pub lambda: C::Lambda,
+    pub stop: StopAt,
+    pub split: path::CausticSplit<'a, C>,
+}
+
+impl<C: Carrier> PassPaths<'_, C> {
+    /// Traces every pixel's path, tiles in parallel, and adds `keep((x, y), L, visible
+    /// point, slot)` (the pixel's RGB) to the film's half `pass mod 2`. `slots` has one
+    /// entry per film slot, handed to `keep` (a zero-sized type when it keeps nothing);
+    /// with `done`, every tile is then marked done up to this pass. Returns the rays and bad
+    /// samples.
+    pub fn trace<S: Send>(
+        &self,
+        film: &mut Film,
+        slots: &mut [S],
+        done: bool,
+        keep: impl Fn((u32, u32), C, Option<VisiblePoint<C>>, &mut S) -> Vec3 + Sync,
+    ) -> (u64, u64) {
+        let k = u64::from(self.pass);
+        film.par_tiles_mut()
+            .zip(slots.par_chunks_mut(TILE_PIXELS))
+            .map(|(mut tile, tile_slots)| {
+                let (mut rays, mut bad) = (0, 0);
+                for (i, slot) in tile_slots.iter_mut().enumerate() {
+                    let Some((x, y)) = tile.pixel(i) else {
+                        continue;
+                    };
+                    let mut ctx = Context {
+                        sample: self.sampler.start(x, y, k),
+                        rays: 0,
+                    };
+                    let ray = primary_ray(self.camera, x, y, false, &mut ctx.sample);
+                    let (l, vp) = path::camera_path::<C>(
+                        self.scene,
+                        &ray,
+                        self.max_depth,
+                        self.lambda,
+                        self.stop,
+                        self.split,
+                        &mut ctx,
+                    );
+                    tile.add(i, k, keep((x, y), l, vp, slot).as_dvec3(), &mut bad);
+                    rays += ctx.rays;
+                }
+                if done {
+                    tile.done_until(k + 1);
+                }
+                (rays, bad)
+            })
+            .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1))
+    }
+}
+
+/// The first radius of a progressive pass sequence: 2 pixel footprints at the median
+/// distance of `points` from the camera (1 % of the scene's diagonal without any).
+pub(super) fn first_radius(
+    scene: &Scene,
+    camera: &Camera,
+    settings: &RenderSettings,
+    points: impl Iterator<Item = Vec3>,
+) -> f32 {
+    let (w, h) = (settings.width as f32, settings.height as f32);
+    let o = camera.generate_ray(Vec2::new(w, h) * 0.5).origin;
+    let mut d: Vec<f32> = points.map(|p| p.distance(o)).collect();
+    if d.is_empty() {
+        return 0.01 * (scene.bounds().1 - scene.bounds().0).length();
+    }
+    let mid = d.len() / 2;
+    let (_, m, _) = d.select_nth_unstable_by(mid, f32::total_cmp);
+    2.0 * pixel_footprint(camera, settings, *m)
 }
 
 /// Traces `n_photons` photons of pass `pass` in fixed chunks of [`CHUNK`] and keeps, in
@@ -355,16 +432,8 @@ impl<C: Carrier> Passes<C> {
     /// has one).
     fn radius(&mut self, scene: &Scene, camera: &Camera, settings: &RenderSettings) -> f32 {
         if self.r2.is_none() {
-            let (w, h) = (settings.width as f32, settings.height as f32);
-            let o = camera.generate_ray(Vec2::new(w, h) * 0.5).origin;
-            let mut d: Vec<f32> = self.vps.iter().flatten().map(|v| v.p.distance(o)).collect();
-            let r = if d.is_empty() {
-                0.01 * (scene.bounds().1 - scene.bounds().0).length()
-            } else {
-                let mid = d.len() / 2;
-                let (_, m, _) = d.select_nth_unstable_by(mid, f32::total_cmp);
-                2.0 * pixel_footprint(camera, settings, *m)
-            };
+            let points = self.vps.iter().flatten().map(|v| v.p);
+            let r = first_radius(scene, camera, settings, points);
             let r = if r.is_finite() && r > 0.0 { r } else { 1e-3 };
             self.r2 = Some((r as f64) * (r as f64));
         }

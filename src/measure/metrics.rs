@@ -68,6 +68,31 @@ fn channels<'a>(a: &'a ImageRgb, b: &'a ImageRgb) -> impl Iterator<Item = (f64, 
         .flat_map(|(p, q)| (0..3).map(move |c| (f64::from(p[c]), f64::from(q[c]))))
 }
 
+/// The metrics from per-value terms: `terms(x, y)` of each pair of corresponding channel
+/// values gives (squared error, relative squared error, absolute error); each is averaged
+/// over all pairs, and the RMSE is the root of the first mean.
+fn mean_metrics(
+    a: &ImageRgb,
+    b: &ImageRgb,
+    terms: impl Fn(f64, f64) -> (f64, f64, f64),
+) -> ErrorMetrics {
+    let (mut se, mut rel, mut ae) = (0.0f64, 0.0f64, 0.0f64);
+    let mut n = 0u64;
+    for (x, y) in channels(a, b) {
+        let (s, r, e) = terms(x, y);
+        se += s;
+        rel += r;
+        ae += e;
+        n += 1;
+    }
+    let n = n as f64;
+    ErrorMetrics {
+        rmse: (se / n).sqrt(),
+        rel_mse: rel / n,
+        mae: ae / n,
+    }
+}
+
 /// Error of `image` against `reference` (both linear, same size).
 ///
 /// RMSE over pixels and channels; relative MSE = mean over pixels and channels of
@@ -77,21 +102,10 @@ fn channels<'a>(a: &'a ImageRgb, b: &'a ImageRgb) -> impl Iterator<Item = (f64, 
 /// its pixel buffer does not match its size.
 pub fn compare(image: &ImageRgb, reference: &ImageRgb) -> Result<ErrorMetrics> {
     check_pair(image, reference, ("the image", "the reference"))?;
-    let (mut se, mut rel, mut ae) = (0.0f64, 0.0f64, 0.0f64);
-    let mut n = 0u64;
-    for (x, r) in channels(image, reference) {
+    Ok(mean_metrics(image, reference, |x, r| {
         let d = x - r;
-        se += d * d;
-        rel += d * d / (r * r + REL_EPS);
-        ae += d.abs();
-        n += 1;
-    }
-    let n = n as f64;
-    Ok(ErrorMetrics {
-        rmse: (se / n).sqrt(),
-        rel_mse: rel / n,
-        mae: ae / n,
-    })
+        (d * d, d * d / (r * r + REL_EPS), d.abs())
+    }))
 }
 
 /// Estimated error of the full image `(a+b)/2` from two independent half images `a`, `b`
@@ -118,23 +132,12 @@ pub fn compare(image: &ImageRgb, reference: &ImageRgb) -> Result<ErrorMetrics> {
 /// Errors: as [`compare`].
 pub fn half_buffer_estimate(a: &ImageRgb, b: &ImageRgb) -> Result<ErrorMetrics> {
     check_pair(a, b, ("half image A", "half image B"))?;
-    let (mut var, mut rel, mut half_abs) = (0.0f64, 0.0f64, 0.0f64);
-    let mut n = 0u64;
-    for (x, y) in channels(a, b) {
+    Ok(mean_metrics(a, b, |x, y| {
         let d = x - y;
         let v = d * d / 4.0;
         let m = 0.5 * (x + y);
-        var += v;
-        rel += v / (m * m + REL_EPS);
-        half_abs += 0.5 * d.abs();
-        n += 1;
-    }
-    let n = n as f64;
-    Ok(ErrorMetrics {
-        rmse: (var / n).sqrt(),
-        rel_mse: rel / n,
-        mae: half_abs / n,
-    })
+        (v, v / (m * m + REL_EPS), 0.5 * d.abs())
+    }))
 }
 
 #[cfg(test)]

@@ -55,6 +55,26 @@ pub struct ReportRow {
     pub denoise_s: Option<f64>,
 }
 
+impl ReportRow {
+    /// A row of stage `stage` of run `run` at `wall_s` seconds, with no counts and no
+    /// error metrics (a load or build stage).
+    pub fn stage(run: &str, stage: &str, wall_s: f64) -> Self {
+        ReportRow {
+            run: run.to_string(),
+            stage: stage.to_string(),
+            wall_s,
+            samples: 0,
+            passes: 0,
+            rays: 0,
+            photons: 0,
+            error: None,
+            estimate: None,
+            denoised: None,
+            denoise_s: None,
+        }
+    }
+}
+
 /// Appends `field` as one CSV cell, quoting it when needed (RFC 4180 §2.6–2.7).
 fn push_text(out: &mut String, field: &str) {
     if field.contains([',', '"', '\n', '\r']) {
@@ -118,19 +138,7 @@ pub fn setup_rows(
     load_and_build: std::time::Duration,
     build: std::time::Duration,
 ) -> Vec<ReportRow> {
-    let row = |stage: &str, t: std::time::Duration| ReportRow {
-        run: run.to_string(),
-        stage: stage.to_string(),
-        wall_s: t.as_secs_f64(),
-        samples: 0,
-        passes: 0,
-        rays: 0,
-        photons: 0,
-        error: None,
-        estimate: None,
-        denoised: None,
-        denoise_s: None,
-    };
+    let row = |stage: &str, t: std::time::Duration| ReportRow::stage(run, stage, t.as_secs_f64());
     vec![
         row("load", load_and_build.saturating_sub(build)),
         row("build", build),
@@ -143,19 +151,7 @@ mod tests {
 
     #[test]
     fn quoting_and_empty_cells() {
-        let rows = [ReportRow {
-            run: "path, \"bvh\"".into(),
-            stage: "load".into(),
-            wall_s: 0.25,
-            samples: 0,
-            passes: 0,
-            rays: 0,
-            photons: 0,
-            error: None,
-            estimate: None,
-            denoised: None,
-            denoise_s: None,
-        }];
+        let rows = [ReportRow::stage("path, \"bvh\"", "load", 0.25)];
         let csv = format_csv(&rows);
         assert_eq!(
             csv,

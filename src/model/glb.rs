@@ -184,13 +184,15 @@ impl Writer {
         self.views.len() - 1
     }
 
+    /// Appends the vertex-attribute buffer view of `values` (f32, little endian); returns
+    /// its index.
+    fn float_view(&mut self, values: impl Iterator<Item = f32>) -> usize {
+        let bytes: Vec<u8> = values.flat_map(f32::to_le_bytes).collect();
+        self.view(&bytes, ARRAY_BUFFER)
+    }
+
     fn accessor_vec3(&mut self, data: &[Vec3], with_bounds: bool) -> usize {
-        let bytes: Vec<u8> = data
-            .iter()
-            .flat_map(|v| v.to_array())
-            .flat_map(f32::to_le_bytes)
-            .collect();
-        let view = self.view(&bytes, ARRAY_BUFFER);
+        let view = self.float_view(data.iter().flat_map(|v| v.to_array()));
         let mut acc = Map::new();
         acc.insert("bufferView".into(), json!(view));
         acc.insert("componentType".into(), json!(FLOAT));
@@ -207,12 +209,7 @@ impl Writer {
     }
 
     fn accessor_vec2(&mut self, data: &[glam::Vec2]) -> usize {
-        let bytes: Vec<u8> = data
-            .iter()
-            .flat_map(|v| v.to_array())
-            .flat_map(f32::to_le_bytes)
-            .collect();
-        let view = self.view(&bytes, ARRAY_BUFFER);
+        let view = self.float_view(data.iter().flat_map(|v| v.to_array()));
         self.accessors.push(json!({
             "bufferView": view, "componentType": FLOAT, "count": data.len(), "type": "VEC2"
         }));

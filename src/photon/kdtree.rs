@@ -87,65 +87,17 @@ impl PhotonMap {
         if k == 0 || max_r2.is_nan() || max_r2 < 0.0 || !p.is_finite() {
             return 0.0;
         }
-        let p = p.to_array();
         let mut heap = Heap { v: out, k };
-        let mut r2 = max_r2;
-        let mut stack = [(0u32, 0u32, 0f32); STACK];
-        let mut sp = 0;
-        let (mut lo, mut hi) = (0usize, self.photons.len());
-        loop {
-            if hi - lo <= LEAF {
-                for i in lo..hi {
-                    let d2 = dist2(p, self.photons[i].pos_array());
-                    if d2 <= r2 {
-                        heap.offer(d2, i as u32);
-                        if heap.full() {
-                            r2 = heap.top().0;
-                        }
-                    }
-                }
+        self.walk(p.to_array(), max_r2, |i, d2, r2| {
+            heap.offer(d2, i);
+            if heap.full() {
+                heap.top().0
             } else {
-                let m = lo + (hi - lo) / 2;
-                let q = self.photons[m].pos_array();
-                let d2 = dist2(p, q);
-                if d2 <= r2 {
-                    heap.offer(d2, m as u32);
-                    if heap.full() {
-                        r2 = heap.top().0;
-                    }
-                }
-                let axis = self.axes[m] as usize;
-                let diff = p[axis] - q[axis];
-                let ((nlo, nhi), (flo, fhi)) = if diff < 0.0 {
-                    ((lo, m), (m + 1, hi))
-                } else {
-                    ((m + 1, hi), (lo, m))
-                };
-                let plane2 = diff * diff;
-                // Equal distance is kept: a tie with a smaller index may still win.
-                if plane2 <= r2 && fhi > flo {
-                    stack[sp] = (flo as u32, fhi as u32, plane2);
-                    sp += 1;
-                }
-                lo = nlo;
-                hi = nhi;
-                continue;
+                r2
             }
-            // Pop the next far subtree that can still hold something closer.
-            loop {
-                if sp == 0 {
-                    // The max-heap's root holds the largest d².
-                    return heap.v.first().map_or(0.0, |e| e.0);
-                }
-                sp -= 1;
-                let (a, b, plane2) = stack[sp];
-                if plane2 <= r2 {
-                    lo = a as usize;
-                    hi = b as usize;
-                    break;
-                }
-            }
-        }
+        });
+        // The max-heap's root holds the largest d².
+        heap.v.first().map_or(0.0, |e| e.0)
     }
 
     /// Call `f(photon, d²)` for every photon with `d² ≤ r2` from `p`, in a deterministic
@@ -159,8 +111,20 @@ impl PhotonMap {
         if r2.is_nan() || r2 < 0.0 || !p.is_finite() {
             return;
         }
-        let p = p.to_array();
-        let mut stack = [(0u32, 0u32); STACK];
+        self.walk(p.to_array(), r2, |i, d2, r2| {
+            f(i, d2);
+            r2
+        });
+    }
+
+    /// The one traversal of both queries: calls `visit(index, d², r²)` for every photon with
+    /// `d² ≤ r²` from `p`, where r² starts at `r2` and becomes what `visit` returns (a kNN
+    /// query shrinks it as its heap fills; the radius query keeps it). Visits the node of a
+    /// range, then its near side, then its far side while the splitting plane is within r
+    /// (equal distance is kept: a tie with a smaller index may still win a kNN query).
+    #[inline]
+    fn walk(&self, p: [f32; 3], mut r2: f32, mut visit: impl FnMut(u32, f32, f32) -> f32) {
+        let mut stack = [(0u32, 0u32, 0f32); STACK];
         let mut sp = 0;
         let (mut lo, mut hi) = (0usize, self.photons.len());
         loop {
@@ -168,34 +132,43 @@ impl PhotonMap {
                 for i in lo..hi {
                     let d2 = dist2(p, self.photons[i].pos_array());
                     if d2 <= r2 {
-                        f(i as u32, d2);
+                        r2 = visit(i as u32, d2, r2);
                     }
                 }
+            } else {
+                let m = lo + (hi - lo) / 2;
+                let q = self.photons[m].pos_array();
+                let d2 = dist2(p, q);
+                if d2 <= r2 {
+                    r2 = visit(m as u32, d2, r2);
+                }
+                let axis = self.axes[m] as usize;
+                let diff = p[axis] - q[axis];
+                let ((nlo, nhi), (flo, fhi)) = if diff < 0.0 {
+                    ((lo, m), (m + 1, hi))
+                } else {
+                    ((m + 1, hi), (lo, m))
+                };
+                let plane2 = diff * diff;
+                if plane2 <= r2 && fhi > flo {
+                    stack[sp] = (flo as u32, fhi as u32, plane2);
+                    sp += 1;
+                }
+                (lo, hi) = (nlo, nhi);
+                continue;
+            }
+            // Pop the next far subtree that can still hold something closer.
+            loop {
                 if sp == 0 {
                     return;
                 }
                 sp -= 1;
-                (lo, hi) = (stack[sp].0 as usize, stack[sp].1 as usize);
-                continue;
+                let (a, b, plane2) = stack[sp];
+                if plane2 <= r2 {
+                    (lo, hi) = (a as usize, b as usize);
+                    break;
+                }
             }
-            let m = lo + (hi - lo) / 2;
-            let q = self.photons[m].pos_array();
-            let d2 = dist2(p, q);
-            if d2 <= r2 {
-                f(m as u32, d2);
-            }
-            let axis = self.axes[m] as usize;
-            let diff = p[axis] - q[axis];
-            let ((nlo, nhi), (flo, fhi)) = if diff < 0.0 {
-                ((lo, m), (m + 1, hi))
-            } else {
-                ((m + 1, hi), (lo, m))
-            };
-            if diff * diff <= r2 && fhi > flo {
-                stack[sp] = (flo as u32, fhi as u32);
-                sp += 1;
-            }
-            (lo, hi) = (nlo, nhi);
         }
     }
 }

@@ -46,11 +46,11 @@
 //! coloured caustics thrown by the stone land on unlit floor. Camera 0.15 m from the
 //! centroid at elevation 50° from +X, yfov 35° (± 4.7 cm at the stone), 1:1.
 
-use super::parts::{camera, push_material};
+use super::parts::{add_mesh, camera};
 use super::spectral::upright_prism;
 use crate::model::gem::Brilliant;
 use crate::model::lathe::sin_cos;
-use crate::model::scene::{GenLight, GenMaterial, GenMesh, GenScene};
+use crate::model::scene::{GenLight, GenMaterial, GenScene};
 use crate::model::shapes::{ground_plane, icosphere, TriMesh};
 use glam::{DVec3, Vec3};
 
@@ -73,17 +73,6 @@ pub const GEM_DIAMETER: f64 = 0.015;
 /// Intensity of the gem's spot light, candela.
 pub const GEM_CANDELA: f32 = 20.0;
 
-/// Adds a mesh with its own material.
-fn add(s: &mut GenScene, name: &str, geometry: TriMesh, m: GenMaterial, at: Option<Vec3>) {
-    let material = push_material(s, m);
-    s.meshes.push(GenMesh {
-        name: name.into(),
-        geometry,
-        material,
-        translation: at,
-    });
-}
-
 /// Fig. 4.5.1: a glass sphere and a glass prism on a white floor under one point light.
 pub fn fig4_5_1_caustics() -> GenScene {
     let mut s = GenScene {
@@ -92,14 +81,14 @@ pub fn fig4_5_1_caustics() -> GenScene {
     };
     let floor = GenMaterial::diffuse("Floor", Vec3::splat(0.8));
     let floor_at = Some(Vec3::new(0.15, 0.0, 0.1));
-    add(&mut s, "Floor", ground_plane(0.75, 0.7), floor, floor_at);
+    add_mesh(&mut s, "Floor", ground_plane(0.75, 0.7), floor, floor_at);
     let r = SPHERE_RADIUS;
     let glass = GenMaterial::clear_glass("Glass sphere IOR 1.5", 1.5, 2.0 * r);
     let sphere = icosphere(r, 5);
-    add(&mut s, "Glass sphere", sphere, glass, Some(SPHERE_CENTRE));
+    add_mesh(&mut s, "Glass sphere", sphere, glass, Some(SPHERE_CENTRE));
     let glass = GenMaterial::clear_glass("Glass prism IOR 1.5", 1.5, 0.1);
     let prism = upright_prism(0.1, 0.001, 0.12);
-    add(
+    add_mesh(
         &mut s,
         "Prism",
         prism,
@@ -144,11 +133,11 @@ pub fn gem_caustics() -> GenScene {
         ..GenScene::default()
     };
     let floor = GenMaterial::diffuse("Floor", Vec3::splat(0.8));
-    add(&mut s, "Floor", ground_plane(0.1, 0.1), floor, None);
+    add_mesh(&mut s, "Floor", ground_plane(0.1, 0.1), floor, None);
     let (stone, centre) = gem_resting();
     let mut diamond = GenMaterial::clear_glass("Diamond IOR 2.42", 2.42, 0.01);
     diamond.dispersion = Some(0.36);
-    add(&mut s, "Diamond", stone, diamond, None);
+    add_mesh(&mut s, "Diamond", stone, diamond, None);
     let to_light = gem_light_direction();
     s.lights.push(GenLight::Spot {
         name: "Spot".into(),

@@ -20,7 +20,7 @@
 
 use super::caustic::gem_caustics;
 use super::paper::{add_checker, grey_pair, SceneBuilder};
-use super::parts::{camera, push_material};
+use super::parts::{add_mesh, add_panel, camera};
 use super::rainbow::fig5_3_1_rainbow;
 use super::sky::sky_hdr;
 use super::spectral::{diamond, fig5_3_1_prism_beam};
@@ -28,7 +28,7 @@ use crate::error::{Error, Result};
 use crate::model::gem::Brilliant;
 use crate::model::glb::write_glb;
 use crate::model::lathe::{append, Tumbler};
-use crate::model::scene::{GenMaterial, GenMesh, GenScene, GenVolume};
+use crate::model::scene::{GenMaterial, GenScene, GenVolume};
 use crate::model::shapes::{checkerboard, ground_plane, prism, quarter_turn_x, TriMesh};
 use glam::{Mat3, Vec3};
 use std::path::{Path, PathBuf};
@@ -113,13 +113,7 @@ pub fn glass_of_water() -> GenScene {
     });
     for (name, geometry, material) in [("Glass", parts.glass, glass), ("Water", parts.water, water)]
     {
-        let material = push_material(&mut s, material);
-        s.meshes.push(GenMesh {
-            name: name.into(),
-            geometry,
-            material,
-            translation: lift,
-        });
+        add_mesh(&mut s, name, geometry, material, lift);
     }
     let down = Mat3::from_cols(Vec3::X, Vec3::NEG_Y, Vec3::NEG_Z);
     let towards_minus_z = Mat3::from_cols(Vec3::X, Vec3::NEG_Z, Vec3::Y);
@@ -155,13 +149,8 @@ pub fn ruby() -> GenScene {
         extras: Some(serde_json::json!({"iris_environment": 0.15})),
         ..GenScene::default()
     };
-    let floor = push_material(&mut s, GenMaterial::diffuse("Floor", Vec3::splat(0.85)));
-    s.meshes.push(GenMesh {
-        name: "Floor".into(),
-        geometry: ground_plane(0.3, 0.3),
-        material: floor,
-        translation: None,
-    });
+    let floor = GenMaterial::diffuse("Floor", Vec3::splat(0.85));
+    add_mesh(&mut s, "Floor", ground_plane(0.3, 0.3), floor, None);
     let mut ruby = GenMaterial::clear_glass("Ruby IOR 1.77", 1.77, 0.012);
     ruby.dispersion = Some(0.28);
     ruby.volume = Some(GenVolume {
@@ -169,13 +158,8 @@ pub fn ruby() -> GenScene {
         attenuation_color: Vec3::new(0.9, 0.1, 0.18),
         attenuation_distance: Some(0.02),
     });
-    let ruby = push_material(&mut s, ruby);
-    s.meshes.push(GenMesh {
-        name: "Ruby".into(),
-        geometry: Brilliant::ideal(0.02).resting(0.0002),
-        material: ruby,
-        translation: None,
-    });
+    let stone = Brilliant::ideal(0.02).resting(0.0002);
+    add_mesh(&mut s, "Ruby", stone, ruby, None);
     let down = Mat3::from_cols(Vec3::X, Vec3::NEG_Y, Vec3::NEG_Z);
     add_panel(
         &mut s,
@@ -232,26 +216,14 @@ pub fn prism_sky() -> GenScene {
         let quad = ground_plane(hx, hz).transformed(Mat3::IDENTITY, Vec3::new(x, 0.0, z));
         append(&mut frame, &quad);
     }
-    let floor = push_material(
-        &mut s,
-        GenMaterial::diffuse("Floor plain", Vec3::splat(0.7)),
-    );
-    s.meshes.push(GenMesh {
-        name: "Floor plain".into(),
-        geometry: frame,
-        material: floor,
-        translation: None,
-    });
+    let floor = GenMaterial::diffuse("Floor plain", Vec3::splat(0.7));
+    add_mesh(&mut s, "Floor plain", frame, floor, None);
     let mut glass = GenMaterial::clear_glass("Prism glass IOR 1.5", 1.5, 0.25);
     glass.dispersion = Some(1.0);
-    let glass = push_material(&mut s, glass);
     // Axis vertical: the prism's Z axis turns to −Y, its apex (+Y) to +Z.
-    s.meshes.push(GenMesh {
-        name: "Prism".into(),
-        geometry: prism(0.25, 0.4).transformed(quarter_turn_x(), Vec3::ZERO),
-        material: glass,
-        translation: Some(Vec3::new(0.0, 0.201, 0.0)),
-    });
+    let upright = prism(0.25, 0.4).transformed(quarter_turn_x(), Vec3::ZERO);
+    let at = Some(Vec3::new(0.0, 0.201, 0.0));
+    add_mesh(&mut s, "Prism", upright, glass, at);
     s.camera = Some(camera(
         Vec3::new(0.55, 0.3, 0.8),
         Vec3::new(-0.05, 0.12, 0.1),
@@ -259,26 +231,6 @@ pub fn prism_sky() -> GenScene {
         1.0,
     ));
     s
-}
-
-/// Adds a square-ish emitter of half extents `half` (x, z before `rotation`), emitting
-/// `radiance` (white) from the face that `rotation` turns +Y into.
-fn add_panel(
-    s: &mut GenScene,
-    name: &str,
-    radiance: f32,
-    half: (f32, f32),
-    rotation: Mat3,
-    at: Vec3,
-) {
-    let material = push_material(s, GenMaterial::emitter(name, Vec3::splat(radiance)));
-    let geometry: TriMesh = ground_plane(half.0, half.1).transformed(rotation, Vec3::ZERO);
-    s.meshes.push(GenMesh {
-        name: name.into(),
-        geometry,
-        material,
-        translation: Some(at),
-    });
 }
 
 #[cfg(test)]

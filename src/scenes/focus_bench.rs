@@ -11,22 +11,11 @@
 //! Geometry is computed in `f64` and rounded to `f32` once; all meshes face +Z (the plate
 //! and screen) or outwards (the sphere).
 
-use super::parts::{camera, push_material};
+use super::parts::{add_mesh, camera};
 use crate::model::lathe::sin_cos;
-use crate::model::scene::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
+use crate::model::scene::{GenCamera, GenLight, GenMaterial, GenScene};
 use crate::model::shapes::{ground_plane, icosphere, quarter_turn_x, TriMesh};
 use glam::{DVec3, Vec3};
-
-/// Adds a mesh with its own material.
-fn add(s: &mut GenScene, name: &str, geometry: TriMesh, m: GenMaterial, at: Option<Vec3>) {
-    let material = push_material(s, m);
-    s.meshes.push(GenMesh {
-        name: name.into(),
-        geometry,
-        material,
-        translation: at,
-    });
-}
 
 /// Smallest number of segments of [`focus_bench`]'s aperture plate.
 pub const APERTURE_SEGMENTS: u32 = 256;
@@ -108,7 +97,7 @@ pub fn focus_bench(
         ..GenScene::default()
     };
     let glass = GenMaterial::clear_glass(&format!("Glass IOR {n}"), n, 2.0 * radius);
-    add(
+    add_mesh(
         &mut s,
         "Sphere",
         icosphere(radius, subdivisions),
@@ -118,11 +107,11 @@ pub fn focus_bench(
     let plate = aperture_plate(hole, 3.0 * r, APERTURE_SEGMENTS);
     let black = GenMaterial::diffuse("Plate", Vec3::ZERO);
     let at = Some(Vec3::new(0.0, 0.0, 2.0 * radius));
-    add(&mut s, "Aperture plate", plate, black, at);
+    add_mesh(&mut s, "Aperture plate", plate, black, at);
     let screen = ground_plane(2.5 * radius, 2.5 * radius).transformed(quarter_turn_x(), Vec3::ZERO);
     let white = GenMaterial::diffuse("Screen", Vec3::splat(0.8));
     let at = Some(Vec3::new(0.0, 0.0, -screen_distance));
-    add(&mut s, "Screen", screen, white, at);
+    add_mesh(&mut s, "Screen", screen, white, at);
     s.lights.push(GenLight::Directional {
         name: "Sun".into(),
         direction: Vec3::NEG_Z,

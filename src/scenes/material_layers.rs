@@ -16,11 +16,11 @@
 //! | `diffuse_transmission.glb` | 3 upright double-sided 0.8 m square sheets facing +Z at [`SHEET_CENTRES`], over a grey floor | white 0.8, roughness 1, [`DIFFUSE_TRANSMISSION`] 0, 0.5, 1 with colour [`TRANSMISSION_COLOR`] | behind each sheet a spot (2 cd, cone 0.3/0.42 rad, 0.9 m back) that lights only its sheet; a 1.5 cd point fill at (0, 2.5, 2.5) | eye (0, 1, 4) → (0, 0.5, 0), yfov 35°, 4:3 |
 
 use super::paper::SceneBuilder;
-use super::parts::{camera, push_material};
+use super::parts::{add_mesh, add_panel, camera};
 use crate::error::{Error, Result};
 use crate::model::glb::write_glb;
-use crate::model::scene::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
-use crate::model::shapes::{ground_plane, icosphere, quarter_turn_x, TriMesh};
+use crate::model::scene::{GenCamera, GenLight, GenMaterial, GenScene};
+use crate::model::shapes::{ground_plane, icosphere, quarter_turn_x};
 use crate::model::{GenClearcoat, GenDiffuseTransmission, GenSheen};
 use glam::{Mat3, Quat, Vec3};
 use std::path::{Path, PathBuf};
@@ -113,7 +113,7 @@ pub fn clearcoat() -> GenScene {
         m.layers.clearcoat = Some(GenClearcoat { factor, roughness });
         add_sphere(&mut s, &format!("Sphere {}", i + 1), m, at);
     }
-    add_panel(&mut s, "Key panel", 400.0, (0.15, 0.15), CLEARCOAT_LIGHT);
+    add_facing_panel(&mut s, "Key panel", 400.0, (0.15, 0.15), CLEARCOAT_LIGHT);
     s.camera = Some(sphere_camera());
     s
 }
@@ -130,7 +130,7 @@ pub fn sheen() -> GenScene {
         m.layers.sheen = sheen.map(|(color, roughness)| GenSheen { color, roughness });
         add_sphere(&mut s, &format!("Sphere {}", i + 1), m, at);
     }
-    add_panel(&mut s, "Back panel", 20.0, (2.0, 0.3), SHEEN_BACK_LIGHT);
+    add_facing_panel(&mut s, "Back panel", 20.0, (2.0, 0.3), SHEEN_BACK_LIGHT);
     s.lights.push(GenLight::Point {
         name: "Front fill".into(),
         position: Vec3::new(0.0, 2.0, 4.0),
@@ -153,13 +153,13 @@ pub fn diffuse_transmission() -> GenScene {
             factor,
             color: TRANSMISSION_COLOR,
         });
-        let material = push_material(&mut s, m);
-        s.meshes.push(GenMesh {
-            name: format!("Sheet {}", i + 1),
-            geometry: sheet.clone(),
-            material,
-            translation: Some(at),
-        });
+        add_mesh(
+            &mut s,
+            &format!("Sheet {}", i + 1),
+            sheet.clone(),
+            m,
+            Some(at),
+        );
         s.lights.push(GenLight::Spot {
             name: format!("Back spot {}", i + 1),
             position: at - Vec3::new(0.0, 0.0, 0.9),
@@ -191,40 +191,22 @@ fn scene_with_floor(name: &str) -> GenScene {
         name: name.into(),
         ..GenScene::default()
     };
-    let floor = push_material(&mut s, GenMaterial::diffuse("Floor", Vec3::splat(0.5)));
-    s.meshes.push(GenMesh {
-        name: "Floor".into(),
-        geometry: ground_plane(6.0, 6.0),
-        material: floor,
-        translation: None,
-    });
+    let floor = GenMaterial::diffuse("Floor", Vec3::splat(0.5));
+    add_mesh(&mut s, "Floor", ground_plane(6.0, 6.0), floor, None);
     s
 }
 
 /// Adds a sphere of radius [`SPHERE_RADIUS`] centred at `at` (all spheres share geometry).
 fn add_sphere(s: &mut GenScene, name: &str, m: GenMaterial, at: Vec3) {
-    let material = push_material(s, m);
-    s.meshes.push(GenMesh {
-        name: name.into(),
-        geometry: icosphere(SPHERE_RADIUS, 3),
-        material,
-        translation: Some(at),
-    });
+    add_mesh(s, name, icosphere(SPHERE_RADIUS, 3), m, Some(at));
 }
 
 /// Adds a white emitter of radiance `radiance` and half extents `half`, centred at `at`,
 /// facing the row's centre (0, [`SPHERE_Y`], 0).
-fn add_panel(s: &mut GenScene, name: &str, radiance: f32, half: (f32, f32), at: Vec3) {
+fn add_facing_panel(s: &mut GenScene, name: &str, radiance: f32, half: (f32, f32), at: Vec3) {
     let facing = (Vec3::new(0.0, SPHERE_Y, 0.0) - at).normalize();
     let turn = Mat3::from_quat(Quat::from_rotation_arc(Vec3::Y, facing));
-    let geometry: TriMesh = ground_plane(half.0, half.1).transformed(turn, Vec3::ZERO);
-    let material = push_material(s, GenMaterial::emitter(name, Vec3::splat(radiance)));
-    s.meshes.push(GenMesh {
-        name: name.into(),
-        geometry,
-        material,
-        translation: Some(at),
-    });
+    add_panel(s, name, radiance, half, turn, at);
 }
 
 #[cfg(test)]

@@ -22,10 +22,10 @@
 //! built and documented in [`super::caustic`].
 
 use super::caustic::fig4_5_1_caustics;
-use super::parts::{camera, push_material};
+use super::parts::{add_mesh, camera};
 use crate::error::{Error, Result};
 use crate::model::glb::write_glb;
-use crate::model::scene::{GenLight, GenMaterial, GenMesh, GenScene};
+use crate::model::scene::{GenLight, GenMaterial, GenScene};
 use crate::model::shapes::{checkerboard, ground_plane, icosphere, prism, quarter_turn_x, TriMesh};
 use glam::{Mat3, Vec3};
 use std::path::{Path, PathBuf};
@@ -92,13 +92,9 @@ pub fn fig7_1_spheres() -> GenScene {
     let sphere = icosphere(r, SPHERE_SUBDIVISIONS);
     for (x, ior) in [(-0.8, 1.2), (0.0, 1.4), (0.8, 1.6)] {
         let name = format!("Glass sphere IOR {ior}");
-        let material = push_material(&mut s, GenMaterial::clear_glass(&name, ior, 2.0 * r));
-        s.meshes.push(GenMesh {
-            name,
-            geometry: sphere.clone(),
-            material,
-            translation: Some(Vec3::new(x, r, 0.0)),
-        });
+        let glass = GenMaterial::clear_glass(&name, ior, 2.0 * r);
+        let at = Some(Vec3::new(x, r, 0.0));
+        add_mesh(&mut s, &name, sphere.clone(), glass, at);
     }
     add_lights(
         &mut s,
@@ -130,21 +126,13 @@ pub fn fig7_2_bubble() -> GenScene {
         quarter_turn_x(),
         wall_at,
     );
-    let floor = push_material(&mut s, GenMaterial::diffuse("Floor", Vec3::splat(0.5)));
-    s.meshes.push(GenMesh {
-        name: "Floor".into(),
-        geometry: ground_plane(2.0, 2.0),
-        material: floor,
-        translation: Some(Vec3::new(0.0, 0.0, 1.0)),
-    });
+    let floor = GenMaterial::diffuse("Floor", Vec3::splat(0.5));
+    let floor_at = Some(Vec3::new(0.0, 0.0, 1.0));
+    add_mesh(&mut s, "Floor", ground_plane(2.0, 2.0), floor, floor_at);
     let name = "Air bubble IOR 0.8";
-    let bubble = push_material(&mut s, GenMaterial::clear_glass(name, 0.8, 2.0 * r));
-    s.meshes.push(GenMesh {
-        name: name.into(),
-        geometry: icosphere(r, SPHERE_SUBDIVISIONS),
-        material: bubble,
-        translation: Some(Vec3::new(0.0, 1.0, 0.0)),
-    });
+    let bubble = GenMaterial::clear_glass(name, 0.8, 2.0 * r);
+    let sphere = icosphere(r, SPHERE_SUBDIVISIONS);
+    add_mesh(&mut s, name, sphere, bubble, Some(Vec3::new(0.0, 1.0, 0.0)));
     add_lights(
         &mut s,
         Vec3::new(1.0, 2.5, 2.0),
@@ -193,19 +181,12 @@ pub fn fig4_4_1_prism() -> GenScene {
         Mat3::from_rotation_y(std::f32::consts::FRAC_PI_2) * quarter_turn_x(),
         Vec3::new(-2.0, 1.0, 0.0),
     );
-    let glass = push_material(
-        &mut s,
-        GenMaterial::clear_glass("Prism glass IOR 1.5", 1.5, side),
-    );
+    let glass = GenMaterial::clear_glass("Prism glass IOR 1.5", 1.5, side);
     // The centroid sits h/3 above the base (h = side·√3/2); 1 mm more keeps the base off the
     // floor plane so the two never coincide.
     let lift = f64::from(side) * 3.0f64.sqrt() / 6.0 + 0.001;
-    s.meshes.push(GenMesh {
-        name: "Prism".into(),
-        geometry: prism(side, 1.0),
-        material: glass,
-        translation: Some(Vec3::new(0.0, lift as f32, 0.0)),
-    });
+    let at = Some(Vec3::new(0.0, lift as f32, 0.0));
+    add_mesh(&mut s, "Prism", prism(side, 1.0), glass, at);
     add_lights(
         &mut s,
         Vec3::new(-1.2, 2.6, 1.4),
@@ -237,13 +218,9 @@ pub(super) fn add_checker(
     let [even, odd] = tiles;
     for (geometry, shade, color) in [(even, "light", light), (odd, "dark", dark)] {
         let label = format!("{name} {shade}");
-        let material = push_material(s, GenMaterial::diffuse(&label, color));
-        s.meshes.push(GenMesh {
-            name: label,
-            geometry: geometry.transformed(rotation, Vec3::ZERO),
-            material,
-            translation: Some(offset),
-        });
+        let geometry = geometry.transformed(rotation, Vec3::ZERO);
+        let m = GenMaterial::diffuse(&label, color);
+        add_mesh(s, &label, geometry, m, Some(offset));
     }
 }
 

@@ -1,16 +1,52 @@
 //! Small helpers the generated scenes share (`paper`, `demos`, `caustic`,
-//! `spectral`, `focus_bench`, `rainbow`): a material slot and a look-at camera. They
+//! `spectral`, `focus_bench`, `rainbow`, `material_layers`): a material slot, a mesh with
+//! its own material, an emitting panel and a look-at camera. They
 //! live here, below every scene module, so that no scene module imports another's helpers
 //! (which made `paper` ↔ `caustic` ↔ `spectral` an import cycle). Units:
 //! metres; frames: world space, +Y up.
 
-use crate::model::scene::{GenCamera, GenMaterial, GenScene};
-use glam::Vec3;
+use crate::model::scene::{GenCamera, GenMaterial, GenMesh, GenScene};
+use crate::model::shapes::{ground_plane, TriMesh};
+use glam::{Mat3, Vec3};
 
 /// Appends `m` to the scene's materials and returns its index.
 pub(super) fn push_material(s: &mut GenScene, m: GenMaterial) -> usize {
     s.materials.push(m);
     s.materials.len() - 1
+}
+
+/// Adds a mesh `name` of `geometry` with its own material `m`, translated by `at` (`None`:
+/// the geometry is in world space).
+pub(super) fn add_mesh(
+    s: &mut GenScene,
+    name: &str,
+    geometry: TriMesh,
+    m: GenMaterial,
+    at: Option<Vec3>,
+) {
+    let material = push_material(s, m);
+    s.meshes.push(GenMesh {
+        name: name.into(),
+        geometry,
+        material,
+        translation: at,
+    });
+}
+
+/// Adds a white emitter `name` of radiance `radiance`, a rectangle of half extents `half`
+/// (x, z before `rotation`) centred at `at`, emitting from the face that `rotation` turns +Y
+/// into.
+pub(super) fn add_panel(
+    s: &mut GenScene,
+    name: &str,
+    radiance: f32,
+    half: (f32, f32),
+    rotation: Mat3,
+    at: Vec3,
+) {
+    let geometry = ground_plane(half.0, half.1).transformed(rotation, Vec3::ZERO);
+    let m = GenMaterial::emitter(name, Vec3::splat(radiance));
+    add_mesh(s, name, geometry, m, Some(at));
 }
 
 /// A camera named "Camera" at `eye` looking at `target`, +Y up, with a vertical field of

@@ -51,9 +51,9 @@
 //! the scene's bounding disc, ≈ 4 m², and ≈ 3·10⁻⁵ of them would pass). Its rays diverge
 //! by at most the slit's size over 4 m (< 0.6 mrad, less than the real sun's 9 mrad).
 
-use super::parts::{camera, push_material};
+use super::parts::{add_mesh, camera};
 use super::spectral::{upright_prism, BeamLayout, N_D_BK7};
-use crate::model::scene::{GenLight, GenMaterial, GenMesh, GenScene};
+use crate::model::scene::{GenLight, GenMaterial, GenScene};
 use crate::model::shapes::TriMesh;
 use glam::{DVec3, Vec3};
 
@@ -169,17 +169,6 @@ fn rect(mesh: &mut TriMesh, c: DVec3, a: DVec3, b: DVec3) {
     mesh.indices.push([base, base + 2, base + 3]);
 }
 
-/// Adds a world-space mesh with its own material.
-fn add(s: &mut GenScene, name: &str, geometry: TriMesh, m: GenMaterial) {
-    let material = push_material(s, m);
-    s.meshes.push(GenMesh {
-        name: name.into(),
-        geometry,
-        material,
-        translation: None,
-    });
-}
-
 /// Fig. 5.3.1 as a caustic: a horizontal sun through a slit and an N-BK7 prism throws a
 /// rainbow on a white screen 1.2 m away.
 pub fn fig5_3_1_rainbow() -> GenScene {
@@ -191,17 +180,13 @@ pub fn fig5_3_1_rainbow() -> GenScene {
     let mut floor = TriMesh::default();
     let (fc, fx, fz) = (DVec3::new(0.475, 0.0, -0.45), 0.875, 0.7);
     rect(&mut floor, fc, fz * DVec3::Z, fx * DVec3::X);
-    add(
-        &mut s,
-        "Floor",
-        floor,
-        GenMaterial::diffuse("Floor", Vec3::splat(0.8)),
-    );
+    let floor_material = GenMaterial::diffuse("Floor", Vec3::splat(0.8));
+    add_mesh(&mut s, "Floor", floor, floor_material, None);
 
     let mut glass = GenMaterial::clear_glass("Prism N-BK7", N_D_BK7 as f32, 0.1);
     glass.extras = Some(serde_json::json!({"iris_glass": "N-BK7"}));
     let prism = upright_prism(PRISM_SIDE, RAINBOW_Y - 0.05, 0.1);
-    add(&mut s, "Prism", prism, glass);
+    add_mesh(&mut s, "Prism", prism, glass, None);
 
     // Baffle facing the sun (Y × u = −dir_in with u = Y × dir_in), made of four strips
     // around the slit: u from −0.2 to 1.05 m, y from 0 to 0.4 m.
@@ -226,14 +211,14 @@ pub fn fig5_3_1_rainbow() -> GenScene {
         );
     }
     let black = GenMaterial::diffuse("Baffle", Vec3::splat(0.02));
-    add(&mut s, "Slit baffle", baffle, black);
+    add_mesh(&mut s, "Slit baffle", baffle, black, None);
 
     // Screen facing −dir_out: Y × (Y × dir_out) = −dir_out (dir_out is horizontal).
     let mut screen = TriMesh::default();
     let c = DVec3::new(l.screen_centre.x, 0.125, l.screen_centre.z);
     rect(&mut screen, c, 0.125 * DVec3::Y, 0.2 * l.dispersion);
     let white = GenMaterial::diffuse("Screen", Vec3::splat(0.85));
-    add(&mut s, "Screen", screen, white);
+    add_mesh(&mut s, "Screen", screen, white, None);
 
     s.lights.push(GenLight::Spot {
         name: "Sun".into(),

@@ -6,7 +6,7 @@
 use super::*;
 use crate::bsdf::anisotropic::{GgxAniso, Microfacet};
 use crate::bsdf::film::{rgb_reference, Iridescence};
-use crate::bsdf::microfacet::Ggx;
+use crate::bsdf::microfacet::{Distribution, Ggx};
 use crate::bsdf::thin_film::{airy, reflectance};
 use crate::optics::{fresnel_conductor, fresnel_dielectric};
 use crate::spectrum::SampledSpectrum;
@@ -163,15 +163,9 @@ fn spectral_lanes_are_exact() {
 }
 
 fn iridescent(metallic: f32, thickness: f32) -> Bsdf {
-    Bsdf::GltfPbr {
-        base: Vec3::new(0.8, 0.5, 0.2),
+    gltf_with(
         metallic,
-        alpha: 0.3 * 0.3,
-        ior: 1.5,
-        specular: 1.0,
-        specular_color: Vec3::ONE,
-        layers: crate::bsdf::Layers::none(),
-        film: FilmLobe {
+        FilmLobe {
             iridescence: Some(Iridescence {
                 factor: 1.0,
                 ior: 1.3,
@@ -180,7 +174,7 @@ fn iridescent(metallic: f32, thickness: f32) -> Bsdf {
             }),
             anisotropy: 0.0,
         },
-    }
+    )
 }
 
 fn brushed(metallic: f32, alpha: f32, strength: f32) -> Bsdf {

@@ -304,6 +304,22 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
+/// Loads the environment file at `path` through `--env`'s parser; it must be a W×H map.
+fn load_map(path: &Path) -> Environment {
+    let env = Environment::parse_arg(path.to_str().unwrap())
+        .unwrap()
+        .unwrap();
+    assert_eq!((map_of(&env).width(), map_of(&env).height()), (W, H));
+    env
+}
+
+fn map_of(env: &Environment) -> &EnvMap {
+    let Environment::Map(m) = env else {
+        panic!("expected a map");
+    };
+    m
+}
+
 #[test]
 fn load_exr_round_trip_and_clamp() {
     let dir = scratch("exr");
@@ -313,13 +329,8 @@ fn load_exr_round_trip_and_clamp() {
     img.data[5] = Vec3::new(-1.0, 1.0, 1.0);
     img.data[7] = Vec3::new(f32::INFINITY, 0.0, 0.0);
     write_image(&path, &img, &DisplayOptions::default()).unwrap();
-    let env = Environment::parse_arg(path.to_str().unwrap())
-        .unwrap()
-        .unwrap();
-    let Environment::Map(m) = &env else {
-        panic!("expected a map");
-    };
-    assert_eq!((m.width(), m.height()), (W, H));
+    let env = load_map(&path);
+    let m = map_of(&env);
     assert_eq!(m.texel(SUN_X, SUN_Y), SUN);
     assert_eq!(m.texel(3, 0), Vec3::new(0.0, 1.0, 1.0));
     assert_eq!(m.texel(5, 0), Vec3::new(0.0, 1.0, 1.0));
@@ -357,13 +368,8 @@ fn load_hdr() {
     HdrEncoder::new(std::io::BufWriter::new(file))
         .encode(&px, W as usize, H as usize)
         .unwrap();
-    let env = Environment::parse_arg(path.to_str().unwrap())
-        .unwrap()
-        .unwrap();
-    let Environment::Map(m) = &env else {
-        panic!("expected a map");
-    };
-    assert_eq!((m.width(), m.height()), (W, H));
+    let env = load_map(&path);
+    let m = map_of(&env);
     // RGBE keeps ~1 % precision.
     let got = m.texel(SUN_X, SUN_Y);
     assert!(((got - SUN) / SUN).abs().max_element() < 0.01, "{got}");

@@ -174,19 +174,17 @@ fn finish(
             } else {
                 ("cauchy_c", "cauchy_b")
             };
-            return Err(LoadError::new(
+            return Err(material_error(
                 path,
-                format!("material \"{}\" (line {})", mtl.name, mtl.line),
-                LoadErrorKind::InvalidValue,
+                (&mtl.name, mtl.line),
                 format!("`{have}` given without `{missing}` (the Cauchy model needs both)"),
             ));
         }
     };
     if mtl.glass.is_some() && mtl.cauchy.is_some() {
-        return Err(LoadError::new(
+        return Err(material_error(
             path,
-            format!("material \"{}\" (line {})", mtl.name, mtl.line),
-            LoadErrorKind::InvalidValue,
+            (&mtl.name, mtl.line),
             "both `iris_glass` and `cauchy_b`/`cauchy_c` given; keep one IOR model",
         ));
     }
@@ -204,6 +202,20 @@ fn perr(path: &Path, line: usize, detail: String) -> LoadError {
     LoadError::new(path, format!("line {line}"), LoadErrorKind::Parse, detail)
 }
 
+/// An invalid value in material `name` defined at `line` of the MTL file `path`.
+fn material_error(
+    path: &Path,
+    (name, line): (&str, usize),
+    problem: impl Into<String>,
+) -> LoadError {
+    LoadError::new(
+        path,
+        format!("material \"{name}\" (line {line})"),
+        LoadErrorKind::InvalidValue,
+        problem,
+    )
+}
+
 /// Where a statement is, for error messages.
 struct Ctx<'a> {
     path: &'a Path,
@@ -212,6 +224,11 @@ struct Ctx<'a> {
 }
 
 impl Ctx<'_> {
+    /// An invalid value in `material`, at this statement's line.
+    fn material_error(&self, material: &str, problem: impl Into<String>) -> LoadError {
+        material_error(self.path, (material, self.line), problem)
+    }
+
     fn number(&self, word: &str) -> Result<f32, LoadError> {
         word.parse::<f32>().map_err(|_| {
             perr(
@@ -294,10 +311,8 @@ impl Ctx<'_> {
             _ => None,
         }
         .ok_or_else(|| {
-            LoadError::new(
-                self.path,
-                format!("material \"{material}\" (line {})", self.line),
-                LoadErrorKind::InvalidValue,
+            self.material_error(
+                material,
                 format!(
                     "`{}` expects one number, found `{}`",
                     self.key,
@@ -325,12 +340,7 @@ impl Ctx<'_> {
                 Err(e) => format!("`{}`: {e}", self.key),
             }
         };
-        Err(LoadError::new(
-            self.path,
-            format!("material \"{material}\" (line {})", self.line),
-            LoadErrorKind::InvalidValue,
-            problem,
-        ))
+        Err(self.material_error(material, problem))
     }
 }
 
@@ -342,10 +352,8 @@ impl Ctx<'_> {
             _ => None,
         }
         .ok_or_else(|| {
-            LoadError::new(
-                self.path,
-                format!("material \"{material}\" (line {})", self.line),
-                LoadErrorKind::InvalidValue,
+            self.material_error(
+                material,
                 format!(
                     "`{}` takes one integer in ±1000000, found `{}`",
                     self.key,
@@ -357,14 +365,8 @@ impl Ctx<'_> {
 
     /// An `iris_spectrum` value; a bad one names the material and this line.
     fn spectrum(&self, material: &str, args: &[&str]) -> Result<EmissionSpectrum, LoadError> {
-        EmissionSpectrum::parse_words(args).map_err(|e| {
-            LoadError::new(
-                self.path,
-                format!("material \"{material}\" (line {})", self.line),
-                LoadErrorKind::InvalidValue,
-                format!("`{}`: {e}", self.key),
-            )
-        })
+        EmissionSpectrum::parse_words(args)
+            .map_err(|e| self.material_error(material, format!("`{}`: {e}", self.key)))
     }
 }
 

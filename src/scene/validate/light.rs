@@ -156,6 +156,18 @@ mod tests {
         }
     }
 
+    /// A white point light "bulb" at `position`.
+    fn bulb(position: Vec3, intensity: f32, range: Option<f32>) -> LightDesc {
+        LightDesc::Point {
+            name: "light 0 \"bulb\"".into(),
+            position,
+            color: Vec3::ONE,
+            intensity,
+            range,
+            spectrum: None,
+        }
+    }
+
     #[test]
     fn lights_are_checked_and_normalised() {
         let mut d = scene();
@@ -175,30 +187,9 @@ mod tests {
                 intensity: 1.0,
                 spectrum: None,
             },
-            LightDesc::Point {
-                name: "light 0 \"bulb\"".into(),
-                position: Vec3::new(f32::NAN, 0.0, 0.0),
-                color: Vec3::ONE,
-                intensity: 1.0,
-                range: None,
-                spectrum: None,
-            },
-            LightDesc::Point {
-                name: "light 0 \"bulb\"".into(),
-                position: Vec3::ZERO,
-                color: Vec3::ONE,
-                intensity: -1.0,
-                range: None,
-                spectrum: None,
-            },
-            LightDesc::Point {
-                name: "light 0 \"bulb\"".into(),
-                position: Vec3::ZERO,
-                color: Vec3::ONE,
-                intensity: 1.0,
-                range: Some(0.0),
-                spectrum: None,
-            },
+            bulb(Vec3::new(f32::NAN, 0.0, 0.0), 1.0, None),
+            bulb(Vec3::ZERO, -1.0, None),
+            bulb(Vec3::ZERO, 1.0, Some(0.0)),
         ];
         for light in bad {
             let mut d = scene();
