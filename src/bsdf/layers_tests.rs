@@ -36,7 +36,7 @@ fn material(base: f32, metallic: f32, roughness: f32, specular: f32, layers: Lay
         specular,
         specular_color: Vec3::ONE,
         layers,
-        film: crate::bsdf::FilmLobe::NONE,
+        extensions: crate::bsdf::LobeExtensions::NONE,
     }
 }
 

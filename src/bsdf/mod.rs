@@ -15,7 +15,8 @@ mod dielectric;
 mod energy;
 #[cfg(test)]
 mod energy_tests;
-pub mod film;
+pub mod interference;
+pub mod iridescence;
 mod layers;
 #[cfg(test)]
 mod layers_tests;
@@ -24,12 +25,11 @@ mod pbr;
 pub mod sheen;
 #[cfg(test)]
 mod tests;
-pub mod thin_film;
 
 use crate::spectrum::Carrier;
 use anisotropic::Microfacet;
-pub use film::{FilmLobe, Iridescence};
 use glam::{Vec2, Vec3};
+pub use iridescence::{Iridescence, LobeExtensions};
 pub use layers::{coat_fresnel, Layers};
 use pbr::ConductorFresnel;
 
@@ -127,8 +127,8 @@ pub enum Bsdf<C = Vec3> {
         k: C,
         /// GGX α.
         alpha: f32,
-        /// KHR_materials_iridescence / KHR_materials_anisotropy ([`film`]).
-        film: FilmLobe,
+        /// KHR_materials_iridescence / KHR_materials_anisotropy ([`iridescence`]).
+        extensions: LobeExtensions,
     },
     /// Smooth (alpha < 1e-3 ⇒ delta lobes) or rough GGX dielectric (Walter 2007, with
     /// Turquin 2019 multiple-scattering compensation: energy-conserving, not reciprocal), with
@@ -170,8 +170,8 @@ pub enum Bsdf<C = Vec3> {
         specular_color: C,
         /// KHR_materials_clearcoat, _sheen and _diffuse_transmission ([`layers`]).
         layers: Layers<C>,
-        /// KHR_materials_iridescence / KHR_materials_anisotropy ([`film`]).
-        film: FilmLobe,
+        /// KHR_materials_iridescence / KHR_materials_anisotropy ([`iridescence`]).
+        extensions: LobeExtensions,
     },
 }
 
@@ -194,11 +194,11 @@ impl<C: Carrier> Bsdf<C> {
                 eta,
                 k,
                 alpha,
-                film,
+                extensions,
             } => (
-                ConductorFresnel::Complex { eta, k, film },
+                ConductorFresnel::Complex { eta, k, extensions },
                 alpha,
-                film.anisotropy,
+                extensions.anisotropy,
             ),
             _ => return None,
         };
@@ -226,9 +226,9 @@ impl<C: Carrier> Bsdf<C> {
             Bsdf::Lambert { .. } | Bsdf::GltfPbr { .. } => false,
             Bsdf::Conductor { alpha, .. } => alpha < SMOOTH_ALPHA,
             // Anisotropy widens the lobe along x (α_x = mix(α, 1, s²)): never a delta.
-            Bsdf::ComplexConductor { alpha, film, .. } => {
-                alpha < SMOOTH_ALPHA && film.anisotropy <= 0.0
-            }
+            Bsdf::ComplexConductor {
+                alpha, extensions, ..
+            } => alpha < SMOOTH_ALPHA && extensions.anisotropy <= 0.0,
             Bsdf::Dielectric { eta, alpha, .. } => alpha < SMOOTH_ALPHA || eta == 1.0,
             Bsdf::ThinDielectric { .. } => true,
         }

@@ -7,7 +7,7 @@
 //! are per unit solid angle.
 
 use super::anisotropic::Microfacet;
-use super::film::{ior_from_f0, FilmLobe};
+use super::iridescence::{ior_from_f0, LobeExtensions};
 use super::microfacet::Distribution;
 use super::{reflect_z, same_hemisphere, Bsdf, BsdfSample};
 use crate::optics::{fresnel_conductor_c, fresnel_schlick, reflect};
@@ -107,7 +107,11 @@ pub(crate) enum ConductorFresnel<C: Carrier> {
     Schlick(C),
     /// The exact reflectance of the complex index η + ik of a measured metal, mixed with a
     /// thin film's on that metal when the material is iridescent.
-    Complex { eta: C, k: C, film: FilmLobe },
+    Complex {
+        eta: C,
+        k: C,
+        extensions: LobeExtensions,
+    },
 }
 
 impl<C: Carrier> ConductorFresnel<C> {
@@ -116,9 +120,9 @@ impl<C: Carrier> ConductorFresnel<C> {
     fn at(&self, cos: f32) -> C {
         match *self {
             ConductorFresnel::Schlick(f0) => fresnel_schlick(f0, cos),
-            ConductorFresnel::Complex { eta, k, film } => {
+            ConductorFresnel::Complex { eta, k, extensions } => {
                 let plain = fresnel_conductor_c(cos, eta, k);
-                match film.iridescence {
+                match extensions.iridescence {
                     Some(ir) => ir.mix(plain, cos, eta, k),
                     None => plain,
                 }
@@ -176,8 +180,8 @@ pub(crate) struct Gltf<C: Carrier> {
     pub f0: C,
     /// Dielectric F90 = specular.
     pub f90: f32,
-    /// Iridescence and anisotropy ([`super::film`]).
-    pub film: FilmLobe,
+    /// Iridescence and anisotropy ([`super::iridescence`]).
+    pub extensions: LobeExtensions,
 }
 
 impl<C: Carrier> Gltf<C> {
@@ -190,7 +194,7 @@ impl<C: Carrier> Gltf<C> {
             ior,
             specular,
             specular_color,
-            film,
+            extensions,
             ..
         } = *bsdf
         else {
@@ -204,24 +208,24 @@ impl<C: Carrier> Gltf<C> {
         Some(Gltf {
             base,
             metallic: metallic.clamp(0.0, 1.0),
-            ggx: Microfacet::khr(alpha.max(GLTF_MIN_ALPHA), film.anisotropy),
+            ggx: Microfacet::khr(alpha.max(GLTF_MIN_ALPHA), extensions.anisotropy),
             f0: (specular_color * f0_ior).min(C::ONE) * specular,
             f90: specular,
-            film,
+            extensions,
         })
     }
 
     /// Schlick with f90 (KHR_materials_specular): F0 + (F90 − F0)(1 − cos)^5.
     #[inline]
     /// With KHR_materials_iridescence: mixed with the film's reflectance on a substrate of
-    /// index from F0/specular, times `specular` ([`super::film`]).
+    /// index from F0/specular, times `specular` ([`super::iridescence`]).
     pub(super) fn fresnel_d(&self, cos: f32) -> C {
         let plain = self.f0 + (C::splat(self.f90) - self.f0) * (1.0 - cos.clamp(0.0, 1.0)).powi(5);
-        match self.film.iridescence {
-            Some(film) if self.f90 > 0.0 => {
+        match self.extensions.iridescence {
+            Some(layer) if self.f90 > 0.0 => {
                 let eta = ior_from_f0(self.f0 / self.f90);
-                let r = film.reflectance(cos, eta, C::ZERO) * self.f90;
-                plain.lerp(r, film.factor)
+                let r = layer.reflectance(cos, eta, C::ZERO) * self.f90;
+                plain.lerp(r, layer.factor)
             }
             _ => plain,
         }
@@ -231,9 +235,9 @@ impl<C: Carrier> Gltf<C> {
     /// reflectance on a substrate of index from the base colour (KHR_materials_iridescence).
     fn fresnel_m(&self, cos: f32) -> C {
         let plain = fresnel_schlick(self.base, cos);
-        match self.film.iridescence {
-            Some(film) if self.metallic > 0.0 => {
-                film.mix(plain, cos, ior_from_f0(self.base), C::ZERO)
+        match self.extensions.iridescence {
+            Some(layer) if self.metallic > 0.0 => {
+                layer.mix(plain, cos, ior_from_f0(self.base), C::ZERO)
             }
             _ => plain,
         }

@@ -42,8 +42,8 @@ use hv_bins::{Bins, Lobe, Node};
 use std::f64::consts::PI;
 
 pub(super) mod chi2;
-mod film;
 mod hv_bins;
+mod iridescence;
 
 const R: TransportMode = TransportMode::Radiance;
 const I: TransportMode = TransportMode::Importance;
@@ -138,11 +138,11 @@ fn wo_at(deg: f64, inside: bool) -> Vec3 {
 }
 
 fn gltf(metallic: f32) -> Bsdf {
-    gltf_with(metallic, FilmLobe::NONE)
+    gltf_with(metallic, LobeExtensions::NONE)
 }
 
-/// The test glTF material (orange, roughness 0.3, ior 1.5, no layers) with `film`.
-fn gltf_with(metallic: f32, film: FilmLobe) -> Bsdf {
+/// The test glTF material (orange, roughness 0.3, ior 1.5, no layers) with `extensions`.
+fn gltf_with(metallic: f32, extensions: LobeExtensions) -> Bsdf {
     Bsdf::GltfPbr {
         base: Vec3::new(0.8, 0.5, 0.2),
         metallic,
@@ -151,7 +151,7 @@ fn gltf_with(metallic: f32, film: FilmLobe) -> Bsdf {
         specular: 1.0,
         specular_color: Vec3::ONE,
         layers: Layers::none(),
-        film,
+        extensions,
     }
 }
 
@@ -322,7 +322,7 @@ fn albedo_sampling_matches_quadrature() {
         eta: Vec3::new(0.18, 0.45, 1.4),
         k: Vec3::new(3.0, 2.4, 1.85),
         alpha: 0.3,
-        film: FilmLobe::NONE,
+        extensions: LobeExtensions::NONE,
     };
     for deg in [20.0, 70.0] {
         let (mc, q) = albedos(&gold, wo_at(deg, false), R, 11);

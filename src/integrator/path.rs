@@ -18,7 +18,6 @@
 use super::Context;
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::interaction::SurfaceHit;
-use crate::light::LightId;
 use crate::math::{Frame, Ray};
 use crate::medium::MediumStack;
 use crate::sampler::Bounce;
@@ -62,7 +61,8 @@ fn next_event<C: Carrier>(
     let Some(ls) = lights::sample(scene, hit, choice.light, uc, up) else {
         return C::ZERO;
     };
-    // The light's pdf includes choosing its group.
+    // The light's pdf includes choosing it ([`lights::area_pdf`] and
+    // [`lights::environment_pdf`] give the same for a BSDF-sampled direction).
     let light_pdf = ls.pdf.map(|p| p * p_sel);
     let wi_local = s.frame.to_local(ls.wi);
     // Per lane with the hero-marginal pdf at a rough dispersive interface (spectral MIS).
@@ -188,12 +188,11 @@ fn escaped<C: Carrier>(
     lambda: &C::Lambda,
 ) -> Option<C> {
     let env = scene.environment()?;
-    let p_sel = scene.light_sampler().pmf(LightId::Environment);
     let d = ray.dir.normalize();
     let w = if prev.delta {
         1.0
     } else {
-        mis(prev.pdf, p_sel * env.pdf(d))
+        mis(prev.pdf, lights::environment_pdf(scene, d))
     };
     Some(beta * C::illuminant(env.eval(d), lambda) * w)
 }
@@ -215,9 +214,7 @@ fn emitted<C: Carrier>(
     let w = if prev.delta {
         1.0
     } else {
-        let lp = scene.light_sampler().pmf(LightId::Area)
-            * scene.area_lights().pdf(hit.prim, prev.p, hit.p);
-        mis(prev.pdf, lp)
+        mis(prev.pdf, lights::area_pdf(scene, hit.prim, prev.p, hit.p))
     };
     Some(beta * C::emitted(at.sp.emissive, mat.emitter_shape(), lambda) * w)
 }

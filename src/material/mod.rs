@@ -33,7 +33,7 @@ pub use iridescence::{IridescenceDesc, IridescencePoint};
 pub use layers::{LayerDesc, LayerPoint};
 pub use texture::{Encoding, ImageDesc, TexCoords, TextureContext, TextureRef};
 
-use crate::bsdf::{Bsdf, FilmLobe};
+use crate::bsdf::{Bsdf, LobeExtensions};
 use crate::spectrum::{self, effective_color, Carrier, EmitterShape, Metal};
 use glam::Vec3;
 
@@ -258,7 +258,7 @@ impl Material {
                 eta,
                 k,
                 alpha: sp.roughness * sp.roughness,
-                film: sp.lobe::<C>(l),
+                extensions: sp.lobe::<C>(l),
             };
         }
         Bsdf::GltfPbr {
@@ -268,7 +268,7 @@ impl Material {
             ior: self.ior(),
             specular: sp.specular,
             specular_color: C::reflectance(sp.specular_color, l),
-            film: sp.lobe::<C>(l),
+            extensions: sp.lobe::<C>(l),
             layers: sp.layers.lobes::<C>(l),
         }
     }
@@ -277,8 +277,8 @@ impl Material {
 impl ShadingPoint {
     /// What iridescence and anisotropy add to the reflection lobe at the path's
     /// wavelengths `l`.
-    pub fn lobe<C: Carrier>(&self, l: &C::Lambda) -> FilmLobe {
-        FilmLobe {
+    pub fn lobe<C: Carrier>(&self, l: &C::Lambda) -> LobeExtensions {
+        LobeExtensions {
             iridescence: self.iridescence.map(|i| i.lobe::<C>(l)),
             anisotropy: self.anisotropy.strength,
         }

@@ -3,7 +3,7 @@
 //! reason naming its evidence (material and mesh names, counts).
 //!
 //! Stages, in print order:
-//! - **transport**: spectral (4 wavelengths, CIE film) or RGB — [`SpectralMode::resolve`]
+//! - **transport**: spectral (4 wavelengths, CIE colour) or RGB — [`SpectralMode::resolve`]
 //!   (dispersive materials, measured metals, named emission spectra).
 //! - **photons**: a photon pass (SPPM / photon map / the hybrid's caustic map) or not —
 //!   [`resolve_method`], whose `auto` choice among path, hybrid and SPPM rests on

@@ -119,7 +119,7 @@ mod tests {
 
     #[test]
     fn rotation_turns_the_frame_about_the_normal() {
-        let film = |rotation: f32| {
+        let aniso = |rotation: f32| {
             let desc = crate::material::AnisotropyDesc {
                 strength: 0.5,
                 rotation,
@@ -132,23 +132,28 @@ mod tests {
         };
         let n = Vec3::Y;
         // Tangent +X, bitangent sign +1: B = n × T = −Z.
-        let f0 = anisotropy_frame(n, Vec3::X, 1.0, film(0.0).direction).unwrap();
+        let f0 = anisotropy_frame(n, Vec3::X, 1.0, aniso(0.0).direction).unwrap();
         assert!((f0.s - Vec3::X).length() < 1e-6);
-        let f1 =
-            anisotropy_frame(n, Vec3::X, 1.0, film(std::f32::consts::FRAC_PI_2).direction).unwrap();
+        let f1 = anisotropy_frame(
+            n,
+            Vec3::X,
+            1.0,
+            aniso(std::f32::consts::FRAC_PI_2).direction,
+        )
+        .unwrap();
         assert!((f1.s - Vec3::NEG_Z).length() < 1e-6, "{:?}", f1.s);
         // The bitangent sign mirrors it; the frame stays right-handed with z = n.
         let f2 = anisotropy_frame(
             n,
             Vec3::X,
             -1.0,
-            film(std::f32::consts::FRAC_PI_2).direction,
+            aniso(std::f32::consts::FRAC_PI_2).direction,
         )
         .unwrap();
         assert!((f2.s - Vec3::Z).length() < 1e-6);
         for f in [f0, f1, f2] {
             assert!((f.s.cross(f.t) - f.n).length() < 1e-6);
         }
-        assert_eq!(film(0.0).strength, 0.5);
+        assert_eq!(aniso(0.0).strength, 0.5);
     }
 }

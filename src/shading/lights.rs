@@ -52,6 +52,23 @@ pub fn sample<'a>(
     }
 }
 
+/// The solid-angle density with which next-event estimation ([`sample`] of the light the
+/// scene's light sampler picks) reaches the point `q` of emissive triangle `prim` from `p`:
+/// the sampler's probability of the emissive group times the group's density. The MIS
+/// weight of a BSDF-sampled hit on an emitter uses it; 0 if `prim` does not emit.
+pub fn area_pdf(scene: &Scene, prim: u32, p: Vec3, q: Vec3) -> f32 {
+    scene.light_sampler().pmf(LightId::Area) * scene.area_lights().pdf(prim, p, q)
+}
+
+/// As [`area_pdf`], for the environment seen along the unit direction `dir`; 0 without an
+/// environment.
+pub fn environment_pdf(scene: &Scene, dir: Vec3) -> f32 {
+    match scene.environment() {
+        Some(env) => scene.light_sampler().pmf(LightId::Environment) * env.pdf(dir),
+        None => 0.0,
+    }
+}
+
 /// Punctual light `k`.
 pub fn punctual<'a>(scene: &'a Scene, hit: &SurfaceHit, k: usize) -> Option<LightSample<'a>> {
     let light = &scene.lights()[k];

@@ -10,7 +10,7 @@ mod common;
 #[allow(dead_code)]
 #[path = "load_gltf/fixtures.rs"]
 mod fixtures;
-#[path = "film_materials/loader.rs"]
+#[path = "iridescence_anisotropy/loader.rs"]
 mod loader;
 
 use glam::{Vec2, Vec3};

@@ -5,9 +5,9 @@
 
 use super::*;
 use crate::bsdf::anisotropic::{GgxAniso, Microfacet};
-use crate::bsdf::film::{rgb_reference, Iridescence};
+use crate::bsdf::interference::{airy, reflectance};
+use crate::bsdf::iridescence::{rgb_reference, Iridescence};
 use crate::bsdf::microfacet::{Distribution, Ggx};
-use crate::bsdf::thin_film::{airy, reflectance};
 use crate::optics::{fresnel_conductor, fresnel_dielectric};
 use crate::spectrum::SampledSpectrum;
 
@@ -118,18 +118,18 @@ fn bounded_thin_limit_and_energy() {
 /// reconstruction of a fringe of period p = λ²/(2 n d cos θ) at 12.5 nm spacing errs by
 /// ≈ A (π·12.5/p)²/2 for an amplitude A ≈ 0.05, i.e. ≤ 0.005 for d ≤ 600 nm.
 #[test]
-fn rgb_film_matches_spectral_integral() {
+fn rgb_iridescence_matches_spectral_integral() {
     for d in [100.0f32, 250.0, 400.0, 600.0] {
         for deg in [0.0f32, 45.0, 75.0] {
             for (eta, k) in [(1.5f32, 0.0f32), (0.2, 3.0)] {
                 let c = deg.to_radians().cos();
-                let film = Iridescence {
+                let layer = Iridescence {
                     factor: 1.0,
                     ior: 1.3,
                     thickness: d,
                     lanes: None,
                 };
-                let rgb = film.reflectance::<Vec3>(c, Vec3::splat(eta), Vec3::splat(k));
+                let rgb = layer.reflectance::<Vec3>(c, Vec3::splat(eta), Vec3::splat(k));
                 let want = rgb_reference(|nm| reflectance(c, 1.3, d, eta, k, nm));
                 let err = (rgb - Vec3::from(want)).abs().max_element();
                 assert!(err < 0.01, "d {d} {deg}° η {eta}: rgb {rgb} vs {want:?}");
@@ -147,13 +147,13 @@ fn rgb_film_matches_spectral_integral() {
 #[test]
 fn spectral_lanes_are_exact() {
     let lanes = [420.0, 510.0, 600.0, 690.0];
-    let film = Iridescence {
+    let layer = Iridescence {
         factor: 1.0,
         ior: 1.3,
         thickness: 300.0,
         lanes: Some(lanes),
     };
-    let r = film
+    let r = layer
         .reflectance::<SampledSpectrum>(0.8, SampledSpectrum::splat(1.5), SampledSpectrum::ZERO)
         .to_lanes();
     for i in 0..4 {
@@ -165,7 +165,7 @@ fn spectral_lanes_are_exact() {
 fn iridescent(metallic: f32, thickness: f32) -> Bsdf {
     gltf_with(
         metallic,
-        FilmLobe {
+        LobeExtensions {
             iridescence: Some(Iridescence {
                 factor: 1.0,
                 ior: 1.3,
@@ -186,7 +186,7 @@ fn brushed(metallic: f32, alpha: f32, strength: f32) -> Bsdf {
         specular: 1.0,
         specular_color: Vec3::ONE,
         layers: crate::bsdf::Layers::none(),
-        film: FilmLobe {
+        extensions: LobeExtensions {
             iridescence: None,
             anisotropy: strength,
         },
@@ -198,7 +198,7 @@ fn brushed_gold(strength: f32) -> Bsdf {
         eta: Vec3::new(0.18, 0.45, 1.4),
         k: Vec3::new(3.0, 2.4, 1.85),
         alpha: 0.05,
-        film: FilmLobe {
+        extensions: LobeExtensions {
             iridescence: Some(Iridescence {
                 factor: 0.5,
                 ior: 1.4,
@@ -210,7 +210,7 @@ fn brushed_gold(strength: f32) -> Bsdf {
     }
 }
 
-fn film_cases() -> Vec<(Bsdf, Vec3)> {
+fn iridescent_cases() -> Vec<(Bsdf, Vec3)> {
     let mut v = Vec::new();
     for (m, d) in [(0.0, 400.0), (1.0, 250.0), (0.5, 600.0)] {
         for deg in [15.0, 70.0] {
@@ -230,14 +230,14 @@ fn film_cases() -> Vec<(Bsdf, Vec3)> {
 
 /// χ² of sample() vs pdf() for the iridescent and anisotropic lobes (Šidák-corrected 0.01).
 #[test]
-fn film_chi_square() {
-    let cs = film_cases();
+fn iridescence_chi_square() {
+    let cs = iridescent_cases();
     let alpha = 1.0 - (1.0f64 - 0.01).powf(1.0 / cs.len() as f64);
     for (k, (b, wo)) in cs.iter().enumerate() {
         let (obs, exp, total) = histograms(b, *wo, R, 500 + k as u64);
         assert!(total < 1.01, "{b:?} ∫pdf = {total}");
         let p = chi2_pvalue(&obs, &exp);
-        eprintln!("film chi2 {b:?} wo {wo}: p = {p:.4}, ∫pdf = {total:.4}");
+        eprintln!("iridescence chi2 {b:?} wo {wo}: p = {p:.4}, ∫pdf = {total:.4}");
         assert!(p > alpha, "{b:?} wo {wo}: χ² p = {p} < {alpha}");
     }
 }
@@ -246,8 +246,8 @@ fn film_chi_square() {
 /// furnace: Schlick F = 1) at every strength, and the strength-0 BSDF is the isotropic one,
 /// bit for bit.
 #[test]
-fn film_albedo_and_furnace() {
-    for (k, (b, wo)) in film_cases().iter().enumerate() {
+fn iridescence_albedo_and_furnace() {
+    for (k, (b, wo)) in iridescent_cases().iter().enumerate() {
         let (mc, q) = albedos(b, *wo, R, 900 + k as u64);
         let err = (mc - q).abs().max_element();
         assert!(
@@ -275,7 +275,7 @@ fn film_albedo_and_furnace() {
             specular: 1.0,
             specular_color: Vec3::ONE,
             layers: crate::bsdf::Layers::none(),
-            film: FilmLobe::NONE,
+            extensions: LobeExtensions::NONE,
         };
         assert_eq!(iso.eval(wo, wi, R), plain.eval(wo, wi, R));
         assert_eq!(iso.pdf(wo, wi, R), plain.pdf(wo, wi, R));

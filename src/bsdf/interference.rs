@@ -16,7 +16,7 @@
 //! evaluated in f64 with the time convention e^{−iωt} (absorbing media have κ > 0, the
 //! principal square roots give decaying waves).
 //!
-//! Limits (tested in `film_tests`): d = 0 gives the bare substrate's exact Fresnel
+//! Limits (tested in `tests::iridescence`): d = 0 gives the bare substrate's exact Fresnel
 //! reflectance (r = r₀₂ identically), so a film thinner than ~λ/(4 n_film) fades into the
 //! plain interface continuously; a quarter-wave layer at normal incidence gives
 //! ((n₀n₂ − n₁²)/(n₀n₂ + n₁²))², a half-wave layer the bare substrate; for real indices

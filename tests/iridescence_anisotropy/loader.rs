@@ -1,4 +1,4 @@
-//! Loader half of `tests/film_materials.rs`: KHR_materials_iridescence and
+//! Loader half of `tests/iridescence_anisotropy.rs`: KHR_materials_iridescence and
 //! KHR_materials_anisotropy properties, textures, the TANGENT attribute, bad values, and
 //! the Khronos SunglassesKhronos lens.
 

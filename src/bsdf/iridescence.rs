@@ -1,8 +1,8 @@
 //! What KHR_materials_iridescence and KHR_materials_anisotropy add to a reflection lobe,
-//! resolved at a shading point ([`FilmLobe`]), and how the thin film's reflectance
+//! resolved at a shading point ([`LobeExtensions`]), and how the thin film's reflectance
 //! replaces the lobe's Fresnel term in either transport.
 //!
-//! - Spectral transport: the film reflectance ([`super::thin_film`]) is evaluated exactly
+//! - Spectral transport: the film reflectance ([`super::interference`]) is evaluated exactly
 //!   at each of the path's 4 wavelengths (`Iridescence::lanes`, nm).
 //! - RGB transport: each channel is the film's reflectance spectrum integrated against the
 //!   CIE 1931 matching functions under D65 and converted to linear sRGB, the spectrum being
@@ -11,7 +11,7 @@
 //!   reconstruction integrated at 1 nm against D65·(XYZ→sRGB)·x̄ȳz̄, normalised per channel
 //!   so that a constant reflectance gives itself (grey stays grey). This is what the film
 //!   shows under a white (D65) light in spectral transport, up to the reconstruction
-//!   error, which the test `rgb_film_matches_spectral_integral` bounds (≤ 0.01 per
+//!   error, which the test `rgb_iridescence_matches_spectral_integral` bounds (≤ 0.01 per
 //!   channel). A substrate whose index differs per channel (a coloured metal, a coloured
 //!   specular) evaluates the spectrum once per channel with that channel's index.
 //!
@@ -21,7 +21,7 @@
 //! metal's from its base colour taken as F0 the same way (real index, the extension's
 //! reference: `Fresnel0ToIor(baseColor)`), a measured metal uses its complex index.
 
-use super::thin_film;
+use super::interference;
 use crate::spectrum::cie;
 use crate::spectrum::Carrier;
 use std::sync::OnceLock;
@@ -44,9 +44,9 @@ pub struct Iridescence {
     pub lanes: Option<[f32; 4]>,
 }
 
-/// The film and brushed-surface extensions of one lobe: both off is [`FilmLobe::NONE`].
+/// The film and brushed-surface extensions of one lobe: both off is [`LobeExtensions::NONE`].
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FilmLobe {
+pub struct LobeExtensions {
     /// The thin film, if its factor and thickness are both > 0.
     pub iridescence: Option<Iridescence>,
     /// KHR_materials_anisotropy strength in [0, 1] (0 = isotropic); the shading frame's x
@@ -54,17 +54,17 @@ pub struct FilmLobe {
     pub anisotropy: f32,
 }
 
-impl FilmLobe {
+impl LobeExtensions {
     /// No film, isotropic.
-    pub const NONE: FilmLobe = FilmLobe {
+    pub const NONE: LobeExtensions = LobeExtensions {
         iridescence: None,
         anisotropy: 0.0,
     };
 }
 
-impl Default for FilmLobe {
+impl Default for LobeExtensions {
     fn default() -> Self {
-        FilmLobe::NONE
+        LobeExtensions::NONE
     }
 }
 
@@ -74,7 +74,7 @@ impl Iridescence {
     pub fn reflectance<C: Carrier>(&self, cos: f32, eta: C, kappa: C) -> C {
         let (n, k) = (eta.to_lanes(), kappa.to_lanes());
         let r = |i: usize, nm: f32| {
-            thin_film::reflectance(cos, self.ior, self.thickness, n[i], k[i], nm)
+            interference::reflectance(cos, self.ior, self.thickness, n[i], k[i], nm)
         };
         match self.lanes {
             Some(nm) if C::SPECTRAL => C::from_lanes(std::array::from_fn(|i| r(i, nm[i]))),
@@ -106,9 +106,9 @@ impl Iridescence {
 }
 
 /// Substrate indices from normal-incidence reflectances, channel by channel
-/// ([`thin_film::f0_to_ior`]).
+/// ([`interference::f0_to_ior`]).
 pub fn ior_from_f0<C: Carrier>(f0: C) -> C {
-    C::from_lanes(f0.to_lanes().map(thin_film::f0_to_ior))
+    C::from_lanes(f0.to_lanes().map(interference::f0_to_ior))
 }
 
 fn node_nm(j: usize) -> f32 {
