@@ -31,6 +31,7 @@ pub mod accel;
 pub mod app;
 pub mod bsdf;
 pub mod camera;
+pub mod cli;
 pub mod denoise;
 pub mod error;
 pub mod framing;

@@ -21,7 +21,7 @@ fn text(b: &[u8]) -> String {
     String::from_utf8_lossy(b).into_owned()
 }
 
-/// The documented CSV columns (README "Error against run time").
+/// The documented CSV columns (`docs/error-and-time.md`, "Measuring the error").
 const COLUMNS: [&str; 17] = [
     "run",
     "stage",

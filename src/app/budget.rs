@@ -38,8 +38,8 @@
 //! minimum count and the time limit as a safety net.
 //!
 //! ## The defaults
-//! [`DEFAULT_TARGET`] and [`DEFAULT_TIME_LIMIT`] are documented in the README ("How long
-//! does a render take"); the measurements behind them are beside the constants. Units:
+//! [`DEFAULT_TARGET`] and [`DEFAULT_TIME_LIMIT`] are documented in `docs/error-and-time.md`
+//! ("How long a render takes"); the measurements behind them are beside the constants. Units:
 //! wall-clock seconds; errors are relative RMSE, `sqrt(rel_mse)` ([`crate::measure`]).
 
 use crate::denoise::{denoised_estimate, AuxImages};

@@ -1,7 +1,7 @@
 //! Value parsers of the command line: each checks its documented bound and says, in its
 //! error, the flag's rule (clap prefixes the flag and the value).
 
-use iris::output::Exposure;
+use crate::output::Exposure;
 
 pub(crate) fn parse_unit(s: &str) -> Result<f32, String> {
     match s.parse::<f32>() {
@@ -10,8 +10,8 @@ pub(crate) fn parse_unit(s: &str) -> Result<f32, String> {
     }
 }
 
-pub(crate) fn parse_shard(s: &str) -> Result<iris::app::shard::Shard, String> {
-    iris::app::shard::Shard::parse(s).map_err(|e| e.to_string())
+pub(crate) fn parse_shard(s: &str) -> Result<crate::app::shard::Shard, String> {
+    crate::app::shard::Shard::parse(s).map_err(|e| e.to_string())
 }
 
 pub(crate) fn parse_target(s: &str) -> Result<f64, String> {
@@ -35,14 +35,14 @@ pub(crate) fn parse_seconds(s: &str) -> Result<f64, String> {
     }
 }
 
-/// `--threads`: 0 to [`iris::render::MAX_THREADS`], checked before any thread is spawned.
+/// `--threads`: 0 to [`crate::render::MAX_THREADS`], checked before any thread is spawned.
 pub(crate) fn parse_threads() -> clap::builder::RangedU64ValueParser<usize> {
-    clap::builder::RangedU64ValueParser::new().range(0..=iris::render::MAX_THREADS as u64)
+    clap::builder::RangedU64ValueParser::new().range(0..=crate::render::MAX_THREADS as u64)
 }
 
-/// `gem --size`: millimetres in [0.1, 1000] ([`iris::model::cuts::size_metres`]).
+/// `gem --size`: millimetres in [0.1, 1000] ([`crate::model::cuts::size_metres`]).
 pub(crate) fn parse_gem_size(s: &str) -> Result<f64, String> {
-    use iris::model::cuts::{size_metres, MAX_SIZE_MM, MIN_SIZE_MM};
+    use crate::model::cuts::{size_metres, MAX_SIZE_MM, MIN_SIZE_MM};
     match s.parse::<f64>() {
         Ok(v) if size_metres(v).is_ok() => Ok(v),
         _ => Err(format!(
@@ -77,7 +77,7 @@ pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), String> {
         .trim()
         .parse()
         .map_err(|_| format!("bad height in {s:?}"))?;
-    iris::app::check_size(w, h).map_err(|e| e.to_string())?;
+    crate::app::check_size(w, h).map_err(|e| e.to_string())?;
     Ok((w, h))
 }
 

@@ -1,34 +1,34 @@
 //! `iris render`'s flags (also flattened into `iris turntable`) and the material overrides
 //! (`--stone`, `--metal`) shared by render, converge and info: clap structs and their
-//! conversion into [`iris::app::RenderOptions`]. Units are the flags' own (seconds,
+//! conversion into [`crate::app::RenderOptions`]. Units are the flags' own (seconds,
 //! pixels, metres); every bound is checked while parsing ([`super::parse`]).
 
 use super::parse::*;
-use iris::accel::Backend;
-use iris::app::{self, RenderOptions};
-use iris::app::{BudgetFlags, SpectralMode};
-use iris::integrator::{CausticMode, Method, PhotonSettings};
-use iris::measure::MeasureOptions;
-use iris::output::{DisplayOptions, Exposure, ToneMap};
-use iris::photon::trace::Roulette;
-use iris::sampler::SamplerKind;
+use crate::accel::Backend;
+use crate::app::{self, RenderOptions};
+use crate::app::{BudgetFlags, SpectralMode};
+use crate::integrator::{CausticMode, Method, PhotonSettings};
+use crate::measure::MeasureOptions;
+use crate::output::{DisplayOptions, Exposure, ToneMap};
+use crate::photon::trace::Roulette;
+use crate::sampler::SamplerKind;
 use std::path::PathBuf;
 
 /// `--exposure`, `--tonemap`: how an 8-bit PNG is made from the linear image (render and
 /// the commands that flatten its flags, merge).
 #[derive(clap::Args, Clone)]
-pub(crate) struct PngArgs {
+pub struct PngArgs {
     /// PNG exposure: `auto` (log-average luminance to 0.18) or stops in [-64, 64], e.g. -1.5.
     #[arg(long, default_value = "auto", value_parser = parse_exposure, allow_hyphen_values = true)]
-    pub(crate) exposure: Exposure,
+    pub exposure: Exposure,
     /// PNG tone map: aces, reinhard, clamp.
     #[arg(long, default_value = "aces", value_parser = ToneMap::parse)]
-    pub(crate) tonemap: ToneMap,
+    pub tonemap: ToneMap,
 }
 
 impl PngArgs {
     /// The display options the flags give.
-    pub(crate) fn display(&self) -> DisplayOptions {
+    pub fn display(&self) -> DisplayOptions {
         DisplayOptions {
             exposure: self.exposure,
             tonemap: self.tonemap,
@@ -38,28 +38,28 @@ impl PngArgs {
 
 /// `--stone`, `--metal`, `--metal-roughness`: material overrides for render, converge, info.
 #[derive(clap::Args, Clone, Default)]
-pub(crate) struct LookArgs {
+pub struct LookArgs {
     /// Make materials a stone (repeatable): NAME is diamond, sapphire, ruby, emerald,
     /// cubic-zirconia, quartz or crown-glass. Without =SELECTOR it changes every material
     /// no other --stone/--metal names; NAME=MATERIAL changes that material (a mesh name if
     /// no material has it), NAME=material:MATERIAL or NAME=mesh:MESH say which.
     #[arg(long, value_name = "NAME[=SELECTOR]")]
-    pub(crate) stone: Vec<String>,
+    pub stone: Vec<String>,
     /// Make materials a measured metal (repeatable), for settings: gold, silver, platinum,
-    /// copper, rose-gold, spectral n and k (see README, "Stones and settings"); selectors as
+    /// copper, rose-gold, spectral n and k (see docs/stones-and-metals.md); selectors as
     /// for --stone.
     #[arg(long, value_name = "NAME[=SELECTOR]")]
-    pub(crate) metal: Vec<String>,
+    pub metal: Vec<String>,
     /// GGX perceptual roughness of every --metal surface, 0 (polished mirror, the default)
     /// to 1.
     #[arg(long, default_value_t = 0.0, value_parser = parse_unit, allow_hyphen_values = true)]
-    pub(crate) metal_roughness: f32,
+    pub metal_roughness: f32,
 }
 
 impl LookArgs {
     /// The flags, stones first, each in the order given.
-    pub(crate) fn flags(&self) -> iris::Result<Vec<iris::prepare::looks::LookFlag>> {
-        use iris::prepare::looks::LookFlag;
+    pub fn flags(&self) -> crate::Result<Vec<crate::prepare::looks::LookFlag>> {
+        use crate::prepare::looks::LookFlag;
         let stones = self.stone.iter().map(|a| LookFlag::stone(a));
         let metals = self
             .metal
@@ -69,24 +69,25 @@ impl LookArgs {
     }
 }
 
+/// `iris render`: every flag of one render.
 #[derive(clap::Args, Clone)]
-pub(crate) struct RenderArgs {
+pub struct RenderArgs {
     /// Scene file (.gltf, .glb, .obj).
-    pub(crate) scene: PathBuf,
+    pub scene: PathBuf,
     /// Output image (.png or .exr); default `<scene stem>.png` here.
     #[arg(short, long)]
-    pub(crate) output: Option<PathBuf>,
+    pub output: Option<PathBuf>,
     /// Image size WxH, e.g. 800x600 (default 800 wide at the camera's aspect): at most 2^26
     /// pixels (8192x8192) and 8 GiB of per-pixel buffers (about 55 M pixels, e.g.
     /// 8192x6400; for `--method sppm` about 19 M pixels, e.g. 4096x4096).
     #[arg(long, value_parser = parse_size)]
-    pub(crate) size: Option<(u32, u32)>,
+    pub size: Option<(u32, u32)>,
     /// Samples per pixel, 1 to 1000000: the render stops there (or earlier at --time or
     /// --target-error). Without --spp and --passes the render is open-ended: it stops at
     /// --time / --target-error, by default at the estimated relative error 0.03 or after
     /// 120 s, whichever comes first, and rewrites the output as it goes.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
-    pub(crate) spp: Option<u32>,
+    pub spp: Option<u32>,
     /// Rendering method: auto (the default: the path tracer when no light reaches a diffuse
     /// surface through specular ones, else the hybrid or SPPM by the caustics' share of the
     /// light; the reason is printed), whitted (recursive ray tracing, seed paper §4), path
@@ -96,146 +97,148 @@ pub(crate) struct RenderArgs {
     /// light that reaches a diffuse surface through specular ones only; one pass per
     /// sample, converges).
     #[arg(long, value_parser = Method::parse)]
-    pub(crate) method: Option<Method>,
+    pub method: Option<Method>,
     /// Maximum number of bounces (reflections and refractions) per path, 1 to 1024 (also
     /// the Whitted tracer's recursion depth and the photons stored per photon path).
-    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=i64::from(iris::integrator::MAX_DEPTH)))]
-    pub(crate) max_depth: u32,
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=i64::from(crate::integrator::MAX_DEPTH)))]
+    pub max_depth: u32,
     /// Intersection backend: auto (Embree when compiled in), embree, bvh.
     #[arg(long, default_value = "auto", value_parser = Backend::parse)]
-    pub(crate) accel: Backend,
+    pub accel: Backend,
     /// Random seed (same seed, scene and backend → same image).
     #[arg(long, default_value_t = 0)]
-    pub(crate) seed: u64,
+    pub seed: u64,
     /// Numbers driving the camera paths: zsobol (Owen-scrambled Sobol' per pixel in Morton
     /// order, blue-noise error; the default) or independent (a PCG stream per sample).
     #[arg(long, default_value = "zsobol", value_parser = SamplerKind::parse)]
-    pub(crate) sampler: SamplerKind,
+    pub sampler: SamplerKind,
     /// Worker threads, 0 to 1024 (0 = one per core).
     #[arg(long, default_value_t = 0, value_parser = parse_threads())]
-    pub(crate) threads: usize,
+    pub threads: usize,
     /// Camera name or index from the file.
     #[arg(long)]
-    pub(crate) camera: Option<String>,
+    pub camera: Option<String>,
+    /// PNG exposure and tone map.
     #[command(flatten)]
-    pub(crate) png: PngArgs,
+    pub png: PngArgs,
     /// Environment light: `none`, a grey value or `R,G,B` radiance, or an equirectangular
     /// .exr/.hdr map (+Y up; the image centre looks along −Z). Default: the scene file's
     /// `iris_environment` (glTF scene extras), else none.
     #[arg(long, allow_hyphen_values = true)]
-    pub(crate) env: Option<String>,
+    pub env: Option<String>,
     /// Spectral transport (4 wavelengths per sample, CIE colour): `auto` when a material is
     /// dispersive or a light names a spectrum, `on` always, `off` never (RGB, dispersive
     /// materials use n_d).
     #[arg(long, default_value = "auto", value_parser = SpectralMode::parse)]
-    pub(crate) spectral: SpectralMode,
+    pub spectral: SpectralMode,
     /// Studio lighting (not with `--env`): `soft` (grey, broad softboxes; the default for a
     /// file with no light of its own), `jeweller` (dark, small bright strips: fire),
     /// `bright` (white high-key), or `none` (plain directional key and fill). A file that
     /// brings its own light gets a studio only when this flag names one (added to the
     /// file's lights).
-    #[arg(long, value_parser = iris::studio::Studio::parse)]
-    pub(crate) studio: Option<iris::studio::Studio>,
+    #[arg(long, value_parser = crate::studio::Studio::parse)]
+    pub studio: Option<crate::studio::Studio>,
     /// White floor under the model: `auto` (for a transmissive model with nothing under
     /// it, in a file that brings no light of its own), `on` or `off`.
-    #[arg(long, default_value = "auto", value_parser = iris::studio::GroundMode::parse)]
-    pub(crate) ground: iris::studio::GroundMode,
+    #[arg(long, default_value = "auto", value_parser = crate::studio::GroundMode::parse)]
+    pub ground: crate::studio::GroundMode,
     /// SPPM passes, 1 to 10000000 (with --time or --target-error, whichever comes first).
     /// Given alone or with --spp, the other count is 4 spp or 64 passes.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=10_000_000))]
-    pub(crate) passes: Option<u32>,
+    pub passes: Option<u32>,
     /// Time budget in seconds (more than 0, at most 10000000): every method stops after the
     /// round of samples (SPPM: the pass) that crosses it, with at least one sample per pixel.
     /// Without --spp/--passes it is the whole budget (no error target unless given);
     /// otherwise the first limit reached ends the render. Default without any budget flag:
     /// 120.
     #[arg(long, value_parser = parse_seconds, allow_hyphen_values = true)]
-    pub(crate) time: Option<f64>,
+    pub time: Option<f64>,
     /// Photons per SPPM or hybrid pass (default: one per pixel) or in total for `--method photon`
     /// (default 500000), 1 to 16777216 (2^24). A pass or map that would store more than
     /// 2^26 photons (2 GiB) stops with an error.
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=iris::integrator::MAX_PHOTONS))]
-    pub(crate) photons: Option<u64>,
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=crate::integrator::MAX_PHOTONS))]
+    pub photons: Option<u64>,
     /// Initial SPPM / hybrid gather radius, largest photon-map radius, in scene units (default: from
     /// the pixel footprint): finite and > 0 (no memory depends on it).
     #[arg(long, value_parser = parse_radius, allow_hyphen_values = true)]
-    pub(crate) radius: Option<f32>,
+    pub radius: Option<f32>,
     /// SPPM / hybrid radius reduction α in (0, 1): r²ᵢ₊₁ = r²ᵢ (i+α)/(i+1) (Knaus & Zwicker 2011).
     #[arg(long, default_value_t = 2.0 / 3.0, value_parser = parse_alpha, allow_hyphen_values = true)]
-    pub(crate) alpha: f32,
+    pub alpha: f32,
     /// Write the image so far at the checkpoints (1, 2, 4, … samples, or passes for SPPM)
     /// that are at least K samples or passes after the last one written; K from 1 to
     /// 10000000. Without it, an open-ended render (no --spp/--passes) rewrites the image at
     /// the checkpoints at most every 2 s.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=10_000_000))]
-    pub(crate) checkpoint: Option<u32>,
+    pub checkpoint: Option<u32>,
     /// Photon Russian roulette rule: throughput (survivors keep their power), seed (the seed
     /// paper's rule: diffuse / reflect / refract by the material's colours).
     #[arg(long, default_value = "throughput", value_parser = Roulette::parse)]
-    pub(crate) photon_rr: Roulette,
+    pub photon_rr: Roulette,
     /// How `--method hybrid` counts its caustics: map (the caustic photon map everywhere),
     /// light (light tracing splatted onto the image wherever the caustic light is seen
     /// directly, the map where it is seen through glass or mirrors) or mixed (light tracing
     /// for the caustic itself, the map for its later diffuse bounces, where seen directly).
     /// An orthographic camera keeps the map.
     #[arg(long, default_value = "map", value_parser = CausticMode::parse)]
-    pub(crate) caustics: CausticMode,
+    pub caustics: CausticMode,
     /// Reference EXR (same size as the render; sets the size if --size is not given): error
     /// against it at every checkpoint (1, 2, 4, … samples or passes).
     #[arg(long)]
-    pub(crate) reference: Option<PathBuf>,
+    pub reference: Option<PathBuf>,
     /// Write error against time as CSV: a "load" row, a "build" row, one "render" row per
     /// checkpoint.
     #[arg(long)]
-    pub(crate) report: Option<PathBuf>,
+    pub report: Option<PathBuf>,
     /// Plot error against time, log-log (.png or .svg): against --reference if given, else
     /// the half-buffer estimate.
     #[arg(long)]
-    pub(crate) plot: Option<PathBuf>,
+    pub plot: Option<PathBuf>,
     /// Stop once the estimated relative RMSE (half-buffer estimate, from 8 samples or
     /// passes on) is at or below E, finite and > 0. Upper bound: --time, --spp or
     /// --passes, whichever comes first; given alone, 120 s. Default without any budget
     /// flag: 0.03.
     #[arg(long, value_parser = parse_target, allow_hyphen_values = true)]
-    pub(crate) target_error: Option<f64>,
+    pub target_error: Option<f64>,
     /// No progress bar.
     #[arg(short, long)]
-    pub(crate) quiet: bool,
+    pub quiet: bool,
     /// Frame the model automatically from this view: threequarter (front-right, 35° above;
     /// the default for files without a camera), front, top, side. Replaces the file's
     /// camera; not with --camera.
-    #[arg(long, value_parser = iris::framing::View::parse)]
-    pub(crate) view: Option<iris::framing::View>,
+    #[arg(long, value_parser = crate::framing::View::parse)]
+    pub view: Option<crate::framing::View>,
     /// What camera rays that see no surface show: `env` (the default: the environment, or
     /// black), a colour (white, black, grey, #rrggbb, or R,G,B sRGB values in [0, 1]), or
     /// `transparent` (PNG with alpha, EXR with an A channel). The environment still lights
     /// the model; pixels count as covered when the camera ray hits a surface (glass too).
-    #[arg(long, value_parser = iris::output::Background::parse)]
-    pub(crate) background: Option<iris::output::Background>,
+    #[arg(long, value_parser = crate::output::Background::parse)]
+    pub background: Option<crate::output::Background>,
+    /// `--stone`, `--metal`, `--metal-roughness`.
     #[command(flatten)]
-    pub(crate) looks: LookArgs,
+    pub looks: LookArgs,
     /// Print the render plan to stderr before rendering: which stages the scene needs
     /// (spectral or RGB, photons, volumes, textures, acceleration, environment, nested
     /// media, denoise), why, and what each costs (a 32x24 probe render, 10 000 photons).
     #[arg(long)]
-    pub(crate) explain: bool,
+    pub explain: bool,
     /// Render only shard I of N (1 ≤ I ≤ N, counted from 1 like Slurm array indices) and
     /// write a partial image (-o PART.exr) for `iris merge`: with --spp/--passes T the
     /// units ⌊(I−1)T/N⌋..⌊I·T/N⌋; without, a segment of the Sobol' block until --time or
     /// --target-error (each per shard). Written only at the end.
     #[arg(long, value_name = "I/N", value_parser = parse_shard)]
-    pub(crate) shard: Option<iris::app::shard::Shard>,
+    pub shard: Option<crate::app::shard::Shard>,
     /// Denoising with Intel Open Image Denoise (albedo and normals of the first
     /// non-specular surface seen through glass as auxiliary images): `auto` denoises a PNG
     /// and leaves an EXR raw, `on` denoises a PNG or adds the denoised image to an EXR as
     /// the layer `denoised` (channels denoised.R, .G, .B), `off` never.
-    #[arg(long, default_value = "auto", value_parser = iris::denoise::DenoiseMode::parse)]
-    pub(crate) denoise: iris::denoise::DenoiseMode,
+    #[arg(long, default_value = "auto", value_parser = crate::denoise::DenoiseMode::parse)]
+    pub denoise: crate::denoise::DenoiseMode,
 }
 
 impl RenderArgs {
     /// The render options (measurement and drop-in preview included) these flags ask for.
-    pub(crate) fn options(&self) -> iris::Result<RenderOptions> {
+    pub fn options(&self) -> crate::Result<RenderOptions> {
         let a = self.clone();
         let budget = BudgetFlags {
             method: a.method,
@@ -274,7 +277,7 @@ impl RenderArgs {
             env: a
                 .env
                 .as_deref()
-                .map(iris::light::env::Environment::parse_arg)
+                .map(crate::light::env::Environment::parse_arg)
                 .transpose()?,
             spectral: a.spectral,
             measure: MeasureOptions {

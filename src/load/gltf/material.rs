@@ -11,7 +11,7 @@
 //! - `KHR_materials_dispersion.dispersion` (= 20/V_d) is read from the raw extension JSON,
 //!   which the `gltf` crate does not type.
 //! - KHR_materials_iridescence and KHR_materials_anisotropy: `super::iridescence_anisotropy`.
-//! - Material `extras` (the README's "IOR models"): `{"iris_glass": "N-BK7"}` names a
+//! - Material `extras` (`docs/spectral.md`, "IOR models"): `{"iris_glass": "N-BK7"}` names a
 //!   built-in Sellmeier glass (`spectrum::ior::KNOWN_NAMES`, case-insensitive) and gives
 //!   `ExplicitIor::Glass`; `{"cauchy": {"b": B, "c": C}}` gives `ExplicitIor::Cauchy`
 //!   (n(λ) = B + C/λ², λ in µm, C in µm²; finite B ≥ 1 and C ≥ 0). Both on one material,
