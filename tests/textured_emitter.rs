@@ -48,7 +48,10 @@ const PATH: &[&str] = &["--method", "path", "--spp", "64"];
 /// The path tracer on [`Layout::Glass`] (no next-event estimation through the sheet).
 const PATH_GLASS: &[&str] = &["--method", "path", "--spp", "256"];
 const SPPM: &[&str] = &["--method", "sppm", "--passes", "32"];
-const PHOTON: &[&str] = &["--method", "photon", "--spp", "8", "--photons", "100000"];
+/// `--method photon` on [`Layout::Direct`], where its direct light is all there is.
+const PHOTON: &[&str] = &["--method", "photon", "--spp", "32", "--photons", "100000"];
+/// `--method photon` on [`Layout::Glass`], where its caustic map carries the light.
+const PHOTON_GLASS: &[&str] = &["--method", "photon", "--spp", "8", "--photons", "100000"];
 const HYBRID: &[&str] = &["--method", "hybrid", "--spp", "32"];
 const HYBRID_LIGHT: &[&str] = &["--method", "hybrid", "--spp", "32", "--caustics", "light"];
 
@@ -158,12 +161,14 @@ fn off(what: &str, got: f64, want: f64, tol: f64) -> Option<String> {
 /// [`Layout::Direct`]: the left and right strip means and their ratio, against the exact
 /// floor radiance (left 0.01149, right 0.00342, ratio 3.36), within 3 %.
 ///
-/// Measured (6 seeds, σ of left / right / ratio; mean deviation from exact): the path
-/// tracer at 64 spp 0.18 / 0.15 / 0.25 % (−0.1 %, 0 %), SPPM at 32 passes
-/// 0.14 / 0.14 / 0.16 % (+0.2 %, 0 %), `--method photon` at 8 spp and 10⁵ photons
-/// 0.38 / 0.60 / 0.51 % (−0.35 %, +0.3 %), all on the cut-out scene. 3 % is ≥ 5 σ plus the
-/// largest deviation. An emitter that ignores its texture lights both sides alike (ratio
-/// near 1, right side ~4.5 × too bright).
+/// Measured (6 seeds, σ of left / right / ratio; mean deviation of left / right from
+/// exact) on the cut-out file: the path tracer at 64 spp 0.18 / 0.15 / 0.25 %
+/// (−0.1 %, 0 %), SPPM at 32 passes 0.14 / 0.14 / 0.16 % (+0.2 %, 0 %). On the textured
+/// file, with next-event estimation applying the texture (a local patch): path
+/// 0.24 / 0.51 / 0.61 % (−0.2 %, 0 %), SPPM 0.52 / 0.32 / 0.54 % (+0.5 %, 0 %); `--method photon` renders this scene exactly as SPPM does (its direct
+/// light is the same estimate, its photons find nothing after a bounce). 3 % is ≥ 4.8 σ
+/// beyond the largest deviation. An emitter whose light ignores its texture lights both
+/// sides alike (ratio near 1, the right strip ~4.5 × too bright).
 ///
 /// The path tracer also renders the cut-out scene: that it matches the exact radiance
 /// validates the geometry and the formula; the textured render must then match the
@@ -203,16 +208,16 @@ fn direct_light_follows_the_texture() {
 }
 
 /// [`Layout::Glass`]: every method on the textured file against the path tracer on the
-/// cut-out file (256 spp, seed 100): the floor mean (both strips) within 8 %, the
-/// left/right ratio (3.2) within 18 %.
+/// cut-out file (256 spp, seed 100): the floor mean (both strips) within 9 %, the
+/// left/right ratio (3.2) within 20 %.
 ///
-/// Measured (8 seeds, σ of floor mean / ratio): path tracer at 256 spp 1.2 / 2.5 %,
-/// SPPM at 32 passes 0.9 / 2.3 %, `--method photon` at 8 spp and 10⁵ photons 2.0 / 4.8 %,
-/// hybrid at 32 spp 0.9 / 2.2 %, with `--caustics light` 0.8 / 1.9 %; the methods' means on
-/// the cut-out file agree within 2 %. Against the path tracer the difference has
-/// σ ≤ 2.3 / 5.4 % (photon), ≤ 1.7 / 3.5 % for the others: 8 % and 18 % are ≥ 3.4 σ for
-/// photon and ≥ 4.7 σ for the rest. An emitter that ignores its texture doubles the mean
-/// and brings the ratio near 1.
+/// Measured on the cut-out file (8 seeds, σ of floor mean / ratio): path tracer at
+/// 256 spp 1.2 / 2.5 %, SPPM at 32 passes 0.9 / 2.3 %, `--method photon` at 8 spp and 10⁵
+/// photons 2.0 / 4.8 %, hybrid at 32 spp 0.9 / 2.2 %, with `--caustics light`
+/// 0.8 / 1.9 %; the methods' means agree within 2 %. Against the path tracer the
+/// difference has σ ≤ 2.3 / 5.4 % (photon), ≤ 1.7 / 3.5 % for the others: 9 % and 20 %
+/// are ≥ 3.7 σ for photon and ≥ 5 σ for the rest. An emitter whose light ignores its
+/// texture doubles the mean and brings the ratio near 1.
 #[test]
 fn caustic_light_follows_the_texture() {
     let dir = common::scratch_dir("textured_emitter_glass");
@@ -227,7 +232,7 @@ fn caustic_light_follows_the_texture() {
     for (label, args) in [
         ("path", PATH_GLASS),
         ("sppm", SPPM),
-        ("photon", PHOTON),
+        ("photon", PHOTON_GLASS),
         ("hybrid", HYBRID),
         ("hybrid, light tracing", HYBRID_LIGHT),
     ] {
@@ -239,8 +244,8 @@ fn caustic_light_follows_the_texture() {
         report.push(format!(
             "{label}: left {l:.5} right {r:.5} mean {mean:.5} ratio {q:.3}"
         ));
-        failures.extend(off(&format!("{label} floor mean"), mean, mean_r, 0.08));
-        failures.extend(off(&format!("{label} left/right"), q, qr, 0.18));
+        failures.extend(off(&format!("{label} floor mean"), mean, mean_r, 0.09));
+        failures.extend(off(&format!("{label} left/right"), q, qr, 0.20));
     }
     let report = report.join("\n");
     eprintln!("{report}");
@@ -264,16 +269,11 @@ fn strip_diff(a: &[f64; 4], b: &[f64; 4]) -> f64 {
 
 /// Renders `files` (the file under test, the reference, the file that must differ) with
 /// seeds 1, 2, 3 and the reference again with seed 4, and asserts: the reference's
-/// seed-to-seed noise within `tol / 2`, the file that must differ at least `visible` away
-/// from the reference, the file under test within `tol` of it. `what` names the property.
-fn check_moves(
-    what: &str,
-    files: [&Path; 3],
-    layout: Layout,
-    args: &[&str],
-    tol: f64,
-    visible: f64,
-) {
+/// seed-to-seed noise within half of [`TOL_EMISSIVE`], the file that must differ at least
+/// [`VISIBLE`] away from the reference, the file under test within [`TOL_EMISSIVE`] of it.
+/// `what` names the property.
+fn check_moves(what: &str, files: [&Path; 3], layout: Layout, args: &[&str]) {
+    let (tol, visible) = (TOL_EMISSIVE, VISIBLE);
     let tested = strips(files[0], layout, "tested", "1", args);
     let reference = strips(files[1], layout, "reference", "2", args);
     let other = strips(files[2], layout, "other", "3", args);
@@ -317,72 +317,92 @@ fn transform_files(dir: &Path, layout: Layout) -> [PathBuf; 3] {
     ]
 }
 
-/// Tolerance of the emissive transform and texCoord tests on [`Layout::Direct`], as a
-/// fraction of the mean strip radiance: the seed-to-seed difference of the largest strip
-/// on the cut-out file is at most 1 % (σ ≤ 0.6 % per strip for every method, see
-/// [`direct_light_follows_the_texture`]); a textured emitter whose next-event estimation
-/// draws points on its black part too may double that. The moved feature changes the
-/// strips by 0.8 to 0.9 of the mean (measured where the texture reaches the floor: the
-/// glass layout), so 0.05 separates them by 16×; the test requires 0.3.
-const TOL_DIRECT: f64 = 0.05;
-/// The same on [`Layout::Glass`]: seed-to-seed differences measured 0.019 (SPPM),
-/// 0.039 to 0.043 (hybrid, both caustic modes), 0.025 (SPPM, texCoord files).
-const TOL_GLASS: f64 = 0.15;
+/// Tolerance of the emissive transform and texCoord tests, as a fraction of the mean strip
+/// radiance: the largest strip difference between two seeds of the reference file,
+/// measured over 15 pairs (6 seeds) with the texture applied everywhere (a local
+/// patch), is at most 0.044 (path tracer), 0.063 (SPPM and photon) on
+/// [`Layout::Direct`] and 0.043 to 0.053 (SPPM, hybrid, light tracing) on
+/// [`Layout::Glass`], medians 0.023 to 0.035: the test requires the noise of its own pair
+/// below half of 0.2. A transform or texture coordinate set that puts the quadrant
+/// anywhere else changes the strips by 0.85 to 0.96 of the mean (measured), more than 4×
+/// the tolerance.
+const TOL_EMISSIVE: f64 = 0.2;
 /// How far the file that must differ is required to be from the reference.
 const VISIBLE: f64 = 0.3;
 
-fn emissive_transform(layout: Layout, args: &[&str], tol: f64) {
-    let dir = common::scratch_dir(&format!(
-        "textured_emitter_transform_{layout:?}_{}",
-        args[1]
-    ));
+/// The emissive transform test of `layout` with the method flags `args`, in the scratch
+/// directory `name`.
+fn emissive_transform(name: &str, layout: Layout, args: &[&str]) {
+    let dir = common::scratch_dir(name);
     let [moved, baked, plain] = transform_files(&dir, layout);
     check_moves(
         "emissive KHR_texture_transform",
         [&moved, &baked, &plain],
         layout,
         args,
-        tol,
-        VISIBLE,
     );
 }
 
 /// The emissive texture's transform under next-event estimation (path tracer).
 #[test]
 fn emissive_transform_path() {
-    emissive_transform(Layout::Direct, PATH, TOL_DIRECT);
+    emissive_transform(
+        "textured_emitter_emissive_transform_path",
+        Layout::Direct,
+        PATH,
+    );
 }
 
 #[test]
 fn emissive_transform_sppm() {
-    emissive_transform(Layout::Direct, SPPM, TOL_DIRECT);
+    emissive_transform(
+        "textured_emitter_emissive_transform_sppm",
+        Layout::Direct,
+        SPPM,
+    );
 }
 
 #[test]
 fn emissive_transform_photon() {
-    emissive_transform(Layout::Direct, PHOTON, TOL_DIRECT);
+    emissive_transform(
+        "textured_emitter_emissive_transform_photon",
+        Layout::Direct,
+        PHOTON,
+    );
 }
 
 /// The emissive texture's transform on photons leaving the panel (through the sheet).
 #[test]
 fn emissive_transform_sppm_glass() {
-    emissive_transform(Layout::Glass, SPPM, TOL_GLASS);
+    emissive_transform(
+        "textured_emitter_emissive_transform_sppm_glass",
+        Layout::Glass,
+        SPPM,
+    );
 }
 
 #[test]
 fn emissive_transform_hybrid_glass() {
-    emissive_transform(Layout::Glass, HYBRID, TOL_GLASS);
+    emissive_transform(
+        "textured_emitter_emissive_transform_hybrid_glass",
+        Layout::Glass,
+        HYBRID,
+    );
 }
 
 #[test]
 fn emissive_transform_light_tracing_glass() {
-    emissive_transform(Layout::Glass, HYBRID_LIGHT, TOL_GLASS);
+    emissive_transform(
+        "textured_emitter_emissive_transform_light_tracing_glass",
+        Layout::Glass,
+        HYBRID_LIGHT,
+    );
 }
 
 /// `texCoord: 1` on the emissive texture: the panel with TEXCOORD_1 = TEXCOORD_0
 /// mirrored in u must render like the panel whose TEXCOORD_0 is mirrored.
-fn emissive_texcoord(layout: Layout, args: &[&str], tol: f64) {
-    let dir = common::scratch_dir(&format!("textured_emitter_texcoord_{layout:?}_{}", args[1]));
+fn emissive_texcoord(name: &str, layout: Layout, args: &[&str]) {
+    let dir = common::scratch_dir(name);
     let source = || texture::blocks(8, |x, y| x < 4 && y < 4, [255; 4], [0, 0, 0, 255]);
     let info = |t: u32| -> Value { json!({"index": 0, "texCoord": t}) };
     let file = |name: &str, t: u32, sets: Sets| {
@@ -396,17 +416,23 @@ fn emissive_texcoord(layout: Layout, args: &[&str], tol: f64) {
         [&set1, &reference, &set0],
         layout,
         args,
-        tol,
-        VISIBLE,
     );
 }
 
 #[test]
 fn emissive_texcoord_path() {
-    emissive_texcoord(Layout::Direct, PATH, TOL_DIRECT);
+    emissive_texcoord(
+        "textured_emitter_emissive_texcoord_path",
+        Layout::Direct,
+        PATH,
+    );
 }
 
 #[test]
 fn emissive_texcoord_sppm_glass() {
-    emissive_texcoord(Layout::Glass, SPPM, TOL_GLASS);
+    emissive_texcoord(
+        "textured_emitter_emissive_texcoord_sppm_glass",
+        Layout::Glass,
+        SPPM,
+    );
 }
