@@ -16,7 +16,7 @@
 //! MIS sides use is the hero-marginal one.
 
 use super::Context;
-use crate::bsdf::{Bsdf, TransportMode};
+use crate::bsdf::{Bsdf, BsdfSample, TransportMode};
 use crate::interaction::SurfaceHit;
 use crate::math::{Frame, Ray};
 use crate::medium::MediumStack;
@@ -237,9 +237,126 @@ pub fn camera_path<C: Carrier>(
     trace(scene, ray, max_depth, lambda, stop, split, false, ctx)
 }
 
+/// The state a camera path carries from vertex to vertex.
+struct PathState<C: Carrier> {
+    /// Throughput.
+    beta: C,
+    /// The media the path is in.
+    media: MediumStack,
+    /// Non-delta and delta bounces so far (each with its own limit).
+    depth: u32,
+    delta_depth: u32,
+    /// Scattering vertices so far: the sampler's bounce index (every vertex, delta
+    /// included).
+    vertex: u32,
+    /// Product of η'² over the refractions so far: Russian roulette looks at
+    /// beta·eta_scale, which leaves out the radiance-mode 1/η'² factors that cancel on
+    /// leaving the object (pbrt-v4 `etaScale`); otherwise paths inside glass would be
+    /// killed ~η² times as often.
+    eta_scale: f32,
+    /// The previous bounce, for MIS of emission found next.
+    prev: Prev,
+    /// Delta bounces since the last non-delta bounce (None before the first): ≥ 1 when
+    /// emission found now closes a D S+ L chain, the caustic map's share.
+    since_diffuse: Option<u32>,
+    /// No bounce and no BLEND pass-through yet: the next vertex is seen directly.
+    direct: bool,
+}
+
+impl<C: Carrier> PathState<C> {
+    /// A path leaving the camera at `origin` (in air).
+    fn new(origin: Vec3) -> Self {
+        PathState {
+            beta: C::ONE,
+            media: MediumStack::new(),
+            depth: 0,
+            delta_depth: 0,
+            vertex: 0,
+            eta_scale: 1.0,
+            prev: Prev {
+                delta: true,
+                pdf: 0.0,
+                p: origin,
+            },
+            since_diffuse: None,
+            direct: true,
+        }
+    }
+
+    /// Whether the light end found now closes a D S+ L chain: the caustic map's (or light
+    /// tracing's) share when the path is split.
+    fn closes_caustic(&self, split: &CausticSplit<'_, C>) -> bool {
+        !matches!(split, CausticSplit::None) && self.since_diffuse.unwrap_or(0) > 0
+    }
+
+    /// Follows the BSDF sample `bs` taken at `s`: throughput, η scale, media and the MIS
+    /// record; then the bounce limits and, after three non-delta bounces, Russian roulette
+    /// on `u`. `false` when the path ends here.
+    fn advance(
+        &mut self,
+        s: &Surface<C>,
+        bs: &BsdfSample<C>,
+        max_depth: u32,
+        u: &mut Bounce<'_>,
+    ) -> bool {
+        self.beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
+        if let (Bsdf::Dielectric { eta, .. }, true) = (s.bsdf, bs.transmission) {
+            let etap = if s.wo.z > 0.0 { eta } else { 1.0 / eta };
+            if etap.is_finite() && etap > 0.0 {
+                self.eta_scale *= etap * etap;
+            }
+        }
+        self.media = s.media_after(bs.transmission);
+        self.prev = Prev {
+            delta: bs.delta,
+            pdf: bs.pdf,
+            p: s.hit.p,
+        };
+        self.since_diffuse = if bs.delta {
+            self.since_diffuse.map(|n| n + 1)
+        } else {
+            Some(0)
+        };
+        if bs.delta {
+            self.delta_depth += 1;
+            return self.delta_depth <= MAX_DELTA_BOUNCES;
+        }
+        self.depth += 1;
+        if self.depth >= max_depth {
+            return false;
+        }
+        if self.depth >= 3 {
+            let p = (self.beta * self.eta_scale).max_element().min(0.95);
+            if u.roulette() >= p {
+                return false;
+            }
+            self.beta /= p;
+        }
+        true
+    }
+}
+
+/// The caustic map's gather at a path's first non-delta vertex under `split`: the whole
+/// map, or with [`CausticSplit::Mixed`] the part for a vertex seen `direct`ly or through
+/// delta bounces.
+fn split_gather<'a, C: Carrier>(split: CausticSplit<'a, C>, direct: bool) -> Option<Gather<'a, C>> {
+    match split {
+        CausticSplit::None => None,
+        CausticSplit::Map(g) => Some(g),
+        CausticSplit::Mixed { through, direct: d } => {
+            if direct {
+                d
+            } else {
+                Some(through)
+            }
+        }
+    }
+}
+
 /// [`camera_path`], with spectral MIS at rough dispersive interfaces when `spectral_mis`
 /// (only with [`StopAt::Never`]: the photon methods' visible points keep the hero only, as
 /// their gather evaluates the BSDF with one η).
+#[allow(clippy::too_many_arguments)]
 #[allow(clippy::too_many_arguments)]
 fn trace<C: Carrier>(
     scene: &Scene,
@@ -253,84 +370,55 @@ fn trace<C: Carrier>(
 ) -> (C, Option<VisiblePoint<C>>) {
     let spectral_mis = spectral_mis && stop == StopAt::Never;
     let mut l = C::ZERO;
-    let mut beta = C::ONE;
     let mut ray = *ray;
-    let mut media = MediumStack::new();
-    let (mut depth, mut delta_depth) = (0u32, 0u32);
-    // Scattering vertices so far: the sampler's bounce index (every vertex, delta included).
-    let mut vertex = 0u32;
-    // Product of η'² over the refractions so far: Russian roulette looks at beta·eta_scale,
-    // which leaves out the radiance-mode 1/η'² factors that cancel on leaving the object
-    // (pbrt-v4 `etaScale`); otherwise paths inside glass would be killed ~η² times as often.
-    let mut eta_scale = 1.0f32;
-    let mut prev = Prev {
-        delta: true,
-        pdf: 0.0,
-        p: ray.origin,
-    };
-    // Delta bounces since the last non-delta bounce (None before the first): ≥ 1 when
-    // emission found now closes a D S+ L chain, the caustic map's share.
-    let mut since_diffuse: Option<u32> = None;
-    // No bounce and no BLEND pass-through yet: the next vertex is seen directly.
-    let mut direct = true;
+    let mut st = PathState::<C>::new(ray.origin);
     loop {
-        // The light end found now closes a D S+ L chain: the caustic map's (or light
-        // tracing's) share when the path is split.
-        let caustic = !matches!(split, CausticSplit::None) && since_diffuse.unwrap_or(0) > 0;
-        let Some(at) = shading::arrive::<C>(scene, &ray, &media, &lambda, &mut ctx.rays) else {
-            if let (Some(e), false) = (escaped(scene, &ray, &prev, beta, &lambda), caustic) {
+        let caustic = st.closes_caustic(&split);
+        let arrival = shading::arrive::<C>(scene, &ray, &st.media, &lambda, &mut ctx.rays);
+        let Some(at) = arrival else {
+            if let (Some(e), false) = (escaped(scene, &ray, &st.prev, st.beta, &lambda), caustic) {
                 l += e;
             }
             break;
         };
-        beta *= at.transmittance;
-        if let (Some(e), false) = (emitted(scene, &at, &prev, beta, &lambda), caustic) {
+        st.beta *= at.transmittance;
+        if let (Some(e), false) = (emitted(scene, &at, &st.prev, st.beta, &lambda), caustic) {
             l += e;
         }
-        let mut u = ctx.sample.bounce(vertex);
+        let mut u = ctx.sample.bounce(st.vertex);
         let ev = if spectral_mis {
-            at.event_lanes(scene, media, &mut beta, &mut lambda, &mut u)
+            at.event_lanes(scene, st.media, &mut st.beta, &mut lambda, &mut u)
         } else {
-            at.event(scene, media, &mut beta, &mut lambda, &mut u)
+            at.event(scene, st.media, &mut st.beta, &mut lambda, &mut u)
         };
         let s = match ev {
             Event::PassThrough(next) => {
                 ray = next;
-                direct = false;
+                st.direct = false;
                 continue;
             }
             Event::Scatter(s) => s,
         };
         if stop == StopAt::Diffuse && is_diffuse_like(&s.bsdf) {
-            l += beta * next_event(scene, &s, &lambda, false, &mut u, &mut ctx.rays);
+            l += st.beta * next_event(scene, &s, &lambda, false, &mut u, &mut ctx.rays);
             let vp = VisiblePoint {
                 p: s.hit.p,
                 ng: s.hit.ng,
                 frame: s.frame,
                 wo: s.wo,
                 bsdf: s.bsdf,
-                beta,
+                beta: st.beta,
                 lambda,
                 hit: s.hit,
             };
             return (l, Some(vp));
         }
         if !s.bsdf.is_delta() {
-            l += beta * next_event(scene, &s, &lambda, true, &mut u, &mut ctx.rays);
-            let first = since_diffuse.is_none();
-            let gather = match split {
-                CausticSplit::None => None,
-                CausticSplit::Map(g) => Some(g),
-                CausticSplit::Mixed { through, direct: d } => {
-                    if direct {
-                        d
-                    } else {
-                        Some(through)
-                    }
-                }
-            };
-            if let (Some(gather), true) = (gather, first && depth + 1 < max_depth) {
-                l += beta * gather(&s, &lambda);
+            l += st.beta * next_event(scene, &s, &lambda, true, &mut u, &mut ctx.rays);
+            let first = st.since_diffuse.is_none();
+            let gather = split_gather(split, st.direct);
+            if let (Some(gather), true) = (gather, first && st.depth + 1 < max_depth) {
+                l += st.beta * gather(&s, &lambda);
             }
         }
         let uc = u.bsdf_lobe();
@@ -338,45 +426,12 @@ fn trace<C: Carrier>(
         let Some(bs) = s.sample_mis(uc, ud, TransportMode::Radiance, &mut lambda) else {
             break;
         };
-        beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
-        if let (Bsdf::Dielectric { eta, .. }, true) = (s.bsdf, bs.transmission) {
-            let etap = if s.wo.z > 0.0 { eta } else { 1.0 / eta };
-            if etap.is_finite() && etap > 0.0 {
-                eta_scale *= etap * etap;
-            }
-        }
-        media = s.media_after(bs.transmission);
-        prev = Prev {
-            delta: bs.delta,
-            pdf: bs.pdf,
-            p: s.hit.p,
-        };
-        since_diffuse = if bs.delta {
-            since_diffuse.map(|n| n + 1)
-        } else {
-            Some(0)
-        };
-        if bs.delta {
-            delta_depth += 1;
-            if delta_depth > MAX_DELTA_BOUNCES {
-                break;
-            }
-        } else {
-            depth += 1;
-            if depth >= max_depth {
-                break;
-            }
-            if depth >= 3 {
-                let p = (beta * eta_scale).max_element().min(0.95);
-                if u.roulette() >= p {
-                    break;
-                }
-                beta /= p;
-            }
+        if !st.advance(&s, &bs, max_depth, &mut u) {
+            break;
         }
         ray = s.spawn(bs.wi);
-        vertex += 1;
-        direct = false;
+        st.vertex += 1;
+        st.direct = false;
     }
     (l, None)
 }
