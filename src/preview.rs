@@ -69,8 +69,8 @@ pub fn choose_camera_view(
     aspect: f32,
 ) -> Result<(CameraDesc, Option<AutoCamera>)> {
     choose_camera_in(
-        &scene.cameras(),
-        &scene.source(),
+        scene.cameras(),
+        scene.source(),
         || subject_points(scene),
         choice,
         view,

@@ -357,7 +357,6 @@ fn split_gather<'a, C: Carrier>(split: CausticSplit<'a, C>, direct: bool) -> Opt
 /// (only with [`StopAt::Never`]: the photon methods' visible points keep the hero only, as
 /// their gather evaluates the BSDF with one η).
 #[allow(clippy::too_many_arguments)]
-#[allow(clippy::too_many_arguments)]
 fn trace<C: Carrier>(
     scene: &Scene,
     ray: &Ray,
