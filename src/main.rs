@@ -27,6 +27,11 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Say more about problems Iris recovered from while loading: when a third-party
+    /// decoder (Draco, images) panics on a file, its error names the panic's message and
+    /// source location (without --verbose: only that the decoder panicked).
+    #[arg(long, global = true)]
+    verbose: bool,
 }
 
 #[derive(Subcommand)]
@@ -137,6 +142,7 @@ const INTERRUPTED: u8 = 130;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    iris::load::panic_net::show_caught_panics(cli.verbose);
     let handler = ctrlc::set_handler(|| {
         if iris::render::guard::stop_requested() {
             std::process::exit(INTERRUPTED.into());
