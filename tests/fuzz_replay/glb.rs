@@ -73,10 +73,11 @@ pub struct Glb {
     bin_start: usize,
 }
 
-/// Pads `v` with `byte` to a multiple of 4 bytes (GLB chunks are 4-aligned).
-fn pad(v: &mut Vec<u8>, byte: u8) {
+/// Pads `v` with zeros to a multiple of 4 bytes (a stream appended to the BIN chunk
+/// starts 4-aligned).
+fn align4(v: &mut Vec<u8>) {
     while !v.len().is_multiple_of(4) {
-        v.push(byte);
+        v.push(0);
     }
 }
 
@@ -101,22 +102,7 @@ impl Glb {
 
     /// The file: header, JSON chunk (space-padded), BIN chunk (zero-padded).
     pub fn build(&self) -> Vec<u8> {
-        let mut json = serde_json::to_vec(&self.json).expect("json");
-        pad(&mut json, b' ');
-        let mut bin = self.bin.clone();
-        pad(&mut bin, 0);
-        let total = 12 + 8 + json.len() + 8 + bin.len();
-        let mut out = Vec::with_capacity(total);
-        out.extend_from_slice(b"glTF");
-        out.extend_from_slice(&2u32.to_le_bytes());
-        out.extend_from_slice(&(total as u32).to_le_bytes());
-        out.extend_from_slice(&(json.len() as u32).to_le_bytes());
-        out.extend_from_slice(b"JSON");
-        out.extend_from_slice(&json);
-        out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-        out.extend_from_slice(b"BIN\0");
-        out.extend_from_slice(&bin);
-        out
+        super::common::glb(&self.json, &self.bin)
     }
 
     /// The compressed streams in buffer 0 (the BIN chunk): Draco primitives' views and
@@ -189,10 +175,10 @@ impl Glb {
             glb.bin[stream.offset..stream.offset + bytes.len()].copy_from_slice(bytes);
             stream.offset
         } else {
-            pad(&mut glb.bin, 0);
+            align4(&mut glb.bin);
             let at = glb.bin.len();
             glb.bin.extend_from_slice(bytes);
-            pad(&mut glb.bin, 0);
+            align4(&mut glb.bin);
             glb.json["buffers"][0]["byteLength"] = glb.bin.len().into();
             at
         };
