@@ -51,6 +51,7 @@ const INTERRUPTED: u8 = 130;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    iris::load::panic_net::show_caught_panics(cli.verbose);
     let handler = ctrlc::set_handler(|| {
         if iris::render::guard::stop_requested() {
             std::process::exit(INTERRUPTED.into());

@@ -7,23 +7,31 @@
 //!    non-finite values): a fixed number of mutants per target ([`MUTANTS`]) over those
 //!    seeds and the repo's `assets/`, and a second fixed-count pass ([`SHARED_MUTANTS`]) over
 //!    `../shared/assets` (which skips, saying so, where that folder is absent).
+//! 3. Runs the exporter pass ([`exporters`]): the Draco and meshopt files real exporters
+//!    made, mutated inside their compressed streams (byte flips, truncations, duplicated
+//!    runs, 32-bit field overwrites; [`glb`] rebuilds the GLB around the mutated stream).
 //!
 //! Which mutants run is a function of the seed files and the RNG seed alone, never of the
 //! clock: the same checkout tries the same inputs on any machine under any load. The only
 //! clock in this file is [`PER_INPUT`], a guard against hangs.
 //!
 //! Every input must end in `Ok` or an `Err` that names the input file (or its MTL) and
-//! says what is wrong; it must not panic, take longer than [`PER_INPUT`], or grow the
+//! says what is wrong; it must not panic (nor make a decoder panic inside the loaders'
+//! panic net, `iris::load::panic_net`), take longer than [`PER_INPUT`], or grow the
 //! heap by more than [`PEAK_LIMIT`] (counting global allocator below). A failing input is
 //! written to `target/tmp/fuzz-replay-failures/` and named in the failure message, for
 //! `cargo +nightly fuzz run <target> <file>`.
 
-use iris::load::fuzz_entry;
+use iris::load::{fuzz_entry, panic_net};
 use std::path::{Path, PathBuf};
 use std::sync::{mpsc, Mutex};
 use std::time::{Duration, Instant};
 
 mod common;
+#[path = "fuzz_replay/exporters.rs"]
+mod exporters;
+#[path = "fuzz_replay/glb.rs"]
+mod glb;
 
 #[global_allocator]
 static ALLOC: common::alloc::Counting = common::alloc::Counting;
@@ -140,28 +148,45 @@ fn check_load<T>(r: Result<T, iris::LoadError>, files: &[Names]) -> Result<(), S
 
 /// Runs one input on a worker thread under `catch_unwind`, checking time and heap.
 fn run_guarded(target: Target, data: &[u8]) -> Result<(), String> {
-    let (tx, rx) = mpsc::channel();
     let owned = data.to_vec();
+    guarded(move || target.run(&owned)).0
+}
+
+/// Runs `work` on a worker thread under `catch_unwind`; a panic (escaped, or caught by
+/// the loaders' panic net), more than [`PER_INPUT`] or a heap growth over [`PEAK_LIMIT`]
+/// is an `Err`. Also returns the heap growth.
+fn guarded<T: Send + 'static>(
+    work: impl FnOnce() -> Result<T, String> + Send + 'static,
+) -> (Result<T, String>, usize) {
+    let (tx, rx) = mpsc::channel();
     let base = common::alloc::start_peak();
     let start = Instant::now();
     std::thread::spawn(move || {
-        let r = std::panic::catch_unwind(|| target.run(&owned))
+        let caught = panic_net::caught_count();
+        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(work))
             .unwrap_or_else(|p| Err(format!("panic: {}", panic_text(&p))));
+        // A panic the loaders' net caught is a decoder bug too (the tests run serially).
+        let r = match r {
+            Ok(_) if panic_net::caught_count() != caught => Err(
+                "a decoder panicked (caught by the panic net; `iris info --verbose` on the saved input names it)".into(),
+            ),
+            r => r,
+        };
         let _ = tx.send(r);
     });
     let r = match rx.recv_timeout(PER_INPUT) {
         Ok(r) => r,
-        Err(_) => return Err(format!("no result after {PER_INPUT:?} (hang)")),
+        Err(_) => return (Err(format!("no result after {PER_INPUT:?} (hang)")), 0),
     };
     let peak = common::alloc::peak_growth(base);
     if peak > PEAK_LIMIT {
-        return Err(format!("heap grew by {peak} bytes"));
+        return (Err(format!("heap grew by {peak} bytes")), peak);
     }
     let took = start.elapsed();
     if took > PER_INPUT {
-        return Err(format!("took {took:?}"));
+        return (Err(format!("took {took:?}")), peak);
     }
-    r
+    (r, peak)
 }
 
 fn panic_text(p: &Box<dyn std::any::Any + Send>) -> String {

@@ -302,26 +302,7 @@ fn read_glb(path: &Path) -> (Value, Vec<u8>) {
 
 /// Writes a GLB with `json` and `bin`.
 fn write_glb(path: &Path, json: &Value, bin: &[u8]) {
-    let mut j = serde_json::to_vec(json).expect("json");
-    while !j.len().is_multiple_of(4) {
-        j.push(b' ');
-    }
-    let mut bin = bin.to_vec();
-    while !bin.len().is_multiple_of(4) {
-        bin.push(0);
-    }
-    let total = 12 + 8 + j.len() + 8 + bin.len();
-    let mut out = Vec::new();
-    out.extend(b"glTF");
-    out.extend(2u32.to_le_bytes());
-    out.extend((total as u32).to_le_bytes());
-    out.extend((j.len() as u32).to_le_bytes());
-    out.extend(b"JSON");
-    out.extend(&j);
-    out.extend((bin.len() as u32).to_le_bytes());
-    out.extend(b"BIN\0");
-    out.extend(&bin);
-    std::fs::write(path, out).expect("write");
+    std::fs::write(path, common::glb(json, bin)).expect("write");
 }
 
 /// Loads `source` edited by `edit`; asserts an error whose message names the file and

@@ -1,14 +1,19 @@
 //! glTF/GLB bytes → the real glTF loader and scene validation, from memory
-//! (external URIs resolve to nothing). Any panic, timeout or OOM is a bug.
+//! (external URIs resolve to nothing). Any panic, timeout or OOM is a bug, and so is a
+//! decoder panic the loader's panic net caught (`iris::load::panic_net`).
 #![no_main]
+use iris::load::{fuzz_entry, panic_net};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(
-    // The default panic hook, so that a decoder panic Iris catches (load::decode) is not
-    // turned into an abort by libfuzzer-sys's hook; uncaught panics still crash the run.
+    // The error of a caught panic names its message and location.
     init: {
-        let _ = std::panic::take_hook();
+        panic_net::show_caught_panics(true);
     },
     |data: &[u8]| {
-    let _ = iris::load::fuzz_entry::load_gltf_bytes(data);
+    let caught = panic_net::caught_count();
+    let result = fuzz_entry::load_gltf_bytes(data);
+    if panic_net::caught_count() != caught {
+        panic!("a decoder panicked (caught by the panic net): {:?}", result.err());
+    }
 });

@@ -25,6 +25,11 @@ pub struct Cli {
     /// The command and its flags.
     #[command(subcommand)]
     pub command: Command,
+    /// Say more about problems Iris recovered from while loading: when a third-party
+    /// decoder (Draco, images) panics on a file, its error names the panic's message and
+    /// source location (without --verbose: only that the decoder panicked).
+    #[arg(long, global = true)]
+    pub verbose: bool,
 }
 
 /// The commands, each with its flags.

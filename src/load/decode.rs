@@ -7,6 +7,7 @@
 //! [`MAX_DECODE_BYTES`] (which covers its intermediate buffers, e.g. 16-bit or float
 //! samples), so a header claiming 10⁵ × 10⁵ pixels is an error, not an allocation.
 
+use super::panic_net;
 use crate::error::LoadErrorKind;
 use crate::material::ImageDesc;
 use image::ImageDecoder;
@@ -54,11 +55,14 @@ pub fn decode_rgba8(bytes: &[u8], name: String) -> Result<ImageDesc, (LoadErrorK
     // A decoder bug must not take Iris down: png 0.18.1 panics on a PLTE chunk whose length
     // is not a multiple of 3 (`range end index 3 out of range`,
     // fuzz/regressions/image/png-palette-panic.png). `check_png_palette` rejects those
-    // first (so no panic message is printed); this guard stays for bugs not yet known.
-    let decoded = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+    // first; the panic net (which keeps a panic's message off the terminal) stays for bugs
+    // not yet known.
+    let decoded = panic_net::catch(std::panic::AssertUnwindSafe(|| {
         image::DynamicImage::from_decoder(decoder)
     }))
-    .map_err(|_| bad("the image decoder failed on this data (internal error)".into()))?
+    .map_err(|caught| {
+        bad(caught.describe("the image decoder failed on this data (internal error)"))
+    })?
     .map_err(unsupported)?;
     let rgba = decoded.into_rgba8();
     Ok(ImageDesc {

@@ -7,6 +7,7 @@ pub mod files;
 pub mod fuzz_entry;
 pub mod gltf;
 pub mod obj;
+pub mod panic_net;
 
 use crate::error::{LoadError, LoadErrorKind};
 use crate::scene::desc::SceneDesc;

@@ -30,10 +30,14 @@
 //! through Iris's glTF target found stream-declared sizes the decoder allocated unchecked
 //! (up to 1.8 GB, and one allocation failure that aborted the process), and the patch
 //! bounds each such count by the remaining stream, the declared faces or values, or an
-//! absolute cap, so those inputs (fuzz/regressions/gltf/draco_*.glb) end in clean errors.
+//! absolute cap; mutations of exporter-made files found three panics (a wrap transform
+//! with inverted bounds, an octahedral transform on a 3-component attribute, a symbol
+//! stream shorter than its symbols), which the patch refuses as Google's decoder does.
+//! Those inputs (fuzz/regressions/gltf/draco_*.glb) end in clean errors.
 //!
 //! Hostile input: the decoder's own errors become [`LoadError`]s; a panic inside it is
-//! caught ([`std::panic::catch_unwind`]) and reported the same way. Before decoding, the
+//! caught by the panic net ([`crate::load::panic_net`], which keeps its message off the
+//! terminal unless `--verbose`) and reported the same way. Before decoding, the
 //! stream's header counts (faces, vertices; `draco_header`, which refuses a stream whose
 //! counts it cannot read) must agree with the accessors, and the accessors' counts (or,
 //! without indices, the corners) may be at most [`MAX_EXPANSION`] elements per
@@ -44,7 +48,9 @@ use super::draco_header::header_counts;
 use super::source::view_bytes;
 use super::Ctx;
 use crate::error::{LoadError, LoadErrorKind};
+use crate::load::panic_net;
 use draco_oxide_core::attribute::{Attribute, ComponentDataType};
+use draco_oxide_core::mesh::Mesh;
 use gltf::accessor::DataType;
 use serde_json::Value;
 use std::collections::BTreeMap;
@@ -80,6 +86,21 @@ impl DracoPrimitive {
     }
 }
 
+/// A reason to refuse the primitive: the error kind and the sentence after the extension's
+/// name.
+type Failure = (LoadErrorKind, String);
+
+/// An accessor the Draco stream fills: its semantic, the Draco attribute id the extension
+/// maps it to, and the accessor (declared count, type, `normalized`).
+struct Wanted<'a> {
+    semantic: String,
+    id: usize,
+    acc: gltf::Accessor<'a>,
+}
+
+/// The error sentence for a decoder panic (the panic net's; `--verbose` adds the message).
+pub(super) const DECODER_PANICKED: &str = "the Draco decoder panicked on this data";
+
 /// Decodes the Draco mesh of `prim` if it has the extension; `element` names the
 /// primitive in errors.
 pub(super) fn read_draco(
@@ -90,51 +111,79 @@ pub(super) fn read_draco(
     let Some(ext) = prim.extension_value(NAME) else {
         return Ok(None);
     };
-    let fail = |kind, detail: String| ctx.error(element, kind, format!("{NAME}: {detail}"));
+    let fail = |(kind, detail): Failure| ctx.error(element, kind, format!("{NAME}: {detail}"));
+    let bytes = stream_bytes(ctx, ext).map_err(fail)?;
+    let wanted = wanted_accessors(prim, ext).map_err(fail)?;
+    let index_count = prim.indices().map(|acc| acc.count());
+    check_counts(bytes, &wanted, index_count).map_err(fail)?;
+    let mesh = decode(bytes).map_err(fail)?;
+    to_primitive(&mesh, &wanted, index_count)
+        .map(Some)
+        .map_err(fail)
+}
+
+/// The compressed bytes: the buffer view the extension names.
+fn stream_bytes<'c>(ctx: &'c Ctx<'_>, ext: &Value) -> Result<&'c [u8], Failure> {
     let view_index = ext
         .get("bufferView")
         .and_then(Value::as_u64)
         .and_then(|v| usize::try_from(v).ok())
         .ok_or_else(|| {
-            fail(
+            (
                 LoadErrorKind::Parse,
-                "bufferView is missing or not an index".into(),
+                "bufferView is missing or not an index".to_string(),
             )
         })?;
     let view = ctx.doc.views().nth(view_index).ok_or_else(|| {
-        fail(
+        (
             LoadErrorKind::IndexOutOfRange,
             format!("bufferView {view_index} does not exist"),
         )
     })?;
-    let bytes = view_bytes(ctx, &view).map_err(|e| fail(LoadErrorKind::MissingBuffer, e))?;
-    let ids = attribute_ids(ext).map_err(|d| fail(LoadErrorKind::Parse, d))?;
+    view_bytes(ctx, &view).map_err(|e| (LoadErrorKind::MissingBuffer, e))
+}
 
-    // The accessors this stream must fill, with their declared counts.
-    let mut wanted = Vec::new();
-    for (semantic, id) in &ids {
-        let acc = prim
-            .attributes()
-            .find(|(s, _)| s.to_string() == *semantic)
-            .map(|(_, acc)| acc)
-            .ok_or_else(|| {
-                fail(
-                    LoadErrorKind::Parse,
-                    format!("attribute {semantic} is not an attribute of the primitive"),
-                )
-            })?;
-        wanted.push((semantic.clone(), *id, acc));
-    }
-    let index_count = prim.indices().map(|acc| acc.count());
+/// The accessors this stream must fill, in the extension's `attributes` order; each named
+/// semantic must be an attribute of the primitive.
+fn wanted_accessors<'a>(
+    prim: &gltf::Primitive<'a>,
+    ext: &Value,
+) -> Result<Vec<Wanted<'a>>, Failure> {
+    let ids = attribute_ids(ext).map_err(|d| (LoadErrorKind::Parse, d))?;
+    ids.into_iter()
+        .map(|(semantic, id)| {
+            let acc = prim
+                .attributes()
+                .find(|(s, _)| s.to_string() == semantic)
+                .map(|(_, acc)| acc)
+                .ok_or_else(|| {
+                    (
+                        LoadErrorKind::Parse,
+                        format!("attribute {semantic} is not an attribute of the primitive"),
+                    )
+                })?;
+            Ok(Wanted { semantic, id, acc })
+        })
+        .collect()
+}
+
+/// The bounds checked before decoding: the accessors' counts (or, without indices, the
+/// corners) at most [`MAX_EXPANSION`] per compressed byte, and the stream's header counts
+/// in agreement with them.
+fn check_counts(
+    bytes: &[u8],
+    wanted: &[Wanted<'_>],
+    index_count: Option<usize>,
+) -> Result<(), Failure> {
     let budget = bytes.len().saturating_mul(MAX_EXPANSION);
     let largest = wanted
         .iter()
-        .map(|(_, _, acc)| acc.count())
+        .map(|w| w.acc.count())
         .chain(index_count)
         .max()
         .unwrap_or(0);
     if largest > budget {
-        return Err(fail(
+        return Err((
             LoadErrorKind::TooLarge,
             format!(
                 "the accessors declare {largest} elements for {} compressed bytes (at most {MAX_EXPANSION} per byte)",
@@ -142,81 +191,74 @@ pub(super) fn read_draco(
             ),
         ));
     }
-    let header = header_counts(bytes).map_err(|d| fail(LoadErrorKind::Parse, d))?;
+    let header = header_counts(bytes).map_err(|d| (LoadErrorKind::Parse, d))?;
     // Without an indices accessor the faces are bounded by the byte budget instead.
     let corners = header.faces.checked_mul(3);
     let faces_ok = match index_count {
         Some(n) => corners == Some(n),
         None => corners.is_some_and(|c| c <= budget),
     };
-    let points_ok = wanted
-        .iter()
-        .all(|(_, _, acc)| header.vertices <= acc.count());
+    let points_ok = wanted.iter().all(|w| header.vertices <= w.acc.count());
     if !faces_ok || !points_ok {
-        return Err(fail(
+        return Err((
             LoadErrorKind::Parse,
             format!(
                 "the Draco stream has {} faces and {} vertices, which disagree with the accessors ({} indices, {} points)",
                 header.faces,
                 header.vertices,
                 index_count.map_or("no".to_string(), |n| n.to_string()),
-                wanted.first().map_or(0, |(_, _, acc)| acc.count())
+                wanted.first().map_or(0, |w| w.acc.count())
             ),
         ));
     }
+    Ok(())
+}
 
-    let mesh = std::panic::catch_unwind(|| draco_oxide_decoder::decode_mesh(bytes))
-        .map_err(|_| {
-            fail(
-                LoadErrorKind::Parse,
-                "the Draco decoder panicked on this data".into(),
-            )
-        })?
-        .map_err(|e| fail(LoadErrorKind::Parse, format!("invalid Draco data: {e}")))?;
+/// Runs the decoder under the panic net ([`panic_net::catch`]): a panic is an error, and
+/// its message stays off the terminal unless `--verbose`.
+fn decode(bytes: &[u8]) -> Result<Mesh, Failure> {
+    panic_net::catch(|| draco_oxide_decoder::decode_mesh(bytes))
+        .map_err(|caught| (LoadErrorKind::Parse, caught.describe(DECODER_PANICKED)))?
+        .map_err(|e| (LoadErrorKind::Parse, format!("invalid Draco data: {e}")))
+}
 
+/// The decoded mesh as the primitive's attributes and indices, after checking it against
+/// the accessors: every listed attribute present with the same number of points, at least
+/// the declared count (more is tolerated, see the module doc), indices below the point
+/// count and as many as the indices accessor declares.
+fn to_primitive(
+    mesh: &Mesh,
+    wanted: &[Wanted<'_>],
+    index_count: Option<usize>,
+) -> Result<DracoPrimitive, Failure> {
+    let parse = |detail: String| (LoadErrorKind::Parse, detail);
     let mut out = DracoPrimitive::default();
-    for (semantic, id, acc) in &wanted {
+    for Wanted { semantic, id, acc } in wanted {
         let attribute = mesh
             .attributes
             .iter()
             .find(|a| a.get_id().as_usize() == *id)
             .ok_or_else(|| {
-                fail(
-                    LoadErrorKind::Parse,
-                    format!(
-                        "{semantic} refers to Draco attribute {id}, which the stream does not have"
-                    ),
-                )
+                parse(format!(
+                    "{semantic} refers to Draco attribute {id}, which the stream does not have"
+                ))
             })?;
-        let values = attribute_values(attribute, acc)
-            .map_err(|d| fail(LoadErrorKind::Parse, format!("{semantic}: {d}")))?;
+        let values =
+            attribute_values(attribute, acc).map_err(|d| parse(format!("{semantic}: {d}")))?;
         out.attributes.insert(semantic.clone(), values);
     }
-    let mut faces: Vec<u32> = Vec::with_capacity(mesh.faces.len().saturating_mul(3));
-    for &p in mesh.faces.iter().flatten() {
-        let p = u32::try_from(usize::from(p)).map_err(|_| {
-            fail(
-                LoadErrorKind::TooLarge,
-                "a decoded face index exceeds 32 bits".into(),
-            )
-        })?;
-        faces.push(p);
-    }
+    out.indices = face_indices(mesh)?;
     let decoded = out.attributes.values().map(Vec::len).max().unwrap_or(0);
-    let declared = wanted.first().map_or(0, |(_, _, acc)| acc.count());
-    out.indices = faces;
-    for (semantic, _, acc) in &wanted {
+    let declared = wanted.first().map_or(0, |w| w.acc.count());
+    for Wanted { semantic, acc, .. } in wanted {
         let len = out.attributes.get(semantic).map_or(0, Vec::len);
         // More points than declared is tolerated (see the module doc), fewer is not.
         if len != decoded || len < acc.count() {
-            return Err(fail(
-                LoadErrorKind::Parse,
-                format!(
-                    "{semantic} decodes to {len} values but accessor {} has count {}",
-                    acc.index(),
-                    acc.count()
-                ),
-            ));
+            return Err(parse(format!(
+                "{semantic} decodes to {len} values but accessor {} has count {}",
+                acc.index(),
+                acc.count()
+            )));
         }
     }
     if decoded > declared {
@@ -228,21 +270,33 @@ pub(super) fn read_draco(
         .enumerate()
         .find(|(_, &p)| p as usize >= decoded)
     {
-        return Err(fail(
+        return Err((
             LoadErrorKind::IndexOutOfRange,
             format!("decoded index {p} (position {i}) is not below the point count {decoded}"),
         ));
     }
     if let Some(n) = index_count.filter(|&n| n != out.indices.len()) {
-        return Err(fail(
-            LoadErrorKind::Parse,
-            format!(
-                "the Draco mesh has {} indices but the indices accessor has count {n}",
-                out.indices.len()
-            ),
-        ));
+        return Err(parse(format!(
+            "the Draco mesh has {} indices but the indices accessor has count {n}",
+            out.indices.len()
+        )));
     }
-    Ok(Some(out))
+    Ok(out)
+}
+
+/// The decoded faces as a triangle list of 32-bit indices.
+fn face_indices(mesh: &Mesh) -> Result<Vec<u32>, Failure> {
+    let mut faces: Vec<u32> = Vec::with_capacity(mesh.faces.len().saturating_mul(3));
+    for &p in mesh.faces.iter().flatten() {
+        let p = u32::try_from(usize::from(p)).map_err(|_| {
+            (
+                LoadErrorKind::TooLarge,
+                "a decoded face index exceeds 32 bits".to_string(),
+            )
+        })?;
+        faces.push(p);
+    }
+    Ok(faces)
 }
 
 /// How many primitives of the file carry the extension.

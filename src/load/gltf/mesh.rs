@@ -18,13 +18,14 @@
 //!   indices are swapped, keeping counter-clockwise winding seen from outside.
 
 use super::accessor::{read_floats, read_indices, AccessorError};
-use super::draco::read_draco;
+use super::draco::{read_draco, DracoPrimitive};
 use super::Ctx;
 use crate::error::{LoadError, LoadErrorKind};
 use crate::scene::desc::MeshDesc;
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 use gltf::mesh::Mode;
 use gltf::Semantic;
+use std::borrow::Cow;
 
 /// A triangle primitive in mesh-local space, shared by all nodes that instance it.
 #[derive(Debug)]
@@ -69,32 +70,24 @@ pub(super) fn read_primitive(
     element: &str,
 ) -> Result<Primitive, LoadError> {
     let mode = prim.mode();
-    let skipped = match mode {
-        Mode::Points => Some("POINTS"),
-        Mode::Lines => Some("LINES"),
-        Mode::LineLoop => Some("LINE_LOOP"),
-        Mode::LineStrip => Some("LINE_STRIP"),
-        Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan => None,
-    };
-    if let Some(name) = skipped {
+    if let Some(name) = skipped_mode(mode) {
         return Ok(Primitive::Skipped(name));
     }
     let Some(position_acc) = prim.get(&Semantic::Positions) else {
         return Ok(Primitive::NoPosition);
     };
-    let wrap =
-        |what: &str, e: AccessorError| ctx.error(element, e.kind, format!("{what}: {}", e.detail));
     let draco = read_draco(ctx, prim, element)?;
-    let from_draco2 = |semantic: &str| draco.as_ref().and_then(|d| d.get::<2>(semantic));
-    let from_draco3 = |semantic: &str| draco.as_ref().and_then(|d| d.get::<3>(semantic));
-
-    let positions: Vec<Vec3> = match from_draco3("POSITION") {
-        Some(values) => values,
-        None => read_floats::<3>(ctx, &position_acc).map_err(|e| wrap("POSITION", e))?,
-    }
-    .into_iter()
-    .map(Vec3::from)
-    .collect();
+    let reader = AttributeReader {
+        ctx,
+        prim,
+        element,
+        draco: draco.as_ref(),
+    };
+    let positions: Vec<Vec3> = reader
+        .values::<3>("POSITION", Some(position_acc))?
+        .into_iter()
+        .map(Vec3::from)
+        .collect();
     let n = positions.len();
     let vertex_count = u32::try_from(n).map_err(|_| {
         ctx.error(
@@ -103,81 +96,24 @@ pub(super) fn read_primitive(
             format!("{n} vertices exceed 32-bit indices"),
         )
     })?;
-
-    let same_length = |what: &str, len: usize| -> Result<(), LoadError> {
-        if len == n {
-            Ok(())
-        } else {
-            Err(ctx.error(
-                element,
-                LoadErrorKind::Parse,
-                format!("{what} has {len} elements but POSITION has {n}"),
-            ))
-        }
-    };
-    let normals: Vec<Vec3> = match (prim.get(&Semantic::Normals), from_draco3("NORMAL")) {
-        (_, Some(values)) => values.into_iter().map(Vec3::from).collect(),
-        (Some(acc), None) => read_floats::<3>(ctx, &acc)
-            .map_err(|e| wrap("NORMAL", e))?
-            .into_iter()
-            .map(Vec3::from)
-            .collect(),
-        (None, None) => Vec::new(),
-    };
-    if !normals.is_empty() {
-        same_length("NORMAL", normals.len())?;
-    }
-    let uvs: Vec<Vec2> = match (prim.get(&Semantic::TexCoords(0)), from_draco2("TEXCOORD_0")) {
-        (_, Some(values)) => values.into_iter().map(Vec2::from).collect(),
-        (Some(acc), None) => read_floats::<2>(ctx, &acc)
-            .map_err(|e| wrap("TEXCOORD_0", e))?
-            .into_iter()
-            .map(Vec2::from)
-            .collect(),
-        (None, None) => Vec::new(),
-    };
-    if !uvs.is_empty() {
-        same_length("TEXCOORD_0", uvs.len())?;
-    }
-    let tangents: Vec<Vec4> = match prim.get(&Semantic::Tangents) {
-        // The spec: without normals, provided tangents must be ignored.
-        Some(acc) if !normals.is_empty() => read_floats::<4>(ctx, &acc)
-            .map_err(|e| wrap("TANGENT", e))?
-            .into_iter()
-            .map(Vec4::from)
-            .collect(),
-        _ => Vec::new(),
-    };
-    if !tangents.is_empty() {
-        same_length("TANGENT", tangents.len())?;
-        if let Some((i, t)) = tangents.iter().enumerate().find(|(_, t)| !t.is_finite()) {
-            return Err(ctx.error(
-                element,
-                LoadErrorKind::InvalidValue,
-                format!("TANGENT {i} = {t} is not finite"),
-            ));
-        }
-    }
-    let tangents = tangents
+    let normals: Vec<Vec3> = reader
+        .per_vertex::<3>("NORMAL", Semantic::Normals, n)?
         .into_iter()
-        .map(|t| t.truncate().extend(if t.w < 0.0 { -1.0 } else { 1.0 }))
+        .map(Vec3::from)
         .collect();
-
-    let extra_points = draco.as_ref().and_then(|d| d.extra_points);
-    let indices = match (prim.indices(), draco) {
-        (_, Some(d)) => d.indices,
-        (Some(acc), None) => read_indices(ctx, &acc).map_err(|e| wrap("indices", e))?,
-        (None, None) => (0..vertex_count).collect(),
+    let uvs: Vec<Vec2> = reader
+        .per_vertex::<2>("TEXCOORD_0", Semantic::TexCoords(0), n)?
+        .into_iter()
+        .map(Vec2::from)
+        .collect();
+    // The spec: without normals, provided tangents must be ignored.
+    let tangents = if normals.is_empty() {
+        Vec::new()
+    } else {
+        reader.tangents(n)?
     };
-    if let Some((i, &bad)) = indices.iter().enumerate().find(|(_, &v)| v >= vertex_count) {
-        return Err(ctx.error(
-            element,
-            LoadErrorKind::IndexOutOfRange,
-            format!(
-                "index {bad} (position {i} in the index list) is not below the vertex count {n}"
-            ),
-        ));
-    }
+    let extra_points = draco.as_ref().and_then(|d| d.extra_points);
+    let indices = reader.indices(vertex_count)?;
     Ok(Primitive::Triangles(LocalPrimitive {
         positions,
         normals,
@@ -187,6 +123,122 @@ pub(super) fn read_primitive(
         material: prim.material().index(),
         extra_points,
     }))
+}
+
+/// The glTF name of a point or line mode (read as nothing), `None` for triangle modes.
+fn skipped_mode(mode: Mode) -> Option<&'static str> {
+    match mode {
+        Mode::Points => Some("POINTS"),
+        Mode::Lines => Some("LINES"),
+        Mode::LineLoop => Some("LINE_LOOP"),
+        Mode::LineStrip => Some("LINE_STRIP"),
+        Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan => None,
+    }
+}
+
+/// Reads one primitive's vertex attributes and indices, from the decoded Draco mesh where
+/// it holds them and from the accessors otherwise; errors name `element`.
+struct AttributeReader<'r, 'a> {
+    ctx: &'r Ctx<'a>,
+    prim: &'r gltf::Primitive<'a>,
+    element: &'r str,
+    draco: Option<&'r DracoPrimitive>,
+}
+
+impl<'r> AttributeReader<'r, '_> {
+    /// An accessor error, prefixed with the attribute's name.
+    fn wrap(&self, what: &str, e: AccessorError) -> LoadError {
+        self.ctx
+            .error(self.element, e.kind, format!("{what}: {}", e.detail))
+    }
+
+    /// The values of attribute `name`: the Draco mesh's if it holds them, else those of
+    /// `acc`, else none.
+    fn values<const N: usize>(
+        &self,
+        name: &str,
+        acc: Option<gltf::Accessor<'_>>,
+    ) -> Result<Vec<[f32; N]>, LoadError> {
+        match (acc, self.draco.and_then(|d| d.get::<N>(name))) {
+            (_, Some(values)) => Ok(values),
+            (Some(acc), None) => read_floats::<N>(self.ctx, &acc).map_err(|e| self.wrap(name, e)),
+            (None, None) => Ok(Vec::new()),
+        }
+    }
+
+    /// An optional per-vertex attribute: none, or exactly one value per position (`n`).
+    fn per_vertex<const N: usize>(
+        &self,
+        name: &str,
+        semantic: Semantic,
+        n: usize,
+    ) -> Result<Vec<[f32; N]>, LoadError> {
+        let values = self.values::<N>(name, self.prim.get(&semantic))?;
+        if !values.is_empty() {
+            self.same_length(name, values.len(), n)?;
+        }
+        Ok(values)
+    }
+
+    fn same_length(&self, what: &str, len: usize, n: usize) -> Result<(), LoadError> {
+        if len == n {
+            Ok(())
+        } else {
+            Err(self.ctx.error(
+                self.element,
+                LoadErrorKind::Parse,
+                format!("{what} has {len} elements but POSITION has {n}"),
+            ))
+        }
+    }
+
+    /// TANGENT (from its accessor only): one per position, finite, w reduced to its sign ±1.
+    fn tangents(&self, n: usize) -> Result<Vec<Vec4>, LoadError> {
+        let Some(acc) = self.prim.get(&Semantic::Tangents) else {
+            return Ok(Vec::new());
+        };
+        let tangents: Vec<Vec4> = read_floats::<4>(self.ctx, &acc)
+            .map_err(|e| self.wrap("TANGENT", e))?
+            .into_iter()
+            .map(Vec4::from)
+            .collect();
+        if !tangents.is_empty() {
+            self.same_length("TANGENT", tangents.len(), n)?;
+            if let Some((i, t)) = tangents.iter().enumerate().find(|(_, t)| !t.is_finite()) {
+                return Err(self.ctx.error(
+                    self.element,
+                    LoadErrorKind::InvalidValue,
+                    format!("TANGENT {i} = {t} is not finite"),
+                ));
+            }
+        }
+        Ok(tangents
+            .into_iter()
+            .map(|t| t.truncate().extend(if t.w < 0.0 { -1.0 } else { 1.0 }))
+            .collect())
+    }
+
+    /// The index list: Draco's decoded indices, the indices accessor, or `0..vertex_count`;
+    /// every index below `vertex_count`.
+    fn indices(&self, vertex_count: u32) -> Result<Cow<'r, [u32]>, LoadError> {
+        let indices = match (self.prim.indices(), self.draco) {
+            (_, Some(d)) => Cow::Borrowed(d.indices.as_slice()),
+            (Some(acc), None) => {
+                Cow::Owned(read_indices(self.ctx, &acc).map_err(|e| self.wrap("indices", e))?)
+            }
+            (None, None) => Cow::Owned((0..vertex_count).collect()),
+        };
+        if let Some((i, &bad)) = indices.iter().enumerate().find(|(_, &v)| v >= vertex_count) {
+            return Err(self.ctx.error(
+                self.element,
+                LoadErrorKind::IndexOutOfRange,
+                format!(
+                    "index {bad} (position {i} in the index list) is not below the vertex count {vertex_count}"
+                ),
+            ));
+        }
+        Ok(indices)
+    }
 }
 
 /// Triangles from an index list (§3.7.2.1). Strips/fans drop degenerate joins.

@@ -243,30 +243,26 @@ fn decode(c: &Compressed, source: &[u8]) -> Result<Vec<u8>, String> {
     let err = |e: meshopt::Error| format!("corrupt {:?} data: {e}", c.mode);
     let mut bytes = match (c.mode, c.stride) {
         (Mode::Attributes, _) => decode_vertices(source, c.count, c.stride).map_err(err)?,
-        (Mode::Triangles, 2) => le_bytes(
-            meshopt::decode_index_buffer::<u16>(source, c.count).map_err(err)?,
-            u16::to_le_bytes,
-        ),
-        (Mode::Triangles, _) => le_bytes(
-            meshopt::decode_index_buffer::<u32>(source, c.count).map_err(err)?,
-            u32::to_le_bytes,
-        ),
-        (Mode::Indices, 2) => le_bytes(
-            meshopt::decode_index_sequence::<u16>(source, c.count).map_err(err)?,
-            u16::to_le_bytes,
-        ),
-        (Mode::Indices, _) => le_bytes(
-            meshopt::decode_index_sequence::<u32>(source, c.count).map_err(err)?,
-            u32::to_le_bytes,
-        ),
+        (mode, 2) => decode_indices(mode, source, c.count, u16::to_le_bytes).map_err(err)?,
+        (mode, _) => decode_indices(mode, source, c.count, u32::to_le_bytes).map_err(err)?,
     };
     apply_filter(c.filter, c.stride, &mut bytes);
     Ok(bytes)
 }
 
-/// Little-endian bytes of decoded integers.
-fn le_bytes<T: Copy, const K: usize>(values: Vec<T>, to_le: fn(T) -> [u8; K]) -> Vec<u8> {
-    values.into_iter().flat_map(to_le).collect()
+/// The index codec of `mode` (TRIANGLES: `decode_index_buffer`, INDICES:
+/// `decode_index_sequence`) for indices of type `T`, as little-endian bytes.
+fn decode_indices<T: meshopt::IndexType, const K: usize>(
+    mode: Mode,
+    source: &[u8],
+    count: usize,
+    to_le: fn(T) -> [u8; K],
+) -> Result<Vec<u8>, meshopt::Error> {
+    let values = match mode {
+        Mode::Triangles => meshopt::decode_index_buffer::<T>(source, count)?,
+        _ => meshopt::decode_index_sequence::<T>(source, count)?,
+    };
+    Ok(values.into_iter().flat_map(to_le).collect())
 }
 
 /// One decoded vertex of `N` bytes (`[u8; N]` has no `Default` above 32 bytes, which the

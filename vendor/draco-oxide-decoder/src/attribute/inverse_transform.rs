@@ -39,6 +39,19 @@ impl InverseTransform {
             TRANSFORM_WRAPPED_DIFFERENCE => {
                 let min = i32::read_from(reader)?;
                 let max = i32::read_from(reader)?;
+                // Iris patch (IRIS-PATCHES.md, P6): the range must be non-empty and its
+                // width `max - min` below i32::MAX, as Google's
+                // `PredictionSchemeWrapTransformBase::DecodeTransformData` and
+                // `InitCorrectionBounds` require. Inverted bounds made the `clamp` in
+                // `compute_original` panic (`assertion failed: min <= max`), and a wider
+                // range overflows `1 + max - min`.
+                if i64::from(max) - i64::from(min) < 0
+                    || i64::from(max) - i64::from(min) >= i64::from(i32::MAX)
+                {
+                    return Err(Err::MalformedAttribute(
+                        "wrap transform bounds are inverted or too wide",
+                    ));
+                }
                 Ok(InverseTransform::Wrapped { min, max })
             }
             TRANSFORM_OCT_ORTHOGONAL => {
@@ -51,6 +64,21 @@ impl InverseTransform {
             }
             TRANSFORM_OCT_REFLECTION => Err(Err::Unimplemented),
             _ => Err(Err::MalformedAttribute("unknown prediction transform id")),
+        }
+    }
+
+    /// Iris patch (IRIS-PATCHES.md, P7): whether this transform applies to values of `n`
+    /// components. The octahedral transform works on 2-component octahedral coordinates
+    /// only (Google's decoder creates it for normals alone); on any other attribute a
+    /// stream naming it made `oct_orthogonal_original` panic (`assertion failed: N == 2`).
+    pub(crate) fn check_components(&self, n: usize) -> Result<(), Err> {
+        match self {
+            InverseTransform::OctahedralOrthogonal { .. } if n != 2 => {
+                Err(Err::MalformedAttribute(
+                    "octahedral transform on an attribute without 2 components",
+                ))
+            }
+            _ => Ok(()),
         }
     }
 

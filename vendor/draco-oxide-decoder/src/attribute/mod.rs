@@ -888,6 +888,8 @@ fn parse_payload<'a>(
         }
         (_, Some(id)) => InverseTransform::read_from(reader, id)?,
     };
+    // Iris patch (IRIS-PATCHES.md, P7).
+    transform.check_components(n)?;
 
     Ok(RawParsed {
         scheme_ty,

@@ -34,22 +34,27 @@ impl<'a> BitSource<'a> {
         }
     }
 
-    fn read_bit(&mut self) -> u32 {
-        let bit = (self.bytes[self.byte_pos] >> self.bit_pos) & 1;
+    /// The next bit, or `None` past the end of the bytes.
+    ///
+    /// Iris patch (IRIS-PATCHES.md, P8): the end is checked; indexing past it panicked
+    /// when a stream declared fewer symbol bytes than its symbols need.
+    fn read_bit(&mut self) -> Option<u32> {
+        let bit = (self.bytes.get(self.byte_pos)? >> self.bit_pos) & 1;
         self.bit_pos += 1;
         if self.bit_pos == 8 {
             self.bit_pos = 0;
             self.byte_pos += 1;
         }
-        bit as u32
+        Some(bit as u32)
     }
 
-    fn read_bits(&mut self, n: u8) -> u32 {
+    /// The next `n` bits, least significant first, or `None` past the end.
+    fn read_bits(&mut self, n: u8) -> Option<u32> {
         let mut value = 0;
         for i in 0..n {
-            value |= self.read_bit() << i;
+            value |= self.read_bit()? << i;
         }
-        value
+        Some(value)
     }
 }
 
@@ -98,7 +103,11 @@ pub fn decode_topology_splits(
         let edge_bytes = reader.read_bytes(num_splits.div_ceil(8))?;
         let mut bits = BitSource::new(edge_bytes);
         for split in &mut splits {
-            split.source_edge_right = bits.read_bit() & 1 == 1;
+            // `edge_bytes` holds a bit per split, so this never runs out.
+            let bit = bits.read_bit().ok_or(Err::MalformedConnectivity(
+                "topology split edge bits ended early",
+            ))?;
+            split.source_edge_right = bit & 1 == 1;
         }
     }
 
@@ -360,10 +369,12 @@ impl<'a> StandardTraversalDecoder<'a> {
 
 impl TraversalDecoder for StandardTraversalDecoder<'_> {
     fn decode_symbol(&mut self) -> Result<Symbol, Err> {
-        if self.symbols.read_bit() == 0 {
+        // Iris patch (IRIS-PATCHES.md, P8): a symbol stream that ends early is an error.
+        let ended = || Err::MalformedConnectivity("edgebreaker symbol stream ended early");
+        if self.symbols.read_bit().ok_or_else(ended)? == 0 {
             return Ok(Symbol::C);
         }
-        let suffix = self.symbols.read_bits(2);
+        let suffix = self.symbols.read_bits(2).ok_or_else(ended)?;
         Ok(match 1 | (suffix << 1) {
             1 => Symbol::S,
             3 => Symbol::L,
