@@ -139,6 +139,7 @@ pub fn load_gltf_bytes(
     desc.materials = materials;
     desc.images = images;
     desc.skipped_textures = skipped;
+    warnings.texcoord1_missing = missing_texcoord1(&desc);
     desc.warnings = warnings.finish();
     Ok(desc)
 }
@@ -183,6 +184,8 @@ struct Warnings {
     skipped_primitives: Vec<String>,
     no_position: Vec<String>,
     texcoord_sets: Vec<String>,
+    /// Texture slots reading TEXCOORD_1 on a mesh that has none.
+    texcoord1_missing: Vec<String>,
     undecodable_textures: Vec<String>,
     spec_gloss_textures: Vec<String>,
     /// Material properties read but not rendered (e.g. a clearcoat normal map).
@@ -243,6 +246,12 @@ impl Warnings {
                 short_list(&self.texcoord_sets)
             ));
         }
+        if !self.texcoord1_missing.is_empty() {
+            out.push(format!(
+                "textures using texCoord 1 on meshes without TEXCOORD_1 are sampled with TEXCOORD_0: {}",
+                short_list(&self.texcoord1_missing)
+            ));
+        }
         if !self.ignored_properties.is_empty() {
             out.push(format!(
                 "material properties Iris does not render, ignored: {}",
@@ -251,6 +260,34 @@ impl Warnings {
         }
         out
     }
+}
+
+/// The texture slots that read texture-coordinate set 1 on a mesh without TEXCOORD_1 (the
+/// scene then repeats TEXCOORD_0 there), one entry per material (named as the loader labels
+/// it) and slot, naming the meshes.
+fn missing_texcoord1(desc: &SceneDesc) -> Vec<String> {
+    let mut out = Vec::new();
+    for (index, m) in desc.materials.iter().enumerate() {
+        let meshes: Vec<&str> = desc
+            .meshes
+            .iter()
+            .filter(|mesh| mesh.material == Some(index) && mesh.uvs1.is_empty())
+            .map(|mesh| mesh.name.as_str())
+            .collect();
+        if meshes.is_empty() {
+            continue;
+        }
+        for (slot, texture) in m.textures() {
+            if texture.is_some_and(|t| t.texcoord == 1) {
+                out.push(format!(
+                    "{} {slot} ({})",
+                    m.name,
+                    short_list(&meshes.iter().map(|s| s.to_string()).collect::<Vec<_>>())
+                ));
+            }
+        }
+    }
+    out
 }
 
 /// The first few items of a list, then how many more.

@@ -80,7 +80,7 @@ impl Geometry {
                 if full(&m.uvs1, n) {
                     v.uvs1.extend_from_slice(&m.uvs1);
                 } else {
-                    v.uvs1.extend_from_within(base_uv..);
+                    v.uvs1.extend_from_slice(&v.uvs[base_uv..]);
                 }
             }
             if any_tangents {

@@ -33,6 +33,8 @@ pub(super) struct LocalPrimitive {
     positions: Vec<Vec3>,
     normals: Vec<Vec3>,
     uvs: Vec<Vec2>,
+    /// TEXCOORD_1, or empty.
+    uvs1: Vec<Vec2>,
     tangents: Vec<Vec4>,
     triangles: Vec<[u32; 3]>,
     material: Option<usize>,
@@ -101,11 +103,16 @@ pub(super) fn read_primitive(
         .into_iter()
         .map(Vec3::from)
         .collect();
-    let uvs: Vec<Vec2> = reader
-        .per_vertex::<2>("TEXCOORD_0", Semantic::TexCoords(0), n)?
-        .into_iter()
-        .map(Vec2::from)
-        .collect();
+    let uv_set = |set: u32| -> Result<Vec<Vec2>, LoadError> {
+        let name = format!("TEXCOORD_{set}");
+        Ok(reader
+            .per_vertex::<2>(&name, Semantic::TexCoords(set), n)?
+            .into_iter()
+            .map(Vec2::from)
+            .collect())
+    };
+    let uvs = uv_set(0)?;
+    let uvs1 = uv_set(1)?;
     // The spec: without normals, provided tangents must be ignored.
     let tangents = if normals.is_empty() {
         Vec::new()
@@ -118,6 +125,7 @@ pub(super) fn read_primitive(
         positions,
         normals,
         uvs,
+        uvs1,
         tangents,
         triangles: assemble(mode, &indices),
         material: prim.material().index(),
@@ -318,7 +326,7 @@ pub(super) fn instantiate(local: &LocalPrimitive, world: &Mat4, name: String) ->
         positions,
         normals,
         uvs: local.uvs.clone(),
-        uvs1: Vec::new(),
+        uvs1: local.uvs1.clone(),
         tangents,
         indices,
         material: local.material,
@@ -365,6 +373,7 @@ mod tests {
             positions: vec![Vec3::X, Vec3::Y, Vec3::Z],
             normals: vec![Vec3::ONE; 3],
             uvs: Vec::new(),
+            uvs1: Vec::new(),
             tangents: Vec::new(),
             triangles: vec![[0, 1, 2]],
             material: None,
