@@ -33,9 +33,9 @@
 
 use iris::accel::Backend;
 use iris::camera::Camera;
+use iris::image::ImageRgb;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::light::env::Environment;
-use iris::output::ImageRgb;
 use iris::prepare::{prepare, PrepareOptions};
 use iris::preview::PreviewOptions;
 use iris::render::RenderSettings;

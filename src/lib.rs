@@ -19,7 +19,7 @@
 //! [`integrator::Integrator`] rendering through the one progressive driver and film
 //! ([`render`]) → denoising of PNG previews ([`denoise`], Open Image Denoise with auxiliary
 //! albedo and normals) → PNG/EXR ([`output`]). Commands live in [`app`]. The film's sums
-//! are exact ([`render::fixed`]), so a render cut into shards ([`app::shard`]) merges
+//! are exact ([`image::fixed`]), so a render cut into shards ([`app::shard`]) merges
 //! bit for bit ([`app::merge`]).
 //!
 //! `unsafe` appears only in `accel/embree/` and `denoise/oidn.rs`, the two C FFI layers
@@ -34,6 +34,7 @@ pub mod camera;
 pub mod denoise;
 pub mod error;
 pub mod framing;
+pub mod image;
 pub mod integrator;
 pub mod interaction;
 pub mod light;

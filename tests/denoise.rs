@@ -8,8 +8,8 @@ mod common;
 use iris::{
     app::{render_command, RenderOptions},
     denoise::DenoiseMode,
+    image::ImageRgb,
     integrator::Method,
-    output::ImageRgb,
 };
 use std::path::{Path, PathBuf};
 

@@ -15,8 +15,8 @@ mod common;
 
 use glam::Vec3;
 use iris::camera::{look_at, Camera};
+use iris::image::ImageRgb;
 use iris::integrator::{CausticMode, Integrator, Method, PhotonSettings};
-use iris::output::ImageRgb;
 use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::Scene;

@@ -416,7 +416,7 @@ fn small_map() -> Environment {
             }
         })
         .collect();
-    let img = iris::output::ImageRgb {
+    let img = iris::image::ImageRgb {
         width: 8,
         height: 4,
         data,

@@ -303,7 +303,7 @@ impl CheckpointWrites {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::output::ImageRgb;
+    use crate::image::ImageRgb;
     use glam::Vec3;
 
     fn flags() -> BudgetFlags {

@@ -15,9 +15,9 @@
 //!   the samples per pixel (fewest and most).
 //!
 //! ## The image
-//! The parts' exact sums are added ([`crate::render::ExactImage::add`]) and divided by the
+//! The parts' exact sums are added ([`crate::image::ExactImage::add`]) and divided by the
 //! pixel's units: for a fixed total the sums, and so the image, are bit for bit those of
-//! one `iris render` of all the units (the same formula, [`crate::render::fixed`]). The
+//! one `iris render` of all the units (the same formula, [`crate::image::fixed`]). The
 //! output is written atomically, an EXR as `iris render` writes it, a PNG through the same
 //! exposure and tone map (`--exposure`, `--tonemap`); the merge does not denoise (it has
 //! no scene for the auxiliary pass). The half-buffer error estimate is printed, and
@@ -26,10 +26,10 @@
 
 use super::shard::{Shard, ShardHeader, ShardState};
 use crate::error::{Error, Result};
+use crate::image::{ExactImage, ImageRgb};
 use crate::measure::metrics::{compare, half_buffer_estimate, ErrorMetrics};
 use crate::measure::report::{write_csv, ReportRow};
-use crate::output::{self, partial, DisplayOptions, ImageRgb};
-use crate::render::ExactImage;
+use crate::output::{self, partial, DisplayOptions};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::time::Instant;

@@ -33,7 +33,7 @@ mod oidn;
 pub use mode::{DenoiseChoice, DenoiseMode, EXR_LAYER};
 
 use crate::error::{Error, Result};
-use crate::output::ImageRgb;
+use crate::image::ImageRgb;
 use glam::Vec3;
 use std::time::{Duration, Instant};
 

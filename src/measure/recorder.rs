@@ -11,7 +11,7 @@
 use super::metrics::{compare, half_buffer_estimate, ErrorMetrics};
 use super::report::ReportRow;
 use crate::error::{Error, Result};
-use crate::output::ImageRgb;
+use crate::image::ImageRgb;
 use std::path::Path;
 use std::time::Duration;
 

@@ -8,8 +8,8 @@
 //! module's [`decode`] too) see the main image.
 //! Pixel (x, y) is row-major with y = 0 the top row, matching the EXR data window.
 
-use super::ImageRgb;
 use crate::error::{LoadError, LoadErrorKind};
+use crate::image::ImageRgb;
 use exr::prelude::*;
 use std::io::Cursor;
 use std::path::Path;

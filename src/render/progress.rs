@@ -3,7 +3,7 @@
 //! half-buffer error estimate. Images are linear RGB; times are wall-clock.
 
 use crate::error::Result;
-use crate::output::ImageRgb;
+use crate::image::ImageRgb;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::time::Instant;
 

@@ -19,7 +19,7 @@ impl Recorder<'_> {
     pub fn observe_denoised(
         &mut self,
         p: &Progress,
-        denoised: Option<(&crate::output::ImageRgb, std::time::Duration)>,
+        denoised: Option<(&crate::image::ImageRgb, std::time::Duration)>,
     ) -> Result<Control> {
         self.record_denoised(p, denoised)?;
         Ok(Control::Continue)
