@@ -15,9 +15,9 @@
 //! `cargo bench --bench caustic_error` (about 5 minutes on 2 cores).
 
 use iris::camera::Camera;
+use iris::image::metrics::compare;
 use iris::image::ImageRgb;
 use iris::integrator::{Integrator, Method, PhotonSettings};
-use iris::measure::metrics::compare;
 use iris::render::RenderSettings;
 use iris::scene::Scene;
 use std::fmt::Write as _;

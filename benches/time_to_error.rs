@@ -100,18 +100,16 @@ fn budget(method: Method, k: u32) -> (Integrator, u32, String) {
     }
 }
 
-/// Relative MSE (issue 6's definition, [`iris::measure::metrics::compare`]).
+/// Relative MSE (issue 6's definition, [`iris::image::metrics::compare`]).
 fn rel_mse(a: &ImageRgb, r: &ImageRgb) -> f64 {
-    iris::measure::metrics::compare(a, r)
+    iris::image::metrics::compare(a, r)
         .expect("same size")
         .rel_mse
 }
 
 /// RMSE over pixels and channels (linear RGB).
 fn rmse(a: &ImageRgb, r: &ImageRgb) -> f64 {
-    iris::measure::metrics::compare(a, r)
-        .expect("same size")
-        .rmse
+    iris::image::metrics::compare(a, r).expect("same size").rmse
 }
 
 /// The scene on `backend` with its camera, or `None` (printed) when it cannot be loaded.

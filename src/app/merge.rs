@@ -26,8 +26,8 @@
 
 use super::shard::{Shard, ShardHeader, ShardState};
 use crate::error::{Error, Result};
+use crate::image::metrics::{compare, half_buffer_estimate, ErrorMetrics};
 use crate::image::{ExactImage, ImageRgb};
-use crate::measure::metrics::{compare, half_buffer_estimate, ErrorMetrics};
 use crate::measure::report::{write_csv, ReportRow};
 use crate::output::{self, partial, DisplayOptions};
 use std::ops::Range;

@@ -11,6 +11,7 @@
 pub mod coverage;
 pub mod exact;
 pub mod fixed;
+pub mod metrics;
 pub mod srgb;
 
 pub use coverage::Coverage;

@@ -14,7 +14,8 @@
 //! - Each tile counts the units (samples or passes) it has taken; all tiles hold the same
 //!   count unless a round was interrupted between tiles.
 //! - The two halves are independent estimates of the same image: their difference
-//!   estimates the error without a reference ([`crate::measure::metrics::half_buffer_estimate`]).
+//!   estimates the error without a reference
+//!   ([`crate::image::metrics::half_buffer_estimate`]).
 //!
 //! Colour conversion happens before a value reaches the film (spectral samples are turned
 //! into RGB by [`crate::spectrum::Carrier::to_rgb`] in the sample step).

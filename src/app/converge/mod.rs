@@ -3,7 +3,7 @@
 //! flags of `iris render` are [`crate::measure::MeasureOptions`]).
 //!
 //! Units and conventions: wall-clock seconds; errors on the linear image
-//! ([`crate::measure::metrics`]); "relative error" is the relative RMSE `sqrt(rel_mse)`
+//! ([`crate::image::metrics`]); "relative error" is the relative RMSE `sqrt(rel_mse)`
 //! ([`measure::relative_rmse`]). Every file is written atomically (temporary file + rename),
 //! and every flag and input file is checked before anything is rendered.
 
@@ -284,7 +284,7 @@ fn run_method(
         output::write_image(&path, &image, &display)?;
         files.push(path);
     }
-    let last = crate::measure::metrics::compare(&image, reference)?;
+    let last = crate::image::metrics::compare(&image, reference)?;
     let run = RunSummary {
         name: name.to_string(),
         stats,

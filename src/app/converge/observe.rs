@@ -3,8 +3,9 @@
 //! ([`crate::measure`] knows nothing of the renderer's control flow).
 
 use crate::error::Result;
-use crate::measure::{Progress, Recorder};
+use crate::measure::Recorder;
 use crate::render::Control;
+use crate::render::Progress;
 
 impl Recorder<'_> {
     /// Records a render checkpoint ([`Recorder::record`]); always [`Control::Continue`]
