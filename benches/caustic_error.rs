@@ -13,6 +13,7 @@
 //! relative MSE) and, per relative-MSE level, the first time each method reached it and the path/SPPM time
 //! ratio; writes the rows to `target/caustic_error.csv`. Run:
 //! `cargo bench --bench caustic_error` (about 5 minutes on 2 cores).
+#![forbid(unsafe_code)]
 
 use iris::camera::Camera;
 use iris::image::metrics::compare;

@@ -30,6 +30,7 @@
 //! Prints a table and writes every render to `target/time_to_error.csv`. Run:
 //! `cargo bench --bench time_to_error` (6.5 minutes on 2 heavily loaded cores). Without the shared
 //! assets those two scenes are SKIPPED.
+#![forbid(unsafe_code)]
 
 use iris::accel::Backend;
 use iris::camera::Camera;

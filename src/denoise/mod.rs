@@ -27,7 +27,10 @@
 
 pub mod aux;
 pub mod mode;
+// The Open Image Denoise FFI layer: with `accel::embree`, the one module allowed `unsafe`
+// (lib.rs).
 #[cfg(feature = "denoise")]
+#[allow(unsafe_code)]
 mod oidn;
 
 pub use mode::{DenoiseChoice, DenoiseMode, EXR_LAYER};
