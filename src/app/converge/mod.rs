@@ -9,6 +9,7 @@
 
 mod observe;
 
+use super::RenderOptions;
 use crate::accel::Backend;
 use crate::camera::Camera;
 use crate::error::{Error, Result};
@@ -82,19 +83,20 @@ pub struct ConvergeOptions {
 }
 
 impl ConvergeOptions {
-    /// The preparation `iris render` would make of the same file and flags (no `--env`, no
-    /// `--camera`, the default drop-in preview, the same `--stone` / `--metal`);
-    /// `reference_size` is the reference image's size, used when `--size` is not given.
+    /// The preparation `iris render` makes of the same file and flags (no `--env`, no
+    /// `--camera`, the default drop-in preview, the same `--stone` / `--metal`): that of
+    /// [`RenderOptions::prepare_options`], with the same meaning of `reference_size`.
     pub fn prepare_options(
         &self,
         reference_size: Option<(u32, u32)>,
     ) -> crate::prepare::PrepareOptions {
-        crate::prepare::PrepareOptions {
+        RenderOptions {
+            size: self.size,
             accel: self.accel,
-            size: self.size.or(reference_size),
             looks: self.looks.clone(),
-            ..Default::default()
+            ..RenderOptions::new(&self.scene, None)
         }
+        .prepare_options(reference_size)
     }
 }
 
