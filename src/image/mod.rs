@@ -1,8 +1,10 @@
 //! Images as numbers, below everything that makes, stores or measures them: the linear
 //! [`ImageRgb`], a film's exact content ([`ExactImage`] of fixed-point sums, [`fixed`]),
-//! per-pixel [`Coverage`] (alpha and escaped radiance) and the sRGB transfer functions
-//! ([`srgb`]). It imports nothing of the renderer: `render` fills these types, `output`
-//! writes and reads them as files, textures decode with [`srgb`].
+//! per-pixel [`Coverage`] (alpha and escaped radiance), the sRGB transfer functions
+//! ([`srgb`]) and the distances between images ([`metrics`]: against a reference, or
+//! estimated from two half images). It imports nothing of the renderer: `render` fills
+//! these types and estimates its error with [`metrics`], `output` writes and reads them as
+//! files, `measure` records the distances, textures decode with [`srgb`].
 //!
 //! Conventions: pixels are row-major, top row first, pixel (x, y) at `y * width + x`;
 //! colours are **linear** RGB with Rec.709/sRGB primaries (scene-referred radiance, any

@@ -21,9 +21,9 @@
 //!   low and unbiased.
 //! - Sample k goes to half k mod 2: the two half images are independent estimates used to
 //!   estimate the error without a reference.
-//! - The film's sums are exact ([`crate::image::fixed`]), so a render may take any contiguous range of
-//!   its units (a shard: [`Schedule::first`]), and the shards' sums add up to the sums of
-//!   one render of them all ([`crate::image::ExactImage::add`]).
+//! - The film's sums are exact ([`crate::image::fixed`]), so a render may take any
+//!   contiguous range of its units (a shard: [`Schedule::first`]), and the shards' sums add
+//!   up to the sums of one render of them all ([`crate::image::ExactImage::add`]).
 //!
 //! Images are linear RGB (radiance, W·sr⁻¹·m⁻² per channel); times are wall-clock.
 
