@@ -26,6 +26,7 @@
 //! `embree4-sys` emits `rustc-link-lib=embree4` itself; this script links
 //! `OpenImageDenoise`. How each was found is exported to the crate as `IRIS_EMBREE_SOURCE` /
 //! `IRIS_OIDN_SOURCE`.
+#![forbid(unsafe_code)]
 
 use std::env;
 use std::fs;

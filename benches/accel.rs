@@ -30,6 +30,7 @@
 //!
 //! Run: `cargo bench --bench accel` (add `-- --quick` for a short run;
 //! `cargo bench --bench accel -- shared_scenes` for the real scenes alone).
+#![forbid(unsafe_code)]
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::Vec3;

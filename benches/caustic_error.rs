@@ -13,11 +13,12 @@
 //! relative MSE) and, per relative-MSE level, the first time each method reached it and the path/SPPM time
 //! ratio; writes the rows to `target/caustic_error.csv`. Run:
 //! `cargo bench --bench caustic_error` (about 5 minutes on 2 cores).
+#![forbid(unsafe_code)]
 
 use iris::camera::Camera;
+use iris::image::metrics::compare;
+use iris::image::ImageRgb;
 use iris::integrator::{Integrator, Method, PhotonSettings};
-use iris::measure::metrics::compare;
-use iris::output::ImageRgb;
 use iris::render::RenderSettings;
 use iris::scene::Scene;
 use std::fmt::Write as _;

@@ -17,6 +17,7 @@
 //!
 //! Run: `cargo bench --bench load_build` (about 2 minutes on 2 cores). Without the shared
 //! assets the shared scenes are SKIPPED (said on stderr) and only the paper scene is timed.
+#![forbid(unsafe_code)]
 
 use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion};
 use iris::accel::Accel;

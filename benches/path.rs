@@ -12,6 +12,7 @@
 //!
 //! Run: `cargo bench --bench path` (`--no-default-features` for the BVH alone). Without the
 //! shared assets the bench says so and measures nothing.
+#![forbid(unsafe_code)]
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use iris::accel::Backend;

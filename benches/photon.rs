@@ -12,6 +12,7 @@
 //! Queries run on one thread; builds use rayon's pool.
 //!
 //! Run: `cargo bench --bench photon`.
+#![forbid(unsafe_code)]
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use glam::Vec3;

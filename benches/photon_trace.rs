@@ -6,6 +6,7 @@
 //! photons/s. The 2-thread/1-thread ratio is the parallel scaling (goal ≥ 1.8×).
 //!
 //! Run: `cargo bench --bench photon_trace`.
+#![forbid(unsafe_code)]
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::Vec3;

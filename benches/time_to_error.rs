@@ -30,12 +30,13 @@
 //! Prints a table and writes every render to `target/time_to_error.csv`. Run:
 //! `cargo bench --bench time_to_error` (6.5 minutes on 2 heavily loaded cores). Without the shared
 //! assets those two scenes are SKIPPED.
+#![forbid(unsafe_code)]
 
 use iris::accel::Backend;
 use iris::camera::Camera;
+use iris::image::ImageRgb;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::light::env::Environment;
-use iris::output::ImageRgb;
 use iris::prepare::{prepare, PrepareOptions};
 use iris::preview::PreviewOptions;
 use iris::render::RenderSettings;
@@ -100,18 +101,16 @@ fn budget(method: Method, k: u32) -> (Integrator, u32, String) {
     }
 }
 
-/// Relative MSE (issue 6's definition, [`iris::measure::metrics::compare`]).
+/// Relative MSE (issue 6's definition, [`iris::image::metrics::compare`]).
 fn rel_mse(a: &ImageRgb, r: &ImageRgb) -> f64 {
-    iris::measure::metrics::compare(a, r)
+    iris::image::metrics::compare(a, r)
         .expect("same size")
         .rel_mse
 }
 
 /// RMSE over pixels and channels (linear RGB).
 fn rmse(a: &ImageRgb, r: &ImageRgb) -> f64 {
-    iris::measure::metrics::compare(a, r)
-        .expect("same size")
-        .rmse
+    iris::image::metrics::compare(a, r).expect("same size").rmse
 }
 
 /// The scene on `backend` with its camera, or `None` (printed) when it cannot be loaded.

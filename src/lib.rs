@@ -19,13 +19,14 @@
 //! [`integrator::Integrator`] rendering through the one progressive driver and film
 //! ([`render`]) → denoising of PNG previews ([`denoise`], Open Image Denoise with auxiliary
 //! albedo and normals) → PNG/EXR ([`output`]). Commands live in [`app`]. The film's sums
-//! are exact ([`render::fixed`]), so a render cut into shards ([`app::shard`]) merges
+//! are exact ([`image::fixed`]), so a render cut into shards ([`app::shard`]) merges
 //! bit for bit ([`app::merge`]).
 //!
 //! `unsafe` appears only in `accel/embree/` and `denoise/oidn.rs`, the two C FFI layers
-//! (Embree; Open Image Denoise).
+//! (Embree; Open Image Denoise): the crate denies `unsafe_code` in every build, and only
+//! the declarations of those two modules allow it.
 #![warn(missing_docs)]
-#![cfg_attr(not(any(feature = "embree", feature = "denoise")), forbid(unsafe_code))]
+#![deny(unsafe_code)]
 
 pub mod accel;
 pub mod app;
@@ -35,6 +36,7 @@ pub mod cli;
 pub mod denoise;
 pub mod error;
 pub mod framing;
+pub mod image;
 pub mod integrator;
 pub mod interaction;
 pub mod light;

@@ -7,6 +7,7 @@
 //! so shells and scripts see the interruption). A second one exits at once with 130;
 //! outputs are written to a temporary name and renamed, so no half-written file is left
 //! under the output's name.
+#![forbid(unsafe_code)]
 
 use clap::Parser;
 use iris::app;

@@ -91,7 +91,7 @@ fn colour_background_is_exact_in_png_and_linear_in_exr() {
     // EXR: linear, the colour sRGB-decoded (#808080 → 0.2158).
     render(&dir, "c.exr", &["--background", "#808080"]);
     let exr = iris::output::read_exr(&dir.join("c.exr")).expect("exr");
-    let grey = iris::output::tonemap::srgb_eotf(128.0 / 255.0);
+    let grey = iris::image::srgb::srgb_eotf(128.0 / 255.0);
     assert!((grey - 0.2158).abs() < 1e-3);
     for (x, y) in CORNERS {
         let p = exr.get(x, y).unwrap();

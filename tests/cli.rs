@@ -186,7 +186,8 @@ fn info_lists_materials_lights_and_cameras() {
 /// the scale implies; different sizes are a usage error naming both files.
 #[test]
 fn diff_measures_rmse_and_rejects_size_mismatch() {
-    use iris::output::{write_image, DisplayOptions, ImageRgb};
+    use iris::image::ImageRgb;
+    use iris::output::{write_image, DisplayOptions};
     let dir = common::scratch_dir("cli_diff");
     let img = |w: u32, h: u32, v: f32| ImageRgb {
         width: w,

@@ -8,8 +8,8 @@ mod common;
 use iris::{
     app::{render_command, RenderOptions},
     denoise::DenoiseMode,
+    image::ImageRgb,
     integrator::Method,
-    output::ImageRgb,
 };
 use std::path::{Path, PathBuf};
 
@@ -59,7 +59,7 @@ fn spheres(
 #[cfg(feature = "denoise")]
 #[test]
 fn a_denoised_noisy_render_is_closer_to_the_long_reference() {
-    use iris::measure::metrics::compare;
+    use iris::image::metrics::compare;
     let dir = common::scratch_dir("denoise_error");
     // The reference: 256 spp with another seed (an independent Sobol' scramble), so its
     // own noise (1/64 of the 4-spp variance) is uncorrelated with the test render's.

@@ -9,9 +9,9 @@
 mod common;
 
 use iris::camera::Camera;
+use iris::image::metrics::{compare, half_buffer_estimate};
+use iris::image::ImageRgb;
 use iris::integrator::{Integrator, Method, PhotonSettings};
-use iris::measure::metrics::{compare, half_buffer_estimate};
-use iris::output::ImageRgb;
 use iris::render::{Control, Progress, RenderSettings};
 
 const W: u32 = 32;

@@ -395,7 +395,7 @@ fn cli_rejects_huge_requests_with_no_output() {
 fn exr_claiming(w: i32, h: i32) -> Vec<u8> {
     let dir = common::scratch_dir("huge_counts_exr_src");
     let path = dir.join("small.exr");
-    let mut img = iris::output::ImageRgb::new(4, 2);
+    let mut img = iris::image::ImageRgb::new(4, 2);
     img.data.iter_mut().for_each(|p| *p = glam::Vec3::ONE);
     iris::output::write_image(&path, &img, &Default::default()).unwrap();
     let mut bytes = std::fs::read(&path).unwrap();

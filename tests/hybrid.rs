@@ -15,9 +15,9 @@ mod common;
 
 use glam::Vec3;
 use iris::camera::{look_at, Camera};
+use iris::image::ImageRgb;
 use iris::integrator::{CausticMode, Integrator, Method, PhotonSettings};
 use iris::material::MaterialDesc;
-use iris::output::ImageRgb;
 use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, LightDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::Scene;

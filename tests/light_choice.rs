@@ -66,7 +66,7 @@ fn sky() -> Environment {
             }
         })
         .collect();
-    let img = iris::output::ImageRgb {
+    let img = iris::image::ImageRgb {
         width: 8,
         height: 4,
         data,

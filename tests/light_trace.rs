@@ -15,10 +15,10 @@ mod common;
 
 use glam::Vec3;
 use iris::camera::{look_at, Camera};
+use iris::image::ImageRgb;
 use iris::integrator::light_trace::Splatter;
 use iris::integrator::{CausticMode, Integrator, Method, PhotonSettings};
 use iris::material::MaterialDesc;
-use iris::output::ImageRgb;
 use iris::photon::emit::PhotonEmitter;
 use iris::photon::trace::{self, Roulette, TraceSettings};
 use iris::render::RenderSettings;

@@ -11,8 +11,8 @@
 mod common;
 
 use iris::camera::Camera;
+use iris::image::ImageRgb;
 use iris::integrator::{Integrator, Method, PhotonSettings};
-use iris::output::ImageRgb;
 use iris::render::RenderSettings;
 
 const W: u32 = 48;

@@ -417,7 +417,7 @@ fn small_map() -> Environment {
             }
         })
         .collect();
-    let img = iris::output::ImageRgb {
+    let img = iris::image::ImageRgb {
         width: 8,
         height: 4,
         data,

@@ -8,9 +8,9 @@ mod common;
 
 use glam::Vec3;
 use iris::camera::{look_at, Camera};
+use iris::image::ImageRgb;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::material::MaterialDesc;
-use iris::output::ImageRgb;
 use iris::render::{Control, Progress, RenderSettings, RenderStats};
 use iris::sampler::SamplerKind;
 use iris::scene::desc::{CameraDesc, Projection};

@@ -8,8 +8,9 @@ mod common;
 use glam::{Mat3, Quat, Vec3};
 use iris::accel::Backend;
 use iris::app::{render_command, RenderOptions};
+use iris::image::ImageRgb;
 use iris::integrator::{Method, PhotonSettings};
-use iris::output::{read_exr, DisplayOptions, ImageRgb};
+use iris::output::{read_exr, DisplayOptions};
 use std::path::{Path, PathBuf};
 
 fn asset(name: &str) -> PathBuf {

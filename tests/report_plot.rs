@@ -1,7 +1,7 @@
 //! The CSV report and the plots as files: the report has exactly the documented columns and
 //! reads back; plots are valid PNG/SVG; bad inputs give errors naming the file, not panics.
 
-use iris::measure::metrics::ErrorMetrics;
+use iris::image::metrics::ErrorMetrics;
 use iris::measure::plot::{plot_error_vs_time, Series, PLOT_SIZE};
 use iris::measure::report::{write_csv, ReportRow, CSV_HEADER};
 use std::path::PathBuf;

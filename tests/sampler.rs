@@ -8,8 +8,8 @@ mod common;
 
 use glam::{Vec2, Vec3};
 use iris::camera::{look_at, Camera};
+use iris::image::ImageRgb;
 use iris::integrator::{Integrator, Method, PhotonSettings};
-use iris::output::ImageRgb;
 use iris::render::RenderSettings;
 use iris::sampler::SamplerKind;
 use iris::scene::desc::{CameraDesc, Projection};

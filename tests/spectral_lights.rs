@@ -388,8 +388,7 @@ fn render_under_a_2700_k_light_has_its_colour() {
     }
     // Same photometric intensity: the luminance is the same for both lights (the warm
     // light's Y = 1 as D65's), within 1 % for the sRGB luminance weights' rounding.
-    let lum =
-        |img: &iris::output::ImageRgb| -> f32 { img.data.iter().map(|p| luminance(*p)).sum() };
+    let lum = |img: &iris::image::ImageRgb| -> f32 { img.data.iter().map(|p| luminance(*p)).sum() };
     let (a, b) = (lum(&image), lum(&grey));
     eprintln!("summed luminance 2700 K {a}, D65 {b}");
     assert!((a / b - 1.0).abs() < 0.01, "{a} vs {b}");

@@ -10,8 +10,8 @@
 mod common;
 
 use iris::camera::Camera;
+use iris::image::ImageRgb;
 use iris::integrator::{Integrator, Method, PhotonSettings};
-use iris::output::ImageRgb;
 use iris::render::{Control, Progress, RenderSettings};
 
 /// Counts live heap bytes (the renderer's buffers are what changes between checkpoints, as

@@ -7,10 +7,11 @@ mod common;
 
 use iris::accel::Backend;
 use iris::app::{render_command, PreviewOptions, RenderOptions, RenderSummary};
+use iris::image::ImageRgb;
 use iris::model::cuts::preview::{write_gem, GemSpec};
 use iris::model::cuts::Cut;
 use iris::model::stones::Stone;
-use iris::output::{read_exr, ImageRgb};
+use iris::output::read_exr;
 use iris::prepare::Note;
 use iris::studio::{ground, GroundMode, Studio};
 use std::path::{Path, PathBuf};

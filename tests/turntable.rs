@@ -10,10 +10,10 @@ mod common;
 
 use common::{entries, iris, stderr};
 use glam::{DVec2, Vec3};
+use iris::image::ImageRgb;
 use iris::model::lathe::{Lathe, ProfilePoint};
 use iris::model::shapes::{cuboid, TriMesh};
 use iris::model::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
-use iris::output::ImageRgb;
 use std::path::{Path, PathBuf};
 
 const SIZE: &str = "48x36";

@@ -5,7 +5,9 @@
 
 pub mod brute;
 pub mod bvh;
+// The Embree FFI layer: with `denoise::oidn`, the one module allowed `unsafe` (lib.rs).
 #[cfg(feature = "embree")]
+#[allow(unsafe_code)]
 pub mod embree;
 pub mod triangle;
 

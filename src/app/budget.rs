@@ -24,7 +24,7 @@
 //! on: the half-buffer estimate of the relative RMSE of the image as written
 //! ([`StopImage`]):
 //! - a raw image (an EXR, `--denoise off`, a build without the denoiser): the estimate
-//!   from the two half images ([`crate::measure::metrics::half_buffer_estimate`]), the
+//!   from the two half images ([`crate::image::metrics::half_buffer_estimate`]), the
 //!   number `--target-error` always used;
 //! - a denoised image (the PNG preview under `--denoise auto|on`): the same estimate from
 //!   the two half images each denoised with the render's auxiliary images
@@ -44,9 +44,11 @@
 
 use crate::denoise::{denoised_estimate, AuxImages};
 use crate::error::Result;
+use crate::image::metrics::half_buffer_estimate;
 use crate::integrator::Method;
-use crate::measure::{metrics::half_buffer_estimate, relative_rmse, Progress};
+use crate::measure::relative_rmse;
 use crate::render::Control;
+use crate::render::Progress;
 use std::time::{Duration, Instant};
 
 /// The samples per pixel (and SPPM passes) of an open budget: effectively unbounded
@@ -303,7 +305,7 @@ impl CheckpointWrites {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::output::ImageRgb;
+    use crate::image::ImageRgb;
     use glam::Vec3;
 
     fn flags() -> BudgetFlags {

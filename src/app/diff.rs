@@ -1,6 +1,6 @@
 //! `iris diff`: the error of an EXR image against a reference EXR of the same size, on the
 //! linear values (all pixels and channels): RMSE, RMSE relative to the reference's mean,
-//! and the relative MSE of [`crate::measure::metrics`].
+//! and the relative MSE of [`crate::image::metrics`].
 
 use crate::error::{Error, Result};
 use crate::output;
@@ -13,7 +13,7 @@ pub struct DiffSummary {
     pub rmse: f64,
     /// `rmse` divided by the reference's mean value.
     pub relative_rmse: f64,
-    /// Relative MSE, mean of (x − r)²/(r² + 0.01) ([`crate::measure::metrics::compare`]).
+    /// Relative MSE, mean of (x − r)²/(r² + 0.01) ([`crate::image::metrics::compare`]).
     pub rel_mse: f64,
     /// Mean value of the image (all channels).
     pub mean: f64,
@@ -55,7 +55,7 @@ pub fn diff_command(image: &Path, reference: &Path) -> Result<DiffSummary> {
     }
     let rmse = (se / n).sqrt();
     let reference_mean = sb / n;
-    let rel_mse = crate::measure::metrics::compare(&a, &b)?.rel_mse;
+    let rel_mse = crate::image::metrics::compare(&a, &b)?.rel_mse;
     Ok(DiffSummary {
         rmse,
         rel_mse,

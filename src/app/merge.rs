@@ -15,9 +15,9 @@
 //!   the samples per pixel (fewest and most).
 //!
 //! ## The image
-//! The parts' exact sums are added ([`crate::render::ExactImage::add`]) and divided by the
+//! The parts' exact sums are added ([`crate::image::ExactImage::add`]) and divided by the
 //! pixel's units: for a fixed total the sums, and so the image, are bit for bit those of
-//! one `iris render` of all the units (the same formula, [`crate::render::fixed`]). The
+//! one `iris render` of all the units (the same formula, [`crate::image::fixed`]). The
 //! output is written atomically, an EXR as `iris render` writes it, a PNG through the same
 //! exposure and tone map (`--exposure`, `--tonemap`); the merge does not denoise (it has
 //! no scene for the auxiliary pass). The half-buffer error estimate is printed, and
@@ -26,10 +26,10 @@
 
 use super::shard::{Shard, ShardHeader, ShardState};
 use crate::error::{Error, Result};
-use crate::measure::metrics::{compare, half_buffer_estimate, ErrorMetrics};
+use crate::image::metrics::{compare, half_buffer_estimate, ErrorMetrics};
+use crate::image::{ExactImage, ImageRgb};
 use crate::measure::report::{write_csv, ReportRow};
-use crate::output::{self, partial, DisplayOptions, ImageRgb};
-use crate::render::ExactImage;
+use crate::output::{self, partial, DisplayOptions};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -206,65 +206,11 @@ fn missing(parts: &[Part], n: u32, total: Option<u64>, unit: &str) -> Result<Vec
 pub fn merge_command(opts: &MergeOptions) -> Result<MergeSummary> {
     let start = Instant::now();
     output::check_extension(&opts.output)?;
-    if opts.parts.is_empty() {
-        return Err(Error::Usage("iris merge: no partial images given".into()));
-    }
-    let mut parts = opts
-        .parts
-        .iter()
-        .map(|p| read_part(p))
-        .collect::<Result<Vec<_>>>()?;
-    for p in &parts {
-        if opts.output == p.path {
-            return Err(Error::Usage(format!(
-                "-o {}: the output would replace one of the parts",
-                opts.output.display()
-            )));
-        }
-        check_same_render(&parts[0], p)?;
-    }
-    parts.sort_by_key(|p| (p.header.planned.start, p.header.shard.index));
-    for w in parts.windows(2) {
-        let (a, b) = (&w[0], &w[1]);
-        if a.header.planned.end > b.header.planned.start {
-            return Err(Error::Usage(format!(
-                "{} (shard {}, {}) and {} (shard {}, {}) overlap: a unit merged twice would \
-                 count twice",
-                a.path.display(),
-                a.header.shard,
-                units_text(a.header.unit(), &a.header.planned),
-                b.path.display(),
-                b.header.shard,
-                units_text(b.header.unit(), &b.header.planned)
-            )));
-        }
-    }
+    let parts = read_parts(opts)?;
     let first = &parts[0].header;
     let (unit, total, n) = (first.unit().to_string(), first.total(), first.shard.count);
     let method = first.get("method").unwrap_or("unknown").to_string();
-    if !opts.allow_partial {
-        if let Some(p) = parts
-            .iter()
-            .find(|p| p.header.state == ShardState::Interrupted)
-        {
-            return Err(Error::Usage(format!(
-                "{}: shard {} was interrupted (Ctrl-C or SIGTERM) after {} of its {} {unit}: \
-                 rerun it, or merge what is there with --allow-partial",
-                p.path.display(),
-                p.header.shard,
-                p.header.done,
-                p.header.planned.end - p.header.planned.start
-            )));
-        }
-    }
-    let missing = missing(&parts, n, total, &unit)?;
-    if !missing.is_empty() && !opts.allow_partial {
-        return Err(Error::Usage(format!(
-            "cannot merge: {}; render the missing shards, or merge what is there with \
-             --allow-partial",
-            missing.join("; ")
-        )));
-    }
+    let missing = check_complete(opts, &parts, (&unit, total, n))?;
     let reference = opts
         .reference
         .as_deref()
@@ -328,6 +274,78 @@ pub fn merge_command(opts: &MergeOptions) -> Result<MergeSummary> {
         error,
         counts,
     })
+}
+
+/// Reads the parts (at least one), refusing one that the output would replace, one of
+/// another render, and two holding the same unit; returns them sorted by their first unit.
+fn read_parts(opts: &MergeOptions) -> Result<Vec<Part>> {
+    if opts.parts.is_empty() {
+        return Err(Error::Usage("iris merge: no partial images given".into()));
+    }
+    let mut parts = opts
+        .parts
+        .iter()
+        .map(|p| read_part(p))
+        .collect::<Result<Vec<_>>>()?;
+    for p in &parts {
+        if opts.output == p.path {
+            return Err(Error::Usage(format!(
+                "-o {}: the output would replace one of the parts",
+                opts.output.display()
+            )));
+        }
+        check_same_render(&parts[0], p)?;
+    }
+    parts.sort_by_key(|p| (p.header.planned.start, p.header.shard.index));
+    for w in parts.windows(2) {
+        let (a, b) = (&w[0], &w[1]);
+        if a.header.planned.end > b.header.planned.start {
+            return Err(Error::Usage(format!(
+                "{} (shard {}, {}) and {} (shard {}, {}) overlap: a unit merged twice would \
+                 count twice",
+                a.path.display(),
+                a.header.shard,
+                units_text(a.header.unit(), &a.header.planned),
+                b.path.display(),
+                b.header.shard,
+                units_text(b.header.unit(), &b.header.planned)
+            )));
+        }
+    }
+    Ok(parts)
+}
+
+/// Refuses an interrupted part and missing units unless `--allow-partial`; returns the
+/// missing units in words ([`missing`]) of a render of `total` units in `n` shards.
+fn check_complete(
+    opts: &MergeOptions,
+    parts: &[Part],
+    (unit, total, n): (&str, Option<u64>, u32),
+) -> Result<Vec<String>> {
+    if !opts.allow_partial {
+        if let Some(p) = parts
+            .iter()
+            .find(|p| p.header.state == ShardState::Interrupted)
+        {
+            return Err(Error::Usage(format!(
+                "{}: shard {} was interrupted (Ctrl-C or SIGTERM) after {} of its {} {unit}: \
+                 rerun it, or merge what is there with --allow-partial",
+                p.path.display(),
+                p.header.shard,
+                p.header.done,
+                p.header.planned.end - p.header.planned.start
+            )));
+        }
+    }
+    let missing = missing(parts, n, total, unit)?;
+    if !missing.is_empty() && !opts.allow_partial {
+        return Err(Error::Usage(format!(
+            "cannot merge: {}; render the missing shards, or merge what is there with \
+             --allow-partial",
+            missing.join("; ")
+        )));
+    }
+    Ok(missing)
 }
 
 #[cfg(test)]

@@ -1,10 +1,10 @@
 //! The commands behind the CLI, as library functions so tests can run them without a
-//! subprocess: `iris render` ([`render`], with its budget: [`budget`]; `--shard`:
-//! [`shard`], [`shard_id`]), `iris merge` ([`merge`]), `iris converge` ([`converge`]), `iris info`
-//! ([`info`]), `iris diff` ([`diff`]), `iris gallery` ([`gallery`]), `iris turntable`
-//! ([`turntable`]), and the printing of
-//! each ([`commands`], what `main.rs` calls: one function per command). This is the top of
-//! the crate: nothing below imports it.
+//! subprocess: `iris render` ([`render`], its flags: [`render_options`], its budget:
+//! [`budget`]; `--shard`: [`shard`], [`shard_id`]), `iris merge` ([`merge`]), `iris
+//! converge` ([`converge`]), `iris info` ([`info`]), `iris diff` ([`diff`]), `iris gallery`
+//! ([`gallery`]), `iris turntable` ([`turntable`]), and the printing of each ([`commands`],
+//! what `main.rs` calls: one function per command). This is the top of the crate: nothing
+//! below imports it.
 
 pub mod budget;
 pub mod commands;
@@ -15,6 +15,7 @@ pub mod info;
 pub mod merge;
 pub mod render;
 mod render_denoise;
+pub mod render_options;
 pub mod shard;
 pub mod shard_id;
 pub mod summary;
@@ -28,4 +29,5 @@ pub use crate::preview::{choose_camera, choose_camera_view, PreviewOptions};
 pub use budget::{Budget, BudgetFlags};
 pub use diff::{diff_command, DiffSummary};
 pub use info::{info_command, info_command_with};
-pub use render::{render_command, RenderJob, RenderOptions, RenderSummary};
+pub use render::{render_command, RenderJob, RenderSummary};
+pub use render_options::RenderOptions;

@@ -9,7 +9,7 @@ use super::budget::StopImage;
 use crate::camera::Camera;
 use crate::denoise::{aux, AuxImages, DenoiseChoice, Denoised, EXR_LAYER};
 use crate::error::Result;
-use crate::output::ImageRgb;
+use crate::image::ImageRgb;
 use crate::render::RenderSettings;
 use crate::scene::Scene;
 use std::time::{Duration, Instant};

@@ -6,7 +6,7 @@
 //! Units are samples per pixel (SPPM: passes; the hybrid: passes of one sample), by
 //! absolute index: unit k of a shard is unit k of the whole render (its sampler index, its
 //! half k mod 2, SPPM's and the hybrid's radius and wavelengths of pass k), so the film's
-//! exact sums ([`crate::render::fixed`]) of the shards add up to one render's.
+//! exact sums ([`crate::image::fixed`]) of the shards add up to one render's.
 //! - A fixed count T (`--spp T`, SPPM `--passes T`): shard I of N (1 ≤ I ≤ N ≤ T, 1-based
 //!   like Slurm's array indices) takes the contiguous units ⌊(I−1)T/N⌋ .. ⌊I·T/N⌋. The
 //!   merge of all N is bit for bit the render of T units.

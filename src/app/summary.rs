@@ -3,9 +3,10 @@
 //! ([`RenderSummary::end_text`]). Times are wall-clock; errors are relative RMSE unless
 //! named otherwise.
 
+use crate::image::metrics::ErrorMetrics;
+use crate::image::ImageRgb;
 use crate::integrator::Method;
-use crate::measure::{metrics::ErrorMetrics, report::ReportRow};
-use crate::output::ImageRgb;
+use crate::measure::report::ReportRow;
 use crate::render::{EndReason, RenderStats};
 use std::path::PathBuf;
 use std::time::Duration;

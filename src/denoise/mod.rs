@@ -27,13 +27,16 @@
 
 pub mod aux;
 pub mod mode;
+// The Open Image Denoise FFI layer: with `accel::embree`, the one module allowed `unsafe`
+// (lib.rs).
 #[cfg(feature = "denoise")]
+#[allow(unsafe_code)]
 mod oidn;
 
 pub use mode::{DenoiseChoice, DenoiseMode, EXR_LAYER};
 
 use crate::error::{Error, Result};
-use crate::output::ImageRgb;
+use crate::image::ImageRgb;
 use glam::Vec3;
 use std::time::{Duration, Instant};
 

@@ -13,8 +13,8 @@ pub mod whitted;
 
 use crate::camera::Camera;
 use crate::error::{Error, Result};
+use crate::image::ImageRgb;
 use crate::math::Ray;
-use crate::output::ImageRgb;
 pub use crate::render::Context;
 use crate::render::{render_samples, Film, Observer, RenderSettings, RenderStats, Setup};
 use crate::scene::Scene;
@@ -257,7 +257,7 @@ impl Integrator {
     /// unit k of the whole render (the sampler's blocks are the whole render's; SPPM and
     /// the hybrid compute the whole render's radius sequence up to the shard's first
     /// pass), so the shards' exact sums add up to the whole render's
-    /// ([`crate::render::ExactImage::add`]). Returns the film.
+    /// ([`crate::image::ExactImage::add`]). Returns the film.
     pub fn render_units(
         &self,
         scene: &Scene,
@@ -335,7 +335,7 @@ impl Integrator {
 /// visible point).
 pub fn bytes_per_pixel(method: Method) -> u64 {
     use std::mem::size_of;
-    let common = size_of::<crate::render::fixed::PixelSums>() + 3 * size_of::<Vec3>() + 16 + 8;
+    let common = size_of::<crate::image::fixed::PixelSums>() + 3 * size_of::<Vec3>() + 16 + 8;
     let extra = match method {
         Method::Sppm => size_of::<Option<path::VisiblePoint<SampledSpectrum>>>(),
         _ => 0,

@@ -118,7 +118,7 @@ fn srgb_lut() -> &'static [f32; 256] {
     LUT.get_or_init(|| {
         let mut t = [0f32; 256];
         for (i, v) in t.iter_mut().enumerate() {
-            *v = crate::output::tonemap::srgb_eotf(i as f32 / 255.0);
+            *v = crate::image::srgb::srgb_eotf(i as f32 / 255.0);
         }
         t
     })

@@ -1,11 +1,12 @@
 //! Measuring renders: how far an image is from a reference and how that distance falls with
 //! time. Used by `iris render --reference/--report/--plot/--target-error` and by
-//! `iris converge`; it knows images and numbers, not the renderer.
+//! `iris converge`; it sees the renderer only through the checkpoints a render shows
+//! ([`crate::render::Progress`]).
 //!
-//! - [`metrics`]: RMSE, relative MSE and MAE against a reference, and the half-buffer
-//!   estimate without one (linear RGB, means over pixels and channels, `f64`).
-//! - [`recorder`]: one [`ReportRow`](report::ReportRow) per [`Progress`] of a progressive
-//!   render, the `--target-error` stop, the `--reference` file checks.
+//! - The distances themselves (RMSE, relative MSE and MAE against a reference, and the
+//!   half-buffer estimate without one) are image arithmetic: [`crate::image::metrics`].
+//! - [`recorder`]: one [`ReportRow`](report::ReportRow) per [`crate::render::Progress`] of a
+//!   progressive render, the `--target-error` stop, the `--reference` file checks.
 //! - [`levels`]: which run reached each error level first (`iris converge`).
 //! - [`report`]: the CSV report; [`plot`]: the error-against-time plot (PNG).
 //!
@@ -13,7 +14,6 @@
 //! ([`relative_rmse`]). Files are written atomically (temporary file + rename).
 
 pub mod levels;
-pub mod metrics;
 mod options;
 pub mod plot;
 pub mod recorder;
@@ -22,6 +22,5 @@ pub mod report;
 pub use levels::{levels_table, LEVELS};
 pub use options::{check_plot_extension, file_name, MeasureOptions};
 pub use recorder::{
-    check_reference_size, denoised_points, points, read_reference_file, relative_rmse, Progress,
-    Recorder,
+    check_reference_size, denoised_points, points, read_reference_file, relative_rmse, Recorder,
 };

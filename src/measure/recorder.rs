@@ -4,14 +4,15 @@
 //! stop is `crate::app::budget`'s.)
 //!
 //! Units: times are wall seconds since rendering started (loading and the acceleration build
-//! are their own rows); errors are on the linear image ([`super::metrics`]). The *relative
-//! error* used for `--target-error`, the plots and the levels table is the relative RMSE
-//! `sqrt(rel_mse)`, with `rel_mse = mean((x−r)²/(r²+0.01))` (issue 6).
+//! are their own rows); errors are on the linear image ([`crate::image::metrics`]). The
+//! *relative error* used for `--target-error`, the plots and the levels table is the
+//! relative RMSE `sqrt(rel_mse)`, with `rel_mse = mean((x−r)²/(r²+0.01))` (issue 6).
 
-use super::metrics::{compare, half_buffer_estimate, ErrorMetrics};
 use super::report::ReportRow;
 use crate::error::{Error, Result};
-use crate::output::ImageRgb;
+use crate::image::metrics::{compare, half_buffer_estimate, ErrorMetrics};
+use crate::image::ImageRgb;
+use crate::render::Progress;
 use std::path::Path;
 use std::time::Duration;
 
@@ -45,31 +46,6 @@ pub fn check_reference_size(
         )));
     }
     Ok(())
-}
-
-/// The state of a render at a checkpoint, shown to an observer
-/// ([`crate::render::Observer`]) and to a [`Recorder`].
-#[derive(Debug, Clone, Copy)]
-pub struct Progress<'a> {
-    /// The mean of all samples (passes) so far.
-    pub image: &'a ImageRgb,
-    /// The means of two independent halves of the samples (even and odd sample indices;
-    /// SPPM: even and odd passes). With a single sample (pass) the second half is empty and
-    /// both are that sample's image, so error estimates from them are 0 then.
-    pub halves: (&'a ImageRgb, &'a ImageRgb),
-    /// Wall time since the render started (photon map building included).
-    pub elapsed: Duration,
-    /// Samples per pixel so far (SPPM: passes).
-    pub samples: u64,
-    /// Passes done (SPPM; 1 for the other methods).
-    pub passes: u32,
-    /// Rays traced so far.
-    pub rays: u64,
-    /// Photons emitted so far.
-    pub photons: u64,
-    /// True on the last call of a render that ended by itself (sample, pass or time limit).
-    /// After an observer returns [`crate::render::Control::Stop`] it is not called again.
-    pub done: bool,
 }
 
 /// Collects one [`ReportRow`] per checkpoint of one run.

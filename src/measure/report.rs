@@ -7,9 +7,9 @@
 //! - `stage`: `load`, `build` or `render`.
 //! - `wall_s`: wall-clock seconds since the run started (cumulative, so a `render` row's time
 //!   includes nothing hidden); `samples_per_pixel`, `passes`, `rays`, `photons`: counts so far.
-//! - `rmse, rel_mse, mae`: error against a reference ([`super::metrics::compare`]);
+//! - `rmse, rel_mse, mae`: error against a reference ([`crate::image::metrics::compare`]);
 //!   `est_*`: the reference-free half-buffer estimate
-//!   ([`super::metrics::half_buffer_estimate`]). Empty cells where not computed.
+//!   ([`crate::image::metrics::half_buffer_estimate`]). Empty cells where not computed.
 //! - `denoised_rmse, denoised_rel_mse, denoised_mae`: the denoised image's error against the
 //!   reference (`--reference` with denoising active, [`crate::denoise`]); `denoise_s`: wall
 //!   seconds the denoiser took at that checkpoint (auxiliary pass not included; it runs
@@ -19,8 +19,8 @@
 //! `parse::<u64>` read back the exact values (NaN and infinities as `NaN`, `inf`, `-inf`).
 //! The file is replaced atomically ([`crate::output::atomic`]).
 
-use super::metrics::ErrorMetrics;
 use crate::error::Result;
+use crate::image::metrics::ErrorMetrics;
 use crate::output::atomic::write_file_atomic;
 use std::fmt::Write as _;
 use std::path::Path;

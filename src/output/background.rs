@@ -29,8 +29,10 @@
 //! the model's exposure.
 
 use super::tonemap::{exposure_scale, to_srgb8, to_u8};
-use super::{DisplayOptions, Exposure, ImageRgb};
+use super::{DisplayOptions, Exposure};
 use crate::error::{Error, Result};
+use crate::image::srgb::srgb_eotf;
+use crate::image::{Coverage, ImageRgb};
 use glam::Vec3;
 
 /// What escaped camera rays show.
@@ -90,19 +92,6 @@ impl Background {
     }
 }
 
-/// Per-pixel coverage of an image (row-major, top row first; see the module docs).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Coverage {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// α ∈ [0, 1] per pixel.
-    pub alpha: Vec<f32>,
-    /// Mean environment radiance of the escaped primary rays per pixel (linear RGB).
-    pub escaped: Vec<Vec3>,
-}
-
 /// `M`, the model's premultiplied part of each pixel, `max(I − E, 0)` (0 where α = 0).
 fn model_part(img: &ImageRgb, cov: &Coverage) -> Vec<Vec3> {
     img.data
@@ -130,11 +119,7 @@ pub fn composite_linear(
         Background::Environment => return (img.clone(), None),
         Background::Transparent => model,
         Background::Color(c) => {
-            let lin = Vec3::new(
-                super::tonemap::srgb_eotf(c.x),
-                super::tonemap::srgb_eotf(c.y),
-                super::tonemap::srgb_eotf(c.z),
-            );
+            let lin = Vec3::new(srgb_eotf(c.x), srgb_eotf(c.y), srgb_eotf(c.z));
             model
                 .iter()
                 .zip(&cov.alpha)

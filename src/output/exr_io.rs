@@ -8,8 +8,10 @@
 //! module's [`decode`] too) see the main image.
 //! Pixel (x, y) is row-major with y = 0 the top row, matching the EXR data window.
 
-use super::ImageRgb;
 use crate::error::{LoadError, LoadErrorKind};
+use crate::image::ImageRgb;
+use exr::image::write::channels::WritableChannels;
+use exr::image::write::layers::WritableLayers;
 use exr::prelude::*;
 use std::io::Cursor;
 use std::path::Path;
@@ -25,18 +27,11 @@ pub fn encode(img: &ImageRgb) -> std::result::Result<Vec<u8>, String> {
         let c = data.get(pos.y() * w + pos.x()).copied().unwrap_or_default();
         (c.x, c.y, c.z)
     });
-    let layer = Layer::new(
-        (w, img.height as usize),
+    to_bytes(&lossless(
+        size_of(img),
         LayerAttributes::named("rgb"),
-        Encoding::SMALL_LOSSLESS,
         channels,
-    );
-    let mut bytes = Vec::new();
-    Image::from_layer(layer)
-        .write()
-        .to_buffered(Cursor::new(&mut bytes))
-        .map_err(|e| e.to_string())?;
-    Ok(bytes)
+    ))
 }
 
 /// Encodes an image with an alpha channel (`alpha[i]` for pixel i; colour premultiplied,
@@ -49,18 +44,11 @@ pub fn encode_rgba(img: &ImageRgb, alpha: &[f32]) -> std::result::Result<Vec<u8>
         let c = data.get(i).copied().unwrap_or_default();
         (c.x, c.y, c.z, alpha.get(i).copied().unwrap_or(0.0))
     });
-    let layer = Layer::new(
-        (w, img.height as usize),
+    to_bytes(&lossless(
+        size_of(img),
         LayerAttributes::named("rgba"),
-        Encoding::SMALL_LOSSLESS,
         channels,
-    );
-    let mut bytes = Vec::new();
-    Image::from_layer(layer)
-        .write()
-        .to_buffered(Cursor::new(&mut bytes))
-        .map_err(|e| e.to_string())?;
-    Ok(bytes)
+    ))
 }
 
 /// Encodes `img` (with `alpha` when given, colour premultiplied) plus the extra image
@@ -83,7 +71,7 @@ pub fn encode_with_layer(
         list.push(AnyChannel::new("A", FlatSamples::F32(a.to_vec())));
     }
     encode_channels(
-        (img.width as usize, img.height as usize),
+        size_of(img),
         LayerAttributes::named(if alpha.is_some() { "rgba" } else { "rgb" }),
         list,
     )
@@ -102,14 +90,36 @@ pub(super) fn encode_channels(
     attributes: LayerAttributes,
     list: Vec<AnyChannel<FlatSamples>>,
 ) -> std::result::Result<Vec<u8>, String> {
-    let layer = Layer::new(
+    let channels = AnyChannels::sort(SmallVec::from_vec(list));
+    to_bytes(&lossless(size, attributes, channels))
+}
+
+/// The image's size as the `exr` crate takes it.
+fn size_of(img: &ImageRgb) -> (usize, usize) {
+    (img.width as usize, img.height as usize)
+}
+
+/// A one-layer image of `size` holding `channels`, ZIP-compressed (lossless): the layout of
+/// every EXR Iris writes.
+fn lossless<'c, C: WritableChannels<'c> + 'c>(
+    size: (usize, usize),
+    attributes: LayerAttributes,
+    channels: C,
+) -> Image<Layer<C>> {
+    Image::from_layer(Layer::new(
         size,
         attributes,
         Encoding::SMALL_LOSSLESS,
-        AnyChannels::sort(SmallVec::from_vec(list)),
-    );
+        channels,
+    ))
+}
+
+/// The bytes of an EXR file holding `image`, written in memory.
+fn to_bytes<'i, L: WritableLayers<'i>>(
+    image: &'i Image<L>,
+) -> std::result::Result<Vec<u8>, String> {
     let mut bytes = Vec::new();
-    Image::from_layer(layer)
+    image
         .write()
         .to_buffered(Cursor::new(&mut bytes))
         .map_err(|e| e.to_string())?;

@@ -1,7 +1,7 @@
 //! Image output: the rendered linear image → a PNG for people or an EXR for tools.
 //!
-//! - [`ImageRgb`] holds **linear** RGB with Rec.709/sRGB primaries (scene-referred, any
-//!   scale), row-major, top row first.
+//! - The input is an [`ImageRgb`] ([`crate::image`]): **linear** RGB with Rec.709/sRGB
+//!   primaries (scene-referred, any scale), row-major, top row first.
 //! - `.png`: 8-bit sRGB after exposure and tone mapping ([`tonemap`] documents the formulas).
 //! - `.exr`: 32-bit float linear RGB, the numbers as rendered (no exposure, no tone map).
 //!
@@ -21,44 +21,10 @@ pub mod partial;
 pub mod tonemap;
 
 use crate::error::{Error, Result};
-pub use background::{Background, Coverage};
-use glam::Vec3;
+use crate::image::{Coverage, ImageRgb};
+pub use background::Background;
 use std::io::Cursor;
 use std::path::Path;
-
-/// A linear RGB image (Rec.709/sRGB primaries), row-major, top row first.
-///
-/// Invariant expected by the writers: `data.len() == width * height` (checked, not trusted).
-#[derive(Debug, Clone, PartialEq)]
-pub struct ImageRgb {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// `width * height` linear RGB pixels; pixel (x, y) is at `y * width + x`.
-    pub data: Vec<Vec3>,
-}
-
-impl ImageRgb {
-    /// A black image of the given size.
-    pub fn new(width: u32, height: u32) -> Self {
-        ImageRgb {
-            width,
-            height,
-            data: vec![Vec3::ZERO; width as usize * height as usize],
-        }
-    }
-
-    /// The pixel at column `x`, row `y` (row 0 is the top), if inside the image.
-    pub fn get(&self, x: u32, y: u32) -> Option<Vec3> {
-        if x >= self.width || y >= self.height {
-            return None;
-        }
-        self.data
-            .get(y as usize * self.width as usize + x as usize)
-            .copied()
-    }
-}
 
 /// The tone curve used for 8-bit output (formulas in [`tonemap`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -286,6 +252,7 @@ fn png_bytes(px: &[u8], w: u32, h: u32, alpha: bool) -> std::result::Result<Vec<
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3;
     use std::fs;
     use std::path::PathBuf;
 

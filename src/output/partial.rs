@@ -5,7 +5,7 @@
 //! ## Layout (one part, ZIP-compressed, lossless)
 //! - `R`, `G`, `B` (f32): the shard's own mean, linear RGB, as `iris render` writes an EXR.
 //! - `iris.s{h}{c}{w}` (u32), h ∈ {0, 1} the half, c ∈ {R, G, B}, w ∈ {0, 1, 2, 3}: the
-//!   half's fixed-point sum ([`crate::render::fixed`]) of channel c, an `i128` stored as
+//!   half's fixed-point sum ([`crate::image::fixed`]) of channel c, an `i128` stored as
 //!   its two's-complement bits in four 32-bit words, least significant first (24 channels).
 //! - `iris.n0`, `iris.n1` (u32): the units (samples, or passes) in each half of the pixel.
 //! - The text-vector attribute [`ATTRIBUTE`]: ordered `key=value` entries (the shard's
@@ -20,7 +20,7 @@
 use super::atomic::write_file_atomic;
 use super::exr_io::{encode_channels, plane, read_checked};
 use crate::error::{Error, LoadError, LoadErrorKind, Result};
-use crate::render::ExactImage;
+use crate::image::ExactImage;
 use exr::prelude::*;
 use std::io::Cursor;
 use std::path::Path;
@@ -238,7 +238,7 @@ fn read_all_channels_from_bytes(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::fixed::FixedRgb;
+    use crate::image::fixed::FixedRgb;
     use glam::DVec3;
 
     fn exact() -> ExactImage {

@@ -26,11 +26,13 @@
 //!   The fit is pre-exposed (1 → ≈0.8); f is monotone for x ≥ 0 because the numerator of f′,
 //!   `1.408x² + 0.7028x + 0.0042`, is positive.
 //!
-//! ## sRGB OETF (IEC 61966-2-1:1999, §5.2)
-//! `V = 12.92 L` for `L ≤ 0.0031308`, else `V = 1.055 L^(1/2.4) − 0.055`; bytes are
+//! ## Encoding
+//! The sRGB OETF ([`crate::image::srgb::srgb_oetf`], IEC 61966-2-1:1999, §5.2); bytes are
 //! `round(255 V)`.
 
-use super::{Exposure, ImageRgb, ToneMap};
+use super::{Exposure, ToneMap};
+use crate::image::srgb::srgb_oetf;
+use crate::image::ImageRgb;
 use glam::Vec3;
 
 /// Reinhard's δ in the log-average, avoiding `ln 0`.
@@ -108,27 +110,6 @@ pub fn apply_tonemap(c: Vec3, tonemap: ToneMap) -> Vec3 {
             }
         }
         ToneMap::Aces => Vec3::new(aces_fit(c.x), aces_fit(c.y), aces_fit(c.z)),
-    }
-}
-
-/// The sRGB opto-electronic transfer function (IEC 61966-2-1), input clamped to [0, 1].
-pub fn srgb_oetf(l: f32) -> f32 {
-    let l = if l.is_nan() { 0.0 } else { l.clamp(0.0, 1.0) };
-    if l <= 0.003_130_8 {
-        12.92 * l
-    } else {
-        1.055 * l.powf(1.0 / 2.4) - 0.055
-    }
-}
-
-/// The sRGB electro-optical transfer function (IEC 61966-2-1 §5.2): an encoded value in
-/// [0, 1] to linear, the inverse of [`srgb_oetf`]. Textures and `--background` colours
-/// decode with it.
-pub fn srgb_eotf(v: f32) -> f32 {
-    if v <= 0.040_45 {
-        v / 12.92
-    } else {
-        ((v + 0.055) / 1.055).powf(2.4)
     }
 }
 

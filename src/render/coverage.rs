@@ -12,7 +12,7 @@
 use super::samples::{pixel_sampler, primary_ray};
 use super::RenderSettings;
 use crate::camera::Camera;
-use crate::output::Coverage;
+use crate::image::Coverage;
 use crate::scene::Scene;
 use glam::Vec3;
 use rayon::prelude::*;

@@ -5,7 +5,7 @@
 //! Invariants:
 //! - Every value enters through [`FilmTile::add`]: the guard ([`super::guard::admit`])
 //!   drops non-finite and out-of-range values, and the sums are exact fixed-point integers
-//!   ([`super::fixed`]), so they do not depend on the order of additions: a shard's sums
+//!   ([`crate::image::fixed`]), so they do not depend on the order of additions: a shard's sums
 //!   added to the others' are the sums of one render of all the units.
 //! - A film takes the units `first..`, by absolute index (`first` > 0 for a shard): unit k
 //!   goes to half k mod 2 and draws the sampler's index k.
@@ -14,15 +14,16 @@
 //! - Each tile counts the units (samples or passes) it has taken; all tiles hold the same
 //!   count unless a round was interrupted between tiles.
 //! - The two halves are independent estimates of the same image: their difference
-//!   estimates the error without a reference ([`crate::measure::metrics::half_buffer_estimate`]).
+//!   estimates the error without a reference
+//!   ([`crate::image::metrics::half_buffer_estimate`]).
 //!
 //! Colour conversion happens before a value reaches the film (spectral samples are turned
 //! into RGB by [`crate::spectrum::Carrier::to_rgb`] in the sample step).
 
-use super::exact::{half_means, ExactImage};
-use super::fixed::{parity_counts, pixel_mean, FixedRgb, PixelSums};
 use super::guard;
-use crate::output::ImageRgb;
+use crate::image::exact::{half_means, ExactImage};
+use crate::image::fixed::{parity_counts, pixel_mean, FixedRgb, PixelSums};
+use crate::image::ImageRgb;
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
@@ -221,6 +222,7 @@ impl Film {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::image::fixed::LIMIT;
 
     #[test]
     fn slots_map_to_every_pixel_once() {
@@ -284,16 +286,49 @@ mod tests {
         let mut bad = 0;
         for mut t in film.par_tiles_mut().collect::<Vec<_>>() {
             t.add(0, 0, DVec3::new(1.0, f64::NAN, 0.0), &mut bad);
-            t.add(
-                0,
-                1,
-                DVec3::splat(2.0 * super::super::fixed::LIMIT),
-                &mut bad,
-            );
+            t.add(0, 1, DVec3::splat(2.0 * LIMIT), &mut bad);
             t.add(0, 2, DVec3::splat(0.5), &mut bad);
             t.done_until(3);
         }
         assert_eq!(bad, 2);
         assert_eq!(film.mean().data[0], Vec3::splat(0.5 / 3.0));
+    }
+
+    /// A 20×3 film of units `first..first + n` (value 1 + k/8 for unit k, plus the pixel
+    /// index), whose exact sums ([`ExactImage`]) the merge tests add up.
+    fn ramp_film(first: u64, n: u64) -> Film {
+        let mut film = Film::new(20, 3, first);
+        film.par_tiles_mut().for_each(|mut t| {
+            let mut bad = 0;
+            for i in 0..t.slots() {
+                for k in first..first + n {
+                    let v = 1.0 + k as f64 / 8.0 + i as f64 * 0.37;
+                    t.add(i, k, DVec3::new(v, v * 0.1, -v), &mut bad);
+                }
+            }
+            t.done_until(first + n);
+        });
+        film
+    }
+
+    #[test]
+    fn split_films_add_up_to_the_whole_bit_for_bit() {
+        let whole = ramp_film(0, 11);
+        let mut merged = ramp_film(7, 4).exact();
+        merged.add(&ramp_film(0, 3).exact());
+        merged.add(&ramp_film(3, 4).exact());
+        assert_eq!(merged, whole.exact());
+        assert_eq!(merged.mean(), whole.mean());
+        assert_eq!(merged.halves(), whole.halves());
+        assert_eq!(merged.unit_span(), (11, 11));
+        assert_eq!(merged.pixel_units(), 60 * 11);
+    }
+
+    #[test]
+    fn an_empty_half_makes_both_halves_the_mean() {
+        let one = ramp_film(4, 1).exact();
+        let (a, b) = one.halves();
+        assert_eq!(a, one.mean());
+        assert_eq!(b, one.mean());
     }
 }

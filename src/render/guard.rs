@@ -5,7 +5,7 @@
 //!   ([`super::RenderStats::bad_samples`]) and replaced by zero, as pbrt-v4's film does
 //!   (`RGBFilm::AddSample` drops non-finite values; Pharr, Jakob & Humphreys, "Physically
 //!   Based Rendering", 4th ed., §5.4.2), so one failure costs one sample instead of painting
-//!   a pixel. A component beyond the film's fixed-point range ([`super::fixed::LIMIT`],
+//!   a pixel. A component beyond the film's fixed-point range ([`LIMIT`],
 //!   2⁴⁰ ≈ 1.1·10¹², far above any light Iris renders) is refused the same way. The CLI
 //!   reports the count; the test suite asserts it is 0 on every asset. Negative components
 //!   are legitimate (spectra outside the sRGB gamut) and pass.
@@ -15,6 +15,7 @@
 //!   [`super::RenderStats::interrupted`] set. The first round (pass) always completes, so an
 //!   interrupted render still has an image.
 
+use crate::image::fixed::LIMIT;
 use glam::DVec3;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -32,12 +33,12 @@ pub fn stop_requested() -> bool {
     STOP.load(Ordering::Relaxed)
 }
 
-/// `v` if all its components are finite and within ±[`super::fixed::LIMIT`], else zero
+/// `v` if all its components are finite and within ±[`LIMIT`], else zero
 /// with `bad` incremented ([`super::FilmTile::add`] calls it for every value).
 #[inline]
 pub fn admit(v: DVec3, bad: &mut u64) -> DVec3 {
     // `max_element` skips NaN; `is_finite` catches it.
-    if v.abs().max_element() <= super::fixed::LIMIT && v.is_finite() {
+    if v.abs().max_element() <= LIMIT && v.is_finite() {
         v
     } else {
         *bad += 1;
@@ -67,7 +68,7 @@ mod tests {
         assert_eq!(bad, 3);
         // The film's largest value is a (very bright) sample, not a bad one; beyond it the
         // fixed-point sums could not hold it.
-        let limit = super::super::fixed::LIMIT;
+        let limit = LIMIT;
         assert_eq!(
             admit(DVec3::new(limit, -limit, 0.0), &mut bad),
             DVec3::new(limit, -limit, 0.0)

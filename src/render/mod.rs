@@ -21,9 +21,9 @@
 //!   low and unbiased.
 //! - Sample k goes to half k mod 2: the two half images are independent estimates used to
 //!   estimate the error without a reference.
-//! - The film's sums are exact ([`fixed`]), so a render may take any contiguous range of
-//!   its units (a shard: [`Schedule::first`]), and the shards' sums add up to the sums of
-//!   one render of them all ([`ExactImage::add`]).
+//! - The film's sums are exact ([`crate::image::fixed`]), so a render may take any
+//!   contiguous range of its units (a shard: [`Schedule::first`]), and the shards' sums add
+//!   up to the sums of one render of them all ([`crate::image::ExactImage::add`]).
 //!
 //! Images are linear RGB (radiance, W·sr⁻¹·m⁻² per channel); times are wall-clock.
 
@@ -33,14 +33,11 @@ use std::time::Duration;
 
 pub mod coverage;
 pub mod driver;
-pub mod exact;
 pub mod film;
-pub mod fixed;
 pub mod guard;
 pub mod progress;
 mod samples;
 pub use driver::{drive, Round, RoundEnv, Schedule};
-pub use exact::ExactImage;
 pub use film::{Film, FilmTile, TILE, TILE_PIXELS};
 pub use progress::{
     estimate_note, progress_bar, relative_error_estimate, Control, Observer, Progress, Setup,

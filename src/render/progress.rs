@@ -3,11 +3,34 @@
 //! half-buffer error estimate. Images are linear RGB; times are wall-clock.
 
 use crate::error::Result;
-use crate::output::ImageRgb;
+use crate::image::ImageRgb;
 use indicatif::{ProgressBar, ProgressStyle};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
-pub use crate::measure::Progress;
+/// The state of a render at a checkpoint, shown to an observer ([`Observer`]) and to a
+/// [`crate::measure::Recorder`].
+#[derive(Debug, Clone, Copy)]
+pub struct Progress<'a> {
+    /// The mean of all samples (passes) so far.
+    pub image: &'a ImageRgb,
+    /// The means of two independent halves of the samples (even and odd sample indices;
+    /// SPPM: even and odd passes). With a single sample (pass) the second half is empty and
+    /// both are that sample's image, so error estimates from them are 0 then.
+    pub halves: (&'a ImageRgb, &'a ImageRgb),
+    /// Wall time since the render started (photon map building included).
+    pub elapsed: Duration,
+    /// Samples per pixel so far (SPPM: passes).
+    pub samples: u64,
+    /// Passes done (SPPM; 1 for the other methods).
+    pub passes: u32,
+    /// Rays traced so far.
+    pub rays: u64,
+    /// Photons emitted so far.
+    pub photons: u64,
+    /// True on the last call of a render that ended by itself (sample, pass or time limit).
+    /// After an observer returns [`Control::Stop`] it is not called again.
+    pub done: bool,
+}
 
 /// An observer's answer: render on, or end the render with the image just shown.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -45,9 +68,10 @@ impl Setup {
 }
 
 /// The relative error of the full image estimated from its two halves
-/// ([`crate::measure::metrics::half_buffer_estimate`], √ of the relative MSE), for the progress bar.
+/// ([`crate::image::metrics::half_buffer_estimate`], √ of the relative MSE), for the
+/// progress bar.
 pub fn relative_error_estimate(a: &ImageRgb, b: &ImageRgb) -> Option<f64> {
-    crate::measure::metrics::half_buffer_estimate(a, b)
+    crate::image::metrics::half_buffer_estimate(a, b)
         .ok()
         .map(|e| e.rel_mse.sqrt())
 }

@@ -161,7 +161,7 @@ fn round(
 mod tests {
     use super::*;
     use crate::camera::look_at;
-    use crate::output::ImageRgb;
+    use crate::image::ImageRgb;
     use crate::render::{Control, Progress};
     use crate::sampler::SamplerKind;
     use crate::scene::desc::{CameraDesc, Projection};
@@ -256,7 +256,7 @@ mod tests {
         for sampler in [ZSOBOL, SamplerKind::Independent] {
             let never = &|| false;
             let (whole, ..) = render_range(19, 13, 23, None, u64::MAX, 2, never, sampler);
-            let mut merged = crate::render::ExactImage::new(19, 13);
+            let mut merged = crate::image::ExactImage::new(19, 13);
             // Shards in any order, with their own round splits.
             for (range, max_round) in [(15..23, 3), (0..8, u64::MAX), (8..15, 1)] {
                 let (film, seen, stats) = render_range(

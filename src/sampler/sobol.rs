@@ -11,6 +11,9 @@
 //!   otherwise, so a caller's bug degrades quality, never panics.
 //! - The scramblers preserve the net structure: every elementary interval that holds one
 //!   point unscrambled holds one point after XOR or Owen scrambling (Owen 1995).
+//! - Dimensions 0 and 1, the 2D points of [`super::zsobol`], have fast paths equal to
+//!   [`sobol_bits`]: [`van_der_corput`] (a bit reversal) and [`sobol_dim1`] (seven byte-table
+//!   lookups).
 
 use super::sobol_table::{SOBOL_DIMENSIONS, SOBOL_MATRICES, SOBOL_MATRIX_SIZE};
 
@@ -86,6 +89,65 @@ pub fn bits_to_unit(v: u32) -> f32 {
 #[inline]
 pub fn sobol_sample(index: u64, dim: usize, scramble: Scramble) -> f32 {
     bits_to_unit(scramble_bits(sobol_bits(index, dim), scramble))
+}
+
+/// Sobol' dimension 0 of `index`: the van der Corput sequence, the index's low 32 bits
+/// reversed (its generator matrix is the identity, `sobol_table`); equal to
+/// `sobol_bits(index, 0)` at a fraction of the cost.
+#[inline]
+pub(super) fn van_der_corput(index: u64) -> u32 {
+    (index as u32).reverse_bits()
+}
+
+/// Column `k` of Sobol' dimension 1's generator matrix: the Pascal matrix mod 2, bit
+/// `31 − j` set when C(k, j) is odd, i.e. when `j & k == j` (Lucas's theorem; the matrix of
+/// Joe & Kuo's second dimension, checked against [`SOBOL_MATRICES`] in the tests).
+const fn pascal_column(k: usize) -> u32 {
+    let mut v = 0u32;
+    let mut j = 0;
+    while j < 32 {
+        if j & k == j {
+            v |= 1 << (31 - j);
+        }
+        j += 1;
+    }
+    v
+}
+
+/// Sobol' dimension 1 by bytes: `DIM1_BYTES[b][x]` is the XOR of the columns `8b + i` over
+/// the set bits `i` of `x`, so a 52-bit index takes seven lookups instead of a loop over
+/// its bits (the generator matrix is linear over GF(2)).
+static DIM1_BYTES: [[u32; 256]; 7] = {
+    let mut t = [[0u32; 256]; 7];
+    let mut b = 0;
+    while b < 7 {
+        let mut x = 0;
+        while x < 256 {
+            let mut v = 0u32;
+            let mut i = 0;
+            while i < 8 {
+                let k = 8 * b + i;
+                if x >> i & 1 == 1 && k < SOBOL_MATRIX_SIZE {
+                    v ^= pascal_column(k);
+                }
+                i += 1;
+            }
+            t[b][x] = v;
+            x += 1;
+        }
+        b += 1;
+    }
+    t
+};
+
+/// `sobol_bits(index, 1)` by seven table lookups ([`DIM1_BYTES`]).
+#[inline]
+pub(super) fn sobol_dim1(index: u64) -> u32 {
+    let mut v = 0;
+    for (b, table) in DIM1_BYTES.iter().enumerate() {
+        v ^= table[(index >> (8 * b) & 0xff) as usize];
+    }
+    v
 }
 
 #[cfg(test)]
@@ -207,5 +269,17 @@ mod tests {
         }
         assert!(differ > 1000, "only {differ} of 1024 points moved");
         assert!(bits_to_unit(u32::MAX) < 1.0);
+    }
+
+    #[test]
+    fn fast_paths_are_sobol_dimensions_0_and_1() {
+        let mut rng = crate::math::Rng::new(&[3]);
+        for _ in 0..10_000 {
+            let i = (u64::from(rng.next_u32()) << 32) | u64::from(rng.next_u32());
+            for index in [i, i >> 20, i >> 40] {
+                assert_eq!(van_der_corput(index), sobol_bits(index, 0), "{index}");
+                assert_eq!(sobol_dim1(index), sobol_bits(index, 1), "{index}");
+            }
+        }
     }
 }

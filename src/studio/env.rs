@@ -15,8 +15,8 @@
 //!   radiance replaces the gradient where it is the larger.
 
 use super::PresetSpec;
+use crate::image::ImageRgb;
 use crate::light::env::{uv_to_dir, EnvMap, Environment};
-use crate::output::ImageRgb;
 use glam::{Vec2, Vec3};
 use std::path::Path;
 

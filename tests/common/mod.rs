@@ -218,7 +218,7 @@ pub fn files_with_ext(dir: &std::path::Path, exts: &[&str]) -> Vec<PathBuf> {
 /// 4 × 4 block means of the channel mean of `img` (its width and height multiples of 4):
 /// the agreement tests' unit of comparison.
 #[allow(dead_code)]
-pub fn blocks(img: &iris::output::ImageRgb) -> Vec<f64> {
+pub fn blocks(img: &iris::image::ImageRgb) -> Vec<f64> {
     let (w, h) = (img.width, img.height);
     let mut out = Vec::new();
     for by in 0..h / 4 {

@@ -1,5 +1,5 @@
-//! Embree 4 backend, called through `embree4-sys` directly (this module and its files are the
-//! only place with `unsafe`).
+//! Embree 4 backend, called through `embree4-sys` directly (this module and its files are,
+//! with `denoise::oidn`, the only place with `unsafe`: its declaration allows it).
 //!
 //! Invariants and units:
 //! - One device and one committed scene per [`EmbreeAccel`], holding a single
@@ -25,8 +25,6 @@
 //! Files: `ffi`, the ray/hit/argument structs and declarations with the 4.4 layout and the
 //! filter and error callbacks; `device`, the device, the library version and the
 //! thread's floating-point mode; `build`, the scene build; `query`, the ray queries.
-
-#![allow(unsafe_code)]
 
 mod build;
 mod device;

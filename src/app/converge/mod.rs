@@ -3,21 +3,23 @@
 //! flags of `iris render` are [`crate::measure::MeasureOptions`]).
 //!
 //! Units and conventions: wall-clock seconds; errors on the linear image
-//! ([`crate::measure::metrics`]); "relative error" is the relative RMSE `sqrt(rel_mse)`
+//! ([`crate::image::metrics`]); "relative error" is the relative RMSE `sqrt(rel_mse)`
 //! ([`measure::relative_rmse`]). Every file is written atomically (temporary file + rename),
 //! and every flag and input file is checked before anything is rendered.
 
 mod observe;
 
+use super::RenderOptions;
 use crate::accel::Backend;
 use crate::camera::Camera;
 use crate::error::{Error, Result};
+use crate::image::ImageRgb;
 use crate::integrator::{Integrator, Method, PhotonSettings};
 use crate::measure::file_name;
 use crate::measure::plot::{plot_error_vs_time, Series};
 use crate::measure::report::{setup_rows, write_csv, ReportRow};
 use crate::measure::{self, Recorder};
-use crate::output::{self, DisplayOptions, ImageRgb};
+use crate::output::{self, DisplayOptions};
 use crate::plan::SpectralMode;
 use crate::render::{Control, Progress, RenderSettings, RenderStats};
 use crate::scene::Scene;
@@ -81,19 +83,20 @@ pub struct ConvergeOptions {
 }
 
 impl ConvergeOptions {
-    /// The preparation `iris render` would make of the same file and flags (no `--env`, no
-    /// `--camera`, the default drop-in preview, the same `--stone` / `--metal`);
-    /// `reference_size` is the reference image's size, used when `--size` is not given.
+    /// The preparation `iris render` makes of the same file and flags (no `--env`, no
+    /// `--camera`, the default drop-in preview, the same `--stone` / `--metal`): that of
+    /// [`RenderOptions::prepare_options`], with the same meaning of `reference_size`.
     pub fn prepare_options(
         &self,
         reference_size: Option<(u32, u32)>,
     ) -> crate::prepare::PrepareOptions {
-        crate::prepare::PrepareOptions {
+        RenderOptions {
+            size: self.size,
             accel: self.accel,
-            size: self.size.or(reference_size),
             looks: self.looks.clone(),
-            ..Default::default()
+            ..RenderOptions::new(&self.scene, None)
         }
+        .prepare_options(reference_size)
     }
 }
 
@@ -283,7 +286,7 @@ fn run_method(
         output::write_image(&path, &image, &display)?;
         files.push(path);
     }
-    let last = crate::measure::metrics::compare(&image, reference)?;
+    let last = crate::image::metrics::compare(&image, reference)?;
     let run = RunSummary {
         name: name.to_string(),
         stats,

@@ -3,8 +3,9 @@
 //! ([`crate::measure`] knows nothing of the renderer's control flow).
 
 use crate::error::Result;
-use crate::measure::{Progress, Recorder};
+use crate::measure::Recorder;
 use crate::render::Control;
+use crate::render::Progress;
 
 impl Recorder<'_> {
     /// Records a render checkpoint ([`Recorder::record`]); always [`Control::Continue`]
@@ -19,7 +20,7 @@ impl Recorder<'_> {
     pub fn observe_denoised(
         &mut self,
         p: &Progress,
-        denoised: Option<(&crate::output::ImageRgb, std::time::Duration)>,
+        denoised: Option<(&crate::image::ImageRgb, std::time::Duration)>,
     ) -> Result<Control> {
         self.record_denoised(p, denoised)?;
         Ok(Control::Continue)

@@ -23,10 +23,11 @@ use super::TurntableOptions;
 use crate::camera::Camera;
 use crate::denoise::aux;
 use crate::error::Result;
+use crate::image::ImageRgb;
 use crate::integrator::{Integrator, Method};
 use crate::output::background::exposure_pixels;
 use crate::output::tonemap::exposure_scale;
-use crate::output::{Background, Exposure, ImageRgb};
+use crate::output::{Background, Exposure};
 use crate::prepare::turntable::Spin;
 use crate::render::RenderSettings;
 

@@ -29,7 +29,8 @@
 pub mod assemble;
 pub mod exposure;
 
-use super::render::{RenderJob, RenderOptions, RenderSummary};
+use super::render::{RenderJob, RenderSummary};
+use super::render_options::RenderOptions;
 use crate::error::{Error, Result};
 use crate::integrator::Method;
 use crate::prepare::turntable::Spin;

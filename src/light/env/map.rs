@@ -17,7 +17,7 @@
 use super::distribution::PiecewiseConstant2D;
 use super::mapping::{dir_to_uv, sin_theta_of_v, uv_to_dir, uv_to_pixel};
 use crate::error::{LoadError, LoadErrorKind, Result};
-use crate::output::ImageRgb;
+use crate::image::ImageRgb;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 use std::path::Path;

@@ -12,7 +12,7 @@
 //!
 //! So the image centre (u = 0.5) looks along −Z, u = 0.75 along +X, the top row (v = 0) is
 //! +Y (zenith) and the bottom row (v = 1) is −Y. Pixel column `x = ⌊u·W⌋`, row `y = ⌊v·H⌋`
-//! (row 0 is the top row, as in [`crate::output::ImageRgb`]), clamped into the image.
+//! (row 0 is the top row, as in [`crate::image::ImageRgb`]), clamped into the image.
 //! The Jacobian is dω = 2π² sin θ du dv (derived for lat-long maps in pbrt-v3 §14.2.4;
 //! pbrt-v4 §12.5.2 `ImageInfiniteLight` uses an equal-area octahedral map instead, but the
 //! same sampling structure).

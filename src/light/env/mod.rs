@@ -31,7 +31,7 @@ pub use map::{luminance, EnvMap, MAX_TEXELS};
 pub use mapping::{dir_to_uv, uv_to_dir};
 
 use crate::error::{Error, LoadError, LoadErrorKind, Result};
-use crate::output::ImageRgb;
+use crate::image::ImageRgb;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 use std::path::Path;

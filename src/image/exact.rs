@@ -8,7 +8,7 @@
 //! units of absolute index ≡ h (mod 2). Values are linear RGB radiance.
 
 use super::fixed::{pixel_mean, FixedRgb, PixelSums};
-use crate::output::ImageRgb;
+use super::ImageRgb;
 use glam::Vec3;
 
 /// Exact per-pixel sums and unit counts of an image (see the module docs).
@@ -94,49 +94,5 @@ impl ExactImage {
     /// Units over all pixels.
     pub fn pixel_units(&self) -> u64 {
         self.units.iter().map(|u| u[0] + u[1]).sum()
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use crate::render::Film;
-    use glam::DVec3;
-    use rayon::prelude::*;
-
-    /// A film of units `first..first + n` (value 1 + k/8 for unit k, plus the pixel index).
-    fn film(first: u64, n: u64) -> Film {
-        let mut film = Film::new(20, 3, first);
-        film.par_tiles_mut().for_each(|mut t| {
-            let mut bad = 0;
-            for i in 0..t.slots() {
-                for k in first..first + n {
-                    let v = 1.0 + k as f64 / 8.0 + i as f64 * 0.37;
-                    t.add(i, k, DVec3::new(v, v * 0.1, -v), &mut bad);
-                }
-            }
-            t.done_until(first + n);
-        });
-        film
-    }
-
-    #[test]
-    fn split_films_add_up_to_the_whole_bit_for_bit() {
-        let whole = film(0, 11);
-        let mut merged = film(7, 4).exact();
-        merged.add(&film(0, 3).exact());
-        merged.add(&film(3, 4).exact());
-        assert_eq!(merged, whole.exact());
-        assert_eq!(merged.mean(), whole.mean());
-        assert_eq!(merged.halves(), whole.halves());
-        assert_eq!(merged.unit_span(), (11, 11));
-        assert_eq!(merged.pixel_units(), 60 * 11);
-    }
-
-    #[test]
-    fn an_empty_half_makes_both_halves_the_mean() {
-        let one = film(4, 1).exact();
-        let (a, b) = one.halves();
-        assert_eq!(a, one.mean());
-        assert_eq!(b, one.mean());
     }
 }

@@ -14,8 +14,8 @@
 //!   mean over zero pixels is undefined).
 //! - Non-finite pixels propagate into the result (NaN/∞); callers print them as they are.
 
+use super::ImageRgb;
 use crate::error::{Error, Result};
-use crate::output::ImageRgb;
 
 /// Offset in the denominator of the relative MSE: `(x−r)² / (r² + REL_EPS)`.
 pub const REL_EPS: f64 = 0.01;

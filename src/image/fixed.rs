@@ -16,7 +16,7 @@
 //!   relative; a pixel of 10⁻¹⁰ nits after 10⁶ samples has lost at most 10⁶ · 8.7·10⁻¹⁹ =
 //!   8.7·10⁻¹³ to truncation, under a thousandth of its f32 step.
 //! - Range: one addition is at most [`LIMIT`] = 2⁴⁰ ≈ 1.1·10¹² per channel (larger values
-//!   are refused by the film's guard, [`super::guard::admit`], like NaN: no light Iris
+//!   are refused by the film's guard, [`crate::render::guard::admit`], like NaN: no light Iris
 //!   renders comes near it; the sun is about 2·10⁹ nits). A pixel's half receives at most
 //!   2²⁵ additions (SPPM: `--passes` ≤ 10⁷ < 2²⁴, two additions a pass; every other method
 //!   ≤ 2²⁰ units, one each), so |sum| ≤ 2⁴⁰ · 2²⁵ · 2⁶⁰ = 2¹²⁵ < 2¹²⁷: no `i128` overflow.
