@@ -63,7 +63,7 @@ impl Rng {
 /// of sine noise (about ±0.1 of the unit radius). Shared vertices are generated once
 /// (keyed by their integer barycentric position on the icosahedron), so there are no cracks.
 pub fn displaced_icosphere(n: u32) -> (Vec<Vec3>, Vec<[u32; 3]>) {
-    let (ico, faces) = iris::model::shapes::icosahedron();
+    let (ico, faces) = iris::authoring::shapes::icosahedron();
     let ico: Vec<Vec3> = ico.iter().map(|v| v.as_vec3()).collect();
     let octaves: Vec<(Vec3, f32, f32, f32)> = (0..6)
         .map(|k| {

@@ -1,5 +1,5 @@
 //! Error against run time on the caustic sphere scene (issue 5's performance goal): the
-//! glass sphere on a white floor ([`iris::scenes::bench::caustic_sphere`]) rendered at
+//! glass sphere on a white floor ([`iris::assets::bench::caustic_sphere`]) rendered at
 //! 128 × 96 by `path`, `photon` and `sppm` with growing budgets, each image compared with a
 //! long SPPM reference (2048 passes × 32 768 photons, another seed). Two lights:
 //!
@@ -75,7 +75,7 @@ fn main() {
     // `cargo bench` passes `--bench`; nothing else is accepted.
     let mut rows: Vec<Row> = Vec::new();
     for (name, area) in [("point", None), ("area", Some(0.05f32))] {
-        let (desc, cam) = iris::scenes::bench::caustic_sphere(area);
+        let (desc, cam) = iris::assets::bench::caustic_sphere(area);
         let desc = iris::scene::validate::validate(desc).expect("valid");
         let scene = Scene::build(desc, iris::accel::Backend::Auto).expect("build");
         let camera = Camera::new(&cam, W, H);

@@ -1,5 +1,5 @@
 //! Photon tracing throughput (issue 5): photons traced per second through the caustic
-//! sphere scene ([`iris::scenes::bench::caustic_sphere`], point light; every photon
+//! sphere scene ([`iris::assets::bench::caustic_sphere`], point light; every photon
 //! from the light, those hitting the glass refracted twice, then the floor) with 1 and 2
 //! rayon threads, RGB and spectral transport. One iteration traces 100 000 photons in
 //! fixed chunks of 4096 (as SPPM does) on a pool of the given size; throughput is
@@ -23,7 +23,7 @@ const PHOTONS: u64 = 100_000;
 const CHUNK: u64 = 4096;
 
 fn scene() -> Scene {
-    let (desc, _) = iris::scenes::bench::caustic_sphere(None);
+    let (desc, _) = iris::assets::bench::caustic_sphere(None);
     let desc = iris::scene::validate::validate(desc).expect("valid");
     Scene::build(desc, iris::accel::Backend::Auto).expect("build")
 }

@@ -30,6 +30,8 @@
 
 pub mod accel;
 pub mod app;
+pub mod assets;
+pub mod authoring;
 pub mod bsdf;
 pub mod camera;
 pub mod cli;
@@ -45,17 +47,14 @@ pub mod material;
 pub mod math;
 pub mod measure;
 pub mod medium;
-pub mod model;
 pub mod optics;
 pub mod output;
 pub mod photon;
 pub mod plan;
 pub mod prepare;
-pub mod preview;
 pub mod render;
 pub mod sampler;
 pub mod scene;
-pub mod scenes;
 pub mod shading;
 pub mod spectrum;
 pub mod studio;

@@ -25,7 +25,7 @@ fn run(cli: Cli) -> iris::Result<()> {
             exact,
         } => app::commands::diff(&image, &reference, exact),
         Command::Gem(a) => {
-            let spec = iris::model::cuts::preview::GemSpec {
+            let spec = iris::authoring::cuts::preview::GemSpec {
                 cut: a.cut,
                 stone: a.stone,
                 size_mm: a.size,

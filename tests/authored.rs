@@ -15,8 +15,8 @@ mod common;
 use glam::{Mat3, Vec2, Vec3};
 use iris::accel::Backend;
 use iris::app::{PreviewOptions, RenderOptions};
-use iris::model::shapes::{self, TriMesh};
-use iris::model::{GenCamera, GenMaterial, GenMesh, GenScene};
+use iris::authoring::shapes::{self, TriMesh};
+use iris::authoring::{GenCamera, GenMaterial, GenMesh, GenScene};
 use iris::prepare::{prepare, Authored, Note, Prepared};
 use iris::studio::ground::{Floor, GROUND_MESH};
 use iris::studio::{GroundMode, Studio};
@@ -97,7 +97,7 @@ fn prism_and_slit(dir: &Path) -> PathBuf {
         ..Default::default()
     };
     let path = dir.join("prism_slit.glb");
-    iris::model::write_glb(&path, &scene).expect("write the prism-and-slit scene");
+    iris::authoring::write_glb(&path, &scene).expect("write the prism-and-slit scene");
     path
 }
 

@@ -16,7 +16,7 @@ use iris::scene::desc::{CameraDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 
 fn transmitted(thickness: f32, distance: f32, color: Vec3, backend: Backend) -> Vec3 {
-    let slab = iris::model::shapes::cuboid(Vec3::new(2.0, 2.0, thickness / 2.0))
+    let slab = iris::authoring::shapes::cuboid(Vec3::new(2.0, 2.0, thickness / 2.0))
         .transformed(Mat3::IDENTITY, Vec3::ZERO);
     let desc = SceneDesc {
         source: "slab".into(),

@@ -16,10 +16,10 @@ mod common;
 
 use common::mesh;
 use glam::{Mat3, Vec3, Vec4};
+use iris::authoring::shapes;
 use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::material::{AlphaMode, MaterialDesc};
-use iris::model::shapes;
 use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, LightDesc, Projection, SceneDesc};
 

@@ -160,28 +160,28 @@ fn auto_picks_hybrid_sppm_or_path() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("): SPPM"), "{}", stderr(&o));
     // A scene with no transmissive or mirror material: the path tracer.
-    let mut scene = iris::model::GenScene {
+    let mut scene = iris::authoring::GenScene {
         name: "diffuse only".into(),
         ..Default::default()
     };
-    scene.meshes.push(iris::model::GenMesh {
+    scene.meshes.push(iris::authoring::GenMesh {
         name: "floor".into(),
-        geometry: iris::model::shapes::ground_plane(1.0, 1.0),
+        geometry: iris::authoring::shapes::ground_plane(1.0, 1.0),
         material: 0,
         translation: None,
     });
-    scene.materials.push(iris::model::GenMaterial::diffuse(
+    scene.materials.push(iris::authoring::GenMaterial::diffuse(
         "white",
         glam::Vec3::splat(0.8),
     ));
-    scene.lights.push(iris::model::GenLight::Point {
+    scene.lights.push(iris::authoring::GenLight::Point {
         name: "bulb".into(),
         position: glam::Vec3::new(0.0, 1.0, 0.0),
         color: glam::Vec3::ONE,
         intensity: 1.0,
     });
     let plain = dir.join("plain.glb");
-    iris::model::write_glb(&plain, &scene).unwrap();
+    iris::authoring::write_glb(&plain, &scene).unwrap();
     let o = iris(
         &[
             "render",

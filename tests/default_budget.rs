@@ -10,10 +10,10 @@ mod common;
 use glam::{Vec3, Vec4};
 use iris::app::budget::{BudgetFlags, DEFAULT_TARGET, MIN_STOP_UNITS};
 use iris::app::{render_command, RenderOptions, RenderSummary};
+use iris::authoring::shapes;
+use iris::authoring::{GenCamera, GenMaterial, GenMesh, GenScene};
 use iris::integrator::Method;
 use iris::measure::relative_rmse;
-use iris::model::shapes;
-use iris::model::{GenCamera, GenMaterial, GenMesh, GenScene};
 use iris::render::EndReason;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -61,7 +61,7 @@ fn easy_scene(dir: &Path) -> PathBuf {
         ..Default::default()
     };
     let path = dir.join("easy.glb");
-    iris::model::write_glb(&path, &scene).expect("write the easy scene");
+    iris::authoring::write_glb(&path, &scene).expect("write the easy scene");
     path
 }
 

@@ -35,7 +35,7 @@ fn glass(name: &str) -> MaterialDesc {
     }
 }
 
-fn scene(mesh: iris::model::shapes::TriMesh, material: MaterialDesc) -> Scene {
+fn scene(mesh: iris::authoring::shapes::TriMesh, material: MaterialDesc) -> Scene {
     let desc = SceneDesc {
         source: "dispersion".into(),
         meshes: vec![MeshDesc {
@@ -111,7 +111,7 @@ fn prism_deviation(n: f64, a: f64, ti: f64) -> f64 {
 #[test]
 fn prism_deviates_each_line_by_snell_and_the_catalogue() {
     let side = 1.0f32;
-    let p = scene(iris::model::shapes::prism(side, 4.0), glass("N-BK7"));
+    let p = scene(iris::authoring::shapes::prism(side, 4.0), glass("N-BK7"));
     let model = IorModel::named("N-BK7").unwrap();
     let apex = 60f64.to_radians();
     // Incidence of minimum deviation at 587.6 nm: (A + δ_min)/2.
@@ -161,7 +161,7 @@ fn descartes(n: f64) -> f64 {
 
 #[test]
 fn water_sphere_shows_the_primary_bow_at_the_right_angles() {
-    let sphere = iris::model::shapes::icosphere(1.0, 5);
+    let sphere = iris::authoring::shapes::icosphere(1.0, 5);
     let s = scene(sphere, glass("water"));
     let model = IorModel::named("water").unwrap();
     // Sunlight travels along −z; the antisolar direction is −z.

@@ -31,7 +31,7 @@
 //! slugs); inline code naming a repository path (`src/…`, `tests/…`, `scripts/…`, …,
 //! globs and placeholders aside, and not on the generated `docs/gallery/` page, whose
 //! sources may be shared assets) names one that exists, and so does every module in the
-//! module map of `docs/architecture.md` (under `src/`).
+//! module map of `docs/architecture.md` (under `src/`), and every top-level module is in it.
 
 #[path = "docs/markdown.rs"]
 mod markdown;
@@ -296,10 +296,27 @@ fn links_and_paths_in_the_docs_exist() {
         "the module map lists {} modules",
         modules.len()
     );
-    for m in modules {
+    for m in &modules {
         if !repo().join("src").join(m).exists() {
             errors.push(format!(
                 "docs/architecture.md module map: src/{m} does not exist"
+            ));
+        }
+    }
+    // And the other way: every top-level module of src/ has its line in the map.
+    for entry in std::fs::read_dir(repo().join("src")).expect("src/") {
+        let path = entry.expect("src entry").path();
+        let name = path.file_name().unwrap_or_default().to_string_lossy();
+        let listed = if path.is_dir() {
+            format!("{name}/")
+        } else if name.ends_with(".rs") && name != "lib.rs" {
+            name.to_string()
+        } else {
+            continue;
+        };
+        if !modules.contains(&listed.as_str()) {
+            errors.push(format!(
+                "docs/architecture.md module map: src/{listed} is not listed"
             ));
         }
     }

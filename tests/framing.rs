@@ -20,7 +20,7 @@ type Model = (String, Vec<[f32; 3]>, Vec<[u32; 3]>);
 
 /// The test models at `scale` metres.
 fn models(scale: f32) -> Vec<Model> {
-    let gem = iris::model::cuts::Cut::Round.mesh(f64::from(scale));
+    let gem = iris::authoring::cuts::Cut::Round.mesh(f64::from(scale));
     let off = [0.3 * scale, -0.2 * scale, 0.1 * scale];
     let mut out = vec![(
         format!("gem@{scale}"),
@@ -171,7 +171,7 @@ fn a_file_with_no_camera_and_no_light_renders_a_lit_framed_model() {
 #[test]
 fn framed_renders_are_deterministic() {
     let dir = common::scratch_dir("framing_determinism");
-    let gem = iris::model::cuts::Cut::Round.mesh(1.0);
+    let gem = iris::authoring::cuts::Cut::Round.mesh(1.0);
     let p: Vec<[f32; 3]> = gem.positions.iter().map(|v| v.to_array()).collect();
     let tris = gem.indices.clone();
     let scene = common::write_obj(&dir, "gem", &p, &tris);

@@ -12,9 +12,9 @@
 mod common;
 
 use glam::{DVec3, Vec3};
+use iris::assets::gems::{write_gem_assets, GEM_ASSETS};
 use iris::material::MaterialDesc;
 use iris::scene::desc::{MeshDesc, SceneDesc};
-use iris::scenes::gems::{write_gem_assets, GEM_ASSETS};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 

@@ -18,9 +18,9 @@
 mod common;
 
 use glam::{DVec3, Quat, Vec3};
-use iris::scenes::demos::{SCENES, SKY_FILE};
-use iris::scenes::paper::PAPER_SCENES;
-use iris::scenes::{write_all_assets, write_paper_scenes, write_scene_assets};
+use iris::assets::demos::{SCENES, SKY_FILE};
+use iris::assets::paper::PAPER_SCENES;
+use iris::assets::{write_all_assets, write_paper_scenes, write_scene_assets};
 use std::collections::{HashMap, HashSet};
 use std::path::PathBuf;
 
@@ -374,7 +374,7 @@ fn glass_and_water_are_closed_and_share_their_interface() {
     let water_vol = check_closed_manifold("water", &water);
     // Volumes of the frusta (V = πh(R² + Rr + r²)/3) in the generator's dimensions,
     // within 0.5 %: the 96-gon's area is (96/2π)·sin(2π/96) ≈ 0.9993 of the circle's.
-    let t = iris::scenes::demos::TUMBLER;
+    let t = iris::assets::demos::TUMBLER;
     let frustum =
         |r0: f64, r1: f64, h: f64| std::f64::consts::PI * h * (r0 * r0 + r0 * r1 + r1 * r1) / 3.0;
     let inner = |y: f64| t.bottom_radius + (t.top_radius - t.bottom_radius) * y / t.height - t.wall;
@@ -432,7 +432,7 @@ fn ruby_is_a_closed_73_facet_brilliant_with_absorption() {
             planes.push(n);
         }
     }
-    assert_eq!(planes.len(), iris::model::gem::BRILLIANT_FACETS);
+    assert_eq!(planes.len(), iris::authoring::gem::BRILLIANT_FACETS);
     let m = doc
         .materials()
         .find(|m| m.name() == Some("Ruby IOR 1.77"))
@@ -460,10 +460,10 @@ fn prism_sky_names_its_sky_and_the_prism_is_closed() {
     let sky = iris::light::env::load(&scenes_dir().join(SKY_FILE)).expect("sky.hdr");
     assert_eq!(
         (sky.width(), sky.height()),
-        (iris::scenes::sky::SKY_WIDTH, iris::scenes::sky::SKY_HEIGHT)
+        (iris::assets::sky::SKY_WIDTH, iris::assets::sky::SKY_HEIGHT)
     );
     // The sun is the brightest texel, where the generator put it (RGBE: 1/128 relative).
-    let sun = sky.eval(iris::scenes::sky::sun_direction());
+    let sun = sky.eval(iris::assets::sky::sun_direction());
     assert!((sun.x / 10000.0 - 1.0).abs() < 1.0 / 128.0, "{sun}");
 }
 
@@ -725,7 +725,7 @@ fn diamond_is_a_closed_brilliant_with_ior_2_42_and_dispersion_0_36() {
             None => planes.push((n, area, vec![a, b, c])),
         }
     }
-    assert_eq!(planes.len(), iris::model::gem::BRILLIANT_FACETS);
+    assert_eq!(planes.len(), iris::authoring::gem::BRILLIANT_FACETS);
     let table = planes
         .iter()
         .max_by(|a, b| a.1.total_cmp(&b.1))
@@ -770,7 +770,7 @@ fn lights(doc: &gltf::Document) -> Vec<(gltf::khr_lights_punctual::Light<'_>, DV
 
 #[test]
 fn caustics_figure_has_one_point_light_over_a_white_floor() {
-    use iris::scenes::caustic::{CAUSTICS_CANDELA, SPHERE_CENTRE, SPHERE_RADIUS};
+    use iris::assets::caustic::{CAUSTICS_CANDELA, SPHERE_CENTRE, SPHERE_RADIUS};
     let bytes = std::fs::read(committed_dir().join("fig4_5_1_caustics.glb")).expect("read");
     let (doc, buffers, _) = gltf::import_slice(&bytes).expect("import");
     let lights = lights(&doc);
@@ -852,7 +852,7 @@ fn covered(p: DVec3, tris: &[[Vec3; 3]]) -> bool {
 
 #[test]
 fn rainbow_sun_passes_only_the_slit_and_violet_lands_beyond_red() {
-    use iris::scenes::rainbow::{
+    use iris::assets::rainbow::{
         rainbow_landing, rainbow_layout, LAMBDA_RED, LAMBDA_VIOLET, SLIT_WIDTH,
     };
     let name = "fig5_3_1_rainbow.glb";
@@ -880,7 +880,7 @@ fn rainbow_sun_passes_only_the_slit_and_violet_lands_beyond_red() {
         gltf::khr_lights_punctual::Kind::Spot { .. }
     ));
     // The spot sits SUN_DISTANCE upstream of the slit, on the beam axis.
-    let expect = l.slit - iris::scenes::rainbow::SUN_DISTANCE * l.dir_in;
+    let expect = l.slit - iris::assets::rainbow::SUN_DISTANCE * l.dir_in;
     assert!((sun.1 - expect).length() < 1e-5, "sun at {}", sun.1);
     assert!(sun
         .0
@@ -946,7 +946,7 @@ fn rainbow_sun_passes_only_the_slit_and_violet_lands_beyond_red() {
 
 #[test]
 fn gem_caustics_spot_covers_the_stone_and_little_floor() {
-    use iris::scenes::caustic::{gem_resting, GEM_CANDELA};
+    use iris::assets::caustic::{gem_resting, GEM_CANDELA};
     let name = "gem_caustics.glb";
     let desc = iris::load::load_scene(&scenes_dir().join(name)).expect("load");
     let m = desc
@@ -986,11 +986,11 @@ fn gem_caustics_spot_covers_the_stone_and_little_floor() {
 
 #[test]
 fn focus_bench_loads_with_its_light_plate_and_screen() {
-    use iris::scenes::focus_bench::focus_bench;
+    use iris::assets::focus_bench::focus_bench;
     let dir = common::scratch_dir("gen_assets_focus_bench");
     let path = dir.join("bench.glb");
     let bench = focus_bench(1.5, 0.01, 0.002, 0.016, 5);
-    std::fs::write(&path, iris::model::encode_glb(&bench).expect("encode")).expect("write");
+    std::fs::write(&path, iris::authoring::encode_glb(&bench).expect("encode")).expect("write");
     let desc = iris::load::load_scene(&path).expect("load");
     assert_eq!(desc.meshes.len(), 3);
     assert_eq!(desc.cameras.len(), 0);
@@ -1010,11 +1010,11 @@ fn focus_bench_loads_with_its_light_plate_and_screen() {
 
 #[test]
 fn committed_material_scenes_match_regeneration() {
-    use iris::scenes::material_layers::{write_material_assets, MATERIAL_SCENES};
+    use iris::assets::material_layers::{write_material_assets, MATERIAL_SCENES};
     let scratch = common::scratch_dir("gen_assets_materials");
     let written = write_material_assets(&scratch).expect("generate");
     assert_eq!(written.len(), MATERIAL_SCENES.len());
-    let dir = asset_root().join(iris::scenes::MATERIALS_DIR);
+    let dir = asset_root().join(iris::assets::MATERIALS_DIR);
     for ((name, _), path) in MATERIAL_SCENES.iter().zip(&written) {
         assert_eq!(path.file_name().and_then(|n| n.to_str()), Some(*name));
         let committed = std::fs::read(dir.join(name)).unwrap_or_else(|e| {

@@ -178,7 +178,7 @@ fn hybrid_agrees_with_the_path_tracer_under_a_small_area_light() {
 /// (two 1024-spp path renders; the path tracer converges here: the sky is large).
 #[test]
 fn hybrid_agrees_with_the_path_tracer_under_a_sky() {
-    let (mut desc, cam) = iris::scenes::bench::caustic_sphere(None);
+    let (mut desc, cam) = iris::assets::bench::caustic_sphere(None);
     desc.lights.clear();
     desc.environment_light = Some(iris::light::env::Environment::Uniform {
         radiance: Vec3::ONE,
@@ -232,7 +232,7 @@ fn hybrid_agrees_with_the_path_tracer_under_a_sky() {
 const RHO: f32 = 0.5;
 
 fn sphere_mesh(name: &str, radius: f32, material: usize) -> MeshDesc {
-    let s = iris::model::shapes::icosphere(radius, 5);
+    let s = iris::authoring::shapes::icosphere(radius, 5);
     MeshDesc {
         name: name.into(),
         positions: s.positions,
@@ -517,7 +517,7 @@ fn auto_says_why_from_the_caustic_share() {
     let (m, why) = resolve_method(Method::Auto, &glass_lantern_room());
     assert_eq!(m, Method::Sppm, "{why:?}");
     assert!(why.unwrap().contains("carry 100.00 %"));
-    let (desc, _) = iris::scenes::bench::caustic_sphere(None);
+    let (desc, _) = iris::assets::bench::caustic_sphere(None);
     let sky_desc = iris::scene::desc::SceneDesc {
         lights: Vec::new(),
         environment_light: Some(iris::light::env::Environment::Uniform {

@@ -18,7 +18,7 @@ const THICKNESS: f32 = 0.2;
 
 fn slab(backend: Backend) -> Scene {
     // A wide slab: |x|,|z| < 5, 0 < y < THICKNESS.
-    let m = iris::model::shapes::cuboid(Vec3::new(5.0, THICKNESS / 2.0, 5.0))
+    let m = iris::authoring::shapes::cuboid(Vec3::new(5.0, THICKNESS / 2.0, 5.0))
         .transformed(Mat3::IDENTITY, Vec3::new(0.0, THICKNESS / 2.0, 0.0));
     let desc = SceneDesc {
         source: "slab".into(),

@@ -12,7 +12,7 @@ use iris::scene::Scene;
 
 #[test]
 fn invalid_rays_miss_and_are_blocked_on_every_backend() {
-    let mesh = iris::model::shapes::cuboid(Vec3::splat(1.0));
+    let mesh = iris::authoring::shapes::cuboid(Vec3::splat(1.0));
     for backend in common::backends() {
         let desc = SceneDesc {
             source: "cube".into(),

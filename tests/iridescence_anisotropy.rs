@@ -1,7 +1,7 @@
 //! KHR_materials_iridescence and KHR_materials_anisotropy end to end (issue 20, item 2):
 //! the loader reads every property and texture and the TANGENT attribute, rejects bad
 //! values naming the material, and the generated scenes of `assets/materials/`
-//! (`iris::scenes::materials`) render finite, non-black images with the property each
+//! (`iris::assets::materials`) render finite, non-black images with the property each
 //! extension must show: the film's hue changes across a sphere in spectral transport, a
 //! brushed plate's highlight is stretched along the brushing direction and a rotation by
 //! π/2 swaps its axes.
@@ -25,7 +25,7 @@ use std::path::PathBuf;
 /// Writes the generated material scenes and returns the path of `name`.
 fn asset(test: &str, name: &str) -> PathBuf {
     let dir = common::scratch_dir(test);
-    iris::scenes::materials::write_material_assets(&dir).expect("write scenes");
+    iris::assets::materials::write_material_assets(&dir).expect("write scenes");
     dir.join(name)
 }
 
@@ -189,9 +189,9 @@ fn brushed_plate_highlight_follows_the_rotation() {
 /// assets` rewrites them) and stay small (< 50 KB each).
 #[test]
 fn committed_material_scenes_match_regeneration() {
-    use iris::scenes::materials::FILES;
+    use iris::assets::materials::FILES;
     let dir = common::scratch_dir("film_assets_regen");
-    let written = iris::scenes::materials::write_material_assets(&dir).expect("write");
+    let written = iris::assets::materials::write_material_assets(&dir).expect("write");
     assert_eq!(written.len(), FILES.len());
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/materials");
     for name in FILES {

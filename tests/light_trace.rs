@@ -130,7 +130,11 @@ fn point_light(position: Vec3) -> LightDesc {
 }
 
 fn sphere_mesh(name: &str, radius: f32, material: usize) -> MeshDesc {
-    common::mesh(name, iris::model::shapes::icosphere(radius, 5), material)
+    common::mesh(
+        name,
+        iris::authoring::shapes::icosphere(radius, 5),
+        material,
+    )
 }
 
 fn camera(eye: Vec3, target: Vec3, yfov: f32) -> CameraDesc {
@@ -151,7 +155,7 @@ fn camera(eye: Vec3, target: Vec3, yfov: f32) -> CameraDesc {
 /// area or d² moves the mean or tilts the image by more.
 #[test]
 fn splatted_direct_light_equals_next_event_estimation() {
-    let floor = common::mesh("floor", iris::model::shapes::ground_plane(1.0, 1.0), 0);
+    let floor = common::mesh("floor", iris::authoring::shapes::ground_plane(1.0, 1.0), 0);
     let scene = build(SceneDesc {
         source: "lit floor".into(),
         meshes: vec![floor],
@@ -338,7 +342,7 @@ fn mixed_and_map_agree_on_a_caustic_seen_directly() {
 /// and the caustic is there.
 #[test]
 fn a_caustic_seen_through_glass_stays_the_maps() {
-    let (desc, cam) = iris::scenes::bench::caustic_sphere(None);
+    let (desc, cam) = iris::assets::bench::caustic_sphere(None);
     let mut desc = desc;
     let (p, t) = common::cuboid([10.0, 0.05, 10.0], [0.0, 1.05, 0.0]);
     desc.materials.push(common::clear_glass("slab", 1.5));

@@ -1,5 +1,5 @@
 //! Render tests for the KHR material layers on the generated test scenes of
-//! `assets/materials/` (`iris::scenes::material_layers`) and on a real clearcoat file (the shared
+//! `assets/materials/` (`iris::assets::material_layers`) and on a real clearcoat file (the shared
 //! Sketchfab DiamondLowPoly): each renders finite and not black, and shows the property its
 //! extension must show, measured on pixel regions located by projecting the scenes' known
 //! geometry (sphere centres, highlight points, sheet centres) through the file's camera.
@@ -14,15 +14,15 @@ mod common;
 
 use glam::{Vec2, Vec3};
 use iris::accel::Backend;
+use iris::assets::material_layers::{
+    row, CLEARCOATS, CLEARCOAT_LIGHT, DIFFUSE_TRANSMISSION, SHEENS, SHEET_CENTRES, SPHERE_RADIUS,
+    TRANSMISSION_COLOR,
+};
 use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, SceneDesc};
 use iris::scene::Scene;
-use iris::scenes::material_layers::{
-    row, CLEARCOATS, CLEARCOAT_LIGHT, DIFFUSE_TRANSMISSION, SHEENS, SHEET_CENTRES, SPHERE_RADIUS,
-    TRANSMISSION_COLOR,
-};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -377,7 +377,7 @@ fn lit_diamond(mut desc: SceneDesc) -> (SceneDesc, CameraDesc) {
         Vec3::Y,
         (centre - at).normalize(),
     ));
-    let panel = iris::model::shapes::ground_plane(0.5 * dist, 0.5 * dist).transformed(turn, at);
+    let panel = iris::authoring::shapes::ground_plane(0.5 * dist, 0.5 * dist).transformed(turn, at);
     desc.materials.push(iris::material::MaterialDesc {
         name: "panel".into(),
         base_color: glam::Vec4::new(0.0, 0.0, 0.0, 1.0),

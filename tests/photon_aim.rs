@@ -5,7 +5,7 @@
 //! finds Fig. 5.3.1's caustic, and photons are a pure function of (index, seed).
 //!
 //! Scene: a glass icosphere (r 0.25 m) on a 2 × 2 m grey floor, lit by a point light, a small
-//! emissive quad and a directional light ([`iris::scenes::bench::caustic_sphere`] plus
+//! emissive quad and a directional light ([`iris::assets::bench::caustic_sphere`] plus
 //! lights). Tolerances: means compared within 5 standard errors estimated from the samples
 //! themselves (combined for two independent runs; a false failure has probability < 1e-6 per
 //! check) plus 1e-4 relative for f32 rounding. The Halton emission numbers make the samples
@@ -22,7 +22,7 @@ use iris::scene::Scene;
 /// The caustic sphere scene with an area lamp (half-size 0.05 at (1, 0.8, 0)) and, when
 /// `punctual`, a point light and a directional light too.
 fn scene(punctual: bool) -> Scene {
-    let (desc, _) = iris::scenes::bench::caustic_sphere(Some(0.05));
+    let (desc, _) = iris::assets::bench::caustic_sphere(Some(0.05));
     let desc = iris::scene::validate::validate(desc).expect("valid scene");
     let lights = if punctual {
         vec![
@@ -44,7 +44,7 @@ fn scene(punctual: bool) -> Scene {
 
 /// The point-light-only caustic sphere scene (light at (1, 0.8, 0)).
 fn point_scene() -> Scene {
-    let (desc, _) = iris::scenes::bench::caustic_sphere(None);
+    let (desc, _) = iris::assets::bench::caustic_sphere(None);
     let desc = iris::scene::validate::validate(desc).expect("valid scene");
     Scene::build(desc, iris::accel::Backend::Auto).expect("build")
 }
@@ -258,7 +258,7 @@ fn flux_onto_glass(s: &Scene, aim: Aim, n: usize) -> (f64, f64) {
 
 /// The caustic sphere scene lit by `lights` only (no lamp).
 fn lit_by(lights: Vec<Light>) -> Scene {
-    let (desc, _) = iris::scenes::bench::caustic_sphere(None);
+    let (desc, _) = iris::assets::bench::caustic_sphere(None);
     let desc = iris::scene::validate::validate(desc).expect("valid scene");
     Scene::build_with_lights(desc, iris::accel::Backend::Auto, lights).expect("build")
 }
@@ -365,7 +365,7 @@ fn photons_are_a_pure_function_of_index_and_seed() {
 fn without_caustic_makers_aiming_changes_nothing() {
     let t = Targets::from_triangles(vec![]);
     assert!(t.is_empty());
-    let (mut desc, _) = iris::scenes::bench::caustic_sphere(None);
+    let (mut desc, _) = iris::assets::bench::caustic_sphere(None);
     desc.materials[0] = iris::material::MaterialDesc {
         metallic: 0.0,
         ..Default::default()

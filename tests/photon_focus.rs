@@ -1,6 +1,6 @@
 //! A ball lens focuses photons where geometric optics says.
 //!
-//! Scene ([`iris::scenes::caustic::focus_bench`]): a glass sphere (n = 1.5, R = 1,
+//! Scene ([`iris::assets::caustic::focus_bench`]): a glass sphere (n = 1.5, R = 1,
 //! icosphere with 6 subdivisions and radial normals) behind an opaque plate with a hole of
 //! radius `aperture` on the axis, lit by a directional light along −Z, a white screen
 //! behind it. Photons are traced by the renderer's own emitter and tracer; those reaching
@@ -33,12 +33,12 @@ const R: f32 = 1.0;
 /// Photons on the screen after exactly two refractions: (position, unit travel direction,
 /// power).
 fn screen_photons(aperture: f32, screen: f32, photons: u64, tag: &str) -> Vec<(Vec3, Vec3, f32)> {
-    let gen = iris::scenes::caustic::focus_bench(N, R, aperture, screen, 6);
+    let gen = iris::assets::caustic::focus_bench(N, R, aperture, screen, 6);
     // The light shines exactly along −Z: every photon direction has two zero components
     // (the BVH backend's finite-inverse slab test keeps this fast: src/accel/bvh.rs).
     let dir = common::scratch_dir("photon_focus");
     let path = dir.join(format!("{tag}.glb"));
-    iris::model::write_glb(&path, &gen).expect("write focus bench");
+    iris::authoring::write_glb(&path, &gen).expect("write focus bench");
     let (scene, _) = iris::app::load(&path, iris::accel::Backend::Auto).expect("load");
     let emitter = PhotonEmitter::new(&scene);
     let settings = TraceSettings {

@@ -24,7 +24,7 @@ use iris::scene::Scene;
 const RHO: f32 = 0.5;
 
 fn room() -> Scene {
-    let sphere = iris::model::shapes::icosphere(1.0, 5);
+    let sphere = iris::authoring::shapes::icosphere(1.0, 5);
     let white = MaterialDesc {
         base_color: glam::Vec4::new(RHO, RHO, RHO, 1.0),
         ..common::white_lambert()
@@ -165,7 +165,7 @@ fn photon_map_with_final_gather_matches_the_analytic_room() {
 #[test]
 fn photons_in_a_closed_white_box_carry_the_geometric_series_of_the_light_power() {
     use iris::photon::trace::{trace, Roulette, TraceSettings};
-    let cube = iris::model::shapes::cuboid(Vec3::new(1.0, 0.7, 0.5));
+    let cube = iris::authoring::shapes::cuboid(Vec3::new(1.0, 0.7, 0.5));
     let white = MaterialDesc {
         base_color: glam::Vec4::new(RHO, RHO, RHO, 1.0),
         ..common::white_lambert()

@@ -21,7 +21,7 @@ use std::path::{Path, PathBuf};
 /// The caustic test scene (glass sphere on a white floor, point light) with the sphere's
 /// material replaced by `sphere`.
 fn sphere_on_floor(sphere: MaterialDesc) -> (Scene, CameraDesc) {
-    let (mut desc, cam): (SceneDesc, CameraDesc) = iris::scenes::bench::caustic_sphere(None);
+    let (mut desc, cam): (SceneDesc, CameraDesc) = iris::assets::bench::caustic_sphere(None);
     desc.materials[0] = sphere;
     let desc = iris::scene::validate::validate(desc).expect("valid scene");
     (Scene::build(desc, Backend::Auto).expect("build"), cam)

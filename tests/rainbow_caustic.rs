@@ -1,6 +1,6 @@
 //! The prism rainbow is a caustic ordered as Snell's law says.
 //!
-//! Scene: `assets/scenes/fig5_3_1_rainbow.glb` ([`iris::scenes::rainbow`]): a beam through a
+//! Scene: `assets/scenes/fig5_3_1_rainbow.glb` ([`iris::assets::rainbow`]): a beam through a
 //! 3 mm slit meets an N-BK7 prism at minimum deviation and lands on a white screen 1.2 m
 //! beyond. Photons are started across the slit along the sun's direction (the scene's own
 //! emitter would spend ~3·10⁵ photons per photon through the slit), each with its own
@@ -9,17 +9,17 @@
 //! screen after exactly two refractions (not the Fresnel ghosts reflected inside the
 //! prism, 3 in 20 000 here) we compare its position along the layout's `dispersion` axis with the landing
 //! point of the axis ray traced by vector Snell's law at that wavelength's N-BK7 index
-//! (Sellmeier, [`iris::scenes::rainbow::rainbow_landing`]): each must lie within the beam's
+//! (Sellmeier, [`iris::assets::rainbow::rainbow_landing`]): each must lie within the beam's
 //! half-width (1.5 mm, the slit's, preserved at minimum deviation) plus 0.5 mm, and violet
 //! (λ < 450 nm) must land beyond red (λ > 630 nm) by about the predicted 20 mm.
 
 mod common;
 
 use glam::{DVec3, Vec3};
+use iris::assets::rainbow::{rainbow_landing, rainbow_layout, SLIT_HEIGHT, SLIT_WIDTH};
 use iris::math::{Ray, Rng};
 use iris::photon::emit::EmittedPhoton;
 use iris::photon::trace::{trace, Roulette, TraceSettings};
-use iris::scenes::rainbow::{rainbow_landing, rainbow_layout, SLIT_HEIGHT, SLIT_WIDTH};
 use iris::spectrum::{Carrier, IorModel, Lambdas, SampledSpectrum, SampledWavelengths};
 
 #[test]

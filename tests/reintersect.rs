@@ -15,9 +15,9 @@ use iris::scene::Scene;
 use common::backends;
 
 fn sphere_scene(scale: f32, backend: Backend) -> (Scene, Vec3, f32) {
-    let iris::model::shapes::TriMesh {
+    let iris::authoring::shapes::TriMesh {
         positions, indices, ..
-    } = iris::model::shapes::icosphere(1.0, 3);
+    } = iris::authoring::shapes::icosphere(1.0, 3);
     let center = Vec3::new(0.3, -0.2, 0.1) * scale;
     let desc = SceneDesc {
         source: "reintersect-test".into(),

@@ -137,8 +137,8 @@ fn embree_and_bvh_images_agree() {
 /// Writes a .gltf + .bin with a floor, a glass prism (mirrored by the node or in the data),
 /// a point light and a camera.
 fn write_prism_gltf(dir: &Path, name: &str, mirror_in_node: bool) -> PathBuf {
-    let floor = iris::model::shapes::ground_plane(2.0, 2.0);
-    let prism = iris::model::shapes::prism(0.5, 0.8)
+    let floor = iris::authoring::shapes::ground_plane(2.0, 2.0);
+    let prism = iris::authoring::shapes::prism(0.5, 0.8)
         .transformed(Mat3::from_rotation_y(0.6), Vec3::new(0.35, 0.3, 0.1));
     let mirror = Mat3::from_diagonal(Vec3::new(-1.0, 1.0, 1.0));
     // `transformed` flips winding for a negative determinant, as the loader must.

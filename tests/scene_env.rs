@@ -8,14 +8,14 @@ mod common;
 use glam::Vec3;
 use iris::accel::Backend;
 use iris::app::{render_command, resolve_environment, RenderOptions};
+use iris::assets::sky::encode_hdr;
+use iris::authoring::shapes::cuboid;
+use iris::authoring::{encode_glb, GenCamera, GenMaterial, GenMesh, GenScene};
 use iris::error::Error;
 use iris::integrator::Method;
 use iris::light::env::Environment;
-use iris::model::shapes::cuboid;
-use iris::model::{encode_glb, GenCamera, GenMaterial, GenMesh, GenScene};
 use iris::output::{read_exr, DisplayOptions};
 use iris::scene::desc::EnvironmentDesc;
-use iris::scenes::sky::encode_hdr;
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 

@@ -1,6 +1,6 @@
 //! Shards and merges (issue 19 items 1 and 2): a render cut into N shards
 //! (`--shard I/N`) and merged (`iris merge`) is bit for bit the render of all its units,
-//! for every method (the film's sums are exact, `src/render/fixed.rs`; SPPM and the hybrid
+//! for every method (the film's sums are exact, `src/image/fixed.rs`; SPPM and the hybrid
 //! rebuild the radius sequence, `src/integrator/sppm.rs`); a shard is deterministic; an
 //! open budget's shards merge into an average of disjoint segments and report its counts.
 //! Library calls on the repository's own small scenes at 32×24.

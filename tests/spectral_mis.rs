@@ -125,7 +125,7 @@ fn rough_dispersive_sphere_vanishes_in_a_white_furnace() {
 /// The rough dispersive sphere before a bright emissive half-plane (its edge behind the
 /// sphere's centre, so the sphere blurs and disperses it), in a dim uniform environment.
 fn backdrop_scene() -> Scene {
-    use iris::model::shapes;
+    use iris::authoring::shapes;
     let sphere = shapes::icosphere(1.0, 4);
     let panel = shapes::cuboid(Vec3::new(2.0, 4.0, 0.05))
         .transformed(glam::Mat3::IDENTITY, Vec3::new(2.0, 0.0, -2.5));

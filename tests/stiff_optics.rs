@@ -224,7 +224,7 @@ fn bsdf_sample_eval_pdf_stay_finite_at_grazing() {
 
 /// A unit icosphere (subdivision 5, interpolated normals) of clear glass of index `ior`.
 fn sphere_scene(ior: f32, backend: Backend) -> Scene {
-    let mesh = iris::model::shapes::icosphere(1.0, 5);
+    let mesh = iris::authoring::shapes::icosphere(1.0, 5);
     let desc = SceneDesc {
         source: "stiff sphere".into(),
         meshes: vec![MeshDesc {

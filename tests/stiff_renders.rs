@@ -36,12 +36,14 @@ mod fixtures;
 
 use glam::{Mat3, Vec3};
 use iris::accel::Backend;
+use iris::authoring::shapes::{
+    checkerboard, cuboid, ground_plane, icosphere, quarter_turn_x, TriMesh,
+};
 use iris::camera::{look_at, Camera};
 use iris::image::ImageRgb;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::light::env::Environment;
 use iris::material::MaterialDesc;
-use iris::model::shapes::{checkerboard, cuboid, ground_plane, icosphere, quarter_turn_x, TriMesh};
 use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, LightDesc, Projection, SceneDesc};
 use iris::scene::Scene;
@@ -415,7 +417,7 @@ fn beer_lambert_extreme_distances_render() {
 fn bubble_ring_starts_at_the_critical_impact_parameter() {
     let dir = common::scratch_dir("stiff_bubble");
     let path = dir.join("fig7_2_bubble.glb");
-    iris::model::glb::write_glb(&path, &iris::scenes::paper::fig7_2_bubble()).expect("write");
+    iris::authoring::glb::write_glb(&path, &iris::assets::paper::fig7_2_bubble()).expect("write");
     let desc = iris::load::load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
     let bubble = desc
         .materials

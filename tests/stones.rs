@@ -11,9 +11,9 @@
 mod common;
 
 use glam::{Vec3, Vec4};
+use iris::authoring::scene::{GenMaterial, GenMesh, GenScene};
+use iris::authoring::shapes::{cuboid, icosphere};
 use iris::integrator::Method;
-use iris::model::scene::{GenMaterial, GenMesh, GenScene};
-use iris::model::shapes::{cuboid, icosphere};
 use iris::plan::{Plan, SpectralMode};
 use iris::prepare::looks::{apply, Applied, LookFlag};
 use iris::prepare::{prepare, PrepareOptions};
@@ -58,7 +58,7 @@ fn ring_file(dir: &Path) -> PathBuf {
         mesh_uvs: vec![],
     };
     let path = dir.join("ring.glb");
-    iris::model::glb::write_glb(&path, &scene).expect("write ring.glb");
+    iris::authoring::glb::write_glb(&path, &scene).expect("write ring.glb");
     path
 }
 

@@ -7,10 +7,10 @@ mod common;
 
 use iris::accel::Backend;
 use iris::app::{render_command, PreviewOptions, RenderOptions, RenderSummary};
+use iris::authoring::cuts::preview::{write_gem, GemSpec};
+use iris::authoring::cuts::Cut;
+use iris::authoring::stones::Stone;
 use iris::image::ImageRgb;
-use iris::model::cuts::preview::{write_gem, GemSpec};
-use iris::model::cuts::Cut;
-use iris::model::stones::Stone;
 use iris::output::read_exr;
 use iris::prepare::Note;
 use iris::studio::{ground, GroundMode, Studio};

@@ -10,10 +10,10 @@ mod common;
 
 use common::{entries, iris, stderr};
 use glam::{DVec2, Vec3};
+use iris::authoring::lathe::{Lathe, ProfilePoint};
+use iris::authoring::shapes::{cuboid, TriMesh};
+use iris::authoring::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
 use iris::image::ImageRgb;
-use iris::model::lathe::{Lathe, ProfilePoint};
-use iris::model::shapes::{cuboid, TriMesh};
-use iris::model::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
 use std::path::{Path, PathBuf};
 
 const SIZE: &str = "48x36";
@@ -76,7 +76,7 @@ fn write_scene(dir: &Path, name: &str, meshes: Vec<GenMesh>, camera: bool) -> Pa
         ..Default::default()
     };
     let path = dir.join(format!("{name}.glb"));
-    iris::model::write_glb(&path, &scene).expect("write scene");
+    iris::authoring::write_glb(&path, &scene).expect("write scene");
     path
 }
 

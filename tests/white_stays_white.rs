@@ -27,7 +27,7 @@ use iris::spectrum::cie::{chromaticity, linear_srgb_to_xyz};
 /// CIE 15:2004, D65 white point (2° observer).
 const D65_XY: [f32; 2] = [0.3127, 0.3290];
 
-fn mesh(name: &str, m: iris::model::shapes::TriMesh, material: usize) -> MeshDesc {
+fn mesh(name: &str, m: iris::authoring::shapes::TriMesh, material: usize) -> MeshDesc {
     MeshDesc {
         name: name.into(),
         positions: m.positions,
@@ -41,10 +41,10 @@ fn mesh(name: &str, m: iris::model::shapes::TriMesh, material: usize) -> MeshDes
 /// A white floor, a 0.4-thick glass block above it and a white emitter above both; the
 /// camera looks down through the block.
 fn block_scene(glass: MaterialDesc) -> Scene {
-    let floor = iris::model::shapes::ground_plane(3.0, 3.0);
-    let block = iris::model::shapes::cuboid(Vec3::new(1.0, 0.2, 1.0))
+    let floor = iris::authoring::shapes::ground_plane(3.0, 3.0);
+    let block = iris::authoring::shapes::cuboid(Vec3::new(1.0, 0.2, 1.0))
         .transformed(glam::Mat3::IDENTITY, Vec3::new(0.0, 0.6, 0.0));
-    let lamp = iris::model::shapes::ground_plane(0.8, 0.8).transformed(
+    let lamp = iris::authoring::shapes::ground_plane(0.8, 0.8).transformed(
         glam::Mat3::from_rotation_x(std::f32::consts::PI),
         Vec3::new(0.3, 3.0, 0.2),
     );

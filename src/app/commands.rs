@@ -252,8 +252,8 @@ pub fn diff(image: &Path, reference: &Path, exact: bool) -> Result<()> {
 }
 
 /// `iris gem`: writes the gem's .glb and says so.
-pub fn gem(spec: &crate::model::cuts::preview::GemSpec, output: &Path) -> Result<()> {
-    crate::model::cuts::preview::write_gem(output, spec)?;
+pub fn gem(spec: &crate::authoring::cuts::preview::GemSpec, output: &Path) -> Result<()> {
+    crate::authoring::cuts::preview::write_gem(output, spec)?;
     eprintln!("wrote {}", output.display());
     Ok(())
 }
@@ -277,7 +277,7 @@ pub fn gallery(opts: &crate::app::gallery::GalleryOptions) -> Result<()> {
 
 /// `iris gen-assets`: regenerates the project's scenes under `dir`, one line per file.
 pub fn gen_assets(dir: &Path) -> Result<()> {
-    for p in crate::scenes::write_all_assets(dir)? {
+    for p in crate::assets::write_all_assets(dir)? {
         eprintln!("wrote {}", p.display());
     }
     Ok(())

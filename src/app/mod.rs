@@ -23,9 +23,10 @@ pub mod turntable;
 
 pub use crate::measure::MeasureOptions;
 pub use crate::plan::SpectralMode;
+pub use crate::prepare::camera_choice::{choose_camera, choose_camera_view};
 pub use crate::prepare::default_preview_scene;
+pub use crate::prepare::drop_in::PreviewOptions;
 pub use crate::prepare::input::{check_size, default_size, load, resolve_environment, MAX_PIXELS};
-pub use crate::preview::{choose_camera, choose_camera_view, PreviewOptions};
 pub use budget::{Budget, BudgetFlags};
 pub use diff::{diff_command, DiffSummary};
 pub use info::{info_command, info_command_with};

@@ -9,7 +9,7 @@ use crate::integrator::Method;
 use crate::measure::MeasureOptions;
 use crate::output::DisplayOptions;
 use crate::plan::SpectralMode;
-use crate::preview::PreviewOptions;
+use crate::prepare::drop_in::PreviewOptions;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 

@@ -88,14 +88,14 @@ pub struct GalleryArgs {
 pub struct GemArgs {
     /// Cut: round (Tolkowsky brilliant), emerald (step cut), oval (brilliant, L/W 1.4),
     /// pear (brilliant, L/W 1.6).
-    #[arg(long, value_parser = crate::model::cuts::Cut::parse)]
-    pub cut: crate::model::cuts::Cut,
+    #[arg(long, value_parser = crate::authoring::cuts::Cut::parse)]
+    pub cut: crate::authoring::cuts::Cut,
     /// Stone: diamond, sapphire, ruby, emerald, cubic-zirconia, quartz, crown-glass.
-    #[arg(long, value_parser = crate::model::stones::Stone::parse)]
-    pub stone: crate::model::stones::Stone,
+    #[arg(long, value_parser = crate::authoring::stones::Stone::parse)]
+    pub stone: crate::authoring::stones::Stone,
     /// Girdle diameter (round) or length (emerald, oval, pear) in millimetres, from 0.1 to
     /// 1000.
-    #[arg(long, default_value_t = crate::model::cuts::DEFAULT_SIZE_MM, value_parser = parse_gem_size, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = crate::authoring::cuts::DEFAULT_SIZE_MM, value_parser = parse_gem_size, allow_hyphen_values = true)]
     pub size: f64,
     /// Only the stone: no camera, lights or floor.
     #[arg(long)]

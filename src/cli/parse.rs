@@ -40,9 +40,9 @@ pub(crate) fn parse_threads() -> clap::builder::RangedU64ValueParser<usize> {
     clap::builder::RangedU64ValueParser::new().range(0..=crate::render::MAX_THREADS as u64)
 }
 
-/// `gem --size`: millimetres in [0.1, 1000] ([`crate::model::cuts::size_metres`]).
+/// `gem --size`: millimetres in [0.1, 1000] ([`crate::authoring::cuts::size_metres`]).
 pub(crate) fn parse_gem_size(s: &str) -> Result<f64, String> {
-    use crate::model::cuts::{size_metres, MAX_SIZE_MM, MIN_SIZE_MM};
+    use crate::authoring::cuts::{size_metres, MAX_SIZE_MM, MIN_SIZE_MM};
     match s.parse::<f64>() {
         Ok(v) if size_metres(v).is_ok() => Ok(v),
         _ => Err(format!(

@@ -15,7 +15,7 @@
 //!   `--view`.
 //!
 //! The file's own camera is a separate matter: framing applies only when the file has none
-//! (or with `--view`), authored or not ([`crate::preview::choose_camera_in`]).
+//! (or with `--view`), authored or not ([`crate::prepare::camera_choice::choose_camera_in`]).
 
 use crate::scene::desc::SceneDesc;
 use crate::scene::lighting;

@@ -5,7 +5,7 @@
 //!
 //! A flag is `NAME` or `NAME=SELECTOR` ([`super::select`] for the selector rules):
 //! - `--stone NAME`: one of the stones of `iris gem` ([`Stone`], the one table in
-//!   `model/stones.rs`): a smooth dispersive dielectric volume (KHR ior n_d, dispersion
+//!   `authoring/stones.rs`): a smooth dispersive dielectric volume (KHR ior n_d, dispersion
 //!   20/V_d), coloured stones with Beer–Lambert absorption;
 //! - `--metal NAME`: a measured metal ([`Metal`]: gold, silver, platinum, copper,
 //!   rose-gold), an opaque conductor with its spectral complex index, polished unless
@@ -30,10 +30,10 @@
 //! the meshes the material ends up on (the largest of their per-mesh sides).
 
 use super::select::{pick, Picked, Selector};
+use crate::authoring::cuts::DEFAULT_SIZE_MM;
+use crate::authoring::stones::{Stone, COLOUR_DISTANCE, STONES};
 use crate::error::{Error, Result};
 use crate::material::MaterialDesc;
-use crate::model::cuts::DEFAULT_SIZE_MM;
-use crate::model::stones::{Stone, COLOUR_DISTANCE, STONES};
 use crate::scene::desc::{MeshDesc, SceneDesc};
 use crate::spectrum::metals::{Metal, METALS};
 use glam::Vec3;

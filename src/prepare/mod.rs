@@ -8,7 +8,7 @@
 //! ([`crate::studio::ground::decide`]); set
 //! the environment light (`--env`, else the file's `iris_environment`); fix the image size
 //! (the flag, else the reference's, else [`input::default_size`]); pick the file's
-//! camera or frame the model's vertices ([`crate::preview::choose_camera_in`]); when the
+//! camera or frame the model's vertices ([`crate::prepare::camera_choice::choose_camera_in`]); when the
 //! file has no light (or `--studio NAME` asks) and no `--env` is given, write the studio's
 //! lights into the description ([`crate::studio::light`]), placed relative to that camera, else the default
 //! key and fill when nothing lights it ([`crate::scene::lighting::light_if_unlit`]); add
@@ -20,6 +20,8 @@
 //! scene, camera and notes.
 
 mod authored;
+pub mod camera_choice;
+pub mod drop_in;
 mod note;
 
 pub use authored::Authored;
@@ -33,10 +35,11 @@ pub mod turntable;
 use crate::accel::Backend;
 use crate::error::Result;
 use crate::light::env::Environment;
-use crate::preview::{choose_camera_in, PreviewOptions};
 use crate::scene::desc::{CameraDesc, SceneDesc};
 use crate::scene::{lighting, Scene};
 use crate::studio::ground::{self, Floor, GroundMode};
+use camera_choice::choose_camera_in;
+use drop_in::PreviewOptions;
 use input::{check_size, default_size, resolve_environment};
 use std::path::Path;
 use std::time::{Duration, Instant};

@@ -4,7 +4,7 @@
 //! only place each note is written.
 
 use super::Authored;
-use crate::preview::AutoCamera;
+use crate::prepare::camera_choice::AutoCamera;
 use crate::studio::ground::Floor;
 use crate::studio::Studio;
 use std::fmt;

@@ -22,7 +22,7 @@
 //!
 //! **Exactness.** A frame at a multiple of 360° (F ≡ 0 mod N) changes nothing, bit for bit:
 //! frame 0 is the still `iris render` gives. Quarter turns use the exact cos and sin (0,
-//! ±1); other angles [`crate::model::lathe::sin_cos`] (`+ − × ÷` only: the same bits on
+//! ±1); other angles [`crate::authoring::lathe::sin_cos`] (`+ − × ÷` only: the same bits on
 //! every platform).
 //!
 //! **What is decided on the unturned model**, so it is the same in every frame: the floor
@@ -41,8 +41,8 @@
 //! Units: the file's (metres for glTF); angles in degrees in messages, radians inside.
 
 use super::Note;
+use crate::authoring::lathe::sin_cos;
 use crate::error::{Error, Result};
-use crate::model::lathe::sin_cos;
 use crate::scene::desc::{MeshDesc, SceneDesc};
 use crate::scene::lighting::mesh_emits;
 use glam::Vec3;

@@ -6,7 +6,7 @@
 //! Method (the classic manifold orientation pass, e.g. Botsch et al., *Polygon Mesh
 //! Processing*, §2.5 "orientability"):
 //! 1. **Weld by position.** Vertices with bit-identical positions (−0 = +0) are one corner,
-//!    so flat-shaded meshes (one vertex per facet corner, like [`crate::model::gem`]) are still
+//!    so flat-shaded meshes (one vertex per facet corner, like [`crate::authoring::gem`]) are still
 //!    connected. Positions are world-space metres as in [`MeshDesc`].
 //! 2. **Edge adjacency.** An undirected edge used by exactly two triangles joins them; two
 //!    triangles agree when they traverse the shared edge in **opposite** directions. Edges

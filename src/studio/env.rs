@@ -7,7 +7,7 @@
 //!   radiance at its centre direction.
 //! - Gradient (nits): `ground` below the horizon, blending to `horizon` over the first 5°
 //!   below it; above the horizon from `horizon` to `zenith` with √(elevation/90°), as in
-//!   [`crate::scenes::sky`].
+//!   [`crate::assets::sky`].
 //! - Softbox: centred at (elevation, azimuth) in the studio convention of [`super`]; a
 //!   point at angular offsets (Δel, Δaz·cos el) is inside when both are within the half
 //!   sizes. The edge is feathered over the outer [`FEATHER`] of each half size (a linear

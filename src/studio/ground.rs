@@ -94,7 +94,7 @@ pub enum Floor {
     /// `auto`: a transmissive model with nothing under it gets a floor for its caustics.
     UnderGlass,
     /// `auto` with a `--background` other than the environment: no floor, which would
-    /// cover it ([`crate::preview::PreviewOptions::ground_mode`]).
+    /// cover it ([`crate::prepare::drop_in::PreviewOptions::ground_mode`]).
     CoversBackground,
     /// `auto` on a file that brings its own light ([`crate::prepare::Authored`]): its scene
     /// is kept as authored, no floor (the preparation's authored note says so).

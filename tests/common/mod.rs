@@ -36,7 +36,7 @@ pub fn scratch_dir(name: &str) -> PathBuf {
 /// material, under a uniform environment of radiance 1: the furnace-test scene.
 pub fn sphere_in_white_environment(material: iris::material::MaterialDesc) -> iris::scene::Scene {
     use iris::scene::desc::{MeshDesc, SceneDesc};
-    let sphere = iris::model::shapes::icosphere(1.0, 4);
+    let sphere = iris::authoring::shapes::icosphere(1.0, 4);
     let desc = SceneDesc {
         source: "furnace".into(),
         meshes: vec![MeshDesc {
@@ -83,7 +83,7 @@ pub fn clear_glass(name: &str, ior: f32) -> iris::material::MaterialDesc {
 /// A mesh description of a generated triangle mesh, with material `material`.
 pub fn mesh(
     name: &str,
-    m: iris::model::shapes::TriMesh,
+    m: iris::authoring::shapes::TriMesh,
     material: usize,
 ) -> iris::scene::desc::MeshDesc {
     iris::scene::desc::MeshDesc {
@@ -106,11 +106,11 @@ pub fn white_lambert() -> iris::material::MaterialDesc {
     }
 }
 
-/// The caustic test scene ([`iris::scenes::bench::caustic_sphere`]), built on the
+/// The caustic test scene ([`iris::assets::bench::caustic_sphere`]), built on the
 /// automatic backend.
 #[allow(dead_code)]
 pub fn caustic_sphere(area: Option<f32>) -> (iris::scene::Scene, iris::scene::desc::CameraDesc) {
-    let (desc, cam) = iris::scenes::bench::caustic_sphere(area);
+    let (desc, cam) = iris::assets::bench::caustic_sphere(area);
     let desc = iris::scene::validate::validate(desc).expect("valid caustic scene");
     let scene = iris::scene::Scene::build(desc, iris::accel::Backend::Auto).expect("build");
     (scene, cam)

@@ -24,12 +24,12 @@ use super::parts::{add_mesh, add_panel, camera};
 use super::rainbow::fig5_3_1_rainbow;
 use super::sky::sky_hdr;
 use super::spectral::{diamond, fig5_3_1_prism_beam};
+use crate::authoring::gem::Brilliant;
+use crate::authoring::glb::write_glb;
+use crate::authoring::lathe::{append, Tumbler};
+use crate::authoring::scene::{GenMaterial, GenScene, GenVolume};
+use crate::authoring::shapes::{checkerboard, ground_plane, prism, quarter_turn_x, TriMesh};
 use crate::error::{Error, Result};
-use crate::model::gem::Brilliant;
-use crate::model::glb::write_glb;
-use crate::model::lathe::{append, Tumbler};
-use crate::model::scene::{GenMaterial, GenScene, GenVolume};
-use crate::model::shapes::{checkerboard, ground_plane, prism, quarter_turn_x, TriMesh};
 use glam::{Mat3, Vec3};
 use std::path::{Path, PathBuf};
 
@@ -240,8 +240,8 @@ mod tests {
     #[test]
     fn scenes_encode_deterministically_and_small() {
         for (name, build) in SCENES {
-            let a = crate::model::glb::encode_glb(&build()).expect(name);
-            let b = crate::model::glb::encode_glb(&build()).expect(name);
+            let a = crate::authoring::glb::encode_glb(&build()).expect(name);
+            let b = crate::authoring::glb::encode_glb(&build()).expect(name);
             assert_eq!(a, b, "{name} not deterministic");
             assert!(a.len() < 300_000, "{name} is {} bytes", a.len());
         }

@@ -12,9 +12,9 @@
 //! and screen) or outwards (the sphere).
 
 use super::parts::{add_mesh, camera};
-use crate::model::lathe::sin_cos;
-use crate::model::scene::{GenCamera, GenLight, GenMaterial, GenScene};
-use crate::model::shapes::{ground_plane, icosphere, quarter_turn_x, TriMesh};
+use crate::authoring::lathe::sin_cos;
+use crate::authoring::scene::{GenCamera, GenLight, GenMaterial, GenScene};
+use crate::authoring::shapes::{ground_plane, icosphere, quarter_turn_x, TriMesh};
 use glam::{DVec3, Vec3};
 
 /// Smallest number of segments of [`focus_bench`]'s aperture plate.

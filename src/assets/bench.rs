@@ -2,8 +2,8 @@
 //! a white floor lit by a point light or a small area light. Units: metres, candela,
 //! nits; +Y up.
 
+use crate::authoring::shapes;
 use crate::material::MaterialDesc;
-use crate::model::shapes;
 use crate::scene::desc::{CameraDesc, LightDesc, MeshDesc, Projection, SceneDesc};
 use glam::{Mat3, Vec3};
 

@@ -19,7 +19,7 @@
 //! run-length encoded as in Radiance's `fwritecolrs` (B. Walter's `rgbe.c`), so the file
 //! is bit-identical on every platform.
 
-use crate::model::lathe::sin_cos;
+use crate::authoring::lathe::sin_cos;
 use glam::{DVec3, Vec3};
 
 /// Map width in texels (0.70° per texel).

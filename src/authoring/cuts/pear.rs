@@ -199,7 +199,7 @@ fn solve(u0: DVec2, c0: f64, u1: DVec2, c1: f64) -> DVec2 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::gem::newell;
+    use crate::authoring::gem::newell;
 
     /// Largest distance of any vertex in front of any facet's outward plane, and the
     /// largest distance of a facet's own vertices from its plane, over `size`.

@@ -1,5 +1,5 @@
 //! `iris gem`: a named stone in a standard cut, written as .glb, bare or in a preview
-//! scene (the list shipped in `assets/gems/` is `crate::scenes::gems`).
+//! scene (the list shipped in `assets/gems/` is `crate::assets::gems`).
 //!
 //! Units: metres, +Y up, linear RGB; emitters are black diffuse quads emitting their
 //! radiance from the face turned to the stone (as in the demonstration scenes).

@@ -48,10 +48,10 @@
 
 use super::parts::{add_mesh, camera};
 use super::spectral::upright_prism;
-use crate::model::gem::Brilliant;
-use crate::model::lathe::sin_cos;
-use crate::model::scene::{GenLight, GenMaterial, GenScene};
-use crate::model::shapes::{ground_plane, icosphere, TriMesh};
+use crate::authoring::gem::Brilliant;
+use crate::authoring::lathe::sin_cos;
+use crate::authoring::scene::{GenLight, GenMaterial, GenScene};
+use crate::authoring::shapes::{ground_plane, icosphere, TriMesh};
 use glam::{DVec3, Vec3};
 
 /// The ball-lens test scene, also reachable from here (see [`super::focus_bench`]).

@@ -1,6 +1,6 @@
 //! The model-building library: meshes, gem cuts, gem materials and the in-memory scene model,
 //! written as glTF binary (.glb). `iris gem` uses it alone; the shipped scenes
-//! ([`crate::scenes`]) are built on it, never the reverse.
+//! ([`crate::assets`]) are built on it, never the reverse.
 //!
 //! Conventions: metres, right-handed, +Y up; triangles wind counter-clockwise seen from
 //! outside (normals point out); colours are linear RGB; point and spot intensities in

@@ -16,11 +16,11 @@
 //! On the plates the highlight is stretched along the anisotropy direction (world X, image
 //! x for rotation 0; world Z, image y for π/2): the tests measure that.
 
+use crate::authoring::glb::write_glb;
+use crate::authoring::scene::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
+use crate::authoring::shapes::{ground_plane, icosphere};
 use crate::error::Result;
 use crate::material::{AnisotropyDesc, IridescenceDesc};
-use crate::model::glb::write_glb;
-use crate::model::scene::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
-use crate::model::shapes::{ground_plane, icosphere};
 use glam::{Vec2, Vec3, Vec4};
 use std::path::{Path, PathBuf};
 

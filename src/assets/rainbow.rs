@@ -53,8 +53,8 @@
 
 use super::parts::{add_mesh, camera};
 use super::spectral::{upright_prism, BeamLayout, N_D_BK7};
-use crate::model::scene::{GenLight, GenMaterial, GenScene};
-use crate::model::shapes::TriMesh;
+use crate::authoring::scene::{GenLight, GenMaterial, GenScene};
+use crate::authoring::shapes::TriMesh;
 use glam::{DVec3, Vec3};
 
 /// Side of the prism's equilateral cross-section, metres.

@@ -41,10 +41,10 @@
 //! stone's vertex centroid, 30° off the table normal (towards +Y), yfov 10°.
 
 use super::parts::push_material;
-use crate::model::gem::Brilliant;
-use crate::model::lathe::sin_cos;
-use crate::model::scene::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
-use crate::model::shapes::{cuboid, ground_plane, push_flat_facing_away, TriMesh};
+use crate::authoring::gem::Brilliant;
+use crate::authoring::lathe::sin_cos;
+use crate::authoring::scene::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
+use crate::authoring::shapes::{cuboid, ground_plane, push_flat_facing_away, TriMesh};
 use glam::{DVec3, Vec3};
 
 /// Side of the prism's equilateral cross-section, metres.

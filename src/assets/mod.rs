@@ -1,4 +1,4 @@
-//! The scenes Iris ships and tests with, built on the model library ([`crate::model`]):
+//! The scenes Iris ships and tests with, built on the model library ([`crate::authoring`]):
 //! small CC0 scenes written as glTF binary (.glb) files, in the library's conventions
 //! (metres, +Y up, linear colours, candela/lux lights).
 //!

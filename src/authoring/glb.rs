@@ -271,8 +271,8 @@ fn assemble(mut json: Vec<u8>, mut bin: Vec<u8>) -> Result<Vec<u8>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::scene::{GenCamera, GenLight, GenMaterial, GenMesh, GenVolume};
-    use crate::model::shapes::cuboid;
+    use crate::authoring::scene::{GenCamera, GenLight, GenMaterial, GenMesh, GenVolume};
+    use crate::authoring::shapes::cuboid;
 
     fn scene() -> GenScene {
         let mut glass = GenMaterial::clear_glass("Flint", 1.62, 0.1);

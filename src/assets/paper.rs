@@ -23,10 +23,12 @@
 
 use super::caustic::fig4_5_1_caustics;
 use super::parts::{add_mesh, camera};
+use crate::authoring::glb::write_glb;
+use crate::authoring::scene::{GenLight, GenMaterial, GenScene};
+use crate::authoring::shapes::{
+    checkerboard, ground_plane, icosphere, prism, quarter_turn_x, TriMesh,
+};
 use crate::error::{Error, Result};
-use crate::model::glb::write_glb;
-use crate::model::scene::{GenLight, GenMaterial, GenScene};
-use crate::model::shapes::{checkerboard, ground_plane, icosphere, prism, quarter_turn_x, TriMesh};
 use glam::{Mat3, Vec3};
 use std::path::{Path, PathBuf};
 
@@ -247,8 +249,8 @@ mod tests {
     #[test]
     fn paper_scenes_validate_and_encode_deterministically() {
         for (name, build) in PAPER_SCENES {
-            let a = crate::model::glb::encode_glb(&build()).expect(name);
-            let b = crate::model::glb::encode_glb(&build()).expect(name);
+            let a = crate::authoring::glb::encode_glb(&build()).expect(name);
+            let b = crate::authoring::glb::encode_glb(&build()).expect(name);
             assert_eq!(a, b, "{name} not deterministic");
             assert!(a.len() < 1_500_000, "{name} is {} bytes", a.len());
         }

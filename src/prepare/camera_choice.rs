@@ -1,6 +1,6 @@
-//! The drop-in preview's set-up, between loading and rendering: what `iris render` does
-//! for a file that lacks a camera, lights or a floor ([`PreviewOptions`]: `--view`,
-//! `--studio`, `--ground`, `--background`), and the camera choice ([`choose_camera_in`]).
+//! The camera a render looks through ([`choose_camera_in`]): the file's camera (by name or
+//! index, `--camera`), or the model framed automatically from a [`View`] when the file has
+//! none or `--view` asks for one ([`AutoCamera`] says which and why).
 //!
 //! [`crate::prepare::prepare`] (the one scene preparation every command uses) runs the
 //! steps on the scene description, in order: ground decision, environment, camera (the
@@ -10,7 +10,6 @@
 
 use crate::error::{Error, Result};
 use crate::framing::{frame_points, View};
-use crate::output::Background;
 use crate::scene::desc::CameraDesc;
 use crate::scene::Scene;
 use crate::studio::ground;
@@ -134,37 +133,6 @@ pub fn choose_camera_in(
                     names.join(", ")
                 }
             )))
-        }
-    }
-}
-
-/// `iris render` options for drop-in previews ([`crate::studio`], [`crate::framing`],
-/// [`crate::output::background`]).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct PreviewOptions {
-    /// `--studio NAME`: `None` (not given) lights a file that has no light of its own with
-    /// the default preset ([`crate::studio::Studio::Soft`]); `Some(preset)` also lights a
-    /// file that has its own (added to its lights, [`crate::prepare`]). Either way only
-    /// without `--env`.
-    pub studio: Option<crate::studio::Studio>,
-    /// Whether to add a white floor under the model.
-    pub ground: crate::studio::GroundMode,
-    /// `--view`: frame the model automatically from this view (else the file's first
-    /// camera, or the three-quarter view when it has none).
-    pub view: Option<View>,
-    /// `--background`: what escaped camera rays show ([`crate::output::background`]).
-    pub background: Background,
-}
-
-impl PreviewOptions {
-    /// The floor rule in effect: `--ground auto` adds none when `--background` is not the
-    /// environment (a floor filling the frame would hide the background asked for).
-    pub fn ground_mode(&self) -> crate::studio::GroundMode {
-        use crate::studio::GroundMode;
-        match (self.ground, self.background) {
-            (GroundMode::Auto, Background::Environment) => GroundMode::Auto,
-            (GroundMode::Auto, _) => GroundMode::Off,
-            (g, _) => g,
         }
     }
 }

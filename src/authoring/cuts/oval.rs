@@ -54,7 +54,7 @@ impl Oval {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::gem::newell;
+    use crate::authoring::gem::newell;
 
     #[test]
     fn stretched_facets_stay_planar_and_minor_axis_angles_are_kept() {

@@ -17,11 +17,11 @@
 
 use super::paper::SceneBuilder;
 use super::parts::{add_mesh, add_panel, camera};
+use crate::authoring::glb::write_glb;
+use crate::authoring::scene::{GenCamera, GenLight, GenMaterial, GenScene};
+use crate::authoring::shapes::{ground_plane, icosphere, quarter_turn_x};
+use crate::authoring::{GenClearcoat, GenDiffuseTransmission, GenSheen};
 use crate::error::{Error, Result};
-use crate::model::glb::write_glb;
-use crate::model::scene::{GenCamera, GenLight, GenMaterial, GenScene};
-use crate::model::shapes::{ground_plane, icosphere, quarter_turn_x};
-use crate::model::{GenClearcoat, GenDiffuseTransmission, GenSheen};
 use glam::{Mat3, Quat, Vec3};
 use std::path::{Path, PathBuf};
 
@@ -218,8 +218,8 @@ mod tests {
         for (name, build) in MATERIAL_SCENES {
             let scene = build();
             assert!(scene.extras.is_none(), "{name}: no environment or extras");
-            let a = crate::model::glb::encode_glb(&scene).expect(name);
-            assert_eq!(a, crate::model::glb::encode_glb(&build()).expect(name));
+            let a = crate::authoring::glb::encode_glb(&scene).expect(name);
+            assert_eq!(a, crate::authoring::glb::encode_glb(&build()).expect(name));
             assert!(a.len() < 50_000, "{name} is {} bytes", a.len());
         }
     }

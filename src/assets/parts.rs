@@ -5,8 +5,8 @@
 //! (which made `paper` ↔ `caustic` ↔ `spectral` an import cycle). Units:
 //! metres; frames: world space, +Y up.
 
-use crate::model::scene::{GenCamera, GenMaterial, GenMesh, GenScene};
-use crate::model::shapes::{ground_plane, TriMesh};
+use crate::authoring::scene::{GenCamera, GenMaterial, GenMesh, GenScene};
+use crate::authoring::shapes::{ground_plane, TriMesh};
 use glam::{Mat3, Vec3};
 
 /// Appends `m` to the scene's materials and returns its index.

@@ -2,11 +2,11 @@
 //! `iris gem` previews written under their file names. Units: sizes in millimetres
 //! ([`GemSpec::size_mm`]); the scenes are [`gem_scene`]'s (metres, +Y up).
 
+use crate::authoring::cuts::preview::{gem_scene, GemSpec};
+use crate::authoring::cuts::Cut;
+use crate::authoring::glb::write_glb;
+use crate::authoring::stones::Stone;
 use crate::error::{Error, Result};
-use crate::model::cuts::preview::{gem_scene, GemSpec};
-use crate::model::cuts::Cut;
-use crate::model::glb::write_glb;
-use crate::model::stones::Stone;
 use std::path::{Path, PathBuf};
 
 /// The stones shipped in `assets/gems/`: file name and what it holds. The four previews
