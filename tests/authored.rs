@@ -6,9 +6,9 @@
 //! The scene is the peers' prism-and-slit view (`../shared/peers/make_scenes.py`,
 //! `dispersion_view`), written here with the model library: an equilateral prism (IOR 1.6,
 //! KHR dispersion 1) seen from its exit side, looking at a thin emissive slit 2 m before
-//! its entry face at minimum deviation, with the file's own camera and nothing else. Before
-//! issue 18, `--ground auto` put a white floor under the prism (transmissive, nothing under
-//! it), lit by the slit.
+//! its entry face at minimum deviation, with the file's own camera and nothing else. `--ground auto`
+//! must not put a white floor under the prism (transmissive, nothing under it), lit by
+//! the slit.
 
 mod common;
 

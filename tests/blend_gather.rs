@@ -1,5 +1,5 @@
 //! Photon mapping's final gather passes through alpha-BLEND surfaces like every other path
-//! (issue 16: the gather had no BLEND check and stopped on transparent sheets).
+//! (a gather without the BLEND check would stop on transparent sheets).
 //!
 //! The scene: a white floor seen from above, lit by a point light on the camera's side, and
 //! a white wall beyond a vertical sheet of alpha 0 (glTF BLEND): the wall lights the floor

@@ -175,8 +175,8 @@ fn a_sample_count_still_ends_a_render_at_that_count() {
 
 #[test]
 fn time_alone_is_the_whole_budget_on_the_command_line() {
-    // `--time T` alone: no sample cap (before issue 18 the render stopped at the default
-    // 4 spp after a fraction of a second) and no error target, so only the time limit can
+    // `--time T` alone: no sample cap (not the fixed 4 spp of the library's default,
+    // which ends after a fraction of a second) and no error target, so only the time limit can
     // end it: the summary says so.
     let dir = common::scratch_dir("budget_cli_time");
     let scene = easy_scene(&dir);

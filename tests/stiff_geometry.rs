@@ -495,8 +495,8 @@ fn deep_tir_paths_in_a_brilliant_never_gain_energy_and_end() {
 
 #[test]
 fn brilliant_in_a_white_furnace_at_the_largest_depth_never_exceeds_the_sky() {
-    // The largest --max-depth (1024 since issue 15; it was 2048 here when 100 000 was
-    // accepted, which overflowed the Whitted tracer's stack) equals the path tracer's
+    // The largest --max-depth (1024; a larger limit would let the Whitted tracer's
+    // recursion overflow its stack) equals the path tracer's
     // delta-bounce cap, so both limits are reached in this scene.
     assert_eq!(
         iris::integrator::MAX_DEPTH,

@@ -216,7 +216,7 @@ fn ground_auto_on_for_a_bare_stone_off_for_a_scene_with_a_floor() {
 fn a_file_with_lights_keeps_them() {
     // The gem preview brings its own light (two emissive panels and an environment): the
     // default studio adds nothing (the authored note says why). An explicit `--studio
-    // jeweller` asks for the studio (issue 18): its two keys join the file's lights, which
+    // jeweller` asks for the studio: its two keys join the file's lights, which
     // stay.
     let dir = common::scratch_dir("studio_lit");
     let preview = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/gems/round_diamond.glb");

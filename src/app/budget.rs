@@ -1,4 +1,4 @@
-//! How long `iris render` renders (issue 18): the budget the flags ask for, resolved in one
+//! How long `iris render` renders: the budget the flags ask for, resolved in one
 //! place ([`BudgetFlags::resolve`]); the stop test against an error target ([`stop_error`],
 //! [`TargetStop`]); and when the output is rewritten while the render runs
 //! ([`CheckpointWrites`]).
@@ -58,10 +58,10 @@ use std::time::{Duration, Instant};
 /// of that block, stratified like any prefix of it.
 pub const OPEN_UNITS: u32 = crate::render::OPEN_UNITS as u32;
 
-/// Samples per pixel when only `--passes` fixes the count (the CLI's default before issue 18).
+/// Samples per pixel when only `--passes` fixes the count.
 pub const FIXED_SPP: u32 = 4;
 
-/// SPPM passes when only `--spp` fixes the count (the CLI's default before issue 18).
+/// SPPM passes when only `--spp` fixes the count.
 pub const FIXED_PASSES: u32 = 64;
 
 /// The error target of a render given no `--spp`, `--passes`, `--time` or

@@ -88,8 +88,8 @@ impl RenderOptions {
     /// file's first camera and environment, automatic spectral transport, the drop-in
     /// preview's choices).
     ///
-    /// The library's default budget is this fixed, quick one (the CLI's default before
-    /// issue 18), not the CLI's default: callers (tests, tools, benches) want work bounded
+    /// The library's default budget is this fixed, quick one, not the CLI's
+    /// default: callers (tests, tools, benches) want work bounded
     /// by counts, whose images do not depend on the machine's speed. `iris render`'s
     /// default (auto method, render until the error target or the time limit) is
     /// `RenderOptions::new(..).with_budget(&Budget::default())`.

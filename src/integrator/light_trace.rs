@@ -1,5 +1,5 @@
-//! Light tracing of the hybrid's caustic paths onto the image (`--caustics light|mixed`,
-//! Iris issue 17): caustic-origin photon vertices the map stores ([`super::caustic`]) are
+//! Light tracing of the hybrid's caustic paths onto the image (`--caustics light|mixed`):
+//! caustic-origin photon vertices the map stores ([`super::caustic`]) are
 //! also connected to the camera and splatted onto the pixel they project to (the t = 1
 //! strategy of bidirectional path tracing, Veach 1997 §10.2; pbrt-v4 `ConnectBDPT` with
 //! `t == 1`; LuxCore's "hybrid back/forward"). It is strong where the caustic is seen

@@ -6,7 +6,7 @@
 //! Units: times are wall seconds since rendering started (loading and the acceleration build
 //! are their own rows); errors are on the linear image ([`crate::image::metrics`]). The
 //! *relative error* used for `--target-error`, the plots and the levels table is the
-//! relative RMSE `sqrt(rel_mse)`, with `rel_mse = mean((x−r)²/(r²+0.01))` (issue 6).
+//! relative RMSE `sqrt(rel_mse)`, with `rel_mse = mean((x−r)²/(r²+0.01))`.
 
 use super::report::ReportRow;
 use crate::error::{Error, Result};

@@ -1,4 +1,4 @@
-//! Whether a scene file is **authored**: it brings its own light (issue 18). The one place
+//! Whether a scene file is **authored**: it brings its own light. The one place
 //! this is decided; [`super::prepare`] uses it to keep such a file's scene as it is.
 //!
 //! A file is authored when it has a punctual light (KHR_lights_punctual), an emitting
@@ -10,7 +10,7 @@
 //!   peers' prism seen against an emissive slit, `tests/authored.rs`, it made the image
 //!   3.5 % brighter (path tracer, 256 spp, 160×120) and moved `--method auto` from the path
 //!   tracer to the hybrid);
-//! - the default `--studio` adds no studio (as before issue 18: the file is lit);
+//! - the default `--studio` adds no studio (the file is lit);
 //! - flags that ask explicitly still apply: `--ground on`, `--studio NAME`, `--env`,
 //!   `--view`.
 //!

@@ -1,4 +1,4 @@
-//! One scene preparation for every command (issue 16): what `iris render`, `iris converge`,
+//! One scene preparation for every command: what `iris render`, `iris converge`,
 //! `iris info` and the benches render or describe for a scene file and its flags.
 //!
 //! Order, all on the scene description ([`crate::scene::desc::SceneDesc`]): load and

@@ -1,4 +1,4 @@
-//! Turntables (issue 19): frame `F` of `N` turns the model by θ = 360°·F/N about the
+//! Turntables: frame `F` of `N` turns the model by θ = 360°·F/N about the
 //! vertical axis, under fixed lights and a fixed camera, as one step of the one preparation
 //! ([`super::prepare`], `PrepareOptions::spin`).
 //!

@@ -1,4 +1,4 @@
-//! The fixed dimension schedule of a camera path (issue 17): which sampler dimension each
+//! The fixed dimension schedule of a camera path: which sampler dimension each
 //! random decision draws, so a decision at bounce `b` always reads the same dimension
 //! whatever earlier bounces drew (a bounce that skips a decision leaves its dimensions
 //! unused rather than shifting later ones).

@@ -33,7 +33,7 @@ pub enum SamplerKind {
     /// default.
     #[default]
     ZSobol,
-    /// Independent PCG numbers per sample (Iris before issue 17), for comparisons.
+    /// Independent PCG numbers per sample, for comparisons (no stratification).
     Independent,
 }
 

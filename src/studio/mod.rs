@@ -1,5 +1,5 @@
-//! Studio lighting for files that bring no light of their own (issue 8, "drop-in
-//! preview"): a procedural soft environment plus small spot key lights, placed relative to
+//! Studio lighting for files that bring no light of their own (the drop-in preview): a
+//! procedural soft environment plus small spot key lights, placed relative to
 //! the model's bounding box and the camera, and an optional white floor ([`ground`]).
 //!
 //! ## When it applies

@@ -5,7 +5,7 @@
 use super::Rng;
 use serde_json::Value;
 
-/// The mutation kinds of the exporter pass (issue 29).
+/// The mutation kinds of the exporter pass.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kind {
     /// 1–4 bytes XORed with a random non-zero byte.

@@ -1,5 +1,5 @@
 //! What Iris adds to a file's description before the build, so that the built
-//! [`crate::scene::Scene`] is never changed afterwards (issue 16): lights for a file that
+//! [`crate::scene::Scene`] is never changed afterwards: lights for a file that
 //! has none of its own ([`AddedLights`]). The other additions are plain fields of
 //! [`super::SceneDesc`]: the environment light to render with and the bounds of the file's
 //! own geometry when a floor is added.
