@@ -28,14 +28,7 @@ use iris::spectrum::cie::{chromaticity, linear_srgb_to_xyz};
 const D65_XY: [f32; 2] = [0.3127, 0.3290];
 
 fn mesh(name: &str, m: iris::authoring::shapes::TriMesh, material: usize) -> MeshDesc {
-    MeshDesc {
-        name: name.into(),
-        positions: m.positions,
-        normals: m.normals,
-        indices: m.indices,
-        material: Some(material),
-        ..Default::default()
-    }
+    m.into_mesh_desc(name, material)
 }
 
 /// A white floor, a 0.4-thick glass block above it and a white emitter above both; the

@@ -4,7 +4,7 @@
 
 use crate::authoring::shapes;
 use crate::material::MaterialDesc;
-use crate::scene::desc::{CameraDesc, LightDesc, MeshDesc, Projection, SceneDesc};
+use crate::scene::desc::{CameraDesc, LightDesc, Projection, SceneDesc};
 use glam::{Mat3, Vec3};
 
 /// A white Lambertian (no specular layer).
@@ -23,14 +23,7 @@ fn white() -> MaterialDesc {
 /// in the lights' units, whatever its size). Camera above, looking down at
 /// the sphere's shadow and caustic. Backend auto.
 pub fn caustic_sphere(area: Option<f32>) -> (SceneDesc, CameraDesc) {
-    let mesh = |name: &str, m: shapes::TriMesh, material: usize| MeshDesc {
-        name: name.into(),
-        positions: m.positions,
-        normals: m.normals,
-        indices: m.indices,
-        material: Some(material),
-        ..Default::default()
-    };
+    let mesh = |name: &str, m: shapes::TriMesh, material: usize| m.into_mesh_desc(name, material);
     let sphere = shapes::icosphere(0.25, 5).transformed(Mat3::IDENTITY, Vec3::new(0.0, 0.25, 0.0));
     let floor = shapes::ground_plane(1.0, 1.0);
     let mut meshes = vec![mesh("sphere", sphere, 0), mesh("floor", floor, 1)];

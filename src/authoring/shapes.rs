@@ -30,6 +30,19 @@ pub struct TriMesh {
 }
 
 impl TriMesh {
+    /// The mesh as a scene description's mesh named `name` with material `material` (no
+    /// texture coordinates or tangents): for scenes built in memory instead of written.
+    pub fn into_mesh_desc(self, name: &str, material: usize) -> crate::scene::desc::MeshDesc {
+        crate::scene::desc::MeshDesc {
+            name: name.into(),
+            positions: self.positions,
+            normals: self.normals,
+            indices: self.indices,
+            material: Some(material),
+            ..Default::default()
+        }
+    }
+
     /// Number of triangles.
     pub fn triangle_count(&self) -> usize {
         self.indices.len()

@@ -86,14 +86,7 @@ pub fn mesh(
     m: iris::authoring::shapes::TriMesh,
     material: usize,
 ) -> iris::scene::desc::MeshDesc {
-    iris::scene::desc::MeshDesc {
-        name: name.into(),
-        positions: m.positions,
-        normals: m.normals,
-        indices: m.indices,
-        material: Some(material),
-        ..Default::default()
-    }
+    m.into_mesh_desc(name, material)
 }
 
 /// A white Lambertian material: albedo 1, no specular layer.
