@@ -4,7 +4,13 @@
 //! Pass 1 traces `photons` photons ([`crate::photon`]) and builds two kd-tree maps:
 //! - the **caustic map**: photons whose path is L S+ D (specular or near-specular bounces
 //!   only, then a diffuse-like surface);
-//! - the **global map**: every photon stored at a non-delta surface.
+//! - the **global map**: every photon at a diffuse-like surface.
+//!
+//! One rule splits the surfaces ([`is_diffuse_like`]): photons are stored, and the maps
+//! queried, only at diffuse-like surfaces; every other surface (delta, or glossy below
+//! [`crate::shading::GLOSSY_ALPHA`]) is an S vertex that camera paths, gather rays and the
+//! caustic flag all pass through by BSDF sampling. A glossy mirror is thus never a gather
+//! point: the light it reflects onto a diffuse surface is the caustic map's alone.
 //!
 //! Photon `i` is emitted from Halton point `i` (digit-permuted by the seed,
 //! [`crate::photon::emit::PhotonNumbers`]), aimed at the
@@ -16,8 +22,8 @@
 //! - direct light from shadow rays (the path tracer's next-event estimation),
 //! - the caustic map's radiance estimate: the k nearest caustic photons with Jensen's cone
 //!   filter (k_cone = 1.1; L = Σ f Φ w_p / ((1 − 2/(3 k_cone)) π r²), w_p = 1 − d/(k_cone r)),
-//! - one final-gather ray per camera sample: BSDF-sampled from x, through specular
-//!   surfaces (and the uncovered part of alpha-BLEND ones) to the next non-delta hit y,
+//! - one final-gather ray per camera sample: BSDF-sampled from x, through S surfaces
+//!   (and the uncovered part of alpha-BLEND ones) to the next diffuse-like hit y,
 //!   where the global map's k-nearest estimate gives the radiance leaving y toward x. Each
 //!   hit is the per-hit step of camera and photon paths ([`crate::shading::step`]).
 //!   Emission and the environment seen by gather rays are skipped (they are direct light or
@@ -44,7 +50,7 @@ use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
 use crate::render::{render_samples, Film, Observer, RenderSettings, RenderStats, Setup};
 use crate::scene::Scene;
-use crate::shading::{self, Event};
+use crate::shading::{self, is_diffuse_like, Event};
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -56,7 +62,7 @@ pub const DEFAULT_PHOTONS: u64 = 500_000;
 const CONE_K: f32 = 1.1;
 /// Photons traced per parallel work item.
 const CHUNK: u64 = 4096;
-/// Most surfaces a final-gather ray scatters at (the last one non-delta); BLEND surfaces
+/// Most surfaces a final-gather ray scatters at (the last one diffuse-like); BLEND surfaces
 /// it passes through do not count.
 const GATHER_SPECULAR: u32 = 16;
 
@@ -73,7 +79,7 @@ struct GatherPoint {
 pub struct PhotonMaps {
     /// L S+ D photons.
     pub caustic: PhotonMap,
-    /// All photons at non-delta surfaces.
+    /// All photons at diffuse-like surfaces.
     pub global: PhotonMap,
     /// Largest gather radius, squared.
     pub max_r2: f32,
@@ -122,11 +128,17 @@ pub fn build_maps(
                         lambda,
                         settings,
                         &mut rng,
-                        |v, l| keep(v.p, v.wi, v.power.to_rgb(l), v.caustic),
+                        |v, l| {
+                            if is_diffuse_like(&v.surface.bsdf) {
+                                keep(v.p, v.wi, v.power.to_rgb(l), v.caustic)
+                            }
+                        },
                     )
                 } else {
                     trace::trace::<Vec3>(scene, &ph, (), settings, &mut rng, |v, _| {
-                        keep(v.p, v.wi, v.power, v.caustic)
+                        if is_diffuse_like(&v.surface.bsdf) {
+                            keep(v.p, v.wi, v.power, v.caustic)
+                        }
                     })
                 };
                 if !budget.add(caustic.len() + global.len() - before) {
@@ -220,8 +232,9 @@ impl PhotonMaps {
         l + self.gather(scene, ray, beta, k.1, ctx, buf)
     }
 
-    /// The global map's estimate where `ray` (throughput `beta`) first meets a non-delta
-    /// surface, followed through delta ones and BLEND pass-through; zero if it escapes.
+    /// The global map's estimate where `ray` (throughput `beta`) first meets a diffuse-like
+    /// surface, followed through the others by BSDF sampling and through BLEND
+    /// pass-through; zero if it escapes.
     fn gather(
         &self,
         scene: &Scene,
@@ -245,7 +258,7 @@ impl PhotonMaps {
                     Event::Scatter(s) => break s,
                 }
             };
-            if !s.bsdf.is_delta() {
+            if is_diffuse_like(&s.bsdf) {
                 let at = GatherPoint {
                     p: s.hit.p,
                     frame: s.frame,
@@ -255,7 +268,12 @@ impl PhotonMaps {
                 return beta * self.estimate(&self.global, k, &at, false, buf);
             }
             let uc = ctx.sample.rng.next_f32();
-            let Some(bs) = s.sample(uc, Vec2::ZERO, TransportMode::Radiance) else {
+            let u = if s.bsdf.is_delta() {
+                Vec2::ZERO
+            } else {
+                Vec2::new(ctx.sample.rng.next_f32(), ctx.sample.rng.next_f32())
+            };
+            let Some(bs) = s.sample(uc, u, TransportMode::Radiance) else {
                 break;
             };
             beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
