@@ -54,20 +54,24 @@ fn render(desc: SceneDesc, size: u32, spp: u32, spectral: bool) -> Vec<Vec3> {
     img
 }
 
+/// The distance of pixel `i`'s centre (row-major, `size` × `size`) from the image centre,
+/// in image widths.
+fn centre_distance(i: usize, size: u32) -> f32 {
+    let c = size as f32 / 2.0;
+    let (x, y) = (
+        (i as u32 % size) as f32 + 0.5,
+        (i as u32 / size) as f32 + 0.5,
+    );
+    (x - c).hypot(y - c) / size as f32
+}
+
 /// Spread (standard deviation over the sphere's pixels) of the chromaticity r/(r+g+b),
 /// g/(r+g+b) of the central disc of the image (radius 0.35 of the size: on the sphere).
 fn hue_spread(img: &[Vec3], size: u32) -> f32 {
-    let c = size as f32 / 2.0;
     let chroma: Vec<Vec2> = img
         .iter()
         .enumerate()
-        .filter(|(i, _)| {
-            let (x, y) = (
-                (*i as u32 % size) as f32 + 0.5,
-                (*i as u32 / size) as f32 + 0.5,
-            );
-            (x - c).hypot(y - c) < 0.35 * size as f32
-        })
+        .filter(|(i, _)| centre_distance(*i, size) < 0.35)
         .map(|(_, p)| Vec2::new(p.x, p.y) / (p.x + p.y + p.z).max(1e-6))
         .collect();
     let mean = chroma.iter().copied().sum::<Vec2>() / chroma.len() as f32;
@@ -109,19 +113,11 @@ fn iridescent_metal_renders_bounded() {
     let path = asset("film_metal_render", "iridescence_metal.glb");
     let size = 32;
     let img = render(load_scene(&path).expect("load"), size, 64, true);
-    let c = size as f32 / 2.0;
     let ring = |lo: f32, hi: f32| {
         let px: Vec<Vec3> = img
             .iter()
             .enumerate()
-            .filter(|(i, _)| {
-                let (x, y) = (
-                    (*i as u32 % size) as f32 + 0.5,
-                    (*i as u32 / size) as f32 + 0.5,
-                );
-                let r = (x - c).hypot(y - c) / size as f32;
-                r >= lo && r < hi
-            })
+            .filter(|(i, _)| (lo..hi).contains(&centre_distance(*i, size)))
             .map(|(_, p)| *p)
             .collect();
         px.iter().copied().sum::<Vec3>() / px.len() as f32

@@ -268,22 +268,18 @@ impl Warnings {
 fn missing_texcoord1(desc: &SceneDesc) -> Vec<String> {
     let mut out = Vec::new();
     for (index, m) in desc.materials.iter().enumerate() {
-        let meshes: Vec<&str> = desc
+        let meshes: Vec<String> = desc
             .meshes
             .iter()
             .filter(|mesh| mesh.material == Some(index) && mesh.uvs1.is_empty())
-            .map(|mesh| mesh.name.as_str())
+            .map(|mesh| mesh.name.clone())
             .collect();
         if meshes.is_empty() {
             continue;
         }
         for (slot, texture) in m.textures() {
             if texture.is_some_and(|t| t.texcoord == 1) {
-                out.push(format!(
-                    "{} {slot} ({})",
-                    m.name,
-                    short_list(&meshes.iter().map(|s| s.to_string()).collect::<Vec<_>>())
-                ));
+                out.push(format!("{} {slot} ({})", m.name, short_list(&meshes)));
             }
         }
     }
