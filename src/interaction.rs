@@ -56,6 +56,19 @@ impl CoincidentSet {
         self.len == 0
     }
 
+    /// The faces crossed with the hit: what shading reads of them (material and side).
+    pub fn faces(&self) -> CoincidentFaces {
+        let mut faces = CoincidentFaces::default();
+        for c in self.iter() {
+            faces.items[faces.len as usize] = Face {
+                material: c.material,
+                front_face: c.front_face,
+            };
+            faces.len += 1;
+        }
+        faces
+    }
+
     fn add(&mut self, c: SurfaceHit) {
         let dup = self
             .iter()
@@ -64,6 +77,36 @@ impl CoincidentSet {
             self.items[self.len] = Some(c);
             self.len += 1;
         }
+    }
+}
+
+/// A coincident face crossed with a hit: its material and the side the ray meets
+/// (`front_face` for the ray's direction, as [`SurfaceHit::front_face`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Face {
+    /// Material index.
+    pub material: u32,
+    /// Whether the ray enters it.
+    pub front_face: bool,
+}
+
+/// The faces of a [`CoincidentSet`] as the per-hit step carries them: 40 bytes instead of
+/// the full hits, which only [`crate::shading::meet`] reads.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct CoincidentFaces {
+    items: [Face; MAX_COINCIDENT],
+    len: u8,
+}
+
+impl CoincidentFaces {
+    /// The faces.
+    pub fn iter(&self) -> impl Iterator<Item = Face> + '_ {
+        self.items[..self.len as usize].iter().copied()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
     }
 }
 

@@ -15,7 +15,7 @@
 //! camera inside glass) is handled as that-medium-to-current, the best guess. Depth is
 //! bounded by [`MAX_NESTING`]; deeper nesting drops the oldest entry.
 
-use crate::interaction::{CoincidentSet, SurfaceHit, MAX_COINCIDENT};
+use crate::interaction::{CoincidentFaces, SurfaceHit, MAX_COINCIDENT};
 use crate::scene::Scene;
 
 /// Deepest nesting tracked.
@@ -134,7 +134,7 @@ pub fn interface_merged(
 pub fn crossing(
     scene: &Scene,
     hit: &SurfaceHit,
-    coincident: &CoincidentSet,
+    coincident: &CoincidentFaces,
     media: MediumStack,
     ior: impl Fn(u32) -> f32,
 ) -> (f32, f32, MediumStack) {

@@ -47,6 +47,9 @@ pub struct Material {
     /// Linear-sRGB colour of `desc.emission_spectrum` (Y = 1), or white without one.
     emission_tint: Vec3,
     emitter_shape: Option<EmitterShape>,
+    /// The shading point of a material without textures, the same at every hit: computed
+    /// once here, so [`Material::shade`] only copies it.
+    constant: Option<ShadingPoint>,
 }
 
 /// Material parameters at one surface point, textures applied.
@@ -87,12 +90,18 @@ impl Material {
         let emitter_shape = desc
             .emission_spectrum
             .map(|s| s.emitter_shape(desc.emissive));
-        Material {
+        let mut material = Material {
             desc,
             ior_model,
             emission_tint,
             emitter_shape,
+            constant: None,
+        };
+        if material.desc.textures().iter().all(|(_, t)| t.is_none()) {
+            let untextured = TextureContext::new(&[], TexCoords::default());
+            material.constant = Some(material.shade(&untextured));
         }
+        material
     }
 
     /// The exact spectral shape of the emission for spectral transport (`iris_spectrum`),
@@ -125,6 +134,9 @@ impl Material {
 
     /// The material's parameters where textures are evaluated by `tex`.
     pub fn shade(&self, tex: &TextureContext) -> ShadingPoint {
+        if let Some(sp) = self.constant {
+            return sp;
+        }
         let d = &self.desc;
         let bc = d.base_color * tex.lookup(d.base_color_texture, Encoding::Srgb);
         // glTF: metallic in B, roughness in G of the metallic-roughness texture.

@@ -95,7 +95,7 @@ impl Triangle {
 /// underflows (edges below ~1e-10 of any unit: |e|⁴ < f32::MIN_POSITIVE) are rescaled by
 /// their longest edge component first, so the normal is scale-free like the offset rule.
 /// Validation drops every triangle for which this is `None`, so hits never see one.
-#[inline]
+#[inline(always)]
 pub fn geometric_normal([p0, p1, p2]: [Vec3; 3]) -> Option<Vec3> {
     let (e1, e2) = (p1 - p0, p2 - p0);
     let n = e1.cross(e2);
@@ -103,7 +103,14 @@ pub fn geometric_normal([p0, p1, p2]: [Vec3; 3]) -> Option<Vec3> {
     if rcp.is_finite() && rcp > 0.0 {
         return Some(n * rcp);
     }
-    // Rare path: rescale (exact for a power of two) and retry.
+    rescaled_normal(e1, e2)
+}
+
+/// [`geometric_normal`]'s rare path: the edges rescaled (exactly, by a power of two) so
+/// that their cross product does not underflow, then normalised.
+#[cold]
+#[inline(never)]
+fn rescaled_normal(e1: Vec3, e2: Vec3) -> Option<Vec3> {
     let m = e1.abs().max(e2.abs()).max_element();
     if m.is_nan() || m <= 0.0 || m.is_infinite() {
         return None;

@@ -7,7 +7,7 @@
 //! ratio n_inside / n_outside, the outside being the normal's side.
 
 use crate::bsdf::Bsdf;
-use crate::interaction::{CoincidentSet, SurfaceHit};
+use crate::interaction::{CoincidentFaces, SurfaceHit};
 use crate::material::ShadingPoint;
 use crate::medium::{self, MediumStack};
 use crate::scene::Scene;
@@ -26,7 +26,7 @@ use crate::spectrum::Carrier;
 pub fn bsdf_at<C: Carrier>(
     scene: &Scene,
     hit: &SurfaceHit,
-    coincident: &CoincidentSet,
+    coincident: &CoincidentFaces,
     sp: &ShadingPoint,
     media: MediumStack,
     u: f32,
@@ -67,7 +67,7 @@ pub fn bsdf_at<C: Carrier>(
 pub fn interface<C: Carrier>(
     scene: &Scene,
     hit: &SurfaceHit,
-    coincident: &CoincidentSet,
+    coincident: &CoincidentFaces,
     media: MediumStack,
     l: &C::Lambda,
 ) -> (f32, f32, MediumStack, bool) {
@@ -101,7 +101,7 @@ fn bsdf_eta(n_i: f32, n_t: f32, front_face: bool) -> f32 {
 pub fn lane_etas(
     scene: &Scene,
     hit: &SurfaceHit,
-    coincident: &CoincidentSet,
+    coincident: &CoincidentFaces,
     media: MediumStack,
     lanes: [f32; 4],
 ) -> [f32; 4] {

@@ -24,7 +24,7 @@
 use super::material_bsdf::{bsdf_at, lane_etas};
 use super::spectral_mis;
 use crate::bsdf::{Bsdf, BsdfSample, TransportMode};
-use crate::interaction::{CoincidentSet, SurfaceHit};
+use crate::interaction::{CoincidentFaces, SurfaceHit};
 use crate::material::AlphaMode;
 use crate::material::{Material, ShadingPoint};
 use crate::math::{Frame, Ray, Rng};
@@ -44,17 +44,17 @@ pub const MAX_DELTA_BOUNCES: u32 = 1024;
 /// on the boundary wins — water filling an opaque mug meets the mug's wall, still in the
 /// water — and otherwise the coincident volume faces are returned to be crossed as one
 /// interface. Either way rays leave from the returned hit, which clears all of them.
-pub fn meet(scene: &Scene, hit: SurfaceHit) -> (SurfaceHit, CoincidentSet) {
+pub fn meet(scene: &Scene, hit: SurfaceHit) -> (SurfaceHit, CoincidentFaces) {
     if !scene.materials()[hit.material as usize].is_volume() {
-        return (hit, CoincidentSet::default());
+        return (hit, CoincidentFaces::default());
     }
     let (merged, set) = scene.coincident(&hit);
     let solid = set
         .iter()
         .find(|c| !scene.materials()[c.material as usize].is_volume());
     match solid {
-        Some(solid) => (solid, CoincidentSet::default()),
-        None => (merged, set),
+        Some(solid) => (solid, CoincidentFaces::default()),
+        None => (merged, set.faces()),
     }
 }
 
@@ -64,7 +64,7 @@ pub struct Arrival<'s, C: Carrier> {
     /// The surface really met ([`meet`]); rays leave from it.
     pub hit: SurfaceHit,
     /// Coincident volume faces crossed with it as one interface.
-    pub coincident: CoincidentSet,
+    pub coincident: CoincidentFaces,
     /// Its material.
     pub mat: &'s Material,
     /// The material at the hit (textures evaluated).
