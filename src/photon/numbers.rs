@@ -35,63 +35,160 @@ const fn digits(b: u64) -> usize {
     n
 }
 
+/// The digit permutations of one base-`B` dimension: `N = digits(B)` permutations of
+/// `0..B`, one per digit position, and the scale `B^-N` (computed by `N` divisions, so the
+/// values equal the digit-by-digit recurrence of pbrt-v4's `ScrambledRadicalInverse`).
+#[derive(Debug, Clone)]
+struct Dimension<const B: usize, const N: usize> {
+    perms: [[u8; B]; N],
+    scale: f64,
+}
+
+impl<const B: usize, const N: usize> Dimension<B, N> {
+    /// The permutations of dimension `d` for `seed` (each from [`permutation_element`]
+    /// keyed by a hash of the seed, the dimension and the digit position).
+    fn new(seed: u64, d: u64) -> Self {
+        const { assert!(N == digits(B as u64)) };
+        let mut perms = [[0u8; B]; N];
+        let mut scale = 1.0f64;
+        for (k, perm) in perms.iter_mut().enumerate() {
+            let key = mix64(mix64(seed) ^ (d << 32 | k as u64)) as u32;
+            for (i, p) in perm.iter_mut().enumerate() {
+                *p = permutation_element(i as u32, B as u32, key) as u8;
+            }
+            scale /= B as f64;
+        }
+        Dimension { perms, scale }
+    }
+
+    /// The radical inverse of `a` in base `B` with digit position `k` mapped through
+    /// `perms[k]` (pbrt-v4 `ScrambledRadicalInverse`): trailing zero digits are permuted
+    /// too, so the low digits are random.
+    #[inline]
+    fn get(&self, mut a: u64) -> f32 {
+        let mut reversed = 0u64;
+        for perm in &self.perms {
+            let next = a / B as u64;
+            let digit = (a - next * B as u64) as usize;
+            reversed = reversed * B as u64 + u64::from(perm[digit]);
+            a = next;
+        }
+        ((reversed as f64 * self.scale) as f32).min(ONE_MINUS_EPSILON)
+    }
+}
+
+/// Dimension 0, base 2: a permutation of {0, 1} is the identity or the swap, so the
+/// scrambled radical inverse of the 31 kept digits is the index's bits reversed, XOR a
+/// mask of the swapped positions.
+#[derive(Debug, Clone)]
+struct Base2 {
+    /// Bit `30 − k` set where digit position `k` is swapped.
+    flips: u32,
+}
+
+impl Base2 {
+    /// Digit positions kept in base 2.
+    const N: u32 = digits(2) as u32;
+
+    fn new(seed: u64) -> Self {
+        let mut flips = 0;
+        for k in 0..Self::N {
+            let key = mix64(mix64(seed) ^ u64::from(k)) as u32;
+            if permutation_element(0, 2, key) == 1 {
+                flips |= 1 << (Self::N - 1 - k);
+            }
+        }
+        Base2 { flips }
+    }
+
+    #[inline]
+    fn get(&self, a: u64) -> f32 {
+        let kept = (a as u32) & ((1 << Self::N) - 1);
+        let reversed = (kept.reverse_bits() >> (32 - Self::N)) ^ self.flips;
+        // 2^-N by N halvings is exact, as is the product.
+        ((f64::from(reversed) * 0.5f64.powi(Self::N as i32)) as f32).min(ONE_MINUS_EPSILON)
+    }
+}
+
 /// Digit permutations of the emission dimensions for one seed.
 #[derive(Debug, Clone)]
 pub struct PhotonNumbers {
-    /// Per dimension, `digits(b)` permutations of `0..b` back to back.
-    perms: [Vec<u8>; 5],
+    d0: Base2,
+    d1: Dimension<3, 20>,
+    d2: Dimension<5, 13>,
+    d3: Dimension<7, 11>,
+    d4: Dimension<11, 9>,
 }
 
 impl PhotonNumbers {
-    /// The permutations for `seed` (each from [`permutation_element`] keyed by a hash of the
-    /// seed, the dimension and the digit position).
+    /// The permutations for `seed`.
     pub fn new(seed: u64) -> PhotonNumbers {
-        let perms = std::array::from_fn(|d| {
-            let b = BASES[d];
-            let n = digits(b as u64);
-            let mut p = Vec::with_capacity(n * b as usize);
-            for k in 0..n {
-                let key = mix64(mix64(seed) ^ ((d as u64) << 32 | k as u64)) as u32;
-                p.extend((0..b).map(|i| permutation_element(i, b, key) as u8));
-            }
-            p
-        });
-        PhotonNumbers { perms }
+        PhotonNumbers {
+            d0: Base2::new(seed),
+            d1: Dimension::new(seed, 1),
+            d2: Dimension::new(seed, 2),
+            d3: Dimension::new(seed, 3),
+            d4: Dimension::new(seed, 4),
+        }
     }
 
     /// The five numbers of photon `index`.
+    #[inline]
     pub fn get(&self, index: u64) -> [f32; 5] {
         [
-            scrambled::<2>(index, &self.perms[0]),
-            scrambled::<3>(index, &self.perms[1]),
-            scrambled::<5>(index, &self.perms[2]),
-            scrambled::<7>(index, &self.perms[3]),
-            scrambled::<11>(index, &self.perms[4]),
+            self.d0.get(index),
+            self.d1.get(index),
+            self.d2.get(index),
+            self.d3.get(index),
+            self.d4.get(index),
         ]
     }
-}
-
-/// The radical inverse of `a` in base `B` with digit position `k` mapped through
-/// `perm[k·B..(k+1)·B]` (pbrt-v4 `ScrambledRadicalInverse`): trailing zero digits are
-/// permuted too, so the low digits are random.
-fn scrambled<const B: u64>(mut a: u64, perm: &[u8]) -> f32 {
-    let n = digits(B);
-    let mut reversed = 0u64;
-    let mut scale = 1.0f64;
-    for k in 0..n {
-        let next = a / B;
-        let digit = (a - next * B) as usize;
-        let p = perm.get(k * B as usize + digit).copied().unwrap_or(0);
-        reversed = reversed * B + u64::from(p);
-        scale /= B as f64;
-        a = next;
-    }
-    ((reversed as f64 * scale) as f32).min(ONE_MINUS_EPSILON)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The digit-by-digit definition: every base's permutations in one vector, a division
+    /// of the scale per digit (the reference the tables above must equal bit for bit).
+    fn reference(seed: u64, index: u64) -> [f32; 5] {
+        std::array::from_fn(|d| {
+            let b = u64::from(BASES[d]);
+            let mut a = index;
+            let (mut reversed, mut scale) = (0u64, 1.0f64);
+            for k in 0..digits(b) {
+                let key = mix64(mix64(seed) ^ ((d as u64) << 32 | k as u64)) as u32;
+                let next = a / b;
+                let digit = (a - next * b) as u32;
+                let p = permutation_element(digit, b as u32, key);
+                reversed = reversed * b + u64::from(p);
+                scale /= b as f64;
+                a = next;
+            }
+            ((reversed as f64 * scale) as f32).min(ONE_MINUS_EPSILON)
+        })
+    }
+
+    #[test]
+    fn tables_equal_the_digit_by_digit_definition() {
+        let mut rng = crate::math::Rng::new(&[3]);
+        for seed in [0, 1, 7, u64::MAX] {
+            let nums = PhotonNumbers::new(seed);
+            let edges = [0, 1, 2, 3, (1 << 31) - 1, 1 << 31, (1 << 32) + 5, u64::MAX];
+            let random = (0..2000).map(|_| {
+                let v = u64::from(rng.next_u32()) << 32 | u64::from(rng.next_u32());
+                v >> (rng.next_u32() % 64)
+            });
+            for i in edges.into_iter().chain(random) {
+                let (got, want) = (nums.get(i), reference(seed, i));
+                assert_eq!(
+                    got.map(f32::to_bits),
+                    want.map(f32::to_bits),
+                    "seed {seed} i {i}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn every_dimension_stays_stratified() {

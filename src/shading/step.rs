@@ -30,7 +30,7 @@ use crate::material::{Material, ShadingPoint};
 use crate::math::{Frame, Ray, Rng};
 use crate::medium::MediumStack;
 use crate::sampler::Bounce;
-use crate::scene::Scene;
+use crate::scene::{Scene, Triangle};
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
 
@@ -45,7 +45,8 @@ pub const MAX_DELTA_BOUNCES: u32 = 1024;
 /// water — and otherwise the coincident volume faces are returned to be crossed as one
 /// interface. Either way rays leave from the returned hit, which clears all of them.
 pub fn meet(scene: &Scene, hit: SurfaceHit) -> (SurfaceHit, CoincidentFaces) {
-    if !scene.materials()[hit.material as usize].is_volume() {
+    let touches = scene.triangle(hit.prim).has(Triangle::TOUCHES);
+    if !touches || !scene.materials()[hit.material as usize].is_volume() {
         return (hit, CoincidentFaces::default());
     }
     let (merged, set) = scene.coincident(&hit);
