@@ -374,7 +374,7 @@ fn trace<C: Carrier>(
     loop {
         let caustic = st.closes_caustic(&split);
         let arrival = shading::arrive::<C>(scene, &ray, &st.media, &lambda, &mut ctx.rays);
-        let Some(at) = arrival else {
+        let Some(at) = &arrival else {
             if let (Some(e), false) = (escaped(scene, &ray, &st.prev, st.beta, &lambda), caustic) {
                 l += e;
             }
@@ -390,9 +390,10 @@ fn trace<C: Carrier>(
         } else {
             at.event(scene, st.media, &mut st.beta, &mut lambda, &mut u)
         };
-        let s = match ev {
+        // By reference: the surface stays where `event` built it.
+        let s = match &ev {
             Event::PassThrough(next) => {
-                ray = next;
+                ray = *next;
                 st.direct = false;
                 continue;
             }

@@ -166,7 +166,11 @@ pub fn trace<C: Carrier>(
     let (mut bounces, mut depth, mut delta_depth) = (0u32, 0u32, 0u32);
     let mut all_specular = true;
     let mut rays = 0u64;
-    while let Some(at) = shading::arrive::<C>(scene, &ray, &media, &lambda, &mut rays) {
+    loop {
+        let arrival = shading::arrive::<C>(scene, &ray, &media, &lambda, &mut rays);
+        let Some(at) = &arrival else {
+            break;
+        };
         if bounces == 0 && photon.range.is_some() {
             beta *= crate::light::range_window(at.hit.t, photon.range);
         }
@@ -174,9 +178,10 @@ pub fn trace<C: Carrier>(
         if beta == C::ZERO {
             break;
         }
-        let s = match at.event(scene, media, &mut beta, &mut lambda, rng) {
+        let ev = at.event(scene, media, &mut beta, &mut lambda, rng);
+        let s = match &ev {
             Event::PassThrough(next) => {
-                ray = next;
+                ray = *next;
                 continue;
             }
             Event::Scatter(s) => s,
