@@ -381,7 +381,7 @@ fn trace<C: Carrier>(
             break;
         };
         st.beta *= at.transmittance;
-        if let (Some(e), false) = (emitted(scene, &at, &st.prev, st.beta, &lambda), caustic) {
+        if let (Some(e), false) = (emitted(scene, at, &st.prev, st.beta, &lambda), caustic) {
             l += e;
         }
         let mut u = ctx.sample.bounce(st.vertex);
@@ -400,7 +400,7 @@ fn trace<C: Carrier>(
             Event::Scatter(s) => s,
         };
         if stop == StopAt::Diffuse && is_diffuse_like(&s.bsdf) {
-            l += st.beta * next_event(scene, &s, &lambda, false, &mut u, &mut ctx.rays);
+            l += st.beta * next_event(scene, s, &lambda, false, &mut u, &mut ctx.rays);
             let vp = VisiblePoint {
                 p: s.hit.p,
                 ng: s.hit.ng,
@@ -414,11 +414,11 @@ fn trace<C: Carrier>(
             return (l, Some(vp));
         }
         if !s.bsdf.is_delta() {
-            l += st.beta * next_event(scene, &s, &lambda, true, &mut u, &mut ctx.rays);
+            l += st.beta * next_event(scene, s, &lambda, true, &mut u, &mut ctx.rays);
             let first = st.since_diffuse.is_none();
             let gather = split_gather(split, st.direct);
             if let (Some(gather), true) = (gather, first && st.depth + 1 < max_depth) {
-                l += st.beta * gather(&s, &lambda);
+                l += st.beta * gather(s, &lambda);
             }
         }
         let uc = u.bsdf_lobe();
@@ -426,7 +426,7 @@ fn trace<C: Carrier>(
         let Some(bs) = s.sample_mis(uc, ud, TransportMode::Radiance, &mut lambda) else {
             break;
         };
-        if !st.advance(&s, &bs, max_depth, &mut u) {
+        if !st.advance(s, &bs, max_depth, &mut u) {
             break;
         }
         ray = s.spawn(bs.wi);

@@ -193,7 +193,7 @@ pub fn trace<C: Carrier>(
                 power: beta,
                 bounces,
                 caustic: bounces > 0 && all_specular,
-                surface: &s,
+                surface: s,
             };
             store(&v, &lambda);
         }
