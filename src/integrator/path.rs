@@ -18,13 +18,14 @@
 use super::Context;
 use crate::bsdf::{Bsdf, BsdfSample, TransportMode};
 use crate::interaction::SurfaceHit;
+use crate::light::sampler::LightId;
 use crate::math::{Frame, Ray};
 use crate::medium::MediumStack;
 use crate::sampler::Bounce;
 use crate::scene::Scene;
 use crate::shading::{self, is_diffuse_like, lights, Arrival, Event, Surface, MAX_DELTA_BOUNCES};
 use crate::spectrum::Carrier;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// Power heuristic with β = 2.
 fn mis(a: f32, b: f32) -> f32 {
@@ -52,12 +53,30 @@ fn next_event<C: Carrier>(
     if sampler.is_empty() {
         return C::ZERO;
     }
-    let Some(choice) = sampler.sample(u.light_choice()) else {
+    // Numbers a light does not use are skipped ([`Bounce::skip_light_choice`]).
+    let u_choice = if sampler.lights().len() > 1 {
+        u.light_choice()
+    } else {
+        u.skip_light_choice();
+        0.0
+    };
+    let Some(choice) = sampler.sample(u_choice) else {
         return C::ZERO;
     };
     let p_sel = choice.pmf;
-    let up = u.light_position();
-    let uc = u.light_member();
+    let (up, uc) = match choice.light {
+        LightId::Punctual(_) => {
+            u.skip_light_position();
+            u.skip_light_member();
+            (Vec2::ZERO, 0.0)
+        }
+        LightId::Environment => {
+            let up = u.light_position();
+            u.skip_light_member();
+            (up, 0.0)
+        }
+        LightId::Area => (u.light_position(), u.light_member()),
+    };
     let Some(ls) = lights::sample(scene, hit, choice.light, uc, up) else {
         return C::ZERO;
     };

@@ -196,6 +196,38 @@ impl Bounce<'_> {
         self.stream.get_2d(bounce_dimension(self.vertex, what))
     }
 
+    /// Passes over a decision this vertex does not need (a single light, a point light's
+    /// position, a material with one layer): the Sobol' dimensions are fixed by the schedule,
+    /// so nothing is computed; the independent sampler still draws its `n` numbers, so every
+    /// later decision gets the number it had when this one was drawn.
+    fn skip(&mut self, n: u32) {
+        if self.stream.sobol.is_none() {
+            for _ in 0..n {
+                self.stream.rng.next_f32();
+            }
+        }
+    }
+
+    /// [`Bounce::light_choice`] not needed (one light to choose from).
+    pub fn skip_light_choice(&mut self) {
+        self.skip(1);
+    }
+
+    /// [`Bounce::light_member`] not needed (the light is not an emissive group).
+    pub fn skip_light_member(&mut self) {
+        self.skip(1);
+    }
+
+    /// [`Bounce::light_position`] not needed (a punctual light).
+    pub fn skip_light_position(&mut self) {
+        self.skip(2);
+    }
+
+    /// [`Bounce::layer`] not needed (the material has one layer here).
+    pub fn skip_layer(&mut self) {
+        self.skip(1);
+    }
+
     /// Which light group next-event estimation samples.
     pub fn light_choice(&mut self) -> f32 {
         self.one(BounceDim::LightChoice)
@@ -267,6 +299,27 @@ mod tests {
         let _ = bb.bsdf_direction();
         assert_eq!(bb.roulette(), r1);
         assert_ne!(a.bounce(3).roulette(), r1);
+    }
+
+    #[test]
+    fn skipped_decisions_keep_every_later_number() {
+        for kind in SamplerKind::ALL {
+            let p = PixelSampler::new(kind, 16, (8, 8), 3);
+            let (mut a, mut b) = (p.start(2, 5, 7), p.start(2, 5, 7));
+            let mut ba = a.bounce(1);
+            let _ = ba.light_choice();
+            let _ = ba.light_position();
+            let _ = ba.light_member();
+            let _ = ba.layer();
+            let want = (ba.bsdf_lobe(), ba.bsdf_direction(), ba.roulette());
+            let mut bb = b.bounce(1);
+            bb.skip_light_choice();
+            bb.skip_light_position();
+            bb.skip_light_member();
+            bb.skip_layer();
+            assert_eq!((bb.bsdf_lobe(), bb.bsdf_direction(), bb.roulette()), want);
+            assert_eq!(a.rng.next_u32(), b.rng.next_u32());
+        }
     }
 
     #[test]

@@ -181,13 +181,20 @@ impl<C: Carrier> Arrival<'_, C> {
         if matches!(self.mat.desc.alpha_mode, AlphaMode::Blend) && u.alpha() >= self.sp.alpha {
             return Event::PassThrough(self.hit.spawn_ray(-self.hit.wo));
         }
+        // The layer number decides only between a partial transmission and the rest.
+        let u_layer = if self.sp.transmission > 0.0 && self.sp.transmission < 1.0 {
+            u.layer()
+        } else {
+            u.skip_layer();
+            0.0
+        };
         let (bsdf, beyond, dispersive) = bsdf_at::<C>(
             scene,
             &self.hit,
             &self.coincident,
             &self.sp,
             media,
-            u.layer(),
+            u_layer,
             lambda,
         );
         let mut lanes = None;
@@ -222,6 +229,8 @@ pub trait StepNumbers {
     fn alpha(&mut self) -> f32;
     /// The number choosing the material layer.
     fn layer(&mut self) -> f32;
+    /// Passes over the layer number where only one layer can be chosen.
+    fn skip_layer(&mut self);
 }
 
 impl StepNumbers for Rng {
@@ -231,6 +240,9 @@ impl StepNumbers for Rng {
     fn layer(&mut self) -> f32 {
         self.next_f32()
     }
+    fn skip_layer(&mut self) {
+        self.next_f32();
+    }
 }
 
 impl StepNumbers for Bounce<'_> {
@@ -239,6 +251,9 @@ impl StepNumbers for Bounce<'_> {
     }
     fn layer(&mut self) -> f32 {
         Bounce::layer(self)
+    }
+    fn skip_layer(&mut self) {
+        Bounce::skip_layer(self)
     }
 }
 
