@@ -234,6 +234,17 @@ impl<C: Carrier> Bsdf<C> {
         }
     }
 
+    /// Whether [`Bsdf::sample`] reads its 2D number `u`: not for the smooth and thin
+    /// dielectrics, which choose reflection or transmission with `uc` alone (the path
+    /// tracer then skips that number).
+    pub fn samples_direction(&self) -> bool {
+        match *self {
+            Bsdf::Dielectric { .. } => !self.is_delta(),
+            Bsdf::ThinDielectric { .. } => false,
+            _ => true,
+        }
+    }
+
     /// f(wo, wi); 0 for delta lobes.
     pub fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> C {
         if self.is_delta() {

@@ -441,7 +441,12 @@ fn trace<C: Carrier>(
             }
         }
         let uc = u.bsdf_lobe();
-        let ud = u.bsdf_direction();
+        let ud = if s.bsdf.samples_direction() {
+            u.bsdf_direction()
+        } else {
+            u.skip_bsdf_direction();
+            Vec2::ZERO
+        };
         let Some(bs) = s.sample_mis(uc, ud, TransportMode::Radiance, &mut lambda) else {
             break;
         };

@@ -228,6 +228,11 @@ impl Bounce<'_> {
         self.skip(1);
     }
 
+    /// [`Bounce::bsdf_direction`] not needed (a smooth dielectric's choice is the lobe's).
+    pub fn skip_bsdf_direction(&mut self) {
+        self.skip(2);
+    }
+
     /// Which light group next-event estimation samples.
     pub fn light_choice(&mut self) -> f32 {
         self.one(BounceDim::LightChoice)
@@ -318,6 +323,11 @@ mod tests {
             bb.skip_light_member();
             bb.skip_layer();
             assert_eq!((bb.bsdf_lobe(), bb.bsdf_direction(), bb.roulette()), want);
+            let (mut c, mut d) = (p.start(1, 1, 2), p.start(1, 1, 2));
+            let (mut bc, mut bd) = (c.bounce(0), d.bounce(0));
+            let _ = bc.bsdf_direction();
+            bd.skip_bsdf_direction();
+            assert_eq!(bc.roulette(), bd.roulette());
             assert_eq!(a.rng.next_u32(), b.rng.next_u32());
         }
     }
