@@ -122,6 +122,17 @@ def drop_textures(doc, base_color=(0.8, 0.8, 0.8)):
     return changed
 
 
+def smooth_transmissive(doc):
+    """Roughness 0 on every transmissive material (the peers' dispersive BSDFs are smooth).
+    Returns the names changed."""
+    changed = []
+    for m in doc.get("materials", []):
+        if "KHR_materials_transmission" in m.get("extensions", {}):
+            m.setdefault("pbrMetallicRoughness", {})["roughnessFactor"] = 0.0
+            changed.append(m.get("name", "?"))
+    return changed
+
+
 def _add_node(doc, node):
     doc.setdefault("nodes", []).append(node)
     scene = doc.get("scene", 0)
