@@ -206,8 +206,9 @@ impl Accel {
     }
 
     /// The packet width to use on this machine: Embree's native width (16 with its
-    /// AVX-512 kernels, 8 with AVX2), or for the BVH, which answers lane by lane, 16 when
-    /// the CPU has AVX-512F and 8 otherwise (the width of the caller's SIMD lanes).
+    /// AVX-512 kernels, 8 with AVX2, whose `rtcIntersect16` traces the lanes one by one and
+    /// is slower than 8 — `benches/packets.rs`), or for the BVH, which answers lane by lane,
+    /// 16 when the CPU has AVX-512F and 8 otherwise (the width of the caller's SIMD lanes).
     pub fn packet_width(&self) -> usize {
         match self {
             Accel::Bvh(_) => cpu_packet_width(),

@@ -1,7 +1,9 @@
 //! Ray packets: `N` rays (8 or 16, see [`PacketWidth`]) in structure-of-arrays layout for
 //! the SIMD-lane integrators, and their closest hits. Backend-independent: Embree traces a
 //! packet with `rtcIntersect8/16` / `rtcOccluded8/16`, the BVH lane by lane with its
-//! single-ray queries ([`closest_lanes`], [`occluded_lanes`]).
+//! single-ray queries ([`closest_lanes`], [`occluded_lanes`]): obvhs 0.4 traverses one ray
+//! at a time (`ray_traverse*`, or `ray_traverse_dynamic` with a per-ray state), with no
+//! packet traversal.
 //!
 //! Units and conventions are those of the single-ray queries ([`super::Accel::closest`]):
 //! world units, `t` along the unnormalised direction in `[0, t_max)`, Embree-style
