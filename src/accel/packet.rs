@@ -145,27 +145,28 @@ where
 
     /// The active lanes a backend can trace (see the module docs).
     pub fn traceable(&self) -> LaneMask {
-        let mut mask = 0;
-        for lane in lanes(self.active) {
-            let (o, d) = (self.origin(lane), self.dir(lane));
-            if o.is_finite() && d.is_finite() && d != Vec3::ZERO && self.t_max[lane] > 0.0 {
-                mask |= 1 << lane;
-            }
-        }
-        mask
+        self.active_where(|p, lane| p.has_line(lane) && p.t_max[lane] > 0.0)
     }
 
     /// The active lanes with a non-finite origin or direction, a zero direction or a NaN
     /// `t_max` (the rays [`crate::math::Ray::is_valid`] refuses).
     pub fn untraceable(&self) -> LaneMask {
-        let mut mask = 0;
-        for lane in lanes(self.active) {
-            let (o, d) = (self.origin(lane), self.dir(lane));
-            if !(o.is_finite() && d.is_finite() && d != Vec3::ZERO && !self.t_max[lane].is_nan()) {
-                mask |= 1 << lane;
-            }
-        }
-        mask
+        self.active_where(|p, lane| !p.has_line(lane) || p.t_max[lane].is_nan())
+    }
+
+    /// Whether lane `lane` has a finite origin and a finite non-zero direction.
+    #[inline]
+    fn has_line(&self, lane: usize) -> bool {
+        let (o, d) = (self.origin(lane), self.dir(lane));
+        o.is_finite() && d.is_finite() && d != Vec3::ZERO
+    }
+
+    /// The active lanes for which `test` holds.
+    #[inline]
+    fn active_where(&self, test: impl Fn(&Self, usize) -> bool) -> LaneMask {
+        lanes(self.active)
+            .filter(|&lane| test(self, lane))
+            .fold(0, |m, lane| m | 1 << lane)
     }
 }
 
