@@ -2,6 +2,8 @@
 //! (obvhs CWBVH). Backends know nothing of materials or offsets: they take a ray with
 //! `t_min = 0` and return only `t`, the triangle index and Embree-style barycentrics
 //! (`p = (1-u-v)·p0 + u·p1 + v·p2`). The intersection layer (`interaction`) builds the hit.
+//! Packets of 8 or 16 rays ([`packet`]) go to Embree's packet kernels, or lane by lane to
+//! the BVH; either way each lane's result is that of the single-ray query.
 
 pub mod brute;
 pub mod bvh;
@@ -9,12 +11,14 @@ pub mod bvh;
 #[cfg(feature = "embree")]
 #[allow(unsafe_code)]
 pub mod embree;
+pub mod packet;
 pub mod triangle;
 
 #[cfg(not(feature = "embree"))]
 use crate::error::Error;
 use crate::error::Result;
 use glam::Vec3;
+use packet::{Coherence, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
 
 /// A raw hit: ray parameter, triangle index, barycentrics.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -159,6 +163,60 @@ impl Accel {
         }
     }
 
+    /// The closest hit in `[0, t_max)` of every traceable lane of `rays`
+    /// ([`RayPacket::traceable`]), exactly as [`Accel::closest`] finds it lane by lane;
+    /// other lanes get no hit. Embree traces the packet in one `rtcIntersect8/16` call
+    /// (`coherence` picks its traversal), the BVH lane by lane.
+    #[inline]
+    pub fn closest_packet<const N: usize>(
+        &self,
+        rays: &RayPacket<N>,
+        coherence: Coherence,
+        out: &mut HitPacket<N>,
+    ) where
+        Lanes<N>: PacketWidth,
+    {
+        #[cfg(not(feature = "embree"))]
+        let _ = coherence;
+        match self {
+            Accel::Bvh(b) => packet::closest_lanes(rays, out, |o, d, t| b.closest(o, d, t)),
+            #[cfg(feature = "embree")]
+            Accel::Embree(e) => e.closest_packet(rays, coherence, out),
+        }
+    }
+
+    /// The traceable lanes of `rays` with anything in `[0, t_max)`, as [`Accel::occluded`]
+    /// answers lane by lane (Embree: one `rtcOccluded8/16` call).
+    #[inline]
+    pub fn occluded_packet<const N: usize>(
+        &self,
+        rays: &RayPacket<N>,
+        coherence: Coherence,
+    ) -> LaneMask
+    where
+        Lanes<N>: PacketWidth,
+    {
+        #[cfg(not(feature = "embree"))]
+        let _ = coherence;
+        match self {
+            Accel::Bvh(b) => packet::occluded_lanes(rays, |o, d, t| b.occluded(o, d, t)),
+            #[cfg(feature = "embree")]
+            Accel::Embree(e) => e.occluded_packet(rays, coherence),
+        }
+    }
+
+    /// The packet width to use on this machine: Embree's native width (16 with its
+    /// AVX-512 kernels, 8 with AVX2, whose `rtcIntersect16` traces the lanes one by one and
+    /// is slower than 8 — `benches/packets.rs`), or for the BVH, which answers lane by lane,
+    /// 16 when the CPU has AVX-512F and 8 otherwise (the width of the caller's SIMD lanes).
+    pub fn packet_width(&self) -> usize {
+        match self {
+            Accel::Bvh(_) => cpu_packet_width(),
+            #[cfg(feature = "embree")]
+            Accel::Embree(e) => e.native_packet_width().unwrap_or(8),
+        }
+    }
+
     /// Backend name for summaries.
     pub fn name(&self) -> &'static str {
         match self {
@@ -167,4 +225,13 @@ impl Accel {
             Accel::Embree(_) => "embree 4",
         }
     }
+}
+
+/// 16 when the CPU has AVX-512F, otherwise 8.
+fn cpu_packet_width() -> usize {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx512f") {
+        return 16;
+    }
+    8
 }

@@ -17,18 +17,21 @@
 //! library we link is 4.4 (or whatever 4.x the system has). Since 4.3, `RTCHit` ends with
 //! `instPrimID[RTC_MAX_INSTANCE_LEVEL_COUNT]` (instance arrays), so the library's
 //! `RTCRayHit` is 96 bytes, not the 80 bytes of the 4.2 binding, and `rtcIntersect1`
-//! writes past the end of a 4.2-sized struct. We therefore declare the ray/hit and
+//! writes past the end of a 4.2-sized struct (likewise `RTCHit8/16` end with
+//! `instPrimID[1][N]`). We therefore declare the ray/hit structs, their packet forms and the
 //! argument structs in `ffi` with the 4.4 layout (plus room for `RTC_MIN_WIDTH` builds), and
 //! read error codes as plain integers because 4.3 added `RTCError` values unknown to the
 //! 4.2 enum.
 //!
 //! Files: `ffi`, the ray/hit/argument structs and declarations with the 4.4 layout and the
 //! filter and error callbacks; `device`, the device, the library version and the
-//! thread's floating-point mode; `build`, the scene build; `query`, the ray queries.
+//! thread's floating-point mode; `build`, the scene build; `query`, the ray queries;
+//! `packet`, the 8- and 16-ray packet queries.
 
 mod build;
 mod device;
 mod ffi;
+mod packet;
 mod query;
 #[cfg(test)]
 mod tests;

@@ -1,10 +1,10 @@
-//! Tests of the Embree backend: struct layouts against Embree 4.4, hits, misses, `t_max`,
-//! primitive ids, errors, the version and thread safety.
+//! Tests of the Embree backend: struct layouts (single rays and packets) against Embree
+//! 4.4, hits, misses, `t_max`, primitive ids, errors, the version and thread safety.
 
 #[cfg(target_arch = "x86_64")]
 use super::device::mxcsr;
 use super::device::new_device;
-use super::ffi::{Hit, QueryArgs, Ray, RayHit};
+use super::ffi::{Hit, HitN, QueryArgs, Ray, RayHit, RayHitN, RayN, ValidN};
 use super::{embree_version, enable_flush_to_zero, sys, EmbreeAccel};
 use crate::error::Error;
 use glam::Vec3;
@@ -22,6 +22,62 @@ fn layouts_match_embree_4_4() {
     assert_eq!(std::mem::offset_of!(RayHit, hit), 48);
     assert_eq!(std::mem::offset_of!(Hit, geom_id), 24);
     assert!(std::mem::size_of::<QueryArgs>() >= std::mem::size_of::<sys::RTCIntersectArguments>());
+}
+
+#[test]
+fn packet_layouts_match_embree_4_4() {
+    use std::mem::{align_of, offset_of, size_of};
+    // RTCRay8/16: 12 fields of N lanes; RTCHit8/16 (4.4): 9 fields of N lanes.
+    assert_eq!(size_of::<RayN<8>>(), 12 * 4 * 8);
+    assert_eq!(size_of::<RayN<16>>(), 12 * 4 * 16);
+    assert_eq!(offset_of!(RayN<8>, tfar), 8 * 4 * 8);
+    assert_eq!(offset_of!(RayN<16>, flags), 11 * 4 * 16);
+    assert_eq!(offset_of!(RayHitN<8>, hit), 384);
+    assert_eq!(offset_of!(RayHitN<16>, hit), 768);
+    assert_eq!(offset_of!(HitN<8>, u), 3 * 4 * 8);
+    assert_eq!(offset_of!(HitN<16>, prim_id), 5 * 4 * 16);
+    assert_eq!(offset_of!(HitN<16>, geom_id), 6 * 4 * 16);
+    assert_eq!(offset_of!(HitN<16>, inst), 7 * 4 * 16);
+    assert!(size_of::<HitN<8>>() >= 9 * 4 * 8 && size_of::<HitN<16>>() >= 9 * 4 * 16);
+    // Embree's alignment: 32 bytes at N = 8, 64 at 16 (we use 64 for both).
+    assert!(align_of::<RayHitN<8>>() >= 32 && align_of::<RayN<8>>() >= 32);
+    assert_eq!(align_of::<RayHitN<16>>(), 64);
+    assert_eq!(align_of::<RayN<16>>(), 64);
+    assert_eq!(align_of::<ValidN<16>>(), 64);
+    // The 4.2 bindings agree on everything before the instance fields.
+    assert_eq!(offset_of!(sys::RTCRayHit16, hit), 768);
+    assert_eq!(
+        offset_of!(sys::RTCHit16, instID),
+        offset_of!(HitN<16>, inst)
+    );
+    assert_eq!(offset_of!(sys::RTCHit8, instID), offset_of!(HitN<8>, inst));
+}
+
+/// Embree runs its AVX-512 kernels (native 16-ray packets) on CPUs with AVX-512
+/// F/CD/BW/DQ/VL, its AVX2 ones (native 8) on CPUs with AVX2.
+#[cfg(target_arch = "x86_64")]
+#[test]
+fn native_packet_width_follows_the_cpu() {
+    use std::arch::is_x86_feature_detected as has;
+    let w = unit_triangle().native_packet_width();
+    let avx512 = has!("avx512f")
+        && has!("avx512cd")
+        && has!("avx512bw")
+        && has!("avx512dq")
+        && has!("avx512vl");
+    let expected = if avx512 {
+        Some(16)
+    } else if has!("avx2") {
+        Some(8)
+    } else {
+        w
+    };
+    assert_eq!(w, expected);
+    if has!("avx2") {
+        let p = [Vec3::ZERO, Vec3::X, Vec3::Y];
+        let avx2 = EmbreeAccel::build_with_config(&p, &[[0, 1, 2]], None, "verbose=0,isa=avx2");
+        assert_eq!(avx2.unwrap().native_packet_width(), Some(8));
+    }
 }
 
 #[test]
