@@ -12,8 +12,9 @@
 //! - The scramblers preserve the net structure: every elementary interval that holds one
 //!   point unscrambled holds one point after XOR or Owen scrambling (Owen 1995).
 //! - Dimensions 0 and 1, the 2D points of [`super::zsobol`], have fast paths equal to
-//!   [`sobol_bits`]: [`van_der_corput`] (a bit reversal) and [`sobol_dim1`] (seven byte-table
-//!   lookups).
+//!   [`sobol_bits`] with the bits reversed, the order in which Owen scrambling works
+//!   ([`owen_reversed`]): dimension 0 reversed is the index's low 32 bits (van der Corput),
+//!   dimension 1 reversed is [`sobol_dim1_reversed`] (a subset-sum transform of the index).
 
 use super::sobol_table::{SOBOL_DIMENSIONS, SOBOL_MATRICES, SOBOL_MATRIX_SIZE};
 
@@ -59,13 +60,21 @@ pub fn sobol_bits(index: u64, dim: usize) -> u32 {
 /// multipliers are pbrt-v4's `FastOwenScrambler` constants (util/lowdiscrepancy.h).
 #[inline]
 pub fn fast_owen(v: u32, seed: u32) -> u32 {
-    let mut x = v.reverse_bits();
-    x = x.wrapping_add(seed);
+    owen_reversed(v.reverse_bits(), seed).reverse_bits()
+}
+
+/// [`fast_owen`] on bit-reversed input and output: `fast_owen(v, seed) =
+/// owen_reversed(v.reverse_bits(), seed).reverse_bits()`. Output bit `j` depends only on
+/// input bits `0..=j`, so the low 24 bits of the result (the 24 bits a sample keeps, once
+/// reversed) depend only on the low 24 bits of the input.
+#[inline]
+pub(super) fn owen_reversed(x: u32, seed: u32) -> u32 {
+    let mut x = x.wrapping_add(seed);
     x ^= x.wrapping_mul(0x6c50_b47c);
     x ^= x.wrapping_mul(0xb82f_1e52);
     x ^= x.wrapping_mul(0xc7af_e638);
     x ^= x.wrapping_mul(0x8d22_f6e6);
-    x.reverse_bits()
+    x
 }
 
 /// Apply a randomisation to 32 Sobol' bits.
@@ -99,55 +108,31 @@ pub(super) fn van_der_corput(index: u64) -> u32 {
     (index as u32).reverse_bits()
 }
 
-/// Column `k` of Sobol' dimension 1's generator matrix: the Pascal matrix mod 2, bit
-/// `31 − j` set when C(k, j) is odd, i.e. when `j & k == j` (Lucas's theorem; the matrix of
-/// Joe & Kuo's second dimension, checked against [`SOBOL_MATRICES`] in the tests).
-const fn pascal_column(k: usize) -> u32 {
-    let mut v = 0u32;
-    let mut j = 0;
-    while j < 32 {
-        if j & k == j {
-            v |= 1 << (31 - j);
-        }
-        j += 1;
-    }
-    v
+/// `sobol_bits(index, 1)` with its bits reversed. Sobol' dimension 1's generator matrix is
+/// the Pascal matrix mod 2: column `k` has bit `31 − j` set when C(k, j) is odd, i.e. when
+/// `j & k == j` (Lucas's theorem; Joe & Kuo's second dimension, which the tests compare with
+/// [`SOBOL_MATRICES`]). So bit `j` of the reversed coordinate is the XOR of the index bits
+/// `k < SOBOL_MATRIX_SIZE` with `j & k == j`: the subset-sum (zeta) transform over GF(2),
+/// computed one bit `b` of the position at a time by adding each position with bit `b` set
+/// into the one without it (the fast zeta transform: Björklund, Husfeldt, Kaski &
+/// Koivisto 2007, "Fourier meets Möbius: fast subset convolution", STOC). The `b = 5` step
+/// comes first, folding positions 32..63 onto 0..31, since only `j < 32` is kept.
+#[inline]
+pub(super) fn sobol_dim1_reversed(index: u64) -> u32 {
+    let x = index & ((1u64 << SOBOL_MATRIX_SIZE) - 1);
+    let mut y = (x ^ (x >> 32)) as u32;
+    y ^= (y >> 1) & 0x5555_5555;
+    y ^= (y >> 2) & 0x3333_3333;
+    y ^= (y >> 4) & 0x0f0f_0f0f;
+    y ^= (y >> 8) & 0x00ff_00ff;
+    y ^= (y >> 16) & 0x0000_ffff;
+    y
 }
 
-/// Sobol' dimension 1 by bytes: `DIM1_BYTES[b][x]` is the XOR of the columns `8b + i` over
-/// the set bits `i` of `x`, so a 52-bit index takes seven lookups instead of a loop over
-/// its bits (the generator matrix is linear over GF(2)).
-static DIM1_BYTES: [[u32; 256]; 7] = {
-    let mut t = [[0u32; 256]; 7];
-    let mut b = 0;
-    while b < 7 {
-        let mut x = 0;
-        while x < 256 {
-            let mut v = 0u32;
-            let mut i = 0;
-            while i < 8 {
-                let k = 8 * b + i;
-                if x >> i & 1 == 1 && k < SOBOL_MATRIX_SIZE {
-                    v ^= pascal_column(k);
-                }
-                i += 1;
-            }
-            t[b][x] = v;
-            x += 1;
-        }
-        b += 1;
-    }
-    t
-};
-
-/// `sobol_bits(index, 1)` by seven table lookups ([`DIM1_BYTES`]).
-#[inline]
-pub(super) fn sobol_dim1(index: u64) -> u32 {
-    let mut v = 0;
-    for (b, table) in DIM1_BYTES.iter().enumerate() {
-        v ^= table[(index >> (8 * b) & 0xff) as usize];
-    }
-    v
+/// `sobol_bits(index, 1)` from [`sobol_dim1_reversed`].
+#[cfg(test)]
+fn sobol_dim1(index: u64) -> u32 {
+    sobol_dim1_reversed(index).reverse_bits()
 }
 
 #[cfg(test)]

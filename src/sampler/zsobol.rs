@@ -13,10 +13,12 @@
 //!   neighbouring pixels (neighbouring Morton blocks) get complementary strata, which
 //!   spreads the error as blue noise.
 //! - Every value is a pure function of `(x, y, sample index, dimension, seed,
-//!   samples_per_pixel, resolution)`: no state carries from one pixel sample to the next, so
-//!   an N-sample image is identical however its samples are split into rounds, threads or
-//!   shards, provided `samples_per_pixel` and the resolution passed to [`ZSobol::new`] are
-//!   the same for every part.
+//!   samples_per_pixel, resolution)`, so an N-sample image is identical however its samples
+//!   are split into rounds, threads or shards, provided `samples_per_pixel` and the
+//!   resolution passed to [`ZSobol::new`] are the same for every part. The only state kept
+//!   from one pixel sample to the next is a cache: the digit keys of the previous index,
+//!   of which [`ZSobol::start_pixel_sample`] recomputes those the new index changes
+//!   ([`digits`]).
 //! - `samples_per_pixel` is the size of a pixel's block; it is rounded up to a power of two.
 //!   Sample indices at or above it continue in further blocks placed above every pixel's
 //!   digits (an extension of pbrt-v4, which requires `index < spp`): quality stays that of
@@ -25,9 +27,19 @@
 //!   [`ZSobol::get_2d`]; it is unbounded (each dimension only keys hashes), so path length
 //!   is not limited by the 64 tabulated Sobol' dimensions.
 //! - Values are in `[0, 1)`.
+//!
+//! Cost: starting a pixel sample hashes the changed digits (one `mix64` each: one or two
+//! for the next sample of the same pixel); a draw hashes its dimension twice and permutes
+//! eight digits per 256-bit vector ([`digits`]), and a 1D draw permutes only the digits
+//! below bit 32, the bits Sobol' dimension 0 reads.
 
-use super::sobol::{bits_to_unit, fast_owen, sobol_dim1, van_der_corput};
+use super::sobol::{bits_to_unit, owen_reversed, sobol_dim1_reversed, van_der_corput};
 use crate::math::mix64;
+use digits::Digits;
+
+mod digits;
+#[cfg(test)]
+mod reference_tests;
 
 /// How [`ZSobol`] randomises each dimension (pbrt-v4 `RandomizeStrategy`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -39,34 +51,6 @@ pub enum Randomize {
     /// Hash-based Owen scrambling (Burley 2020) per dimension: the default.
     Owen,
 }
-
-/// The 24 permutations of four base-4 digits (pbrt-v4 `ZSobolSampler::GetSampleIndex`).
-const PERMUTATIONS: [[u8; 4]; 24] = [
-    [0, 1, 2, 3],
-    [0, 1, 3, 2],
-    [0, 2, 1, 3],
-    [0, 2, 3, 1],
-    [0, 3, 2, 1],
-    [0, 3, 1, 2],
-    [1, 0, 2, 3],
-    [1, 0, 3, 2],
-    [1, 2, 0, 3],
-    [1, 2, 3, 0],
-    [1, 3, 2, 0],
-    [1, 3, 0, 2],
-    [2, 1, 0, 3],
-    [2, 1, 3, 0],
-    [2, 0, 1, 3],
-    [2, 0, 3, 1],
-    [2, 3, 0, 1],
-    [2, 3, 1, 0],
-    [3, 1, 2, 0],
-    [3, 1, 0, 2],
-    [3, 2, 1, 0],
-    [3, 2, 0, 1],
-    [3, 0, 2, 1],
-    [3, 0, 1, 2],
-];
 
 /// Spread the low 32 bits of `v` to the even bit positions of a `u64` (for Morton codes;
 /// the classic magic-number interleave, e.g. pbrt-v4 `LeftShift2`).
@@ -105,44 +89,21 @@ fn shl(x: u64, n: u32) -> u64 {
     x.checked_shl(n).unwrap_or(0)
 }
 
-/// `v` randomised by `randomize` with the key `hash`.
-fn randomize_bits(randomize: Randomize, v: u32, hash: u32) -> u32 {
-    match randomize {
-        Randomize::None => v,
-        Randomize::Xor => v ^ hash,
-        Randomize::Owen => fast_owen(v, hash),
-    }
-}
-
 /// A per-pixel Sobol' sampler in Morton order. Cheap to copy: one per worker thread.
 #[derive(Debug, Clone)]
 pub struct ZSobol {
     randomize: Randomize,
     log2_spp: u32,
-    /// Base-4 digits covering pixel and sample bits (pbrt-v4 `nBase4Digits`).
-    base4_digits: u32,
     /// Bits below the "block" part of the index: `2 log2(res) + log2_spp`.
     low_bits: u32,
-    morton_index: u64,
+    /// The index's block bits (at and above `low_bits`), which are not permuted.
+    block_bits: u64,
     dimension: u32,
     /// `mix64(seed)`: the dimension keys' base.
     seed_mix: u64,
-    /// Per base-4 digit `i` (from the bottom), a hash of the index's digits above it, set by
-    /// [`ZSobol::start_pixel_sample`] once per pixel sample; each dimension combines it with
-    /// its own key by one multiply ([`digit_permutation`]).
-    digit_keys: [u32; MAX_DIGITS],
-}
-
-/// Most base-4 digits of an index: 64 bits.
-const MAX_DIGITS: usize = 32;
-
-/// Which of the 24 permutations digit `i` gets in a dimension with key `dim_key`, from the
-/// digit's key (a hash of the digits above it): one multiply and a multiply-shift range
-/// reduction (Lemire 2019), instead of a full 64-bit mix per digit and dimension.
-#[inline]
-fn digit_permutation(digit_key: u32, dim_key: u64) -> usize {
-    let h = (u64::from(digit_key) ^ dim_key).wrapping_mul(0x9E37_79B9_7F4A_7C15);
-    (((h >> 32) * 24) >> 32) as usize
+    /// The permuted digits' keys and values for the current pixel sample, set by
+    /// [`ZSobol::start_pixel_sample`]; each dimension combines them with its own key.
+    digits: Digits,
 }
 
 impl ZSobol {
@@ -166,15 +127,17 @@ impl ZSobol {
         let res = resolution.0.max(resolution.1).clamp(1, MAX_RES);
         let res = res.next_power_of_two();
         let log2_res = res.trailing_zeros();
+        let seed_mix = mix64(seed);
+        // Base-4 digits covering pixel and sample bits (pbrt-v4 `nBase4Digits`).
+        let base4_digits = log2_res + log2_spp.div_ceil(2);
         ZSobol {
             randomize,
             log2_spp,
-            base4_digits: log2_res + log2_spp.div_ceil(2),
             low_bits: 2 * log2_res + log2_spp,
-            morton_index: 0,
+            block_bits: 0,
             dimension: 0,
-            seed_mix: mix64(seed),
-            digit_keys: [0; MAX_DIGITS],
+            seed_mix,
+            digits: Digits::new(base4_digits, log2_spp & 1, seed_mix),
         }
     }
 
@@ -188,16 +151,10 @@ impl ZSobol {
         let block = index >> self.log2_spp;
         let within = index & ((1u64 << self.log2_spp) - 1);
         let local = (morton2(x, y) << self.log2_spp) | within;
-        self.morton_index = local | shl(block, self.low_bits);
+        let morton_index = local | shl(block, self.low_bits);
+        self.block_bits = shl(shr(morton_index, self.low_bits), self.low_bits);
+        self.digits.set(morton_index);
         self.dimension = 0;
-        let odd = self.log2_spp & 1;
-        for i in odd..self.base4_digits {
-            let higher = shr(self.morton_index, 2 * i - odd + 2);
-            self.digit_keys[i as usize] = (mix64(higher ^ self.seed_mix) >> 32) as u32;
-        }
-        if odd == 1 {
-            self.digit_keys[0] = (mix64((self.morton_index >> 1) ^ self.seed_mix) >> 32) as u32;
-        }
     }
 
     /// The next dimension to be drawn.
@@ -212,16 +169,25 @@ impl ZSobol {
     }
 
     /// A 1D sample in `[0, 1)`; advances the dimension by 1.
+    #[inline]
     pub fn get_1d(&mut self) -> f32 {
         let dim = self.dimension;
         self.dimension = dim.wrapping_add(1);
-        let index = self.sample_index(dim);
+        // Sobol' dimension 0 reads the index's low 32 bits only, which the first two
+        // vectors of digits (16 base-4 digits above the odd bit) cover.
+        let index = self.sample_index_below(dim, 2);
         let hash = self.dimension_hash(dim) as u32;
-        bits_to_unit(self.randomize_bits(van_der_corput(index), hash))
+        bits_to_unit(match self.randomize {
+            Randomize::None => van_der_corput(index),
+            Randomize::Xor => van_der_corput(index) ^ hash,
+            // Dimension 0 bit-reversed is the index itself ([`super::sobol`]).
+            Randomize::Owen => owen_reversed(index as u32, hash).reverse_bits(),
+        })
     }
 
     /// A 2D sample in `[0, 1)^2` (Sobol' dims 0 and 1 of one permuted index); advances the
     /// dimension by 2.
+    #[inline]
     pub fn get_2d(&mut self) -> [f32; 2] {
         self.get_2d_with(self.randomize)
     }
@@ -231,23 +197,26 @@ impl ZSobol {
     /// shifted regular grid of spacing 2^-k (Owen scrambling only keeps one per stratum):
     /// what a periodic use of the number needs (the hero wavelength's rotation,
     /// [`crate::spectrum::hero_number`]).
+    #[inline]
     pub fn get_2d_with(&mut self, randomize: Randomize) -> [f32; 2] {
         let dim = self.dimension;
         self.dimension = dim.wrapping_add(2);
         let index = self.sample_index(dim);
         let hash = self.dimension_hash(dim);
-        [
-            bits_to_unit(randomize_bits(
-                randomize,
-                van_der_corput(index),
-                hash as u32,
-            )),
-            bits_to_unit(randomize_bits(
-                randomize,
-                sobol_dim1(index),
-                (hash >> 32) as u32,
-            )),
-        ]
+        // Both coordinates bit-reversed, dimension 0 in the high half, so that one 64-bit
+        // reversal restores both (dimension 0 to the low half).
+        let (r0, r1) = (index as u32, sobol_dim1_reversed(index));
+        let (r0, r1, xor) = match randomize {
+            Randomize::None => (r0, r1, 0),
+            Randomize::Xor => (r0, r1, hash),
+            Randomize::Owen => (
+                owen_reversed(r0, hash as u32),
+                owen_reversed(r1, (hash >> 32) as u32),
+                0,
+            ),
+        };
+        let v = ((u64::from(r0) << 32) | u64::from(r1)).reverse_bits() ^ xor;
+        [bits_to_unit(v as u32), bits_to_unit((v >> 32) as u32)]
     }
 
     /// The film position within the pixel: a 2D sample (pbrt-v4 `GetPixel2D`).
@@ -256,33 +225,25 @@ impl ZSobol {
     }
 
     /// A 64-bit key for dimension `dim` under this sampler's seed.
+    #[inline]
     fn dimension_hash(&self, dim: u32) -> u64 {
         mix64(self.seed_mix ^ u64::from(dim))
-    }
-
-    fn randomize_bits(&self, v: u32, hash: u32) -> u32 {
-        randomize_bits(self.randomize, v, hash)
     }
 
     /// The Sobol' index for dimension `dim`: every base-4 digit of the Morton index permuted
     /// by a permutation chosen from the digits above it (pbrt-v4 `GetSampleIndex`). With an
     /// odd `log2_spp` the lowest single bit is flipped by a hash instead.
+    #[inline]
     fn sample_index(&self, dim: u32) -> u64 {
+        self.sample_index_below(dim, u32::MAX)
+    }
+
+    /// [`ZSobol::sample_index`] with only the first `vectors` vectors of 8 base-4 digits
+    /// permuted ([`digits`]): exact in its bits below `odd + 16·vectors`.
+    #[inline]
+    fn sample_index_below(&self, dim: u32, vectors: u32) -> u64 {
         let key = mix64(self.seed_mix ^ 0x5555_5555_5555_5555 ^ (u64::from(dim) << 32));
-        let odd = self.log2_spp & 1;
-        let mut index = shl(shr(self.morton_index, self.low_bits), self.low_bits);
-        for i in (odd..self.base4_digits).rev() {
-            let shift = 2 * i - odd;
-            let digit = ((self.morton_index >> shift) & 3) as usize;
-            let p = digit_permutation(self.digit_keys[i as usize], key);
-            index |= u64::from(PERMUTATIONS[p][digit]) << shift;
-        }
-        if odd == 1 {
-            let bit = self.morton_index & 1;
-            index |= bit
-                ^ ((u64::from(self.digit_keys[0]) ^ key).wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 63);
-        }
-        index
+        self.block_bits | self.digits.permuted(key, vectors)
     }
 }
 
