@@ -32,6 +32,8 @@
 //! `cargo bench --bench accel -- shared_scenes` for the real scenes alone).
 #![forbid(unsafe_code)]
 
+mod common;
+use common::splitmix::Rng;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::Vec3;
 use iris::accel::bvh::BvhAccel;
@@ -42,22 +44,6 @@ use std::time::Duration;
 const RAYS: usize = 1 << 18;
 /// Face subdivision of the icosahedron: 20·224² = 1,003,520 triangles.
 const SUBDIV: u32 = 224;
-
-/// Deterministic splitmix64 generator.
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn f32(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
-    }
-}
 
 /// Closed, watertight icosphere with faces split `n`×`n`, radially displaced by 6 octaves
 /// of sine noise (about ±0.1 of the unit radius). Shared vertices are generated once

@@ -31,6 +31,7 @@
 #![forbid(unsafe_code)]
 
 mod common;
+use common::splitmix::Rng;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::{Vec2, Vec3};
@@ -43,22 +44,6 @@ use std::time::Duration;
 
 /// Image side: 256² camera rays per scene.
 const SIDE: u32 = 256;
-
-/// Deterministic splitmix64 generator.
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn f32(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
-    }
-}
 
 /// One ray: origin, direction, `t_max`.
 type LaneRay = (Vec3, Vec3, f32);

@@ -8,6 +8,7 @@
 //! checked against brute force; the Embree-vs-BVH barycentric tests need both.
 
 mod common;
+use common::splitmix::Rng;
 
 use glam::{Mat4, Vec3};
 use iris::accel::bvh::BvhAccel;
@@ -21,32 +22,6 @@ const RAYS: usize = 100_000;
 const REL_T: f32 = 1e-4;
 /// At most this fraction of rays may disagree (99.99 % must agree).
 const MAX_MISMATCH: f64 = 1e-4;
-
-/// Deterministic splitmix64 generator.
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in [0, 1).
-    fn f32(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn in_box(&mut self, lo: Vec3, hi: Vec3) -> Vec3 {
-        lo + (hi - lo) * Vec3::new(self.f32(), self.f32(), self.f32())
-    }
-    fn unit_vector(&mut self) -> Vec3 {
-        let z = 2.0 * self.f32() - 1.0;
-        let phi = std::f32::consts::TAU * self.f32();
-        let r = (1.0 - z * z).max(0.0).sqrt();
-        Vec3::new(r * phi.cos(), r * phi.sin(), z)
-    }
-}
 
 /// World-space triangles of a glTF file's default scene.
 fn load_gltf(path: &Path) -> (Vec<Vec3>, Vec<[u32; 3]>) {

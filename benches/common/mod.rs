@@ -4,6 +4,9 @@
 use iris::accel::Backend;
 use std::path::PathBuf;
 
+#[path = "../../tests/common/splitmix.rs"]
+pub mod splitmix;
+
 /// `../shared/assets` (or `IRIS_SHARED_ASSETS`) if present; the bench says SKIPPED otherwise.
 pub fn shared_assets() -> Option<PathBuf> {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));

@@ -18,7 +18,6 @@
 use super::Context;
 use crate::bsdf::{Bsdf, BsdfSample, TransportMode};
 use crate::interaction::SurfaceHit;
-use crate::light::sampler::LightId;
 use crate::math::{Frame, Ray};
 use crate::medium::MediumStack;
 use crate::sampler::Bounce;
@@ -64,18 +63,18 @@ fn next_event<C: Carrier>(
         return C::ZERO;
     };
     let p_sel = choice.pmf;
-    let (up, uc) = match choice.light {
-        LightId::Punctual(_) => {
-            u.skip_light_position();
-            u.skip_light_member();
-            (Vec2::ZERO, 0.0)
-        }
-        LightId::Environment => {
-            let up = u.light_position();
-            u.skip_light_member();
-            (up, 0.0)
-        }
-        LightId::Area => (u.light_position(), u.light_member()),
+    let (reads_position, reads_member) = lights::numbers_read(choice.light);
+    let up = if reads_position {
+        u.light_position()
+    } else {
+        u.skip_light_position();
+        Vec2::ZERO
+    };
+    let uc = if reads_member {
+        u.light_member()
+    } else {
+        u.skip_light_member();
+        0.0
     };
     let Some(ls) = lights::sample(scene, hit, choice.light, uc, up) else {
         return C::ZERO;

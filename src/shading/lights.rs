@@ -36,8 +36,18 @@ pub struct LightSample<'a> {
     pub pdf: Option<f32>,
 }
 
+/// Which numbers [`sample`] reads for light `id`: (`u`, the position or direction; `uc`,
+/// the member of the emissive group). Callers skip drawing the others.
+pub fn numbers_read(id: LightId) -> (bool, bool) {
+    match id {
+        LightId::Punctual(_) => (false, false),
+        LightId::Environment => (true, false),
+        LightId::Area => (true, true),
+    }
+}
+
 /// A sample of light `id` toward `hit`: `uc` picks the emissive triangle, `u` the point on
-/// it or the environment's direction (punctual lights need no numbers).
+/// it or the environment's direction (punctual lights need no numbers, [`numbers_read`]).
 pub fn sample<'a>(
     scene: &'a Scene,
     hit: &SurfaceHit,

@@ -4,6 +4,7 @@
 use std::path::PathBuf;
 
 pub mod alloc;
+pub mod splitmix;
 
 /// The third-party test scenes in `../shared/assets` (override with `IRIS_SHARED_ASSETS`).
 ///
