@@ -25,7 +25,15 @@
 //!   the caller crosses them as one interface, and the hit's offset grows to clear them all
 //!   (otherwise the ray spawned past the first face would start behind the second and never
 //!   see it).
+//! - Packets ([`Scene::intersect_packet`], [`Scene::occluded_packet`]): up to 16 rays in
+//!   one backend query (Embree `rtcIntersect8/16`, `rtcOccluded8/16`) give lane by lane
+//!   exactly the answers of [`Scene::intersect`] and [`Scene::occluded`]: the backends'
+//!   packet hits equal their single-ray hits bit for bit (`tests/accel_packets.rs`), the
+//!   hit record is built by the same code ([`Scene::lane_hit`]), and a lane whose first
+//!   hit is an alpha cut-out is traced again alone.
 
+use crate::accel::packet::{lanes, Coherence, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
+use crate::accel::RawHit;
 use crate::material::TexCoords;
 use crate::math::Ray;
 use crate::scene::triangle::{geometric_normal, MERGE_SCALE, OFFSET_SCALE};
@@ -312,5 +320,66 @@ impl Scene {
             return self.accel().occluded(ray.origin, ray.dir, ray.t_max);
         }
         self.intersect(ray).is_some()
+    }
+}
+
+impl Scene {
+    /// The backend's closest hits of the packet `rays`; lane `i`'s [`Scene::intersect`] is
+    /// then [`Scene::lane_hit`] of its ray and `raw.get(i)`. Invalid lanes
+    /// ([`RayPacket::untraceable`]) get none. With [`Coherence::Incoherent`] each lane's hit
+    /// is the single-ray hit exactly; Embree's coherent (frustum) traversal visits nodes in
+    /// another order and may break an exact tie between coplanar overlapping triangles
+    /// the other way.
+    #[inline]
+    pub fn intersect_packet<const N: usize>(
+        &self,
+        rays: &RayPacket<N>,
+        coherence: Coherence,
+        raw: &mut HitPacket<N>,
+    ) where
+        Lanes<N>: PacketWidth,
+    {
+        self.accel().closest_packet(rays, coherence, raw);
+    }
+
+    /// [`Scene::intersect`] of `ray` given the backend's closest hit `raw` along it (a lane
+    /// of [`Scene::intersect_packet`]): the same hit record, and past an alpha cut-out the
+    /// ray traced again alone.
+    #[inline]
+    pub fn lane_hit(&self, ray: &Ray, raw: Option<RawHit>) -> Option<SurfaceHit> {
+        let r = raw?;
+        let hit = self.make_hit(ray, r.t, r.prim, r.u, r.v);
+        if self.is_cut_out(&hit) {
+            self.intersect(ray)
+        } else {
+            Some(hit)
+        }
+    }
+
+    /// [`Scene::occluded`] of every active lane of `rays` in one packet query: bit `i` set
+    /// when lane `i` is blocked (an invalid ray is blocked; an inactive lane is not). With
+    /// alpha cut-outs in the scene, lane by lane.
+    pub fn occluded_packet<const N: usize>(&self, rays: &RayPacket<N>) -> LaneMask
+    where
+        Lanes<N>: PacketWidth,
+    {
+        if self.has_cutouts() {
+            let mut blocked: LaneMask = 0;
+            for lane in lanes(rays.active()) {
+                let ray = Ray {
+                    origin: rays.origin(lane),
+                    dir: rays.dir(lane),
+                    t_max: rays.t_max[lane],
+                };
+                if self.occluded(&ray) {
+                    blocked |= 1 << lane;
+                }
+            }
+            return blocked;
+        }
+        let mut packet = *rays;
+        let invalid = rays.untraceable();
+        packet.set_active(rays.active() & !invalid);
+        invalid | self.accel().occluded_packet(&packet, Coherence::Incoherent)
     }
 }

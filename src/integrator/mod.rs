@@ -16,10 +16,13 @@ use crate::error::{Error, Result};
 use crate::image::ImageRgb;
 use crate::math::Ray;
 pub use crate::render::Context;
-use crate::render::{render_samples, Film, Observer, RenderSettings, RenderStats, Setup};
+use crate::render::{
+    render_batches, render_samples, Film, Observer, RenderSettings, RenderStats, Setup,
+};
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::Vec3;
+use path::LaneWidth;
 pub use settings::{
     check_depth, CausticMode, CausticSettings, PhotonMapSettings, PhotonSettings, SppmSettings,
     StoreBudget, MAX_DEPTH, MAX_PHOTONS, MAX_STORED_PHOTONS,
@@ -278,7 +281,34 @@ impl Integrator {
             }
         }
         let pool = crate::render::thread_pool(settings)?;
+        let width = LaneWidth::choose(scene)?;
         match self {
+            Integrator::Path {
+                max_depth,
+                spectral_mis,
+            } if width != LaneWidth::Scalar => {
+                let rules = (*max_depth, *spectral_mis);
+                pool.install(|| {
+                    render_batches(
+                        camera,
+                        settings,
+                        range,
+                        Setup::now(),
+                        observer,
+                        |starts, jobs, out| {
+                            path::estimate_path(
+                                scene,
+                                rules,
+                                width,
+                                settings.spectral,
+                                starts,
+                                jobs,
+                                out,
+                            )
+                        },
+                    )
+                })
+            }
             Integrator::Whitted { .. } | Integrator::Path { .. } => pool.install(|| {
                 render_samples(
                     camera,

@@ -108,10 +108,13 @@ impl Plan {
                     "built in {:.1} ms ({backend})",
                     scene.accel_build_time().as_secs_f64() * 1e3
                 ),
-                "environment" => "not measured".into(),
-                _ => "BENCHMARKS.md 'Path tracer on real scenes': 0.45 us per probe on Embree, \
+                "lanes" => "not measured here; BENCHMARKS.md 'Throughput': lanes against single \
+                            rays on the caustic sphere, the diamond and CompareDispersion"
+                    .into(),
+                "nested media" => "BENCHMARKS.md 'Path tracer on real scenes': 0.45 us per probe on Embree, \
                       8.4 us on the BVH, at each hit on a marked triangle"
                     .into(),
+                _ => "not measured".into(),
             });
         }
         Ok(())

@@ -16,6 +16,8 @@
 //!   triangles use (and, for glTF, images in the file).
 //! - **acceleration**: triangles and meshes built into the backend (only meshes instanced by
 //!   a node are loaded).
+//! - **lanes**: whether the path tracer traces its camera paths in packets of 8 or 16
+//!   ([`crate::integrator::path::LaneWidth`]); other methods and the BVH trace single rays.
 //! - **environment**: none, uniform (uniform sphere sampling) or a map (importance-sampled).
 //! - **nested media**: contact probes at hits on triangles marked
 //!   [`crate::scene::Triangle::TOUCHES`] by `scene/contact.rs` (and `scene/thin.rs`).
@@ -213,6 +215,7 @@ impl Plan {
                 stages::volumes(&ev),
                 stages::textures(&ev),
                 stages::acceleration(scene),
+                stages::lanes(scene, resolved),
                 stages::environment(scene),
                 stages::nested_media(&ev),
             ],

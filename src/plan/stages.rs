@@ -3,6 +3,7 @@
 //! order and meaning of the stages are the parent module's.
 
 use super::{SpectralMode, Stage, CAUSTIC_PROBE_PHOTONS};
+use crate::integrator::path::LaneWidth;
 use crate::integrator::Method;
 use crate::light::env::Environment;
 use crate::material::Material;
@@ -236,6 +237,51 @@ pub(super) fn acceleration(scene: &Scene) -> Stage {
             scene.meshes().len(),
             scene.backend_name()
         ),
+        cost: None,
+    }
+}
+
+/// Lanes: whether the path tracer runs its camera paths in packets
+/// ([`crate::integrator::path::LaneWidth`]) and why not otherwise.
+pub(super) fn lanes(scene: &Scene, method: Method) -> Stage {
+    let width = LaneWidth::choose(scene);
+    let (used, reason) = match (method, width) {
+        (_, Err(e)) => (false, format!("single rays ({e})")),
+        (Method::Path, Ok(LaneWidth::Scalar)) => (
+            false,
+            format!(
+                "single rays: {} has no packet traversal (or IRIS_LANES=off)",
+                scene.backend_name()
+            ),
+        ),
+        (Method::Path, Ok(w)) => {
+            let n = w.lanes();
+            let queries = match scene.accel() {
+                crate::accel::Accel::Bvh(_) => "the BVH answers lane by lane".to_string(),
+                #[allow(unreachable_patterns)]
+                _ => format!("rtcIntersect{n} / rtcOccluded{n}"),
+            };
+            (
+                true,
+                format!(
+                    "{n} camera paths per packet ({queries}), shading per lane; the image is \
+                     the single-ray image"
+                ),
+            )
+        }
+        (m, Ok(_)) => (
+            false,
+            format!(
+                "single rays: --method {} traces one ray at a time (only the path tracer \
+                 runs in lanes)",
+                m.name()
+            ),
+        ),
+    };
+    Stage {
+        name: "lanes",
+        used,
+        reason,
         cost: None,
     }
 }

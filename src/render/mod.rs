@@ -42,7 +42,7 @@ pub use film::{Film, FilmTile, TILE, TILE_PIXELS};
 pub use progress::{
     estimate_note, progress_bar, relative_error_estimate, Control, Observer, Progress, Setup,
 };
-pub use samples::{pixel_sampler, primary_ray, render_samples};
+pub use samples::{pixel_sampler, primary_ray, render_batches, render_samples, Job, Starts};
 
 /// What to render.
 #[derive(Debug, Clone)]

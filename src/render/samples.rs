@@ -44,6 +44,55 @@ pub fn pixel_sampler(settings: &RenderSettings, spp: u64) -> PixelSampler {
     )
 }
 
+/// One camera sample to take: sample `k` (absolute index) of pixel (`x`, `y`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Job {
+    /// Pixel column.
+    pub x: u32,
+    /// Pixel row.
+    pub y: u32,
+    /// The pixel's sample index.
+    pub k: u64,
+}
+
+/// How a [`Job`] begins, the same for every estimator: the render's sampler restarted at
+/// the job's sample, its camera ray ([`primary_ray`]) and, in spectral transport, its
+/// hero-wavelength variate (0 in RGB), drawn in that order.
+pub struct Starts<'a> {
+    camera: &'a Camera,
+    sampler: &'a PixelSampler,
+    centre: bool,
+    spectral: bool,
+}
+
+impl Starts<'_> {
+    /// A context for [`Starts::start`] to restart (its numbers are those of sample 0 of
+    /// pixel (0, 0) until then).
+    pub fn context(&self) -> Context {
+        Context {
+            sample: self.sampler.start(0, 0, 0),
+            rays: 0,
+        }
+    }
+
+    /// Starts `job` in `ctx` (its ray count reset): the camera ray and the hero variate.
+    pub fn start(&self, job: Job, ctx: &mut Context) -> (Ray, f32) {
+        self.sampler.restart(&mut ctx.sample, job.x, job.y, job.k);
+        ctx.rays = 0;
+        let ray = primary_ray(self.camera, job.x, job.y, self.centre, &mut ctx.sample);
+        let u_lambda = if self.spectral {
+            ctx.sample.wavelength()
+        } else {
+            0.0
+        };
+        (ray, u_lambda)
+    }
+}
+
+/// Jobs handed to a batch estimator at once (at most; a tile's round is split into
+/// batches of this many, in order).
+pub const BATCH: usize = 512;
+
 /// The sample loop of the per-sample methods: samples k = 0, 1, … per pixel (or the
 /// absolute `range` of a shard), each a jittered camera ray (the pixel centre for a single
 /// sample per pixel) estimated by `estimate(ray, u_lambda, ctx)` (linear RGB), in rounds to
@@ -58,6 +107,29 @@ pub fn render_samples(
     observer: Option<Observer>,
     estimate: impl Fn(&Ray, f32, &mut Context) -> Vec3 + Sync,
 ) -> Result<(Film, RenderStats)> {
+    render_batches(
+        camera,
+        settings,
+        range,
+        setup,
+        observer,
+        one_by_one(estimate),
+    )
+}
+
+/// [`render_samples`] with an estimator of whole batches of jobs:
+/// `estimate(starts, jobs, out)` writes job `i`'s linear RGB to `out[i]` and returns the
+/// rays it traced; it begins each job with [`Starts::start`] and may take them in any
+/// order (the lanes of [`crate::integrator::path`]), as each job's numbers are its own.
+/// The film receives the estimates in job order.
+pub fn render_batches(
+    camera: &Camera,
+    settings: &RenderSettings,
+    range: Option<std::ops::Range<u64>>,
+    setup: Setup,
+    observer: Option<Observer>,
+    estimate: impl Fn(&Starts, &[Job], &mut [Vec3]) -> u64 + Sync,
+) -> Result<(Film, RenderStats)> {
     sample_rounds(
         camera,
         settings,
@@ -69,7 +141,23 @@ pub fn render_samples(
     )
 }
 
-/// [`render_samples`] with rounds of at most `max_round` samples per pixel (tests split
+/// A per-sample estimator as a batch estimator: the jobs one after the other.
+fn one_by_one(
+    estimate: impl Fn(&Ray, f32, &mut Context) -> Vec3 + Sync,
+) -> impl Fn(&Starts, &[Job], &mut [Vec3]) -> u64 + Sync {
+    move |starts, jobs, out| {
+        let mut ctx = starts.context();
+        let mut rays = 0;
+        for (job, l) in jobs.iter().zip(out.iter_mut()) {
+            let (ray, u_lambda) = starts.start(*job, &mut ctx);
+            *l = estimate(&ray, u_lambda, &mut ctx);
+            rays += ctx.rays;
+        }
+        rays
+    }
+}
+
+/// [`render_batches`] with rounds of at most `max_round` samples per pixel (tests split
 /// the rounds with it; the image must not change), and `stop` asked before each tile of a
 /// round after the first (a `true` skips the rest of the round's tiles and ends the
 /// render).
@@ -80,41 +168,36 @@ fn sample_rounds(
     setup: Setup,
     observer: Option<Observer>,
     stop: &(dyn Fn() -> bool + Sync),
-    estimate: impl Fn(&Ray, f32, &mut Context) -> Vec3 + Sync,
+    estimate: impl Fn(&Starts, &[Job], &mut [Vec3]) -> u64 + Sync,
 ) -> Result<(Film, RenderStats)> {
     let target = settings.spp.max(1) as u64;
     let sampler = pixel_sampler(settings, target);
     let schedule = super::schedule(target, range, max_round, false, "rendering");
+    let starts = Starts {
+        camera,
+        sampler: &sampler,
+        centre: target == 1,
+        spectral: settings.spectral,
+    };
     drive(
         settings,
         schedule,
         setup,
         observer,
         stop,
-        |film, k0, k1, env| {
-            Ok(round(
-                camera,
-                &sampler,
-                (target == 1, settings.spectral),
-                film,
-                (k0, k1),
-                env,
-                &estimate,
-            ))
-        },
+        |film, k0, k1, env| Ok(round(&starts, film, (k0, k1), env, &estimate)),
     )
 }
 
 /// Samples `k0..k1` (absolute indices) of every pixel, tiles in parallel (a tile skipped
-/// on a stop request keeps its count).
+/// on a stop request keeps its count); within a tile, pixel by pixel and sample by
+/// sample, in batches of at most [`BATCH`] jobs.
 fn round(
-    camera: &Camera,
-    sampler: &PixelSampler,
-    (centre, spectral): (bool, bool),
+    starts: &Starts,
     film: &mut Film,
     (k0, k1): (u64, u64),
     env: &RoundEnv,
-    estimate: &(impl Fn(&Ray, f32, &mut Context) -> Vec3 + Sync),
+    estimate: &(impl Fn(&Starts, &[Job], &mut [Vec3]) -> u64 + Sync),
 ) -> Round {
     let (rays, bad) = film
         .par_tiles_mut()
@@ -123,26 +206,23 @@ fn round(
                 return (0, 0);
             }
             let (mut rays, mut bad) = (0, 0);
-            let mut ctx = Context {
-                sample: sampler.start(0, 0, 0),
-                rays: 0,
-            };
-            for i in 0..tile.slots() {
-                let Some((x, y)) = tile.pixel(i) else {
-                    continue;
-                };
-                for k in k0..k1 {
-                    sampler.restart(&mut ctx.sample, x, y, k);
-                    ctx.rays = 0;
-                    let ray = primary_ray(camera, x, y, centre, &mut ctx.sample);
-                    let u_lambda = if spectral {
-                        ctx.sample.wavelength()
-                    } else {
-                        0.0
-                    };
-                    let l = estimate(&ray, u_lambda, &mut ctx);
-                    tile.add(i, k, l.as_dvec3(), &mut bad);
-                    rays += ctx.rays;
+            let pixels: Vec<_> = (0..tile.slots())
+                .filter_map(|i| tile.pixel(i).map(|p| (i, p)))
+                .collect();
+            let all = pixels
+                .into_iter()
+                .flat_map(|(i, (x, y))| (k0..k1).map(move |k| (i, Job { x, y, k })));
+            let (mut batch, mut jobs) = (Vec::with_capacity(BATCH), Vec::with_capacity(BATCH));
+            let mut out = vec![Vec3::ZERO; BATCH];
+            let mut all = all.peekable();
+            while all.peek().is_some() {
+                batch.clear();
+                batch.extend(all.by_ref().take(BATCH));
+                jobs.clear();
+                jobs.extend(batch.iter().map(|&(_, j)| j));
+                rays += estimate(starts, &jobs, &mut out[..jobs.len()]);
+                for (&(i, job), l) in batch.iter().zip(&out) {
+                    tile.add(i, job.k, l.as_dvec3(), &mut bad);
                 }
             }
             tile.done_until(k1);
@@ -237,14 +317,14 @@ mod tests {
                     Setup::now(),
                     Some(&mut obs),
                     stop,
-                    |ray, u, ctx| {
+                    one_by_one(|ray, u, ctx| {
                         if ray.dir.x > 0.3 && u < 0.01 {
                             // A numerical failure on a few samples: counted, never painted.
                             Vec3::NAN
                         } else {
                             Vec3::new(ctx.sample.get_1d(9), u, ray.dir.x)
                         }
-                    },
+                    }),
                 )
             })
             .unwrap();

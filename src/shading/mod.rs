@@ -20,4 +20,4 @@ pub mod step;
 
 pub use direct::direct_light;
 pub use material_bsdf::{bsdf_at, interface, is_diffuse_like, lane_etas, GLOSSY_ALPHA};
-pub use step::{arrive, meet, sample_bsdf, Arrival, Event, Surface, MAX_DELTA_BOUNCES};
+pub use step::{arrival, arrive, meet, sample_bsdf, Arrival, Event, Surface, MAX_DELTA_BOUNCES};

@@ -85,7 +85,19 @@ pub fn arrive<'s, C: Carrier>(
     rays: &mut u64,
 ) -> Option<Arrival<'s, C>> {
     *rays += 1;
-    let hit = scene.intersect(ray)?;
+    arrival(scene, scene.intersect(ray), media, lambda)
+}
+
+/// [`arrive`] for a ray already traced ([`Scene::intersect`] or a lane of
+/// [`Scene::intersect_packet`]) to `hit`.
+#[inline]
+pub fn arrival<'s, C: Carrier>(
+    scene: &'s Scene,
+    hit: Option<SurfaceHit>,
+    media: &MediumStack,
+    lambda: &C::Lambda,
+) -> Option<Arrival<'s, C>> {
+    let hit = hit?;
     let transmittance = match media.current() {
         Some(m) => scene.materials()[m as usize].transmittance_at::<C>(hit.t, lambda),
         None => C::ONE,

@@ -1,0 +1,227 @@
+//! The path tracer in lanes: `N` camera samples (8 or 16, the packet width of
+//! [`crate::accel::Accel::packet_width`]) walk through one bounce loop together. Each turn
+//! of the loop traces the lanes' rays as one packet ([`Scene::intersect_packet`], Embree
+//! `rtcIntersect8/16`), takes each lane's vertex with the scalar code ([`vertex::vertex`]),
+//! traces the shadow rays of next-event estimation as one packet
+//! ([`Scene::occluded_packet`]), and adds what they let through. A lane whose path ends
+//! takes the batch's next job at once (refill), so deep glass paths do not leave the
+//! packet empty.
+//!
+//! Nothing about a sample depends on its lane or its neighbours: its numbers are its own
+//! (restarted per job, [`Starts::start`]), the packet queries answer lane by lane exactly
+//! as the single-ray queries do, and [`vertex::Pending::resolve`] adds in the scalar
+//! loop's order. So each estimate equals [`super::radiance`]'s bit for bit, whatever the
+//! width, and images do not change with it (`tests/path_lanes.rs`).
+//!
+//! Shading is scalar per lane; vectorising it across the lanes is the next step.
+//!
+//! Width ([`LaneWidth::choose`]): 8 on Embree, whose `rtcIntersect8` beats 16 on partly
+//! filled packets of incoherent rays (BENCHMARKS.md), and single rays on the BVH, which
+//! answers packets lane by lane (obvhs has no packet traversal). The environment variable
+//! `IRIS_LANES=off|8|16` overrides it for measurements; images do not change.
+
+use super::vertex::{self, Next, Pending, Rules, Walk};
+use super::{CausticSplit, StopAt};
+use crate::accel::packet::{lanes, Coherence, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
+use crate::accel::Accel;
+use crate::error::{Error, Result};
+use crate::render::{Context, Job, Starts};
+use crate::scene::Scene;
+use crate::shading;
+use crate::spectrum::{Carrier, SampledSpectrum};
+use glam::Vec3;
+
+/// How the path tracer runs its camera paths.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LaneWidth {
+    /// One path after the other, single-ray queries.
+    Scalar,
+    /// 8 paths per packet.
+    Eight,
+    /// 16 paths per packet.
+    Sixteen,
+}
+
+impl LaneWidth {
+    /// The width for `scene` on this machine (see the module docs), or what
+    /// `IRIS_LANES` says (`off`, `8` or `16`; anything else is an error naming it).
+    pub fn choose(scene: &Scene) -> Result<LaneWidth> {
+        match std::env::var("IRIS_LANES").ok().filter(|v| !v.is_empty()) {
+            Some(v) => match v.as_str() {
+                "off" => Ok(LaneWidth::Scalar),
+                "8" => Ok(LaneWidth::Eight),
+                "16" => Ok(LaneWidth::Sixteen),
+                _ => Err(Error::Usage(format!(
+                    "environment variable IRIS_LANES={v}: expected off, 8 or 16"
+                ))),
+            },
+            None => Ok(match scene.accel() {
+                Accel::Bvh(_) => LaneWidth::Scalar,
+                #[allow(unreachable_patterns)]
+                _ => LaneWidth::Eight,
+            }),
+        }
+    }
+
+    /// Paths per packet (1 for [`LaneWidth::Scalar`]).
+    pub fn lanes(self) -> usize {
+        match self {
+            LaneWidth::Scalar => 1,
+            LaneWidth::Eight => 8,
+            LaneWidth::Sixteen => 16,
+        }
+    }
+}
+
+/// The plain path tracer's estimate of `jobs` ([`estimate_lanes`] without a caustic
+/// split) at `width` ([`LaneWidth::Scalar`] runs 8 lanes: the caller picks the scalar loop
+/// itself), in spectral or RGB transport.
+pub fn estimate_path(
+    scene: &Scene,
+    rules: (u32, bool),
+    width: LaneWidth,
+    spectral: bool,
+    starts: &Starts,
+    jobs: &[Job],
+    out: &mut [Vec3],
+) -> u64 {
+    fn at<C: Carrier>(
+        scene: &Scene,
+        rules: (u32, bool),
+        width: LaneWidth,
+        (starts, jobs, out): (&Starts, &[Job], &mut [Vec3]),
+    ) -> u64 {
+        let split = CausticSplit::None;
+        match width {
+            LaneWidth::Sixteen => estimate_lanes::<C, 16>(scene, rules, split, starts, jobs, out),
+            _ => estimate_lanes::<C, 8>(scene, rules, split, starts, jobs, out),
+        }
+    }
+    if spectral {
+        at::<SampledSpectrum>(scene, rules, width, (starts, jobs, out))
+    } else {
+        at::<Vec3>(scene, rules, width, (starts, jobs, out))
+    }
+}
+
+/// A camera sample in flight on one lane.
+struct Lane<C: Carrier> {
+    /// Its job's index in the batch.
+    job: usize,
+    /// The wavelengths it started with (the film's conversion reads them).
+    lambda: C::Lambda,
+    /// The path so far.
+    walk: Walk<C>,
+    /// Next-event estimation of its last vertex, waiting for the shadow packet.
+    pending: Option<Pending<C>>,
+    /// Its numbers and ray count.
+    ctx: Context,
+}
+
+/// Estimates `jobs` (linear RGB into `out`, job by job) with the path tracer
+/// ([`super::radiance`] with `max_depth` and `spectral_mis`; `split` as in
+/// [`super::camera_path`]) on `N` lanes; returns the rays traced.
+pub fn estimate_lanes<C: Carrier, const N: usize>(
+    scene: &Scene,
+    (max_depth, spectral_mis): (u32, bool),
+    split: CausticSplit<'_, C>,
+    starts: &Starts,
+    jobs: &[Job],
+    out: &mut [Vec3],
+) -> u64
+where
+    Lanes<N>: PacketWidth,
+{
+    let rules = Rules {
+        max_depth,
+        stop: StopAt::Never,
+        split,
+        spectral_mis,
+    };
+    let mut lanes_: [Lane<C>; N] = std::array::from_fn(|_| Lane {
+        job: 0,
+        lambda: C::sample_lambda(0.0),
+        walk: Walk::new(
+            crate::math::Ray::new(Vec3::ZERO, Vec3::Z),
+            C::sample_lambda(0.0),
+        ),
+        pending: None,
+        ctx: starts.context(),
+    });
+    let mut active: LaneMask = 0;
+    let (mut next_job, mut rays) = (0, 0);
+    let mut packet = RayPacket::<N>::new();
+    let mut raw = HitPacket::<N>::default();
+    loop {
+        for (i, lane) in lanes_.iter_mut().enumerate() {
+            if active & (1 << i) == 0 && next_job < jobs.len() {
+                start(starts, jobs, next_job, lane);
+                next_job += 1;
+                active |= 1 << i;
+            }
+        }
+        if active == 0 {
+            return rays;
+        }
+        for i in lanes(active) {
+            let r = &lanes_[i].walk.ray;
+            packet.set(i, r.origin, r.dir, r.t_max);
+        }
+        packet.set_active(active & !packet.untraceable());
+        // Always Embree's incoherent traversal: its coherent (frustum) traversal visits
+        // the nodes in another order and so breaks exact ties between coplanar overlapping
+        // triangles differently from the single-ray query.
+        scene.intersect_packet(&packet, Coherence::Incoherent, &mut raw);
+        let mut ended: LaneMask = 0;
+        let mut shadows = RayPacket::<N>::new();
+        for i in lanes(active) {
+            let lane = &mut lanes_[i];
+            lane.ctx.rays += 1;
+            let w = &lane.walk;
+            let hit = scene.lane_hit(&w.ray, raw.get(i));
+            let arrival = shading::arrival(scene, hit, &w.st.media, &w.lambda);
+            let (nee, next) = vertex::vertex(
+                scene,
+                &rules,
+                &mut lane.walk,
+                arrival,
+                &mut lane.ctx,
+                &mut None,
+            );
+            if let Some(r) = nee.as_ref().and_then(|p| p.shadow) {
+                shadows.set(i, r.origin, r.dir, r.t_max);
+            }
+            lane.pending = nee;
+            if next == Next::End {
+                ended |= 1 << i;
+            }
+        }
+        let blocked = if shadows.active() != 0 {
+            scene.occluded_packet(&shadows)
+        } else {
+            0
+        };
+        for i in lanes(active) {
+            let lane = &mut lanes_[i];
+            if let Some(p) = lane.pending.take() {
+                p.resolve(blocked & (1 << i) != 0, &mut lane.walk.l);
+            }
+            if ended & (1 << i) != 0 {
+                out[lane.job] = lane.walk.l.to_rgb(&lane.lambda);
+                rays += lane.ctx.rays;
+            }
+        }
+        active &= !ended;
+    }
+}
+
+/// Starts job `job` of `jobs` on `lane`: its numbers, camera ray and wavelengths, as
+/// [`crate::integrator::Integrator`]'s per-sample estimate draws them.
+fn start<C: Carrier>(starts: &Starts, jobs: &[Job], job: usize, lane: &mut Lane<C>) {
+    let (ray, u_lambda) = starts.start(jobs[job], &mut lane.ctx);
+    let lambda = C::sample_lambda(if C::SPECTRAL { u_lambda } else { 0.0 });
+    lane.job = job;
+    lane.lambda = lambda;
+    lane.walk = Walk::new(ray, lambda);
+    lane.pending = None;
+}

@@ -1,0 +1,172 @@
+//! Unidirectional path tracing (`--method path`, Kajiya 1986; pbrt-v4 `PathIntegrator`):
+//! at each non-delta hit, next-event estimation toward one light chosen by the scene's light
+//! sampler ([`crate::light::sampler`]), combined with BSDF sampling
+//! by multiple importance sampling (power heuristic, Veach 1997). Delta bounces (smooth
+//! glass, mirrors) do not use up the `max_depth` budget: they are counted separately up to
+//! [`MAX_DELTA_BOUNCES`], so a gem's internal reflections are not cut short. Russian
+//! roulette on the throughput after three non-delta bounces.
+//!
+//! Each hit is the per-hit step shared with the other loops ([`crate::shading::step`]):
+//! materials become BSDFs ([`crate::bsdf`]) in the local frame of the outward shading
+//! normal, volumes use the path's medium stack for η and Beer–Lambert, and alpha-BLEND
+//! surfaces are passed through with probability 1 − α. Emission, MIS and next-event
+//! estimation are this loop's own. In spectral transport a rough dispersive interface keeps
+//! the 4 wavelengths with spectral MIS ([`crate::shading::spectral_mis`]): the BSDF's f and
+//! pdf there come from [`Surface::sample_mis`] / [`Surface::eval_mis`], and the pdf both
+//! MIS sides use is the hero-marginal one.
+
+mod lanes;
+mod state;
+mod vertex;
+
+pub use lanes::{estimate_lanes, estimate_path, LaneWidth};
+
+use super::Context;
+use crate::bsdf::Bsdf;
+use crate::interaction::SurfaceHit;
+use crate::math::{Frame, Ray};
+use crate::scene::Scene;
+use crate::shading::{self, Surface};
+use crate::spectrum::Carrier;
+use glam::Vec3;
+use vertex::{Next, Rules, Walk};
+
+/// Where a camera path ends (`--method photon` and `sppm` hand the rest to photons).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopAt {
+    /// The plain path tracer: continue until Russian roulette or the depth limit.
+    Never,
+    /// Stop at the first diffuse-like hit ([`is_diffuse_like`]) and return it as a
+    /// [`VisiblePoint`]; its direct light is still estimated here (with full weight, as
+    /// BSDF sampling does not continue).
+    Diffuse,
+}
+
+/// A caustic map's gather at a camera vertex: reflected radiance toward its `wo`
+/// ([`super::caustic::CausticMap::density`]).
+pub type Gather<'a, C> = &'a (dyn Fn(&Surface<C>, &<C as Carrier>::Lambda) -> C + Sync);
+
+/// How the path tracer shares light transport with a caustic photon map (`--method hybrid`,
+/// [`super::caustic`]); the split is Jensen's caustic map in Heckbert's notation.
+#[derive(Clone, Copy)]
+pub enum CausticSplit<'a, C: Carrier> {
+    /// The plain path tracer: every path is counted here.
+    None,
+    /// Paths whose light end starts L S+ D (a caustic light, at least one delta bounce, a
+    /// non-delta vertex) belong to the caustic map ([`super::caustic`]): at the path's
+    /// first non-delta vertex, if its BSDF-sampled bounce would be followed,
+    /// `gather(surface, lambda)` adds the map's reflected radiance (times the path
+    /// throughput), and emission found by BSDF sampling after any non-delta bounce followed
+    /// by ≥ 1 delta bounces is dropped (exactly the paths the map counts), the environment's
+    /// radiance seen by a ray escaping after D S+ included (the environment is a caustic
+    /// light).
+    Map(Gather<'a, C>),
+    /// As `Map`, but D₁ gathers with `through` if the camera reached it through ≥ 1 delta
+    /// bounce or BLEND pass-through, with `direct` if it is seen directly (`None`: nothing);
+    /// light tracing counts the rest ([`super::light_trace`], which proves the split).
+    Mixed {
+        /// The gather at a D₁ seen through delta bounces (the whole map).
+        through: Gather<'a, C>,
+        /// The gather at a D₁ seen directly (the photons light tracing does not splat).
+        direct: Option<Gather<'a, C>>,
+    },
+}
+
+/// The first diffuse-like hit of a camera path: where photons are gathered.
+#[derive(Debug, Clone, Copy)]
+pub struct VisiblePoint<C: Carrier> {
+    /// Position.
+    pub p: Vec3,
+    /// Geometric normal (outward).
+    pub ng: Vec3,
+    /// Frame of the shading normal (the BSDF's frame).
+    pub frame: Frame,
+    /// Direction toward the camera, in `frame`.
+    pub wo: Vec3,
+    /// The BSDF there.
+    pub bsdf: Bsdf<C>,
+    /// Path throughput from the camera to here.
+    pub beta: C,
+    /// The path's wavelengths (hero only if it crossed a dispersive interface).
+    pub lambda: C::Lambda,
+    /// The hit (for spawning final-gather rays).
+    pub hit: SurfaceHit,
+}
+
+/// Radiance along `ray` (the camera is in air) at the sample's wavelengths `lambda`
+/// (nothing in RGB transport); `spectral_mis`: keep the 4 wavelengths at rough dispersive
+/// interfaces ([`crate::shading::spectral_mis`]) rather than the hero only.
+pub fn radiance<C: Carrier>(
+    scene: &Scene,
+    ray: &Ray,
+    max_depth: u32,
+    lambda: C::Lambda,
+    spectral_mis: bool,
+    ctx: &mut Context,
+) -> C {
+    trace(
+        scene,
+        ray,
+        max_depth,
+        lambda,
+        StopAt::Never,
+        CausticSplit::None,
+        spectral_mis,
+        ctx,
+    )
+    .0
+}
+
+/// The path tracer's loop: radiance gathered along the path and, with [`StopAt::Diffuse`],
+/// the visible point where it stopped (none if it escaped, was absorbed or hit the depth
+/// limit first). Each hit is the shared step ([`shading::arrive`], [`Arrival::event`]);
+/// emission is counted on arrival, before BLEND coverage is decided. `split` hands the
+/// caustic paths to a caustic map ([`CausticSplit`]).
+#[allow(clippy::too_many_arguments)]
+pub fn camera_path<C: Carrier>(
+    scene: &Scene,
+    ray: &Ray,
+    max_depth: u32,
+    lambda: C::Lambda,
+    stop: StopAt,
+    split: CausticSplit<'_, C>,
+    ctx: &mut Context,
+) -> (C, Option<VisiblePoint<C>>) {
+    trace(scene, ray, max_depth, lambda, stop, split, false, ctx)
+}
+
+/// [`camera_path`], with spectral MIS at rough dispersive interfaces when `spectral_mis`
+/// (only with [`StopAt::Never`]): the scalar loop, one vertex ([`vertex::vertex`]) after
+/// the other, each shadow ray traced at once.
+#[allow(clippy::too_many_arguments)]
+fn trace<C: Carrier>(
+    scene: &Scene,
+    ray: &Ray,
+    max_depth: u32,
+    lambda: C::Lambda,
+    stop: StopAt,
+    split: CausticSplit<'_, C>,
+    spectral_mis: bool,
+    ctx: &mut Context,
+) -> (C, Option<VisiblePoint<C>>) {
+    let rules = Rules {
+        max_depth,
+        stop,
+        split,
+        spectral_mis: spectral_mis && stop == StopAt::Never,
+    };
+    let mut walk = Walk::new(*ray, lambda);
+    let mut visible = None;
+    loop {
+        let (media, lambda) = (&walk.st.media, &walk.lambda);
+        let arrival = shading::arrive::<C>(scene, &walk.ray, media, lambda, &mut ctx.rays);
+        let (nee, next) = vertex::vertex(scene, &rules, &mut walk, arrival, ctx, &mut visible);
+        if let Some(nee) = nee {
+            let blocked = nee.shadow.is_some_and(|r| scene.occluded(&r));
+            nee.resolve(blocked, &mut walk.l);
+        }
+        if next == Next::End {
+            return (walk.l, visible);
+        }
+    }
+}

@@ -1,0 +1,337 @@
+//! One vertex of a camera path ([`vertex`]), written once for the scalar loop
+//! ([`super::trace`]) and the lanes ([`super::lanes`]): what arrived along the path's ray
+//! (emission with MIS, the environment on escape), next-event estimation, the caustic
+//! map's gather, the BSDF sample and the bounce rules. The shadow ray of next-event
+//! estimation is not traced here: the vertex returns it as [`Pending`], so the lanes can
+//! trace all their shadow rays as one packet; [`Pending::resolve`] then adds to the
+//! radiance exactly what the scalar loop adds, in the same order.
+//!
+//! Units: radiance in the carrier's units (linear RGB or per-wavelength spectral
+//! radiance); frames as in [`crate::shading::step`].
+
+use super::state::{PathState, Prev};
+use super::{CausticSplit, Gather, StopAt, VisiblePoint};
+use crate::bsdf::TransportMode;
+use crate::math::Ray;
+use crate::render::Context;
+use crate::sampler::Bounce;
+use crate::scene::Scene;
+use crate::shading::{is_diffuse_like, lights, Arrival, Event, Surface};
+use crate::spectrum::Carrier;
+use glam::{Vec2, Vec3};
+
+/// Power heuristic with β = 2.
+fn mis(a: f32, b: f32) -> f32 {
+    let (a2, b2) = (a * a, b * b);
+    if a2 + b2 > 0.0 {
+        a2 / (a2 + b2)
+    } else {
+        0.0
+    }
+}
+
+/// How a render's camera paths run: the depth limit, where they stop, how they share
+/// transport with a caustic map, and spectral MIS at rough dispersive interfaces.
+#[derive(Clone, Copy)]
+pub(super) struct Rules<'a, C: Carrier> {
+    /// Non-delta bounces per path.
+    pub max_depth: u32,
+    /// Where a path ends ([`StopAt`]).
+    pub stop: StopAt,
+    /// The share of a caustic map ([`CausticSplit`]).
+    pub split: CausticSplit<'a, C>,
+    /// Keep the 4 wavelengths at rough dispersive interfaces (only with
+    /// [`StopAt::Never`]: the photon methods' visible points keep the hero only, as their
+    /// gather evaluates the BSDF with one η).
+    pub spectral_mis: bool,
+}
+
+/// A camera path between two vertices: the radiance so far, the ray to trace next and
+/// the state the bounce rules read.
+pub(super) struct Walk<C: Carrier> {
+    /// Radiance gathered so far.
+    pub l: C,
+    /// The ray to trace next.
+    pub ray: Ray,
+    /// The path's wavelengths (the hero only past a smooth dispersive interface).
+    pub lambda: C::Lambda,
+    /// Throughput, media, bounce counts.
+    pub st: PathState<C>,
+}
+
+impl<C: Carrier> Walk<C> {
+    /// A path leaving the camera along `ray` at the wavelengths `lambda`.
+    pub fn new(ray: Ray, lambda: C::Lambda) -> Self {
+        Walk {
+            l: C::ZERO,
+            ray,
+            lambda,
+            st: PathState::new(ray.origin),
+        }
+    }
+}
+
+/// What a vertex adds once its shadow ray is answered: `beta × value` (zero if blocked),
+/// then the caustic map's gather.
+pub(super) struct Pending<C: Carrier> {
+    /// The shadow ray of next-event estimation (`None`: nothing to trace, `value` is zero).
+    pub shadow: Option<Ray>,
+    beta: C,
+    value: C,
+    gather: Option<C>,
+}
+
+impl<C: Carrier> Pending<C> {
+    /// Adds the vertex's light to `l`, `blocked` being the shadow ray's answer.
+    #[inline]
+    pub fn resolve(self, blocked: bool, l: &mut C) {
+        let v = if blocked { C::ZERO } else { self.value };
+        *l += self.beta * v;
+        if let Some(g) = self.gather {
+            *l += g;
+        }
+    }
+}
+
+/// What follows a vertex.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Next {
+    /// Trace the walk's (new) ray.
+    Trace,
+    /// The path is over (with [`StopAt::Diffuse`], perhaps at a visible point).
+    End,
+}
+
+/// The environment seen along an escaped ray, times `beta`, MIS-weighted against the light
+/// sampling of the previous bounce (the light sampler's probability of the environment);
+/// `None` without an environment.
+fn escaped<C: Carrier>(
+    scene: &Scene,
+    ray: &Ray,
+    prev: &Prev,
+    beta: C,
+    lambda: &C::Lambda,
+) -> Option<C> {
+    let env = scene.environment()?;
+    let d = ray.dir.normalize();
+    let w = if prev.delta {
+        1.0
+    } else {
+        mis(prev.pdf, lights::environment_pdf(scene, d))
+    };
+    Some(beta * C::illuminant(env.eval(d), lambda) * w)
+}
+
+/// Emission of the surface arrived at (its emitting side only), times `beta`, MIS-weighted
+/// like [`escaped`] with the probability of the emissive group; `None` if it does not emit
+/// toward the path.
+fn emitted<C: Carrier>(
+    scene: &Scene,
+    at: &Arrival<'_, C>,
+    prev: &Prev,
+    beta: C,
+    lambda: &C::Lambda,
+) -> Option<C> {
+    let (hit, mat) = (&at.hit, at.mat);
+    if at.sp.emissive == Vec3::ZERO || !(hit.front_face || mat.desc.double_sided) {
+        return None;
+    }
+    let w = if prev.delta {
+        1.0
+    } else {
+        mis(prev.pdf, lights::area_pdf(scene, hit.prim, prev.p, hit.p))
+    };
+    Some(beta * C::emitted(at.sp.emissive, mat.emitter_shape(), lambda) * w)
+}
+
+/// A light sample's contribution and the shadow ray that decides it: `value` counts if
+/// nothing blocks `shadow`; with no shadow ray, `value` is zero.
+struct LightSample<C: Carrier> {
+    shadow: Option<Ray>,
+    value: C,
+}
+
+impl<C: Carrier> LightSample<C> {
+    const NONE: Self = LightSample {
+        shadow: None,
+        value: C::ZERO,
+    };
+}
+
+/// Next-event estimation at `s`: one light, chosen by the scene's light sampler
+/// ([`Scene::light_sampler`](crate::scene::Scene)), with the shadow ray left to the caller
+/// (counted in `rays` here). With `use_mis` false the light sample gets the full weight (the
+/// path stops here, so BSDF sampling will not find the light).
+fn next_event<C: Carrier>(
+    scene: &Scene,
+    s: &Surface<C>,
+    lambda: &C::Lambda,
+    use_mis: bool,
+    u: &mut Bounce<'_>,
+    rays: &mut u64,
+) -> LightSample<C> {
+    let hit = &s.hit;
+    let sampler = &scene.light_sampler();
+    if sampler.is_empty() {
+        return LightSample::NONE;
+    }
+    // Numbers a light does not use are skipped ([`Bounce::skip_light_choice`]).
+    let u_choice = if sampler.lights().len() > 1 {
+        u.light_choice()
+    } else {
+        u.skip_light_choice();
+        0.0
+    };
+    let Some(choice) = sampler.sample(u_choice) else {
+        return LightSample::NONE;
+    };
+    let p_sel = choice.pmf;
+    let (reads_position, reads_member) = lights::numbers_read(choice.light);
+    let up = if reads_position {
+        u.light_position()
+    } else {
+        u.skip_light_position();
+        Vec2::ZERO
+    };
+    let uc = if reads_member {
+        u.light_member()
+    } else {
+        u.skip_light_member();
+        0.0
+    };
+    let Some(ls) = lights::sample(scene, hit, choice.light, uc, up) else {
+        return LightSample::NONE;
+    };
+    // The light's pdf includes choosing it ([`lights::area_pdf`] and
+    // [`lights::environment_pdf`] give the same for a BSDF-sampled direction).
+    let light_pdf = ls.pdf.map(|p| p * p_sel);
+    let wi_local = s.frame.to_local(ls.wi);
+    // Per lane with the hero-marginal pdf at a rough dispersive interface (spectral MIS).
+    let (f, bsdf_pdf) = s.eval_mis(wi_local, TransportMode::Radiance, lambda);
+    if f == C::ZERO {
+        return LightSample::NONE;
+    }
+    *rays += 1;
+    let w = match light_pdf {
+        Some(lp) if use_mis => mis(lp, bsdf_pdf),
+        _ => 1.0,
+    };
+    let incident = C::emitted(ls.incident / p_sel, ls.shape, lambda);
+    LightSample {
+        shadow: Some(ls.shadow),
+        value: f * incident * (wi_local.z.abs() * w),
+    }
+}
+
+/// The caustic map's gather at a path's first non-delta vertex under `split`: the whole
+/// map, or with [`CausticSplit::Mixed`] the part for a vertex seen `direct`ly or through
+/// delta bounces.
+fn split_gather<'a, C: Carrier>(split: CausticSplit<'a, C>, direct: bool) -> Option<Gather<'a, C>> {
+    match split {
+        CausticSplit::None => None,
+        CausticSplit::Map(g) => Some(g),
+        CausticSplit::Mixed { through, direct: d } => {
+            if direct {
+                d
+            } else {
+                Some(through)
+            }
+        }
+    }
+}
+
+/// The vertex of `walk` at `arrival` (its ray's hit; `None` if the ray escaped): adds what
+/// arrives there to `walk.l`, samples the next direction into `walk.ray`, and returns the
+/// next-event estimate waiting for its shadow ray, and what follows; a path that stops at
+/// its first diffuse-like vertex ([`StopAt::Diffuse`]) writes it to `visible` and ends. Each hit is the shared
+/// step ([`crate::shading::arrive`], [`Arrival::event`]); emission is counted on arrival,
+/// before BLEND coverage is decided; `rules.split` hands the caustic paths to a caustic
+/// map ([`CausticSplit`]).
+pub(super) fn vertex<C: Carrier>(
+    scene: &Scene,
+    rules: &Rules<'_, C>,
+    walk: &mut Walk<C>,
+    arrival: Option<Arrival<'_, C>>,
+    ctx: &mut Context,
+    visible: &mut Option<VisiblePoint<C>>,
+) -> (Option<Pending<C>>, Next) {
+    let st = &mut walk.st;
+    let caustic = st.closes_caustic(&rules.split);
+    let Some(at) = &arrival else {
+        let e = escaped(scene, &walk.ray, &st.prev, st.beta, &walk.lambda);
+        if let (Some(e), false) = (e, caustic) {
+            walk.l += e;
+        }
+        return (None, Next::End);
+    };
+    st.beta *= at.transmittance;
+    if let (Some(e), false) = (emitted(scene, at, &st.prev, st.beta, &walk.lambda), caustic) {
+        walk.l += e;
+    }
+    let mut u = ctx.sample.bounce(st.vertex);
+    let ev = if rules.spectral_mis {
+        at.event_lanes(scene, st.media, &mut st.beta, &mut walk.lambda, &mut u)
+    } else {
+        at.event(scene, st.media, &mut st.beta, &mut walk.lambda, &mut u)
+    };
+    // By reference: the surface stays where `event` built it.
+    let s = match &ev {
+        Event::PassThrough(next) => {
+            walk.ray = *next;
+            st.direct = false;
+            return (None, Next::Trace);
+        }
+        Event::Scatter(s) => s,
+    };
+    let lambda = &walk.lambda;
+    if rules.stop == StopAt::Diffuse && is_diffuse_like(&s.bsdf) {
+        let ls = next_event(scene, s, lambda, false, &mut u, &mut ctx.rays);
+        *visible = Some(VisiblePoint {
+            p: s.hit.p,
+            ng: s.hit.ng,
+            frame: s.frame,
+            wo: s.wo,
+            bsdf: s.bsdf,
+            beta: st.beta,
+            lambda: *lambda,
+            hit: s.hit,
+        });
+        return (Some(pending(st.beta, ls, None)), Next::End);
+    }
+    let mut nee = None;
+    if !s.bsdf.is_delta() {
+        let ls = next_event(scene, s, lambda, true, &mut u, &mut ctx.rays);
+        let first = st.since_diffuse.is_none();
+        let gather = split_gather(rules.split, st.direct)
+            .filter(|_| first && st.depth + 1 < rules.max_depth)
+            .map(|gather| st.beta * gather(s, lambda));
+        nee = Some(pending(st.beta, ls, gather));
+    }
+    let uc = u.bsdf_lobe();
+    let ud = if s.bsdf.samples_direction() {
+        u.bsdf_direction()
+    } else {
+        u.skip_bsdf_direction();
+        Vec2::ZERO
+    };
+    let Some(bs) = s.sample_mis(uc, ud, TransportMode::Radiance, &mut walk.lambda) else {
+        return (nee, Next::End);
+    };
+    if !st.advance(s, &bs, rules.max_depth, &mut u) {
+        return (nee, Next::End);
+    }
+    walk.ray = s.spawn(bs.wi);
+    st.vertex += 1;
+    st.direct = false;
+    (nee, Next::Trace)
+}
+
+/// A light sample at throughput `beta`, with the gather to add after it.
+fn pending<C: Carrier>(beta: C, ls: LightSample<C>, gather: Option<C>) -> Pending<C> {
+    Pending {
+        shadow: ls.shadow,
+        beta,
+        value: ls.value,
+        gather,
+    }
+}
