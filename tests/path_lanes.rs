@@ -15,16 +15,17 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// Renders `scene` with the path tracer at `lanes` (`off`, `8`, `16`) on `accel` and
-/// returns the EXR's bytes, checking that the plan names that loop.
-fn render(scene: &Path, lanes: &str, accel: &str, out: &Path) -> Vec<u8> {
+/// Renders `scene` with `method` (`--method` and its flags: the path tracer, or the hybrid,
+/// whose camera paths run in lanes too) at `lanes` (`off`, `8`, `16`) on `accel` and returns the EXR's bytes,
+/// checking that the plan names that loop.
+fn render_with(scene: &Path, method: &[&str], lanes: &str, accel: &str, out: &Path) -> Vec<u8> {
     let o = Command::new(env!("CARGO_BIN_EXE_iris"))
         .env("IRIS_LANES", lanes)
         .arg("render")
         .arg(scene)
-        .args([
-            "--method", "path", "--size", "40x30", "--spp", "3", "--seed", "11",
-        ])
+        .arg("--method")
+        .args(method)
+        .args(["--size", "40x30", "--spp", "3", "--seed", "11"])
         .args([
             "--denoise",
             "off",
@@ -54,6 +55,11 @@ fn render(scene: &Path, lanes: &str, accel: &str, out: &Path) -> Vec<u8> {
         scene.display()
     );
     std::fs::read(out).expect("read the EXR")
+}
+
+/// [`render_with`] the path tracer.
+fn render(scene: &Path, lanes: &str, accel: &str, out: &Path) -> Vec<u8> {
+    render_with(scene, &["path"], lanes, accel, out)
 }
 
 /// Every scene of `scenes`: the lanes' EXRs equal the single-ray EXR, on each backend of
@@ -94,6 +100,34 @@ fn lanes_equal_single_rays_on_the_shared_assets() {
     };
     let scenes = common::files_with_ext(&shared, &["glb", "gltf", "obj"]);
     check("lanes_shared", &scenes, &[("auto", &["8", "16"])]);
+}
+
+/// The hybrid's camera paths (caustic map gathered at the first diffuse vertex, light
+/// tracing's split with `--caustics mixed`) in lanes equal them on single rays.
+#[test]
+fn hybrid_camera_paths_in_lanes_equal_single_rays() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets");
+    let dir = common::scratch_dir("lanes_hybrid");
+    let runs: [(&str, &[&str]); 4] = [
+        ("scenes/gem_caustics.glb", &["hybrid"]),
+        (
+            "scenes/gem_caustics.glb",
+            &["hybrid", "--caustics", "mixed"],
+        ),
+        (
+            "paper/fig4_5_1_caustics.glb",
+            &["hybrid", "--caustics", "light"],
+        ),
+        ("gems/oval_ruby.glb", &["hybrid"]),
+    ];
+    for (rel, method) in runs {
+        let scene = root.join(rel);
+        let single = render_with(&scene, method, "off", "auto", &dir.join("off.exr"));
+        for w in ["8", "16"] {
+            let lanes = render_with(&scene, method, w, "auto", &dir.join(format!("{w}.exr")));
+            assert!(lanes == single, "{rel} {method:?}: {w} lanes differ");
+        }
+    }
 }
 
 #[test]

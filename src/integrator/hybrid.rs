@@ -34,8 +34,10 @@
 
 use super::caustic::{self, CausticMap};
 use super::light_trace::{self, Splatter};
+use super::pass_paths::PassPaths;
+use super::path::LaneWidth;
 use super::path::{CausticSplit, StopAt};
-use super::sppm::{first_radius, pass_wavelength_variate, PassPaths};
+use super::sppm::{first_radius, pass_wavelength_variate};
 use super::{CausticMode, CausticSettings};
 use crate::camera::Camera;
 use crate::error::Result;
@@ -88,6 +90,7 @@ fn run<C: Carrier>(
     range: Option<std::ops::Range<u64>>,
     observer: Option<Observer>,
 ) -> Result<(Film, RenderStats)> {
+    let lanes = LaneWidth::choose(scene)?;
     let pixels = u64::from(settings.width) * u64::from(settings.height);
     let n_photons = caustic::photons_per_pass(cs.photons, pixels);
     let emitter = caustic::emitter(scene);
@@ -167,7 +170,7 @@ fn run<C: Carrier>(
                 scene,
                 camera,
                 max_depth,
-                settings,
+                (settings, lanes),
                 (pass, lambda),
                 (&map, image.as_deref(), cs.mode),
                 film,
@@ -189,7 +192,7 @@ fn camera_pass<C: Carrier>(
     scene: &Scene,
     camera: &Camera,
     max_depth: u32,
-    settings: &RenderSettings,
+    (settings, lanes): (&RenderSettings, LaneWidth),
     (pass, lambda): (u32, C::Lambda),
     (map, splats, mode): (&CausticMap, Option<&[Vec3]>, CausticMode),
     film: &mut Film,
@@ -216,6 +219,7 @@ fn camera_pass<C: Carrier>(
         lambda,
         stop: StopAt::Never,
         split,
+        lanes,
     };
     let width = settings.width as usize;
     let mut nothing = vec![(); film.slots()];

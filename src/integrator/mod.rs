@@ -5,6 +5,7 @@
 pub mod caustic;
 pub mod hybrid;
 pub mod light_trace;
+mod pass_paths;
 pub mod path;
 pub mod photon_map;
 mod settings;

@@ -46,8 +46,9 @@
 //! aimed at the caustic makers ([`crate::photon::emit::DEFAULT_AIM`], unbiased); its path
 //! after emission draws from `Rng::new(&[seed, pass, i, 0x9E07])`.
 
-use super::path::{self, StopAt, VisiblePoint};
-use super::{Context, SppmSettings, StoreBudget, MAX_PHOTONS};
+use super::pass_paths::PassPaths;
+use super::path::{self, LaneWidth, StopAt, VisiblePoint};
+use super::{SppmSettings, StoreBudget, MAX_PHOTONS};
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::camera::Camera;
 use crate::error::Result;
@@ -57,10 +58,9 @@ use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
 use crate::render::{
-    drive, guard, pixel_sampler, primary_ray, Film, Observer, RenderSettings, RenderStats, Round,
-    Setup, TILE_PIXELS,
+    drive, guard, pixel_sampler, Film, Observer, RenderSettings, RenderStats, Round, Setup,
+    TILE_PIXELS,
 };
-use crate::sampler::PixelSampler;
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::{Vec2, Vec3};
@@ -277,73 +277,12 @@ fn camera_pass<C: Carrier>(
         lambda,
         stop: StopAt::Diffuse,
         split: path::CausticSplit::None,
+        lanes: LaneWidth::Scalar,
     };
     paths.trace(film, vps, false, |_, l, vp, slot| {
         *slot = vp;
         l.to_rgb(&lambda)
     })
-}
-
-/// The camera side of one pass of a progressive photon method (SPPM, the hybrid): one path
-/// per pixel, from the pixel's sample `pass` of `sampler` through [`primary_ray`] and
-/// [`path::camera_path`] with `stop` and `split`, at the pass's wavelengths `lambda`.
-pub(super) struct PassPaths<'a, C: Carrier> {
-    pub scene: &'a Scene,
-    pub camera: &'a Camera,
-    pub sampler: PixelSampler,
-    pub max_depth: u32,
-    pub pass: u32,
-    pub lambda: C::Lambda,
-    pub stop: StopAt,
-    pub split: path::CausticSplit<'a, C>,
-}
-
-impl<C: Carrier> PassPaths<'_, C> {
-    /// Traces every pixel's path, tiles in parallel, and adds `keep((x, y), L, visible
-    /// point, slot)` (the pixel's RGB) to the film's half `pass mod 2`. `slots` has one
-    /// entry per film slot, handed to `keep` (a zero-sized type when it keeps nothing);
-    /// with `done`, every tile is then marked done up to this pass. Returns the rays and bad
-    /// samples.
-    pub fn trace<S: Send>(
-        &self,
-        film: &mut Film,
-        slots: &mut [S],
-        done: bool,
-        keep: impl Fn((u32, u32), C, Option<VisiblePoint<C>>, &mut S) -> Vec3 + Sync,
-    ) -> (u64, u64) {
-        let k = u64::from(self.pass);
-        film.par_tiles_mut()
-            .zip(slots.par_chunks_mut(TILE_PIXELS))
-            .map(|(mut tile, tile_slots)| {
-                let (mut rays, mut bad) = (0, 0);
-                for (i, slot) in tile_slots.iter_mut().enumerate() {
-                    let Some((x, y)) = tile.pixel(i) else {
-                        continue;
-                    };
-                    let mut ctx = Context {
-                        sample: self.sampler.start(x, y, k),
-                        rays: 0,
-                    };
-                    let ray = primary_ray(self.camera, x, y, false, &mut ctx.sample);
-                    let (l, vp) = path::camera_path::<C>(
-                        self.scene,
-                        &ray,
-                        self.max_depth,
-                        self.lambda,
-                        self.stop,
-                        self.split,
-                        &mut ctx,
-                    );
-                    tile.add(i, k, keep((x, y), l, vp, slot).as_dvec3(), &mut bad);
-                    rays += ctx.rays;
-                }
-                if done {
-                    tile.done_until(k + 1);
-                }
-                (rays, bad)
-            })
-            .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1))
-    }
 }
 
 /// The first radius of a progressive pass sequence: 2 pixel footprints at the median

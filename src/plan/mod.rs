@@ -16,8 +16,9 @@
 //!   triangles use (and, for glTF, images in the file).
 //! - **acceleration**: triangles and meshes built into the backend (only meshes instanced by
 //!   a node are loaded).
-//! - **lanes**: whether the path tracer traces its camera paths in packets of 8 or 16
-//!   ([`crate::integrator::path::LaneWidth`]); other methods and the BVH trace single rays.
+//! - **lanes**: whether the path tracer and the hybrid trace their camera paths in packets
+//!   of 8 or 16 ([`crate::integrator::path::LaneWidth`]); other methods and the BVH trace
+//!   single rays.
 //! - **environment**: none, uniform (uniform sphere sampling) or a map (importance-sampled).
 //! - **nested media**: contact probes at hits on triangles marked
 //!   [`crate::scene::Triangle::TOUCHES`] by `scene/contact.rs` (and `scene/thin.rs`).

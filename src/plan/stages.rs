@@ -241,20 +241,21 @@ pub(super) fn acceleration(scene: &Scene) -> Stage {
     }
 }
 
-/// Lanes: whether the path tracer runs its camera paths in packets
+/// Lanes: whether the path tracer (or the hybrid's camera side) runs its camera paths in
+/// packets
 /// ([`crate::integrator::path::LaneWidth`]) and why not otherwise.
 pub(super) fn lanes(scene: &Scene, method: Method) -> Stage {
     let width = LaneWidth::choose(scene);
     let (used, reason) = match (method, width) {
         (_, Err(e)) => (false, format!("single rays ({e})")),
-        (Method::Path, Ok(LaneWidth::Scalar)) => (
+        (Method::Path | Method::Hybrid, Ok(LaneWidth::Scalar)) => (
             false,
             format!(
                 "single rays: {} has no packet traversal (or IRIS_LANES=off)",
                 scene.backend_name()
             ),
         ),
-        (Method::Path, Ok(w)) => {
+        (Method::Path | Method::Hybrid, Ok(w)) => {
             let n = w.lanes();
             let queries = match scene.accel() {
                 crate::accel::Accel::Bvh(_) => "the BVH answers lane by lane".to_string(),
@@ -272,8 +273,8 @@ pub(super) fn lanes(scene: &Scene, method: Method) -> Stage {
         (m, Ok(_)) => (
             false,
             format!(
-                "single rays: --method {} traces one ray at a time (only the path tracer \
-                 runs in lanes)",
+                "single rays: --method {} traces one ray at a time (the path tracer and the \
+                 hybrid's camera paths run in lanes)",
                 m.name()
             ),
         ),

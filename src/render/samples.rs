@@ -65,7 +65,23 @@ pub struct Starts<'a> {
     spectral: bool,
 }
 
-impl Starts<'_> {
+impl<'a> Starts<'a> {
+    /// Jobs through `camera` from the numbers of `sampler`: each camera ray through the
+    /// pixel centre when `centre`, else jittered; a hero variate drawn when `spectral`.
+    pub fn new(
+        camera: &'a Camera,
+        sampler: &'a PixelSampler,
+        centre: bool,
+        spectral: bool,
+    ) -> Self {
+        Starts {
+            camera,
+            sampler,
+            centre,
+            spectral,
+        }
+    }
+
     /// A context for [`Starts::start`] to restart (its numbers are those of sample 0 of
     /// pixel (0, 0) until then).
     pub fn context(&self) -> Context {

@@ -1,4 +1,5 @@
-//! The path tracer in lanes: `N` camera samples (8 or 16, the packet width of
+//! The path tracer in lanes (`--method path`, and the hybrid's camera paths through
+//! [`crate::integrator::pass_paths`]): `N` camera samples (8 or 16, the packet width of
 //! [`crate::accel::Accel::packet_width`]) walk through one bounce loop together. Each turn
 //! of the loop traces the lanes' rays as one packet ([`Scene::intersect_packet`], Embree
 //! `rtcIntersect8/16`), takes each lane's vertex with the scalar code ([`vertex::vertex`]),
@@ -92,9 +93,12 @@ pub fn estimate_path(
         (starts, jobs, out): (&Starts, &[Job], &mut [Vec3]),
     ) -> u64 {
         let split = CausticSplit::None;
+        let rgb = |i: usize, l: C, lambda: &C::Lambda| out[i] = l.to_rgb(lambda);
         match width {
-            LaneWidth::Sixteen => estimate_lanes::<C, 16>(scene, rules, split, starts, jobs, out),
-            _ => estimate_lanes::<C, 8>(scene, rules, split, starts, jobs, out),
+            LaneWidth::Sixteen => {
+                estimate_lanes::<C, 16>(scene, rules, split, starts, jobs, None, rgb)
+            }
+            _ => estimate_lanes::<C, 8>(scene, rules, split, starts, jobs, None, rgb),
         }
     }
     if spectral {
@@ -118,16 +122,19 @@ struct Lane<C: Carrier> {
     ctx: Context,
 }
 
-/// Estimates `jobs` (linear RGB into `out`, job by job) with the path tracer
-/// ([`super::radiance`] with `max_depth` and `spectral_mis`; `split` as in
-/// [`super::camera_path`]) on `N` lanes; returns the rays traced.
+/// Estimates `jobs` with the path tracer ([`super::radiance`] with `max_depth` and
+/// `spectral_mis`; `split` as in [`super::camera_path`]) on `N` lanes, at the wavelengths
+/// `lambda` (the pass's of a photon method) or, with `None`, at wavelengths drawn from each
+/// job's hero variate; `emit(i, L, wavelengths)` receives job `i`'s radiance and the
+/// wavelengths it started with, in the order the paths end. Returns the rays traced.
 pub fn estimate_lanes<C: Carrier, const N: usize>(
     scene: &Scene,
     (max_depth, spectral_mis): (u32, bool),
     split: CausticSplit<'_, C>,
     starts: &Starts,
     jobs: &[Job],
-    out: &mut [Vec3],
+    lambda: Option<C::Lambda>,
+    mut emit: impl FnMut(usize, C, &C::Lambda),
 ) -> u64
 where
     Lanes<N>: PacketWidth,
@@ -155,7 +162,7 @@ where
     loop {
         for (i, lane) in lanes_.iter_mut().enumerate() {
             if active & (1 << i) == 0 && next_job < jobs.len() {
-                start(starts, jobs, next_job, lane);
+                start(starts, (jobs, next_job), lambda, lane);
                 next_job += 1;
                 active |= 1 << i;
             }
@@ -207,7 +214,7 @@ where
                 p.resolve(blocked & (1 << i) != 0, &mut lane.walk.l);
             }
             if ended & (1 << i) != 0 {
-                out[lane.job] = lane.walk.l.to_rgb(&lane.lambda);
+                emit(lane.job, lane.walk.l, &lane.lambda);
                 rays += lane.ctx.rays;
             }
         }
@@ -215,11 +222,17 @@ where
     }
 }
 
-/// Starts job `job` of `jobs` on `lane`: its numbers, camera ray and wavelengths, as
-/// [`crate::integrator::Integrator`]'s per-sample estimate draws them.
-fn start<C: Carrier>(starts: &Starts, jobs: &[Job], job: usize, lane: &mut Lane<C>) {
+/// Starts job `job` of `jobs` on `lane`: its numbers, camera ray and wavelengths (`fixed`,
+/// or as [`crate::integrator::Integrator`]'s per-sample estimate draws them).
+fn start<C: Carrier>(
+    starts: &Starts,
+    (jobs, job): (&[Job], usize),
+    fixed: Option<C::Lambda>,
+    lane: &mut Lane<C>,
+) {
     let (ray, u_lambda) = starts.start(jobs[job], &mut lane.ctx);
-    let lambda = C::sample_lambda(if C::SPECTRAL { u_lambda } else { 0.0 });
+    let lambda =
+        fixed.unwrap_or_else(|| C::sample_lambda(if C::SPECTRAL { u_lambda } else { 0.0 }));
     lane.job = job;
     lane.lambda = lambda;
     lane.walk = Walk::new(ray, lambda);

@@ -1,0 +1,142 @@
+//! The camera side of one pass of a progressive photon method (SPPM, the hybrid): one path
+//! per pixel from the pixel's sample `pass`, at the pass's wavelengths, added to the film's
+//! half `pass mod 2`. Tiles run in parallel. Within a tile the paths run one after the other,
+//! or for the hybrid in lanes ([`path::estimate_lanes`]), which give the same estimates bit
+//! for bit. SPPM's paths stop at a visible point, which the lanes do not return, so SPPM
+//! stays on single rays.
+//!
+//! Units: linear RGB radiance on the film; the carrier `C` along the paths.
+
+use super::path::{self, LaneWidth, StopAt, VisiblePoint};
+use super::Context;
+use crate::camera::Camera;
+use crate::render::{primary_ray, Film, FilmTile, Job, Starts, TILE_PIXELS};
+use crate::sampler::PixelSampler;
+use crate::scene::Scene;
+use crate::spectrum::Carrier;
+use glam::Vec3;
+use rayon::prelude::*;
+
+/// The camera side of one pass of a progressive photon method (SPPM, the hybrid): one path
+/// per pixel, from the pixel's sample `pass` of `sampler` through [`primary_ray`] and
+/// [`path::camera_path`] with `stop` and `split`, at the pass's wavelengths `lambda`.
+pub(super) struct PassPaths<'a, C: Carrier> {
+    pub scene: &'a Scene,
+    pub camera: &'a Camera,
+    pub sampler: PixelSampler,
+    pub max_depth: u32,
+    pub pass: u32,
+    pub lambda: C::Lambda,
+    pub stop: StopAt,
+    pub split: path::CausticSplit<'a, C>,
+    /// Lanes for paths that do not stop at a visible point ([`StopAt::Never`]).
+    pub lanes: LaneWidth,
+}
+
+impl<C: Carrier> PassPaths<'_, C> {
+    /// Traces every pixel's path, tiles in parallel, and adds `keep((x, y), L, visible
+    /// point, slot)` (the pixel's RGB) to the film's half `pass mod 2`. `slots` has one
+    /// entry per film slot, handed to `keep` (a zero-sized type when it keeps nothing);
+    /// with `done`, every tile is then marked done up to this pass. Returns the rays and bad
+    /// samples.
+    pub fn trace<S: Send>(
+        &self,
+        film: &mut Film,
+        slots: &mut [S],
+        done: bool,
+        keep: impl Fn((u32, u32), C, Option<VisiblePoint<C>>, &mut S) -> Vec3 + Sync,
+    ) -> (u64, u64) {
+        let lanes = self.stop == StopAt::Never && self.lanes != LaneWidth::Scalar;
+        film.par_tiles_mut()
+            .zip(slots.par_chunks_mut(TILE_PIXELS))
+            .map(|(mut tile, tile_slots)| {
+                let (rays, bad) = if lanes {
+                    self.tile_lanes(&mut tile, tile_slots, &keep)
+                } else {
+                    self.tile_scalar(&mut tile, tile_slots, &keep)
+                };
+                if done {
+                    tile.done_until(u64::from(self.pass) + 1);
+                }
+                (rays, bad)
+            })
+            .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1))
+    }
+}
+
+/// What a pass adds per pixel: `keep((x, y), L, visible point, slot)` as RGB.
+type Keep<'k, C, S> = &'k (dyn Fn((u32, u32), C, Option<VisiblePoint<C>>, &mut S) -> Vec3 + Sync);
+
+impl<C: Carrier> PassPaths<'_, C> {
+    /// One tile's paths one after the other; returns the rays and bad samples.
+    fn tile_scalar<S>(&self, tile: &mut FilmTile, slots: &mut [S], keep: Keep<C, S>) -> (u64, u64) {
+        let k = u64::from(self.pass);
+        let (mut rays, mut bad) = (0, 0);
+        for (i, slot) in slots.iter_mut().enumerate() {
+            let Some((x, y)) = tile.pixel(i) else {
+                continue;
+            };
+            let mut ctx = Context {
+                sample: self.sampler.start(x, y, k),
+                rays: 0,
+            };
+            let ray = primary_ray(self.camera, x, y, false, &mut ctx.sample);
+            let (l, vp) = path::camera_path::<C>(
+                self.scene,
+                &ray,
+                self.max_depth,
+                self.lambda,
+                self.stop,
+                self.split,
+                &mut ctx,
+            );
+            tile.add(i, k, keep((x, y), l, vp, slot).as_dvec3(), &mut bad);
+            rays += ctx.rays;
+        }
+        (rays, bad)
+    }
+
+    /// One tile's paths in lanes ([`path::estimate_lanes`] with the pass's wavelengths, no
+    /// spectral MIS, as [`path::camera_path`]); returns the rays and bad samples.
+    fn tile_lanes<S>(&self, tile: &mut FilmTile, slots: &mut [S], keep: Keep<C, S>) -> (u64, u64) {
+        let k = u64::from(self.pass);
+        let starts = Starts::new(self.camera, &self.sampler, false, false);
+        let pixels: Vec<(usize, Job)> = (0..slots.len())
+            .filter_map(|i| tile.pixel(i).map(|(x, y)| (i, Job { x, y, k })))
+            .collect();
+        let jobs: Vec<Job> = pixels.iter().map(|&(_, j)| j).collect();
+        let mut out = vec![C::ZERO; jobs.len()];
+        let rules = (self.max_depth, false);
+        let estimate = |i: usize, l: C, _: &C::Lambda| out[i] = l;
+        let rays = match self.lanes {
+            LaneWidth::Sixteen => path::estimate_lanes::<C, 16>(
+                self.scene,
+                rules,
+                self.split,
+                &starts,
+                &jobs,
+                Some(self.lambda),
+                estimate,
+            ),
+            _ => path::estimate_lanes::<C, 8>(
+                self.scene,
+                rules,
+                self.split,
+                &starts,
+                &jobs,
+                Some(self.lambda),
+                estimate,
+            ),
+        };
+        let mut bad = 0;
+        for (&(i, job), l) in pixels.iter().zip(out) {
+            tile.add(
+                i,
+                k,
+                keep((job.x, job.y), l, None, &mut slots[i]).as_dvec3(),
+                &mut bad,
+            );
+        }
+        (rays, bad)
+    }
+}
