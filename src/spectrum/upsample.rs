@@ -200,6 +200,26 @@ impl RgbIlluminant {
         self.sample_with_d65(lambda, SampledSpectrum::from_fn(lambda, d65_normalized))
     }
 
+    /// `RgbIlluminant::new(rgb).sample_with_d65(lambda, d65)`, the same bits, without the
+    /// decomposition for a grey `(g, g, g)`: then `rgb / max` is exactly (1, 1, 1), whose
+    /// reflectance is 1 at every λ, so the radiance is `d65 · g` (0 unless g is positive and
+    /// finite). White lights and grey environments take this path at every hit.
+    pub fn sample_rgb(
+        rgb: [f32; 3],
+        lambda: &SampledWavelengths,
+        d65: SampledSpectrum,
+    ) -> SampledSpectrum {
+        let [r, g, b] = rgb;
+        if r == g && g == b {
+            return if g > 0.0 && g.is_finite() {
+                d65 * g
+            } else {
+                SampledSpectrum::zero()
+            };
+        }
+        Self::new(rgb).sample_with_d65(lambda, d65)
+    }
+
     /// [`Self::sample`] with D65/Y(D65) at those wavelengths already looked up (the spectral
     /// transport caches it per camera sample).
     pub fn sample_with_d65(

@@ -182,7 +182,9 @@ fn reflectance_reference(s: &RgbReflectance, lambda: f32) -> f32 {
 
 /// `sample` and `eval` (grid point shared by both terms, greys without a lookup) give the
 /// per-wavelength reference bit for bit: ColorChecker colours, greys, signed zeros, NaN and
-/// out-of-range components, illuminants of them, at visible and uniform wavelengths.
+/// out-of-range components, illuminants of them (also through the grey shortcut of
+/// `sample_rgb`, at scales down to subnormal and up to infinite), at visible and uniform
+/// wavelengths.
 #[test]
 fn sample_equals_reference_bit_for_bit() {
     let mut colours = macbeth_linear();
@@ -218,6 +220,12 @@ fn sample_equals_reference_bit_for_bit() {
                     }
                 });
                 assert_eq!(bits(e.sample(&w)), want, "illuminant {rgb:?}");
+                for scale in [1.0, 80.0, 1e-40, 0.0, -1.0, f32::INFINITY, f32::NAN] {
+                    let c = rgb.map(|v| v * scale);
+                    let want = bits(RgbIlluminant::new(c).sample_with_d65(&w, d65));
+                    let got = bits(RgbIlluminant::sample_rgb(c, &w, d65));
+                    assert_eq!(got, want, "illuminant {c:?}");
+                }
             }
         }
     }
