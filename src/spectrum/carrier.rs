@@ -270,7 +270,7 @@ impl Carrier for SampledSpectrum {
         RgbReflectance::new(rgb.to_array()).sample(&l.wl)
     }
     fn illuminant(rgb: Vec3, l: &Lambdas) -> Self {
-        RgbIlluminant::new(rgb.to_array()).sample_with_d65(&l.wl, l.d65)
+        RgbIlluminant::sample_rgb(rgb.to_array(), &l.wl, l.d65)
     }
     fn emitted(rgb: Vec3, shape: Option<&EmitterShape>, l: &Lambdas) -> Self {
         let Some(sh) = shape else {

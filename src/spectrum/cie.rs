@@ -5,7 +5,7 @@
 //! Linear sRGB uses the IEC 61966-2-1 primaries and the D65 white; no transfer curve here
 //! (the film applies it). Lookups outside 360–830 nm return 0.
 
-use super::cie_data::{CIE_D65, CIE_X, CIE_Y, CIE_Z};
+use super::cie_data::{CIE_D65, CIE_SAMPLES, CIE_X, CIE_Y, CIE_Z};
 use super::{LAMBDA_MAX, LAMBDA_MIN};
 
 /// ∫ȳ(λ)dλ over the 1 nm table (Riemann sum, nm); pbrt-v4 uses the same value.
@@ -64,14 +64,30 @@ fn lerp_table(table: &[f32], step: f32, lambda: f32) -> f32 {
     table[i] * (1.0 - t) + table[i + 1] * t
 }
 
+/// The three colour-matching tables interleaved, one (x̄, ȳ, z̄) row per nm, so [`cmf`]
+/// finds its rows once for all three.
+static CIE_XYZ: [[f32; 3]; CIE_SAMPLES] = {
+    let mut t = [[0.0; 3]; CIE_SAMPLES];
+    let mut i = 0;
+    while i < CIE_SAMPLES {
+        t[i] = [CIE_X[i], CIE_Y[i], CIE_Z[i]];
+        i += 1;
+    }
+    t
+};
+
 /// The CIE 1931 2° colour-matching functions (x̄, ȳ, z̄) at `lambda` nm (linear interpolation
-/// of the 1 nm table; exact at integer nm).
+/// of the 1 nm table; exact at integer nm). Each component is what `lerp_table` gives for
+/// its own table: the same position and weights, looked up once.
 pub fn cmf(lambda: f32) -> [f32; 3] {
-    [
-        lerp_table(&CIE_X, 1.0, lambda),
-        lerp_table(&CIE_Y, 1.0, lambda),
-        lerp_table(&CIE_Z, 1.0, lambda),
-    ]
+    if lambda.is_nan() || !(LAMBDA_MIN..=LAMBDA_MAX).contains(&lambda) {
+        return [0.0; 3];
+    }
+    let x = (lambda - LAMBDA_MIN) / 1.0;
+    let i = (x as usize).min(CIE_SAMPLES - 2);
+    let t = x - i as f32;
+    let (lo, hi) = (CIE_XYZ[i], CIE_XYZ[i + 1]);
+    [0, 1, 2].map(|k| lo[k] * (1.0 - t) + hi[k] * t)
 }
 
 /// CIE D65 relative SPD at `lambda` nm (100 at 560 nm), linear between the 5 nm rows.
@@ -161,6 +177,26 @@ mod tests {
         let mid = cmf(555.5)[1];
         assert!((mid - 0.5 * (CIE_Y[195] + CIE_Y[196])).abs() < 1e-6);
         assert!((d65(560.0) - 100.0).abs() < 1e-4);
+    }
+
+    /// The fused lookup gives each table's own interpolation bit for bit, at integer and
+    /// fractional nm, at both ends and outside the range.
+    #[test]
+    fn cmf_equals_each_table_interpolated() {
+        let tables = [&CIE_X, &CIE_Y, &CIE_Z];
+        let mut lambdas: Vec<f32> = (0..=47_200).map(|k| 359.0 + k as f32 * 0.01).collect();
+        lambdas.extend([
+            LAMBDA_MIN,
+            LAMBDA_MAX,
+            829.999_94,
+            f32::NAN,
+            -1.0,
+            f32::INFINITY,
+        ]);
+        for l in lambdas {
+            let want = tables.map(|t| lerp_table(t, 1.0, l).to_bits());
+            assert_eq!(cmf(l).map(f32::to_bits), want, "{l} nm");
+        }
     }
 
     #[test]

@@ -114,10 +114,17 @@ impl SampledSpectrum {
     /// x̄(λ)·s(λ)/pdf(λ), divided by ∫ȳ (pbrt-v4 `SampledSpectrum::ToXYZ`). The sum is divided by
     /// 4 even after `terminate_secondary`, whose pdf/4 compensates. Y = 1 for s ≡ 1 in
     /// expectation.
+    ///
+    /// A lane whose value is 0 is skipped before its pdf and x̄ȳz̄ are looked up: its term
+    /// is ±0, and adding ±0 leaves every partial sum as it is (the sums start at +0 and a
+    /// round-to-nearest sum is −0 only when both terms are), so the result is the same bits.
     pub fn to_xyz(&self, lambda: &SampledWavelengths) -> [f32; 3] {
-        let pdf = lambda.pdf();
         let mut xyz = [0.0f32; 3];
-        for ((l, p), v) in lambda.lambdas().into_iter().zip(pdf.0).zip(self.0) {
+        for (i, (l, v)) in lambda.lambdas().into_iter().zip(self.0).enumerate() {
+            if v == 0.0 {
+                continue;
+            }
+            let p = lambda.lane_pdf(i);
             if p.is_nan() || p <= 0.0 {
                 continue;
             }
@@ -226,6 +233,60 @@ mod tests {
         let z = SampledSpectrum::new([1.0, 0.0, 2.0, 0.0]);
         assert_eq!(a.safe_div(z).values(), [1.0, 0.0, 1.5, 0.0]);
         assert!((a / z).values()[1].is_infinite());
+    }
+
+    /// The estimator summing every lane whose pdf is positive (no lane skipped for a zero
+    /// value), with all four densities looked up first.
+    fn to_xyz_reference(s: &SampledSpectrum, lambda: &SampledWavelengths) -> [f32; 3] {
+        let pdf = lambda.pdf();
+        let mut xyz = [0.0f32; 3];
+        for ((l, p), v) in lambda.lambdas().into_iter().zip(pdf.0).zip(s.0) {
+            if p.is_nan() || p <= 0.0 {
+                continue;
+            }
+            for (acc, w) in xyz.iter_mut().zip(cmf(l)) {
+                *acc += w * v / p;
+            }
+        }
+        xyz.map(|v| v / (N_LAMBDA as f32 * CIE_Y_INTEGRAL))
+    }
+
+    /// Skipping zero lanes gives the reference's bits, signed zeros included, for spectra
+    /// with +0, −0, NaN, negative and mixed lanes, terminated or not.
+    #[test]
+    fn to_xyz_equals_reference_bit_for_bit() {
+        let z = -0.0f32;
+        let spectra = [
+            [0.0, 0.0, 0.0, 0.0],
+            [z, z, z, z],
+            [z, 0.0, z, 0.0],
+            [0.7, 0.0, 0.0, 0.0],
+            [0.0, 0.3, z, 1e-30],
+            [-0.5, 0.5, 0.0, 0.25],
+            [2.0, -2.0, z, 0.0],
+            [f32::NAN, 0.0, 1.0, 0.0],
+            [0.0, f32::INFINITY, 0.0, 3.0],
+            [0.1, 0.2, 0.3, 0.4],
+        ];
+        for k in 0..512 {
+            let u = k as f32 / 512.0;
+            for terminate in [false, true] {
+                for mut w in [
+                    SampledWavelengths::sample_visible(u),
+                    SampledWavelengths::sample_uniform(u),
+                ] {
+                    if terminate {
+                        w.terminate_secondary();
+                    }
+                    for v in spectra {
+                        let s = SampledSpectrum::new(v);
+                        let got = s.to_xyz(&w).map(f32::to_bits);
+                        let want = to_xyz_reference(&s, &w).map(f32::to_bits);
+                        assert_eq!(got, want, "{v:?} at u {u}, terminated {terminate}");
+                    }
+                }
+            }
+        }
     }
 
     /// Runs `n` hero samples of `s(λ)` and returns per-channel (mean, standard error).

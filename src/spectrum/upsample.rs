@@ -79,15 +79,29 @@ pub(super) fn rgb_weights() -> [[f64; NODES]; 3] {
     r
 }
 
-/// Piecewise-linear evaluation of node values at `lambda` nm (0 outside 360–830 nm).
-fn eval_nodes(nodes: &[f32; NODES], lambda: f32) -> f32 {
-    if lambda.is_nan() || !(super::LAMBDA_MIN..=super::LAMBDA_MAX).contains(&lambda) {
-        return 0.0;
+/// Where `lambda` nm falls on the basis grid: the node below and the fraction of the way to
+/// the next (`None` outside 360–830 nm). Shared by every basis spectrum at that wavelength.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct GridPoint(Option<(usize, f32)>);
+
+impl GridPoint {
+    fn at(lambda: f32) -> Self {
+        if lambda.is_nan() || !(super::LAMBDA_MIN..=super::LAMBDA_MAX).contains(&lambda) {
+            return GridPoint(None);
+        }
+        let x = (lambda - LAMBDA_MIN) / STEP;
+        let j = (x as usize).min(NODES - 2);
+        GridPoint(Some((j, x - j as f32)))
     }
-    let x = (lambda - LAMBDA_MIN) / STEP;
-    let j = (x as usize).min(NODES - 2);
-    let t = x - j as f32;
-    nodes[j] * (1.0 - t) + nodes[j + 1] * t
+
+    /// Piecewise-linear evaluation of node values here (0 outside 360–830 nm).
+    #[inline]
+    fn eval(self, nodes: &[f32; NODES]) -> f32 {
+        match self.0 {
+            Some((j, t)) => nodes[j] * (1.0 - t) + nodes[j + 1] * t,
+            None => 0.0,
+        }
+    }
 }
 
 /// A reflectance spectrum upsampled from an RGB triple: `white + a·b1(λ) + c·b2(λ)`.
@@ -126,18 +140,30 @@ impl RgbReflectance {
 
     /// Reflectance at `lambda` nm, in [0, 1].
     pub fn eval(&self, lambda: f32) -> f32 {
+        self.eval_with(basis(), GridPoint::at(lambda))
+    }
+
+    /// Reflectance at the path's wavelengths: [`Self::eval`] at each, with the basis fetched
+    /// and each wavelength's grid point found once for both terms, and neither for a grey
+    /// (both terms 0: the clamped white in every lane, as [`Self::eval`] gives).
+    pub fn sample(&self, lambda: &SampledWavelengths) -> SampledSpectrum {
+        if self.terms.iter().all(|&(_, w)| w == 0.0) {
+            return SampledSpectrum::splat(self.white.clamp(0.0, 1.0));
+        }
+        let basis = basis();
+        SampledSpectrum::from_fn(lambda, |l| self.eval_with(basis, GridPoint::at(l)))
+    }
+
+    /// `white + Σ w·basis(λ)` clamped to [0, 1], at grid point `at`.
+    #[inline]
+    fn eval_with(&self, basis: &[[f32; NODES]; 6], at: GridPoint) -> f32 {
         let mut v = self.white;
         for (b, w) in self.terms {
             if w != 0.0 {
-                v += w * eval_nodes(&basis()[b as usize], lambda);
+                v += w * at.eval(&basis[b as usize]);
             }
         }
         v.clamp(0.0, 1.0)
-    }
-
-    /// Reflectance at the path's wavelengths.
-    pub fn sample(&self, lambda: &SampledWavelengths) -> SampledSpectrum {
-        SampledSpectrum::from_fn(lambda, |l| self.eval(l))
     }
 }
 
@@ -172,6 +198,26 @@ impl RgbIlluminant {
     /// Radiance at the path's wavelengths.
     pub fn sample(&self, lambda: &SampledWavelengths) -> SampledSpectrum {
         self.sample_with_d65(lambda, SampledSpectrum::from_fn(lambda, d65_normalized))
+    }
+
+    /// `RgbIlluminant::new(rgb).sample_with_d65(lambda, d65)`, the same bits, without the
+    /// decomposition for a grey `(g, g, g)`: then `rgb / max` is exactly (1, 1, 1), whose
+    /// reflectance is 1 at every λ, so the radiance is `d65 · g` (0 unless g is positive and
+    /// finite). White lights and grey environments take this path at every hit.
+    pub fn sample_rgb(
+        rgb: [f32; 3],
+        lambda: &SampledWavelengths,
+        d65: SampledSpectrum,
+    ) -> SampledSpectrum {
+        let [r, g, b] = rgb;
+        if r == g && g == b {
+            return if g > 0.0 && g.is_finite() {
+                d65 * g
+            } else {
+                SampledSpectrum::zero()
+            };
+        }
+        Self::new(rgb).sample_with_d65(lambda, d65)
     }
 
     /// [`Self::sample`] with D65/Y(D65) at those wavelengths already looked up (the spectral

@@ -158,3 +158,75 @@ fn white_light_through_monte_carlo_is_white() {
     let rgb = xyz_to_linear_srgb(acc.map(|v| v as f32));
     assert!(max_abs_diff(rgb, [1.0; 3]) < 1e-2, "{rgb:?}");
 }
+
+/// The upsampling as written per wavelength, without the shared grid point or the grey
+/// shortcut: every λ located afresh for every term.
+fn reflectance_reference(s: &RgbReflectance, lambda: f32) -> f32 {
+    let nodes_at = |nodes: &[f32; NODES]| {
+        if lambda.is_nan() || !(LAMBDA_MIN..=super::super::LAMBDA_MAX).contains(&lambda) {
+            return 0.0;
+        }
+        let x = (lambda - LAMBDA_MIN) / STEP;
+        let j = (x as usize).min(NODES - 2);
+        let t = x - j as f32;
+        nodes[j] * (1.0 - t) + nodes[j + 1] * t
+    };
+    let mut v = s.white;
+    for (b, w) in s.terms {
+        if w != 0.0 {
+            v += w * nodes_at(&basis()[b as usize]);
+        }
+    }
+    v.clamp(0.0, 1.0)
+}
+
+/// `sample` and `eval` (grid point shared by both terms, greys without a lookup) give the
+/// per-wavelength reference bit for bit: ColorChecker colours, greys, signed zeros, NaN and
+/// out-of-range components, illuminants of them (also through the grey shortcut of
+/// `sample_rgb`, at scales down to subnormal and up to infinite), at visible and uniform
+/// wavelengths.
+#[test]
+fn sample_equals_reference_bit_for_bit() {
+    let mut colours = macbeth_linear();
+    colours.extend([
+        [-0.0, -0.0, -0.0],
+        [-0.0, 0.3, 0.3],
+        [0.25, 0.25, 0.25],
+        [f32::NAN, 0.5, 0.2],
+        [1.5, -0.2, 0.4],
+        [0.8, 0.8, 0.1],
+        [3.0, 2.0, 0.5],
+    ]);
+    let bits = |s: SampledSpectrum| s.values().map(f32::to_bits);
+    for k in 0..257 {
+        let u = k as f32 / 257.0;
+        for w in [
+            SampledWavelengths::sample_visible(u),
+            SampledWavelengths::sample_uniform(u),
+        ] {
+            for &rgb in &colours {
+                let r = RgbReflectance::new(rgb);
+                let want = w.lambdas().map(|l| reflectance_reference(&r, l).to_bits());
+                assert_eq!(bits(r.sample(&w)), want, "{rgb:?} at {:?}", w.lambdas());
+                assert_eq!(w.lambdas().map(|l| r.eval(l).to_bits()), want);
+                let e = RgbIlluminant::new(rgb);
+                let d65 = SampledSpectrum::from_fn(&w, d65_normalized);
+                let want = std::array::from_fn(|i| {
+                    let l = w.lambda(i);
+                    if e.scale == 0.0 {
+                        0.0f32.to_bits()
+                    } else {
+                        (reflectance_reference(&e.shape, l) * d65[i] * e.scale).to_bits()
+                    }
+                });
+                assert_eq!(bits(e.sample(&w)), want, "illuminant {rgb:?}");
+                for scale in [1.0, 80.0, 1e-40, 0.0, -1.0, f32::INFINITY, f32::NAN] {
+                    let c = rgb.map(|v| v * scale);
+                    let want = bits(RgbIlluminant::new(c).sample_with_d65(&w, d65));
+                    let got = bits(RgbIlluminant::sample_rgb(c, &w, d65));
+                    assert_eq!(got, want, "illuminant {c:?}");
+                }
+            }
+        }
+    }
+}

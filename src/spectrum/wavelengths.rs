@@ -11,11 +11,24 @@
 
 use super::{SampledSpectrum, LAMBDA_MAX, LAMBDA_MIN, N_LAMBDA};
 
-/// The four wavelengths of a path and their sampling densities.
+/// The four wavelengths of a path and their sampling densities. A density is evaluated
+/// when it is asked for ([`SampledWavelengths::lane_pdf`]), not when the wavelengths are
+/// drawn: the film skips lanes that carry no radiance, so most of them are never needed.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SampledWavelengths {
     lambda: [f32; N_LAMBDA],
-    pdf: [f32; N_LAMBDA],
+    density: Density,
+    /// [`SampledWavelengths::terminate_secondary`] has been applied.
+    terminated: bool,
+}
+
+/// Which density the wavelengths were drawn from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Density {
+    /// [`visible_wavelength_pdf`].
+    Visible,
+    /// Uniform over 360–830 nm.
+    Uniform,
 }
 
 /// Density of [`sample_visible_wavelength`] in 1/nm (0 outside 360–830 nm).
@@ -63,19 +76,19 @@ impl SampledWavelengths {
     /// Importance-samples the visible range: hero λ from `u` in [0, 1), companions from
     /// `u + i/4` wrapped to [0, 1) (pbrt-v4 `SampleVisible`).
     pub fn sample_visible(u: f32) -> Self {
-        let mut w = SampledWavelengths {
-            lambda: [0.0; N_LAMBDA],
-            pdf: [0.0; N_LAMBDA],
-        };
-        for (i, (l, p)) in w.lambda.iter_mut().zip(&mut w.pdf).enumerate() {
+        let mut lambda = [0.0; N_LAMBDA];
+        for (i, l) in lambda.iter_mut().enumerate() {
             let mut up = u + i as f32 / N_LAMBDA as f32;
             if up >= 1.0 {
                 up -= 1.0;
             }
             *l = sample_visible_wavelength(up);
-            *p = visible_wavelength_pdf(*l);
         }
-        w
+        SampledWavelengths {
+            lambda,
+            density: Density::Visible,
+            terminated: false,
+        }
     }
 
     /// Uniform sampling of 360–830 nm with the same rotation (pdf = 1/470 nm); for tests and
@@ -92,7 +105,8 @@ impl SampledWavelengths {
         }
         SampledWavelengths {
             lambda,
-            pdf: [1.0 / range; N_LAMBDA],
+            density: Density::Uniform,
+            terminated: false,
         }
     }
 
@@ -113,25 +127,37 @@ impl SampledWavelengths {
 
     /// The per-lane sampling densities in 1/nm (0 for terminated lanes).
     pub fn pdf(&self) -> SampledSpectrum {
-        SampledSpectrum::new(self.pdf)
+        SampledSpectrum::new(std::array::from_fn(|i| self.lane_pdf(i)))
+    }
+
+    /// The sampling density of lane `i` in 1/nm: the density at its wavelength, 0 for a
+    /// terminated companion, and a quarter of it for the hero after
+    /// [`Self::terminate_secondary`]. Panics if `i >= 4` (a programming error).
+    pub fn lane_pdf(&self, i: usize) -> f32 {
+        if self.terminated && i > 0 {
+            return 0.0;
+        }
+        let p = match self.density {
+            Density::Visible => visible_wavelength_pdf(self.lambda[i]),
+            Density::Uniform => 1.0 / (LAMBDA_MAX - LAMBDA_MIN),
+        };
+        if self.terminated {
+            p / N_LAMBDA as f32
+        } else {
+            p
+        }
     }
 
     /// Keeps only the hero wavelength: lanes 1–3 get pdf 0 and lane 0's pdf is divided by 4
     /// (pbrt-v4 `TerminateSecondary`). Call at a dispersive interface, before using λ₀'s IOR.
     /// Idempotent.
     pub fn terminate_secondary(&mut self) {
-        if self.is_secondary_terminated() {
-            return;
-        }
-        for p in &mut self.pdf[1..] {
-            *p = 0.0;
-        }
-        self.pdf[0] /= N_LAMBDA as f32;
+        self.terminated = true;
     }
 
     /// Whether [`Self::terminate_secondary`] has been applied (all companion pdfs are 0).
     pub fn is_secondary_terminated(&self) -> bool {
-        self.pdf[1..].iter().all(|&p| p == 0.0)
+        self.terminated
     }
 }
 
@@ -197,6 +223,35 @@ mod tests {
         }
         assert!((sample_visible_wavelength(0.0) - 360.0).abs() < 0.1);
         assert!((sample_visible_wavelength(0.999_999) - 830.0).abs() < 0.5);
+    }
+
+    /// The densities, evaluated when asked for, are the bits of evaluating them when the
+    /// wavelengths are drawn (the density at each λ; 1/470 nm uniform; 0 for terminated
+    /// companions and the hero's divided by 4).
+    #[test]
+    fn lazy_pdf_equals_eager() {
+        for k in 0..4096 {
+            let u = k as f32 / 4096.0;
+            for uniform in [false, true] {
+                let mut w = if uniform {
+                    SampledWavelengths::sample_uniform(u)
+                } else {
+                    SampledWavelengths::sample_visible(u)
+                };
+                let eager = w.lambdas().map(|l| {
+                    if uniform {
+                        1.0 / (LAMBDA_MAX - LAMBDA_MIN)
+                    } else {
+                        visible_wavelength_pdf(l)
+                    }
+                });
+                assert_eq!(w.pdf().values().map(f32::to_bits), eager.map(f32::to_bits));
+                w.terminate_secondary();
+                let hero = eager[0] / N_LAMBDA as f32;
+                let want = [hero, 0.0, 0.0, 0.0].map(f32::to_bits);
+                assert_eq!(w.pdf().values().map(f32::to_bits), want, "u {u}");
+            }
+        }
     }
 
     #[test]
