@@ -108,8 +108,9 @@ impl Plan {
                     "built in {:.1} ms ({backend})",
                     scene.accel_build_time().as_secs_f64() * 1e3
                 ),
-                "lanes" => "not measured here; BENCHMARKS.md 'Throughput': lanes against single \
-                            rays on the caustic sphere, the diamond and CompareDispersion"
+                "lanes" => "not measured here; BENCHMARKS.md 'Lanes: 8 or 16 camera paths per \
+                            packet': 0.90-1.03x the time of single rays on the caustic \
+                            sphere, a diamond and CompareDispersion"
                     .into(),
                 "nested media" => "BENCHMARKS.md 'Path tracer on real scenes': 0.45 us per probe on Embree, \
                       8.4 us on the BVH, at each hit on a marked triangle"
