@@ -377,9 +377,7 @@ impl Scene {
             }
             return blocked;
         }
-        let mut packet = *rays;
-        let invalid = rays.untraceable();
-        packet.set_active(rays.active() & !invalid);
-        invalid | self.accel().occluded_packet(&packet, Coherence::Incoherent)
+        // The backends leave untraceable lanes unoccluded; the single-ray query blocks them.
+        rays.untraceable() | self.accel().occluded_packet(rays, Coherence::Incoherent)
     }
 }

@@ -299,8 +299,7 @@ impl Integrator {
                         |starts, jobs, out| {
                             path::estimate_path(
                                 scene,
-                                rules,
-                                width,
+                                (rules, width),
                                 settings.spectral,
                                 starts,
                                 jobs,

@@ -108,26 +108,14 @@ impl<C: Carrier> PassPaths<'_, C> {
         let mut out = vec![C::ZERO; jobs.len()];
         let rules = (self.max_depth, false);
         let estimate = |i: usize, l: C, _: &C::Lambda| out[i] = l;
-        let rays = match self.lanes {
-            LaneWidth::Sixteen => path::estimate_lanes::<C, 16>(
-                self.scene,
-                rules,
-                self.split,
-                &starts,
-                &jobs,
-                Some(self.lambda),
-                estimate,
-            ),
-            _ => path::estimate_lanes::<C, 8>(
-                self.scene,
-                rules,
-                self.split,
-                &starts,
-                &jobs,
-                Some(self.lambda),
-                estimate,
-            ),
-        };
+        let rays = path::estimate_lanes(
+            self.scene,
+            self.lanes,
+            (rules, self.split),
+            (&starts, &jobs),
+            Some(self.lambda),
+            estimate,
+        );
         let mut bad = 0;
         for (&(i, job), l) in pixels.iter().zip(out) {
             tile.add(

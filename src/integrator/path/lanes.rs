@@ -75,12 +75,10 @@ impl LaneWidth {
 }
 
 /// The plain path tracer's estimate of `jobs` ([`estimate_lanes`] without a caustic
-/// split) at `width` ([`LaneWidth::Scalar`] runs 8 lanes: the caller picks the scalar loop
-/// itself), in spectral or RGB transport.
+/// split, linear RGB into `out`) at `width`, in spectral or RGB transport.
 pub fn estimate_path(
     scene: &Scene,
-    rules: (u32, bool),
-    width: LaneWidth,
+    (rules, width): ((u32, bool), LaneWidth),
     spectral: bool,
     starts: &Starts,
     jobs: &[Job],
@@ -88,23 +86,17 @@ pub fn estimate_path(
 ) -> u64 {
     fn at<C: Carrier>(
         scene: &Scene,
-        rules: (u32, bool),
-        width: LaneWidth,
-        (starts, jobs, out): (&Starts, &[Job], &mut [Vec3]),
+        (rules, width): ((u32, bool), LaneWidth),
+        run: (&Starts, &[Job]),
+        out: &mut [Vec3],
     ) -> u64 {
-        let split = CausticSplit::None;
         let rgb = |i: usize, l: C, lambda: &C::Lambda| out[i] = l.to_rgb(lambda);
-        match width {
-            LaneWidth::Sixteen => {
-                estimate_lanes::<C, 16>(scene, rules, split, starts, jobs, None, rgb)
-            }
-            _ => estimate_lanes::<C, 8>(scene, rules, split, starts, jobs, None, rgb),
-        }
+        estimate_lanes(scene, width, (rules, CausticSplit::None), run, None, rgb)
     }
     if spectral {
-        at::<SampledSpectrum>(scene, rules, width, (starts, jobs, out))
+        at::<SampledSpectrum>(scene, (rules, width), (starts, jobs), out)
     } else {
-        at::<Vec3>(scene, rules, width, (starts, jobs, out))
+        at::<Vec3>(scene, (rules, width), (starts, jobs), out)
     }
 }
 
@@ -122,17 +114,33 @@ struct Lane<C: Carrier> {
     ctx: Context,
 }
 
-/// Estimates `jobs` with the path tracer ([`super::radiance`] with `max_depth` and
-/// `spectral_mis`; `split` as in [`super::camera_path`]) on `N` lanes, at the wavelengths
-/// `lambda` (the pass's of a photon method) or, with `None`, at wavelengths drawn from each
-/// job's hero variate; `emit(i, L, wavelengths)` receives job `i`'s radiance and the
-/// wavelengths it started with, in the order the paths end. Returns the rays traced.
-pub fn estimate_lanes<C: Carrier, const N: usize>(
+/// Estimates `jobs` (begun by `starts`) with the path tracer ([`super::radiance`] with
+/// `max_depth` and `spectral_mis`; `split` as in [`super::camera_path`]) on `width` lanes
+/// ([`LaneWidth::Scalar`] runs 8: a caller wanting single rays runs the scalar loop), at
+/// the wavelengths `lambda` (the pass's of a photon method) or, with `None`, at wavelengths
+/// drawn from each job's hero variate; `emit(i, L, wavelengths)` receives job `i`'s
+/// radiance and the wavelengths it started with, in the order the paths end. Returns the
+/// rays traced.
+pub fn estimate_lanes<C: Carrier>(
     scene: &Scene,
-    (max_depth, spectral_mis): (u32, bool),
-    split: CausticSplit<'_, C>,
-    starts: &Starts,
-    jobs: &[Job],
+    width: LaneWidth,
+    (rules, split): ((u32, bool), CausticSplit<'_, C>),
+    (starts, jobs): (&Starts, &[Job]),
+    lambda: Option<C::Lambda>,
+    emit: impl FnMut(usize, C, &C::Lambda),
+) -> u64 {
+    let run = (starts, jobs);
+    match width {
+        LaneWidth::Sixteen => run_lanes::<C, 16>(scene, (rules, split), run, lambda, emit),
+        _ => run_lanes::<C, 8>(scene, (rules, split), run, lambda, emit),
+    }
+}
+
+/// [`estimate_lanes`] on `N` lanes.
+fn run_lanes<C: Carrier, const N: usize>(
+    scene: &Scene,
+    ((max_depth, spectral_mis), split): ((u32, bool), CausticSplit<'_, C>),
+    (starts, jobs): (&Starts, &[Job]),
     lambda: Option<C::Lambda>,
     mut emit: impl FnMut(usize, C, &C::Lambda),
 ) -> u64
@@ -174,7 +182,8 @@ where
             let r = &lanes_[i].walk.ray;
             packet.set(i, r.origin, r.dir, r.t_max);
         }
-        packet.set_active(active & !packet.untraceable());
+        // Lanes left over from ended paths drop out; untraceable rays find nothing.
+        packet.set_active(active);
         // Always Embree's incoherent traversal: its coherent (frustum) traversal visits
         // the nodes in another order and so breaks exact ties between coplanar overlapping
         // triangles differently from the single-ray query.

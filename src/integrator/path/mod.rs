@@ -104,17 +104,13 @@ pub fn radiance<C: Carrier>(
     spectral_mis: bool,
     ctx: &mut Context,
 ) -> C {
-    trace(
-        scene,
-        ray,
+    let rules = Rules {
         max_depth,
-        lambda,
-        StopAt::Never,
-        CausticSplit::None,
+        stop: StopAt::Never,
+        split: CausticSplit::None,
         spectral_mis,
-        ctx,
-    )
-    .0
+    };
+    trace(scene, ray, lambda, &rules, ctx).0
 }
 
 /// The path tracer's loop: radiance gathered along the path and, with [`StopAt::Diffuse`],
@@ -132,35 +128,35 @@ pub fn camera_path<C: Carrier>(
     split: CausticSplit<'_, C>,
     ctx: &mut Context,
 ) -> (C, Option<VisiblePoint<C>>) {
-    trace(scene, ray, max_depth, lambda, stop, split, false, ctx)
-}
-
-/// [`camera_path`], with spectral MIS at rough dispersive interfaces when `spectral_mis`
-/// (only with [`StopAt::Never`]): the scalar loop, one vertex ([`vertex::vertex`]) after
-/// the other, each shadow ray traced at once.
-#[allow(clippy::too_many_arguments)]
-fn trace<C: Carrier>(
-    scene: &Scene,
-    ray: &Ray,
-    max_depth: u32,
-    lambda: C::Lambda,
-    stop: StopAt,
-    split: CausticSplit<'_, C>,
-    spectral_mis: bool,
-    ctx: &mut Context,
-) -> (C, Option<VisiblePoint<C>>) {
     let rules = Rules {
         max_depth,
         stop,
         split,
-        spectral_mis: spectral_mis && stop == StopAt::Never,
+        spectral_mis: false,
+    };
+    trace(scene, ray, lambda, &rules, ctx)
+}
+
+/// The scalar loop under `rules`: one vertex ([`vertex::vertex`]) after the other, each
+/// shadow ray traced at once. Spectral MIS only with [`StopAt::Never`] (the photon methods'
+/// visible points keep the hero only, as their gather evaluates the BSDF with one η).
+fn trace<C: Carrier>(
+    scene: &Scene,
+    ray: &Ray,
+    lambda: C::Lambda,
+    rules: &Rules<'_, C>,
+    ctx: &mut Context,
+) -> (C, Option<VisiblePoint<C>>) {
+    let rules = &Rules {
+        spectral_mis: rules.spectral_mis && rules.stop == StopAt::Never,
+        ..*rules
     };
     let mut walk = Walk::new(*ray, lambda);
     let mut visible = None;
     loop {
         let (media, lambda) = (&walk.st.media, &walk.lambda);
         let arrival = shading::arrive::<C>(scene, &walk.ray, media, lambda, &mut ctx.rays);
-        let (nee, next) = vertex::vertex(scene, &rules, &mut walk, arrival, ctx, &mut visible);
+        let (nee, next) = vertex::vertex(scene, rules, &mut walk, arrival, ctx, &mut visible);
         if let Some(nee) = nee {
             let blocked = nee.shadow.is_some_and(|r| scene.occluded(&r));
             nee.resolve(blocked, &mut walk.l);
