@@ -247,6 +247,7 @@ fn split_gather<'a, C: Carrier>(split: CausticSplit<'a, C>, direct: bool) -> Opt
 /// step ([`crate::shading::arrive`], [`Arrival::event`]); emission is counted on arrival,
 /// before BLEND coverage is decided; `rules.split` hands the caustic paths to a caustic
 /// map ([`CausticSplit`]).
+#[inline(always)]
 pub(super) fn vertex<C: Carrier>(
     scene: &Scene,
     rules: &Rules<'_, C>,
