@@ -262,11 +262,17 @@ pub(super) fn lanes(scene: &Scene, method: Method) -> Stage {
                 #[allow(unreachable_patterns)]
                 _ => format!("rtcIntersect{n} / rtcOccluded{n}"),
             };
+            let photons = if method == Method::Hybrid {
+                "; its photons on single rays (packets do not pay on them: BENCHMARKS.md, \
+                 \"Photon passes in lanes\")"
+            } else {
+                ""
+            };
             (
                 true,
                 format!(
                     "{n} camera paths per packet ({queries}), shading per lane; the image is \
-                     the single-ray image"
+                     the single-ray image{photons}"
                 ),
             )
         }
