@@ -53,15 +53,24 @@ pub fn chromaticity(xyz: [f32; 3]) -> [f32; 2] {
     [xyz[0] / s, xyz[1] / s]
 }
 
-/// Linear interpolation in a table sampled every `step` nm from [`LAMBDA_MIN`].
-fn lerp_table(table: &[f32], step: f32, lambda: f32) -> f32 {
+/// Where `lambda` nm falls in a table of `len` rows sampled every `step` nm from
+/// [`LAMBDA_MIN`]: the row below and the fraction of the way to the next (`None` outside
+/// 360–830 nm). Shared by every table looked up at one wavelength.
+pub(super) fn table_point(len: usize, step: f32, lambda: f32) -> Option<(usize, f32)> {
     if lambda.is_nan() || !(LAMBDA_MIN..=LAMBDA_MAX).contains(&lambda) {
-        return 0.0;
+        return None;
     }
     let x = (lambda - LAMBDA_MIN) / step;
-    let i = (x as usize).min(table.len() - 2);
-    let t = x - i as f32;
-    table[i] * (1.0 - t) + table[i + 1] * t
+    let i = (x as usize).min(len - 2);
+    Some((i, x - i as f32))
+}
+
+/// Linear interpolation in a table sampled every `step` nm from [`LAMBDA_MIN`].
+fn lerp_table(table: &[f32], step: f32, lambda: f32) -> f32 {
+    match table_point(table.len(), step, lambda) {
+        Some((i, t)) => table[i] * (1.0 - t) + table[i + 1] * t,
+        None => 0.0,
+    }
 }
 
 /// The three colour-matching tables interleaved, one (x̄, ȳ, z̄) row per nm, so [`cmf`]
@@ -80,12 +89,9 @@ static CIE_XYZ: [[f32; 3]; CIE_SAMPLES] = {
 /// of the 1 nm table; exact at integer nm). Each component is what `lerp_table` gives for
 /// its own table: the same position and weights, looked up once.
 pub fn cmf(lambda: f32) -> [f32; 3] {
-    if lambda.is_nan() || !(LAMBDA_MIN..=LAMBDA_MAX).contains(&lambda) {
+    let Some((i, t)) = table_point(CIE_SAMPLES, 1.0, lambda) else {
         return [0.0; 3];
-    }
-    let x = (lambda - LAMBDA_MIN) / 1.0;
-    let i = (x as usize).min(CIE_SAMPLES - 2);
-    let t = x - i as f32;
+    };
     let (lo, hi) = (CIE_XYZ[i], CIE_XYZ[i + 1]);
     [0, 1, 2].map(|k| lo[k] * (1.0 - t) + hi[k] * t)
 }

@@ -17,7 +17,7 @@
 //!   non-dispersive path; reflectance spectra stay in [0, 1];
 //! - the illuminant of RGB (1, 1, 1) is D65 with Y = 1, which the film maps to sRGB (1, 1, 1).
 
-use super::cie::{cmf, d65, d65_normalized, XYZ_TO_SRGB};
+use super::cie::{cmf, d65, d65_normalized, table_point, XYZ_TO_SRGB};
 use super::{SampledSpectrum, SampledWavelengths, LAMBDA_MIN};
 use std::sync::OnceLock;
 
@@ -86,12 +86,7 @@ struct GridPoint(Option<(usize, f32)>);
 
 impl GridPoint {
     fn at(lambda: f32) -> Self {
-        if lambda.is_nan() || !(super::LAMBDA_MIN..=super::LAMBDA_MAX).contains(&lambda) {
-            return GridPoint(None);
-        }
-        let x = (lambda - LAMBDA_MIN) / STEP;
-        let j = (x as usize).min(NODES - 2);
-        GridPoint(Some((j, x - j as f32)))
+        GridPoint(table_point(NODES, STEP, lambda))
     }
 
     /// Piecewise-linear evaluation of node values here (0 outside 360–830 nm).
