@@ -74,6 +74,15 @@ fn photons(n: u64) -> PhotonSettings {
     }
 }
 
+/// "20000 photons a pass", or for 0 "the pilot's photons".
+fn label(n: u64) -> String {
+    if n == 0 {
+        "the pilot's photons".into()
+    } else {
+        format!("{n} photons a pass")
+    }
+}
+
 /// The 3 × 3 blocks around the caustic: centred on the block that `img` finds brightest
 /// relative to the mean of its 8 neighbours (the focused light under the sphere).
 fn caustic_region(b: &[f64]) -> Vec<usize> {
@@ -142,13 +151,6 @@ fn hybrid_agrees_with_the_path_tracer_under_a_small_area_light() {
         &settings(1024, 2, 2),
         photons(0),
     ));
-    let hybrid = blocks(&render(
-        &scene,
-        &cam,
-        Method::Hybrid,
-        &settings(1024, 3, 2),
-        photons(20_000),
-    ));
     let path: Vec<f64> = path1
         .iter()
         .zip(&path2)
@@ -156,17 +158,30 @@ fn hybrid_agrees_with_the_path_tracer_under_a_small_area_light() {
         .collect();
     let region = caustic_region(&path);
     let noise = relative_rmse(&path2, &path1);
-    let err = relative_rmse(&hybrid, &path);
     let c = |b: &[f64]| region_sum(b, &region);
-    let (c_noise, c_err) = (c(&path2) / c(&path1) - 1.0, c(&hybrid) / c(&path) - 1.0);
-    let m_err = mean(&hybrid) / mean(&path) - 1.0;
-    eprintln!(
-        "relative block RMSE: path vs path {noise:.4}, hybrid vs path {err:.4}; caustic region \
-         path2/path1 {c_noise:+.4} hybrid {c_err:+.4}; mean hybrid {m_err:+.4}; region {region:?}"
-    );
-    assert!(m_err.abs() < 0.01, "image mean: hybrid vs path {m_err}");
-    assert!(c_err.abs() < 0.06, "caustic region: hybrid vs path {c_err}");
-    assert!(err < 0.05, "block RMSE: hybrid vs path {err}");
+    let c_noise = c(&path2) / c(&path1) - 1.0;
+    // 20 000 photons a pass, and the pilot's count (photons(0), [`photon_budget`]).
+    for (n, seed) in [(20_000, 3), (0, 4)] {
+        let hybrid = blocks(&render(
+            &scene,
+            &cam,
+            Method::Hybrid,
+            &settings(1024, seed, 2),
+            photons(n),
+        ));
+        let err = relative_rmse(&hybrid, &path);
+        let c_err = c(&hybrid) / c(&path) - 1.0;
+        let m_err = mean(&hybrid) / mean(&path) - 1.0;
+        let n = label(n);
+        eprintln!(
+            "{n}: relative block RMSE: path vs path {noise:.4}, hybrid vs path \
+             {err:.4}; caustic region path2/path1 {c_noise:+.4} hybrid {c_err:+.4}; mean \
+             hybrid {m_err:+.4}; region {region:?}"
+        );
+        assert!(m_err.abs() < 0.01, "image mean: hybrid vs path {m_err}");
+        assert!(c_err.abs() < 0.06, "caustic region: hybrid vs path {c_err}");
+        assert!(err < 0.05, "block RMSE: hybrid vs path {err}");
+    }
 }
 
 /// The environment is a caustic light: under a uniform sky of radiance 1 (no other
@@ -199,34 +214,39 @@ fn hybrid_agrees_with_the_path_tracer_under_a_sky() {
         &settings(512, 2, 2),
         photons(0),
     ));
-    let hybrid = blocks(&render(
-        &scene,
-        &cam,
-        Method::Hybrid,
-        &settings(512, 3, 2),
-        photons(20_000),
-    ));
     let path: Vec<f64> = path1
         .iter()
         .zip(&path2)
         .map(|(a, b)| 0.5 * (a + b))
         .collect();
     let noise = relative_rmse(&path2, &path1);
-    let err = relative_rmse(&hybrid, &path);
-    let m_err = mean(&hybrid) / mean(&path) - 1.0;
     // The darkest block: the floor in the sphere's shadow, lit mostly through the glass.
     let dark = (0..path.len())
         .min_by(|&a, &b| path[a].total_cmp(&path[b]))
         .expect("blocks");
-    let d_err = hybrid[dark] / path[dark] - 1.0;
     let d_noise = path2[dark] / path1[dark] - 1.0;
-    eprintln!(
-        "sky: relative block RMSE path vs path {noise:.4}, hybrid vs path {err:.4}; mean \
-         {m_err:+.4}; darkest block {dark}: hybrid {d_err:+.4} (path2/path1 {d_noise:+.4})"
-    );
-    assert!(m_err.abs() < 0.01, "image mean: hybrid vs path {m_err}");
-    assert!(d_err.abs() < 0.06, "shadowed block: hybrid vs path {d_err}");
-    assert!(err < 0.05, "block RMSE: hybrid vs path {err}");
+    // 20 000 photons a pass, and the pilot's count (photons(0), [`photon_budget`]).
+    for (n, seed) in [(20_000, 3), (0, 4)] {
+        let hybrid = blocks(&render(
+            &scene,
+            &cam,
+            Method::Hybrid,
+            &settings(512, seed, 2),
+            photons(n),
+        ));
+        let err = relative_rmse(&hybrid, &path);
+        let m_err = mean(&hybrid) / mean(&path) - 1.0;
+        let d_err = hybrid[dark] / path[dark] - 1.0;
+        let n = label(n);
+        eprintln!(
+            "sky, {n}: relative block RMSE path vs path {noise:.4}, hybrid vs \
+             path {err:.4}; mean {m_err:+.4}; darkest block {dark}: hybrid {d_err:+.4} \
+             (path2/path1 {d_noise:+.4})"
+        );
+        assert!(m_err.abs() < 0.01, "image mean: hybrid vs path {m_err}");
+        assert!(d_err.abs() < 0.06, "shadowed block: hybrid vs path {d_err}");
+        assert!(err < 0.05, "block RMSE: hybrid vs path {err}");
+    }
 }
 
 const RHO: f32 = 0.5;
@@ -539,4 +559,74 @@ fn auto_says_why_from_the_caustic_share() {
     let why = why.unwrap();
     assert_eq!(m, Method::Sppm, "{why}");
     assert!(why.contains("rough transmissive material"), "{why}");
+}
+
+/// The pilot's budget ([`iris::integrator::photon_budget`]) for `scene` at 48 × 36.
+fn pilot(scene: &Scene, cam: &CameraDesc, seed: u64) -> iris::integrator::photon_budget::Budget {
+    let s = settings(16, seed, 2);
+    iris::integrator::photon_budget::choose::<Vec3>(
+        scene,
+        &Camera::new(cam, W, H),
+        &s,
+        32,
+        &iris::integrator::caustic::emitter(scene),
+        (None, 2.0 / 3.0),
+    )
+    .expect("pilot")
+}
+
+/// Without `--photons` the hybrid's pilot spends photons where the map carries the
+/// picture: in the lantern room every pixel's direct light is the map's (and the path
+/// tracer's indirect part is smooth), so it must get more than one photon per pixel and
+/// far more than the caustic sphere under a uniform sky, where the map carries only the sky
+/// seen through the sphere by the shadowed floor and the path tracer's sky sampling is the
+/// noisy part. The first pass's count is factor × pixels within the bounds; the pilot's
+/// photons are one per pixel, as two maps.
+#[test]
+fn the_pilot_spends_photons_where_the_map_carries_the_picture() {
+    use iris::integrator::photon_budget::photons_for;
+    let pixels = u64::from(W * H);
+    let (mut desc, sky_cam) = iris::assets::bench::caustic_sphere(None);
+    desc.lights.clear();
+    desc.environment_light = Some(iris::light::env::Environment::Uniform {
+        radiance: Vec3::ONE,
+    });
+    let desc = iris::scene::validate::validate(desc).expect("valid scene");
+    let sky = Scene::build(desc, iris::accel::Backend::Auto).expect("build");
+    let (lantern, sky) = (
+        pilot(&glass_lantern_room(), &inside_camera(), 3),
+        pilot(&sky, &sky_cam, 3),
+    );
+    eprintln!("lantern room: {lantern:?}\nsky: {sky:?}");
+    for b in [lantern, sky] {
+        assert!(b.factor.is_finite() && b.factor > 0.0, "{b:?}");
+        let first = b.per_pass(pixels, b.first_radius);
+        assert_eq!(first, photons_for(b.factor, pixels));
+        assert!(b.first_radius > 0.0 && b.rays > 0, "{b:?}");
+        assert_eq!(b.photons, pixels, "the pilot's two maps of N/2 photons");
+    }
+    assert!(lantern.factor > 1.0, "lantern room {}", lantern.factor);
+    assert!(
+        lantern.factor > 4.0 * sky.factor,
+        "lantern room {} vs sky {}",
+        lantern.factor,
+        sky.factor
+    );
+}
+
+/// The same scene, seed and size give the same budget on 1 thread and on 3 (the shards'
+/// merge with the pilot is tests/shards.rs); another seed runs another pilot.
+#[test]
+fn the_pilot_is_the_same_whatever_the_threads() {
+    let (scene, cam) = common::caustic_sphere(None);
+    let on = |threads: usize, seed: u64| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("pool")
+            .install(|| pilot(&scene, &cam, seed))
+    };
+    let one = on(1, 3);
+    assert_eq!(one, on(3, 3));
+    assert_ne!(one.factor, on(2, 4).factor);
 }

@@ -153,6 +153,13 @@ fn sppm_and_hybrid_merges_are_bit_identical_to_one_render() {
     let mut o = opts(&scene, &dir.join("whole.exr"), Method::Sppm, 5);
     o.photon.radius = Some(0.002);
     assert_options_merge_exactly(&o, 2, &dir);
+    // The pilot's photon budget (no --photons, the map only): every shard runs the same
+    // pilot and makes the same choice.
+    let dir = common::scratch_dir("shards-hybrid-pilot");
+    let mut o = opts(&scene, &dir.join("whole.exr"), Method::Hybrid, 5);
+    o.photon.photons = 0;
+    o.photon.caustic_mode = iris::integrator::CausticMode::Map;
+    assert_options_merge_exactly(&o, 3, &dir);
     // The hybrid's light-traced caustics (splats made per pass) merge exactly too.
     let dir = common::scratch_dir("shards-hybrid-mixed");
     let mut o = opts(&scene, &dir.join("whole.exr"), Method::Hybrid, 5);

@@ -67,7 +67,10 @@ impl RenderSummary {
                 self.stats.passes, self.stats.photons
             ),
             Method::Photon => format!("{spp} spp, {} photons", self.stats.photons),
-            Method::Hybrid => format!("{spp} spp, {} caustic photons", self.stats.photons),
+            Method::Hybrid => format!(
+                "{spp} spp, {} caustic photons ({} in the last pass)",
+                self.stats.photons, self.stats.photons_per_pass
+            ),
             _ => format!("{spp} spp"),
         }
     }

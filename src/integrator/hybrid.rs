@@ -37,6 +37,7 @@ use super::light_trace::{self, Splatter};
 use super::pass_paths::PassPaths;
 use super::path::LaneWidth;
 use super::path::{CausticSplit, StopAt};
+use super::photon_budget;
 use super::sppm::{first_radius, pass_wavelength_variate};
 use super::{CausticMode, CausticSettings};
 use crate::camera::Camera;
@@ -92,9 +93,30 @@ fn run<C: Carrier>(
 ) -> Result<(Film, RenderStats)> {
     let lanes = LaneWidth::choose(scene)?;
     let pixels = u64::from(settings.width) * u64::from(settings.height);
-    let n_photons = caustic::photons_per_pass(cs.photons, pixels);
     let emitter = caustic::emitter(scene);
-    let mut map = CausticMap::new(cs.radius, cs.alpha);
+    let schedule =
+        crate::render::schedule(u64::from(settings.spp.max(1)), range, 1, false, "hybrid");
+    let mut setup = Setup::now();
+    let (budget, mut map) = if cs.photons == 0 && cs.mode == CausticMode::Map && !emitter.is_empty()
+    {
+        // The pilot chooses the photons a pass and the first radius, the same in every
+        // shard ([`photon_budget`]).
+        let b = photon_budget::choose::<C>(
+            scene,
+            camera,
+            settings,
+            max_depth,
+            &emitter,
+            (cs.radius, cs.alpha),
+        )?;
+        setup.rays += b.rays;
+        setup.photons += b.photons;
+        (Some(b), CausticMap::new(Some(b.first_radius), cs.alpha))
+    } else {
+        (None, CausticMap::new(cs.radius, cs.alpha))
+    };
+    let n_photons = caustic::photons_per_pass(cs.photons, pixels);
+    let mut last_n = n_photons;
     let splatter = match cs.mode {
         CausticMode::Map => None,
         CausticMode::Light | CausticMode::Mixed => Splatter::new(
@@ -105,13 +127,10 @@ fn run<C: Carrier>(
             cs.mode == CausticMode::Light,
         ),
     };
-    let schedule =
-        crate::render::schedule(u64::from(settings.spp.max(1)), range, 1, false, "hybrid");
-    let mut setup = Setup::now();
     if schedule.first > 0 {
         // A shard: the radius of its first pass, as one render reaches it (pass 0's
-        // photons choose r₀ unless --radius gave it).
-        if !emitter.is_empty() && cs.radius.is_none() {
+        // photons choose r₀ unless --radius or the pilot gave it).
+        if !emitter.is_empty() && map.radius() == 0.0 {
             let lambda = C::sample_lambda(pass_wavelength_variate(0, settings.seed));
             let (rays, _) = map.trace_pass::<C>(
                 scene,
@@ -131,7 +150,7 @@ fn run<C: Carrier>(
             map.end_pass(p as u32);
         }
     }
-    drive(
+    let (film, mut stats) = drive(
         settings,
         schedule,
         setup,
@@ -148,6 +167,9 @@ fn run<C: Carrier>(
             let mut round = Round::default();
             let mut splats = Vec::new();
             if !emitter.is_empty() {
+                // The pilot's count grows with the pass as the radius shrinks.
+                let n_photons = budget.map_or(n_photons, |b| b.per_pass(pixels, map.radius()));
+                last_n = n_photons;
                 let (rays, s) = map.trace_pass::<C>(
                     scene,
                     &emitter,
@@ -182,7 +204,9 @@ fn run<C: Carrier>(
             round.note = format!(", r {r:.3e}, {} caustic photons", map.photons.len());
             Ok(round)
         },
-    )
+    )?;
+    stats.photons_per_pass = last_n;
+    Ok((film, stats))
 }
 
 /// One camera sample per pixel of pass `pass`, split with the caustic map, plus the pass's

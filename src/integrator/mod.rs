@@ -7,6 +7,7 @@ pub mod hybrid;
 pub mod light_trace;
 mod pass_paths;
 pub mod path;
+pub mod photon_budget;
 pub mod photon_map;
 mod settings;
 pub mod sppm;

@@ -1,6 +1,7 @@
 //! The progressive driver: the one loop every method renders through. It advances a
 //! [`Film`] in rounds of units (camera samples per pixel, or SPPM passes) to checkpoints
-//! 1, 2, 4, 8, … units and the target, and owns what a long render needs around the maths:
+//! 1, 2, 4, 8, … units (and in between where the observer asks, [`Control::ContinueTo`])
+//! and the target, and owns what a long render needs around the maths:
 //! the time limit, the stop request (SIGINT, [`super::guard`]), the progress bar with the
 //! half-buffer error estimate, the observer called at checkpoints, and the stats.
 //!
@@ -171,9 +172,15 @@ pub fn drive(
                 photons,
                 done: finished,
             };
-            if obs(&progress)? == Control::Stop {
-                observer_stopped = true;
-                break;
+            match obs(&progress)? {
+                Control::Stop => {
+                    observer_stopped = true;
+                    break;
+                }
+                Control::ContinueTo(units) => {
+                    next_checkpoint = units.clamp(done + 1, next_checkpoint);
+                }
+                Control::Continue => {}
             }
         }
         if finished {
@@ -196,6 +203,7 @@ pub fn drive(
         rays,
         samples: film.pixel_samples(),
         photons,
+        photons_per_pass: 0,
         passes: if schedule.passes { done as u32 } else { 1 },
         bad_samples: bad,
         end,

@@ -88,6 +88,10 @@ pub struct RenderStats {
     pub samples: u64,
     /// Photons emitted (photon methods).
     pub photons: u64,
+    /// Photons emitted in the last pass (the hybrid's caustic photons: without `--photons`
+    /// the count grows with the pass, [`crate::integrator::photon_budget`]; 0 for other
+    /// methods).
+    pub photons_per_pass: u64,
     /// Passes done (SPPM; 1 otherwise).
     pub passes: u32,
     /// Samples (SPPM: per-pixel pass contributions) dropped because they were NaN or

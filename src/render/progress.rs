@@ -37,11 +37,16 @@ pub struct Progress<'a> {
 pub enum Control {
     /// Keep rendering.
     Continue,
+    /// Keep rendering and look again after this many units (samples per pixel, SPPM
+    /// passes) in all, sooner than the next doubling: the error-target stop's prediction
+    /// ([`crate::app::budget`]). The driver keeps it within one more unit and the doubling.
+    ContinueTo(u64),
     /// Stop now; the render returns the image the observer just saw.
     Stop,
 }
 
-/// Called at checkpoints 1, 2, 4, 8, … samples per pixel (SPPM: passes) and at the end.
+/// Called at checkpoints 1, 2, 4, 8, … samples per pixel (SPPM: passes), at the checkpoints
+/// it asks for ([`Control::ContinueTo`]) and at the end.
 /// An error aborts the render and is returned.
 pub type Observer<'a> = &'a mut (dyn FnMut(&Progress) -> Result<Control> + Send);
 
