@@ -74,13 +74,23 @@ fn photons(n: u64) -> PhotonSettings {
     }
 }
 
-/// "20000 photons a pass", or for 0 "the pilot's photons".
-fn label(n: u64) -> String {
-    if n == 0 {
-        "the pilot's photons".into()
-    } else {
-        format!("{n} photons a pass")
-    }
+/// The hybrid's block means at `spp` passes with 20 000 photons a pass (seed 3) and with
+/// the pilot's count (photons(0), seed 4), each with its label.
+fn hybrid_blocks(scene: &Scene, cam: &CameraDesc, spp: u32) -> [(String, Vec<f64>); 2] {
+    [(20_000, 3), (0, 4)].map(|(n, seed)| {
+        let label = match n {
+            0 => "the pilot's photons".to_string(),
+            _ => format!("{n} photons a pass"),
+        };
+        let img = render(
+            scene,
+            cam,
+            Method::Hybrid,
+            &settings(spp, seed, 2),
+            photons(n),
+        );
+        (label, blocks(&img))
+    })
 }
 
 /// The 3 × 3 blocks around the caustic: centred on the block that `img` finds brightest
@@ -160,19 +170,10 @@ fn hybrid_agrees_with_the_path_tracer_under_a_small_area_light() {
     let noise = relative_rmse(&path2, &path1);
     let c = |b: &[f64]| region_sum(b, &region);
     let c_noise = c(&path2) / c(&path1) - 1.0;
-    // 20 000 photons a pass, and the pilot's count (photons(0), [`photon_budget`]).
-    for (n, seed) in [(20_000, 3), (0, 4)] {
-        let hybrid = blocks(&render(
-            &scene,
-            &cam,
-            Method::Hybrid,
-            &settings(1024, seed, 2),
-            photons(n),
-        ));
+    for (n, hybrid) in hybrid_blocks(&scene, &cam, 1024) {
         let err = relative_rmse(&hybrid, &path);
         let c_err = c(&hybrid) / c(&path) - 1.0;
         let m_err = mean(&hybrid) / mean(&path) - 1.0;
-        let n = label(n);
         eprintln!(
             "{n}: relative block RMSE: path vs path {noise:.4}, hybrid vs path \
              {err:.4}; caustic region path2/path1 {c_noise:+.4} hybrid {c_err:+.4}; mean \
@@ -225,19 +226,10 @@ fn hybrid_agrees_with_the_path_tracer_under_a_sky() {
         .min_by(|&a, &b| path[a].total_cmp(&path[b]))
         .expect("blocks");
     let d_noise = path2[dark] / path1[dark] - 1.0;
-    // 20 000 photons a pass, and the pilot's count (photons(0), [`photon_budget`]).
-    for (n, seed) in [(20_000, 3), (0, 4)] {
-        let hybrid = blocks(&render(
-            &scene,
-            &cam,
-            Method::Hybrid,
-            &settings(512, seed, 2),
-            photons(n),
-        ));
+    for (n, hybrid) in hybrid_blocks(&scene, &cam, 512) {
         let err = relative_rmse(&hybrid, &path);
         let m_err = mean(&hybrid) / mean(&path) - 1.0;
         let d_err = hybrid[dark] / path[dark] - 1.0;
-        let n = label(n);
         eprintln!(
             "sky, {n}: relative block RMSE path vs path {noise:.4}, hybrid vs \
              path {err:.4}; mean {m_err:+.4}; darkest block {dark}: hybrid {d_err:+.4} \

@@ -97,24 +97,11 @@ fn run<C: Carrier>(
     let schedule =
         crate::render::schedule(u64::from(settings.spp.max(1)), range, 1, false, "hybrid");
     let mut setup = Setup::now();
-    let (budget, mut map) = if cs.photons == 0 && cs.mode == CausticMode::Map && !emitter.is_empty()
-    {
-        // The pilot chooses the photons a pass and the first radius, the same in every
-        // shard ([`photon_budget`]).
-        let b = photon_budget::choose::<C>(
-            scene,
-            camera,
-            settings,
-            max_depth,
-            &emitter,
-            (cs.radius, cs.alpha),
-        )?;
+    let (budget, mut map) = caustic_budget::<C>(scene, camera, settings, max_depth, cs, &emitter)?;
+    if let Some(b) = &budget {
         setup.rays += b.rays;
         setup.photons += b.photons;
-        (Some(b), CausticMap::new(Some(b.first_radius), cs.alpha))
-    } else {
-        (None, CausticMap::new(cs.radius, cs.alpha))
-    };
+    }
     let n_photons = caustic::photons_per_pass(cs.photons, pixels);
     let mut last_n = n_photons;
     let splatter = match cs.mode {
@@ -207,6 +194,31 @@ fn run<C: Carrier>(
     )?;
     stats.photons_per_pass = last_n;
     Ok((film, stats))
+}
+
+/// Without `--photons` in map mode, the pilot's budget ([`photon_budget`]: the photons a
+/// pass and the first radius, the same in every shard) and a map with its first radius;
+/// otherwise no budget and a map with `--radius` (or none yet).
+fn caustic_budget<C: Carrier>(
+    scene: &Scene,
+    camera: &Camera,
+    settings: &RenderSettings,
+    max_depth: u32,
+    cs: &CausticSettings,
+    emitter: &crate::photon::emit::PhotonEmitter,
+) -> Result<(Option<photon_budget::Budget>, CausticMap)> {
+    if cs.photons > 0 || cs.mode != CausticMode::Map || emitter.is_empty() {
+        return Ok((None, CausticMap::new(cs.radius, cs.alpha)));
+    }
+    let b = photon_budget::choose::<C>(
+        scene,
+        camera,
+        settings,
+        max_depth,
+        emitter,
+        (cs.radius, cs.alpha),
+    )?;
+    Ok((Some(b), CausticMap::new(Some(b.first_radius), cs.alpha)))
 }
 
 /// One camera sample per pixel of pass `pass`, split with the caustic map, plus the pass's

@@ -172,15 +172,9 @@ pub fn drive(
                 photons,
                 done: finished,
             };
-            match obs(&progress)? {
-                Control::Stop => {
-                    observer_stopped = true;
-                    break;
-                }
-                Control::ContinueTo(units) => {
-                    next_checkpoint = units.clamp(done + 1, next_checkpoint);
-                }
-                Control::Continue => {}
+            if answer(obs(&progress)?, &mut next_checkpoint, done) {
+                observer_stopped = true;
+                break;
             }
         }
         if finished {
@@ -209,4 +203,17 @@ pub fn drive(
         end,
     };
     Ok((film, stats))
+}
+
+/// Applies an observer's answer after `done` units: [`Control::ContinueTo`] moves the next
+/// checkpoint within one more unit and the doubling. Returns whether it stops the render.
+fn answer(control: Control, next_checkpoint: &mut u64, done: u64) -> bool {
+    match control {
+        Control::Stop => true,
+        Control::ContinueTo(units) => {
+            *next_checkpoint = units.clamp(done + 1, *next_checkpoint);
+            false
+        }
+        Control::Continue => false,
+    }
 }
