@@ -37,6 +37,7 @@ fn settings(spp: u32, seed: u64) -> RenderSettings {
         spectral: false,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     }
 }
 

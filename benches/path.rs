@@ -72,6 +72,7 @@ fn path_tracer(c: &mut Criterion) {
         spectral: false,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let mut group = c.benchmark_group("path_tracer_512");
     group.sample_size(10);
@@ -141,6 +142,7 @@ fn spectral_overhead(c: &mut Criterion) {
                 spectral,
                 time_limit: None,
                 sampler: Default::default(),
+                adaptive: None,
             };
             let id = if spectral {
                 "spectral_on"

@@ -68,6 +68,7 @@ fn settings(spp: u32, seed: u64, time_limit: Option<Duration>) -> RenderSettings
         spectral: false,
         time_limit,
         sampler: Default::default(),
+        adaptive: None,
     }
 }
 

@@ -65,6 +65,7 @@ fn transmitted(thickness: f32, distance: f32, color: Vec3, backend: Backend) -> 
         spectral: false,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let integrator = Integrator::new(Method::Whitted, 16, &PhotonSettings::default())
         .expect("a resolved method");

@@ -100,6 +100,7 @@ fn left_mean(sheet: bool, seed: u64) -> f64 {
         spectral: false,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let integrator = Integrator::new(
         Method::Photon,

@@ -435,6 +435,7 @@ fn library_rejects_absurd_threads_depth_and_photons() {
         spectral: false,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let e = iris::render::thread_pool(&settings).expect_err("100000 threads");
     assert!(e.to_string().contains("--threads 100000"), "{e}");

@@ -125,6 +125,7 @@ fn embree_and_oidn_share_one_process() {
         accel: iris::accel::Backend::Embree,
         quiet: true,
         denoise: DenoiseMode::On,
+        adaptive: Default::default(),
         ..RenderOptions::new(&asset(SPHERES), Some(&dir.join("e.exr")))
     };
     let s = render_command(&opts).expect("render with Embree, then denoise");

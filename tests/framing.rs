@@ -48,6 +48,7 @@ fn settings(w: u32, h: u32) -> RenderSettings {
         spectral: false,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     }
 }
 

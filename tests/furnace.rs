@@ -71,6 +71,7 @@ fn furnace_render(
         spectral,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let integrator =
         Integrator::new(Method::Path, 64, &PhotonSettings::default()).expect("a resolved method");

@@ -104,6 +104,7 @@ fn settings(spp: u64) -> RenderSettings {
         spectral: true,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     }
 }
 

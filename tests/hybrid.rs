@@ -26,17 +26,7 @@ const W: u32 = 48;
 const H: u32 = 36;
 
 fn settings(spp: u32, seed: u64, threads: usize) -> RenderSettings {
-    RenderSettings {
-        width: W,
-        height: H,
-        spp,
-        seed,
-        threads,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-    }
+    common::render_settings((W, H), spp, seed, threads)
 }
 
 fn render(

@@ -42,6 +42,7 @@ fn render(desc: SceneDesc, size: u32, spp: u32, spectral: bool) -> Vec<Vec3> {
         spectral,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let integrator = Integrator::new(Method::Path, 6, &PhotonSettings::default()).expect("path");
     let img = integrator

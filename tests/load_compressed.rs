@@ -187,6 +187,7 @@ fn render(file: &Path, seed: u64) -> Vec<Vec3> {
         spectral: false,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let integrator =
         Integrator::new(Method::Whitted, 64, &PhotonSettings::default()).expect("whitted");

@@ -135,6 +135,7 @@ fn render(desc: SceneDesc, camera: CameraDesc, spectral: bool) -> Shot {
         spectral,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let integrator =
         Integrator::new(Method::Path, 32, &PhotonSettings::default()).expect("path tracer");

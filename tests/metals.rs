@@ -103,6 +103,7 @@ fn furnace(material: MaterialDesc, spp: u32, spectral: bool) -> Vec<Vec3> {
         spectral,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let integrator = Integrator::new(Method::Path, 8, &PhotonSettings::default()).expect("path");
     integrator

@@ -30,6 +30,7 @@ fn run(method: Method, spp: u32, photon: PhotonSettings, seed: u64) -> ImageRgb 
         spectral: false,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let integrator = Integrator::new(method, 32, &photon).expect("a resolved method");
     integrator

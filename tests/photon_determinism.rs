@@ -21,6 +21,7 @@ fn image(method: Method, threads: usize, seed: u64, spectral: bool) -> Vec<glam:
         spectral,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let integrator = Integrator::new(
         method,

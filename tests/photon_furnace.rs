@@ -78,6 +78,7 @@ fn mean_radiance(scene: &Scene, method: Method, photon: PhotonSettings, spp: u32
         spectral: false,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let integrator = Integrator::new(method, 64, &photon).expect("a resolved method");
     let (img, _) = integrator

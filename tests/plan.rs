@@ -73,6 +73,7 @@ fn mean(scene: &Scene, cam: &CameraDesc, method: Method, spectral: bool, seed: u
         spectral,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let (img, _) = integrator
         .render_progressive(scene, &Camera::new(cam, w, h), &settings, None)

@@ -391,7 +391,8 @@ fn each_variation_prepares_what_it_says_in_the_library_and_on_the_command_line()
 
 #[test]
 fn info_plans_the_scene_render_plans() {
-    // `iris info` plans `iris render FILE --method auto` at the probe size: the stage lines
+    // `iris info` plans `iris render FILE --method auto` at the probe size with the
+    // default budget (an error target, so adaptive sampling is on): the stage lines
     // (without the measured costs, which are timings) are the same.
     let dir = common::scratch_dir("prepare_info");
     let scene = bare();
@@ -417,8 +418,10 @@ fn info_plans_the_scene_render_plans() {
             "auto",
             "--size",
             "32x24",
-            "--passes",
-            "1",
+            "--target-error",
+            "0.03",
+            "--time",
+            "0.1",
             "-q",
             "-o",
             "x.png",

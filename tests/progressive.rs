@@ -41,17 +41,7 @@ fn grey_sphere() -> (Scene, Camera) {
 }
 
 fn settings(spp: u32, seed: u64, threads: usize) -> RenderSettings {
-    RenderSettings {
-        width: W,
-        height: H,
-        spp,
-        seed,
-        threads,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-    }
+    common::render_settings((W, H), spp, seed, threads)
 }
 
 fn path() -> Integrator {

@@ -88,6 +88,7 @@ fn render_all(files: &[PathBuf], scratch: &str) {
                 } else {
                     iris::denoise::DenoiseMode::Off
                 },
+                adaptive: Default::default(),
                 spin: None,
                 exr_copy: None,
                 shard: None,

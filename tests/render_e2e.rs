@@ -45,6 +45,7 @@ fn opts(scene: &Path, out: &Path, accel: Backend, threads: usize) -> RenderOptio
         looks: Vec::new(),
         explain: false,
         denoise: Default::default(),
+        adaptive: Default::default(),
         spin: None,
         exr_copy: None,
         shard: None,
@@ -309,6 +310,7 @@ fn lambertian_sphere_in_uniform_environment_has_albedo_radiance() {
         spectral: false,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let (img, _) = integrator.render(&scene, &cam, &settings).unwrap();
     // The sphere (radius 1 at distance 5, yfov 0.6) spans ~ ±0.2 rad: pixels within 6 of the

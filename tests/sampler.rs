@@ -147,6 +147,7 @@ fn settings(w: u32, h: u32, spp: u32, seed: u64, sampler: SamplerKind) -> Render
         spectral: false,
         time_limit: None,
         sampler,
+        adaptive: None,
     }
 }
 

@@ -186,6 +186,7 @@ fn render_mean(scene: &Path, env: Option<Option<Environment>>, out: &Path) -> Ve
         looks: Vec::new(),
         explain: false,
         denoise: Default::default(),
+        adaptive: Default::default(),
         spin: None,
         exr_copy: None,
         shard: None,

@@ -58,6 +58,7 @@ fn renders(scene: &Scene, size: u32, spp: u32, k: u64, spectral_mis: bool) -> Ve
                 spectral: true,
                 time_limit: None,
                 sampler: Default::default(),
+                adaptive: None,
             };
             integrator
                 .render(scene, &Camera::new(&camera(), size, size), &settings)

@@ -33,6 +33,7 @@ fn settings(seed: u64) -> RenderSettings {
         spectral: false,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     }
 }
 

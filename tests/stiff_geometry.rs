@@ -130,6 +130,7 @@ fn render_image(
         spectral: false,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let integrator = Integrator::new(Method::Path, max_depth, &PhotonSettings::default())
         .expect("a resolved method");

@@ -95,6 +95,7 @@ fn shoot(scene: &Scene, cam: &CameraDesc, method: Method, spp: u32, spectral: bo
         spectral,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let integrator =
         Integrator::new(method, 64, &PhotonSettings::default()).expect("a resolved method");
@@ -440,6 +441,7 @@ fn bubble_ring_starts_at_the_critical_impact_parameter() {
         spectral: false,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let whitted = Integrator::new(Method::Whitted, 16, &PhotonSettings::default())
         .expect("a resolved method");
@@ -544,6 +546,7 @@ fn whitted_at_the_largest_depth_in_a_closed_mirror_box_keeps_its_stack() {
                 spectral,
                 time_limit: None,
                 sampler: Default::default(),
+                adaptive: None,
             };
             let integrator = Integrator::new(Method::Whitted, depth, &PhotonSettings::default())
                 .expect("a resolved method");

@@ -76,6 +76,7 @@ fn render_spectral(scene: &Scene, cam: &CameraDesc, size: u32, spp: u32) -> Vec<
         spectral: true,
         time_limit: None,
         sampler: Default::default(),
+        adaptive: None,
     };
     let integrator =
         Integrator::new(Method::Path, 16, &PhotonSettings::default()).expect("a resolved method");

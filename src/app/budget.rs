@@ -1,7 +1,7 @@
 //! How long `iris render` renders: the budget the flags ask for, resolved in one
 //! place ([`BudgetFlags::resolve`]); the stop test against an error target ([`stop_error`],
 //! [`TargetStop`]); and when the output is rewritten while the render runs
-//! ([`CheckpointWrites`]).
+//! ([`super::checkpoint_writes::CheckpointWrites`]).
 //!
 //! ## The rule
 //! | flags given | unit cap (spp; SPPM: passes) | time limit | error target |
@@ -16,7 +16,7 @@
 //! so the time limit or the target ends the render. Without `--method` the method is
 //! `auto` ([`crate::plan::resolve_method`]); `--method whitted` and the others still work.
 //! An open budget also rewrites the output at the driver's checkpoints (1, 2, 4, …
-//! samples or passes), throttled by [`CheckpointWrites`], so the file can be watched;
+//! samples or passes), throttled by [`super::checkpoint_writes::CheckpointWrites`], so the file can be watched;
 //! `--checkpoint K` replaces that rule by its own.
 //!
 //! ## The stop test
@@ -28,7 +28,7 @@
 //!   number `--target-error` always used;
 //! - a denoised image (the PNG preview under `--denoise auto|on`): the same estimate from
 //!   the two half images each denoised with the render's auxiliary images
-//!   ([`crate::denoise::denoised_estimate`]), so the render stops when the picture it
+//!   ([`crate::denoise::denoised_estimate`], from [`crate::denoise::denoised_halves`], which adaptive sampling then also measures the tiles on), so the render stops when the picture it
 //!   writes is clean, far sooner than the raw image would be.
 //!
 //! Checkpoints double; once an estimate is above the target the stop asks for the next
@@ -49,7 +49,7 @@
 //! ("How long a render takes"); the measurements behind them are beside the constants. Units:
 //! wall-clock seconds; errors are relative RMSE, `sqrt(rel_mse)` ([`crate::measure`]).
 
-use crate::denoise::{denoised_estimate, AuxImages};
+use crate::denoise::{denoised_halves, AuxImages};
 use crate::error::Result;
 use crate::image::metrics::half_buffer_estimate;
 use crate::integrator::Method;
@@ -115,13 +115,6 @@ pub const DEFAULT_TIME_LIMIT: Duration = Duration::from_secs(120);
 /// sparse light path (a caustic, a small light seen through glass) is in neither half.
 pub const MIN_STOP_UNITS: u64 = 8;
 
-/// While watching (an open budget), the output is rewritten at most this often.
-pub const WATCH_INTERVAL: Duration = Duration::from_secs(2);
-
-/// While watching, the time between two writes is also at least this many times the last
-/// write's cost, so writing takes at most 1/20 of the render's time.
-pub const WATCH_COST_FACTOR: u32 = 20;
-
 /// The budget flags of `iris render` as given (`None` = not given).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct BudgetFlags {
@@ -151,7 +144,7 @@ pub struct Budget {
     /// Stop once [`stop_error`] is at or below this.
     pub target_error: Option<f64>,
     /// No count was given: the time limit or the target ends the render, and the output is
-    /// rewritten at checkpoints ([`CheckpointWrites`]).
+    /// rewritten at checkpoints ([`super::checkpoint_writes::CheckpointWrites`]).
     pub open: bool,
 }
 
@@ -214,7 +207,13 @@ pub fn stop_error(p: &Progress, what: StopImage) -> Result<Option<f64>> {
             let estimate = half_buffer_estimate(p.halves.0, p.halves.1)?;
             Ok(Some(relative_rmse(&estimate)))
         }
-        StopImage::Denoised(aux) => denoised_estimate(p.halves, aux),
+        StopImage::Denoised(aux) => {
+            let (a, b) = denoised_halves(p.halves, aux)?;
+            let e = crate::render::relative_error_estimate(&a, &b);
+            // Adaptive sampling measures the tiles on what the stop sees.
+            let _ = p.judged.set((a, b));
+            Ok(e)
+        }
     }
 }
 
@@ -277,50 +276,6 @@ pub fn next_check(done: u64, e: f64, target: f64) -> u64 {
     let need = d * (e / target).powi(2);
     let need = if need.is_finite() { need } else { 2.0 * d };
     (need.max(d * MIN_CHECK_STEP).ceil() as u64).max(done + 1)
-}
-
-/// When the output is rewritten during a render: every `--checkpoint K` units, or, for an
-/// open budget ("watch"), at the driver's checkpoints with the first one written at once
-/// and later ones at least [`WATCH_INTERVAL`] and [`WATCH_COST_FACTOR`] × the last write's
-/// cost apart. Never at the end (`done`): the final image is written by the caller.
-#[derive(Debug, Clone)]
-pub struct CheckpointWrites {
-    every: Option<u32>,
-    watch: bool,
-    last_units: u64,
-    last_write: Option<(Instant, Duration)>,
-}
-
-impl CheckpointWrites {
-    /// `--checkpoint K` (`every`), else watching when `watch`, else no writes before the end.
-    pub fn new(every: Option<u32>, watch: bool) -> Self {
-        CheckpointWrites {
-            every,
-            watch,
-            last_units: 0,
-            last_write: None,
-        }
-    }
-
-    /// Whether to write the image of checkpoint `p` at time `now`.
-    pub fn due(&self, p: &Progress, now: Instant) -> bool {
-        if p.done {
-            return false;
-        }
-        if let Some(k) = self.every {
-            return p.samples >= self.last_units + u64::from(k);
-        }
-        self.watch
-            && self.last_write.is_none_or(|(end, cost)| {
-                now.saturating_duration_since(end) >= WATCH_INTERVAL.max(cost * WATCH_COST_FACTOR)
-            })
-    }
-
-    /// Records a write of checkpoint `p` that took `cost` and ended at `end`.
-    pub fn wrote(&mut self, p: &Progress, cost: Duration, end: Instant) {
-        self.last_units = p.samples;
-        self.last_write = Some((end, cost));
-    }
 }
 
 #[cfg(test)]
@@ -417,16 +372,7 @@ mod tests {
         samples: u64,
         done: bool,
     ) -> Progress<'a> {
-        Progress {
-            image: m,
-            halves: (a, b),
-            elapsed: Duration::ZERO,
-            samples,
-            passes: 1,
-            rays: 0,
-            photons: 0,
-            done,
-        }
+        Progress::at(m, (a, b), samples, done)
     }
 
     #[test]
@@ -466,34 +412,5 @@ mod tests {
         assert_eq!(next_check(128, 0.0301, 0.03), 160);
         assert_eq!(next_check(1, 0.0301, 0.03), 2);
         assert_eq!(next_check(64, f64::INFINITY, 0.03), 128);
-    }
-
-    #[test]
-    fn watching_writes_at_once_then_throttles() {
-        let (m, a, b) = (img(1.0), img(1.0), img(1.0));
-        let t0 = Instant::now();
-        let mut w = CheckpointWrites::new(None, true);
-        let p1 = progress(&m, &a, &b, 1, false);
-        assert!(w.due(&p1, t0), "the first checkpoint is written at once");
-        w.wrote(&p1, Duration::from_millis(10), t0);
-        let p2 = progress(&m, &a, &b, 2, false);
-        assert!(!w.due(&p2, t0 + Duration::from_millis(1999)));
-        assert!(w.due(&p2, t0 + WATCH_INTERVAL));
-        // A slow write (200 ms) spaces writes by 20 × 200 ms = 4 s.
-        w.wrote(&p2, Duration::from_millis(200), t0);
-        assert!(!w.due(&p2, t0 + Duration::from_millis(3999)));
-        assert!(w.due(&p2, t0 + Duration::from_secs(4)));
-        assert!(
-            !w.due(&progress(&m, &a, &b, 4, true), t0 + Duration::from_secs(60)),
-            "not at the end"
-        );
-        assert!(!CheckpointWrites::new(None, false).due(&p1, t0));
-        // `--checkpoint 2`: every 2 units, whatever the time.
-        let mut k = CheckpointWrites::new(Some(2), true);
-        assert!(!k.due(&p1, t0));
-        assert!(k.due(&p2, t0));
-        k.wrote(&p2, Duration::from_secs(5), t0);
-        assert!(!k.due(&progress(&m, &a, &b, 3, false), t0));
-        assert!(k.due(&progress(&m, &a, &b, 4, false), t0));
     }
 }

@@ -358,6 +358,18 @@ fn info_plan(path: &Path, flags: &[LookFlag]) -> Result<String> {
     // `iris render`'s default output is a PNG under --denoise auto.
     let denoise = crate::denoise::mode::choose(Default::default(), Path::new("render.png"))?;
     plan.stages.push(denoise.stage());
+    // And its default budget: the error target or the time limit ends it.
+    let budget = super::budget::Budget::default();
+    let adaptive = super::adaptive::choose(
+        super::adaptive::AdaptiveFlags {
+            mode: Default::default(),
+            open: budget.open,
+            target: budget.target_error,
+            shard: false,
+        },
+        plan.method,
+    )?;
+    plan.stages.push(adaptive.stage());
     plan.add_file_counts(path);
     plan.measure_costs(scene, &Camera::new(cam, w, h), 0)?;
     let mut s = format!(

@@ -6,7 +6,9 @@
 //! what `main.rs` calls: one function per command). This is the top of the crate: nothing
 //! below imports it.
 
+pub mod adaptive;
 pub mod budget;
+pub mod checkpoint_writes;
 pub mod commands;
 pub mod converge;
 pub mod diff;

@@ -10,7 +10,8 @@
 //! `--denoise on` gets it as an extra layer. With `--reference` every checkpoint is
 //! denoised so its report row has the denoised error too.
 
-use super::budget::{CheckpointWrites, TargetStop};
+use super::budget::TargetStop;
+use super::checkpoint_writes::CheckpointWrites;
 use super::render_denoise::RenderDenoiser;
 use super::render_options::{unit_name, RenderOptions};
 pub use super::summary::RenderSummary;
@@ -44,7 +45,9 @@ pub struct RenderJob<'a> {
     reference: Option<ImageRgb>,
     prepared: crate::prepare::Prepared,
     denoise: DenoiseChoice,
-    /// The render plan (method and transport resolved; its last stage is `denoise`).
+    adaptive: super::adaptive::AdaptiveChoice,
+    /// The render plan (method and transport resolved; its last stages are `denoise` and
+    /// `adaptive`).
     pub plan: crate::plan::Plan,
 }
 
@@ -96,6 +99,23 @@ impl<'a> RenderJob<'a> {
         }
         let mut plan = crate::plan::Plan::new(&prepared.scene, opts.method, opts.spectral);
         plan.stages.push(denoise.stage());
+        let adaptive = super::adaptive::choose(
+            super::adaptive::AdaptiveFlags {
+                mode: opts.adaptive,
+                open: opts.watch,
+                target: measure.target_error,
+                shard: opts.shard.is_some(),
+            },
+            plan.method,
+        )?;
+        plan.stages.push(adaptive.stage());
+        if opts.shard.is_some()
+            && opts.watch
+            && !opts.quiet
+            && !adaptive.reason.contains("--adaptive off")
+        {
+            eprintln!("note: adaptive sampling {}", adaptive.reason);
+        }
         if opts.explain {
             plan.add_file_counts(&opts.scene);
             let (pw, ph) = crate::plan::PROBE_SIZE;
@@ -113,6 +133,7 @@ impl<'a> RenderJob<'a> {
             reference,
             prepared,
             denoise,
+            adaptive,
             plan,
         })
     }
@@ -220,6 +241,7 @@ impl<'a> RenderJob<'a> {
             quiet: opts.quiet,
             spectral: self.plan.spectral,
             time_limit: opts.time_limit,
+            adaptive: self.adaptive.adaptive,
         }
     }
 

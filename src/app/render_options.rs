@@ -35,7 +35,7 @@ pub struct RenderOptions {
     /// that come at least K samples (passes) after the last write.
     pub checkpoint: Option<u32>,
     /// Without `--checkpoint`: rewrite the output at the checkpoints, throttled
-    /// ([`super::budget::CheckpointWrites`]), so it can be watched; set for an open budget
+    /// ([`super::checkpoint_writes::CheckpointWrites`]), so it can be watched; set for an open budget
     /// ([`Budget::open`]).
     pub watch: bool,
     /// Photon-mapping settings (`--photons`, `--radius`, `--alpha`, `--passes`, …).
@@ -71,6 +71,8 @@ pub struct RenderOptions {
     pub explain: bool,
     /// `--denoise auto|on|off` ([`crate::denoise::mode`]).
     pub denoise: DenoiseMode,
+    /// `--adaptive auto|on|off` ([`super::adaptive`]).
+    pub adaptive: super::adaptive::AdaptiveMode,
     /// A turntable frame (`iris turntable`): the model turned about the vertical axis
     /// ([`crate::prepare::turntable`]); `None` = as the file has it.
     pub spin: Option<crate::prepare::turntable::Spin>,
@@ -119,6 +121,7 @@ impl RenderOptions {
             looks: Vec::new(),
             explain: false,
             denoise: DenoiseMode::Auto,
+            adaptive: Default::default(),
             spin: None,
             exr_copy: None,
             shard: None,

@@ -60,7 +60,14 @@ impl RenderSummary {
     /// and the gallery print it.
     pub fn work_done(&self) -> String {
         let pixels = u64::from(self.image.width) * u64::from(self.image.height);
-        let spp = self.stats.samples / pixels.max(1);
+        let (lo, hi) = self.stats.unit_span;
+        let spp = if lo < hi {
+            // Adaptive sampling: the range and the mean.
+            let mean = self.stats.samples as f64 / pixels.max(1) as f64;
+            format!("{lo} to {hi} (mean {mean:.1})")
+        } else {
+            (self.stats.samples / pixels.max(1)).to_string()
+        };
         match self.method {
             Method::Sppm => format!(
                 "{} passes, {} photons",

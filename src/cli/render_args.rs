@@ -236,6 +236,13 @@ pub struct RenderArgs {
     /// the layer `denoised` (channels denoised.R, .G, .B), `off` never.
     #[arg(long, default_value = "auto", value_parser = crate::denoise::DenoiseMode::parse)]
     pub denoise: crate::denoise::DenoiseMode,
+    /// Adaptive sampling: converged 16×16 tiles rest while the noisy ones take samples
+    /// (from 32 samples per pixel on, never below a quarter of the image's; a tile also
+    /// rests below half the error target).
+    /// `auto` turns it on when the time limit or the error target ends the render (no
+    /// --spp/--passes), `on` always, `off` never; never for SPPM or a shard.
+    #[arg(long, default_value = "auto", value_parser = crate::app::adaptive::AdaptiveMode::parse)]
+    pub adaptive: crate::app::adaptive::AdaptiveMode,
 }
 
 impl RenderArgs {
@@ -297,6 +304,7 @@ impl RenderArgs {
             looks: a.looks.flags()?,
             explain: a.explain,
             denoise: a.denoise,
+            adaptive: a.adaptive,
             spin: None,
             exr_copy: None,
             shard: a.shard,

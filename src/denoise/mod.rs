@@ -173,9 +173,16 @@ pub fn denoised_estimate(
     halves: (&ImageRgb, &ImageRgb),
     aux: Option<&AuxImages>,
 ) -> Result<Option<f64>> {
-    let a = denoise(halves.0, aux)?;
-    let b = denoise(halves.1, aux)?;
-    Ok(crate::render::relative_error_estimate(&a.image, &b.image))
+    let (a, b) = denoised_halves(halves, aux)?;
+    Ok(crate::render::relative_error_estimate(&a, &b))
+}
+
+/// Both half images denoised with `aux` ([`denoised_estimate`] compares them).
+pub fn denoised_halves(
+    halves: (&ImageRgb, &ImageRgb),
+    aux: Option<&AuxImages>,
+) -> Result<(ImageRgb, ImageRgb)> {
+    Ok((denoise(halves.0, aux)?.image, denoise(halves.1, aux)?.image))
 }
 
 #[cfg(test)]

@@ -132,12 +132,16 @@ pub fn compare(image: &ImageRgb, reference: &ImageRgb) -> Result<ErrorMetrics> {
 /// Errors: as [`compare`].
 pub fn half_buffer_estimate(a: &ImageRgb, b: &ImageRgb) -> Result<ErrorMetrics> {
     check_pair(a, b, ("half image A", "half image B"))?;
-    Ok(mean_metrics(a, b, |x, y| {
-        let d = x - y;
-        let v = d * d / 4.0;
-        let m = 0.5 * (x + y);
-        (v, v / (m * m + REL_EPS), 0.5 * d.abs())
-    }))
+    Ok(mean_metrics(a, b, half_pair_terms))
+}
+
+/// One channel's terms of [`half_buffer_estimate`] for half means `x` and `y`: the
+/// squared error, the relative squared error and the absolute error of their mean.
+pub fn half_pair_terms(x: f64, y: f64) -> (f64, f64, f64) {
+    let d = x - y;
+    let v = d * d / 4.0;
+    let m = 0.5 * (x + y);
+    (v, v / (m * m + REL_EPS), 0.5 * d.abs())
 }
 
 #[cfg(test)]

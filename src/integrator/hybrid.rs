@@ -180,7 +180,7 @@ fn run<C: Carrier>(
                 camera,
                 max_depth,
                 (settings, lanes),
-                (pass, lambda),
+                lambda,
                 (&map, image.as_deref(), cs.mode),
                 film,
             );
@@ -221,15 +221,16 @@ fn caustic_budget<C: Carrier>(
     Ok((Some(b), CausticMap::new(Some(b.first_radius), cs.alpha)))
 }
 
-/// One camera sample per pixel of pass `pass`, split with the caustic map, plus the pass's
-/// light-traced splats (`Some` in mixed mode: the map is then gathered only through delta
-/// bounces), into the film's half `pass mod 2`. Returns the rays and bad samples.
+/// One camera sample per pixel of the active tiles (each tile's next unit,
+/// [`PassPaths::trace`]) at the pass's wavelengths `lambda`, split with the pass's caustic
+/// map, plus the pass's light-traced splats (`Some` in mixed mode: the map is then gathered
+/// only through delta bounces). Returns the rays and bad samples.
 fn camera_pass<C: Carrier>(
     scene: &Scene,
     camera: &Camera,
     max_depth: u32,
     (settings, lanes): (&RenderSettings, LaneWidth),
-    (pass, lambda): (u32, C::Lambda),
+    lambda: C::Lambda,
     (map, splats, mode): (&CausticMap, Option<&[Vec3]>, CausticMode),
     film: &mut Film,
 ) -> (u64, u64) {
@@ -251,7 +252,6 @@ fn camera_pass<C: Carrier>(
         camera,
         sampler: pixel_sampler(settings, u64::from(settings.spp.max(1))),
         max_depth,
-        pass,
         lambda,
         stop: StopAt::Never,
         split,

@@ -1,6 +1,8 @@
 //! The camera side of one pass of a progressive photon method (SPPM, the hybrid): one path
-//! per pixel from the pixel's sample `pass`, at the pass's wavelengths, added to the film's
-//! half `pass mod 2`. Tiles run in parallel. Within a tile the paths run one after the other,
+//! per pixel of the active tiles, from the pixel's sample `k` = its tile's next unit
+//! ([`FilmTile::next_unit`]: `pass` unless adaptive sampling rested the tile in earlier
+//! passes of the hybrid; SPPM never rests tiles), at the pass's wavelengths, added to the
+//! film's half `k mod 2`. Tiles run in parallel. Within a tile the paths run one after the other,
 //! or for the hybrid in lanes ([`path::estimate_lanes`]), which give the same estimates bit
 //! for bit. SPPM's paths stop at a visible point, which the lanes do not return, so SPPM
 //! stays on single rays.
@@ -25,7 +27,6 @@ pub(super) struct PassPaths<'a, C: Carrier> {
     pub camera: &'a Camera,
     pub sampler: PixelSampler,
     pub max_depth: u32,
-    pub pass: u32,
     pub lambda: C::Lambda,
     pub stop: StopAt,
     pub split: path::CausticSplit<'a, C>,
@@ -34,11 +35,11 @@ pub(super) struct PassPaths<'a, C: Carrier> {
 }
 
 impl<C: Carrier> PassPaths<'_, C> {
-    /// Traces every pixel's path, tiles in parallel, and adds `keep((x, y), L, visible
-    /// point, slot)` (the pixel's RGB) to the film's half `pass mod 2`. `slots` has one
-    /// entry per film slot, handed to `keep` (a zero-sized type when it keeps nothing);
-    /// with `done`, every tile is then marked done up to this pass. Returns the rays and bad
-    /// samples.
+    /// Traces every pixel's path of the active tiles, tiles in parallel, and adds `keep((x,
+    /// y), L, visible point, slot)` (the pixel's RGB) to the film's half `k mod 2` (see the
+    /// module docs). `slots` has one entry per film slot, handed to `keep` (a zero-sized
+    /// type when it keeps nothing); with `done`, each traced tile then counts one unit
+    /// more. Returns the rays and bad samples.
     pub fn trace<S: Send>(
         &self,
         film: &mut Film,
@@ -50,13 +51,16 @@ impl<C: Carrier> PassPaths<'_, C> {
         film.par_tiles_mut()
             .zip(slots.par_chunks_mut(TILE_PIXELS))
             .map(|(mut tile, tile_slots)| {
+                if !tile.active() {
+                    return (0, 0);
+                }
                 let (rays, bad) = if lanes {
                     self.tile_lanes(&mut tile, tile_slots, &keep)
                 } else {
                     self.tile_scalar(&mut tile, tile_slots, &keep)
                 };
                 if done {
-                    tile.done_until(u64::from(self.pass) + 1);
+                    tile.take(1, rays);
                 }
                 (rays, bad)
             })
@@ -70,7 +74,7 @@ type Keep<'k, C, S> = &'k (dyn Fn((u32, u32), C, Option<VisiblePoint<C>>, &mut S
 impl<C: Carrier> PassPaths<'_, C> {
     /// One tile's paths one after the other; returns the rays and bad samples.
     fn tile_scalar<S>(&self, tile: &mut FilmTile, slots: &mut [S], keep: Keep<C, S>) -> (u64, u64) {
-        let k = u64::from(self.pass);
+        let k = tile.next_unit();
         let (mut rays, mut bad) = (0, 0);
         for (i, slot) in slots.iter_mut().enumerate() {
             let Some((x, y)) = tile.pixel(i) else {
@@ -99,7 +103,7 @@ impl<C: Carrier> PassPaths<'_, C> {
     /// One tile's paths in lanes ([`path::estimate_lanes`] with the pass's wavelengths, no
     /// spectral MIS, as [`path::camera_path`]); returns the rays and bad samples.
     fn tile_lanes<S>(&self, tile: &mut FilmTile, slots: &mut [S], keep: Keep<C, S>) -> (u64, u64) {
-        let k = u64::from(self.pass);
+        let k = tile.next_unit();
         let starts = Starts::new(self.camera, &self.sampler, false, false);
         let pixels: Vec<(usize, Job)> = (0..slots.len())
             .filter_map(|i| tile.pixel(i).map(|(x, y)| (i, Job { x, y, k })))

@@ -174,8 +174,12 @@ fn run<C: Carrier>(
         grid: HashGrid::new(),
         r2: ps.radius.map(|r| (r as f64) * (r as f64)),
     };
-    let schedule =
-        crate::render::schedule(u64::from(ps.passes.max(1)), range, 1, true, "sppm passes");
+    // Every pixel's visible point takes part in every pass (its radius and flux statistics
+    // are per pass), so SPPM never rests tiles.
+    let schedule = crate::render::Schedule {
+        adaptive: false,
+        ..crate::render::schedule(u64::from(ps.passes.max(1)), range, 1, true, "sppm passes")
+    };
     let mut setup = Setup::now();
     if schedule.first > 0 {
         // A shard: the radius of its first pass, as one render reaches it.
@@ -183,13 +187,12 @@ fn run<C: Carrier>(
             let mut scratch = Film::new(settings.width, settings.height, 0);
             state.vps.resize(scratch.slots(), None);
             let lambda = C::sample_lambda(pass_wavelength_variate(0, settings.seed));
-            let passes = (0, ps.passes.max(1));
             let (rays, _) = camera_pass(
                 scene,
                 camera,
                 max_depth,
                 settings,
-                passes,
+                ps.passes.max(1),
                 lambda,
                 &mut scratch,
                 &mut state.vps,
@@ -223,7 +226,7 @@ fn run<C: Carrier>(
                 camera,
                 max_depth,
                 settings,
-                (pass, ps.passes.max(1)),
+                ps.passes.max(1),
                 lambda,
                 film,
                 &mut state.vps,
@@ -263,7 +266,7 @@ fn camera_pass<C: Carrier>(
     camera: &Camera,
     max_depth: u32,
     settings: &RenderSettings,
-    (pass, passes): (u32, u32),
+    passes: u32,
     lambda: C::Lambda,
     film: &mut Film,
     vps: &mut [Option<VisiblePoint<C>>],
@@ -273,7 +276,6 @@ fn camera_pass<C: Carrier>(
         camera,
         sampler: pixel_sampler(settings, u64::from(passes)),
         max_depth,
-        pass,
         lambda,
         stop: StopAt::Diffuse,
         split: path::CausticSplit::None,

@@ -86,7 +86,10 @@ impl<'a> Recorder<'a> {
         p: &Progress,
         denoised: Option<(&ImageRgb, Duration)>,
     ) -> Result<()> {
-        let estimate = half_buffer_estimate(p.halves.0, p.halves.1)?;
+        // One unit makes both halves that unit: no estimate before two.
+        let estimate = (p.samples >= 2)
+            .then(|| half_buffer_estimate(p.halves.0, p.halves.1))
+            .transpose()?;
         let error = match self.reference {
             Some(r) => Some(compare(p.image, r)?),
             None => None,
@@ -112,12 +115,12 @@ impl<'a> Recorder<'a> {
             rays: p.rays,
             photons: p.photons,
             error,
-            estimate: Some(estimate),
+            estimate,
             denoised: denoised_error,
             denoise_s: denoised.map(|(_, t)| t.as_secs_f64()),
         });
         if self.verbose && !p.done {
-            let mut line = checkpoint_line(&self.run, p, &estimate, error.as_ref());
+            let mut line = checkpoint_line(&self.run, p, estimate.as_ref(), error.as_ref());
             if let Some(e) = denoised_error {
                 line.push_str(&format!(" (denoised {:.4})", relative_rmse(&e)));
             }
@@ -155,19 +158,22 @@ pub fn denoised_points(rows: &[ReportRow]) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// `path: 16 spp, 3 passes, 1.25 s: estimated relative error 0.081 (vs reference 0.094)`.
+/// `path: 16 spp, 3 passes, 1.25 s: estimated relative error 0.081 (vs reference 0.094)`,
+/// or `… s: no estimate yet` before two units.
 fn checkpoint_line(
     run: &str,
     p: &Progress,
-    estimate: &ErrorMetrics,
+    estimate: Option<&ErrorMetrics>,
     error: Option<&ErrorMetrics>,
 ) -> String {
+    let estimate = estimate.map_or("no estimate yet".to_string(), |e| {
+        format!("estimated relative error {:.4}", relative_rmse(e))
+    });
     let mut s = format!(
-        "{run}: {} spp, {} passes, {:.2} s: estimated relative error {:.4}",
+        "{run}: {} spp, {} passes, {:.2} s: {estimate}",
         p.samples,
         p.passes,
         p.elapsed.as_secs_f64(),
-        relative_rmse(estimate)
     );
     if let Some(e) = error {
         s.push_str(&format!(" (vs reference {:.4})", relative_rmse(e)));
@@ -193,14 +199,9 @@ mod tests {
         let reference = img(1.0);
         let mut rec = Recorder::new("path", Some(&reference));
         let progress = |done| Progress {
-            image: &m,
-            halves: (&a, &b),
             elapsed: std::time::Duration::from_millis(5),
-            samples: 4,
-            passes: 1,
             rays: 8,
-            photons: 0,
-            done,
+            ..Progress::at(&m, (&a, &b), 4, done)
         };
         rec.record(&progress(false)).unwrap();
         rec.record(&progress(true)).unwrap();
@@ -212,6 +213,37 @@ mod tests {
         let est = rec.rows[0].estimate.unwrap();
         assert!((relative_rmse(&est) - (0.01f64 / 1.01).sqrt()).abs() < 1e-6);
         assert_eq!(rec.rows[0].error.unwrap().rmse, 0.0);
+    }
+
+    #[test]
+    fn one_unit_has_no_estimate() {
+        use glam::Vec3;
+        let m = ImageRgb {
+            width: 2,
+            height: 1,
+            data: vec![Vec3::splat(1.0); 2],
+        };
+        let p = Progress {
+            elapsed: std::time::Duration::from_millis(5),
+            ..Progress::at(&m, (&m, &m), 1, false)
+        };
+        let mut rec = Recorder::new("path", None);
+        rec.record(&p).unwrap();
+        assert_eq!(rec.rows[0].estimate, None);
+        assert!(points(&rec.rows).is_empty());
+        let line = checkpoint_line("path", &p, None, None);
+        assert!(
+            line.ends_with("1 spp, 1 passes, 0.01 s: no estimate yet"),
+            "{line}"
+        );
+        let two = Progress { samples: 2, ..p };
+        let line = checkpoint_line(
+            "path",
+            &two,
+            Some(&half_buffer_estimate(&m, &m).unwrap()),
+            None,
+        );
+        assert!(line.ends_with("estimated relative error 0.0000"), "{line}");
     }
 
     #[test]

@@ -65,6 +65,7 @@ impl Plan {
                 quiet: true,
                 spectral,
                 time_limit: None,
+                adaptive: None,
             };
             let start = Instant::now();
             integrator.render(scene, camera, &settings)?;

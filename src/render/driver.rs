@@ -9,9 +9,14 @@
 //! - Units have absolute indices: a render takes `first..first + target` (`first` > 0 for a
 //!   shard, [`crate::app::shard`]); the step gets absolute `k0..k1`, and the film, the
 //!   checkpoints and the progress count units from `first`.
-//! - A round covers units `k0..k1`; the method's step adds exactly those units to every
-//!   tile it renders (a stop request may skip whole tiles of a round after the first, never
-//!   part of a tile), so the image after N units does not depend on how rounds were split.
+//! - A round covers units `k0..k1`; the method's step adds exactly `k1 − k0` units to every
+//!   active tile it renders, from the tile's own next unit (`k0` unless adaptive sampling
+//!   rested it, [`super::adaptive`]; a stop request may skip whole tiles of a round after
+//!   the first, never part of a tile), so the image after N units does not depend on how
+//!   rounds were split.
+//! - With adaptive sampling ([`RenderSettings::adaptive`] and [`Schedule::adaptive`]) the
+//!   checkpoints also choose which tiles take the next rounds; `done` counts the rounds'
+//!   units, the most any tile has.
 //! - At least one unit is always taken; the time limit shortens a round to the units that
 //!   fit the time left (from the mean time per unit so far) and ends the render after the
 //!   round that crosses it.
@@ -48,6 +53,9 @@ pub struct Schedule {
     pub passes: bool,
     /// The progress bar's title.
     pub label: &'static str,
+    /// Whether the method lets tiles rest ([`super::adaptive`], when the settings ask for
+    /// it): a tile's units then go on from its own count.
+    pub adaptive: bool,
 }
 
 /// What one round did, beyond the units the film counts.
@@ -119,15 +127,17 @@ pub fn drive(
     let mut interrupted;
     let mut observer_stopped = false;
     let mut out_of_time;
+    let adaptive = settings.adaptive.filter(|_| schedule.adaptive);
     loop {
-        // Units to the next checkpoint, fewer if the time limit would be crossed.
-        let mut n = (next_checkpoint.min(target) - done).min(schedule.max_round.max(1));
-        if let (Some(limit), true) = (settings.time_limit, done > 0) {
-            let per_unit = started.elapsed().as_secs_f64() / done as f64;
-            let left = limit.saturating_sub(setup.start.elapsed()).as_secs_f64();
-            n = n.min(((left / per_unit.max(1e-12)) as u64).max(1));
-        }
+        let n = round_size(
+            settings,
+            &schedule,
+            (&setup, started),
+            done,
+            next_checkpoint,
+        );
         let k0 = first + done;
+        let expected = film.pixel_samples() + n * film.active_pixels();
         let round = step(&mut film, k0, k0 + n, &env)?;
         rays += round.rays;
         photons += round.photons;
@@ -135,11 +145,13 @@ pub fn drive(
         let note = round.note;
         // A stop request after the last unit is not an interruption: the image is whole.
         let stop_asked = env.skip(k0);
-        done = film.done();
-        interrupted = stop_asked && done < target;
+        let whole = film.pixel_samples() == expected;
+        done = if whole { done + n } else { film.done() };
+        interrupted = stop_asked && (!whole || done < target);
+        let resting = resting_note(&film);
         let message = |e: Option<f64>| {
             format!(
-                "{done} {unit}, {rays} rays{note}{}{limit_note}",
+                "{done} {unit}, {rays} rays{note}{resting}{}{limit_note}",
                 estimate_note(e)
             )
         };
@@ -154,12 +166,14 @@ pub fn drive(
         while next_checkpoint <= done {
             next_checkpoint *= 2;
         }
-        let want_halves = (observer.is_some() || !settings.quiet) && done >= 2;
+        let want_halves =
+            (observer.is_some() || !settings.quiet || adaptive.is_some()) && done >= 2;
         let halves = (observer.is_some() || want_halves).then(|| film.halves());
         if let (Some((a, b)), true) = (&halves, want_halves) {
             estimate = relative_error_estimate(a, b);
             bar.set_message(message(estimate));
         }
+        let judged = std::cell::OnceCell::new();
         if let (Some(obs), Some((a, b))) = (observer.as_mut(), &halves) {
             let image = film.mean();
             let progress = Progress {
@@ -171,31 +185,39 @@ pub fn drive(
                 rays,
                 photons,
                 done: finished,
+                judged: Default::default(),
             };
             if answer(obs(&progress)?, &mut next_checkpoint, done) {
                 observer_stopped = true;
                 break;
             }
+            if let Some(j) = progress.judged.into_inner() {
+                let _ = judged.set(j);
+            }
+        }
+        // The tiles for the next rounds, measured on what the observer judged by, else
+        // on the raw halves.
+        if let (Some(a), Some((ha, hb)), false) = (&adaptive, &halves, finished) {
+            let (ja, jb) = judged.get().map_or((ha, hb), |(ja, jb)| (ja, jb));
+            film.set_active(super::adaptive::choose(&film, (ja, jb), done, a));
         }
         if finished {
             break;
         }
     }
     bar.finish_and_clear();
-    let end = if interrupted {
-        EndReason::Interrupted
-    } else if observer_stopped {
-        EndReason::Target
-    } else if done >= target {
-        EndReason::Samples
-    } else {
-        debug_assert!(out_of_time);
-        EndReason::TimeLimit
+    debug_assert!(interrupted || observer_stopped || done >= target || out_of_time);
+    let end = match (interrupted, observer_stopped, done >= target) {
+        (true, _, _) => EndReason::Interrupted,
+        (_, true, _) => EndReason::Target,
+        (_, _, true) => EndReason::Samples,
+        _ => EndReason::TimeLimit,
     };
     let stats = RenderStats {
         time: setup.start.elapsed(),
         rays,
         samples: film.pixel_samples(),
+        unit_span: film.unit_span(),
         photons,
         photons_per_pass: 0,
         passes: if schedule.passes { done as u32 } else { 1 },
@@ -203,6 +225,38 @@ pub fn drive(
         end,
     };
     Ok((film, stats))
+}
+
+/// Units of the next round after `done`: to the next checkpoint (or the target), at most
+/// the schedule's round, fewer if the time limit would be crossed (from the mean time per
+/// unit since `started`).
+fn round_size(
+    settings: &RenderSettings,
+    schedule: &Schedule,
+    (setup, started): (&Setup, Instant),
+    done: u64,
+    next_checkpoint: u64,
+) -> u64 {
+    let target = schedule.target.max(1);
+    let n = (next_checkpoint.min(target) - done).min(schedule.max_round.max(1));
+    match (settings.time_limit, done > 0) {
+        (Some(limit), true) => {
+            let per_unit = started.elapsed().as_secs_f64() / done as f64;
+            let left = limit.saturating_sub(setup.start.elapsed()).as_secs_f64();
+            n.min(((left / per_unit.max(1e-12)) as u64).max(1))
+        }
+        _ => n,
+    }
+}
+
+/// ", 40 % of tiles resting" for the progress bar while adaptive sampling rests tiles.
+fn resting_note(film: &Film) -> String {
+    let resting = film.tile_states().filter(|t| !t.active).count();
+    if resting == 0 {
+        return String::new();
+    }
+    let share = 100.0 * resting as f64 / film.tiles() as f64;
+    format!(", {share:.0} % of tiles resting")
 }
 
 /// Applies an observer's answer after `done` units: [`Control::ContinueTo`] moves the next

@@ -11,8 +11,10 @@
 //!   goes to half k mod 2 and draws the sampler's index k.
 //! - Storage is tile by tile (`TILE²` slots per tile, row-major inside the tile; slots
 //!   outside the image stay zero), so each parallel tile owns one contiguous chunk.
-//! - Each tile counts the units (samples or passes) it has taken; all tiles hold the same
-//!   count unless a round was interrupted between tiles.
+//! - Each tile counts the units (samples or passes) it has taken, always the contiguous
+//!   range `first..first + count`; all tiles hold the same count unless a round was
+//!   interrupted between tiles or adaptive sampling rested some ([`Film::set_active`]:
+//!   a resting tile takes no units, and when it wakes it goes on from its own count).
 //! - The two halves are independent estimates of the same image: their difference
 //!   estimates the error without a reference
 //!   ([`crate::image::metrics::half_buffer_estimate`]).
@@ -40,6 +42,23 @@ pub struct Film {
     first: u64,
     sums: Vec<PixelSums>,
     counts: Vec<u64>,
+    /// Rays each tile has traced ([`FilmTile::take`]): its cost, for adaptive sampling.
+    rays: Vec<u64>,
+    /// Whether each tile takes units in the next rounds ([`Film::set_active`]).
+    active: Vec<bool>,
+}
+
+/// What adaptive sampling knows of one tile ([`Film::tile_states`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TileState {
+    /// Pixels of the tile inside the image.
+    pub pixels: u64,
+    /// Units taken.
+    pub units: u64,
+    /// Rays traced for them.
+    pub rays: u64,
+    /// Whether it takes units in the next rounds.
+    pub active: bool,
 }
 
 /// One tile of the film, borrowed for one round: its pixels' sums (slot `i` is pixel
@@ -50,6 +69,8 @@ pub struct FilmTile<'a> {
     pub origin: (u32, u32),
     sums: &'a mut [PixelSums],
     count: &'a mut u64,
+    rays: &'a mut u64,
+    active: bool,
     first: u64,
     size: (u32, u32),
 }
@@ -80,6 +101,22 @@ impl FilmTile<'_> {
     pub fn done_until(&mut self, end: u64) {
         *self.count = end.saturating_sub(self.first);
     }
+
+    /// Whether the tile takes units this round (adaptive sampling rests the others).
+    pub fn active(&self) -> bool {
+        self.active
+    }
+
+    /// The absolute index of the tile's next unit: `first +` the units it has taken.
+    pub fn next_unit(&self) -> u64 {
+        self.first + *self.count
+    }
+
+    /// Marks `n` more units as taken, which traced `rays` rays.
+    pub fn take(&mut self, n: u64, rays: u64) {
+        *self.count += n;
+        *self.rays += rays;
+    }
 }
 
 /// The top-left pixel of tile `t` (tiles row-major, `tiles_x` per row).
@@ -107,6 +144,8 @@ impl Film {
             first,
             sums: vec![[FixedRgb::ZERO; 2]; tiles * TILE_PIXELS],
             counts: vec![0; tiles],
+            rays: vec![0; tiles],
+            active: vec![true; tiles],
         }
     }
 
@@ -137,14 +176,59 @@ impl Film {
         self.sums
             .par_chunks_mut(TILE_PIXELS)
             .zip(self.counts.par_iter_mut())
+            .zip(self.rays.par_iter_mut())
+            .zip(self.active.par_iter())
             .enumerate()
-            .map(move |(t, (sums, count))| FilmTile {
+            .map(move |(t, (((sums, count), rays), &active))| FilmTile {
                 origin: tile_origin(tiles_x, t),
                 sums,
                 count,
+                rays,
+                active,
                 first,
                 size,
             })
+    }
+
+    /// Rests the tiles whose `active` entry is false (adaptive sampling): rounds skip them
+    /// until a later call wakes them. `active` has one entry per tile.
+    pub fn set_active(&mut self, active: Vec<bool>) {
+        debug_assert_eq!(active.len(), self.active.len());
+        self.active = active;
+    }
+
+    /// Per tile: the pixels inside the image, the units taken, the rays traced and whether
+    /// it is active, in tile order.
+    pub fn tile_states(&self) -> impl Iterator<Item = TileState> + '_ {
+        (0..self.counts.len()).map(|t| TileState {
+            pixels: self.tile_pixels(t),
+            units: self.counts[t],
+            rays: self.rays[t],
+            active: self.active[t],
+        })
+    }
+
+    /// Pixels of the active tiles.
+    pub fn active_pixels(&self) -> u64 {
+        self.tile_states()
+            .filter(|t| t.active)
+            .map(|t| t.pixels)
+            .sum()
+    }
+
+    /// The fewest and the most units any tile has taken.
+    pub fn unit_span(&self) -> (u64, u64) {
+        let min = self.counts.iter().copied().min().unwrap_or(0);
+        let max = self.counts.iter().copied().max().unwrap_or(0);
+        (min, max)
+    }
+
+    /// Pixels of tile `t` inside the image.
+    fn tile_pixels(&self, t: usize) -> u64 {
+        let (x0, y0) = self.origin(t);
+        let tw = TILE.min(self.width - x0) as u64;
+        let th = TILE.min(self.height - y0) as u64;
+        tw * th
     }
 
     /// Calls `f(pixel index, sums, units of the pixel's tile)` for every pixel.
@@ -208,14 +292,7 @@ impl Film {
 
     /// Pixel units (samples; SPPM: pixel passes) taken over the image.
     pub fn pixel_samples(&self) -> u64 {
-        (0..self.counts.len())
-            .map(|t| {
-                let (x0, y0) = self.origin(t);
-                let tw = TILE.min(self.width - x0) as u64;
-                let th = TILE.min(self.height - y0) as u64;
-                tw * th * self.counts[t]
-            })
-            .sum()
+        self.tile_states().map(|t| t.pixels * t.units).sum()
     }
 }
 

@@ -31,14 +31,16 @@ use crate::error::{Error, Result};
 use crate::sampler::{SampleStream, SamplerKind};
 use std::time::Duration;
 
+pub mod adaptive;
 pub mod coverage;
 pub mod driver;
 pub mod film;
 pub mod guard;
 pub mod progress;
 mod samples;
+pub use adaptive::Adaptive;
 pub use driver::{drive, Round, RoundEnv, Schedule};
-pub use film::{Film, FilmTile, TILE, TILE_PIXELS};
+pub use film::{Film, FilmTile, TileState, TILE, TILE_PIXELS};
 pub use progress::{
     estimate_note, progress_bar, relative_error_estimate, Control, Observer, Progress, Setup,
 };
@@ -66,6 +68,9 @@ pub struct RenderSettings {
     pub time_limit: Option<Duration>,
     /// The numbers driving camera paths (`--sampler`).
     pub sampler: SamplerKind,
+    /// Adaptive sampling ([`adaptive`]), for the methods whose schedule allows it
+    /// ([`Schedule::adaptive`]); `None` gives every tile every unit.
+    pub adaptive: Option<Adaptive>,
 }
 
 /// Per-thread state an integrator carries along one camera sample (or photon).
@@ -86,6 +91,9 @@ pub struct RenderStats {
     pub rays: u64,
     /// Pixel samples taken (all pixels; SPPM: one per pixel and pass).
     pub samples: u64,
+    /// The fewest and the most units (samples or passes) a pixel took: equal unless
+    /// adaptive sampling rested tiles or a stop request cut a round short.
+    pub unit_span: (u64, u64),
     /// Photons emitted (photon methods).
     pub photons: u64,
     /// Photons emitted in the last pass (the hybrid's caustic photons: without `--photons`
@@ -143,6 +151,9 @@ pub fn schedule(
     passes: bool,
     label: &'static str,
 ) -> Schedule {
+    // Adaptive sampling takes every unit from a pixel's own count: a shard's range would
+    // not merge as one render's.
+    let adaptive = range.is_none();
     let total = total.max(1);
     let range = range.unwrap_or(0..total);
     Schedule {
@@ -152,6 +163,7 @@ pub fn schedule(
         max_round,
         passes,
         label,
+        adaptive,
     }
 }
 

@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 
 /// The state of a render at a checkpoint, shown to an observer ([`Observer`]) and to a
 /// [`crate::measure::Recorder`].
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct Progress<'a> {
     /// The mean of all samples (passes) so far.
     pub image: &'a ImageRgb,
@@ -30,6 +30,34 @@ pub struct Progress<'a> {
     /// True on the last call of a render that ended by itself (sample, pass or time limit).
     /// After an observer returns [`Control::Stop`] it is not called again.
     pub done: bool,
+    /// The two half images the observer judged the render by, if not `halves` (the
+    /// error-target stop of a denoised image sets its denoised halves): adaptive sampling
+    /// ([`super::adaptive`]) then measures the tiles on them, so samples go where the
+    /// image the stop sees is noisy.
+    pub judged: std::cell::OnceCell<(ImageRgb, ImageRgb)>,
+}
+
+impl<'a> Progress<'a> {
+    /// A checkpoint after `samples` units (one pass, no time, rays or photons yet) showing
+    /// `image` and its `halves`, nothing judged: what an observer's tests hand it.
+    pub fn at(
+        image: &'a ImageRgb,
+        halves: (&'a ImageRgb, &'a ImageRgb),
+        samples: u64,
+        done: bool,
+    ) -> Self {
+        Progress {
+            image,
+            halves,
+            elapsed: Duration::ZERO,
+            samples,
+            passes: 1,
+            rays: 0,
+            photons: 0,
+            done,
+            judged: Default::default(),
+        }
+    }
 }
 
 /// An observer's answer: render on, or end the render with the image just shown.
@@ -81,9 +109,12 @@ pub fn relative_error_estimate(a: &ImageRgb, b: &ImageRgb) -> Option<f64> {
         .map(|e| e.rel_mse.sqrt())
 }
 
-/// ", est. rel. error 0.123" for the progress bar, or nothing before the first estimate.
+/// ", est. rel. error 0.123" for the progress bar, or ", no estimate yet" before the first
+/// estimate (which needs two units).
 pub fn estimate_note(e: Option<f64>) -> String {
-    e.map_or(String::new(), |e| format!(", est. rel. error {e:.3}"))
+    e.map_or(", no estimate yet".to_string(), |e| {
+        format!(", est. rel. error {e:.3}")
+    })
 }
 
 /// A progress bar on stderr (hidden with `quiet`): elapsed time, the bar, and a message

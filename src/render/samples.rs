@@ -205,9 +205,10 @@ fn sample_rounds(
     )
 }
 
-/// Samples `k0..k1` (absolute indices) of every pixel, tiles in parallel (a tile skipped
-/// on a stop request keeps its count); within a tile, pixel by pixel and sample by
-/// sample, in batches of at most [`BATCH`] jobs.
+/// `k1 − k0` more samples of every pixel of the active tiles, tiles in parallel: tile by
+/// tile from its own next unit ([`FilmTile::next_unit`], `k0` unless adaptive sampling
+/// rested it before); a tile skipped on a stop request keeps its count. Within a tile,
+/// pixel by pixel and sample by sample, in batches of at most [`BATCH`] jobs.
 fn round(
     starts: &Starts,
     film: &mut Film,
@@ -218,6 +219,10 @@ fn round(
     let (rays, bad) = film
         .par_tiles_mut()
         .map(|mut tile| {
+            if !tile.active() {
+                env.bar.inc(k1 - k0);
+                return (0, 0);
+            }
             if env.skip(k0) {
                 return (0, 0);
             }
@@ -225,9 +230,10 @@ fn round(
             let pixels: Vec<_> = (0..tile.slots())
                 .filter_map(|i| tile.pixel(i).map(|p| (i, p)))
                 .collect();
+            let (t0, t1) = (tile.next_unit(), tile.next_unit() + (k1 - k0));
             let all = pixels
                 .into_iter()
-                .flat_map(|(i, (x, y))| (k0..k1).map(move |k| (i, Job { x, y, k })));
+                .flat_map(|(i, (x, y))| (t0..t1).map(move |k| (i, Job { x, y, k })));
             let (mut batch, mut jobs) = (Vec::with_capacity(BATCH), Vec::with_capacity(BATCH));
             let mut out = vec![Vec3::ZERO; BATCH];
             let mut all = all.peekable();
@@ -241,7 +247,7 @@ fn round(
                     tile.add(i, job.k, l.as_dvec3(), &mut bad);
                 }
             }
-            tile.done_until(k1);
+            tile.take(k1 - k0, rays);
             env.bar.inc(k1 - k0);
             (rays, bad)
         })
@@ -308,6 +314,7 @@ mod tests {
             spectral: true,
             time_limit: None,
             sampler,
+            adaptive: None,
         };
         let desc = CameraDesc {
             name: "c".into(),

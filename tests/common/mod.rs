@@ -266,3 +266,25 @@ pub fn glb(doc: &serde_json::Value, bin: &[u8]) -> Vec<u8> {
     out.extend_from_slice(&bin);
     out
 }
+
+/// Quiet RGB settings of `width`×`height` at `spp` with `seed` on `threads` (0 = all
+/// cores), the default sampler, no time limit, uniform sampling.
+pub fn render_settings(
+    (width, height): (u32, u32),
+    spp: u32,
+    seed: u64,
+    threads: usize,
+) -> iris::render::RenderSettings {
+    iris::render::RenderSettings {
+        width,
+        height,
+        spp,
+        seed,
+        threads,
+        quiet: true,
+        spectral: false,
+        time_limit: None,
+        sampler: Default::default(),
+        adaptive: None,
+    }
+}

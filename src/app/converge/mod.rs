@@ -365,6 +365,7 @@ impl<'a> Job<'a> {
                 spectral: SpectralMode::Auto.resolve(scene),
                 time_limit: Some(opts.time),
                 sampler: opts.sampler,
+                adaptive: None,
             },
         }
     }

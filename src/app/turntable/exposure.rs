@@ -77,6 +77,7 @@ pub fn locked(opts: &TurntableOptions, method: Method) -> Result<(Exposure, Opti
             quiet: true,
             spectral: crate::plan::Plan::new(&p.scene, method, r.spectral).spectral,
             time_limit: None,
+            adaptive: None,
         };
         let camera = Camera::new(&p.camera, pw, ph);
         let integrator = Integrator::new(method, r.max_depth, &photon)?;
