@@ -11,7 +11,8 @@
 //!   ([`Carrier::keep_hero`]): the hero lane is multiplied by 4 and the others zeroed, which
 //!   with the unchanged wavelength pdfs is exactly pbrt-v4's `TerminateSecondary` (pdf/4 on
 //!   the hero) — but as a property of the carried value, so Whitted's branches may terminate
-//!   independently and still add up.
+//!   independently and still add up. The path tracer's camera paths split into their 4
+//!   wavelengths there instead ([`Carrier::lane_as_hero`], `crate::integrator::path`).
 //! - At a ROUGH dispersive interface the path tracer keeps all 4 lanes instead, with
 //!   spectral MIS over the wavelengths (Wilkie et al. 2014, "Hero Wavelength Spectral
 //!   Sampling", §4; [`crate::shading::spectral_mis`]): [`Lambdas::hero_weight`] is then the
@@ -147,6 +148,11 @@ pub trait Carrier:
     fn to_lanes(self) -> [f32; 4];
     /// Inverse of [`Carrier::to_lanes`].
     fn from_lanes(v: [f32; 4]) -> Self;
+    /// The wavelengths of a sub-path that carries lane `i` of a sample alone (a path split
+    /// into its wavelengths, [`crate::integrator::path`]): the lanes rotated so that lane
+    /// `i` is the hero (lane 0), hero only, with hero weight 1. The sub-path's radiance
+    /// in its lane 0 is the sample's lane `i`. Nothing for RGB.
+    fn lane_as_hero(l: &Self::Lambda, i: usize) -> Self::Lambda;
 }
 
 impl Carrier for Vec3 {
@@ -227,6 +233,7 @@ impl Carrier for Vec3 {
     fn from_lanes(v: [f32; 4]) -> Self {
         Vec3::new(v[0], v[1], v[2])
     }
+    fn lane_as_hero(_l: &(), _i: usize) {}
 }
 
 impl Carrier for SampledSpectrum {
@@ -329,12 +336,41 @@ impl Carrier for SampledSpectrum {
     fn from_lanes(v: [f32; 4]) -> Self {
         SampledSpectrum::new(v)
     }
+    fn lane_as_hero(l: &Lambdas, i: usize) -> Lambdas {
+        let d65 = l.d65.values();
+        let mut hero_weight = [0.0; N_LAMBDA];
+        hero_weight[0] = 1.0;
+        Lambdas {
+            wl: l.wl.rotated(i),
+            hero_only: true,
+            d65: SampledSpectrum::new(std::array::from_fn(|j| d65[(j + i) % N_LAMBDA])),
+            hero_weight,
+        }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::spectrum::EmissionSpectrum;
+
+    /// A lane's sub-path sees that lane's wavelength as its hero, with its density and D65
+    /// value, and the other lanes rotated with it.
+    #[test]
+    fn lane_as_hero_rotates_the_lanes() {
+        let l = Lambdas::new(SampledWavelengths::sample_visible(0.61));
+        for i in 0..N_LAMBDA {
+            let h = <SampledSpectrum as Carrier>::lane_as_hero(&l, i);
+            assert!(h.hero_only);
+            assert_eq!(h.hero_weight, [1.0, 0.0, 0.0, 0.0]);
+            for j in 0..N_LAMBDA {
+                let k = (j + i) % N_LAMBDA;
+                assert_eq!(h.wl.lambda(j), l.wl.lambda(k));
+                assert_eq!(h.wl.lane_pdf(j), l.wl.lane_pdf(k));
+                assert_eq!(h.d65.values()[j], l.d65.values()[k]);
+            }
+        }
+    }
 
     /// A named emitter spectrum (2700 K) reaches the path as Planck's law itself, scaled by
     /// the RGB value's ratio to the reference, while the RGB transport keeps the RGB value;

@@ -155,6 +155,18 @@ impl SampledWavelengths {
         self.terminated = true;
     }
 
+    /// The same wavelengths with lane `k` first: lane j of the result is lane (j + k) mod 4
+    /// of `self`, with its density. A path split into its wavelengths continues lane `k`
+    /// as the hero of its own sub-path (`crate::integrator::path`). Panics if `k >= 4` (a
+    /// programming error).
+    pub fn rotated(&self, k: usize) -> Self {
+        assert!(k < N_LAMBDA, "lane {k}");
+        SampledWavelengths {
+            lambda: std::array::from_fn(|j| self.lambda[(j + k) % N_LAMBDA]),
+            ..*self
+        }
+    }
+
     /// Whether [`Self::terminate_secondary`] has been applied (all companion pdfs are 0).
     pub fn is_secondary_terminated(&self) -> bool {
         self.terminated
@@ -251,6 +263,26 @@ mod tests {
                 let want = [hero, 0.0, 0.0, 0.0].map(f32::to_bits);
                 assert_eq!(w.pdf().values().map(f32::to_bits), want, "u {u}");
             }
+        }
+    }
+
+    #[test]
+    fn rotation_moves_lanes_with_their_densities() {
+        for uniform in [false, true] {
+            let w = if uniform {
+                SampledWavelengths::sample_uniform(0.37)
+            } else {
+                SampledWavelengths::sample_visible(0.37)
+            };
+            for k in 0..N_LAMBDA {
+                let r = w.rotated(k);
+                for j in 0..N_LAMBDA {
+                    let i = (j + k) % N_LAMBDA;
+                    assert_eq!(r.lambda(j), w.lambda(i));
+                    assert_eq!(r.lane_pdf(j).to_bits(), w.lane_pdf(i).to_bits());
+                }
+            }
+            assert_eq!(w.rotated(0), w);
         }
     }
 
