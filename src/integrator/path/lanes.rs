@@ -6,7 +6,8 @@
 //! traces the shadow rays of next-event estimation as one packet
 //! ([`Scene::occluded_packet`]), and adds what they let through. A lane whose path ends
 //! takes the batch's next job at once (refill), so deep glass paths do not leave the
-//! packet empty.
+//! packet empty; a sample split into its wavelengths ([`super::split`]) first takes its
+//! waiting sub-paths on the same lane, one after the other.
 //!
 //! Nothing about a sample depends on its lane or its neighbours: its numbers are its own
 //! (restarted per job, [`Starts::start`]), the packet queries answer lane by lane exactly
@@ -152,6 +153,7 @@ where
         stop: StopAt::Never,
         split,
         spectral_mis,
+        wavelength_split: super::split::applies(StopAt::Never, &split),
     };
     let mut lanes_: [Lane<C>; N] = std::array::from_fn(|_| Lane {
         job: 0,
@@ -223,8 +225,13 @@ where
                 p.resolve(blocked & (1 << i) != 0, &mut lane.walk.l);
             }
             if ended & (1 << i) != 0 {
-                emit(lane.job, lane.walk.l, &lane.lambda);
-                rays += lane.ctx.rays;
+                if lane.walk.next_branch() {
+                    // The sample's next wavelength continues on this lane.
+                    ended &= !(1 << i);
+                } else {
+                    emit(lane.job, lane.walk.radiance(), &lane.lambda);
+                    rays += lane.ctx.rays;
+                }
             }
         }
         active &= !ended;

@@ -13,9 +13,12 @@
 //! estimation are this loop's own. In spectral transport a rough dispersive interface keeps
 //! the 4 wavelengths with spectral MIS ([`crate::shading::spectral_mis`]): the BSDF's f and
 //! pdf there come from [`Surface::sample_mis`] / [`Surface::eval_mis`], and the pdf both
-//! MIS sides use is the hero-marginal one.
+//! MIS sides use is the hero-marginal one. At the first vertex where the path would keep
+//! its hero only (a smooth dispersive interface) the path splits into its 4 wavelengths,
+//! each traced on as its own sub-path ([`split`], which gives the unbiasedness argument).
 
 mod lanes;
+mod split;
 mod state;
 mod vertex;
 
@@ -109,6 +112,7 @@ pub fn radiance<C: Carrier>(
         stop: StopAt::Never,
         split: CausticSplit::None,
         spectral_mis,
+        wavelength_split: split::applies::<C>(StopAt::Never, &CausticSplit::None),
     };
     trace(scene, ray, lambda, &rules, ctx).0
 }
@@ -133,6 +137,7 @@ pub fn camera_path<C: Carrier>(
         stop,
         split,
         spectral_mis: false,
+        wavelength_split: split::applies(stop, &split),
     };
     trace(scene, ray, lambda, &rules, ctx)
 }
@@ -161,8 +166,8 @@ fn trace<C: Carrier>(
             let blocked = nee.shadow.is_some_and(|r| scene.occluded(&r));
             nee.resolve(blocked, &mut walk.l);
         }
-        if next == Next::End {
-            return (walk.l, visible);
+        if next == Next::End && !walk.next_branch() {
+            return (walk.radiance(), visible);
         }
     }
 }

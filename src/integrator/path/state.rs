@@ -20,6 +20,7 @@ pub(super) struct Prev {
 }
 
 /// The state a camera path carries from vertex to vertex.
+#[derive(Clone, Copy)]
 pub(super) struct PathState<C: Carrier> {
     /// Throughput.
     pub beta: C,

@@ -9,6 +9,7 @@
 //! Units: radiance in the carrier's units (linear RGB or per-wavelength spectral
 //! radiance); frames as in [`crate::shading::step`].
 
+use super::split::Branches;
 use super::state::{PathState, Prev};
 use super::{CausticSplit, Gather, StopAt, VisiblePoint};
 use crate::bsdf::TransportMode;
@@ -44,6 +45,9 @@ pub(super) struct Rules<'a, C: Carrier> {
     /// [`StopAt::Never`]: the photon methods' visible points keep the hero only, as their
     /// gather evaluates the BSDF with one η).
     pub spectral_mis: bool,
+    /// Split the path into its wavelengths where it would keep the hero only
+    /// ([`super::split`]).
+    pub wavelength_split: bool,
 }
 
 /// A camera path between two vertices: the radiance so far, the ray to trace next and
@@ -57,6 +61,8 @@ pub(super) struct Walk<C: Carrier> {
     pub lambda: C::Lambda,
     /// Throughput, media, bounce counts.
     pub st: PathState<C>,
+    /// The sub-paths of a path split into its wavelengths ([`super::split`]).
+    branches: Branches<C>,
 }
 
 impl<C: Carrier> Walk<C> {
@@ -67,7 +73,20 @@ impl<C: Carrier> Walk<C> {
             ray,
             lambda,
             st: PathState::new(ray.origin),
+            branches: Branches::new(),
         }
+    }
+
+    /// Ends the current (sub-)path and, if the path was split and a lane waits, sets the
+    /// walk to that lane's sub-path and returns true ([`super::split`]).
+    pub fn next_branch(&mut self) -> bool {
+        let (l, ray, lambda) = (&mut self.l, &mut self.ray, &mut self.lambda);
+        self.branches.next(l, ray, lambda, &mut self.st)
+    }
+
+    /// The sample's radiance once [`Self::next_branch`] returned false.
+    pub fn radiance(&self) -> C {
+        self.branches.radiance(self.l)
     }
 }
 
@@ -257,7 +276,9 @@ pub(super) fn vertex<C: Carrier>(
     visible: &mut Option<VisiblePoint<C>>,
 ) -> (Option<Pending<C>>, Next) {
     let st = &mut walk.st;
-    let caustic = st.closes_caustic(&rules.split);
+    // A sub-path redoing its split vertex: what arrived there is counted.
+    let resume = std::mem::take(&mut walk.branches.resume);
+    let caustic = st.closes_caustic(&rules.split) || resume;
     let Some(at) = &arrival else {
         let e = escaped(scene, &walk.ray, &st.prev, st.beta, &walk.lambda);
         if let (Some(e), false) = (e, caustic) {
@@ -265,16 +286,23 @@ pub(super) fn vertex<C: Carrier>(
         }
         return (None, Next::End);
     };
-    st.beta *= at.transmittance;
+    if !resume {
+        st.beta *= at.transmittance;
+    }
     if let (Some(e), false) = (emitted(scene, at, &st.prev, st.beta, &walk.lambda), caustic) {
         walk.l += e;
     }
     let mut u = ctx.sample.bounce(st.vertex);
+    let before = (rules.wavelength_split && !C::is_hero_only(&walk.lambda)).then_some(st.beta);
     let ev = if rules.spectral_mis {
         at.event_lanes(scene, st.media, &mut st.beta, &mut walk.lambda, &mut u)
     } else {
         at.event(scene, st.media, &mut st.beta, &mut walk.lambda, &mut u)
     };
+    if let (Some(beta), true) = (before, C::is_hero_only(&walk.lambda)) {
+        let split = (beta, &walk.lambda);
+        walk.branches.split(&mut walk.l, st, walk.ray, split);
+    }
     // By reference: the surface stays where `event` built it.
     let s = match &ev {
         Event::PassThrough(next) => {
