@@ -1,4 +1,4 @@
-//! Splitting a camera path into its wavelengths at its first hero-only event
+//! Splitting a camera path into its wavelengths at its first smooth dispersive interface
 //! (`iris::integrator::path`, module `split`) against the collapse to the hero it replaces
 //! (`IRIS_SPLIT=off`, pbrt-v4 `TerminateSecondary`), with the path tracer in spectral
 //! transport on the round brilliant (`assets/gems/round_diamond.glb`: diamond, n_d 2.417,

@@ -13,8 +13,8 @@
 //! estimation are this loop's own. In spectral transport a rough dispersive interface keeps
 //! the 4 wavelengths with spectral MIS ([`crate::shading::spectral_mis`]): the BSDF's f and
 //! pdf there come from [`Surface::sample_mis`] / [`Surface::eval_mis`], and the pdf both
-//! MIS sides use is the hero-marginal one. At the first vertex where the path would keep
-//! its hero only (a smooth dispersive interface) the path splits into its 4 wavelengths,
+//! MIS sides use is the hero-marginal one. At its first smooth dispersive interface the
+//! path splits into its 4 wavelengths,
 //! each traced on as its own sub-path ([`split`], which gives the unbiasedness argument).
 
 mod lanes;

@@ -1,9 +1,11 @@
-//! Splitting a camera path into its wavelengths at its first hero-only event.
+//! Splitting a camera path into its wavelengths at its first smooth dispersive interface.
 //!
 //! In spectral transport a camera sample carries 4 wavelengths (lane 0 the hero,
-//! [`crate::spectrum::Lambdas`]). Where the refracted direction depends on λ — a smooth
-//! dispersive interface, or a rough one without spectral MIS — one direction cannot serve
-//! the 4 lanes. Collapsing keeps the hero alone ([`Carrier::keep_hero`], pbrt-v4
+//! [`crate::spectrum::Lambdas`]). At a smooth dispersive interface each wavelength has its
+//! own refracted direction, a delta distribution, so one direction cannot serve the 4
+//! lanes. (At a rough one the path tracer keeps the 4 lanes with spectral MIS,
+//! [`crate::shading::spectral_mis`]; without spectral MIS it keeps the hero only there, as
+//! before: splitting is for the smooth case.) Collapsing keeps the hero alone ([`Carrier::keep_hero`], pbrt-v4
 //! `SampledWavelengths::TerminateSecondary`; Wilkie et al. 2014, "Hero Wavelength Spectral
 //! Sampling", §5): an unbiased estimator, but past that vertex every sample carries one
 //! wavelength, so a colourless stone shows colour noise. Splitting continues each lane

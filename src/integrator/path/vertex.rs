@@ -45,7 +45,7 @@ pub(super) struct Rules<'a, C: Carrier> {
     /// [`StopAt::Never`]: the photon methods' visible points keep the hero only, as their
     /// gather evaluates the BSDF with one η).
     pub spectral_mis: bool,
-    /// Split the path into its wavelengths where it would keep the hero only
+    /// Split the path into its wavelengths at its first smooth dispersive interface
     /// ([`super::split`]).
     pub wavelength_split: bool,
 }
@@ -299,10 +299,6 @@ pub(super) fn vertex<C: Carrier>(
     } else {
         at.event(scene, st.media, &mut st.beta, &mut walk.lambda, &mut u)
     };
-    if let (Some(beta), true) = (before, C::is_hero_only(&walk.lambda)) {
-        let split = (beta, &walk.lambda);
-        walk.branches.split(&mut walk.l, st, walk.ray, split);
-    }
     // By reference: the surface stays where `event` built it.
     let s = match &ev {
         Event::PassThrough(next) => {
@@ -312,6 +308,11 @@ pub(super) fn vertex<C: Carrier>(
         }
         Event::Scatter(s) => s,
     };
+    // The event kept the hero only at a smooth dispersive interface: split instead.
+    if let (Some(beta), true) = (before, C::is_hero_only(&walk.lambda) && s.bsdf.is_delta()) {
+        let split = (beta, &walk.lambda);
+        walk.branches.split(&mut walk.l, st, walk.ray, split);
+    }
     let lambda = &walk.lambda;
     if rules.stop == StopAt::Diffuse && is_diffuse_like(&s.bsdf) {
         let ls = next_event(scene, s, lambda, false, &mut u, &mut ctx.rays);
