@@ -44,7 +44,10 @@ fn camera() -> CameraDesc {
 fn renders(scene: &Scene, size: u32, spp: u32, k: u64, spectral_mis: bool) -> Vec<Vec<Vec3>> {
     let integrator = Integrator::Path {
         max_depth: 64,
-        spectral_mis,
+        dispersion: iris::integrator::path::Dispersion {
+            spectral_mis,
+            split: false,
+        },
     };
     (1..=k)
         .map(|seed| {

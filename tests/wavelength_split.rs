@@ -1,6 +1,6 @@
 //! Splitting a camera path into its wavelengths at its first smooth dispersive interface
 //! (`iris::integrator::path`, module `split`) against the collapse to the hero it replaces
-//! (`IRIS_SPLIT=off`, pbrt-v4 `TerminateSecondary`), with the path tracer in spectral
+//! (`Dispersion::split` off, pbrt-v4 `TerminateSecondary`), with the path tracer in spectral
 //! transport on the round brilliant (`assets/gems/round_diamond.glb`: diamond, n_d 2.417,
 //! Abbe 55, under two emissive panels):
 //! - the two estimators agree in the image mean and per 4 × 4 block, within bounds set by
@@ -10,53 +10,65 @@
 //! - the split's image does not depend on the thread count (and, in tests/path_lanes.rs,
 //!   on the lane width).
 //!
-//! Each render that compares the two is a child process (`IRIS_SPLIT` is read once per
-//! process); the furnace renders in this process, with the default (split). Noise is
-//! measured from independent renders (seeds), never from the clock.
+//! The two are [`Dispersion`] settings of the same integrator, rendered in this process on
+//! the scene and camera `iris render` prepares by default. Noise is measured from
+//! independent renders (seeds), never from the clock.
 
 mod common;
 
+use iris::camera::Camera;
 use iris::image::ImageRgb;
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use iris::integrator::path::Dispersion;
+use iris::integrator::Integrator;
+use iris::prepare::default_preview_scene;
+use iris::scene::desc::CameraDesc;
+use iris::scene::Scene;
+use std::path::Path;
+use std::sync::OnceLock;
 
 const W: u32 = 48;
 const H: u32 = 36;
 
-fn diamond() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/gems/round_diamond.glb")
+/// The round brilliant as `iris render` prepares it at W × H (loaded once).
+fn diamond() -> &'static (Scene, CameraDesc) {
+    static SCENE: OnceLock<(Scene, CameraDesc)> = OnceLock::new();
+    SCENE.get_or_init(|| {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/gems/round_diamond.glb");
+        default_preview_scene(&path, iris::accel::Backend::default(), (W, H))
+            .expect("prepare the round brilliant")
+    })
 }
 
-/// Renders the diamond with the spectral path tracer at `spp` and `seed` on `threads`,
-/// split or collapsed, into `dir`; returns the EXR's bytes and image.
-fn render(dir: &Path, split: bool, seed: u64, spp: u32, threads: u32) -> (Vec<u8>, ImageRgb) {
-    let out = dir.join(format!("s{}_{seed}_{spp}_{threads}.exr", split as u8));
-    let (seed, spp, threads) = (seed.to_string(), spp.to_string(), threads.to_string());
-    let o = Command::new(env!("CARGO_BIN_EXE_iris"))
-        .env("IRIS_SPLIT", if split { "on" } else { "off" })
-        .arg("render")
-        .arg(diamond())
-        .args(["--method", "path", "--spectral", "on", "--denoise", "off"])
-        .args([
-            "--size",
-            &format!("{W}x{H}"),
-            "--spp",
-            &spp,
-            "--seed",
-            &seed,
-        ])
-        .args(["--threads", &threads, "-o"])
-        .arg(&out)
-        .output()
-        .expect("run iris");
-    assert!(o.status.success(), "{}", common::stderr(&o));
-    let bytes = std::fs::read(&out).expect("read the EXR");
-    (bytes, iris::output::read_exr(&out).expect("decode the EXR"))
+/// The spectral path tracer, split or collapsed at smooth dispersive interfaces (spectral
+/// MIS at rough ones either way).
+fn integrator(split: bool) -> Integrator {
+    Integrator::Path {
+        max_depth: 64,
+        dispersion: Dispersion {
+            spectral_mis: true,
+            split,
+        },
+    }
+}
+
+/// Renders the diamond at `spp` and `seed` on `threads`, split or collapsed.
+fn render(split: bool, seed: u64, spp: u32, threads: usize) -> ImageRgb {
+    let (scene, camera) = diamond();
+    let settings = iris::render::RenderSettings {
+        spectral: true,
+        ..common::render_settings((W, H), spp, seed, threads)
+    };
+    let img = integrator(split)
+        .render(scene, &Camera::new(camera, W, H), &settings)
+        .expect("render the diamond")
+        .0;
+    assert!(img.data.iter().all(|p| p.is_finite()));
+    img
 }
 
 /// `k` renders (seeds 1..=k) at `spp`, split or collapsed.
-fn renders(dir: &Path, split: bool, k: u64, spp: u32) -> Vec<ImageRgb> {
-    (1..=k).map(|s| render(dir, split, s, spp, 2).1).collect()
+fn renders(split: bool, k: u64, spp: u32) -> Vec<ImageRgb> {
+    (1..=k).map(|s| render(split, s, spp, 2)).collect()
 }
 
 /// Every pixel's channels, in order.
@@ -96,10 +108,9 @@ fn mean_and_error(values: &[Vec<f64>]) -> Vec<(f64, f64)> {
 /// few renders are heavy-tailed).
 #[test]
 fn split_and_collapse_agree() {
-    let dir = common::scratch_dir("wavelength_split_agree");
     let (k, spp) = (8, 32);
-    let split = renders(&dir, true, k, spp);
-    let collapse = renders(&dir, false, k, spp);
+    let split = renders(true, k, spp);
+    let collapse = renders(false, k, spp);
     let image_means = |imgs: &[ImageRgb]| -> Vec<Vec<f64>> {
         imgs.iter()
             .map(|im| {
@@ -158,10 +169,9 @@ fn split_and_collapse_agree() {
 /// asserted: ratio < 0.85.
 #[test]
 fn split_has_less_noise_at_equal_samples() {
-    let dir = common::scratch_dir("wavelength_split_noise");
     let (k, spp) = (6, 32);
-    let split = seed_to_seed(&renders(&dir, true, k, spp));
-    let collapse = seed_to_seed(&renders(&dir, false, k, spp));
+    let split = seed_to_seed(&renders(true, k, spp));
+    let collapse = seed_to_seed(&renders(false, k, spp));
     let ratio = split / collapse;
     eprintln!(
         "seed-to-seed relative RMSE: split {split:.4}, collapse {collapse:.4}, ratio {ratio:.3}"
@@ -170,17 +180,24 @@ fn split_has_less_noise_at_equal_samples() {
 }
 
 /// The split's sub-paths draw their numbers from their sample's stream in a fixed order:
-/// the image is the same bytes on 1 and 2 threads.
+/// the image is the same on 1 and 2 threads, bit for bit.
 #[test]
 fn split_is_deterministic_across_thread_counts() {
-    let dir = common::scratch_dir("wavelength_split_threads");
-    let one = render(&dir, true, 3, 8, 1).0;
-    let two = render(&dir, true, 3, 8, 2).0;
-    assert!(one == two, "1 and 2 threads differ");
-    let collapse = render(&dir, false, 3, 8, 2).0;
+    let bits = |img: &ImageRgb| -> Vec<u32> {
+        img.data
+            .iter()
+            .flat_map(|p| p.to_array())
+            .map(f32::to_bits)
+            .collect()
+    };
+    let two = bits(&render(true, 3, 8, 2));
     assert!(
-        collapse != two,
-        "IRIS_SPLIT=off renders the same image: the switch is ignored"
+        bits(&render(true, 3, 8, 1)) == two,
+        "1 and 2 threads differ"
+    );
+    assert!(
+        bits(&render(false, 3, 8, 2)) != two,
+        "the collapse renders the same image: the setting is ignored"
     );
 }
 
@@ -195,11 +212,10 @@ fn split_is_deterministic_across_thread_counts() {
 /// noise here, where the collapse leaves one wavelength per sample.
 #[test]
 fn smooth_dispersive_sphere_vanishes_in_a_white_furnace() {
-    use iris::camera::{look_at, Camera};
-    use iris::integrator::Integrator;
+    use iris::camera::look_at;
     use iris::material::{ExplicitIor, MaterialDesc};
     use iris::render::RenderSettings;
-    use iris::scene::desc::{CameraDesc, Projection};
+    use iris::scene::desc::Projection;
     let glass = MaterialDesc {
         ior_model: Some(ExplicitIor::Cauchy { b: 1.5, c: 0.05 }),
         ..common::clear_glass("smooth flint", 1.5)
@@ -217,10 +233,7 @@ fn smooth_dispersive_sphere_vanishes_in_a_white_furnace() {
             glam::Vec3::Y,
         ),
     };
-    let integrator = Integrator::Path {
-        max_depth: 64,
-        spectral_mis: true,
-    };
+    let integrator = integrator(true);
     let (size, k) = (6, 6);
     let means: Vec<Vec<f64>> = (1..=k)
         .map(|seed| {
@@ -234,6 +247,7 @@ fn smooth_dispersive_sphere_vanishes_in_a_white_furnace() {
                 spectral: true,
                 time_limit: None,
                 sampler: Default::default(),
+                adaptive: None,
             };
             let img = integrator
                 .render(&scene, &Camera::new(&camera, size, size), &settings)

@@ -97,10 +97,9 @@ pub enum Integrator {
     Path {
         /// Bounces per path, at most [`MAX_DEPTH`].
         max_depth: u32,
-        /// Spectral transport: keep the 4 wavelengths at rough dispersive interfaces with
-        /// spectral MIS ([`crate::shading::spectral_mis`]; on by default), instead of the
-        /// hero only (pbrt-v4 `TerminateSecondary`; for comparisons).
-        spectral_mis: bool,
+        /// Spectral transport: what camera paths keep of their wavelengths at dispersive
+        /// interfaces ([`path::Dispersion::ALL`] by default; less for comparisons).
+        dispersion: path::Dispersion,
     },
     /// Classic photon mapping with a final gather ([`photon_map`]).
     PhotonMap {
@@ -134,7 +133,7 @@ impl Integrator {
             Method::Whitted => Integrator::Whitted { max_depth },
             Method::Path => Integrator::Path {
                 max_depth,
-                spectral_mis: true,
+                dispersion: path::Dispersion::ALL,
             },
             Method::Photon => Integrator::PhotonMap {
                 max_depth,
@@ -207,13 +206,12 @@ impl Integrator {
             }
             Integrator::Path {
                 max_depth,
-                spectral_mis,
+                dispersion,
             } => Some(path::radiance(
                 scene,
                 ray,
-                max_depth,
+                (max_depth, dispersion),
                 lambda,
-                spectral_mis,
                 ctx,
             )),
             Integrator::PhotonMap { .. } | Integrator::Sppm { .. } | Integrator::Hybrid { .. } => {
@@ -287,9 +285,9 @@ impl Integrator {
         match self {
             Integrator::Path {
                 max_depth,
-                spectral_mis,
+                dispersion,
             } if width != LaneWidth::Scalar => {
-                let rules = (*max_depth, *spectral_mis);
+                let rules = (*max_depth, *dispersion);
                 pool.install(|| {
                     render_batches(
                         camera,

@@ -110,7 +110,7 @@ impl<C: Carrier> PassPaths<'_, C> {
             .collect();
         let jobs: Vec<Job> = pixels.iter().map(|&(_, j)| j).collect();
         let mut out = vec![C::ZERO; jobs.len()];
-        let rules = (self.max_depth, false);
+        let rules = (self.max_depth, path::Dispersion::HERO);
         let estimate = |i: usize, l: C, _: &C::Lambda| out[i] = l;
         let rays = path::estimate_lanes(
             self.scene,

@@ -23,7 +23,7 @@
 //! `IRIS_LANES=off|8|16` overrides it for measurements; images do not change.
 
 use super::vertex::{self, Next, Pending, Rules, Walk};
-use super::{CausticSplit, StopAt};
+use super::{CausticSplit, Dispersion, StopAt};
 use crate::accel::packet::{lanes, Coherence, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
 use crate::accel::Accel;
 use crate::error::{Error, Result};
@@ -79,7 +79,7 @@ impl LaneWidth {
 /// split, linear RGB into `out`) at `width`, in spectral or RGB transport.
 pub fn estimate_path(
     scene: &Scene,
-    (rules, width): ((u32, bool), LaneWidth),
+    (rules, width): ((u32, Dispersion), LaneWidth),
     spectral: bool,
     starts: &Starts,
     jobs: &[Job],
@@ -87,7 +87,7 @@ pub fn estimate_path(
 ) -> u64 {
     fn at<C: Carrier>(
         scene: &Scene,
-        (rules, width): ((u32, bool), LaneWidth),
+        (rules, width): ((u32, Dispersion), LaneWidth),
         run: (&Starts, &[Job]),
         out: &mut [Vec3],
     ) -> u64 {
@@ -116,7 +116,7 @@ struct Lane<C: Carrier> {
 }
 
 /// Estimates `jobs` (begun by `starts`) with the path tracer ([`super::radiance`] with
-/// `max_depth` and `spectral_mis`; `split` as in [`super::camera_path`]) on `width` lanes
+/// `max_depth` and its [`Dispersion`]; `split` as in [`super::camera_path`]) on `width` lanes
 /// ([`LaneWidth::Scalar`] runs 8: a caller wanting single rays runs the scalar loop), at
 /// the wavelengths `lambda` (the pass's of a photon method) or, with `None`, at wavelengths
 /// drawn from each job's hero variate; `emit(i, L, wavelengths)` receives job `i`'s
@@ -125,7 +125,7 @@ struct Lane<C: Carrier> {
 pub fn estimate_lanes<C: Carrier>(
     scene: &Scene,
     width: LaneWidth,
-    (rules, split): ((u32, bool), CausticSplit<'_, C>),
+    (rules, split): ((u32, Dispersion), CausticSplit<'_, C>),
     (starts, jobs): (&Starts, &[Job]),
     lambda: Option<C::Lambda>,
     emit: impl FnMut(usize, C, &C::Lambda),
@@ -140,7 +140,7 @@ pub fn estimate_lanes<C: Carrier>(
 /// [`estimate_lanes`] on `N` lanes.
 fn run_lanes<C: Carrier, const N: usize>(
     scene: &Scene,
-    ((max_depth, spectral_mis), split): ((u32, bool), CausticSplit<'_, C>),
+    ((max_depth, dispersion), split): ((u32, Dispersion), CausticSplit<'_, C>),
     (starts, jobs): (&Starts, &[Job]),
     lambda: Option<C::Lambda>,
     mut emit: impl FnMut(usize, C, &C::Lambda),
@@ -148,13 +148,7 @@ fn run_lanes<C: Carrier, const N: usize>(
 where
     Lanes<N>: PacketWidth,
 {
-    let rules = Rules {
-        max_depth,
-        stop: StopAt::Never,
-        split,
-        spectral_mis,
-        wavelength_split: super::split::applies(StopAt::Never, &split),
-    };
+    let rules = Rules::new(max_depth, dispersion, StopAt::Never, split);
     let mut lanes_: [Lane<C>; N] = std::array::from_fn(|_| Lane {
         job: 0,
         lambda: C::sample_lambda(0.0),

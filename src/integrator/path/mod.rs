@@ -24,6 +24,30 @@ mod vertex;
 
 pub use lanes::{estimate_lanes, estimate_path, LaneWidth};
 
+/// What the path tracer's camera paths keep of their 4 wavelengths at dispersive
+/// interfaces in spectral transport (nothing changes in RGB). Each off choice falls back to
+/// the hero only (pbrt-v4 `TerminateSecondary`), for comparisons.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Dispersion {
+    /// At a rough one: all 4, with spectral MIS ([`crate::shading::spectral_mis`]).
+    pub spectral_mis: bool,
+    /// At the first smooth one: split into 4 sub-paths ([`split`]).
+    pub split: bool,
+}
+
+impl Dispersion {
+    /// Both on: the path tracer's default.
+    pub const ALL: Dispersion = Dispersion {
+        spectral_mis: true,
+        split: true,
+    };
+    /// The hero only everywhere (the photon methods' camera paths).
+    pub const HERO: Dispersion = Dispersion {
+        spectral_mis: false,
+        split: false,
+    };
+}
+
 use super::Context;
 use crate::bsdf::Bsdf;
 use crate::interaction::SurfaceHit;
@@ -97,23 +121,15 @@ pub struct VisiblePoint<C: Carrier> {
 }
 
 /// Radiance along `ray` (the camera is in air) at the sample's wavelengths `lambda`
-/// (nothing in RGB transport); `spectral_mis`: keep the 4 wavelengths at rough dispersive
-/// interfaces ([`crate::shading::spectral_mis`]) rather than the hero only.
+/// (nothing in RGB transport), keeping them at dispersive interfaces as `dispersion` says.
 pub fn radiance<C: Carrier>(
     scene: &Scene,
     ray: &Ray,
-    max_depth: u32,
+    (max_depth, dispersion): (u32, Dispersion),
     lambda: C::Lambda,
-    spectral_mis: bool,
     ctx: &mut Context,
 ) -> C {
-    let rules = Rules {
-        max_depth,
-        stop: StopAt::Never,
-        split: CausticSplit::None,
-        spectral_mis,
-        wavelength_split: split::applies::<C>(StopAt::Never, &CausticSplit::None),
-    };
+    let rules = Rules::new(max_depth, dispersion, StopAt::Never, CausticSplit::None);
     trace(scene, ray, lambda, &rules, ctx).0
 }
 
@@ -132,19 +148,12 @@ pub fn camera_path<C: Carrier>(
     split: CausticSplit<'_, C>,
     ctx: &mut Context,
 ) -> (C, Option<VisiblePoint<C>>) {
-    let rules = Rules {
-        max_depth,
-        stop,
-        split,
-        spectral_mis: false,
-        wavelength_split: split::applies(stop, &split),
-    };
+    let rules = Rules::new(max_depth, Dispersion::HERO, stop, split);
     trace(scene, ray, lambda, &rules, ctx)
 }
 
 /// The scalar loop under `rules`: one vertex ([`vertex::vertex`]) after the other, each
-/// shadow ray traced at once. Spectral MIS only with [`StopAt::Never`] (the photon methods'
-/// visible points keep the hero only, as their gather evaluates the BSDF with one η).
+/// shadow ray traced at once.
 fn trace<C: Carrier>(
     scene: &Scene,
     ray: &Ray,
@@ -152,10 +161,6 @@ fn trace<C: Carrier>(
     rules: &Rules<'_, C>,
     ctx: &mut Context,
 ) -> (C, Option<VisiblePoint<C>>) {
-    let rules = &Rules {
-        spectral_mis: rules.spectral_mis && rules.stop == StopAt::Never,
-        ..*rules
-    };
     let mut walk = Walk::new(*ray, lambda);
     let mut visible = None;
     loop {

@@ -40,23 +40,20 @@
 //! the split). A lane whose throughput is 0 is not traced. The scalar loop and the lanes
 //! run the same sequence per sample, so their estimates agree bit for bit.
 //!
-//! Where: the path tracer's camera paths ([`StopAt::Never`] without a caustic map). The
-//! photon methods' visible points and the hybrid's gathers keep the collapse (their
-//! photons carry the sample's lanes in their own order). `IRIS_SPLIT=off` collapses
-//! everywhere, for measuring; any other value (or none) splits.
+//! Where: the path tracer's camera paths ([`StopAt::Never`] without a caustic map), when
+//! [`super::Dispersion::split`] is on (the default; off for comparisons). The photon
+//! methods' visible points and the hybrid's gathers keep the collapse (their photons carry
+//! the sample's lanes in their own order).
 
 use super::state::PathState;
 use super::{CausticSplit, StopAt};
 use crate::math::Ray;
 use crate::spectrum::{Carrier, N_LAMBDA};
 use glam::Vec3;
-use std::sync::OnceLock;
 
-/// Whether camera paths under `stop` and `split` split into their wavelengths (see the
-/// module docs; read once per process).
-pub(super) fn applies<C: Carrier>(stop: StopAt, split: &CausticSplit<'_, C>) -> bool {
-    static ON: OnceLock<bool> = OnceLock::new();
-    let on = *ON.get_or_init(|| std::env::var("IRIS_SPLIT").map_or(true, |v| v != "off"));
+/// Whether camera paths under `stop` and `split` split into their wavelengths, `on` being
+/// [`super::Dispersion::split`] (see the module docs).
+pub(super) fn applies<C: Carrier>(on: bool, stop: StopAt, split: &CausticSplit<'_, C>) -> bool {
     on && C::SPECTRAL && stop == StopAt::Never && matches!(split, CausticSplit::None)
 }
 

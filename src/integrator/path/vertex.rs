@@ -50,6 +50,27 @@ pub(super) struct Rules<'a, C: Carrier> {
     pub wavelength_split: bool,
 }
 
+impl<'a, C: Carrier> Rules<'a, C> {
+    /// The rules for `max_depth`, `stop` and `split`, keeping wavelengths as `dispersion`
+    /// says where it applies: spectral MIS only with [`StopAt::Never`] (the photon methods'
+    /// visible points keep the hero only, as their gather evaluates the BSDF with one η),
+    /// the split only there and without a caustic map ([`super::split::applies`]).
+    pub fn new(
+        max_depth: u32,
+        dispersion: super::Dispersion,
+        stop: StopAt,
+        split: CausticSplit<'a, C>,
+    ) -> Self {
+        Rules {
+            max_depth,
+            stop,
+            split,
+            spectral_mis: dispersion.spectral_mis && stop == StopAt::Never,
+            wavelength_split: super::split::applies(dispersion.split, stop, &split),
+        }
+    }
+}
+
 /// A camera path between two vertices: the radiance so far, the ray to trace next and
 /// the state the bounce rules read.
 pub(super) struct Walk<C: Carrier> {
