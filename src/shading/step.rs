@@ -304,6 +304,32 @@ impl<C: Carrier> Surface<C> {
         }
     }
 
+    /// The per-lane η at a rough dispersive dielectric met by [`Arrival::event_lanes`]
+    /// (lane 0 = the hero's, in `bsdf`); `None` elsewhere.
+    pub fn lane_etas(&self) -> Option<[f32; 4]> {
+        self.lanes
+    }
+
+    /// The same surface for the path's lanes rotated by `k` ([`Carrier::lanes_rotated`]):
+    /// at a rough dispersive dielectric the BSDF takes lane `k`'s η as the hero's and its
+    /// tint and the per-lane η rotate with the lanes (each lane's value depends on its own
+    /// wavelength only, so the rotation is exact); elsewhere the surface is returned as is.
+    pub fn with_hero_lane(&self, k: usize) -> Surface<C> {
+        let (Some(etas), Bsdf::Dielectric { alpha, tint, .. }) = (self.lanes, self.bsdf) else {
+            return *self;
+        };
+        let etas: [f32; 4] = std::array::from_fn(|j| etas[(j + k) % 4]);
+        Surface {
+            bsdf: Bsdf::Dielectric {
+                eta: etas[0],
+                alpha,
+                tint: tint.rotated(k),
+            },
+            lanes: Some(etas),
+            ..*self
+        }
+    }
+
     /// The media after leaving along a sampled direction: those beyond the surface if the
     /// sample is a transmission, the arrival's otherwise.
     pub fn media_after(&self, transmission: bool) -> MediumStack {

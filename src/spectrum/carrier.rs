@@ -153,6 +153,16 @@ pub trait Carrier:
     /// `i` is the hero (lane 0), hero only, with hero weight 1. The sub-path's radiance
     /// in its lane 0 is the sample's lane `i`. Nothing for RGB.
     fn lane_as_hero(l: &Self::Lambda, i: usize) -> Self::Lambda;
+    /// The wavelengths with lane `k` moved to lane 0 (lane j ← lane (j + k) mod 4), hero
+    /// weights rotated with them, `hero_only` kept: the same sample seen with lane `k` as
+    /// the hero (SPPM's camera hero, `crate::integrator::path`). Nothing for RGB.
+    fn lanes_rotated(l: &Self::Lambda, k: usize) -> Self::Lambda;
+    /// The values with lane `k` moved to lane 0 (lane j ← lane (j + k) mod 4), to go with
+    /// [`Carrier::lanes_rotated`]. RGB values must not be rotated (`k` = 0 leaves them).
+    fn rotated(self, k: usize) -> Self {
+        let v = self.to_lanes();
+        Self::from_lanes(std::array::from_fn(|j| v[(j + k) % 4]))
+    }
 }
 
 impl Carrier for Vec3 {
@@ -234,6 +244,7 @@ impl Carrier for Vec3 {
         Vec3::new(v[0], v[1], v[2])
     }
     fn lane_as_hero(_l: &(), _i: usize) {}
+    fn lanes_rotated(_l: &(), _k: usize) {}
 }
 
 impl Carrier for SampledSpectrum {
@@ -337,14 +348,21 @@ impl Carrier for SampledSpectrum {
         SampledSpectrum::new(v)
     }
     fn lane_as_hero(l: &Lambdas, i: usize) -> Lambdas {
-        let d65 = l.d65.values();
         let mut hero_weight = [0.0; N_LAMBDA];
         hero_weight[0] = 1.0;
         Lambdas {
-            wl: l.wl.rotated(i),
             hero_only: true,
-            d65: SampledSpectrum::new(std::array::from_fn(|j| d65[(j + i) % N_LAMBDA])),
             hero_weight,
+            ..Self::lanes_rotated(l, i)
+        }
+    }
+    fn lanes_rotated(l: &Lambdas, k: usize) -> Lambdas {
+        let d65 = l.d65.values();
+        Lambdas {
+            wl: l.wl.rotated(k),
+            hero_only: l.hero_only,
+            d65: SampledSpectrum::new(std::array::from_fn(|j| d65[(j + k) % N_LAMBDA])),
+            hero_weight: std::array::from_fn(|j| l.hero_weight[(j + k) % N_LAMBDA]),
         }
     }
 }
