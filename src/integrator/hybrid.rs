@@ -256,6 +256,7 @@ fn camera_pass<C: Carrier>(
         stop: StopAt::Never,
         split,
         lanes,
+        dispersion: super::path::Dispersion::HERO,
     };
     let width = settings.width as usize;
     let mut nothing = vec![(); film.slots()];

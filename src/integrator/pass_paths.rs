@@ -32,6 +32,9 @@ pub(super) struct PassPaths<'a, C: Carrier> {
     pub split: path::CausticSplit<'a, C>,
     /// Lanes for paths that do not stop at a visible point ([`StopAt::Never`]).
     pub lanes: LaneWidth,
+    /// What the paths keep of their wavelengths at dispersive interfaces (the split never
+    /// applies: [`path::camera_path`]; spectral MIS only without a caustic map).
+    pub dispersion: path::Dispersion,
 }
 
 impl<C: Carrier> PassPaths<'_, C> {
@@ -88,7 +91,7 @@ impl<C: Carrier> PassPaths<'_, C> {
             let (l, vp) = path::camera_path::<C>(
                 self.scene,
                 &ray,
-                self.max_depth,
+                (self.max_depth, self.dispersion),
                 self.lambda,
                 self.stop,
                 self.split,
@@ -110,7 +113,7 @@ impl<C: Carrier> PassPaths<'_, C> {
             .collect();
         let jobs: Vec<Job> = pixels.iter().map(|&(_, j)| j).collect();
         let mut out = vec![C::ZERO; jobs.len()];
-        let rules = (self.max_depth, path::Dispersion::HERO);
+        let rules = (self.max_depth, self.dispersion);
         let estimate = |i: usize, l: C, _: &C::Lambda| out[i] = l;
         let rays = path::estimate_lanes(
             self.scene,

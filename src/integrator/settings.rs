@@ -186,6 +186,10 @@ pub struct SppmSettings {
     pub passes: u32,
     /// Photon Russian roulette rule.
     pub roulette: Roulette,
+    /// Spectral transport: camera paths keep their 4 wavelengths at rough dispersive
+    /// interfaces with spectral MIS under their own hero (`crate::integrator::path`'s
+    /// `own_hero`; on by default); off keeps the hero only there, for comparisons.
+    pub spectral_mis: bool,
 }
 
 /// What the hybrid (`--method hybrid`) uses of the photon flags: its caustic map.
@@ -247,6 +251,7 @@ impl PhotonSettings {
             alpha: self.alpha,
             passes: self.passes,
             roulette: self.roulette,
+            spectral_mis: true,
         }
     }
 }

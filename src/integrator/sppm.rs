@@ -62,6 +62,7 @@ use crate::render::{
     TILE_PIXELS,
 };
 use crate::scene::Scene;
+use crate::shading::spectral_mis;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -109,14 +110,34 @@ pub fn pixel_footprint(camera: &Camera, settings: &RenderSettings, d: f32) -> f3
     (a.origin + da * d).distance(b.origin + db * d)
 }
 
-/// Sum of f · Φ over the photons within `r` of a visible point ([`photon_term`]).
+/// Sum of f · Φ over the photons within `r` of a visible point, in the visible point's
+/// lane order ([`visible_term`]).
 fn gather<C: Carrier>(vp: &VisiblePoint<C>, photons: &[Photon], grid: &HashGrid, r: f32) -> C {
     let mut phi = C::ZERO;
-    let vp_hero = C::is_hero_only(&vp.lambda);
+    let coupled = vp.hero.coupled::<C>(&vp.lambda);
     grid.for_each_within(vp.p, r, |i, _d2| {
-        phi += photon_term(&vp.bsdf, &vp.frame, vp.wo, vp_hero, &photons[i as usize]);
+        phi += visible_term(vp, coupled, &photons[i as usize]);
     });
     phi
+}
+
+/// f(wo, wiₚ) · Φₚ of the photon `ph` at the visible point `vp`, in its lane order: the
+/// photon's power rotated into the path's lanes ([`path::HeroOf::to_path`]), f per lane
+/// with each lane's η at a rough dispersive interface reached with the lanes kept, and the
+/// factor 1/4 when the path kept the hero only for the pass's hero (`coupled`) and so did
+/// the photon (the unbiasedness argument: `crate::integrator::path`'s `own_hero`).
+fn visible_term<C: Carrier>(vp: &VisiblePoint<C>, coupled: bool, ph: &Photon) -> C {
+    let wi = vp.frame.to_local(ph.wi());
+    let mode = TransportMode::Radiance;
+    let f = match &vp.etas {
+        Some(etas) => spectral_mis::eval_lanes(&vp.bsdf, etas, vp.wo, wi, mode).0,
+        None => vp.bsdf.eval(vp.wo, wi, mode),
+    };
+    let mut c = f * vp.hero.to_path(C::from_lanes(ph.power()));
+    if coupled && ph.flags() & Photon::HERO_ONLY != 0 {
+        c /= 4.0;
+    }
+    c
 }
 
 /// f(wo, wiₚ) · Φₚ of the photon `ph` at a camera vertex (`bsdf` in `frame`, `wo` toward
@@ -192,7 +213,7 @@ fn run<C: Carrier>(
                 camera,
                 max_depth,
                 settings,
-                ps.passes.max(1),
+                (ps.passes.max(1), ps.spectral_mis),
                 lambda,
                 &mut scratch,
                 &mut state.vps,
@@ -226,7 +247,7 @@ fn run<C: Carrier>(
                 camera,
                 max_depth,
                 settings,
-                ps.passes.max(1),
+                (ps.passes.max(1), ps.spectral_mis),
                 lambda,
                 film,
                 &mut state.vps,
@@ -266,7 +287,7 @@ fn camera_pass<C: Carrier>(
     camera: &Camera,
     max_depth: u32,
     settings: &RenderSettings,
-    passes: u32,
+    (passes, spectral_mis): (u32, bool),
     lambda: C::Lambda,
     film: &mut Film,
     vps: &mut [Option<VisiblePoint<C>>],
@@ -280,6 +301,10 @@ fn camera_pass<C: Carrier>(
         stop: StopAt::Diffuse,
         split: path::CausticSplit::None,
         lanes: LaneWidth::Scalar,
+        dispersion: path::Dispersion {
+            spectral_mis,
+            split: false,
+        },
     };
     paths.trace(film, vps, false, |_, l, vp, slot| {
         *slot = vp;

@@ -18,11 +18,13 @@
 //! each traced on as its own sub-path ([`split`], which gives the unbiasedness argument).
 
 mod lanes;
+mod own_hero;
 mod split;
 mod state;
 mod vertex;
 
 pub use lanes::{estimate_lanes, estimate_path, LaneWidth};
+pub use own_hero::HeroOf;
 
 /// What the path tracer's camera paths keep of their 4 wavelengths at dispersive
 /// interfaces in spectral transport (nothing changes in RGB). Each off choice falls back to
@@ -112,12 +114,19 @@ pub struct VisiblePoint<C: Carrier> {
     pub wo: Vec3,
     /// The BSDF there.
     pub bsdf: Bsdf<C>,
-    /// Path throughput from the camera to here.
+    /// Path throughput from the camera to here (lanes in the path's order, `hero`).
     pub beta: C,
-    /// The path's wavelengths (hero only if it crossed a dispersive interface).
+    /// The path's wavelengths (hero only if it crossed a smooth dispersive interface), in
+    /// the path's lane order.
     pub lambda: C::Lambda,
     /// The hit (for spawning final-gather rays).
     pub hit: SurfaceHit,
+    /// At a rough dispersive dielectric reached with the lanes kept: each lane's η (lane
+    /// 0's is `bsdf`'s), for f per lane ([`crate::shading::spectral_mis::eval_lanes`]).
+    pub etas: Option<[f32; 4]>,
+    /// Whose hero orders the lanes: a photon's power (in the sample's order) goes through
+    /// [`HeroOf::to_path`]; [`HeroOf::coupled`] says when the gather divides by 4.
+    pub hero: HeroOf,
 }
 
 /// Radiance along `ray` (the camera is in air) at the sample's wavelengths `lambda`
@@ -137,18 +146,24 @@ pub fn radiance<C: Carrier>(
 /// the visible point where it stopped (none if it escaped, was absorbed or hit the depth
 /// limit first). Each hit is the shared step ([`shading::arrive`], [`Arrival::event`]);
 /// emission is counted on arrival, before BLEND coverage is decided. `split` hands the
-/// caustic paths to a caustic map ([`CausticSplit`]).
+/// caustic paths to a caustic map ([`CausticSplit`]). `dispersion.spectral_mis` keeps the
+/// lanes at rough dispersive interfaces (with [`StopAt::Diffuse`] under the path's own hero,
+/// [`own_hero`]; not with a caustic map); the split never applies here.
 #[allow(clippy::too_many_arguments)]
 pub fn camera_path<C: Carrier>(
     scene: &Scene,
     ray: &Ray,
-    max_depth: u32,
+    (max_depth, dispersion): (u32, Dispersion),
     lambda: C::Lambda,
     stop: StopAt,
     split: CausticSplit<'_, C>,
     ctx: &mut Context,
 ) -> (C, Option<VisiblePoint<C>>) {
-    let rules = Rules::new(max_depth, Dispersion::HERO, stop, split);
+    let dispersion = Dispersion {
+        split: false,
+        ..dispersion
+    };
+    let rules = Rules::new(max_depth, dispersion, stop, split);
     trace(scene, ray, lambda, &rules, ctx)
 }
 

@@ -9,6 +9,7 @@
 //! Units: radiance in the carrier's units (linear RGB or per-wavelength spectral
 //! radiance); frames as in [`crate::shading::step`].
 
+use super::own_hero::{self, HeroOf};
 use super::split::Branches;
 use super::state::{PathState, Prev};
 use super::{CausticSplit, Gather, StopAt, VisiblePoint};
@@ -41,10 +42,8 @@ pub(super) struct Rules<'a, C: Carrier> {
     pub stop: StopAt,
     /// The share of a caustic map ([`CausticSplit`]).
     pub split: CausticSplit<'a, C>,
-    /// Keep the 4 wavelengths at rough dispersive interfaces (only with
-    /// [`StopAt::Never`]: the photon methods' visible points keep the hero only, as their
-    /// gather evaluates the BSDF with one η).
-    pub spectral_mis: bool,
+    /// What the path keeps at rough dispersive interfaces ([`RoughLanes`]).
+    pub rough: RoughLanes,
     /// Split the path into its wavelengths at its first smooth dispersive interface
     /// ([`super::split`]).
     pub wavelength_split: bool,
@@ -52,9 +51,10 @@ pub(super) struct Rules<'a, C: Carrier> {
 
 impl<'a, C: Carrier> Rules<'a, C> {
     /// The rules for `max_depth`, `stop` and `split`, keeping wavelengths as `dispersion`
-    /// says where it applies: spectral MIS only with [`StopAt::Never`] (the photon methods'
-    /// visible points keep the hero only, as their gather evaluates the BSDF with one η),
-    /// the split only there and without a caustic map ([`super::split::applies`]).
+    /// says where it applies: spectral MIS without a caustic map (whose gather pairs the
+    /// path's hero with its photons'), with the path's own hero when it stops at a visible
+    /// point ([`RoughLanes::OwnHero`]); the split only with [`StopAt::Never`] and without a
+    /// caustic map ([`super::split::applies`]).
     pub fn new(
         max_depth: u32,
         dispersion: super::Dispersion,
@@ -65,10 +65,31 @@ impl<'a, C: Carrier> Rules<'a, C> {
             max_depth,
             stop,
             split,
-            spectral_mis: dispersion.spectral_mis && stop == StopAt::Never,
+            rough: match (dispersion.spectral_mis, stop, &split) {
+                (false, _, _) | (_, _, CausticSplit::Map(_) | CausticSplit::Mixed { .. }) => {
+                    RoughLanes::Hero
+                }
+                (true, StopAt::Never, CausticSplit::None) => RoughLanes::Mis,
+                (true, StopAt::Diffuse, CausticSplit::None) => RoughLanes::OwnHero,
+            },
             wavelength_split: super::split::applies(dispersion.split, stop, &split),
         }
     }
+}
+
+/// What a camera path keeps at a rough dispersive interface in spectral transport.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum RoughLanes {
+    /// The hero only ([`crate::spectrum::Carrier::keep_hero`]).
+    Hero,
+    /// The 4 lanes with spectral MIS, the sample's lane 0 the hero
+    /// ([`crate::shading::spectral_mis`]).
+    Mis,
+    /// The 4 lanes with spectral MIS, the hero the path's own, drawn at its first rough
+    /// dispersive vertex ([`super::own_hero`]: SPPM's camera paths, whose photons share the
+    /// sample's hero); a visible point there keeps the lanes, the gather evaluating f per
+    /// lane.
+    OwnHero,
 }
 
 /// A camera path between two vertices: the radiance so far, the ray to trace next and
@@ -84,6 +105,8 @@ pub(super) struct Walk<C: Carrier> {
     pub st: PathState<C>,
     /// The sub-paths of a path split into its wavelengths ([`super::split`]).
     branches: Branches<C>,
+    /// Whose hero orders the lanes of `l`, `lambda` and `st.beta` ([`super::own_hero`]).
+    hero: HeroOf,
 }
 
 impl<C: Carrier> Walk<C> {
@@ -95,6 +118,7 @@ impl<C: Carrier> Walk<C> {
             lambda,
             st: PathState::new(ray.origin),
             branches: Branches::new(),
+            hero: HeroOf::Sample,
         }
     }
 
@@ -105,9 +129,10 @@ impl<C: Carrier> Walk<C> {
         self.branches.next(l, ray, lambda, &mut self.st)
     }
 
-    /// The sample's radiance once [`Self::next_branch`] returned false.
+    /// The sample's radiance (in the sample's lane order) once [`Self::next_branch`]
+    /// returned false.
     pub fn radiance(&self) -> C {
-        self.branches.radiance(self.l)
+        self.hero.to_sample(self.branches.radiance(self.l))
     }
 }
 
@@ -315,7 +340,7 @@ pub(super) fn vertex<C: Carrier>(
     }
     let mut u = ctx.sample.bounce(st.vertex);
     let before = (rules.wavelength_split && !C::is_hero_only(&walk.lambda)).then_some(st.beta);
-    let ev = if rules.spectral_mis {
+    let ev = if rules.rough != RoughLanes::Hero {
         at.event_lanes(scene, st.media, &mut st.beta, &mut walk.lambda, &mut u)
     } else {
         at.event(scene, st.media, &mut st.beta, &mut walk.lambda, &mut u)
@@ -346,9 +371,19 @@ pub(super) fn vertex<C: Carrier>(
             beta: st.beta,
             lambda: *lambda,
             hit: s.hit,
+            etas: s.lane_etas(),
+            hero: walk.hero,
         });
         return (Some(pending(st.beta, ls, None)), Next::End);
     }
+    let own = (rules.rough == RoughLanes::OwnHero)
+        .then(|| {
+            let values = [&mut st.beta, &mut walk.l];
+            own_hero::draw(s, &mut walk.hero, &mut walk.lambda, values, &mut u)
+        })
+        .flatten();
+    let s = own.as_ref().unwrap_or(s);
+    let lambda = &walk.lambda;
     let mut nee = None;
     if !s.bsdf.is_delta() {
         let ls = next_event(scene, s, lambda, true, &mut u, &mut ctx.rays);
