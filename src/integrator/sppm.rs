@@ -12,7 +12,10 @@
 //! 2. traces one camera path per pixel with the path tracer's loop ([`path::camera_path`]):
 //!    emission, direct light (NEE with MIS) and glossy/specular bounces are the path
 //!    tracer's; the path stops at its first diffuse-like hit, the visible point, where
-//!    direct light is estimated once more without MIS;
+//!    direct light is estimated once more without MIS. In spectral transport a camera
+//!    path keeps its 4 wavelengths at rough dispersive interfaces with spectral MIS under
+//!    its own hero, drawn independently of the photons' (`path::own_hero` proves the
+//!    gather unbiased; [`SppmSettings::spectral_mis`] off keeps the hero only there);
 //! 3. traces `photons` photons from the lights ([`crate::photon`]) and keeps every photon
 //!    vertex after at least one bounce (direct light was the camera path's: no path is
 //!    counted twice);
