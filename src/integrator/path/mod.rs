@@ -43,7 +43,8 @@ impl Dispersion {
         spectral_mis: true,
         split: true,
     };
-    /// The hero only everywhere (the photon methods' camera paths).
+    /// The hero only everywhere (the hybrid's and the photon map's camera paths; SPPM's
+    /// with [`crate::integrator::SppmSettings::spectral_mis`] off).
     pub const HERO: Dispersion = Dispersion {
         spectral_mis: false,
         split: false,
