@@ -1,6 +1,7 @@
 //! The path tracer's wavelength split at smooth dispersive interfaces
 //! (`iris::integrator::path::Dispersion::split`) against the collapse to the hero it
-//! replaces, at equal wall time: for each stone, both settings render [`SECONDS`] per seed
+//! replaces, at equal wall time, for the path tracer and the hybrid (whose camera paths
+//! split the same way): for each stone and method, both settings render [`SECONDS`] per seed
 //! for seeds 1 and 2 (alternating, so both see the same machine load), and the table gives
 //! samples per pixel and the seed-to-seed relative RMSE (mean over channels and pixels of
 //! |a − b| / (|a| + |b|)/2 in the RMS sense, over √2: one render's error against the
@@ -11,14 +12,14 @@
 //! - `assets/gems/round_diamond.glb` (diamond, n_d 2.417, Abbe 55);
 //! - `assets/gems/pear_cubic_zirconia.glb` (cubic zirconia, more dispersive than diamond).
 //!
-//! Run: `cargo bench --bench dispersion_split` (about 2 × 4 × [`SECONDS`] s).
+//! Run: `cargo bench --bench dispersion_split` (about 2 × 2 × 4 × [`SECONDS`] s).
 #![forbid(unsafe_code)]
 
 use iris::accel::Backend;
 use iris::camera::Camera;
 use iris::image::ImageRgb;
 use iris::integrator::path::Dispersion;
-use iris::integrator::Integrator;
+use iris::integrator::{CausticSettings, Integrator, PhotonSettings};
 use iris::prepare::default_preview_scene;
 use iris::render::RenderSettings;
 use std::path::{Path, PathBuf};
@@ -28,16 +29,30 @@ use std::time::Duration;
 const SECONDS: u64 = 10;
 const SIZE: (u32, u32) = (160, 90);
 
-/// One render of `path` for [`SECONDS`]: the image and its samples per pixel.
-fn render(path: &Path, split: bool, seed: u64) -> (ImageRgb, f64) {
-    let (scene, camera) = default_preview_scene(path, Backend::default(), SIZE).expect("prepare");
-    let integrator = Integrator::Path {
-        max_depth: 64,
-        dispersion: Dispersion {
-            spectral_mis: true,
-            split,
+/// The path tracer or the hybrid, split or collapsed.
+fn integrator(hybrid: bool, split: bool) -> Integrator {
+    match hybrid {
+        false => Integrator::Path {
+            max_depth: 64,
+            dispersion: Dispersion {
+                spectral_mis: true,
+                split,
+            },
         },
-    };
+        true => Integrator::Hybrid {
+            max_depth: 64,
+            caustics: CausticSettings {
+                split,
+                ..PhotonSettings::default().caustics()
+            },
+        },
+    }
+}
+
+/// One render of `path` for [`SECONDS`]: the image and its samples per pixel.
+fn render(path: &Path, (hybrid, split): (bool, bool), seed: u64) -> (ImageRgb, f64) {
+    let (scene, camera) = default_preview_scene(path, Backend::default(), SIZE).expect("prepare");
+    let integrator = integrator(hybrid, split);
     let settings = RenderSettings {
         width: SIZE.0,
         height: SIZE.1,
@@ -73,20 +88,23 @@ fn main() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let stones = ["round_diamond", "pear_cubic_zirconia"]
         .map(|s| (s, root.join(format!("assets/gems/{s}.glb"))));
-    println!("| stone | collapse spp | split spp | collapse rel. RMSE | split rel. RMSE | ratio |");
-    println!("|---|---|---|---|---|---|");
-    for (name, path) in stones {
+    println!(
+        "| stone | method | collapse spp | split spp | collapse rel. RMSE | split rel. RMSE | ratio |"
+    );
+    println!("|---|---|---|---|---|---|---|");
+    for ((name, path), hybrid) in stones.iter().flat_map(|s| [(s, false), (s, true)]) {
+        let method = if hybrid { "hybrid" } else { "path" };
         let mut runs = [Vec::new(), Vec::new()];
         for seed in 1..=2 {
             for split in [false, true] {
-                runs[split as usize].push(render(&path, split, seed));
+                runs[split as usize].push(render(path, (hybrid, split), seed));
             }
         }
         let err = |r: &[(ImageRgb, f64)]| seed_to_seed(&r[0].0, &r[1].0);
         let spp = |r: &[(ImageRgb, f64)]| (r[0].1 + r[1].1) / 2.0;
         let (c, s) = (err(&runs[0]), err(&runs[1]));
         println!(
-            "| {name} | {:.0} | {:.0} | {c:.3} | {s:.3} | {:.2} |",
+            "| {name} | {method} | {:.0} | {:.0} | {c:.3} | {s:.3} | {:.2} |",
             spp(&runs[0]),
             spp(&runs[1]),
             s / c

@@ -36,7 +36,7 @@ use super::caustic::{self, CausticMap};
 use super::light_trace::{self, Splatter};
 use super::pass_paths::PassPaths;
 use super::path::LaneWidth;
-use super::path::{CausticSplit, StopAt};
+use super::path::{CausticSplit, Dispersion, StopAt};
 use super::photon_budget;
 use super::sppm::{first_radius, pass_wavelength_variate};
 use super::{CausticMode, CausticSettings};
@@ -175,10 +175,14 @@ fn run<C: Carrier>(
                 .then(|| light_trace::splat_image(&splats, pixels as usize));
             let r = map.begin_gather(|ph| initial_radius(scene, camera, settings, ph));
             // 3. Camera samples.
+            let dispersion = match cs.split {
+                true => Dispersion::SPLIT,
+                false => Dispersion::HERO,
+            };
             let (rays, bad) = camera_pass::<C>(
                 scene,
                 camera,
-                max_depth,
+                (max_depth, dispersion),
                 (settings, lanes),
                 lambda,
                 (&map, image.as_deref(), cs.mode),
@@ -228,7 +232,7 @@ fn caustic_budget<C: Carrier>(
 fn camera_pass<C: Carrier>(
     scene: &Scene,
     camera: &Camera,
-    max_depth: u32,
+    (max_depth, dispersion): (u32, Dispersion),
     (settings, lanes): (&RenderSettings, LaneWidth),
     lambda: C::Lambda,
     (map, splats, mode): (&CausticMap, Option<&[Vec3]>, CausticMode),
@@ -255,6 +259,7 @@ fn camera_pass<C: Carrier>(
         lambda,
         stop: StopAt::Never,
         split,
+        dispersion,
         lanes,
     };
     let width = settings.width as usize;

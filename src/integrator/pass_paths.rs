@@ -30,6 +30,8 @@ pub(super) struct PassPaths<'a, C: Carrier> {
     pub lambda: C::Lambda,
     pub stop: StopAt,
     pub split: path::CausticSplit<'a, C>,
+    /// What the paths keep of their wavelengths at dispersive interfaces.
+    pub dispersion: path::Dispersion,
     /// Lanes for paths that do not stop at a visible point ([`StopAt::Never`]).
     pub lanes: LaneWidth,
 }
@@ -88,7 +90,7 @@ impl<C: Carrier> PassPaths<'_, C> {
             let (l, vp) = path::camera_path::<C>(
                 self.scene,
                 &ray,
-                self.max_depth,
+                (self.max_depth, self.dispersion),
                 self.lambda,
                 self.stop,
                 self.split,
@@ -100,8 +102,8 @@ impl<C: Carrier> PassPaths<'_, C> {
         (rays, bad)
     }
 
-    /// One tile's paths in lanes ([`path::estimate_lanes`] with the pass's wavelengths, no
-    /// spectral MIS, as [`path::camera_path`]); returns the rays and bad samples.
+    /// One tile's paths in lanes ([`path::estimate_lanes`] with the pass's wavelengths, as
+    /// [`path::camera_path`]); returns the rays and bad samples.
     fn tile_lanes<S>(&self, tile: &mut FilmTile, slots: &mut [S], keep: Keep<C, S>) -> (u64, u64) {
         let k = tile.next_unit();
         let starts = Starts::new(self.camera, &self.sampler, false, false);
@@ -110,7 +112,7 @@ impl<C: Carrier> PassPaths<'_, C> {
             .collect();
         let jobs: Vec<Job> = pixels.iter().map(|&(_, j)| j).collect();
         let mut out = vec![C::ZERO; jobs.len()];
-        let rules = (self.max_depth, path::Dispersion::HERO);
+        let rules = (self.max_depth, self.dispersion);
         let estimate = |i: usize, l: C, _: &C::Lambda| out[i] = l;
         let rays = path::estimate_lanes(
             self.scene,

@@ -229,7 +229,7 @@ fn measure<C: Carrier>(
                     let (l, _) = path::camera_path::<C>(
                         scene,
                         &ray,
-                        max_depth,
+                        (max_depth, path::Dispersion::SPLIT),
                         lambda,
                         StopAt::Never,
                         split,

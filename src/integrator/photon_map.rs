@@ -339,7 +339,7 @@ pub fn render(
             let (ld, vp) = path::camera_path::<Vec3>(
                 scene,
                 ray,
-                max_depth,
+                (max_depth, path::Dispersion::HERO),
                 (),
                 StopAt::Diffuse,
                 path::CausticSplit::None,

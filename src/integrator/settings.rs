@@ -202,6 +202,10 @@ pub struct CausticSettings {
     pub alpha: f32,
     /// Map only, or light tracing where the caustic is seen directly ([`CausticMode`]).
     pub mode: CausticMode,
+    /// In spectral transport, the camera paths split into their 4 wavelengths at their
+    /// first smooth dispersive interface ([`super::path::Dispersion::SPLIT`]; on by
+    /// default), rather than keeping the hero only (for comparisons).
+    pub split: bool,
 }
 
 impl CausticSettings {
@@ -225,6 +229,7 @@ impl PhotonSettings {
             radius: self.radius,
             alpha: self.alpha,
             mode: self.caustic_mode,
+            split: true,
         }
     }
 

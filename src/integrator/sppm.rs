@@ -112,31 +112,44 @@ pub fn pixel_footprint(camera: &Camera, settings: &RenderSettings, d: f32) -> f3
 /// Sum of f · Φ over the photons within `r` of a visible point ([`photon_term`]).
 fn gather<C: Carrier>(vp: &VisiblePoint<C>, photons: &[Photon], grid: &HashGrid, r: f32) -> C {
     let mut phi = C::ZERO;
-    let vp_hero = C::is_hero_only(&vp.lambda);
     grid.for_each_within(vp.p, r, |i, _d2| {
-        phi += photon_term(&vp.bsdf, &vp.frame, vp.wo, vp_hero, &photons[i as usize]);
+        phi += photon_term(&vp.bsdf, &vp.frame, vp.wo, &vp.lambda, &photons[i as usize]);
     });
     phi
 }
 
 /// f(wo, wiₚ) · Φₚ of the photon `ph` at a camera vertex (`bsdf` in `frame`, `wo` toward
-/// the camera), with the hero-wavelength bookkeeping: when both the camera path (`hero`)
-/// and the photon kept only the hero (each then carries 4× the hero lane), the product is
-/// divided by 4 once.
+/// the camera, at the camera path's wavelengths `lambda`), with the hero-wavelength
+/// bookkeeping:
+/// - when both the camera path and the photon kept only the pass's hero (each then carries
+///   4× the hero lane, for the same uniformly chosen hero), the product is divided by 4
+///   once;
+/// - a sub-path of a split camera sample ([`Carrier::sub_path`] `Some(i)`,
+///   [`super::path`]'s split) carries the sample's lane i alone at weight 1, its lanes
+///   rotated by i: the photon's lanes are rotated the same way, and nothing is divided
+///   (the sub-path was traced with probability 1, so no selection is shared with the
+///   photon's hero: E[β̂ᵢ · Φ̂ᵢ] = βᵢ Φᵢ for independent unbiased factors).
 pub(super) fn photon_term<C: Carrier>(
     bsdf: &Bsdf<C>,
     frame: &Frame,
     wo: Vec3,
-    hero: bool,
+    lambda: &C::Lambda,
     ph: &Photon,
 ) -> C {
     let wi = frame.to_local(ph.wi());
     let f = bsdf.eval(wo, wi, TransportMode::Radiance);
-    let mut c = f * C::from_lanes(ph.power());
-    if hero && ph.flags() & Photon::HERO_ONLY != 0 {
-        c /= 4.0;
+    let power = ph.power();
+    match C::sub_path(lambda) {
+        Some(i) => f * C::from_lanes(std::array::from_fn(|j| power[(j + i) % 4])),
+        None => {
+            let c = f * C::from_lanes(power);
+            if C::is_hero_only(lambda) && ph.flags() & Photon::HERO_ONLY != 0 {
+                c / 4.0
+            } else {
+                c
+            }
+        }
     }
-    c
 }
 
 /// The state SPPM keeps across passes: per film slot the visible point of the current
@@ -279,6 +292,7 @@ fn camera_pass<C: Carrier>(
         lambda,
         stop: StopAt::Diffuse,
         split: path::CausticSplit::None,
+        dispersion: path::Dispersion::HERO,
         lanes: LaneWidth::Scalar,
     };
     paths.trace(film, vps, false, |_, l, vp, slot| {
@@ -403,5 +417,39 @@ impl<C: Carrier> Passes<C> {
                 bad
             })
             .sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spectrum::{Lambdas, SampledSpectrum, SampledWavelengths};
+
+    /// The gather's hero bookkeeping: ÷4 once when the camera path and the photon both kept
+    /// the pass's hero; a split sample's sub-path i sees the photon's lanes rotated by i and
+    /// is never divided.
+    #[test]
+    fn photon_term_matches_lanes_and_hero_bookkeeping() {
+        type S = SampledSpectrum;
+        let albedo = S::new([1.0; 4]);
+        let bsdf = Bsdf::Lambert { albedo };
+        let frame = Frame::from_normal(Vec3::Z);
+        let f = std::f32::consts::FRAC_1_PI;
+        let power = [1.0, 2.0, 3.0, 4.0];
+        let all = Photon::new(Vec3::ZERO, Vec3::Z, power, 0);
+        let hero = Photon::new(Vec3::ZERO, Vec3::Z, power, Photon::HERO_ONLY);
+        let whole = Lambdas::new(SampledWavelengths::sample_visible(0.3));
+        let term = |l: &Lambdas, ph: &Photon| photon_term(&bsdf, &frame, Vec3::Z, l, ph).values();
+        let close = |a: [f32; 4], b: [f32; 4]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-6);
+        assert!(close(term(&whole, &hero), power.map(|p| p * f)));
+        let mut collapsed = whole;
+        let _ = S::new([1.0; 4]).keep_hero(&mut collapsed);
+        assert!(close(term(&collapsed, &hero), power.map(|p| p * f / 4.0)));
+        assert!(close(term(&collapsed, &all), power.map(|p| p * f)));
+        for i in 0..4 {
+            let sub = S::lane_as_hero(&collapsed, i);
+            let want: [f32; 4] = std::array::from_fn(|j| power[(j + i) % 4] * f);
+            assert!(close(term(&sub, &hero), want), "sub-path {i}");
+        }
     }
 }

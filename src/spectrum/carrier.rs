@@ -44,6 +44,10 @@ pub struct Lambdas {
     /// lanes are rotations of the hero's sample number by j/4, so before any direction is
     /// sampled each lane is equally likely to be the one that chose them.
     pub hero_weight: [f32; N_LAMBDA],
+    /// `Some(i)`: this path is the sub-path of a split sample that carries the sample's
+    /// lane `i` alone in its lane 0, its lanes rotated by `i` ([`Carrier::lane_as_hero`]).
+    /// `None` for a whole sample.
+    pub sub_path: Option<u8>,
 }
 
 impl Lambdas {
@@ -54,6 +58,7 @@ impl Lambdas {
             hero_only: false,
             d65: SampledSpectrum::from_fn(&wl, d65_normalized),
             hero_weight: [1.0 / N_LAMBDA as f32; N_LAMBDA],
+            sub_path: None,
         }
     }
 }
@@ -153,6 +158,8 @@ pub trait Carrier:
     /// `i` is the hero (lane 0), hero only, with hero weight 1. The sub-path's radiance
     /// in its lane 0 is the sample's lane `i`. Nothing for RGB.
     fn lane_as_hero(l: &Self::Lambda, i: usize) -> Self::Lambda;
+    /// [`Lambdas::sub_path`] (`None` in RGB).
+    fn sub_path(l: &Self::Lambda) -> Option<usize>;
 }
 
 impl Carrier for Vec3 {
@@ -234,6 +241,9 @@ impl Carrier for Vec3 {
         Vec3::new(v[0], v[1], v[2])
     }
     fn lane_as_hero(_l: &(), _i: usize) {}
+    fn sub_path(_l: &()) -> Option<usize> {
+        None
+    }
 }
 
 impl Carrier for SampledSpectrum {
@@ -336,6 +346,9 @@ impl Carrier for SampledSpectrum {
     fn from_lanes(v: [f32; 4]) -> Self {
         SampledSpectrum::new(v)
     }
+    fn sub_path(l: &Lambdas) -> Option<usize> {
+        l.sub_path.map(usize::from)
+    }
     fn lane_as_hero(l: &Lambdas, i: usize) -> Lambdas {
         let d65 = l.d65.values();
         let mut hero_weight = [0.0; N_LAMBDA];
@@ -345,6 +358,7 @@ impl Carrier for SampledSpectrum {
             hero_only: true,
             d65: SampledSpectrum::new(std::array::from_fn(|j| d65[(j + i) % N_LAMBDA])),
             hero_weight,
+            sub_path: Some(i as u8),
         }
     }
 }

@@ -41,10 +41,16 @@ impl Dispersion {
         spectral_mis: true,
         split: true,
     };
-    /// The hero only everywhere (the photon methods' camera paths).
+    /// The hero only everywhere (SPPM's and the photon map's camera paths; comparisons).
     pub const HERO: Dispersion = Dispersion {
         spectral_mis: false,
         split: false,
+    };
+    /// The split without spectral MIS: the hybrid's camera paths (spectral MIS would tie
+    /// the camera's hero to the photons' hero, [`crate::integrator::sppm`]).
+    pub const SPLIT: Dispersion = Dispersion {
+        spectral_mis: false,
+        split: true,
     };
 }
 
@@ -137,18 +143,20 @@ pub fn radiance<C: Carrier>(
 /// the visible point where it stopped (none if it escaped, was absorbed or hit the depth
 /// limit first). Each hit is the shared step ([`shading::arrive`], [`Arrival::event`]);
 /// emission is counted on arrival, before BLEND coverage is decided. `split` hands the
-/// caustic paths to a caustic map ([`CausticSplit`]).
+/// caustic paths to a caustic map ([`CausticSplit`]); `dispersion` says what the path
+/// keeps of its wavelengths at dispersive interfaces ([`Rules::new`] decides where it
+/// applies).
 #[allow(clippy::too_many_arguments)]
 pub fn camera_path<C: Carrier>(
     scene: &Scene,
     ray: &Ray,
-    max_depth: u32,
+    (max_depth, dispersion): (u32, Dispersion),
     lambda: C::Lambda,
     stop: StopAt,
     split: CausticSplit<'_, C>,
     ctx: &mut Context,
 ) -> (C, Option<VisiblePoint<C>>) {
-    let rules = Rules::new(max_depth, Dispersion::HERO, stop, split);
+    let rules = Rules::new(max_depth, dispersion, stop, split);
     trace(scene, ray, lambda, &rules, ctx)
 }
 

@@ -54,7 +54,7 @@ impl<'a, C: Carrier> Rules<'a, C> {
     /// The rules for `max_depth`, `stop` and `split`, keeping wavelengths as `dispersion`
     /// says where it applies: spectral MIS only with [`StopAt::Never`] (the photon methods'
     /// visible points keep the hero only, as their gather evaluates the BSDF with one η),
-    /// the split only there and without a caustic map ([`super::split::applies`]).
+    /// the split only there ([`super::split::applies`]).
     pub fn new(
         max_depth: u32,
         dispersion: super::Dispersion,
@@ -66,7 +66,7 @@ impl<'a, C: Carrier> Rules<'a, C> {
             stop,
             split,
             spectral_mis: dispersion.spectral_mis && stop == StopAt::Never,
-            wavelength_split: super::split::applies(dispersion.split, stop, &split),
+            wavelength_split: super::split::applies::<C>(dispersion.split, stop),
         }
     }
 }
@@ -331,7 +331,7 @@ pub(super) fn vertex<C: Carrier>(
     };
     // The event kept the hero only at a smooth dispersive interface: split instead.
     if let (Some(beta), true) = (before, C::is_hero_only(&walk.lambda) && s.bsdf.is_delta()) {
-        let split = (beta, &walk.lambda);
+        let split = (beta, &mut walk.lambda);
         walk.branches.split(&mut walk.l, st, walk.ray, split);
     }
     let lambda = &walk.lambda;
