@@ -191,7 +191,9 @@ fn light_traced(scene: &Scene, camera: &Camera, n: u64) -> (Vec<f64>, Vec<f64>) 
 /// fraction) of the analytic value; their z-scores' RMS at most 1 (≈ 1 for independent
 /// photons, less for Halton ones). 2²¹ photons, all aimed at the mirror: ~3 000 per lit
 /// pixel, σ ≈ 2 % of a lit pixel. A splat one pixel off, or spread over 2 × 2 pixels,
-/// moves the edge pixels by ≥ 25 % of the lit value.
+/// moves the edge pixels by ≥ 25 % of the lit value. Measured (2026-12-05): z RMS 0.17,
+/// worst |z| 0.75; with the splat's x moved by half a pixel an edge pixel fails, with its
+/// value scaled by 1.03 the z RMS is 1.6.
 #[test]
 fn light_traced_caustic_matches_the_analytic_pixels() {
     let scene = scene();
