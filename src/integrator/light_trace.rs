@@ -45,7 +45,10 @@
 //! |w_l·n_s| |w_c·n_g| / |w_l·n_g| is pbrt-v4's `CorrectShadingNormal` (bdpt.cpp) times
 //! the connection's |w_c·n_s|. Summed over the pass's photons, that is an unbiased
 //! per-pixel estimate of the caustic paths' share of I_j, added to the pass's camera
-//! sample.
+//! sample. The splat is that pixel's box and nothing wider (no reconstruction filter
+//! spreads it to the neighbours): the footprint of the camera's jittered rays, so a sharp
+//! caustic seen directly keeps its peak (tests/light_trace_pixels.rs checks every pixel
+//! against an analytic caustic).
 //!
 //! Spectral: the photons carry the pass's shared wavelengths; a photon that kept only its
 //! hero (4× its lane, the others 0) converts with the same wavelengths and needs no other
