@@ -207,24 +207,43 @@ pub fn drive(
     }
     bar.finish_and_clear();
     debug_assert!(interrupted || observer_stopped || done >= target || out_of_time);
-    let end = match (interrupted, observer_stopped, done >= target) {
+    let end = end_reason(interrupted, observer_stopped, done >= target);
+    let passes = if schedule.passes { done as u32 } else { 1 };
+    let stats = end_stats(&setup, &film, (rays, photons, bad), passes, end);
+    Ok((film, stats))
+}
+
+/// Why a render ended: an interruption first, then the observer's stop (its error target),
+/// then the schedule's units (`reached`), else the time limit.
+fn end_reason(interrupted: bool, observer_stopped: bool, reached: bool) -> EndReason {
+    match (interrupted, observer_stopped, reached) {
         (true, _, _) => EndReason::Interrupted,
         (_, true, _) => EndReason::Target,
         (_, _, true) => EndReason::Samples,
         _ => EndReason::TimeLimit,
-    };
-    let stats = RenderStats {
+    }
+}
+
+/// The stats of a render that ended for `end` with `film`, the `(rays, photons, bad
+/// samples)` counted and `passes` (1 for per-sample methods).
+fn end_stats(
+    setup: &Setup,
+    film: &Film,
+    (rays, photons, bad): (u64, u64, u64),
+    passes: u32,
+    end: EndReason,
+) -> RenderStats {
+    RenderStats {
         time: setup.start.elapsed(),
         rays,
         samples: film.pixel_samples(),
         unit_span: film.unit_span(),
         photons,
         photons_per_pass: 0,
-        passes: if schedule.passes { done as u32 } else { 1 },
+        passes,
         bad_samples: bad,
         end,
-    };
-    Ok((film, stats))
+    }
 }
 
 /// Units of the next round after `done`: to the next checkpoint (or the target), at most
