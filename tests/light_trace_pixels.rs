@@ -24,7 +24,7 @@ use iris::integrator::light_trace::Splatter;
 use iris::material::MaterialDesc;
 use iris::photon::emit::{Aim, PhotonEmitter, PhotonNumbers};
 use iris::photon::trace::{self, Roulette, TraceSettings};
-use iris::scene::desc::{CameraDesc, LightDesc, MeshDesc, Projection, SceneDesc};
+use iris::scene::desc::{CameraDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 
 const W: u32 = 48;
@@ -58,18 +58,10 @@ fn scene() -> Scene {
         source: "mirrored point light".into(),
         meshes: vec![floor, mirror],
         materials: vec![common::white_lambert(), mirror_material],
-        lights: vec![LightDesc::Point {
-            name: "bulb".into(),
-            position: LIGHT,
-            color: Vec3::ONE,
-            intensity: 1.0,
-            range: None,
-            spectrum: None,
-        }],
+        lights: vec![common::white_point_light(LIGHT)],
         ..Default::default()
     };
-    let desc = iris::scene::validate::validate(desc).expect("valid scene");
-    Scene::build(desc, iris::accel::Backend::Auto).expect("build")
+    common::build_scene(desc)
 }
 
 fn camera() -> CameraDesc {

@@ -241,13 +241,14 @@ impl CausticMap {
             return C::ZERO;
         }
         let r = r2.sqrt() as f32;
+        let lanes = super::sppm::GatherLanes::of::<C>(lambda);
         let mut sum = C::ZERO;
         self.grid.for_each_within(s.hit.p, r, |i, _| {
             let ph = &self.photons[i as usize];
             if later_only && ph.flags() & Photon::CAUSTIC != 0 {
                 return;
             }
-            sum += super::sppm::photon_term(&s.bsdf, &s.frame, s.wo, lambda, ph);
+            sum += super::sppm::photon_term(&s.bsdf, &s.frame, s.wo, lanes, ph);
         });
         sum / (std::f64::consts::PI * r2) as f32
     }

@@ -175,14 +175,10 @@ fn run<C: Carrier>(
                 .then(|| light_trace::splat_image(&splats, pixels as usize));
             let r = map.begin_gather(|ph| initial_radius(scene, camera, settings, ph));
             // 3. Camera samples.
-            let dispersion = match cs.split {
-                true => Dispersion::SPLIT,
-                false => Dispersion::HERO,
-            };
             let (rays, bad) = camera_pass::<C>(
                 scene,
                 camera,
-                (max_depth, dispersion),
+                (max_depth, cs.dispersion()),
                 (settings, lanes),
                 lambda,
                 (&map, image.as_deref(), cs.mode),
@@ -218,7 +214,7 @@ fn caustic_budget<C: Carrier>(
         scene,
         camera,
         settings,
-        max_depth,
+        (max_depth, cs.dispersion()),
         emitter,
         (cs.radius, cs.alpha),
     )?;

@@ -209,6 +209,14 @@ pub struct CausticSettings {
 }
 
 impl CausticSettings {
+    /// What the hybrid's camera paths keep of their wavelengths ([`Self::split`]).
+    pub fn dispersion(&self) -> super::path::Dispersion {
+        match self.split {
+            true => super::path::Dispersion::SPLIT,
+            false => super::path::Dispersion::HERO,
+        }
+    }
+
     /// [`PhotonSettings::check`] on the fields this method uses.
     pub fn check(&self) -> Result<()> {
         PhotonSettings {

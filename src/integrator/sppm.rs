@@ -62,7 +62,7 @@ use crate::render::{
     TILE_PIXELS,
 };
 use crate::scene::Scene;
-use crate::spectrum::{Carrier, SampledSpectrum};
+use crate::spectrum::{rotate_lanes, Carrier, SampledSpectrum};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
@@ -112,38 +112,60 @@ pub fn pixel_footprint(camera: &Camera, settings: &RenderSettings, d: f32) -> f3
 /// Sum of f · Φ over the photons within `r` of a visible point ([`photon_term`]).
 fn gather<C: Carrier>(vp: &VisiblePoint<C>, photons: &[Photon], grid: &HashGrid, r: f32) -> C {
     let mut phi = C::ZERO;
+    let lanes = GatherLanes::of::<C>(&vp.lambda);
     grid.for_each_within(vp.p, r, |i, _d2| {
-        phi += photon_term(&vp.bsdf, &vp.frame, vp.wo, &vp.lambda, &photons[i as usize]);
+        phi += photon_term(&vp.bsdf, &vp.frame, vp.wo, lanes, &photons[i as usize]);
     });
     phi
 }
 
+/// How a camera path's lanes meet the photons' at a gather (the hero-wavelength
+/// bookkeeping of [`photon_term`]), decided once per camera vertex from its wavelengths.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum GatherLanes {
+    /// The pass's lane order; `hero_only`: the camera path kept only the pass's hero.
+    Pass { hero_only: bool },
+    /// A sub-path of a split camera sample carrying the sample's lane i alone
+    /// ([`Carrier::sub_path`]), its lanes rotated by i.
+    SubPath(usize),
+}
+
+impl GatherLanes {
+    /// The lanes of a camera path at wavelengths `lambda`.
+    pub fn of<C: Carrier>(lambda: &C::Lambda) -> Self {
+        match C::sub_path(lambda) {
+            Some(i) => GatherLanes::SubPath(i),
+            None => GatherLanes::Pass {
+                hero_only: C::is_hero_only(lambda),
+            },
+        }
+    }
+}
+
 /// f(wo, wiₚ) · Φₚ of the photon `ph` at a camera vertex (`bsdf` in `frame`, `wo` toward
-/// the camera, at the camera path's wavelengths `lambda`), with the hero-wavelength
-/// bookkeeping:
+/// the camera, its lanes `lanes`), with the hero-wavelength bookkeeping:
 /// - when both the camera path and the photon kept only the pass's hero (each then carries
 ///   4× the hero lane, for the same uniformly chosen hero), the product is divided by 4
 ///   once;
-/// - a sub-path of a split camera sample ([`Carrier::sub_path`] `Some(i)`,
-///   [`super::path`]'s split) carries the sample's lane i alone at weight 1, its lanes
-///   rotated by i: the photon's lanes are rotated the same way, and nothing is divided
-///   (the sub-path was traced with probability 1, so no selection is shared with the
-///   photon's hero: E[β̂ᵢ · Φ̂ᵢ] = βᵢ Φᵢ for independent unbiased factors).
+/// - a sub-path of a split camera sample ([`GatherLanes::SubPath`], [`super::path`]'s
+///   split) carries the sample's lane i alone at weight 1, its lanes rotated by i: the
+///   photon's lanes are rotated the same way, and nothing is divided (the sub-path was
+///   traced with probability 1, so no selection is shared with the photon's hero:
+///   E[β̂ᵢ · Φ̂ᵢ] = βᵢ Φᵢ for independent unbiased factors).
 pub(super) fn photon_term<C: Carrier>(
     bsdf: &Bsdf<C>,
     frame: &Frame,
     wo: Vec3,
-    lambda: &C::Lambda,
+    lanes: GatherLanes,
     ph: &Photon,
 ) -> C {
     let wi = frame.to_local(ph.wi());
     let f = bsdf.eval(wo, wi, TransportMode::Radiance);
-    let power = ph.power();
-    match C::sub_path(lambda) {
-        Some(i) => f * C::from_lanes(std::array::from_fn(|j| power[(j + i) % 4])),
-        None => {
-            let c = f * C::from_lanes(power);
-            if C::is_hero_only(lambda) && ph.flags() & Photon::HERO_ONLY != 0 {
+    match lanes {
+        GatherLanes::SubPath(i) => f * C::from_lanes(rotate_lanes(ph.power(), i)),
+        GatherLanes::Pass { hero_only } => {
+            let c = f * C::from_lanes(ph.power());
+            if hero_only && ph.flags() & Photon::HERO_ONLY != 0 {
                 c / 4.0
             } else {
                 c
@@ -439,7 +461,9 @@ mod tests {
         let all = Photon::new(Vec3::ZERO, Vec3::Z, power, 0);
         let hero = Photon::new(Vec3::ZERO, Vec3::Z, power, Photon::HERO_ONLY);
         let whole = Lambdas::new(SampledWavelengths::sample_visible(0.3));
-        let term = |l: &Lambdas, ph: &Photon| photon_term(&bsdf, &frame, Vec3::Z, l, ph).values();
+        let term = |l: &Lambdas, ph: &Photon| {
+            photon_term(&bsdf, &frame, Vec3::Z, GatherLanes::of::<S>(l), ph).values()
+        };
         let close = |a: [f32; 4], b: [f32; 4]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-6);
         assert!(close(term(&whole, &hero), power.map(|p| p * f)));
         let mut collapsed = whole;

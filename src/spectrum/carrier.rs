@@ -356,7 +356,7 @@ impl Carrier for SampledSpectrum {
         Lambdas {
             wl: l.wl.rotated(i),
             hero_only: true,
-            d65: SampledSpectrum::new(std::array::from_fn(|j| d65[(j + i) % N_LAMBDA])),
+            d65: SampledSpectrum::new(super::rotate_lanes(d65, i)),
             hero_weight,
             sub_path: Some(i as u8),
         }

@@ -54,8 +54,25 @@ pub fn sphere_in_white_environment(material: iris::material::MaterialDesc) -> ir
         }),
         ..Default::default()
     };
-    let desc = iris::scene::validate::validate(desc).expect("valid furnace scene");
+    build_scene(desc)
+}
+
+/// Validates `desc` and builds it on the automatic backend.
+pub fn build_scene(desc: iris::scene::desc::SceneDesc) -> iris::scene::Scene {
+    let desc = iris::scene::validate::validate(desc).expect("valid scene");
     iris::scene::Scene::build(desc, iris::accel::Backend::Auto).expect("build")
+}
+
+/// A white point light "bulb" of intensity 1 (candela) at `position`.
+pub fn white_point_light(position: glam::Vec3) -> iris::scene::desc::LightDesc {
+    iris::scene::desc::LightDesc::Point {
+        name: "bulb".into(),
+        position,
+        color: glam::Vec3::ONE,
+        intensity: 1.0,
+        range: None,
+        spectrum: None,
+    }
 }
 
 /// Every backend compiled in: the BVH, then Embree when the `embree` feature is on.
