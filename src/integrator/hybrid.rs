@@ -43,7 +43,7 @@ use super::{CausticMode, CausticSettings};
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::render::{
-    drive, guard, pixel_sampler, Film, Observer, RenderSettings, RenderStats, Round, Setup,
+    drive_passes, pixel_sampler, Film, Observer, RenderSettings, RenderStats, Round, Setup,
 };
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
@@ -137,17 +137,8 @@ fn run<C: Carrier>(
             map.end_pass(p as u32);
         }
     }
-    let (film, mut stats) = drive(
-        settings,
-        schedule,
-        setup,
-        observer,
-        &guard::stop_requested,
-        |film, k0, _k1, env| {
-            if env.skip(k0) {
-                return Ok(Round::default());
-            }
-            let pass = k0 as u32;
+    let (film, mut stats) =
+        drive_passes(settings, schedule, setup, observer, |film, pass, env| {
             // 1. The pass's wavelengths (SPPM's golden-ratio sequence over passes).
             let lambda = C::sample_lambda(pass_wavelength_variate(pass, settings.seed));
             // 2. The caustic map.
@@ -190,8 +181,7 @@ fn run<C: Carrier>(
             env.bar.inc(film.tiles() as u64);
             round.note = format!(", r {r:.3e}, {} caustic photons", map.photons.len());
             Ok(round)
-        },
-    )?;
+        })?;
     stats.photons_per_pass = last_n;
     Ok((film, stats))
 }

@@ -241,6 +241,15 @@ impl PhotonSettings {
         }
     }
 
+    /// The part `--method vcm` (`merge`) and `--method bpt` use.
+    pub fn vcm(&self, merge: bool) -> super::vcm::VcmSettings {
+        super::vcm::VcmSettings {
+            radius: self.radius,
+            alpha: self.alpha,
+            merge,
+        }
+    }
+
     /// The part `--method photon` uses.
     pub fn photon_map(&self) -> PhotonMapSettings {
         PhotonMapSettings {

@@ -90,6 +90,32 @@ impl RoundEnv<'_> {
     }
 }
 
+/// [`drive`] for the methods whose unit is a pass (the hybrid, VCM): `step(film, pass,
+/// env)` for each round's pass, stopping on the stop request ([`super::guard`]) before any
+/// round after the first.
+pub fn drive_passes(
+    settings: &RenderSettings,
+    schedule: Schedule,
+    setup: Setup,
+    observer: Option<Observer>,
+    mut step: impl FnMut(&mut Film, u32, &RoundEnv) -> Result<Round>,
+) -> Result<(Film, RenderStats)> {
+    let stop = super::guard::stop_requested;
+    drive(
+        settings,
+        schedule,
+        setup,
+        observer,
+        &stop,
+        |film, k0, _k1, env| {
+            if env.skip(k0) {
+                return Ok(Round::default());
+            }
+            step(film, k0 as u32, env)
+        },
+    )
+}
+
 /// Renders progressively: calls `step(film, k0, k1, env)` for rounds of units (absolute
 /// indices) until the schedule's target, the time limit, a stop request or the observer
 /// ends it. Returns the film (its exact sums, for a shard's partial image) and the stats.

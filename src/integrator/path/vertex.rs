@@ -359,12 +359,7 @@ pub(super) fn vertex<C: Carrier>(
         nee = Some(pending(st.beta, ls, gather));
     }
     let uc = u.bsdf_lobe();
-    let ud = if s.bsdf.samples_direction() {
-        u.bsdf_direction()
-    } else {
-        u.skip_bsdf_direction();
-        Vec2::ZERO
-    };
+    let ud = u.bsdf_direction_if(s.bsdf.samples_direction());
     let Some(bs) = s.sample_mis(uc, ud, TransportMode::Radiance, &mut walk.lambda) else {
         return (nee, Next::End);
     };
