@@ -21,7 +21,7 @@ use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::material::{AlphaMode, MaterialDesc};
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, LightDesc, Projection, SceneDesc};
+use iris::scene::desc::{CameraDesc, Projection, SceneDesc};
 
 const W: u32 = 48;
 const H: u32 = 36;
@@ -60,18 +60,10 @@ fn scene(sheet: bool) -> (iris::scene::Scene, CameraDesc) {
         source: "blend gather".into(),
         meshes,
         materials,
-        lights: vec![LightDesc::Point {
-            name: "bulb".into(),
-            position: Vec3::new(0.6, 0.6, 0.0),
-            color: Vec3::ONE,
-            intensity: 1.0,
-            range: None,
-            spectrum: None,
-        }],
+        lights: vec![common::white_point_light(Vec3::new(0.6, 0.6, 0.0))],
         ..Default::default()
     };
-    let desc = iris::scene::validate::validate(desc).expect("valid scene");
-    let scene = iris::scene::Scene::build(desc, iris::accel::Backend::Auto).expect("build");
+    let scene = common::build_scene(desc);
     let cam = CameraDesc {
         name: "above".into(),
         projection: Projection::Perspective {

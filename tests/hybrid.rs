@@ -19,7 +19,7 @@ use iris::image::ImageRgb;
 use iris::integrator::{CausticMode, Integrator, Method, PhotonSettings};
 use iris::material::MaterialDesc;
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, LightDesc, MeshDesc, Projection, SceneDesc};
+use iris::scene::desc::{CameraDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 
 const W: u32 = 48;
@@ -260,18 +260,10 @@ fn glass_lantern_room() -> Scene {
         source: "glass lantern room".into(),
         meshes: vec![sphere_mesh("room", 1.0, 0), sphere_mesh("ball", 0.2, 1)],
         materials: vec![white, common::clear_glass("glass", 1.5)],
-        lights: vec![LightDesc::Point {
-            name: "bulb".into(),
-            position: Vec3::ZERO,
-            color: Vec3::ONE,
-            intensity: 1.0,
-            range: None,
-            spectrum: None,
-        }],
+        lights: vec![common::white_point_light(Vec3::ZERO)],
         ..Default::default()
     };
-    let desc = iris::scene::validate::validate(desc).expect("valid scene");
-    Scene::build(desc, iris::accel::Backend::Auto).expect("build")
+    common::build_scene(desc)
 }
 
 fn inside_camera() -> CameraDesc {
@@ -550,7 +542,7 @@ fn pilot(scene: &Scene, cam: &CameraDesc, seed: u64) -> iris::integrator::photon
         scene,
         &Camera::new(cam, W, H),
         &s,
-        32,
+        (32, iris::integrator::path::Dispersion::SPLIT),
         &iris::integrator::caustic::emitter(scene),
         (None, 2.0 / 3.0),
     )

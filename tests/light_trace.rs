@@ -68,35 +68,9 @@ fn render(
 
 use common::{blocks, mean, relative_rmse};
 
-/// The 3 × 3 blocks around the block brightest relative to its 8 neighbours (the focused
-/// light under the sphere), and that excess relative to the neighbours' mean.
+/// [`common::caustic_region`] of this file's image size.
 fn caustic_region(b: &[f64]) -> (Vec<usize>, f64) {
-    let (bw, bh) = ((W / 4) as i32, (H / 4) as i32);
-    let at = |x: i32, y: i32| b[(y * bw + x) as usize];
-    let mut best = (f64::MIN, 0, 0, 0.0);
-    for y in 1..bh - 1 {
-        for x in 1..bw - 1 {
-            let mut n = 0.0;
-            for dy in -1..=1 {
-                for dx in -1..=1 {
-                    if (dx, dy) != (0, 0) {
-                        n += at(x + dx, y + dy) / 8.0;
-                    }
-                }
-            }
-            if at(x, y) - n > best.0 {
-                best = (at(x, y) - n, x, y, n);
-            }
-        }
-    }
-    let (excess, cx, cy, ring) = best;
-    let mut out = Vec::new();
-    for y in cy - 1..=cy + 1 {
-        for x in cx - 1..=cx + 1 {
-            out.push((y * bw + x) as usize);
-        }
-    }
-    (out, excess / ring)
+    common::caustic_region(b, ((W / 4) as i32, (H / 4) as i32))
 }
 
 fn region_sum(b: &[f64], region: &[usize]) -> f64 {

@@ -18,7 +18,7 @@ use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::material::MaterialDesc;
 use iris::photon::emit::PhotonEmitter;
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, LightDesc, MeshDesc, Projection, SceneDesc};
+use iris::scene::desc::{CameraDesc, MeshDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 
 const RHO: f32 = 0.5;
@@ -40,18 +40,10 @@ fn room() -> Scene {
             ..Default::default()
         }],
         materials: vec![white],
-        lights: vec![LightDesc::Point {
-            name: "bulb".into(),
-            position: Vec3::ZERO,
-            color: Vec3::ONE,
-            intensity: 1.0,
-            range: None,
-            spectrum: None,
-        }],
+        lights: vec![common::white_point_light(Vec3::ZERO)],
         ..Default::default()
     };
-    let desc = iris::scene::validate::validate(desc).expect("valid scene");
-    Scene::build(desc, iris::accel::Backend::Auto).expect("build")
+    common::build_scene(desc)
 }
 
 fn mean_radiance(scene: &Scene, method: Method, photon: PhotonSettings, spp: u32) -> f64 {
@@ -182,14 +174,7 @@ fn photons_in_a_closed_white_box_carry_the_geometric_series_of_the_light_power()
             ..Default::default()
         }],
         materials: vec![white],
-        lights: vec![LightDesc::Point {
-            name: "bulb".into(),
-            position: Vec3::new(0.3, -0.2, 0.1),
-            color: Vec3::ONE,
-            intensity: 1.0,
-            range: None,
-            spectrum: None,
-        }],
+        lights: vec![common::white_point_light(Vec3::new(0.3, -0.2, 0.1))],
         ..Default::default()
     };
     let desc = iris::scene::validate::validate(desc).expect("valid scene");

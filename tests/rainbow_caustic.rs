@@ -46,6 +46,7 @@ fn the_rainbow_on_the_screen_is_ordered_by_snells_law() {
             power: Vec3::ONE,
             shape: None,
             range: None,
+            source: iris::photon::emit::Source::Environment,
         };
         let lambda = Lambdas::new(SampledWavelengths::sample_visible(rng.next_f32()));
         let hero = lambda.wl.hero();

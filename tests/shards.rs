@@ -167,6 +167,17 @@ fn sppm_and_hybrid_merges_are_bit_identical_to_one_render() {
     assert_options_merge_exactly(&o, 2, &dir);
 }
 
+/// VCM and BPT (spectral, on a caustic scene): shards after the first take VCM's first
+/// radius from pass 0's light subpaths, as one render does.
+#[test]
+fn vcm_and_bpt_merges_are_bit_identical_to_one_render() {
+    let scene = asset("scenes/gem_caustics.glb");
+    for (method, n) in [(Method::Vcm, 3), (Method::Bpt, 2)] {
+        let dir = common::scratch_dir(&format!("shards-{}-{n}", method.name()));
+        assert_merge_is_exact(&scene, method, 5, n, &dir);
+    }
+}
+
 #[test]
 fn photon_mapping_merge_is_bit_identical() {
     // Every shard builds the same maps (a function of the seed) and takes its samples.

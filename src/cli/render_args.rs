@@ -95,7 +95,10 @@ pub struct RenderArgs {
     /// caustic + global maps, final gather), sppm (stochastic progressive photon mapping:
     /// passes, converges), hybrid (the path tracer plus a progressive caustic photon map for
     /// light that reaches a diffuse surface through specular ones only; one pass per
-    /// sample, converges).
+    /// sample, converges), vcm (vertex connection and merging: light and camera subpaths
+    /// connected and merged under one multiple importance sampling; one pass per sample,
+    /// converges; perspective cameras), bpt (bidirectional path tracing: vcm without
+    /// merging, unbiased).
     #[arg(long, value_parser = Method::parse)]
     pub method: Option<Method>,
     /// Maximum number of bounces (reflections and refractions) per path, 1 to 1024 (also
@@ -160,11 +163,11 @@ pub struct RenderArgs {
     /// 2^26 photons (2 GiB) stops with an error.
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=crate::integrator::MAX_PHOTONS))]
     pub photons: Option<u64>,
-    /// Initial SPPM / hybrid gather radius, largest photon-map radius, in scene units (default: from
+    /// Initial SPPM / hybrid / VCM gather radius, largest photon-map radius, in scene units (default: from
     /// the pixel footprint): finite and > 0 (no memory depends on it).
     #[arg(long, value_parser = parse_radius, allow_hyphen_values = true)]
     pub radius: Option<f32>,
-    /// SPPM / hybrid radius reduction α in (0, 1): r²ᵢ₊₁ = r²ᵢ (i+α)/(i+1) (Knaus & Zwicker 2011).
+    /// SPPM / hybrid / VCM radius reduction α in (0, 1): r²ᵢ₊₁ = r²ᵢ (i+α)/(i+1) (Knaus & Zwicker 2011).
     #[arg(long, default_value_t = 2.0 / 3.0, value_parser = parse_alpha, allow_hyphen_values = true)]
     pub alpha: f32,
     /// Write the image so far at the checkpoints (1, 2, 4, … samples, or passes for SPPM)

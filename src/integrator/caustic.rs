@@ -233,23 +233,22 @@ impl CausticMap {
     /// Σ f(wo, wiₚ) Φₚ / (π r²) over the photons within r (Jensen 2001 eq. 7.6 with a
     /// constant kernel); with `later_only`, over the photons stored after a diffuse bounce
     /// only (not at a photon's first vertex, flagged [`Photon::CAUSTIC`]: light tracing's in
-    /// mixed mode, [`super::light_trace`]). Hero-wavelength bookkeeping as in SPPM: when
-    /// both the camera path and the photon kept only the hero (each carrying 4× its lane),
-    /// divide by 4 once.
+    /// mixed mode, [`super::light_trace`]). Hero-wavelength bookkeeping and split camera
+    /// samples as in SPPM ([`super::sppm::photon_term`]).
     pub fn density<C: Carrier>(&self, s: &Surface<C>, lambda: &C::Lambda, later_only: bool) -> C {
         let r2 = self.r2.unwrap_or(0.0);
         if self.photons.is_empty() || r2 <= 0.0 {
             return C::ZERO;
         }
         let r = r2.sqrt() as f32;
-        let hero = C::is_hero_only(lambda);
+        let lanes = super::sppm::GatherLanes::of::<C>(lambda);
         let mut sum = C::ZERO;
         self.grid.for_each_within(s.hit.p, r, |i, _| {
             let ph = &self.photons[i as usize];
             if later_only && ph.flags() & Photon::CAUSTIC != 0 {
                 return;
             }
-            sum += super::sppm::photon_term(&s.bsdf, &s.frame, s.wo, hero, ph);
+            sum += super::sppm::photon_term(&s.bsdf, &s.frame, s.wo, lanes, ph);
         });
         sum / (std::f64::consts::PI * r2) as f32
     }

@@ -36,14 +36,14 @@ use super::caustic::{self, CausticMap};
 use super::light_trace::{self, Splatter};
 use super::pass_paths::PassPaths;
 use super::path::LaneWidth;
-use super::path::{CausticSplit, StopAt};
+use super::path::{CausticSplit, Dispersion, StopAt};
 use super::photon_budget;
 use super::sppm::{first_radius, pass_wavelength_variate};
 use super::{CausticMode, CausticSettings};
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::render::{
-    drive, guard, pixel_sampler, Film, Observer, RenderSettings, RenderStats, Round, Setup,
+    drive_passes, pixel_sampler, Film, Observer, RenderSettings, RenderStats, Round, Setup,
 };
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
@@ -137,17 +137,8 @@ fn run<C: Carrier>(
             map.end_pass(p as u32);
         }
     }
-    let (film, mut stats) = drive(
-        settings,
-        schedule,
-        setup,
-        observer,
-        &guard::stop_requested,
-        |film, k0, _k1, env| {
-            if env.skip(k0) {
-                return Ok(Round::default());
-            }
-            let pass = k0 as u32;
+    let (film, mut stats) =
+        drive_passes(settings, schedule, setup, observer, |film, pass, env| {
             // 1. The pass's wavelengths (SPPM's golden-ratio sequence over passes).
             let lambda = C::sample_lambda(pass_wavelength_variate(pass, settings.seed));
             // 2. The caustic map.
@@ -178,7 +169,7 @@ fn run<C: Carrier>(
             let (rays, bad) = camera_pass::<C>(
                 scene,
                 camera,
-                max_depth,
+                (max_depth, cs.dispersion()),
                 (settings, lanes),
                 lambda,
                 (&map, image.as_deref(), cs.mode),
@@ -190,8 +181,7 @@ fn run<C: Carrier>(
             env.bar.inc(film.tiles() as u64);
             round.note = format!(", r {r:.3e}, {} caustic photons", map.photons.len());
             Ok(round)
-        },
-    )?;
+        })?;
     stats.photons_per_pass = last_n;
     Ok((film, stats))
 }
@@ -214,7 +204,7 @@ fn caustic_budget<C: Carrier>(
         scene,
         camera,
         settings,
-        max_depth,
+        (max_depth, cs.dispersion()),
         emitter,
         (cs.radius, cs.alpha),
     )?;
@@ -228,7 +218,7 @@ fn caustic_budget<C: Carrier>(
 fn camera_pass<C: Carrier>(
     scene: &Scene,
     camera: &Camera,
-    max_depth: u32,
+    (max_depth, dispersion): (u32, Dispersion),
     (settings, lanes): (&RenderSettings, LaneWidth),
     lambda: C::Lambda,
     (map, splats, mode): (&CausticMap, Option<&[Vec3]>, CausticMode),
@@ -255,8 +245,8 @@ fn camera_pass<C: Carrier>(
         lambda,
         stop: StopAt::Never,
         split,
+        dispersion,
         lanes,
-        dispersion: super::path::Dispersion::HERO,
     };
     let width = settings.width as usize;
     let mut nothing = vec![(); film.slots()];

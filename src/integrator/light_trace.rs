@@ -45,7 +45,10 @@
 //! |w_l·n_s| |w_c·n_g| / |w_l·n_g| is pbrt-v4's `CorrectShadingNormal` (bdpt.cpp) times
 //! the connection's |w_c·n_s|. Summed over the pass's photons, that is an unbiased
 //! per-pixel estimate of the caustic paths' share of I_j, added to the pass's camera
-//! sample.
+//! sample. The splat is that pixel's box and nothing wider (no reconstruction filter
+//! spreads it to the neighbours): the footprint of the camera's jittered rays, so a sharp
+//! caustic seen directly keeps its peak (tests/light_trace_pixels.rs checks every pixel
+//! against an analytic caustic).
 //!
 //! Spectral: the photons carry the pass's shared wavelengths; a photon that kept only its
 //! hero (4× its lane, the others 0) converts with the same wavelengths and needs no other
@@ -61,7 +64,7 @@
 //! pass's splat image in chunk order ([`splat_image`]).
 
 use crate::bsdf::TransportMode;
-use crate::camera::Camera;
+use crate::camera::{Camera, Projected};
 use crate::photon::trace::PhotonVertex;
 use crate::scene::Scene;
 use crate::spectrum::Carrier;
@@ -107,6 +110,22 @@ impl<'a> Splatter<'a> {
         self.every_vertex
     }
 
+    /// A splatter for vertex connection and merging: every vertex, any `max_depth`
+    /// (its weights decide what counts); `None` for an orthographic camera.
+    pub fn every(
+        scene: &'a Scene,
+        camera: &'a Camera,
+        (width, height): (u32, u32),
+    ) -> Option<Splatter<'a>> {
+        camera.is_perspective().then_some(Splatter {
+            scene,
+            camera,
+            width,
+            height,
+            every_vertex: true,
+        })
+    }
+
     /// The splat of photon vertex `v` carrying flux `power` at wavelengths `lambda`
     /// (see the module docs for the formula); `None` if it projects outside the image, is
     /// occluded from the eye or contributes nothing. Counts the visibility ray in `rays`.
@@ -116,6 +135,20 @@ impl<'a> Splatter<'a> {
         power: C,
         lambda: &C::Lambda,
         rays: &mut u64,
+    ) -> Option<Splat> {
+        self.connect_weighted(v, power, lambda, rays, |_, _, _| 1.0)
+    }
+
+    /// [`Splatter::connect`] times `weight(projection, unit direction to the eye (world),
+    /// squared distance to the eye)`, asked only for a connection that may count (before
+    /// its visibility ray).
+    pub fn connect_weighted<C: Carrier>(
+        &self,
+        v: &PhotonVertex<C>,
+        power: C,
+        lambda: &C::Lambda,
+        rays: &mut u64,
+        weight: impl FnOnce(&Projected, Vec3, f32) -> f32,
     ) -> Option<Splat> {
         let s = v.surface;
         let pr = self.camera.project(s.hit.p)?;
@@ -135,6 +168,7 @@ impl<'a> Splatter<'a> {
         let ng = s.hit.ng;
         let cos3 = pr.cos_theta * pr.cos_theta * pr.cos_theta;
         let g = wi.z.abs() * w_c.dot(ng).abs() / (v.wi.dot(ng).abs() * pr.pixel_area * d2 * cos3);
+        let g = g * weight(&pr, w_c, d2);
         if !(g.is_finite() && g > 0.0) {
             return None;
         }

@@ -11,6 +11,7 @@ pub mod photon_budget;
 pub mod photon_map;
 mod settings;
 pub mod sppm;
+pub mod vcm;
 pub mod whitted;
 
 use crate::camera::Camera;
@@ -48,6 +49,11 @@ pub enum Method {
     /// The path tracer with a progressive caustic photon map for exactly the light paths it
     /// cannot sample (light → delta chain → first non-delta surface): [`hybrid`].
     Hybrid,
+    /// Vertex connection and merging: bidirectional connections and photon merging under
+    /// one multiple importance sampling ([`vcm`]).
+    Vcm,
+    /// Bidirectional path tracing: [`vcm`] without merging (unbiased).
+    Bpt,
     /// `Path`, `Hybrid` or `Sppm` from the caustic probes: a choice the render plan
     /// makes ([`crate::plan::resolve_method`]) before an [`Integrator`] exists; [`Integrator::new`]
     /// rejects it unresolved.
@@ -56,12 +62,14 @@ pub enum Method {
 
 impl Method {
     /// Every method, in the order `--method` lists them.
-    pub const ALL: [Method; 6] = [
+    pub const ALL: [Method; 8] = [
         Method::Whitted,
         Method::Path,
         Method::Photon,
         Method::Sppm,
         Method::Hybrid,
+        Method::Vcm,
+        Method::Bpt,
         Method::Auto,
     ];
 
@@ -73,6 +81,8 @@ impl Method {
             Method::Photon => "photon",
             Method::Sppm => "sppm",
             Method::Hybrid => "hybrid",
+            Method::Vcm => "vcm",
+            Method::Bpt => "bpt",
             Method::Auto => "auto",
         }
     }
@@ -122,6 +132,13 @@ pub enum Integrator {
         /// Caustic photons per pass, initial radius and α.
         caustics: CausticSettings,
     },
+    /// Vertex connection and merging, or bidirectional path tracing ([`vcm`]).
+    Vcm {
+        /// Non-delta vertices per full path.
+        max_depth: u32,
+        /// Radius sequence and whether to merge.
+        vcm: vcm::VcmSettings,
+    },
 }
 
 impl Integrator {
@@ -147,6 +164,10 @@ impl Integrator {
                 max_depth,
                 caustics: photon.caustics(),
             },
+            Method::Vcm | Method::Bpt => Integrator::Vcm {
+                max_depth,
+                vcm: photon.vcm(method == Method::Vcm),
+            },
             Method::Auto => {
                 return Err(Error::Usage(
                     "--method auto must be resolved by the render plan before rendering".into(),
@@ -163,6 +184,8 @@ impl Integrator {
             Integrator::PhotonMap { .. } => Method::Photon,
             Integrator::Sppm { .. } => Method::Sppm,
             Integrator::Hybrid { .. } => Method::Hybrid,
+            Integrator::Vcm { vcm, .. } if vcm.merge => Method::Vcm,
+            Integrator::Vcm { .. } => Method::Bpt,
         }
     }
 
@@ -173,7 +196,8 @@ impl Integrator {
             | Integrator::Path { max_depth, .. }
             | Integrator::PhotonMap { max_depth, .. }
             | Integrator::Sppm { max_depth, .. }
-            | Integrator::Hybrid { max_depth, .. } => max_depth,
+            | Integrator::Hybrid { max_depth, .. }
+            | Integrator::Vcm { max_depth, .. } => max_depth,
         }
     }
 
@@ -187,6 +211,7 @@ impl Integrator {
             Integrator::PhotonMap { photons, .. } => photons.check(),
             Integrator::Sppm { sppm, .. } => sppm.check(),
             Integrator::Hybrid { caustics, .. } => caustics.check(),
+            Integrator::Vcm { vcm, .. } => vcm.check(),
         }
     }
 
@@ -214,9 +239,10 @@ impl Integrator {
                 lambda,
                 ctx,
             )),
-            Integrator::PhotonMap { .. } | Integrator::Sppm { .. } | Integrator::Hybrid { .. } => {
-                None
-            }
+            Integrator::PhotonMap { .. }
+            | Integrator::Sppm { .. }
+            | Integrator::Hybrid { .. }
+            | Integrator::Vcm { .. } => None,
         }
     }
 
@@ -340,6 +366,8 @@ impl Integrator {
                     scene, camera, *max_depth, caustics, settings, range, observer,
                 )
             }),
+            Integrator::Vcm { max_depth, vcm } => pool
+                .install(|| vcm::render(scene, camera, *max_depth, vcm, settings, range, observer)),
         }
     }
 

@@ -30,11 +30,11 @@ pub(super) struct PassPaths<'a, C: Carrier> {
     pub lambda: C::Lambda,
     pub stop: StopAt,
     pub split: path::CausticSplit<'a, C>,
+    /// What the paths keep of their wavelengths at dispersive interfaces (where each part
+    /// applies: [`path::camera_path`]).
+    pub dispersion: path::Dispersion,
     /// Lanes for paths that do not stop at a visible point ([`StopAt::Never`]).
     pub lanes: LaneWidth,
-    /// What the paths keep of their wavelengths at dispersive interfaces (the split never
-    /// applies: [`path::camera_path`]; spectral MIS only without a caustic map).
-    pub dispersion: path::Dispersion,
 }
 
 impl<C: Carrier> PassPaths<'_, C> {
@@ -103,8 +103,8 @@ impl<C: Carrier> PassPaths<'_, C> {
         (rays, bad)
     }
 
-    /// One tile's paths in lanes ([`path::estimate_lanes`] with the pass's wavelengths, no
-    /// spectral MIS, as [`path::camera_path`]); returns the rays and bad samples.
+    /// One tile's paths in lanes ([`path::estimate_lanes`] with the pass's wavelengths, as
+    /// [`path::camera_path`]); returns the rays and bad samples.
     fn tile_lanes<S>(&self, tile: &mut FilmTile, slots: &mut [S], keep: Keep<C, S>) -> (u64, u64) {
         let k = tile.next_unit();
         let starts = Starts::new(self.camera, &self.sampler, false, false);

@@ -137,13 +137,14 @@ pub fn photons_for(factor: f64, pixels: u64) -> u64 {
 }
 
 /// Runs the pilot for a hybrid render (map mode, `--photons` not given) and returns the
-/// budget; `radius`: the `--radius` given, if any.
+/// budget; `radius`: the `--radius` given, if any; `dispersion`: what the render's camera
+/// paths keep of their wavelengths, so the pilot's camera paths are the render's.
 #[allow(clippy::too_many_arguments)]
 pub fn choose<C: Carrier>(
     scene: &Scene,
     camera: &Camera,
     settings: &RenderSettings,
-    max_depth: u32,
+    (max_depth, dispersion): (u32, path::Dispersion),
     emitter: &PhotonEmitter,
     (radius, alpha): (Option<f32>, f32),
 ) -> Result<Budget> {
@@ -174,7 +175,14 @@ pub fn choose<C: Carrier>(
     });
     let r0 = a.begin_gather(|_| r0);
     b.begin_gather(|_| r0);
-    let (mut fig, camera_rays) = measure::<C>(scene, camera, settings, max_depth, lambda, [&a, &b]);
+    let (mut fig, camera_rays) = measure::<C>(
+        scene,
+        camera,
+        settings,
+        (max_depth, dispersion),
+        lambda,
+        [&a, &b],
+    );
     fig.rays_per_photon = rays as f64 / (2 * half) as f64;
     Ok(Budget {
         factor: factor(&fig),
@@ -190,7 +198,7 @@ fn measure<C: Carrier>(
     scene: &Scene,
     camera: &Camera,
     settings: &RenderSettings,
-    max_depth: u32,
+    (max_depth, dispersion): (u32, path::Dispersion),
     lambda: C::Lambda,
     maps: [&CausticMap; 2],
 ) -> (PilotFigures, u64) {
@@ -229,7 +237,7 @@ fn measure<C: Carrier>(
                     let (l, _) = path::camera_path::<C>(
                         scene,
                         &ray,
-                        (max_depth, path::Dispersion::HERO),
+                        (max_depth, dispersion),
                         lambda,
                         StopAt::Never,
                         split,

@@ -206,9 +206,21 @@ pub struct CausticSettings {
     pub alpha: f32,
     /// Map only, or light tracing where the caustic is seen directly ([`CausticMode`]).
     pub mode: CausticMode,
+    /// In spectral transport, the camera paths split into their 4 wavelengths at their
+    /// first smooth dispersive interface ([`super::path::Dispersion::SPLIT`]; on by
+    /// default), rather than keeping the hero only (for comparisons).
+    pub split: bool,
 }
 
 impl CausticSettings {
+    /// What the hybrid's camera paths keep of their wavelengths ([`Self::split`]).
+    pub fn dispersion(&self) -> super::path::Dispersion {
+        match self.split {
+            true => super::path::Dispersion::SPLIT,
+            false => super::path::Dispersion::HERO,
+        }
+    }
+
     /// [`PhotonSettings::check`] on the fields this method uses.
     pub fn check(&self) -> Result<()> {
         PhotonSettings {
@@ -229,6 +241,16 @@ impl PhotonSettings {
             radius: self.radius,
             alpha: self.alpha,
             mode: self.caustic_mode,
+            split: true,
+        }
+    }
+
+    /// The part `--method vcm` (`merge`) and `--method bpt` use.
+    pub fn vcm(&self, merge: bool) -> super::vcm::VcmSettings {
+        super::vcm::VcmSettings {
+            radius: self.radius,
+            alpha: self.alpha,
+            merge,
         }
     }
 

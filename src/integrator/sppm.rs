@@ -49,13 +49,16 @@
 //! aimed at the caustic makers ([`crate::photon::emit::DEFAULT_AIM`], unbiased); its path
 //! after emission draws from `Rng::new(&[seed, pass, i, 0x9E07])`.
 
+mod gather;
+
+pub(super) use gather::{photon_term, GatherLanes};
+
 use super::pass_paths::PassPaths;
 use super::path::{self, LaneWidth, StopAt, VisiblePoint};
 use super::{SppmSettings, StoreBudget, MAX_PHOTONS};
-use crate::bsdf::{Bsdf, TransportMode};
 use crate::camera::Camera;
 use crate::error::Result;
-use crate::math::{Frame, Rng};
+use crate::math::Rng;
 use crate::photon::emit::{PhotonEmitter, PhotonNumbers, DEFAULT_AIM};
 use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
@@ -65,7 +68,6 @@ use crate::render::{
     TILE_PIXELS,
 };
 use crate::scene::Scene;
-use crate::shading::spectral_mis;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -111,56 +113,6 @@ pub fn pixel_footprint(camera: &Camera, settings: &RenderSettings, d: f32) -> f3
     let b = camera.generate_ray(c + Vec2::X);
     let (da, db) = (a.dir.normalize(), b.dir.normalize());
     (a.origin + da * d).distance(b.origin + db * d)
-}
-
-/// Sum of f · Φ over the photons within `r` of a visible point, in the visible point's
-/// lane order ([`visible_term`]).
-fn gather<C: Carrier>(vp: &VisiblePoint<C>, photons: &[Photon], grid: &HashGrid, r: f32) -> C {
-    let mut phi = C::ZERO;
-    let coupled = vp.hero.coupled::<C>(&vp.lambda);
-    grid.for_each_within(vp.p, r, |i, _d2| {
-        phi += visible_term(vp, coupled, &photons[i as usize]);
-    });
-    phi
-}
-
-/// f(wo, wiₚ) · Φₚ of the photon `ph` at the visible point `vp`, in its lane order: the
-/// photon's power rotated into the path's lanes ([`path::HeroOf::to_path`]), f per lane
-/// with each lane's η at a rough dispersive interface reached with the lanes kept, and the
-/// factor 1/4 when the path kept the hero only for the pass's hero (`coupled`) and so did
-/// the photon (the unbiasedness argument: `crate::integrator::path`'s `own_hero`).
-fn visible_term<C: Carrier>(vp: &VisiblePoint<C>, coupled: bool, ph: &Photon) -> C {
-    let wi = vp.frame.to_local(ph.wi());
-    let mode = TransportMode::Radiance;
-    let f = match &vp.etas {
-        Some(etas) => spectral_mis::eval_lanes(&vp.bsdf, etas, vp.wo, wi, mode).0,
-        None => vp.bsdf.eval(vp.wo, wi, mode),
-    };
-    let mut c = f * vp.hero.to_path(C::from_lanes(ph.power()));
-    if coupled && ph.flags() & Photon::HERO_ONLY != 0 {
-        c /= 4.0;
-    }
-    c
-}
-
-/// f(wo, wiₚ) · Φₚ of the photon `ph` at a camera vertex (`bsdf` in `frame`, `wo` toward
-/// the camera), with the hero-wavelength bookkeeping: when both the camera path (`hero`)
-/// and the photon kept only the hero (each then carries 4× the hero lane), the product is
-/// divided by 4 once.
-pub(super) fn photon_term<C: Carrier>(
-    bsdf: &Bsdf<C>,
-    frame: &Frame,
-    wo: Vec3,
-    hero: bool,
-    ph: &Photon,
-) -> C {
-    let wi = frame.to_local(ph.wi());
-    let f = bsdf.eval(wo, wi, TransportMode::Radiance);
-    let mut c = f * C::from_lanes(ph.power());
-    if hero && ph.flags() & Photon::HERO_ONLY != 0 {
-        c /= 4.0;
-    }
-    c
 }
 
 /// The state SPPM keeps across passes: per film slot the visible point of the current
@@ -303,11 +255,11 @@ fn camera_pass<C: Carrier>(
         lambda,
         stop: StopAt::Diffuse,
         split: path::CausticSplit::None,
-        lanes: LaneWidth::Scalar,
         dispersion: path::Dispersion {
             spectral_mis,
             split: false,
         },
+        lanes: LaneWidth::Scalar,
     };
     paths.trace(film, vps, false, |_, l, vp, slot| {
         *slot = vp;
@@ -422,7 +374,7 @@ impl<C: Carrier> Passes<C> {
                 let mut bad = 0;
                 for (i, vp) in vp_tile.iter().enumerate() {
                     if let (Some(vp), true) = (vp, area > 0.0) {
-                        let phi = gather(vp, photons, grid, r);
+                        let phi = gather::gather(vp, photons, grid, r);
                         let l = (vp.beta * phi).to_rgb(&vp.lambda).as_dvec3() / area;
                         tile.add(i, u64::from(pass), l, &mut bad);
                     }

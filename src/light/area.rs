@@ -195,6 +195,17 @@ impl AreaLights {
         })
     }
 
+    /// The area density (per m²) with which [`AreaLights::sample_point`] (and so
+    /// [`AreaLights::sample`]) picks a point of triangle `prim`, and the triangle's unit
+    /// normal (outward front side); `None` if `prim` does not emit or is degenerate.
+    pub fn point_pdf(&self, prim: u32) -> Option<(f32, Vec3)> {
+        let k = self.emitters.binary_search_by_key(&prim, |e| e.prim).ok()?;
+        let Emitter { p: t, prob, .. } = self.emitters[k];
+        let n = (t[1] - t[0]).cross(t[2] - t[0]);
+        let area = 0.5 * n.length();
+        (area > 0.0 && area.is_finite()).then(|| (prob / area, n / (2.0 * area)))
+    }
+
     /// Solid-angle pdf that `sample` picks the point `q` on triangle `prim` from the
     /// receiver `p`; 0 if `prim` does not emit. For MIS.
     pub fn pdf(&self, prim: u32, p: Vec3, q: Vec3) -> f32 {

@@ -67,7 +67,9 @@ use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
 mod aimed;
+mod densities;
 use aimed::Mix;
+pub use densities::Densities;
 
 /// The directional/environment disc radius over the bounding-sphere radius (> 1, so disc
 /// origins lie strictly outside the bounding sphere).
@@ -89,6 +91,20 @@ pub struct EmittedPhoton<'a> {
     /// KHR_lights_punctual `range` of a point/spot light; the tracer multiplies by the range
     /// window at its first hit distance.
     pub range: Option<f32>,
+    /// The light it left ([`Source`]): what the densities of [`PhotonEmitter::densities`]
+    /// need.
+    pub source: Source,
+}
+
+/// The light a photon left.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Source {
+    /// Punctual light `k` of [`Scene::lights`].
+    Punctual(u32),
+    /// Emissive triangle `prim`.
+    Area(u32),
+    /// The environment.
+    Environment,
 }
 
 /// Chooses lights by power and emits photons from them (see the module docs).
@@ -239,7 +255,11 @@ impl PhotonEmitter {
         let photon = match choice.light {
             LightId::Punctual(i) => {
                 let l = &scene.lights()[i as usize];
-                self.punctual(&l.light, flux, u_pos, u_dir, l.shape.as_ref(), mix)
+                let photon = self.punctual(&l.light, flux, u_pos, u_dir, l.shape.as_ref(), mix);
+                photon.map(|p| EmittedPhoton {
+                    source: Source::Punctual(i),
+                    ..p
+                })
             }
             LightId::Area => {
                 // The rest of the light's number picks the triangle.
@@ -256,6 +276,7 @@ impl PhotonEmitter {
                     power: pt.base_power() * ratio,
                     shape: pt.shape,
                     range: None,
+                    source: Source::Area(pt.prim),
                 })
             }
             LightId::Environment => {
@@ -266,6 +287,7 @@ impl PhotonEmitter {
                     power: s.radiance / s.pdf * area,
                     shape: None,
                     range: None,
+                    source: Source::Environment,
                 })
             }
         }?;

@@ -53,6 +53,12 @@ impl HashGrid {
     /// Rebuild over `points` for queries of radius up to `radius` (metres). A radius that is
     /// not finite and positive gives cells of side 1 m (queries stay correct).
     pub fn rebuild(&mut self, points: &[Photon], radius: f32) {
+        self.rebuild_with(points.len(), |i| points[i].position(), radius);
+    }
+
+    /// [`HashGrid::rebuild`] over `n` points whose positions `position(i)` gives (any
+    /// point type; reported indices are the `i`).
+    pub fn rebuild_with(&mut self, n: usize, position: impl Fn(usize) -> Vec3 + Sync, radius: f32) {
         self.radius = radius;
         self.cell = if radius.is_finite() && radius > 0.0 {
             2.0 * radius
@@ -60,19 +66,16 @@ impl HashGrid {
             1.0
         };
         self.inv_cell = 1.0 / self.cell;
-        let buckets = (2 * points.len()).max(1);
+        let buckets = (2 * n).max(1);
         let inv = self.inv_cell;
         self.keys.clear();
-        self.keys.resize(points.len(), SKIP);
-        self.keys
-            .par_iter_mut()
-            .zip(points.par_iter())
-            .for_each(|(key, ph)| {
-                let p = ph.position();
-                if p.is_finite() {
-                    *key = bucket(cell_of(p.to_array(), inv), buckets);
-                }
-            });
+        self.keys.resize(n, SKIP);
+        self.keys.par_iter_mut().enumerate().for_each(|(i, key)| {
+            let p = position(i);
+            if p.is_finite() {
+                *key = bucket(cell_of(p.to_array(), inv), buckets);
+            }
+        });
         // Counting sort (stable): counts, exclusive prefix sums, scatter, shift back.
         self.starts.clear();
         self.starts.resize(buckets + 1, 0);
@@ -87,10 +90,10 @@ impl HashGrid {
         let kept = self.starts[buckets] as usize;
         self.entries.clear();
         self.entries.resize(kept, ([0.0; 3], 0));
-        for (i, (&k, ph)) in self.keys.iter().zip(points).enumerate() {
+        for (i, &k) in self.keys.iter().enumerate() {
             if k != SKIP {
                 let slot = &mut self.starts[k as usize];
-                self.entries[*slot as usize] = (ph.pos_array(), i as u32);
+                self.entries[*slot as usize] = (position(i).to_array(), i as u32);
                 *slot += 1;
             }
         }

@@ -131,7 +131,10 @@ pub(super) fn photons(ev: &Evidence, method: Method, resolved: Method, why: Opti
             names(specular)
         )
     };
-    let photons_used = matches!(resolved, Method::Sppm | Method::Photon | Method::Hybrid);
+    let photons_used = matches!(
+        resolved,
+        Method::Sppm | Method::Photon | Method::Hybrid | Method::Vcm | Method::Bpt
+    );
     let how = if method == Method::Auto {
         format!("--method auto -> {}", resolved.name())
     } else {

@@ -90,6 +90,32 @@ impl RoundEnv<'_> {
     }
 }
 
+/// [`drive`] for the methods whose unit is a pass (the hybrid, VCM): `step(film, pass,
+/// env)` for each round's pass, stopping on the stop request ([`super::guard`]) before any
+/// round after the first.
+pub fn drive_passes(
+    settings: &RenderSettings,
+    schedule: Schedule,
+    setup: Setup,
+    observer: Option<Observer>,
+    mut step: impl FnMut(&mut Film, u32, &RoundEnv) -> Result<Round>,
+) -> Result<(Film, RenderStats)> {
+    let stop = super::guard::stop_requested;
+    drive(
+        settings,
+        schedule,
+        setup,
+        observer,
+        &stop,
+        |film, k0, _k1, env| {
+            if env.skip(k0) {
+                return Ok(Round::default());
+            }
+            step(film, k0 as u32, env)
+        },
+    )
+}
+
 /// Renders progressively: calls `step(film, k0, k1, env)` for rounds of units (absolute
 /// indices) until the schedule's target, the time limit, a stop request or the observer
 /// ends it. Returns the film (its exact sums, for a shard's partial image) and the stats.
@@ -207,24 +233,43 @@ pub fn drive(
     }
     bar.finish_and_clear();
     debug_assert!(interrupted || observer_stopped || done >= target || out_of_time);
-    let end = match (interrupted, observer_stopped, done >= target) {
+    let end = end_reason(interrupted, observer_stopped, done >= target);
+    let passes = if schedule.passes { done as u32 } else { 1 };
+    let stats = end_stats(&setup, &film, (rays, photons, bad), passes, end);
+    Ok((film, stats))
+}
+
+/// Why a render ended: an interruption first, then the observer's stop (its error target),
+/// then the schedule's units (`reached`), else the time limit.
+fn end_reason(interrupted: bool, observer_stopped: bool, reached: bool) -> EndReason {
+    match (interrupted, observer_stopped, reached) {
         (true, _, _) => EndReason::Interrupted,
         (_, true, _) => EndReason::Target,
         (_, _, true) => EndReason::Samples,
         _ => EndReason::TimeLimit,
-    };
-    let stats = RenderStats {
+    }
+}
+
+/// The stats of a render that ended for `end` with `film`, the `(rays, photons, bad
+/// samples)` counted and `passes` (1 for per-sample methods).
+fn end_stats(
+    setup: &Setup,
+    film: &Film,
+    (rays, photons, bad): (u64, u64, u64),
+    passes: u32,
+    end: EndReason,
+) -> RenderStats {
+    RenderStats {
         time: setup.start.elapsed(),
         rays,
         samples: film.pixel_samples(),
         unit_span: film.unit_span(),
         photons,
         photons_per_pass: 0,
-        passes: if schedule.passes { done as u32 } else { 1 },
+        passes,
         bad_samples: bad,
         end,
-    };
-    Ok((film, stats))
+    }
 }
 
 /// Units of the next round after `done`: to the next checkpoint (or the target), at most

@@ -39,7 +39,7 @@ pub mod guard;
 pub mod progress;
 mod samples;
 pub use adaptive::Adaptive;
-pub use driver::{drive, Round, RoundEnv, Schedule};
+pub use driver::{drive, drive_passes, Round, RoundEnv, Schedule};
 pub use film::{Film, FilmTile, TileState, TILE, TILE_PIXELS};
 pub use progress::{
     estimate_note, progress_bar, relative_error_estimate, Control, Observer, Progress, Setup,

@@ -263,6 +263,17 @@ impl Bounce<'_> {
         self.two(BounceDim::BsdfDirection)
     }
 
+    /// [`Bounce::bsdf_direction`] for a BSDF that `samples` a direction, else skipped
+    /// (zero): what every camera vertex draws.
+    pub fn bsdf_direction_if(&mut self, samples: bool) -> Vec2 {
+        if samples {
+            self.bsdf_direction()
+        } else {
+            self.skip_bsdf_direction();
+            Vec2::ZERO
+        }
+    }
+
     /// Russian roulette.
     pub fn roulette(&mut self) -> f32 {
         self.one(BounceDim::Roulette)

@@ -34,6 +34,11 @@ pub struct LightSample<'a> {
     pub shape: Option<&'a EmitterShape>,
     /// Solid-angle pdf for MIS, `None` for delta (punctual) lights.
     pub pdf: Option<f32>,
+    /// The light's point (an emissive triangle's sampled point, a point or spot light's
+    /// position); `None` for distant light.
+    pub position: Option<Vec3>,
+    /// The emissive triangle sampled (area light only).
+    pub prim: Option<u32>,
 }
 
 /// Which numbers [`sample`] reads for light `id`: (`u`, the position or direction; `uc`,
@@ -93,6 +98,8 @@ pub fn punctual<'a>(scene: &'a Scene, hit: &SurfaceHit, k: usize) -> Option<Ligh
         incident: ls.irradiance,
         shape: light.shape.as_ref(),
         pdf: None,
+        position: ls.position,
+        prim: None,
     })
 }
 
@@ -115,6 +122,8 @@ pub fn area<'a>(scene: &'a Scene, hit: &SurfaceHit, uc: f32, u: Vec2) -> Option<
         incident: scene.emission_at(s.prim, s.bary) / s.pdf,
         shape: mat.emitter_shape(),
         pdf: Some(s.pdf),
+        position: Some(s.point),
+        prim: Some(s.prim),
     })
 }
 
@@ -127,5 +136,7 @@ pub fn environment<'a>(scene: &'a Scene, hit: &SurfaceHit, u: Vec2) -> Option<Li
         incident: s.radiance / s.pdf,
         shape: None,
         pdf: Some(s.pdf),
+        position: None,
+        prim: None,
     })
 }

@@ -318,7 +318,7 @@ impl<C: Carrier> Surface<C> {
         let (Some(etas), Bsdf::Dielectric { alpha, tint, .. }) = (self.lanes, self.bsdf) else {
             return *self;
         };
-        let etas: [f32; 4] = std::array::from_fn(|j| etas[(j + k) % 4]);
+        let etas = crate::spectrum::rotate_lanes(etas, k);
         Surface {
             bsdf: Bsdf::Dielectric {
                 eta: etas[0],

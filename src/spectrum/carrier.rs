@@ -44,6 +44,10 @@ pub struct Lambdas {
     /// lanes are rotations of the hero's sample number by j/4, so before any direction is
     /// sampled each lane is equally likely to be the one that chose them.
     pub hero_weight: [f32; N_LAMBDA],
+    /// `Some(i)`: this path is the sub-path of a split sample that carries the sample's
+    /// lane `i` alone in its lane 0, its lanes rotated by `i` ([`Carrier::lane_as_hero`]).
+    /// `None` for a whole sample.
+    pub sub_path: Option<u8>,
 }
 
 impl Lambdas {
@@ -54,6 +58,7 @@ impl Lambdas {
             hero_only: false,
             d65: SampledSpectrum::from_fn(&wl, d65_normalized),
             hero_weight: [1.0 / N_LAMBDA as f32; N_LAMBDA],
+            sub_path: None,
         }
     }
 }
@@ -153,15 +158,18 @@ pub trait Carrier:
     /// `i` is the hero (lane 0), hero only, with hero weight 1. The sub-path's radiance
     /// in its lane 0 is the sample's lane `i`. Nothing for RGB.
     fn lane_as_hero(l: &Self::Lambda, i: usize) -> Self::Lambda;
+    /// [`Lambdas::sub_path`] (`None` in RGB).
+    fn sub_path(l: &Self::Lambda) -> Option<usize>;
     /// The wavelengths with lane `k` moved to lane 0 (lane j ← lane (j + k) mod 4), hero
-    /// weights rotated with them, `hero_only` kept: the same sample seen with lane `k` as
-    /// the hero (SPPM's camera hero, `crate::integrator::path`). Nothing for RGB.
+    /// weights rotated with them, `hero_only` and `sub_path` kept: the same sample seen
+    /// with lane `k` as the hero (SPPM's camera hero, `crate::integrator::path`; a whole
+    /// sample's lanes only, never a sub-path's). Nothing for RGB.
     fn lanes_rotated(l: &Self::Lambda, k: usize) -> Self::Lambda;
-    /// The values with lane `k` moved to lane 0 (lane j ← lane (j + k) mod 4), to go with
-    /// [`Carrier::lanes_rotated`]. RGB values must not be rotated (`k` = 0 leaves them).
+    /// The values with lane `k` moved to lane 0 (lane j ← lane (j + k) mod 4,
+    /// [`super::rotate_lanes`]), to go with [`Carrier::lanes_rotated`]. RGB values must not
+    /// be rotated (`k` = 0 leaves them).
     fn rotated(self, k: usize) -> Self {
-        let v = self.to_lanes();
-        Self::from_lanes(std::array::from_fn(|j| v[(j + k) % 4]))
+        Self::from_lanes(super::rotate_lanes(self.to_lanes(), k))
     }
 }
 
@@ -244,6 +252,9 @@ impl Carrier for Vec3 {
         Vec3::new(v[0], v[1], v[2])
     }
     fn lane_as_hero(_l: &(), _i: usize) {}
+    fn sub_path(_l: &()) -> Option<usize> {
+        None
+    }
     fn lanes_rotated(_l: &(), _k: usize) {}
 }
 
@@ -347,22 +358,26 @@ impl Carrier for SampledSpectrum {
     fn from_lanes(v: [f32; 4]) -> Self {
         SampledSpectrum::new(v)
     }
+    fn sub_path(l: &Lambdas) -> Option<usize> {
+        l.sub_path.map(usize::from)
+    }
     fn lane_as_hero(l: &Lambdas, i: usize) -> Lambdas {
         let mut hero_weight = [0.0; N_LAMBDA];
         hero_weight[0] = 1.0;
         Lambdas {
             hero_only: true,
             hero_weight,
+            sub_path: Some(i as u8),
             ..Self::lanes_rotated(l, i)
         }
     }
     fn lanes_rotated(l: &Lambdas, k: usize) -> Lambdas {
-        let d65 = l.d65.values();
         Lambdas {
             wl: l.wl.rotated(k),
             hero_only: l.hero_only,
-            d65: SampledSpectrum::new(std::array::from_fn(|j| d65[(j + k) % N_LAMBDA])),
-            hero_weight: std::array::from_fn(|j| l.hero_weight[(j + k) % N_LAMBDA]),
+            d65: SampledSpectrum::new(super::rotate_lanes(l.d65.values(), k)),
+            hero_weight: super::rotate_lanes(l.hero_weight, k),
+            sub_path: l.sub_path,
         }
     }
 }

@@ -38,7 +38,7 @@ pub use metals::Metal;
 pub use sampled::SampledSpectrum;
 pub use spectra::Spectrum;
 pub use upsample::{RgbIlluminant, RgbReflectance};
-pub use wavelengths::{hero_number, SampledWavelengths};
+pub use wavelengths::{hero_number, rotate_lanes, SampledWavelengths};
 
 /// Shortest wavelength sampled, nm (pbrt-v4 `Lambda_min`).
 pub const LAMBDA_MIN: f32 = 360.0;

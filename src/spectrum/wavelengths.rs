@@ -162,7 +162,7 @@ impl SampledWavelengths {
     pub fn rotated(&self, k: usize) -> Self {
         assert!(k < N_LAMBDA, "lane {k}");
         SampledWavelengths {
-            lambda: std::array::from_fn(|j| self.lambda[(j + k) % N_LAMBDA]),
+            lambda: rotate_lanes(self.lambda, k),
             ..*self
         }
     }
@@ -171,6 +171,13 @@ impl SampledWavelengths {
     pub fn is_secondary_terminated(&self) -> bool {
         self.terminated
     }
+}
+
+/// Per-lane values with lane `k` first: lane j of the result is lane (j + k) mod 4 of `v`
+/// (the order of a sub-path that carries lane `k` as its hero,
+/// [`SampledWavelengths::rotated`]).
+pub fn rotate_lanes<T: Copy>(v: [T; N_LAMBDA], k: usize) -> [T; N_LAMBDA] {
+    std::array::from_fn(|j| v[(j + k) % N_LAMBDA])
 }
 
 #[cfg(test)]

@@ -54,8 +54,25 @@ pub fn sphere_in_white_environment(material: iris::material::MaterialDesc) -> ir
         }),
         ..Default::default()
     };
-    let desc = iris::scene::validate::validate(desc).expect("valid furnace scene");
+    build_scene(desc)
+}
+
+/// Validates `desc` and builds it on the automatic backend.
+pub fn build_scene(desc: iris::scene::desc::SceneDesc) -> iris::scene::Scene {
+    let desc = iris::scene::validate::validate(desc).expect("valid scene");
     iris::scene::Scene::build(desc, iris::accel::Backend::Auto).expect("build")
+}
+
+/// A white point light "bulb" of intensity 1 (candela) at `position`.
+pub fn white_point_light(position: glam::Vec3) -> iris::scene::desc::LightDesc {
+    iris::scene::desc::LightDesc::Point {
+        name: "bulb".into(),
+        position,
+        color: glam::Vec3::ONE,
+        intensity: 1.0,
+        range: None,
+        spectrum: None,
+    }
 }
 
 /// Every backend compiled in: the BVH, then Embree when the `embree` feature is on.
@@ -228,6 +245,35 @@ pub fn blocks(img: &iris::image::ImageRgb) -> Vec<f64> {
         }
     }
     out
+}
+
+/// Of block means `b` ([`blocks`], `bw × bh` blocks): the 3 × 3 blocks around the block
+/// brightest relative to its 8 neighbours (the focused light under a glass sphere), and that
+/// excess relative to the neighbours' mean.
+#[allow(dead_code)]
+pub fn caustic_region(b: &[f64], (bw, bh): (i32, i32)) -> (Vec<usize>, f64) {
+    let at = |x: i32, y: i32| b[(y * bw + x) as usize];
+    let mut best = (f64::MIN, 0, 0, 0.0);
+    for y in 1..bh - 1 {
+        for x in 1..bw - 1 {
+            let mut n = 0.0;
+            for dy in -1..=1 {
+                for dx in -1..=1 {
+                    if (dx, dy) != (0, 0) {
+                        n += at(x + dx, y + dy) / 8.0;
+                    }
+                }
+            }
+            if at(x, y) - n > best.0 {
+                best = (at(x, y) - n, x, y, n);
+            }
+        }
+    }
+    let (excess, cx, cy, ring) = best;
+    let region = (cy - 1..=cy + 1)
+        .flat_map(|y| (cx - 1..=cx + 1).map(move |x| (y * bw + x) as usize))
+        .collect();
+    (region, excess / ring)
 }
 
 /// The mean of `v`.

@@ -43,11 +43,18 @@ impl Dispersion {
         spectral_mis: true,
         split: true,
     };
-    /// The hero only everywhere (the hybrid's and the photon map's camera paths; SPPM's
-    /// with [`crate::integrator::SppmSettings::spectral_mis`] off).
+    /// The hero only everywhere (the photon map's camera paths; SPPM's with
+    /// [`crate::integrator::SppmSettings::spectral_mis`] off, the hybrid's with
+    /// [`crate::integrator::CausticSettings::split`] off; comparisons).
     pub const HERO: Dispersion = Dispersion {
         spectral_mis: false,
         split: false,
+    };
+    /// The split without spectral MIS: the hybrid's camera paths (spectral MIS under the
+    /// sample's hero would tie the camera's hero to the photons' hero, [`own_hero`]).
+    pub const SPLIT: Dispersion = Dispersion {
+        spectral_mis: false,
+        split: true,
     };
 }
 
@@ -125,8 +132,9 @@ pub struct VisiblePoint<C: Carrier> {
     /// At a rough dispersive dielectric reached with the lanes kept: each lane's η (lane
     /// 0's is `bsdf`'s), for f per lane ([`crate::shading::spectral_mis::eval_lanes`]).
     pub etas: Option<[f32; 4]>,
-    /// Whose hero orders the lanes: a photon's power (in the sample's order) goes through
-    /// [`HeroOf::to_path`]; [`HeroOf::coupled`] says when the gather divides by 4.
+    /// Whose hero orders the lanes: the gather rotates a photon's power (in the sample's
+    /// order) into the path's, and divides by 4 only for a path coupled to the sample's
+    /// hero (`crate::integrator::sppm`'s `GatherLanes`).
     pub hero: HeroOf,
 }
 
@@ -147,9 +155,10 @@ pub fn radiance<C: Carrier>(
 /// the visible point where it stopped (none if it escaped, was absorbed or hit the depth
 /// limit first). Each hit is the shared step ([`shading::arrive`], [`Arrival::event`]);
 /// emission is counted on arrival, before BLEND coverage is decided. `split` hands the
-/// caustic paths to a caustic map ([`CausticSplit`]). `dispersion.spectral_mis` keeps the
-/// lanes at rough dispersive interfaces (with [`StopAt::Diffuse`] under the path's own hero,
-/// [`own_hero`]; not with a caustic map); the split never applies here.
+/// caustic paths to a caustic map ([`CausticSplit`]); `dispersion` says what the path
+/// keeps of its wavelengths at dispersive interfaces ([`Rules::new`] decides where it
+/// applies: spectral MIS not with a caustic map, and with [`StopAt::Diffuse`] under the
+/// path's own hero, [`own_hero`]; the split only with [`StopAt::Never`]).
 #[allow(clippy::too_many_arguments)]
 pub fn camera_path<C: Carrier>(
     scene: &Scene,
@@ -160,10 +169,6 @@ pub fn camera_path<C: Carrier>(
     split: CausticSplit<'_, C>,
     ctx: &mut Context,
 ) -> (C, Option<VisiblePoint<C>>) {
-    let dispersion = Dispersion {
-        split: false,
-        ..dispersion
-    };
     let rules = Rules::new(max_depth, dispersion, stop, split);
     trace(scene, ray, lambda, &rules, ctx)
 }

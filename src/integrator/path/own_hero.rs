@@ -45,8 +45,9 @@
 //! the surface's η and tint ([`crate::shading::Surface::with_hero_lane`]) rotate together.
 //! The radiance rotates back at the end ([`HeroOf::to_sample`]); a visible point keeps
 //! path order with its (rotated) wavelengths, and the gather rotates each photon's power
-//! into it ([`HeroOf::to_path`]): the film's conversion is symmetric in lane order, so
-//! converting with the rotated wavelengths is exact.
+//! into it (`crate::integrator::sppm`'s `GatherLanes::OwnHero`, which also leaves out the
+//! coupled case's ÷4): the film's conversion is symmetric in lane order, so converting
+//! with the rotated wavelengths is exact.
 //!
 //! A visible point at a rough dispersive interface (diffuse-like, α ≥
 //! [`crate::shading::GLOSSY_ALPHA`]) samples no direction: the path keeps its lanes there,
@@ -81,27 +82,12 @@ impl HeroOf {
         }
     }
 
-    /// A value in the sample's lane order (a photon's power) in the path's.
-    pub fn to_path<C: Carrier>(self, c: C) -> C {
-        match self.k() {
-            0 => c,
-            k => c.rotated(k),
-        }
-    }
-
     /// A value in the path's lane order (its radiance) in the sample's.
     pub fn to_sample<C: Carrier>(self, c: C) -> C {
         match self.k() {
             0 => c,
             k => c.rotated(N_LAMBDA - k),
         }
-    }
-
-    /// Whether a path with wavelengths `lambda` kept the hero only for the sample's hero
-    /// (then it and a hero-only photon both carry ×4 for the same lane: the gather divides
-    /// by 4 once, see the module docs).
-    pub fn coupled<C: Carrier>(self, lambda: &C::Lambda) -> bool {
-        self == HeroOf::Sample && C::is_hero_only(lambda)
     }
 }
 
@@ -197,17 +183,16 @@ mod tests {
         }
     }
 
-    /// Rotating into a path's order and back is the identity, and lane j of the path is
-    /// the sample's lane (j + k) mod 4.
+    /// Rotating into a path's order ([`Carrier::rotated`]) and back is the identity, and
+    /// lane j of the path is the sample's lane (j + k) mod 4.
     #[test]
     fn rotations_invert() {
         let c = SampledSpectrum::new([1.0, 2.0, 3.0, 4.0]);
         for k in 0..4u8 {
-            let h = HeroOf::Own(k);
-            let p = h.to_path(c);
-            assert_eq!(h.to_sample(p), c);
+            let p = c.rotated(usize::from(k));
+            assert_eq!(HeroOf::Own(k).to_sample(p), c);
             assert_eq!(p.values()[0], c.values()[k as usize]);
         }
-        assert_eq!(HeroOf::Sample.to_path(c), c);
+        assert_eq!(HeroOf::Sample.to_sample(c), c);
     }
 }

@@ -40,21 +40,23 @@
 //! the split). A lane whose throughput is 0 is not traced. The scalar loop and the lanes
 //! run the same sequence per sample, so their estimates agree bit for bit.
 //!
-//! Where: the path tracer's camera paths ([`StopAt::Never`] without a caustic map), when
-//! [`super::Dispersion::split`] is on (the default; off for comparisons). The photon
-//! methods' visible points and the hybrid's gathers keep the collapse (their photons carry
-//! the sample's lanes in their own order).
+//! Where: camera paths that do not stop at a visible point ([`StopAt::Never`]: the path
+//! tracer's and the hybrid's), when [`super::Dispersion::split`] is on (the default; off
+//! for comparisons). The hybrid's sub-paths gather its caustic map in their own lane
+//! order with the photons' lanes rotated to match, and without the collapse's ÷4
+//! (`crate::integrator::sppm::photon_term` gives the argument). SPPM's and the photon map's
+//! visible points keep the collapse: a pass stores one visible point per pixel.
 
 use super::state::PathState;
-use super::{CausticSplit, StopAt};
+use super::StopAt;
 use crate::math::Ray;
 use crate::spectrum::{Carrier, N_LAMBDA};
 use glam::Vec3;
 
-/// Whether camera paths under `stop` and `split` split into their wavelengths, `on` being
+/// Whether camera paths under `stop` split into their wavelengths, `on` being
 /// [`super::Dispersion::split`] (see the module docs).
-pub(super) fn applies<C: Carrier>(on: bool, stop: StopAt, split: &CausticSplit<'_, C>) -> bool {
-    on && C::SPECTRAL && stop == StopAt::Never && matches!(split, CausticSplit::None)
+pub(super) fn applies<C: Carrier>(on: bool, stop: StopAt) -> bool {
+    on && C::SPECTRAL && stop == StopAt::Never
 }
 
 /// A lane waiting for its sub-path.
@@ -103,13 +105,14 @@ impl<C: Carrier> Branches<C> {
     /// Splits the path that reached its vertex along `ray` with radiance `l` and state
     /// `st`, whose throughput was `beta` before the event kept the hero only; `lambda` are
     /// the path's wavelengths. The walk continues as lane 0's sub-path (`l` and `st.beta`
-    /// become lane 0's alone, at weight 1); lanes 1–3 wait.
+    /// become lane 0's alone, at weight 1, and `lambda` is marked as its sub-path's,
+    /// [`Carrier::sub_path`]); lanes 1–3 wait.
     pub fn split(
         &mut self,
         l: &mut C,
         st: &mut PathState<C>,
         ray: Ray,
-        (beta, lambda): (C, &C::Lambda),
+        (beta, lambda): (C, &mut C::Lambda),
     ) {
         let b = beta.to_lanes();
         let lane_only = |v: f32| C::from_lanes([v, 0.0, 0.0, 0.0]);
@@ -125,6 +128,7 @@ impl<C: Carrier> Branches<C> {
             });
         }
         st.beta = lane_only(b[0]);
+        *lambda = C::lane_as_hero(lambda, 0);
         self.done = std::mem::replace(l, C::ZERO);
         self.ray = ray;
         self.lane = 0;
@@ -187,7 +191,7 @@ mod tests {
             &mut l,
             &mut st,
             ray,
-            (S::new([0.5, 0.0, 0.25, 1.0]), &lambda),
+            (S::new([0.5, 0.0, 0.25, 1.0]), &mut lambda.clone()),
         );
         assert_eq!((l, st.beta), (S::ZERO, S::new([0.5, 0.0, 0.0, 0.0])));
         let (mut r, mut lam) = (Ray::new(Vec3::ZERO, Vec3::Y), lambda);

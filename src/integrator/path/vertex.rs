@@ -53,8 +53,8 @@ impl<'a, C: Carrier> Rules<'a, C> {
     /// The rules for `max_depth`, `stop` and `split`, keeping wavelengths as `dispersion`
     /// says where it applies: spectral MIS without a caustic map (whose gather pairs the
     /// path's hero with its photons'), with the path's own hero when it stops at a visible
-    /// point ([`RoughLanes::OwnHero`]); the split only with [`StopAt::Never`] and without a
-    /// caustic map ([`super::split::applies`]).
+    /// point ([`RoughLanes::OwnHero`]); the split only with [`StopAt::Never`]
+    /// ([`super::split::applies`]).
     pub fn new(
         max_depth: u32,
         dispersion: super::Dispersion,
@@ -72,7 +72,7 @@ impl<'a, C: Carrier> Rules<'a, C> {
                 (true, StopAt::Never, CausticSplit::None) => RoughLanes::Mis,
                 (true, StopAt::Diffuse, CausticSplit::None) => RoughLanes::OwnHero,
             },
-            wavelength_split: super::split::applies(dispersion.split, stop, &split),
+            wavelength_split: super::split::applies::<C>(dispersion.split, stop),
         }
     }
 }
@@ -356,7 +356,7 @@ pub(super) fn vertex<C: Carrier>(
     };
     // The event kept the hero only at a smooth dispersive interface: split instead.
     if let (Some(beta), true) = (before, C::is_hero_only(&walk.lambda) && s.bsdf.is_delta()) {
-        let split = (beta, &walk.lambda);
+        let split = (beta, &mut walk.lambda);
         walk.branches.split(&mut walk.l, st, walk.ray, split);
     }
     let lambda = &walk.lambda;
@@ -394,12 +394,7 @@ pub(super) fn vertex<C: Carrier>(
         nee = Some(pending(st.beta, ls, gather));
     }
     let uc = u.bsdf_lobe();
-    let ud = if s.bsdf.samples_direction() {
-        u.bsdf_direction()
-    } else {
-        u.skip_bsdf_direction();
-        Vec2::ZERO
-    };
+    let ud = u.bsdf_direction_if(s.bsdf.samples_direction());
     let Some(bs) = s.sample_mis(uc, ud, TransportMode::Radiance, &mut walk.lambda) else {
         return (nee, Next::End);
     };

@@ -160,6 +160,8 @@ impl PhotonEmitter {
             power: flux * ratio,
             shape,
             range,
+            // The caller names the light.
+            source: super::Source::Punctual(0),
         })
     }
 }
