@@ -114,7 +114,10 @@ fn gather<C: Carrier>(vp: &VisiblePoint<C>, photons: &[Photon], grid: &HashGrid,
     let mut phi = C::ZERO;
     let lanes = GatherLanes::of::<C>(&vp.lambda);
     grid.for_each_within(vp.p, r, |i, _d2| {
-        phi += photon_term(&vp.bsdf, &vp.frame, vp.wo, lanes, &photons[i as usize]);
+        let ph = &photons[i as usize];
+        if crate::photon::grid::in_disc(vp.p, vp.ng, ph.position(), r) {
+            phi += photon_term(&vp.bsdf, &vp.frame, vp.wo, lanes, ph);
+        }
     });
     phi
 }
