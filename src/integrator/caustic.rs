@@ -248,6 +248,9 @@ impl CausticMap {
             if later_only && ph.flags() & Photon::CAUSTIC != 0 {
                 return;
             }
+            if !crate::photon::grid::in_disc(s.hit.p, s.hit.ng, ph.position(), r) {
+                return;
+            }
             sum += super::sppm::photon_term(&s.bsdf, &s.frame, s.wo, lanes, ph);
         });
         sum / (std::f64::consts::PI * r2) as f32

@@ -12,14 +12,15 @@
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::integrator::path::{HeroOf, VisiblePoint};
 use crate::math::Frame;
-use crate::photon::grid::HashGrid;
+use crate::photon::grid::{in_disc, HashGrid};
 use crate::photon::store::Photon;
 use crate::shading::spectral_mis;
 use crate::spectrum::{rotate_lanes, Carrier};
 use glam::Vec3;
 
-/// Sum of f · Φ over the photons within `r` of a visible point, in the visible point's
-/// lane order ([`visible_term`]).
+/// Sum of f · Φ over the photons within `r` of a visible point and in its flattened disc
+/// ([`crate::photon::grid::in_disc`]), in the visible point's lane order
+/// ([`visible_term`]).
 pub(super) fn gather<C: Carrier>(
     vp: &VisiblePoint<C>,
     photons: &[Photon],
@@ -29,7 +30,10 @@ pub(super) fn gather<C: Carrier>(
     let mut phi = C::ZERO;
     let lanes = GatherLanes::at(vp);
     grid.for_each_within(vp.p, r, |i, _d2| {
-        phi += visible_term(vp, lanes, &photons[i as usize]);
+        let ph = &photons[i as usize];
+        if in_disc(vp.p, vp.ng, ph.position(), r) {
+            phi += visible_term(vp, lanes, ph);
+        }
     });
     phi
 }

@@ -28,11 +28,6 @@ use crate::shading::{self, lights, Arrival, Event, Surface};
 use crate::spectrum::Carrier;
 use glam::Vec3;
 
-/// Merging counts light vertices within this fraction of the radius of the camera
-/// vertex's tangent plane (a curved surface of radius R ≫ r departs from its tangent plane
-/// by r²/2R within the disc).
-const PLANE_TOLERANCE: f32 = 0.1;
-
 /// Non-delta vertices after which camera subpaths play Russian roulette.
 const ROULETTE_DEPTH: u32 = 3;
 
@@ -284,10 +279,7 @@ impl<C: Carrier> CameraKit<'_, C> {
             if w.depth + v.depth > self.max_depth + 1 {
                 return;
             }
-            // A disc, not a ball: light vertices off the tangent plane belong to another
-            // surface (a light quad 1 cm under a ceiling, a wall's far side).
-            let off_plane = (v.surface.hit.p - s.hit.p).dot(s.hit.ng).abs();
-            if off_plane > PLANE_TOLERANCE * self.radius {
+            if !crate::photon::grid::in_disc(s.hit.p, s.hit.ng, v.surface.hit.p, self.radius) {
                 return;
             }
             let wi = s.frame.to_local(v.surface.hit.wo);

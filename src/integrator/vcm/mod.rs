@@ -20,8 +20,8 @@
 //! unbiased; VCM is consistent (its merges have the kernel's bias, which vanishes as the
 //! radius shrinks).
 //!
-//! Radius: the first is `--radius` or 2 pixel footprints at the median camera distance of
-//! the first pass's light vertices (as SPPM's); pass p's is r₀² · Πᵢ₌₁..ₚ (i + α)/(i + 1)
+//! Radius: the first is `--radius` or half a pixel footprint at the median camera distance
+//! of the first pass's light vertices ([`RADIUS_SCALE`] × SPPM's rule); pass p's is r₀² · Πᵢ₌₁..ₚ (i + α)/(i + 1)
 //! (Knaus & Zwicker 2011, the sequence SPPM and the hybrid use).
 //!
 //! Shards: pass p needs from earlier passes only the radius, a pure function of r₀ and p. A
@@ -122,6 +122,14 @@ struct Run<'a> {
     numbers: PhotonNumbers,
 }
 
+/// VCM's first radius over SPPM's ([`first_radius`]: 2 pixel footprints): half a pixel
+/// footprint. With SPPM's radius the merges' share (η = π r² n_light) outweighs light
+/// tracing where a caustic is seen directly and blurs it; measured (BENCHMARKS.md, "Vertex
+/// connection and merging"): at ×1, ×¼, ×⅒ the Cornell box's relative MSE at equal time is
+/// 0.0023, 0.0009, 0.0006 (BPT 0.0003) and its water box's 0.0077, 0.0097, 0.0166 (BPT
+/// 0.020, the path tracer 0.014).
+pub const RADIUS_SCALE: f32 = 0.25;
+
 /// Most light subpaths a pass traces (a light vertex takes about 0.5 kB; a pass keeps
 /// all of its subpaths' vertices): one per pixel up to 2¹⁹ pixels (724 × 724), then
 /// pixel i pairs with subpath i mod 2¹⁹.
@@ -160,12 +168,13 @@ impl Run<'_> {
             ..self.light_kit()
         };
         let paths: LightPaths<C> = kit.trace(0, n, lambda, &mis::Pass::new(1.0, n as f32, false));
-        first_radius(
+        let r = first_radius(
             self.scene,
             self.camera,
             self.settings,
             paths.vertices.iter().map(light_paths::position),
-        )
+        );
+        r * RADIUS_SCALE
     }
 
     fn render<C: Carrier>(
