@@ -255,11 +255,7 @@ impl PhotonEmitter {
         let photon = match choice.light {
             LightId::Punctual(i) => {
                 let l = &scene.lights()[i as usize];
-                let photon = self.punctual(&l.light, flux, u_pos, u_dir, l.shape.as_ref(), mix);
-                photon.map(|p| EmittedPhoton {
-                    source: Source::Punctual(i),
-                    ..p
-                })
+                self.punctual((l, i), flux, u_pos, u_dir, mix)
             }
             LightId::Area => {
                 // The rest of the light's number picks the triangle.

@@ -5,11 +5,10 @@
 //! mixture's. Units and frames as in [`super`] (world space, metres, steradians).
 
 use super::{EmittedPhoton, PhotonEmitter};
-use crate::light::Light;
+use crate::light::{Light, PunctualLight};
 use crate::math::{Frame, Ray};
 use crate::photon::aim::split_choice;
 use crate::photon::flux::{sample_spot_cos, spot_pdf, uniform_sphere, unit_disc};
-use crate::spectrum::EmitterShape;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -109,14 +108,13 @@ impl PhotonEmitter {
     /// (its whole flux when not aimed).
     pub(super) fn punctual<'a>(
         &self,
-        light: &Light,
+        (light, index): (&'a PunctualLight, u32),
         flux: Vec3,
         u_pos: Vec2,
         u_dir: Vec2,
-        shape: Option<&'a EmitterShape>,
         mix: Mix,
     ) -> Option<EmittedPhoton<'a>> {
-        let (ray, range, ratio) = match *light {
+        let (ray, range, ratio) = match light.light {
             Light::Point {
                 position, range, ..
             } => {
@@ -158,10 +156,9 @@ impl PhotonEmitter {
         Some(EmittedPhoton {
             ray,
             power: flux * ratio,
-            shape,
+            shape: light.shape.as_ref(),
             range,
-            // The caller names the light.
-            source: super::Source::Punctual(0),
+            source: super::Source::Punctual(index),
         })
     }
 }
