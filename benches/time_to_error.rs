@@ -143,7 +143,7 @@ fn open(path: &Path, env: Option<f32>, backend: Backend) -> Option<(Scene, Camer
 
 /// The long reference (see the module docs) and the method used.
 fn reference(scene: &Scene, camera: &Camera) -> iris::Result<(ImageRgb, Method, String)> {
-    let (method, _) = iris::plan::resolve_method(Method::Auto, scene);
+    let (method, _) = iris::plan::resolve_method(Method::Auto, scene, camera.projection());
     let start = Instant::now();
     if method == Method::Sppm {
         let integ = integrator(Method::Sppm, u64::from(W * H), 1_000_000);

@@ -37,6 +37,11 @@ pub struct Projected {
 }
 
 impl Camera {
+    /// The projection (perspective or orthographic) the camera was built from.
+    pub fn projection(&self) -> &Projection {
+        &self.projection
+    }
+
     /// Builds the camera for a `width × height` image. The image aspect wins over the
     /// file's aspect ratio; the vertical extent (yfov or ymag) is kept.
     pub fn new(desc: &CameraDesc, width: u32, height: u32) -> Self {

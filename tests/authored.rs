@@ -161,8 +161,9 @@ fn a_lit_file_gets_no_floor_and_auto_picks_the_same_method() {
     // The file's own camera: no framing note, the same camera either way.
     assert_eq!(auto.camera.world_from_camera, off.camera.world_from_camera);
     // `--method auto` decides on the scene as authored: the same as with no floor.
-    let method =
-        |p: &Prepared| iris::plan::resolve_method(iris::integrator::Method::Auto, &p.scene);
+    let method = |p: &Prepared| {
+        iris::plan::resolve_method(iris::integrator::Method::Auto, &p.scene, &common::PINHOLE)
+    };
     let (m_auto, why_auto) = method(&auto);
     let (m_off, why_off) = method(&off);
     let (m_on, why_on) = method(&on);

@@ -277,6 +277,7 @@ fn textures_of_materials_no_mesh_uses_are_not_decoded() {
         .map(|(scene, _)| {
             iris::plan::Plan::new(
                 &scene,
+                &common::PINHOLE,
                 iris::integrator::Method::Whitted,
                 iris::app::SpectralMode::Auto,
             )

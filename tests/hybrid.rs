@@ -478,18 +478,18 @@ fn hybrid_is_deterministic_across_threads_and_rounds() {
     assert!(one.data != two.data);
 }
 
-/// `--method auto` among path, hybrid and SPPM ([`iris::plan::resolve_method`]) says why:
-/// the point light's caustic under the glass sphere is a small share of the floor's light,
-/// measured and named (→ hybrid, under [`iris::plan::AUTO_HYBRID_BELOW`]); the bulb inside
-/// a glass ball sends all its light through glass (100 % → SPPM); under a uniform sky the
-/// environment is a caustic light like the others (a small share → hybrid); the same
-/// sphere made rough → SPPM, naming the material; the plan's photons stage carries the
-/// reason.
+/// `--method auto` ([`iris::plan::resolve_method`]) says why: the point light's caustic
+/// under the glass sphere is a small share of the floor's light, measured and named
+/// (→ hybrid, under [`iris::plan::AUTO_HYBRID_BELOW`]); the bulb inside a glass ball sends
+/// all its light through glass (100 % → VCM); under a uniform sky the environment is a
+/// caustic light like the others (a small share → hybrid); the same sphere made rough →
+/// VCM, naming the material, and SPPM under an orthographic camera (VCM needs a pinhole);
+/// the plan's photons stage carries the reason.
 #[test]
 fn auto_says_why_from_the_caustic_share() {
     use iris::plan::{resolve_method, Plan, SpectralMode, AUTO_HYBRID_BELOW};
     let (sphere, _) = common::caustic_sphere(None);
-    let (m, why) = resolve_method(Method::Auto, &sphere);
+    let (m, why) = resolve_method(Method::Auto, &sphere, &common::PINHOLE);
     let why = why.unwrap();
     // The share: a few percent of the floor's light comes through the sphere.
     let pct: f64 = why
@@ -502,14 +502,14 @@ fn auto_says_why_from_the_caustic_share() {
     let expected = if pct / 100.0 < AUTO_HYBRID_BELOW {
         Method::Hybrid
     } else {
-        Method::Sppm
+        Method::Vcm
     };
     assert_eq!(m, expected, "{why}");
-    let plan = Plan::new(&sphere, Method::Auto, SpectralMode::Auto);
+    let plan = Plan::new(&sphere, &common::PINHOLE, Method::Auto, SpectralMode::Auto);
     let reason = &plan.stage("photons").unwrap().reason;
     assert!(reason.contains("caustics carry"), "{reason}");
-    let (m, why) = resolve_method(Method::Auto, &glass_lantern_room());
-    assert_eq!(m, Method::Sppm, "{why:?}");
+    let (m, why) = resolve_method(Method::Auto, &glass_lantern_room(), &common::PINHOLE);
+    assert_eq!(m, Method::Vcm, "{why:?}");
     assert!(why.unwrap().contains("carry 100.00 %"));
     let (desc, _) = iris::assets::bench::caustic_sphere(None);
     let sky_desc = iris::scene::desc::SceneDesc {
@@ -525,14 +525,23 @@ fn auto_says_why_from_the_caustic_share() {
         let d = iris::scene::validate::validate(d).expect("valid scene");
         Scene::build(d, iris::accel::Backend::Auto).expect("build")
     };
-    let (m, why) = resolve_method(Method::Auto, &build(sky_desc));
+    let (m, why) = resolve_method(Method::Auto, &build(sky_desc), &common::PINHOLE);
     let why = why.unwrap();
     assert_eq!(m, Method::Hybrid, "{why}");
     assert!(why.contains("caustics carry"), "{why}");
-    let (m, why) = resolve_method(Method::Auto, &build(rough));
+    let rough = build(rough);
+    let (m, why) = resolve_method(Method::Auto, &rough, &common::PINHOLE);
+    let why = why.unwrap();
+    assert_eq!(m, Method::Vcm, "{why}");
+    assert!(why.contains("rough transmissive material"), "{why}");
+    let ortho = Projection::Orthographic {
+        xmag: 1.0,
+        ymag: 1.0,
+    };
+    let (m, why) = resolve_method(Method::Auto, &rough, &ortho);
     let why = why.unwrap();
     assert_eq!(m, Method::Sppm, "{why}");
-    assert!(why.contains("rough transmissive material"), "{why}");
+    assert!(why.contains("orthographic"), "{why}");
 }
 
 /// The pilot's budget ([`iris::integrator::photon_budget`]) for `scene` at 48 × 36.

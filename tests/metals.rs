@@ -243,7 +243,7 @@ fn rgb_transport_keeps_the_head_on_colour() {
 fn measured_metals_make_auto_spectral() {
     let scene = common::sphere_in_white_environment(gold(Vec3::ONE));
     assert!(SpectralMode::Auto.resolve(&scene));
-    let plan = iris::plan::Plan::new(&scene, Method::Path, SpectralMode::Auto);
+    let plan = iris::plan::Plan::new(&scene, &common::PINHOLE, Method::Path, SpectralMode::Auto);
     let transport = plan.stage("transport").expect("transport stage");
     assert!(
         transport.reason.contains("measured metals gold"),

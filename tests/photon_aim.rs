@@ -16,7 +16,8 @@ use iris::light::Light;
 use iris::math::Rng;
 use iris::photon::aim::{Aim, Targets};
 use iris::photon::emit::{PhotonEmitter, PhotonNumbers};
-use iris::photon::trace::{has_caustic_paths, trace, Roulette, TraceSettings};
+use iris::photon::probe::has_caustic_paths;
+use iris::photon::trace::{trace, Roulette, TraceSettings};
 use iris::scene::Scene;
 
 /// The caustic sphere scene with an area lamp (half-size 0.05 at (1, 0.8, 0)) and, when
@@ -397,6 +398,13 @@ fn the_probe_finds_the_prism_beams_caustic() {
     ));
     // A caustic method, not the path tracer (which cannot pass the slit): the hybrid, as the
     // caustic share of the lamp's light is tiny (most photons stop on the slit's housing).
-    let (method, why) = iris::plan::resolve_method(iris::integrator::Method::Auto, &scene);
+    let (method, why) = iris::plan::resolve_method(
+        iris::integrator::Method::Auto,
+        &scene,
+        &iris::scene::desc::Projection::Perspective {
+            yfov: 0.9,
+            aspect: None,
+        },
+    );
     assert_eq!(method, iris::integrator::Method::Hybrid, "{why:?}");
 }

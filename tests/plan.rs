@@ -95,7 +95,7 @@ fn assert_close(a: Vec3, b: Vec3, rel: f32, what: &str) {
 #[test]
 fn opaque_diffuse_scene_needs_rgb_only() {
     let (scene, cam) = sphere_on_floor(diffuse());
-    let plan = Plan::new(&scene, Method::Auto, SpectralMode::Auto);
+    let plan = Plan::new(&scene, &common::PINHOLE, Method::Auto, SpectralMode::Auto);
     assert!(
         !plan.spectral && !used(&plan, "transport"),
         "{}",
@@ -130,12 +130,12 @@ fn opaque_diffuse_scene_needs_rgb_only() {
 #[test]
 fn dispersive_prism_needs_spectral_transport() {
     let (scene, _) = sphere_on_floor(prism_glass());
-    let plan = Plan::new(&scene, Method::Auto, SpectralMode::Auto);
+    let plan = Plan::new(&scene, &common::PINHOLE, Method::Auto, SpectralMode::Auto);
     assert!(plan.spectral, "{}", plan.text());
     let reason = &plan.stage("transport").unwrap().reason;
     assert!(reason.contains("dispersive materials flint"), "{reason}");
     // --spectral off overrides, and says so.
-    let off = Plan::new(&scene, Method::Auto, SpectralMode::Off);
+    let off = Plan::new(&scene, &common::PINHOLE, Method::Auto, SpectralMode::Off);
     assert!(
         !off.spectral
             && off
@@ -150,17 +150,17 @@ fn dispersive_prism_needs_spectral_transport() {
 #[test]
 fn glass_sphere_on_floor_needs_photons_and_auto_follows() {
     let (scene, cam) = sphere_on_floor(glass());
-    let plan = Plan::new(&scene, Method::Auto, SpectralMode::Auto);
+    let plan = Plan::new(&scene, &common::PINHOLE, Method::Auto, SpectralMode::Auto);
     assert!(used(&plan, "photons"), "{}", plan.text());
-    // A photon method (the caustic share decides between the hybrid and SPPM).
+    // A photon method (the caustic share decides between the hybrid and VCM).
     assert!(
-        matches!(plan.method, Method::Sppm | Method::Hybrid),
+        matches!(plan.method, Method::Sppm | Method::Hybrid | Method::Vcm),
         "{}",
         plan.text()
     );
     assert_eq!(
         plan.method,
-        iris::plan::resolve_method(Method::Auto, &scene).0
+        iris::plan::resolve_method(Method::Auto, &scene, &common::PINHOLE).0
     );
     assert!(!plan.spectral && !used(&plan, "volumes"), "{}", plan.text());
     let photons = &plan.stage("photons").unwrap().reason;
@@ -170,7 +170,12 @@ fn glass_sphere_on_floor_needs_photons_and_auto_follows() {
         "{photons}"
     );
     // An explicit method is kept and the reason still names the caustics.
-    let whitted = Plan::new(&scene, Method::Whitted, SpectralMode::Auto);
+    let whitted = Plan::new(
+        &scene,
+        &common::PINHOLE,
+        Method::Whitted,
+        SpectralMode::Auto,
+    );
     assert_eq!(whitted.method, Method::Whitted);
     assert!(!used(&whitted, "photons"));
     assert!(whitted
@@ -195,7 +200,7 @@ fn attenuating_glass_needs_beer_lambert() {
         attenuation_color: Vec3::new(0.9, 0.2, 0.2),
         ..common::clear_glass("ruby", 1.76)
     });
-    let plan = Plan::new(&scene, Method::Auto, SpectralMode::Auto);
+    let plan = Plan::new(&scene, &common::PINHOLE, Method::Auto, SpectralMode::Auto);
     assert!(used(&plan, "volumes"), "{}", plan.text());
     assert!(plan.stage("volumes").unwrap().reason.contains("ruby"));
 }
@@ -203,7 +208,7 @@ fn attenuating_glass_needs_beer_lambert() {
 #[test]
 fn measured_costs_name_their_measurements() {
     let (scene, cam) = sphere_on_floor(glass());
-    let mut plan = Plan::new(&scene, Method::Auto, SpectralMode::Auto);
+    let mut plan = Plan::new(&scene, &common::PINHOLE, Method::Auto, SpectralMode::Auto);
     assert!(plan.stages.iter().all(|s| s.cost.is_none()));
     plan.measure_costs(&scene, &Camera::new(&cam, 32, 24), 0)
         .expect("measure");
@@ -239,7 +244,8 @@ fn plan_of_every_shared_asset_matches_the_snapshot() {
         // floor, automatic view at the default 16:9).
         let planned =
             iris::app::default_preview_scene(&path, Backend::Bvh, (16, 9)).map(|(scene, _)| {
-                let mut plan = Plan::new(&scene, Method::Auto, SpectralMode::Auto);
+                let mut plan =
+                    Plan::new(&scene, &common::PINHOLE, Method::Auto, SpectralMode::Auto);
                 plan.add_file_counts(&path);
                 plan.text()
             });

@@ -295,7 +295,12 @@ fn the_sketchfab_diamond_becomes_a_diamond() {
         ..Default::default()
     };
     let plain = prepare(&path, &opts(vec![])).expect("prepare");
-    let plan = Plan::new(&plain.scene, Method::Auto, SpectralMode::Auto);
+    let plan = Plan::new(
+        &plain.scene,
+        &common::PINHOLE,
+        Method::Auto,
+        SpectralMode::Auto,
+    );
     assert!(
         !plan.spectral && plan.method == Method::Path,
         "{}",
@@ -319,7 +324,12 @@ fn the_sketchfab_diamond_becomes_a_diamond() {
     assert!(used
         .iter()
         .all(|m| m.is_transmissive() && m.is_volume() && m.is_dispersive()));
-    let plan = Plan::new(&stoned.scene, Method::Auto, SpectralMode::Auto);
+    let plan = Plan::new(
+        &stoned.scene,
+        &common::PINHOLE,
+        Method::Auto,
+        SpectralMode::Auto,
+    );
     assert!(plan.spectral, "{}", plan.text());
     assert!(
         matches!(plan.method, Method::Hybrid | Method::Sppm),

@@ -354,7 +354,7 @@ fn info_plan(path: &Path, flags: &[LookFlag]) -> Result<String> {
         },
     )?;
     let (scene, cam) = (&prepared.scene, &prepared.camera);
-    let mut plan = crate::plan::Plan::new(scene, Method::Auto, SpectralMode::Auto);
+    let mut plan = crate::plan::Plan::new(scene, &cam.projection, Method::Auto, SpectralMode::Auto);
     // `iris render`'s default output is a PNG under --denoise auto.
     let denoise = crate::denoise::mode::choose(Default::default(), Path::new("render.png"))?;
     plan.stages.push(denoise.stage());

@@ -97,7 +97,12 @@ impl<'a> RenderJob<'a> {
                 &format!("the render of {}", opts.scene.display()),
             )?;
         }
-        let mut plan = crate::plan::Plan::new(&prepared.scene, opts.method, opts.spectral);
+        let mut plan = crate::plan::Plan::new(
+            &prepared.scene,
+            &prepared.camera.projection,
+            opts.method,
+            opts.spectral,
+        );
         plan.stages.push(denoise.stage());
         let adaptive = super::adaptive::choose(
             super::adaptive::AdaptiveFlags {

@@ -110,7 +110,7 @@ pub struct GemArgs {
 pub struct ConvergeArgs {
     /// Scene file (.gltf, .glb, .obj).
     pub scene: PathBuf,
-    /// Methods to compare, comma-separated: whitted, path, photon, sppm, hybrid.
+    /// Methods to compare, comma-separated: whitted, path, photon, sppm, hybrid, vcm, bpt.
     #[arg(long, default_value = "path,photon,sppm")]
     pub methods: String,
     /// Time budget of each method in seconds (more than 0, at most 10000000).

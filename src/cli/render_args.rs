@@ -88,9 +88,10 @@ pub struct RenderArgs {
     /// 120 s, whichever comes first, and rewrites the output as it goes.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     pub spp: Option<u32>,
-    /// Rendering method: auto (the default: the path tracer when no light reaches a diffuse
-    /// surface through specular ones, else the hybrid or SPPM by the caustics' share of the
-    /// light; the reason is printed), whitted (recursive ray tracing, seed paper §4), path
+    /// Rendering method: auto (the default: from probe photons, the path tracer when no light
+    /// reaches a diffuse surface through specular ones, BPT instead in an enclosed room, VCM
+    /// for rough glass or where caustics carry 4 % or more of the light, else the hybrid; the
+    /// reason is printed), whitted (recursive ray tracing, seed paper §4), path
     /// (path tracing with next-event estimation and MIS), photon (classic photon mapping:
     /// caustic + global maps, final gather), sppm (stochastic progressive photon mapping:
     /// passes, converges), hybrid (the path tracer plus a progressive caustic photon map for

@@ -10,6 +10,7 @@
 //! - [`kdtree`]: the photon map, a kd-tree with k-nearest and radius queries.
 //! - [`grid`]: the hash grid for fixed-radius queries, rebuilt every SPPM pass.
 //! - [`trace`]: photon paths through the shared per-hit step in importance mode.
+//! - [`probe`]: fixed-seed probes for the render plan (caustic paths, light kept by a bounce).
 //!
 //! Units: photon power is flux in the lights' units (cd·sr = lm for punctual lights, nit·m²·sr
 //! for emitters), so that the sum over all photons emitted, divided by their number, is the
@@ -21,5 +22,6 @@ pub mod flux;
 pub mod grid;
 pub mod kdtree;
 pub mod numbers;
+pub mod probe;
 pub mod store;
 pub mod trace;

@@ -250,27 +250,3 @@ pub fn trace<C: Carrier>(
     }
     rays
 }
-
-/// Whether the scene has caustic paths: of `n` photons traced from the lights (fixed seed,
-/// emitted as the renderers emit them: Halton numbers, aimed at the caustic makers with
-/// [`super::emit::DEFAULT_AIM`]), at least one reaches a diffuse-like surface after specular
-/// bounces only.
-pub fn has_caustic_paths(scene: &Scene, emitter: &super::emit::PhotonEmitter, n: u32) -> bool {
-    let settings = TraceSettings {
-        max_depth: 8,
-        roulette: Roulette::Throughput,
-    };
-    let numbers = super::emit::PhotonNumbers::new(0xCA05_71C5);
-    (0..n).any(|i| {
-        let mut rng = Rng::new(&[0xCA05_71C5, i as u64]);
-        let aim = super::emit::DEFAULT_AIM;
-        let Some(ph) = emitter.emit_index(scene, &numbers, i as u64, aim) else {
-            return false;
-        };
-        let mut found = false;
-        trace::<Vec3>(scene, &ph, (), &settings, &mut rng, |v, _| {
-            found |= v.caustic && v.power != Vec3::ZERO;
-        });
-        found
-    })
-}

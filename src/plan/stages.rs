@@ -8,7 +8,7 @@ use crate::integrator::Method;
 use crate::light::env::Environment;
 use crate::material::Material;
 use crate::photon::emit::{PhotonEmitter, DEFAULT_AIM};
-use crate::photon::trace::has_caustic_paths;
+use crate::photon::probe::has_caustic_paths;
 use crate::scene::{Scene, Triangle};
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
@@ -104,7 +104,8 @@ pub(super) fn photons(ev: &Evidence, method: Method, resolved: Method, why: Opti
     let (scene, mats) = (ev.scene, |f: &dyn Fn(&Material) -> bool| ev.mats(f));
     let emitter = PhotonEmitter::new(scene);
     let caustics = if method == Method::Auto {
-        resolved != Method::Path
+        // Auto picks these only on a caustic path found by the same probe.
+        matches!(resolved, Method::Hybrid | Method::Vcm | Method::Sppm)
     } else {
         !emitter.is_empty() && has_caustic_paths(scene, &emitter, CAUSTIC_PROBE_PHOTONS)
     };
@@ -146,6 +147,7 @@ pub(super) fn photons(ev: &Evidence, method: Method, resolved: Method, why: Opti
         reason: match why
             .filter(|_| resolved != Method::Path)
             .and_then(|w| w.strip_prefix("--method auto: "))
+            .map(|w| w.strip_prefix("no caustic paths found; ").unwrap_or(w))
         {
             Some(w) => format!("{how}: {evidence}; {w}"),
             None => format!("{how}: {evidence}"),

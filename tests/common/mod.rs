@@ -334,3 +334,10 @@ pub fn render_settings(
         adaptive: None,
     }
 }
+
+/// A perspective camera's projection, for the plan of a scene built without a camera.
+#[allow(dead_code)]
+pub const PINHOLE: iris::scene::desc::Projection = iris::scene::desc::Projection::Perspective {
+    yfov: 0.9,
+    aspect: None,
+};

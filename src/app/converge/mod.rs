@@ -26,8 +26,8 @@ use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-/// Parses `--methods path,photon,sppm`: names from whitted, path, photon, sppm, hybrid, each at most
-/// once, at least one.
+/// Parses `--methods path,photon,sppm`: names from whitted, path, photon, sppm, hybrid, vcm,
+/// bpt, each at most once, at least one.
 pub fn parse_methods(list: &str) -> Result<Vec<Method>> {
     let mut methods = Vec::new();
     for name in list.split(',').map(str::trim) {
@@ -37,9 +37,11 @@ pub fn parse_methods(list: &str) -> Result<Vec<Method>> {
             "photon" => Method::Photon,
             "sppm" => Method::Sppm,
             "hybrid" => Method::Hybrid,
+            "vcm" => Method::Vcm,
+            "bpt" => Method::Bpt,
             _ => {
                 return Err(Error::Usage(format!(
-                "--methods {list}: unknown method {name:?} (accepted: whitted, path, photon, sppm, hybrid)"
+                "--methods {list}: unknown method {name:?} (accepted: whitted, path, photon, sppm, hybrid, vcm, bpt)"
             )))
             }
         };
@@ -167,9 +169,9 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
     );
     // The reference's method (without --reference).
     let reference_method = given_reference.is_none().then(|| {
-        match crate::plan::resolve_method(Method::Auto, &scene).0 {
-            // The reference stays SPPM for caustic scenes (not the hybrid under test).
-            Method::Hybrid => Method::Sppm,
+        match crate::plan::resolve_method(Method::Auto, &scene, &cam_desc.projection).0 {
+            // The reference stays SPPM for caustic scenes (not the hybrid or VCM under test).
+            Method::Hybrid | Method::Vcm => Method::Sppm,
             m => m,
         }
     });

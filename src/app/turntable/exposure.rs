@@ -75,7 +75,8 @@ pub fn locked(opts: &TurntableOptions, method: Method) -> Result<(Exposure, Opti
             sampler: r.sampler,
             threads: r.threads,
             quiet: true,
-            spectral: crate::plan::Plan::new(&p.scene, method, r.spectral).spectral,
+            spectral: crate::plan::Plan::new(&p.scene, &p.camera.projection, method, r.spectral)
+                .spectral,
             time_limit: None,
             adaptive: None,
         };

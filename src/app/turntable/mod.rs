@@ -273,7 +273,11 @@ fn frame_options(opts: &TurntableOptions, frame: u32) -> Result<RenderOptions> {
 fn frame_zero_method(opts: &TurntableOptions) -> Result<(Method, Option<String>)> {
     let ro = frame_options(opts, 0)?;
     let prepared = crate::prepare::prepare(&ro.scene, &ro.prepare_options(None))?;
-    Ok(crate::plan::resolve_method(Method::Auto, &prepared.scene))
+    Ok(crate::plan::resolve_method(
+        Method::Auto,
+        &prepared.scene,
+        &prepared.camera.projection,
+    ))
 }
 
 /// The partial outputs of `frame`.

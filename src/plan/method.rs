@@ -1,0 +1,167 @@
+//! `--method auto`: which method renders a scene, decided from fixed-seed photon probes of
+//! the scene ([`crate::photon::probe`], [`caustic::probe_share`]) and the camera's
+//! projection, with a reason naming the evidence. The probes' seeds are fixed, so the plan
+//! printed before a render and the render always agree.
+
+use crate::integrator::{caustic, Method};
+use crate::photon::emit::PhotonEmitter;
+use crate::photon::probe::{has_caustic_paths, kept_share};
+use crate::scene::desc::Projection;
+use crate::scene::Scene;
+
+/// Resolves [`Method::Auto`] for `scene` seen through a camera of `projection` among the
+/// path tracer, bidirectional path tracing, the hybrid, vertex connection and merging and
+/// SPPM. Returns the method and the reason. Two numbers decide besides the materials:
+/// - the **kept share** k ([`kept_share`]): of the light the lights bring to their first
+///   non-delta hits, the part a diffuse bounce brings to a second one. An enclosed room
+///   keeps about its albedo (the McGuire Cornell boxes: 0.57–0.59); every open scene
+///   measured keeps at most 0.21 (TransmissionRoughnessTest; the studio-lit stones 0.002).
+///   Where k ≥ [`AUTO_ENCLOSED_FROM`], most light reaching the camera has bounced, and
+///   light subpaths find it more cheaply than camera paths do.
+/// - the **caustic share** s ([`caustic::probe_share`]): of the light at first non-delta
+///   hits, the part that came through delta bounces (L S+ D).
+///
+/// The rule:
+/// 1. no light reaches a diffuse-like surface through specular ones ([`has_caustic_paths`])
+///    → **BPT** if enclosed, else **path**;
+/// 2. a transmissive material is rough ([`rough_glass`]): light focused through rough glass
+///    (L G+ D) is neither the path tracer's strength (a point light is reached only by
+///    next-event estimation at the last rough interface: fireflies) nor the hybrid's
+///    caustic map's (delta chains only) → **VCM**, whose light subpaths carry every chain;
+/// 3. s < [`AUTO_HYBRID_BELOW`] → **VCM** if enclosed, else the **hybrid** (the path tracer
+///    for everything it reaches, the caustic map only for the L S+ D paths);
+/// 4. otherwise (the caustics are the picture: a stone under a narrow spot, a point-light
+///    caustic seen directly, a floor seen through water) → **VCM**.
+///
+/// VCM and BPT need a pinhole (light subpaths connect to the camera): under an orthographic
+/// camera rules 2 and 4 pick **SPPM** and rules 1 and 3 the path tracer and the hybrid.
+///
+/// Measured (BENCHMARKS.md "Choosing VCM and BPT", `scripts/auto-evidence.sh`, 10 s per
+/// render, relative RMSE between two seeds, 2-vCPU VM):
+/// - rules 2 and 4, VCM against SPPM: 5–10× lower on CompareDispersion, CompareIor and
+///   TransmissionTest; level (±10 %) on CompareTransmission, CompareVolume and
+///   GlassBrokenWindow; 1.14× higher on gem_caustics. On the point-light caustic sphere
+///   21× lower floor error against a Mitsuba reference; in the Cornell water box 1.35×
+///   higher relative MSE but 3.7× lower RMSE/mean (BENCHMARKS.md "Vertex connection and
+///   merging").
+/// - rule 3, open scenes: the hybrid 1.25–2.5× lower than VCM on the paper's figures 4.5.1,
+///   7.1, 7.2, the rainbow and DispersionTest (BENCHMARKS.md "Converging faster" has the
+///   hybrid against SPPM, whence the 4 %).
+/// - rule 3, enclosed: VCM 1.8× lower than the hybrid in the Cornell box with spheres.
+/// - rule 1: BPT 3.3× lower than the path tracer in the Cornell box; the path tracer 1.8–2.3×
+///   lower than BPT on the open scenes (Khronos Box, clearcoat, sheen, the Sketchfab
+///   diamond).
+pub fn resolve_method(
+    method: Method,
+    scene: &Scene,
+    projection: &Projection,
+) -> (Method, Option<String>) {
+    if method != Method::Auto {
+        return (method, None);
+    }
+    let (m, why) = choose(scene, matches!(projection, Projection::Perspective { .. }));
+    (m, Some(format!("--method auto: {why}")))
+}
+
+/// The rule of [`resolve_method`] for a pinhole camera or not.
+fn choose(scene: &Scene, pinhole: bool) -> (Method, String) {
+    let emitter = PhotonEmitter::new(scene);
+    if emitter.is_empty() {
+        return (
+            Method::Path,
+            "no light to trace photons from: path tracer".into(),
+        );
+    }
+    let kept = kept_share(scene, &emitter, CAUSTIC_PROBE_PHOTONS);
+    let enclosed = kept >= AUTO_ENCLOSED_FROM;
+    let room = format!(
+        "a diffuse bounce keeps {:.1} % of the light in the scene ({} from {:.0} %)",
+        100.0 * kept,
+        if enclosed {
+            "enclosed"
+        } else {
+            "open; enclosed"
+        },
+        100.0 * AUTO_ENCLOSED_FROM
+    );
+    let orthographic = "VCM and BPT need a perspective camera; this one is orthographic";
+    if !has_caustic_paths(scene, &emitter, CAUSTIC_PROBE_PHOTONS) {
+        return match (enclosed, pinhole) {
+            (true, true) => (
+                Method::Bpt,
+                format!("no caustic paths found; {room}: bidirectional path tracing (BPT)"),
+            ),
+            (true, false) => (
+                Method::Path,
+                format!("no caustic paths found; {room}: path tracer ({orthographic})"),
+            ),
+            (false, _) => (
+                Method::Path,
+                format!("no caustic paths found; {room}: path tracer"),
+            ),
+        };
+    }
+    let bidirectional = if pinhole {
+        (Method::Vcm, "VCM".to_string())
+    } else {
+        (Method::Sppm, format!("SPPM ({orthographic})"))
+    };
+    if let Some(name) = rough_glass(scene) {
+        return (
+            bidirectional.0,
+            format!(
+                "rough transmissive material {name} focuses light the path tracer reaches only \
+                 by chance and the hybrid's caustic map does not carry: {}",
+                bidirectional.1
+            ),
+        );
+    }
+    let share = caustic::probe_share(scene, CAUSTIC_PROBE_PHOTONS);
+    let carry = format!(
+        "caustics carry {:.2} % of the light reaching diffuse surfaces",
+        100.0 * share
+    );
+    let below = 100.0 * AUTO_HYBRID_BELOW;
+    match (share < AUTO_HYBRID_BELOW, enclosed && pinhole) {
+        (true, false) => (
+            Method::Hybrid,
+            format!("{carry} (under {below:.0} %); {room}: path tracer + caustic map (hybrid)"),
+        ),
+        (true, true) => (
+            Method::Vcm,
+            format!("{carry} (under {below:.0} %); {room}: VCM"),
+        ),
+        (false, _) => (
+            bidirectional.0,
+            format!(
+                "{carry} (the hybrid is chosen under {below:.0} %): {}",
+                bidirectional.1
+            ),
+        ),
+    }
+}
+
+/// The first transmissive material with a rough surface (GGX roughness factor above
+/// [`ROUGH_GLASS`]), by its label (`material N "name"`), if any.
+fn rough_glass(scene: &Scene) -> Option<String> {
+    scene
+        .materials()
+        .iter()
+        .find(|m| m.is_transmissive() && m.desc.roughness > ROUGH_GLASS)
+        .map(|m| m.desc.name.clone())
+}
+
+/// Roughness above which a transmissive material counts as rough glass for `--method auto`.
+pub const ROUGH_GLASS: f32 = 0.05;
+
+/// The caustic share under which `--method auto` picks the hybrid (or, enclosed, VCM) over
+/// VCM or SPPM ([`resolve_method`], from the measurements cited there).
+pub const AUTO_HYBRID_BELOW: f64 = 0.04;
+
+/// The kept share from which `--method auto` counts a scene as enclosed and picks the
+/// bidirectional methods ([`resolve_method`]): between the open scenes' largest (0.21) and
+/// the Cornell boxes' smallest (0.57) measured.
+pub const AUTO_ENCLOSED_FROM: f64 = 0.35;
+
+/// Probe photons behind the decisions (the number [`resolve_method`] uses).
+pub const CAUSTIC_PROBE_PHOTONS: u32 = 4096;
