@@ -183,9 +183,9 @@ impl<'a> Splatter<'a> {
 
 /// The pass's splat image (`pixels` entries, row-major): `chunks` added in order (a fixed
 /// order whatever the thread count, so the image is bit-identical).
-pub fn splat_image(chunks: &[Vec<Splat>], pixels: usize) -> Vec<Vec3> {
+pub fn splat_image<S: AsRef<[Splat]>>(chunks: &[S], pixels: usize) -> Vec<Vec3> {
     let mut img = vec![Vec3::ZERO; pixels];
-    for &(i, rgb) in chunks.iter().flatten() {
+    for &(i, rgb) in chunks.iter().flat_map(|c| c.as_ref()) {
         if let Some(p) = img.get_mut(i as usize) {
             *p += rgb;
         }

@@ -273,9 +273,8 @@ impl<C: Carrier> CameraKit<'_, C> {
             return C::ZERO;
         }
         let mut sum = C::ZERO;
-        let vertices = &self.lights.vertices;
         self.grid.for_each_within(s.hit.p, self.radius, |i, _| {
-            let v = &vertices[i as usize];
+            let v = self.lights.vertex(i as usize);
             if w.depth + v.depth > self.max_depth + 1 {
                 return;
             }

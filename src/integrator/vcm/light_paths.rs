@@ -17,7 +17,7 @@
 //!
 //! Determinism: light subpath `i` of pass `p` is a pure function of the seed, `p` and `i`
 //! (Halton emission numbers over the index p·n + i, a stream for its bounces); subpaths
-//! are traced in fixed chunks and concatenated in chunk order.
+//! are traced in fixed chunks, kept in chunk order.
 
 use super::mis::{LightEnd, Partials, Pass};
 use crate::bsdf::TransportMode;
@@ -52,28 +52,65 @@ pub struct LightVertex<C: Carrier> {
     pub depth: u32,
 }
 
-/// What a pass's light subpaths leave: their vertices, where each subpath's start, and the
-/// splats of light tracing.
+/// What a pass's light subpaths leave: their vertices in the chunks they were traced in
+/// (kept apart, so the pass holds its vertices once: a light vertex takes about 0.5 kB),
+/// where each subpath starts, and the splats of light tracing.
 pub struct LightPaths<C: Carrier> {
-    pub vertices: Vec<LightVertex<C>>,
-    /// Subpath `i`'s vertices are `vertices[starts[i]..starts[i + 1]]`.
-    pub starts: Vec<u32>,
-    pub splats: Vec<Splat>,
+    chunks: Vec<Chunk<C>>,
+    /// Chunk `k`'s first vertex has the global index `offsets[k]`; the last entry is the
+    /// number of vertices.
+    offsets: Vec<usize>,
+    /// Light subpaths traced.
+    count: usize,
     pub rays: u64,
+}
+
+/// The subpaths `k·CHUNK ..` of one chunk.
+struct Chunk<C: Carrier> {
+    vertices: Vec<LightVertex<C>>,
+    /// Subpath `k·CHUNK + j`'s vertices are `vertices[starts[j]..starts[j + 1]]`.
+    starts: Vec<u32>,
+    splats: Vec<Splat>,
 }
 
 impl<C: Carrier> LightPaths<C> {
     /// The light subpaths traced.
     pub fn count(&self) -> usize {
-        self.starts.len() - 1
+        self.count
     }
 
     /// The vertices of light subpath `i` (empty past the last).
     pub fn path(&self, i: usize) -> &[LightVertex<C>] {
-        match (self.starts.get(i), self.starts.get(i + 1)) {
-            (Some(&a), Some(&b)) => &self.vertices[a as usize..b as usize],
+        let Some(c) = self.chunks.get(i / CHUNK) else {
+            return &[];
+        };
+        let j = i % CHUNK;
+        match (c.starts.get(j), c.starts.get(j + 1)) {
+            (Some(&a), Some(&b)) => &c.vertices[a as usize..b as usize],
             _ => &[],
         }
+    }
+
+    /// All light vertices of the pass.
+    pub fn len(&self) -> usize {
+        self.offsets.last().copied().unwrap_or(0)
+    }
+
+    /// The light vertex with global index `g` < [`Self::len`] (chunk order, then subpath
+    /// order: the index the merging grid holds).
+    pub fn vertex(&self, g: usize) -> &LightVertex<C> {
+        let k = self.offsets.partition_point(|&o| o <= g) - 1;
+        &self.chunks[k].vertices[g - self.offsets[k]]
+    }
+
+    /// Every light vertex in global index order.
+    pub fn vertices(&self) -> impl Iterator<Item = &LightVertex<C>> + '_ {
+        self.chunks.iter().flat_map(|c| c.vertices.iter())
+    }
+
+    /// The light-tracing splats, in chunk order (for [`crate::integrator::light_trace::splat_image`]).
+    pub fn splats(&self) -> Vec<&[Splat]> {
+        self.chunks.iter().map(|c| c.splats.as_slice()).collect()
     }
 }
 
@@ -97,36 +134,34 @@ impl LightKit<'_> {
         lambda: C::Lambda,
         mis: &Pass,
     ) -> LightPaths<C> {
-        let chunks: Vec<_> = (0..n.div_ceil(CHUNK))
+        let chunks: Vec<(Chunk<C>, u64)> = (0..n.div_ceil(CHUNK))
             .into_par_iter()
             .map(|c| {
-                let (mut vs, mut lens, mut splats, mut rays) =
-                    (Vec::new(), Vec::new(), Vec::new(), 0);
+                let (mut vs, mut starts, mut splats, mut rays) =
+                    (Vec::new(), vec![0u32], Vec::new(), 0);
                 for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
-                    let before = vs.len();
                     let index = u64::from(pass) * n as u64 + i as u64;
                     self.path(index, lambda, mis, (&mut vs, &mut splats), &mut rays);
-                    lens.push((vs.len() - before) as u32);
+                    starts.push(vs.len() as u32);
                 }
-                (vs, lens, splats, rays)
+                let chunk = Chunk {
+                    vertices: vs,
+                    starts,
+                    splats,
+                };
+                (chunk, rays)
             })
             .collect();
-        let mut out = LightPaths {
-            vertices: Vec::new(),
-            starts: vec![0],
-            splats: Vec::new(),
-            rays: 0,
-        };
-        for (vs, lens, splats, rays) in chunks {
-            for l in lens {
-                let last = *out.starts.last().unwrap_or(&0);
-                out.starts.push(last + l);
-            }
-            out.vertices.extend(vs);
-            out.splats.extend(splats);
-            out.rays += rays;
+        let mut offsets = vec![0];
+        for (c, _) in &chunks {
+            offsets.push(offsets.last().unwrap_or(&0) + c.vertices.len());
         }
-        out
+        LightPaths {
+            count: n,
+            rays: chunks.iter().map(|(_, r)| r).sum(),
+            chunks: chunks.into_iter().map(|(c, _)| c).collect(),
+            offsets,
+        }
     }
 
     /// The densities of the photon's start ([`PhotonEmitter::densities`]); for an

@@ -172,7 +172,7 @@ impl Run<'_> {
             self.scene,
             self.camera,
             self.settings,
-            paths.vertices.iter().map(light_paths::position),
+            paths.vertices().map(light_paths::position),
         );
         r * RADIUS_SCALE
     }
@@ -201,11 +201,11 @@ impl Run<'_> {
             let weights = mis::Pass::new(r, n as f32, self.vcm.merge);
             let lights: LightPaths<C> = kit.trace(pass, n, lambda, &weights);
             if weights.merges() {
-                let vs = &lights.vertices;
-                grid.rebuild_with(vs.len(), |i| light_paths::position(&vs[i]), r);
+                let vs = &lights;
+                grid.rebuild_with(vs.len(), |i| light_paths::position(vs.vertex(i)), r);
             }
             let pixels = settings.width as usize * settings.height as usize;
-            let splats = light_trace::splat_image(std::slice::from_ref(&lights.splats), pixels);
+            let splats = light_trace::splat_image(&lights.splats(), pixels);
             let cam = CameraKit {
                 scene: self.scene,
                 camera: self.camera,
@@ -223,7 +223,7 @@ impl Run<'_> {
                 rays: rays + lights.rays,
                 bad,
                 photons: n as u64,
-                note: format!(", r {r:.3e}, {} light vertices", lights.vertices.len()),
+                note: format!(", r {r:.3e}, {} light vertices", lights.len()),
             })
         })
     }
