@@ -127,9 +127,9 @@ fn checkpoints_write_the_image_while_passes_run_and_time_stops_them() {
 
 /// `--method auto` says which method and why: the point light's small caustic under the
 /// glass sphere in a lit room → the hybrid; the stone under a 3° spot, whose light is mostly
-/// caustic → SPPM; a scene with nothing specular → the path tracer.
+/// caustic → VCM; a scene with nothing specular → the path tracer.
 #[test]
-fn auto_picks_hybrid_sppm_or_path() {
+fn auto_picks_hybrid_vcm_or_path() {
     let dir = common::scratch_dir("cli_auto");
     let run = |file: &str, out: &str| {
         iris(
@@ -158,7 +158,7 @@ fn auto_picks_hybrid_sppm_or_path() {
     assert!(stderr(&o).contains("(hybrid)"), "{}", stderr(&o));
     let o = run("scenes/gem_caustics.glb", "g.png");
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(stderr(&o).contains("): SPPM"), "{}", stderr(&o));
+    assert!(stderr(&o).contains("): VCM"), "{}", stderr(&o));
     // A scene with no transmissive or mirror material: the path tracer.
     let mut scene = iris::authoring::GenScene {
         name: "diffuse only".into(),
