@@ -1,7 +1,8 @@
 //! The glTF scene-level `extras.iris_environment` (an environment light named by the file):
-//! a map path relative to the glTF file, a grey value or `[r, g, b]`; bad values are load
-//! errors naming the file and the element; `--env` overrides it and `--env none` turns it
-//! off.
+//! a map path relative to the glTF file, a grey value, `[r, g, b]` or a computed sky
+//! (`"sky:elevation=…"`, which also brings its sun as a directional light); bad values are
+//! load errors naming the file and the element; `--env` overrides it and `--env none` turns
+//! it off.
 
 mod common;
 
@@ -83,6 +84,14 @@ fn good_values_are_read_and_paths_resolve_next_to_the_file() {
             json!({"iris_environment": [1, 0.5, 0]}),
             Some(EnvironmentDesc::Uniform(Vec3::new(1.0, 0.5, 0.0))),
         ),
+        (
+            json!({"iris_environment": "sky:elevation=20, azimuth=45"}),
+            Some(EnvironmentDesc::Sky(iris::light::sky::SkyParams {
+                elevation: 20.0,
+                azimuth: 45.0,
+                turbidity: 2.0,
+            })),
+        ),
         (json!({"other": 1}), None),
         (json!("not an object"), None),
     ];
@@ -111,6 +120,8 @@ fn bad_values_name_the_file_and_the_element() {
         (json!([1, -2, 3]), "finite numbers ≥ 0"),
         (json!([1, "x", 3]), "finite numbers ≥ 0"),
         (json!(true), "expected a .exr/.hdr file name"),
+        (json!("sky:elevation=100"), "elevation 100 is outside"),
+        (json!("sky:azimuth=3"), "elevation=DEG is required"),
     ];
     for (i, (value, reason)) in cases.into_iter().enumerate() {
         let path = write(
@@ -149,7 +160,7 @@ fn flag_overrides_the_file_and_none_turns_it_off() {
     let red = Environment::Uniform { radiance: Vec3::X };
     let radiance = |e: Option<Environment>| match e {
         Some(Environment::Uniform { radiance }) => Some(radiance),
-        Some(Environment::Map(_)) => Some(Vec3::NAN),
+        Some(Environment::Map(_) | Environment::Sky(_)) => Some(Vec3::NAN),
         None => None,
     };
     let r = |flag, file| radiance(resolve_environment(flag, file).expect("resolve"));
@@ -257,4 +268,35 @@ fn cli_env_flag_defaults_to_the_file_and_none_turns_it_off() {
             < 1e-6
     );
     assert_eq!(run(&["--env", "none"]), Vec3::ZERO);
+}
+
+/// A file's sky becomes the scene's environment, and its sun a directional light travelling
+/// away from the sun (down, towards −X for a sun in the +X sky), orange-white at 20°.
+#[test]
+fn a_sky_in_the_file_brings_its_sun() {
+    let dir = common::scratch_dir("scene_env_sky");
+    let path = write(
+        &dir,
+        "sky.glb",
+        Some(json!({"iris_environment": "sky:elevation=20,azimuth=90"})),
+    );
+    let p = iris::prepare::prepare(&path, &Default::default()).expect("prepare");
+    assert!(matches!(p.scene.environment(), Some(Environment::Sky(_))));
+    let suns: Vec<_> = p
+        .scene
+        .lights()
+        .iter()
+        .filter_map(|l| match l.light {
+            iris::light::Light::Directional {
+                direction,
+                illuminance,
+            } => Some((direction, illuminance)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(suns.len(), 1, "{:?}", p.scene.lights());
+    let (dir, e) = suns[0];
+    let want = -Vec3::new(20f32.to_radians().cos(), 20f32.to_radians().sin(), 0.0);
+    assert!(dir.abs_diff_eq(want, 1e-4), "{dir} vs {want}");
+    assert!(e.x > e.y && e.y > e.z && e.z > 0.0, "{e}");
 }

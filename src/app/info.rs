@@ -304,6 +304,14 @@ fn write_environment(s: &mut String, environment: Option<&EnvironmentDesc>) {
                 p.display()
             );
         }
+        Some(EnvironmentDesc::Sky(p)) => {
+            let _ = writeln!(
+                s,
+                "  environment (file): sky, sun at elevation {}°, azimuth {}°, turbidity {} \
+                 (--env overrides)",
+                p.elevation, p.azimuth, p.turbidity
+            );
+        }
         None => {}
     }
 }

@@ -10,6 +10,7 @@
 //! |---|---|---|---|---|
 //! | `glass_of_water.glb` | a tapered tumbler (Ø 60→72 mm, 110 mm tall, 2.5 mm wall, 8 mm base, 96 segments, rounded rim) holding water up to 75 mm; the water's side and bottom are the glass's inner wall and floor with reversed winding (same vertices); 0.5 mm above a checker table (24×16 tiles of 25 mm) before a checker backdrop at z = −0.2 | glass IOR 1.5; water IOR 1.33, faint blue-green absorption (attenuation colour (0.8, 0.93, 0.96) over 0.25 m) | key panel 16×16 cm facing down at (−0.12, 0.4, 0.12), radiance 60; fill panel 60×30 cm facing −Z at z = 0.6, radiance 3 | eye (0, 0.12, 0.38) → (0, 0.055, 0), yfov 28°, 1:1 |
 //! | `ruby.glb` | round brilliant ([`Brilliant::ideal`], Ø 20 mm, 73 facets) lying on a pavilion main, table tilted 40.75° towards the camera, 0.2 mm above a plain floor | ruby: IOR 1.77, dispersion 0.28 (Abbe ≈ 72), attenuation colour (0.9, 0.1, 0.18) over 20 mm; floor 0.85 grey | panels 5×5 cm radiance 40 (front-left) and 4×4 cm radiance 30 (back-right), facing down; scene extras `iris_environment: 0.15` (uniform grey) | eye (0.015, 0.038, 0.075) → (0, 0.006, 0), yfov 30°, 1:1 |
+//! | `sunset_sphere.glb` | a glass sphere (r 0.1 m, 4 subdivisions) 1 mm above a 3×3 m checker floor (0.15 m tiles) framed by plain floor out to ±60 m | glass IOR 1.5; checker 0.8 / 0.55 grey, plain floor 0.7 | scene extras `iris_environment: "sky:elevation=4,azimuth=20"` ([`crate::light::sky`]: a computed sky whose sun, 4° up, 20° right of −Z, lights the sphere from behind; its caustic and shadow stretch towards the camera) | eye (0.15, 0.22, 0.75) → (0, 0.1, 0), yfov 40°, 16:9 |
 //! | `prism_sky.glb` + `sky.hdr` | an upright 60° prism (side 0.25, height 0.4, apex towards +Z) 1 mm above a 3×3 m checker floor (0.15 m tiles) framed by plain floor out to ±60 m | prism glass IOR 1.5, dispersion 1.0 (Abbe 20); checker 0.8 / 0.55 grey, plain floor 0.7 | scene extras `iris_environment: "sky.hdr"` ([`super::sky`]: sky, ground, four coloured panels, sun at elevation 30° whose light crosses the prism near minimum deviation and lands on the floor on the +Z side) | eye (0.55, 0.3, 0.8) → (−0.05, 0.12, 0.1), yfov 45°, 1:1 |//!
 //! `fig5_3_1_prism_beam.glb` (a white beam through an N-BK7 prism at minimum deviation
 //! onto a screen) and `diamond.glb` (IOR 2.42, dispersion 0.36) are built in
@@ -38,7 +39,7 @@ pub const SKY_FILE: &str = "sky.hdr";
 
 /// File names and builders of the scenes, in the order [`write_scene_assets`] writes them
 /// (the sky map [`SKY_FILE`] comes last).
-pub const SCENES: [(&str, SceneBuilder); 7] = [
+pub const SCENES: [(&str, SceneBuilder); 8] = [
     ("glass_of_water.glb", glass_of_water),
     ("ruby.glb", ruby),
     ("prism_sky.glb", prism_sky),
@@ -46,6 +47,7 @@ pub const SCENES: [(&str, SceneBuilder); 7] = [
     ("diamond.glb", diamond),
     ("fig5_3_1_rainbow.glb", fig5_3_1_rainbow),
     ("gem_caustics.glb", gem_caustics),
+    ("sunset_sphere.glb", sunset_sphere),
 ];
 
 /// The drinking glass of [`glass_of_water`].
@@ -186,17 +188,37 @@ pub fn ruby() -> GenScene {
     s
 }
 
-/// A dispersive prism standing on a floor under the generated sky.
-pub fn prism_sky() -> GenScene {
+/// A glass sphere on a checker floor at sunset (a computed sky, [`crate::light::sky`]).
+pub fn sunset_sphere() -> GenScene {
     let mut s = GenScene {
-        name: "Prism under the sky".into(),
-        extras: Some(serde_json::json!({"iris_environment": SKY_FILE})),
+        name: "Glass sphere at sunset".into(),
+        extras: Some(serde_json::json!({"iris_environment": "sky:elevation=4,azimuth=20"})),
         ..GenScene::default()
     };
-    // A 3×3 m checker of 0.15 m tiles around the prism, framed by plain floor out to
-    // ±60 m (four quads that meet the checker's edges, no overlap).
-    add_checker(
+    add_floor_to_the_horizon(&mut s);
+    let glass = GenMaterial::clear_glass("Glass IOR 1.5", 1.5, 0.2);
+    let sphere = crate::authoring::shapes::icosphere(0.1, 4);
+    add_mesh(
         &mut s,
+        "Sphere",
+        sphere,
+        glass,
+        Some(Vec3::new(0.0, 0.101, 0.0)),
+    );
+    s.camera = Some(camera(
+        Vec3::new(0.15, 0.22, 0.75),
+        Vec3::new(0.0, 0.1, 0.0),
+        40.0,
+        16.0 / 9.0,
+    ));
+    s
+}
+
+/// A 3×3 m checker of 0.15 m tiles around the origin, framed by plain floor out to ±60 m
+/// (four quads that meet the checker's edges, no overlap).
+fn add_floor_to_the_horizon(s: &mut GenScene) {
+    add_checker(
+        s,
         "Floor",
         checkerboard(20, 20, 0.15),
         (Vec3::splat(0.8), Vec3::splat(0.55)),
@@ -217,7 +239,17 @@ pub fn prism_sky() -> GenScene {
         append(&mut frame, &quad);
     }
     let floor = GenMaterial::diffuse("Floor plain", Vec3::splat(0.7));
-    add_mesh(&mut s, "Floor plain", frame, floor, None);
+    add_mesh(s, "Floor plain", frame, floor, None);
+}
+
+/// A dispersive prism standing on a floor under the generated sky.
+pub fn prism_sky() -> GenScene {
+    let mut s = GenScene {
+        name: "Prism under the sky".into(),
+        extras: Some(serde_json::json!({"iris_environment": SKY_FILE})),
+        ..GenScene::default()
+    };
+    add_floor_to_the_horizon(&mut s);
     let mut glass = GenMaterial::clear_glass("Prism glass IOR 1.5", 1.5, 0.25);
     glass.dispersion = Some(1.0);
     // Axis vertical: the prism's Z axis turns to −Y, its apex (+Y) to +Z.

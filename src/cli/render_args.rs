@@ -125,9 +125,11 @@ pub struct RenderArgs {
     /// PNG exposure and tone map.
     #[command(flatten)]
     pub png: PngArgs,
-    /// Environment light: `none`, a grey value or `R,G,B` radiance, or an equirectangular
-    /// .exr/.hdr map (+Y up; the image centre looks along −Z). Default: the scene file's
-    /// `iris_environment` (glTF scene extras), else none.
+    /// Environment light: `none`, a grey value or `R,G,B` radiance, an equirectangular
+    /// .exr/.hdr map (+Y up; the image centre looks along −Z), or a computed clear sky and
+    /// its sun, `sky:elevation=DEG[,azimuth=DEG,turbidity=T]` (elevation −10 to 90, azimuth
+    /// from −Z towards +X, default 0, turbidity 1 to 10, default 2). Default: the scene
+    /// file's `iris_environment` (glTF scene extras), else none.
     #[arg(long, allow_hyphen_values = true)]
     pub env: Option<String>,
     /// Spectral transport (4 wavelengths per sample, CIE colour): `auto` when a material is

@@ -87,23 +87,27 @@ pub(super) fn punctual_flux(light: &Light, radius: f32) -> Vec3 {
 pub(super) fn environment_integral(env: &Environment) -> Vec3 {
     match env {
         Environment::Uniform { radiance } => *radiance * (4.0 * PI),
-        Environment::Map(m) => {
-            let (w, h) = (m.width(), m.height());
-            let dtheta = std::f64::consts::PI / h as f64;
-            let mut sum = [0.0f64; 3];
-            for y in 0..h {
-                let d_omega = 2.0 * std::f64::consts::PI / w as f64
-                    * ((y as f64 * dtheta).cos() - ((y + 1) as f64 * dtheta).cos());
-                for x in 0..w {
-                    let t = m.texel(x, y);
-                    for (s, c) in sum.iter_mut().zip([t.x, t.y, t.z]) {
-                        *s += c as f64 * d_omega;
-                    }
-                }
+        Environment::Map(m) => map_integral(m),
+        Environment::Sky(sky) => map_integral(&sky.map),
+    }
+}
+
+/// ∫ L dω of an equirectangular map (the exact texel sum).
+fn map_integral(m: &crate::light::env::EnvMap) -> Vec3 {
+    let (w, h) = (m.width(), m.height());
+    let dtheta = std::f64::consts::PI / h as f64;
+    let mut sum = [0.0f64; 3];
+    for y in 0..h {
+        let d_omega = 2.0 * std::f64::consts::PI / w as f64
+            * ((y as f64 * dtheta).cos() - ((y + 1) as f64 * dtheta).cos());
+        for x in 0..w {
+            let t = m.texel(x, y);
+            for (s, c) in sum.iter_mut().zip([t.x, t.y, t.z]) {
+                *s += c as f64 * d_omega;
             }
-            Vec3::new(sum[0] as f32, sum[1] as f32, sum[2] as f32)
         }
     }
+    Vec3::new(sum[0] as f32, sum[1] as f32, sum[2] as f32)
 }
 
 /// RGB flux of all emissive triangles: Σ L·π·A·sides (emissive factor, no texture), over

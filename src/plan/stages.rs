@@ -320,6 +320,19 @@ pub(super) fn environment(scene: &Scene) -> Stage {
                 m.height()
             ),
         ),
+        Some(Environment::Sky(sky)) => (
+            true,
+            format!(
+                "sky at sun elevation {}°, azimuth {}°, turbidity {} (single Rayleigh and \
+                 Mie scattering, spectral): map {}x{}, importance-sampled, and the sun as a \
+                 directional light",
+                sky.params.elevation,
+                sky.params.azimuth,
+                sky.params.turbidity,
+                sky.map.width(),
+                sky.map.height()
+            ),
+        ),
     };
     Stage {
         name: "environment",

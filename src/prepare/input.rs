@@ -41,7 +41,25 @@ pub fn resolve_environment(
         (None, Some(EnvironmentDesc::Map(path))) => {
             Ok(Some(Environment::Map(crate::light::env::load(&path)?)))
         }
+        (None, Some(EnvironmentDesc::Sky(params))) => Ok(Some(Environment::Sky(Box::new(
+            crate::light::sky::Sky::new(params)?,
+        )))),
     }
+}
+
+/// The sun of a computed sky as the scene's directional light `sky sun` (travelling away
+/// from the sun; colour normalised to a largest component of 1, intensity that component
+/// of the irradiance, in Iris's lux); `None` below the horizon.
+pub fn sun_light(sky: &crate::light::sky::Sky) -> Option<crate::scene::desc::LightDesc> {
+    let (rgb, dir) = sky.sun?;
+    let peak = rgb.max_element();
+    Some(crate::scene::desc::LightDesc::Directional {
+        name: "sky sun".into(),
+        direction: -dir,
+        color: rgb / peak,
+        intensity: peak,
+        spectrum: None,
+    })
 }
 
 /// The default image size: 800 wide at the first camera's aspect ratio (or 4:3).

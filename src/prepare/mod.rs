@@ -115,6 +115,9 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
     };
     let load_time = start.elapsed();
     desc.environment_light = resolve_environment(opts.env.clone(), desc.environment.take())?;
+    if let Some(Environment::Sky(sky)) = &desc.environment_light {
+        desc.lights.extend(input::sun_light(sky));
+    }
     let (w, h) = opts.size.unwrap_or_else(|| default_size(&desc.cameras));
     check_size(w, h)?;
     let meshes = &desc.meshes;

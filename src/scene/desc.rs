@@ -85,6 +85,8 @@ pub enum EnvironmentDesc {
     /// An equirectangular `.exr`/`.hdr` map (same convention as `--env FILE`), its path
     /// already resolved against the scene file's directory; the file exists.
     Map(PathBuf),
+    /// A computed sky (`"sky:elevation=…"`, as `--env sky:…`).
+    Sky(crate::light::sky::SkyParams),
 }
 
 /// One triangle mesh in world space.

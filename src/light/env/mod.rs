@@ -46,6 +46,9 @@ pub enum Environment {
     },
     /// An equirectangular radiance map.
     Map(EnvMap),
+    /// A computed sky (`--env sky:…`): its map; its sun is a directional light of the
+    /// scene ([`crate::light::sky`]).
+    Sky(Box<crate::light::sky::Sky>),
 }
 
 /// A direction sampled from an [`Environment`].
@@ -63,11 +66,19 @@ impl Environment {
     /// Parses an `--env` value: `none` → `None`; `R,G,B` or a single grey value → uniform
     /// radiance (finite, ≥ 0, else [`Error::Usage`] naming `--env`); anything else is a
     /// path to a `.exr` or `.hdr` equirectangular map (errors name the file). A value made
-    /// only of numbers is always a colour, never a file name.
+    /// only of numbers is always a colour, never a file name. `sky:KEY=VALUE,…` is a
+    /// computed sky ([`crate::light::sky::SkyParams::parse`]).
     pub fn parse_arg(s: &str) -> Result<Option<Environment>> {
         let t = s.trim();
         if t.eq_ignore_ascii_case("none") {
             return Ok(None);
+        }
+        if let Some(rest) = t.strip_prefix("sky:") {
+            let params = crate::light::sky::SkyParams::parse(rest)
+                .map_err(|why| Error::Usage(format!("--env {s:?}: {why}")))?;
+            return Ok(Some(Environment::Sky(Box::new(
+                crate::light::sky::Sky::new(params)?,
+            ))));
         }
         let parts: Vec<&str> = t.split(',').map(str::trim).collect();
         let nums: Option<Vec<f32>> = parts.iter().map(|p| p.parse::<f32>().ok()).collect();
@@ -96,6 +107,7 @@ impl Environment {
         match self {
             Environment::Uniform { radiance } => *radiance,
             Environment::Map(m) => m.eval(dir),
+            Environment::Sky(s) => s.map.eval(dir),
         }
     }
 
@@ -115,6 +127,11 @@ impl Environment {
                 m.sample(u)
                     .map(|(wi, radiance, pdf)| EnvSample { wi, radiance, pdf })
             }
+            Environment::Sky(s) => {
+                s.map
+                    .sample(u)
+                    .map(|(wi, radiance, pdf)| EnvSample { wi, radiance, pdf })
+            }
         }
     }
 
@@ -123,6 +140,7 @@ impl Environment {
         match self {
             Environment::Uniform { .. } => 1.0 / (4.0 * PI),
             Environment::Map(m) => m.pdf(dir),
+            Environment::Sky(s) => s.map.pdf(dir),
         }
     }
 
@@ -131,6 +149,7 @@ impl Environment {
         match self {
             Environment::Uniform { radiance } => luminance(*radiance) * 4.0 * PI,
             Environment::Map(m) => m.luminance_integral(),
+            Environment::Sky(s) => s.map.luminance_integral(),
         }
     }
 
@@ -139,6 +158,7 @@ impl Environment {
         match self {
             Environment::Uniform { .. } => &[],
             Environment::Map(m) => m.warnings(),
+            Environment::Sky(s) => s.map.warnings(),
         }
     }
 }

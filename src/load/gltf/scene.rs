@@ -11,9 +11,10 @@
 //!   direction and up vector but has scale and shear removed (Gram–Schmidt, right-handed).
 //! - Environment: the chosen scene's `extras.iris_environment` (an Iris convention) is a
 //!   path to an equirectangular `.exr`/`.hdr` map relative to the glTF file's directory
-//!   (a plain path, not a URI), a grey radiance `g` or `[r, g, b]` (finite, ≥ 0). The map
-//!   must exist; it is decoded later, when the renderer builds the environment. Other
-//!   extras keys are ignored.
+//!   (a plain path, not a URI), a grey radiance `g` or `[r, g, b]` (finite, ≥ 0), or a
+//!   computed sky `"sky:elevation=DEG[,azimuth=DEG,turbidity=T]"` (as `--env`,
+//!   [`crate::light::sky`]). The map must exist; it is decoded later, when the renderer
+//!   builds the environment. Other extras keys are ignored.
 //! - The graph is walked without recursion; a cycle (depth beyond the node count) is a
 //!   `Parse` error and runaway instancing a `TooLarge` error, so hostile files end cleanly.
 //! - EXT_mesh_gpu_instancing: a node's mesh is placed once per instance
@@ -185,6 +186,11 @@ fn read_environment(ctx: &Ctx<'_>) -> Result<Option<EnvironmentDesc>, LoadError>
     };
     use serde_json::Value;
     let env = match value {
+        Value::String(s) if s.starts_with("sky:") => {
+            let params = crate::light::sky::SkyParams::parse(&s["sky:".len()..])
+                .map_err(|why| err(LoadErrorKind::InvalidValue, format!("{s:?}: {why}")))?;
+            EnvironmentDesc::Sky(params)
+        }
         Value::String(file) if !file.is_empty() => {
             let path = ctx.base_dir.join(file);
             let ext = path
@@ -227,7 +233,7 @@ fn read_environment(ctx: &Ctx<'_>) -> Result<Option<EnvironmentDesc>, LoadError>
         _ => {
             return Err(err(
                 LoadErrorKind::InvalidValue,
-                format!("expected a .exr/.hdr file name, a grey value or [r, g, b], found {value}"),
+                format!("expected a .exr/.hdr file name, \"sky:elevation=DEG,…\", a grey value or [r, g, b], found {value}"),
             ))
         }
     };
