@@ -17,20 +17,8 @@ use iris::integrator::Method;
 use iris::photon::emit::PhotonEmitter;
 use iris::photon::probe::kept_share;
 use iris::plan::{resolve_method, AUTO_ENCLOSED_FROM, CAUSTIC_PROBE_PHOTONS};
-use iris::scene::desc::{MeshDesc, Projection, SceneDesc};
+use iris::scene::desc::{Projection, SceneDesc};
 use iris::scene::Scene;
-
-fn sphere_mesh(name: &str, radius: f32, centre: Vec3, material: usize) -> MeshDesc {
-    let s = iris::authoring::shapes::icosphere(radius, 4);
-    MeshDesc {
-        name: name.into(),
-        positions: s.positions.iter().map(|p| *p + centre).collect(),
-        normals: s.normals,
-        indices: s.indices,
-        material: Some(material),
-        ..Default::default()
-    }
-}
 
 fn grey(rho: f32) -> iris::material::MaterialDesc {
     iris::material::MaterialDesc {
@@ -42,9 +30,15 @@ fn grey(rho: f32) -> iris::material::MaterialDesc {
 /// A sphere room (R = 1) of albedo `rho` around a point light at its centre, with a glass
 /// ball (radius 0.15) off the light if `ball`.
 fn room(rho: f32, ball: bool) -> Scene {
-    let mut meshes = vec![sphere_mesh("room", 1.0, Vec3::ZERO, 0)];
+    let mut meshes = vec![common::sphere_mesh("room", 1.0, 4, Vec3::ZERO, 0)];
     if ball {
-        meshes.push(sphere_mesh("ball", 0.15, Vec3::new(0.0, -0.7, 0.0), 1));
+        meshes.push(common::sphere_mesh(
+            "ball",
+            0.15,
+            4,
+            Vec3::new(0.0, -0.7, 0.0),
+            1,
+        ));
     }
     common::build_scene(SceneDesc {
         source: "sphere room".into(),
@@ -60,7 +54,13 @@ fn open_floor(ball: bool) -> Scene {
     let floor = iris::authoring::shapes::ground_plane(1.0, 1.0).into_mesh_desc("floor", 0);
     let mut meshes = vec![floor];
     if ball {
-        meshes.push(sphere_mesh("ball", 0.15, Vec3::new(0.0, 0.15, 0.0), 1));
+        meshes.push(common::sphere_mesh(
+            "ball",
+            0.15,
+            4,
+            Vec3::new(0.0, 0.15, 0.0),
+            1,
+        ));
     }
     common::build_scene(SceneDesc {
         source: "open floor".into(),

@@ -24,22 +24,15 @@
 mod common;
 
 use glam::Vec3;
-use iris::camera::{look_at, Camera};
+use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::material::MaterialDesc;
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, Projection};
+use iris::scene::desc::CameraDesc;
 
 /// The camera 4 m from the unit sphere at the origin.
 fn furnace_camera() -> CameraDesc {
-    CameraDesc {
-        name: "c".into(),
-        projection: Projection::Perspective {
-            yfov: 0.5,
-            aspect: None,
-        },
-        world_from_camera: look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y),
-    }
+    common::camera_facing_origin(0.5)
 }
 
 fn furnace(material: MaterialDesc, spp: u32) -> Vec<Vec3> {

@@ -19,7 +19,7 @@ use iris::image::ImageRgb;
 use iris::integrator::{CausticMode, Integrator, Method, PhotonSettings};
 use iris::material::MaterialDesc;
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, MeshDesc, Projection, SceneDesc};
+use iris::scene::desc::{CameraDesc, Projection, SceneDesc};
 use iris::scene::Scene;
 
 const W: u32 = 48;
@@ -233,18 +233,6 @@ fn hybrid_agrees_with_the_path_tracer_under_a_sky() {
 
 const RHO: f32 = 0.5;
 
-fn sphere_mesh(name: &str, radius: f32, material: usize) -> MeshDesc {
-    let s = iris::authoring::shapes::icosphere(radius, 5);
-    MeshDesc {
-        name: name.into(),
-        positions: s.positions,
-        normals: s.normals,
-        indices: s.indices,
-        material: Some(material),
-        ..Default::default()
-    }
-}
-
 /// A closed diffuse room (inside of a sphere, R = 1, albedo ρ = ½) around a point light of
 /// intensity 1 enclosed in a glass ball (radius 0.2, IOR 1.5) centred on it. The ball is
 /// lossless and its radial symmetry sends every photon out through it eventually, so the
@@ -258,7 +246,10 @@ fn glass_lantern_room() -> Scene {
     };
     let desc = SceneDesc {
         source: "glass lantern room".into(),
-        meshes: vec![sphere_mesh("room", 1.0, 0), sphere_mesh("ball", 0.2, 1)],
+        meshes: vec![
+            common::sphere_mesh("room", 1.0, 5, Vec3::ZERO, 0),
+            common::sphere_mesh("ball", 0.2, 5, Vec3::ZERO, 1),
+        ],
         materials: vec![white, common::clear_glass("glass", 1.5)],
         lights: vec![common::white_point_light(Vec3::ZERO)],
         ..Default::default()
@@ -332,11 +323,11 @@ fn white_furnace_renders_one_with_the_hybrid() {
         base_color: glam::Vec4::new(1.0, 1.0, 1.0, 1.0),
         ..common::white_lambert()
     };
-    let mut a = sphere_mesh("glass", 0.4, 0);
+    let mut a = common::sphere_mesh("glass", 0.4, 5, Vec3::ZERO, 0);
     for p in &mut a.positions {
         p[0] -= 0.5;
     }
-    let mut b = sphere_mesh("white", 0.4, 1);
+    let mut b = common::sphere_mesh("white", 0.4, 5, Vec3::ZERO, 1);
     for p in &mut b.positions {
         p[0] += 0.5;
     }

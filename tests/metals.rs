@@ -14,13 +14,13 @@
 mod common;
 
 use glam::Vec3;
-use iris::camera::{look_at, Camera};
+use iris::camera::Camera;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::material::MaterialDesc;
 use iris::optics::{fresnel_conductor, fresnel_dielectric};
 use iris::plan::SpectralMode;
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, Projection};
+use iris::scene::desc::CameraDesc;
 use iris::spectrum::cie::{cmf, xyz_to_linear_srgb, CIE_Y_INTEGRAL};
 use iris::spectrum::metals::METALS;
 use iris::spectrum::{Metal, RgbIlluminant};
@@ -66,14 +66,7 @@ fn conductor_fresnel_without_absorption_is_the_dielectric_formula() {
 
 /// The furnace camera: 4 m from the unit sphere, vertical field of view 0.05 rad.
 fn camera() -> CameraDesc {
-    CameraDesc {
-        name: "c".into(),
-        projection: Projection::Perspective {
-            yfov: 0.05,
-            aspect: None,
-        },
-        world_from_camera: look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y),
-    }
+    common::camera_facing_origin(0.05)
 }
 
 /// A polished gold material whose base colour is cyan: the conductor must ignore it.

@@ -6,14 +6,12 @@
 
 mod common;
 
-use glam::Vec3;
-use iris::camera::{look_at, Camera};
+use iris::camera::Camera;
 use iris::image::ImageRgb;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::material::MaterialDesc;
 use iris::render::{Control, Progress, RenderSettings, RenderStats};
 use iris::sampler::SamplerKind;
-use iris::scene::desc::{CameraDesc, Projection};
 use iris::scene::Scene;
 use std::time::{Duration, Instant};
 
@@ -28,14 +26,7 @@ fn grey_sphere() -> (Scene, Camera) {
         ..common::white_lambert()
     };
     let scene = common::sphere_in_white_environment(grey);
-    let cam = CameraDesc {
-        name: "c".into(),
-        projection: Projection::Perspective {
-            yfov: 0.6,
-            aspect: None,
-        },
-        world_from_camera: look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y),
-    };
+    let cam = common::camera_facing_origin(0.6);
     let camera = Camera::new(&cam, W, H);
     (scene, camera)
 }

@@ -7,12 +7,12 @@
 mod common;
 
 use glam::{Vec2, Vec3};
-use iris::camera::{look_at, Camera};
+use iris::camera::Camera;
 use iris::image::ImageRgb;
 use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::render::RenderSettings;
 use iris::sampler::SamplerKind;
-use iris::scene::desc::{CameraDesc, Projection};
+use iris::scene::desc::CameraDesc;
 
 use iris::math::Rng;
 use iris::sampler::halton::halton_sample;
@@ -212,14 +212,7 @@ fn zsobol_wavelengths_make_a_grey_sky_grey_at_4_spp() {
     // to about 1 % (measured max deviation 0.6 % on a 0.6 sky at 64×48). Independent numbers
     // with the golden-ratio lattice left up to 16 % there.
     let scene = common::sphere_in_white_environment(common::white_lambert());
-    let cam = CameraDesc {
-        name: "c".into(),
-        projection: Projection::Perspective {
-            yfov: 1.4,
-            aspect: None,
-        },
-        world_from_camera: look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y),
-    };
+    let cam = common::camera_facing_origin(1.4);
     let (w, h) = (32, 32);
     let dev = |kind| {
         let s = RenderSettings {

@@ -12,11 +12,11 @@
 mod common;
 
 use glam::{DVec3, Vec3};
-use iris::camera::{look_at, Camera};
+use iris::camera::Camera;
 use iris::integrator::Integrator;
 use iris::material::{ExplicitIor, MaterialDesc};
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, Projection, SceneDesc};
+use iris::scene::desc::{CameraDesc, SceneDesc};
 use iris::scene::Scene;
 
 /// Rough glass with strong Cauchy dispersion.
@@ -29,14 +29,7 @@ fn rough_dispersive_glass() -> MaterialDesc {
 }
 
 fn camera() -> CameraDesc {
-    CameraDesc {
-        name: "c".into(),
-        projection: Projection::Perspective {
-            yfov: 0.5,
-            aspect: None,
-        },
-        world_from_camera: look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y),
-    }
+    common::camera_facing_origin(0.5)
 }
 
 /// `k` renders (seeds 1..=k) of `size`² pixels at `spp`, spectral transport, path tracer

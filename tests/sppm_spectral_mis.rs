@@ -13,14 +13,13 @@
 
 mod common;
 
-use glam::{DVec3, Vec3};
-use iris::camera::{look_at, Camera};
+use iris::camera::Camera;
 use iris::image::ImageRgb;
 use iris::integrator::path::Dispersion;
 use iris::integrator::{Integrator, PhotonSettings};
 use iris::material::{ExplicitIor, MaterialDesc};
 use iris::render::RenderSettings;
-use iris::scene::desc::{CameraDesc, Projection};
+use iris::scene::desc::CameraDesc;
 use iris::scene::Scene;
 use std::sync::OnceLock;
 
@@ -72,24 +71,6 @@ fn render(
     img
 }
 
-/// The image mean per channel.
-fn image_mean(img: &ImageRgb) -> Vec<f64> {
-    let s = img.data.iter().fold(DVec3::ZERO, |a, p| a + p.as_dvec3());
-    (s / img.data.len() as f64).to_array().to_vec()
-}
-
-/// Per value: mean over the renders and the standard error of that mean.
-fn mean_and_error(values: &[Vec<f64>]) -> Vec<(f64, f64)> {
-    let k = values.len() as f64;
-    (0..values[0].len())
-        .map(|i| {
-            let m = values.iter().map(|v| v[i]).sum::<f64>() / k;
-            let var = values.iter().map(|v| (v[i] - m).powi(2)).sum::<f64>() / (k - 1.0);
-            (m, (var / k).sqrt())
-        })
-        .collect()
-}
-
 /// White furnace (environment RGB (1,1,1) = D65, which the film turns back into (1,1,1);
 /// the rough dielectric conserves energy by its multiple-scattering compensation): every
 /// channel of the image mean is 1. The sphere (roughness 0.3, glossy) fills the view, so
@@ -101,14 +82,7 @@ fn mean_and_error(values: &[Vec<f64>]) -> Vec<(f64, f64)> {
 /// red channel reads 1.13.
 #[test]
 fn rough_dispersive_sphere_vanishes_in_a_white_furnace() {
-    let camera = CameraDesc {
-        name: "c".into(),
-        projection: Projection::Perspective {
-            yfov: 0.3,
-            aspect: None,
-        },
-        world_from_camera: look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y),
-    };
+    let camera = common::camera_facing_origin(0.3);
     {
         let roughness = 0.3;
         let scene = common::sphere_in_white_environment(rough_flint(roughness));
@@ -121,10 +95,10 @@ fn rough_dispersive_sphere_vanishes_in_a_white_furnace() {
                     1,
                     (seed, 2),
                 );
-                image_mean(&img)
+                common::channel_means(&img).to_vec()
             })
             .collect();
-        for (c, (m, se)) in mean_and_error(&means).into_iter().enumerate() {
+        for (c, (m, se)) in common::mean_and_error(&means).into_iter().enumerate() {
             eprintln!("roughness {roughness}, channel {c}: {m:.5} ± {se:.5}");
             assert!(se <= 0.003, "channel {c}: too noisy to judge 1.5 %: {se}");
             assert!(
@@ -163,8 +137,9 @@ fn sppm_floor(passes: u32, spectral_mis: bool, (seed, threads): (u64, usize)) ->
 /// Block z-scores of the difference of two sets of renders' 4 × 4 block means, in units of
 /// the standard error of that difference (from the seed spread).
 fn block_z(a: &[ImageRgb], b: &[ImageRgb]) -> Vec<f64> {
-    let blocks =
-        |imgs: &[ImageRgb]| mean_and_error(&imgs.iter().map(common::blocks).collect::<Vec<_>>());
+    let blocks = |imgs: &[ImageRgb]| {
+        common::mean_and_error(&imgs.iter().map(common::blocks).collect::<Vec<_>>())
+    };
     let (ba, bb) = (blocks(a), blocks(b));
     ba.iter()
         .zip(&bb)
@@ -201,8 +176,14 @@ fn sppm_agrees_with_the_path_tracer_through_rough_dispersive_glass() {
     let heros: Vec<ImageRgb> = (1..=k)
         .map(|s| sppm_floor(256, false, (s + 20, 2)))
         .collect();
-    let means =
-        |imgs: &[ImageRgb]| mean_and_error(&imgs.iter().map(image_mean).collect::<Vec<_>>());
+    let means = |imgs: &[ImageRgb]| {
+        common::mean_and_error(
+            &imgs
+                .iter()
+                .map(|i| common::channel_means(i).to_vec())
+                .collect::<Vec<_>>(),
+        )
+    };
     for (c, (p, s)) in means(&paths).iter().zip(means(&sppms)).enumerate() {
         let sigma = (p.1 * p.1 + s.1 * s.1).sqrt();
         eprintln!(

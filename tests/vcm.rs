@@ -146,15 +146,6 @@ fn an_orthographic_camera_is_refused() {
     );
 }
 
-/// Per-channel image means (linear RGB).
-fn channel_means(img: &ImageRgb) -> [f64; 3] {
-    let n = img.data.len() as f64;
-    let s = img.data.iter().fold([0.0; 3], |a, p| {
-        [a[0] + p.x as f64, a[1] + p.y as f64, a[2] + p.z as f64]
-    });
-    s.map(|v| v / n)
-}
-
 /// The caustic sphere's glass made rough (GGX 0.3) and strongly dispersive (Abbe 10), under
 /// the 20 × 20 cm lamp, spectral. Bounds: the path tracer's two seeds set the noise of the
 /// channel means (printed; measured ≈ 0.3 %); 1.5 % holds VCM's kernel blur and the
@@ -174,7 +165,11 @@ fn vcm_agrees_with_the_path_tracer_through_rough_dispersive_glass() {
     let p1 = render(&scene, &cam, Method::Path, &spectral(512, 1));
     let p2 = render(&scene, &cam, Method::Path, &spectral(512, 2));
     let v = render(&scene, &cam, Method::Vcm, &spectral(256, 3));
-    let (m1, m2, mv) = (channel_means(&p1), channel_means(&p2), channel_means(&v));
+    let (m1, m2, mv) = (
+        common::channel_means(&p1),
+        common::channel_means(&p2),
+        common::channel_means(&v),
+    );
     let (b1, b2, bv) = (blocks(&p1), blocks(&p2), blocks(&v));
     let path: Vec<f64> = b1.iter().zip(&b2).map(|(a, b)| 0.5 * (a + b)).collect();
     let region = caustic_region(&path);
@@ -215,18 +210,7 @@ fn vcm_and_bpt_vanish_in_a_white_furnace() {
         base_color: glam::Vec4::ONE,
         ..common::white_lambert()
     };
-    let cam = CameraDesc {
-        name: "c".into(),
-        projection: iris::scene::desc::Projection::Perspective {
-            yfov: 0.5,
-            aspect: None,
-        },
-        world_from_camera: iris::camera::look_at(
-            glam::Vec3::new(0.0, 0.0, 4.0),
-            glam::Vec3::ZERO,
-            glam::Vec3::Y,
-        ),
-    };
+    let cam = common::camera_facing_origin(0.5);
     for (name, material, passes) in [
         ("white Lambertian", white, 128),
         ("smooth glass", common::clear_glass("glass", 1.5), 128),

@@ -109,18 +109,6 @@ fn seed_to_seed(images: &[ImageRgb]) -> f64 {
     common::mean(&r)
 }
 
-/// Per value: mean over the renders and the standard error of that mean.
-fn mean_and_error(values: &[Vec<f64>]) -> Vec<(f64, f64)> {
-    let k = values.len() as f64;
-    (0..values[0].len())
-        .map(|i| {
-            let m = values.iter().map(|v| v[i]).sum::<f64>() / k;
-            let var = values.iter().map(|v| (v[i] - m).powi(2)).sum::<f64>() / (k - 1.0);
-            (m, (var / k).sqrt())
-        })
-        .collect()
-}
-
 /// Both estimators are unbiased: over 8 seeds each, the image means per channel agree
 /// within 4 standard errors of their difference, and so do the 4 × 4 block means (108
 /// blocks; at most 2 may lie between 3.5σ and 5σ, none beyond 5σ, as block errors of a
@@ -164,8 +152,8 @@ fn assert_agree(split: &[ImageRgb], collapse: &[ImageRgb]) {
             .collect()
     };
     let (ms, mc) = (
-        mean_and_error(&image_means(split)),
-        mean_and_error(&image_means(collapse)),
+        common::mean_and_error(&image_means(split)),
+        common::mean_and_error(&image_means(collapse)),
     );
     for (c, (s, o)) in ms.iter().zip(&mc).enumerate() {
         let sigma = (s.1 * s.1 + o.1 * o.1).sqrt();
@@ -180,8 +168,8 @@ fn assert_agree(split: &[ImageRgb], collapse: &[ImageRgb]) {
     }
     let blocks = |imgs: &[ImageRgb]| -> Vec<Vec<f64>> { imgs.iter().map(common::blocks).collect() };
     let (bs, bc) = (
-        mean_and_error(&blocks(split)),
-        mean_and_error(&blocks(collapse)),
+        common::mean_and_error(&blocks(split)),
+        common::mean_and_error(&blocks(collapse)),
     );
     let z: Vec<f64> = bs
         .iter()
@@ -301,7 +289,7 @@ fn smooth_dispersive_sphere_vanishes_in_a_white_furnace() {
             (s / img.data.len() as f64).to_array().to_vec()
         })
         .collect();
-    for (c, (m, se)) in mean_and_error(&means).into_iter().enumerate() {
+    for (c, (m, se)) in common::mean_and_error(&means).into_iter().enumerate() {
         eprintln!("channel {c}: {m:.5} ± {se:.5}");
         assert!(se <= 0.0025, "channel {c}: too noisy to judge 1 %: {se}");
         assert!((m - 1.0).abs() < 0.01, "channel {c}: mean {m}");

@@ -72,7 +72,55 @@ fn choose(scene: &Scene, pinhole: bool) -> (Method, String) {
             "no light to trace photons from: path tracer".into(),
         );
     }
-    let kept = kept_share(scene, &emitter, CAUSTIC_PROBE_PHOTONS);
+    let orthographic = "VCM and BPT need a perspective camera; this one is orthographic";
+    if !has_caustic_paths(scene, &emitter, CAUSTIC_PROBE_PHOTONS) {
+        let (enclosed, room) = enclosure(scene, &emitter);
+        let (m, how) = match (enclosed, pinhole) {
+            (true, true) => (Method::Bpt, "bidirectional path tracing (BPT)".to_string()),
+            (true, false) => (Method::Path, format!("path tracer ({orthographic})")),
+            (false, _) => (Method::Path, "path tracer".to_string()),
+        };
+        return (m, format!("no caustic paths found; {room}: {how}"));
+    }
+    let (bidirectional, named) = if pinhole {
+        (Method::Vcm, "VCM".to_string())
+    } else {
+        (Method::Sppm, format!("SPPM ({orthographic})"))
+    };
+    if let Some(name) = rough_glass(scene) {
+        return (
+            bidirectional,
+            format!(
+                "rough transmissive material {name} focuses light the path tracer reaches only \
+                 by chance and the hybrid's caustic map does not carry: {named}"
+            ),
+        );
+    }
+    let share = caustic::probe_share(scene, CAUSTIC_PROBE_PHOTONS);
+    let carry = format!(
+        "caustics carry {:.2} % of the light reaching diffuse surfaces",
+        100.0 * share
+    );
+    let below = 100.0 * AUTO_HYBRID_BELOW;
+    if share >= AUTO_HYBRID_BELOW {
+        return (
+            bidirectional,
+            format!("{carry} (the hybrid is chosen under {below:.0} %): {named}"),
+        );
+    }
+    let (enclosed, room) = enclosure(scene, &emitter);
+    let (m, how) = if enclosed && pinhole {
+        (Method::Vcm, "VCM")
+    } else {
+        (Method::Hybrid, "path tracer + caustic map (hybrid)")
+    };
+    (m, format!("{carry} (under {below:.0} %); {room}: {how}"))
+}
+
+/// Whether the scene counts as enclosed ([`kept_share`] ≥ [`AUTO_ENCLOSED_FROM`]), with
+/// the reason's words.
+fn enclosure(scene: &Scene, emitter: &PhotonEmitter) -> (bool, String) {
+    let kept = kept_share(scene, emitter, CAUSTIC_PROBE_PHOTONS);
     let enclosed = kept >= AUTO_ENCLOSED_FROM;
     let room = format!(
         "a diffuse bounce keeps {:.1} % of the light in the scene ({} from {:.0} %)",
@@ -84,61 +132,7 @@ fn choose(scene: &Scene, pinhole: bool) -> (Method, String) {
         },
         100.0 * AUTO_ENCLOSED_FROM
     );
-    let orthographic = "VCM and BPT need a perspective camera; this one is orthographic";
-    if !has_caustic_paths(scene, &emitter, CAUSTIC_PROBE_PHOTONS) {
-        return match (enclosed, pinhole) {
-            (true, true) => (
-                Method::Bpt,
-                format!("no caustic paths found; {room}: bidirectional path tracing (BPT)"),
-            ),
-            (true, false) => (
-                Method::Path,
-                format!("no caustic paths found; {room}: path tracer ({orthographic})"),
-            ),
-            (false, _) => (
-                Method::Path,
-                format!("no caustic paths found; {room}: path tracer"),
-            ),
-        };
-    }
-    let bidirectional = if pinhole {
-        (Method::Vcm, "VCM".to_string())
-    } else {
-        (Method::Sppm, format!("SPPM ({orthographic})"))
-    };
-    if let Some(name) = rough_glass(scene) {
-        return (
-            bidirectional.0,
-            format!(
-                "rough transmissive material {name} focuses light the path tracer reaches only \
-                 by chance and the hybrid's caustic map does not carry: {}",
-                bidirectional.1
-            ),
-        );
-    }
-    let share = caustic::probe_share(scene, CAUSTIC_PROBE_PHOTONS);
-    let carry = format!(
-        "caustics carry {:.2} % of the light reaching diffuse surfaces",
-        100.0 * share
-    );
-    let below = 100.0 * AUTO_HYBRID_BELOW;
-    match (share < AUTO_HYBRID_BELOW, enclosed && pinhole) {
-        (true, false) => (
-            Method::Hybrid,
-            format!("{carry} (under {below:.0} %); {room}: path tracer + caustic map (hybrid)"),
-        ),
-        (true, true) => (
-            Method::Vcm,
-            format!("{carry} (under {below:.0} %); {room}: VCM"),
-        ),
-        (false, _) => (
-            bidirectional.0,
-            format!(
-                "{carry} (the hybrid is chosen under {below:.0} %): {}",
-                bidirectional.1
-            ),
-        ),
-    }
+    (enclosed, room)
 }
 
 /// The first transmissive material with a rough surface (GGX roughness factor above

@@ -341,3 +341,61 @@ pub const PINHOLE: iris::scene::desc::Projection = iris::scene::desc::Projection
     yfov: 0.9,
     aspect: None,
 };
+
+/// A perspective camera of vertical field `yfov` (radians) 4 m from the origin on +Z,
+/// looking at it: the view of [`sphere_in_white_environment`]'s unit sphere.
+#[allow(dead_code)]
+pub fn camera_facing_origin(yfov: f32) -> iris::scene::desc::CameraDesc {
+    iris::scene::desc::CameraDesc {
+        name: "c".into(),
+        projection: iris::scene::desc::Projection::Perspective { yfov, aspect: None },
+        world_from_camera: iris::camera::look_at(
+            glam::Vec3::new(0.0, 0.0, 4.0),
+            glam::Vec3::ZERO,
+            glam::Vec3::Y,
+        ),
+    }
+}
+
+/// An icosphere mesh of `radius` and `subdivisions` centred at `centre`.
+#[allow(dead_code)]
+pub fn sphere_mesh(
+    name: &str,
+    radius: f32,
+    subdivisions: u32,
+    centre: glam::Vec3,
+    material: usize,
+) -> iris::scene::desc::MeshDesc {
+    let s = iris::authoring::shapes::icosphere(radius, subdivisions);
+    iris::scene::desc::MeshDesc {
+        name: name.into(),
+        positions: s.positions.iter().map(|p| *p + centre).collect(),
+        normals: s.normals,
+        indices: s.indices,
+        material: Some(material),
+        ..Default::default()
+    }
+}
+
+/// The image mean per linear-RGB channel.
+#[allow(dead_code)]
+pub fn channel_means(img: &iris::image::ImageRgb) -> [f64; 3] {
+    let s = img
+        .data
+        .iter()
+        .fold(glam::DVec3::ZERO, |a, p| a + p.as_dvec3());
+    (s / img.data.len() as f64).to_array()
+}
+
+/// Per value: the mean over the renders and the standard error of that mean.
+#[allow(dead_code)]
+pub fn mean_and_error(values: &[Vec<f64>]) -> Vec<(f64, f64)> {
+    let k = values.len() as f64;
+    (0..values[0].len())
+        .map(|i| {
+            let m = values.iter().map(|v| v[i]).sum::<f64>() / k;
+            let var = values.iter().map(|v| (v[i] - m).powi(2)).sum::<f64>() / (k - 1.0);
+            (m, (var / k).sqrt())
+        })
+        .collect()
+}

@@ -38,6 +38,8 @@ pub struct CameraKit<'a, C: Carrier> {
     pub camera: &'a Camera,
     pub emitter: &'a PhotonEmitter,
     pub lights: &'a LightPaths<C>,
+    /// The pass's light vertices by the index `grid` holds (empty without merging).
+    pub merged: &'a [&'a LightVertex<C>],
     pub grid: &'a HashGrid,
     pub radius: f32,
     pub mis: Pass,
@@ -274,7 +276,7 @@ impl<C: Carrier> CameraKit<'_, C> {
         }
         let mut sum = C::ZERO;
         self.grid.for_each_within(s.hit.p, self.radius, |i, _| {
-            let v = self.lights.vertex(i as usize);
+            let v = self.merged[i as usize];
             if w.depth + v.depth > self.max_depth + 1 {
                 return;
             }

@@ -57,9 +57,6 @@ pub struct LightVertex<C: Carrier> {
 /// where each subpath starts, and the splats of light tracing.
 pub struct LightPaths<C: Carrier> {
     chunks: Vec<Chunk<C>>,
-    /// Chunk `k`'s first vertex has the global index `offsets[k]`; the last entry is the
-    /// number of vertices.
-    offsets: Vec<usize>,
     /// Light subpaths traced.
     count: usize,
     pub rays: u64,
@@ -93,17 +90,10 @@ impl<C: Carrier> LightPaths<C> {
 
     /// All light vertices of the pass.
     pub fn len(&self) -> usize {
-        self.offsets.last().copied().unwrap_or(0)
+        self.chunks.iter().map(|c| c.vertices.len()).sum()
     }
 
-    /// The light vertex with global index `g` < [`Self::len`] (chunk order, then subpath
-    /// order: the index the merging grid holds).
-    pub fn vertex(&self, g: usize) -> &LightVertex<C> {
-        let k = self.offsets.partition_point(|&o| o <= g) - 1;
-        &self.chunks[k].vertices[g - self.offsets[k]]
-    }
-
-    /// Every light vertex in global index order.
+    /// Every light vertex, in chunk order, then subpath order.
     pub fn vertices(&self) -> impl Iterator<Item = &LightVertex<C>> + '_ {
         self.chunks.iter().flat_map(|c| c.vertices.iter())
     }
@@ -152,15 +142,10 @@ impl LightKit<'_> {
                 (chunk, rays)
             })
             .collect();
-        let mut offsets = vec![0];
-        for (c, _) in &chunks {
-            offsets.push(offsets.last().unwrap_or(&0) + c.vertices.len());
-        }
         LightPaths {
             count: n,
             rays: chunks.iter().map(|(_, r)| r).sum(),
             chunks: chunks.into_iter().map(|(c, _)| c).collect(),
-            offsets,
         }
     }
 

@@ -51,6 +51,12 @@ pub enum Environment {
     Sky(Box<crate::light::sky::Sky>),
 }
 
+/// An [`Environment`] as its light functions see it.
+enum View<'a> {
+    Uniform(Vec3),
+    Map(&'a EnvMap),
+}
+
 /// A direction sampled from an [`Environment`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EnvSample {
@@ -102,63 +108,59 @@ impl Environment {
         Ok(Some(Environment::Map(load(Path::new(s))?)))
     }
 
+    /// What the light functions read: a uniform radiance or a map (a sky is its map).
+    fn view(&self) -> View<'_> {
+        match self {
+            Environment::Uniform { radiance } => View::Uniform(*radiance),
+            Environment::Map(m) => View::Map(m),
+            Environment::Sky(s) => View::Map(&s.map),
+        }
+    }
+
     /// Radiance arriving from world direction `dir` (unit, pointing towards the sky).
     pub fn eval(&self, dir: Vec3) -> Vec3 {
-        match self {
-            Environment::Uniform { radiance } => *radiance,
-            Environment::Map(m) => m.eval(dir),
-            Environment::Sky(s) => s.map.eval(dir),
+        match self.view() {
+            View::Uniform(radiance) => radiance,
+            View::Map(m) => m.eval(dir),
         }
     }
 
     /// Samples a direction for `u` ∈ [0, 1)²; `None` if nothing can be sampled there
     /// (black map, pole).
     pub fn sample(&self, u: Vec2) -> Option<EnvSample> {
-        match self {
-            Environment::Uniform { radiance } => {
-                let wi = uniform_sphere(u);
-                Some(EnvSample {
-                    wi,
-                    radiance: *radiance,
-                    pdf: 1.0 / (4.0 * PI),
-                })
-            }
-            Environment::Map(m) => {
-                m.sample(u)
-                    .map(|(wi, radiance, pdf)| EnvSample { wi, radiance, pdf })
-            }
-            Environment::Sky(s) => {
-                s.map
-                    .sample(u)
-                    .map(|(wi, radiance, pdf)| EnvSample { wi, radiance, pdf })
-            }
+        match self.view() {
+            View::Uniform(radiance) => Some(EnvSample {
+                wi: uniform_sphere(u),
+                radiance,
+                pdf: 1.0 / (4.0 * PI),
+            }),
+            View::Map(m) => m
+                .sample(u)
+                .map(|(wi, radiance, pdf)| EnvSample { wi, radiance, pdf }),
         }
     }
 
     /// Solid-angle density with which [`Environment::sample`] returns `dir`.
     pub fn pdf(&self, dir: Vec3) -> f32 {
-        match self {
-            Environment::Uniform { .. } => 1.0 / (4.0 * PI),
-            Environment::Map(m) => m.pdf(dir),
-            Environment::Sky(s) => s.map.pdf(dir),
+        match self.view() {
+            View::Uniform(_) => 1.0 / (4.0 * PI),
+            View::Map(m) => m.pdf(dir),
         }
     }
 
     /// ∫ Y(L(ω)) dω = mean luminance × 4π (sr × radiance unit), for light selection.
     pub fn power_proxy(&self) -> f32 {
-        match self {
-            Environment::Uniform { radiance } => luminance(*radiance) * 4.0 * PI,
-            Environment::Map(m) => m.luminance_integral(),
-            Environment::Sky(s) => s.map.luminance_integral(),
+        match self.view() {
+            View::Uniform(radiance) => luminance(radiance) * 4.0 * PI,
+            View::Map(m) => m.luminance_integral(),
         }
     }
 
     /// Warnings produced while loading (clamped texels); empty for uniform light.
     pub fn warnings(&self) -> &[String] {
-        match self {
-            Environment::Uniform { .. } => &[],
-            Environment::Map(m) => m.warnings(),
-            Environment::Sky(s) => s.map.warnings(),
+        match self.view() {
+            View::Uniform(_) => &[],
+            View::Map(m) => m.warnings(),
         }
     }
 }

@@ -99,12 +99,11 @@ impl Atmosphere {
     /// Vertical optical depth of the whole atmosphere at `lambda` nm in a plane-parallel
     /// approximation (β·H for each constituent, extinction).
     pub fn zenith_optical_depth(&self, lambda: f64) -> f64 {
-        Self::rayleigh(lambda) * RAYLEIGH_HEIGHT + self.mie(lambda) / MIE_ALBEDO * MIE_HEIGHT
-    }
-
-    /// Transmittance at `lambda` nm for the column densities `c`.
-    fn transmittance(&self, lambda: f64, c: Columns) -> f64 {
-        (-(Self::rayleigh(lambda) * c.air + self.mie(lambda) / MIE_ALBEDO * c.aerosol)).exp()
+        let column = Columns {
+            air: RAYLEIGH_HEIGHT,
+            aerosol: MIE_HEIGHT,
+        };
+        optical_depth(Self::rayleigh(lambda), self.mie(lambda), column)
     }
 
     /// The sun's direct transmittance to the observer at each of `lambdas` (nm), for the
@@ -112,7 +111,10 @@ impl Atmosphere {
     pub fn sun_transmittance(&self, sun: DVec3, lambdas: &[f64]) -> Vec<f64> {
         let start = observer();
         match columns_to_top(start, sun, SUN_STEPS * 4) {
-            Some(c) => lambdas.iter().map(|&l| self.transmittance(l, c)).collect(),
+            Some(c) => lambdas
+                .iter()
+                .map(|&l| (-optical_depth(Self::rayleigh(l), self.mie(l), c)).exp())
+                .collect(),
             None => vec![0.0; lambdas.len()],
         }
     }
@@ -159,12 +161,17 @@ impl Atmosphere {
             };
             for (o, (&br, &bm)) in out.iter_mut().zip(k.rayleigh.iter().zip(&k.mie)) {
                 let scatter = br * air * pr + bm * aerosol * pm;
-                let tau = br * both.air + bm / MIE_ALBEDO * both.aerosol;
-                *o += (-tau).exp() * scatter * ds;
+                *o += (-optical_depth(br, bm, both)).exp() * scatter * ds;
             }
         }
         out
     }
+}
+
+/// Optical depth of the column densities `c` for the sea-level scattering coefficients
+/// `rayleigh` and `mie` (the aerosol's extinction is its scattering / [`MIE_ALBEDO`]).
+fn optical_depth(rayleigh: f64, mie: f64, c: Columns) -> f64 {
+    rayleigh * c.air + mie / MIE_ALBEDO * c.aerosol
 }
 
 /// The observer's position.
