@@ -58,5 +58,6 @@ pub mod scene;
 pub mod shading;
 pub mod spectrum;
 pub mod studio;
+pub mod volume;
 
 pub use error::{Error, LoadError, LoadErrorKind, Result};
