@@ -159,6 +159,25 @@ impl SurfaceHit {
         self.p + self.ng * (side * self.offset)
     }
 
+    /// A point inside a medium where a path scatters off no surface, seen along `wo` (unit,
+    /// back toward where the path came from): rays leave from `p` itself, as nothing is
+    /// there to re-hit. It names no triangle or material (`prim` and `material` are
+    /// `u32::MAX`); only its position, `wo` and the spawn methods are meaningful.
+    pub fn in_medium(p: Vec3, wo: Vec3) -> SurfaceHit {
+        SurfaceHit {
+            t: 0.0,
+            p,
+            ng: wo,
+            ns: wo,
+            uv: TexCoords::default(),
+            prim: u32::MAX,
+            material: u32::MAX,
+            front_face: true,
+            wo,
+            offset: 0.0,
+        }
+    }
+
     /// A ray leaving the surface in unit direction `dir` (reflection, refraction, bounce).
     #[inline]
     pub fn spawn_ray(&self, dir: Vec3) -> Ray {

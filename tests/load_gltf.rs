@@ -19,6 +19,8 @@ mod geometry;
 mod layers;
 #[path = "load_gltf/materials.rs"]
 mod materials;
+#[path = "load_gltf/media.rs"]
+mod media;
 
 use iris::load::read_scene;
 use iris::material::MaterialDesc;

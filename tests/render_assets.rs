@@ -77,6 +77,7 @@ fn render_all(files: &[PathBuf], scratch: &str) {
                 quiet: true,
                 spectral: Default::default(),
                 env: env.map(Some),
+                fog: None,
                 measure: Default::default(),
                 preview: Default::default(),
                 looks: Vec::new(),

@@ -40,6 +40,7 @@ fn opts(scene: &Path, out: &Path, accel: Backend, threads: usize) -> RenderOptio
         quiet: true,
         spectral: Default::default(),
         env: None,
+        fog: None,
         measure: Default::default(),
         preview: Default::default(),
         looks: Vec::new(),

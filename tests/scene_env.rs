@@ -192,6 +192,7 @@ fn render_mean(scene: &Path, env: Option<Option<Environment>>, out: &Path) -> Ve
         quiet: true,
         spectral: Default::default(),
         env,
+        fog: None,
         measure: Default::default(),
         preview: Default::default(),
         looks: Vec::new(),

@@ -343,6 +343,7 @@ fn render_under_a_2700_k_light_has_its_colour() {
             quiet: true,
             spectral: iris::app::SpectralMode::Off, // the RGB renderer's colour
             env: None,
+            fog: None,
             measure: Default::default(),
             preview: Default::default(),
             looks: Vec::new(),
@@ -428,6 +429,7 @@ fn spectral_render_under_a_2700_k_light_has_the_planckian_chromaticity() {
         quiet: true,
         spectral: iris::app::SpectralMode::On,
         env: None,
+        fog: None,
         measure: Default::default(),
         preview: Default::default(),
         looks: Vec::new(),

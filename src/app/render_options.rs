@@ -58,6 +58,9 @@ pub struct RenderOptions {
     /// `iris_environment`, if any), `Some(None)` = `--env none` (no environment, even if
     /// the file names one), `Some(Some(e))` = use `e` instead of the file's.
     pub env: Option<Option<crate::light::env::Environment>>,
+    /// `--fog`: `None` = flag not given (the file's `iris_fog`), `Some(None)` = `--fog
+    /// none`, `Some(Some(m))` = fog with medium `m` instead of the file's.
+    pub fog: Option<Option<crate::volume::Medium>>,
     /// `--spectral`: spectral transport always, never, or when the scene needs it.
     pub spectral: SpectralMode,
     /// The measuring flags (`--reference`, `--report`, `--plot`, `--target-error`).
@@ -115,6 +118,7 @@ impl RenderOptions {
             display: DisplayOptions::default(),
             quiet: false,
             env: None,
+            fog: None,
             spectral: SpectralMode::Auto,
             measure: MeasureOptions::default(),
             preview: PreviewOptions::default(),
@@ -149,6 +153,7 @@ impl RenderOptions {
         crate::prepare::PrepareOptions {
             accel: self.accel,
             env: self.env.clone(),
+            fog: self.fog,
             camera: self.camera.clone(),
             size: self.size.or(reference_size),
             preview: self.preview,

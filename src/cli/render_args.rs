@@ -132,6 +132,14 @@ pub struct RenderArgs {
     /// file's `iris_environment` (glTF scene extras), else none.
     #[arg(long, allow_hyphen_values = true)]
     pub env: Option<String>,
+    /// Fog filling the scene's air (its bounding box), `none` to clear the file's: a
+    /// density `D` (grey extinction per scene unit, m⁻¹ in metric files) or comma-separated
+    /// `density=D`, `rayleigh=S` (σ_s at 550 nm, falling as λ⁻⁴, Rayleigh phase),
+    /// `color=R:G:B` (multiple-scattering albedo, default white) and `g=G` (Henyey–Greenstein
+    /// anisotropy in (−1, 1)). Default: the scene file's `iris_fog` (glTF scene extras),
+    /// else none. Only `--method path` (and `auto`) render media.
+    #[arg(long, allow_hyphen_values = true)]
+    pub fog: Option<String>,
     /// Spectral transport (4 wavelengths per sample, CIE colour): `auto` when a material is
     /// dispersive or a light names a spectrum, `on` always, `off` never (RGB, dispersive
     /// materials use n_d).
@@ -294,6 +302,7 @@ impl RenderArgs {
                 .as_deref()
                 .map(crate::light::env::Environment::parse_arg)
                 .transpose()?,
+            fog: a.fog.as_deref().map(parse_fog).transpose()?,
             spectral: a.spectral,
             measure: MeasureOptions {
                 reference: a.reference,
@@ -317,4 +326,14 @@ impl RenderArgs {
         };
         Ok(options)
     }
+}
+
+/// `--fog SPEC` or `--fog none` ([`crate::volume::fog`]).
+fn parse_fog(spec: &str) -> crate::error::Result<Option<crate::volume::Medium>> {
+    if spec.trim().eq_ignore_ascii_case("none") {
+        return Ok(None);
+    }
+    crate::volume::fog::parse(spec)
+        .map(Some)
+        .map_err(|why| crate::error::Error::Usage(format!("--fog {spec}: {why}")))
 }

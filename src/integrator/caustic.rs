@@ -49,6 +49,7 @@
 //! the thread count.
 
 use super::light_trace::{Splat, Splatter};
+use super::volume_map::VolumeMap;
 use super::{StoreBudget, MAX_PHOTONS};
 use crate::error::Result;
 use crate::math::Rng;
@@ -56,11 +57,12 @@ use crate::photon::aim::DEFAULT_AIM;
 use crate::photon::emit::{Aim, EmittedPhoton, PhotonEmitter, PhotonNumbers};
 use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
-use crate::photon::trace::{self, Roulette, TraceSettings};
+use crate::photon::trace::{self, MediumVertex, Roulette, TraceSettings};
 use crate::scene::Scene;
 use crate::shading::Surface;
 use crate::spectrum::Carrier;
 use rayon::prelude::*;
+use std::cell::Cell;
 
 /// Photons traced per parallel work item (a fixed split: deterministic).
 const CHUNK: u64 = 4096;
@@ -102,6 +104,71 @@ pub fn photons_per_pass(photons: u64, pixels: u64) -> u64 {
     }
 }
 
+/// What one fixed chunk of a pass's photons leaves: surface photons, light tracing's
+/// splats, rays traced and volume photons, in photon order.
+#[derive(Default)]
+struct Chunk {
+    surface: Vec<Photon>,
+    splats: Vec<Splat>,
+    rays: u64,
+    volume: Vec<Photon>,
+}
+
+impl Chunk {
+    /// Traces the photon `ph` and keeps its caustic-origin vertices. The tracer calls back
+    /// at every non-delta event, surface or (in media) scattering; the first decides the
+    /// photon's origin: after ≥ 1 bounce (L S+ D or L S+ M) it is stored there and at every
+    /// later non-delta event (surface photons in the surface map, scattering events in the
+    /// volume map); any other photon is not stored. The first surface vertex is flagged
+    /// CAUSTIC, the later ones not ([`CausticMap::density`] can leave it to light tracing);
+    /// with a `splatter`, kept surface vertices are also connected to the camera.
+    fn trace_one<C: Carrier>(
+        &mut self,
+        (scene, settings, splatter): (&Scene, &TraceSettings, Option<&Splatter>),
+        ph: &EmittedPhoton<'_>,
+        lambda: C::Lambda,
+        inv_n: f32,
+        rng: &mut Rng,
+    ) {
+        let origin: Cell<Option<bool>> = Cell::new(None);
+        let decide = |bounces: u32| {
+            let first = origin.get().is_none();
+            let o = origin.get().unwrap_or(bounces > 0);
+            origin.set(Some(o));
+            (first, o)
+        };
+        let hero = |l: &C::Lambda| {
+            if C::is_hero_only(l) {
+                Photon::HERO_ONLY
+            } else {
+                0
+            }
+        };
+        let mut camera_rays = 0;
+        let (surface, splats, volume) = (&mut self.surface, &mut self.splats, &mut self.volume);
+        let keep_volume = |v: &MediumVertex, power: C, l: &C::Lambda| {
+            let (_, caustic_origin) = decide(v.bounces);
+            if caustic_origin && power != C::ZERO {
+                volume.push(Photon::new(v.p, v.wi, (power * inv_n).to_lanes(), hero(l)));
+            }
+        };
+        let keep_surface = |v: &trace::PhotonVertex<C>, l: &C::Lambda| {
+            let (first, caustic_origin) = decide(v.bounces);
+            if caustic_origin && v.power != C::ZERO {
+                let power = v.power * inv_n;
+                if let Some(sp) = splatter.filter(|sp| first || sp.every_vertex()) {
+                    splats.extend(sp.connect(v, power, l, &mut camera_rays));
+                }
+                let caustic = if first { Photon::CAUSTIC } else { 0 };
+                surface.push(Photon::new(v.p, v.wi, power.to_lanes(), hero(l) | caustic));
+            }
+        };
+        self.rays +=
+            trace::trace_in_media::<C>(scene, ph, lambda, settings, rng, keep_surface, keep_volume);
+        self.rays += camera_rays;
+    }
+}
+
 /// One pass's caustic photons, their grid and the radius sequence.
 #[derive(Debug, Default)]
 pub struct CausticMap {
@@ -111,6 +178,8 @@ pub struct CausticMap {
     /// r² of the current pass (`None` until the first radius is chosen).
     r2: Option<f64>,
     alpha: f32,
+    /// In a scene with media: the volume photons of the same pass ([`VolumeMap`]).
+    pub volume: Option<VolumeMap>,
 }
 
 impl CausticMap {
@@ -148,59 +217,41 @@ impl CausticMap {
         let budget = StoreBudget::default();
         let inv_n = 1.0 / n.max(1) as f32;
         let numbers = PhotonNumbers::new(seed ^ KEY);
-        let per_chunk: Vec<(Vec<Photon>, Vec<Splat>, u64)> = (0..n.div_ceil(CHUNK))
+        let per_chunk: Vec<Chunk> = (0..n.div_ceil(CHUNK))
             .into_par_iter()
             .map(|c| {
-                let (mut out, mut splats, mut rays) = (Vec::new(), Vec::new(), 0);
+                let mut chunk = Chunk::default();
                 for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
                     let mut rng = Rng::new(&[seed, u64::from(pass), i, KEY]);
                     let Some(ph) = emit_one(emitter, scene, &numbers, u64::from(pass) * n + i)
                     else {
                         continue;
                     };
-                    let before = out.len();
-                    // The tracer calls back at every non-delta vertex; the first call is the
-                    // first non-delta vertex, reached through delta bounces only. A photon
-                    // whose first one came after ≥ 1 bounce (L S+ D) is stored there and at
-                    // every later non-delta vertex; any other photon is not stored.
-                    // The first vertex (L S+ D itself) is flagged CAUSTIC, the later ones
-                    // not ([`CausticMap::density`] can leave it to light tracing).
-                    let mut origin: Option<bool> = None;
-                    let mut camera_rays = 0;
-                    rays += trace::trace::<C>(scene, &ph, lambda, &settings, &mut rng, |v, l| {
-                        let first = origin.is_none();
-                        let caustic_origin = *origin.get_or_insert(v.bounces > 0);
-                        if caustic_origin && v.power != C::ZERO {
-                            let power = v.power * inv_n;
-                            if let Some(sp) = splatter.filter(|sp| first || sp.every_vertex()) {
-                                splats.extend(sp.connect(v, power, l, &mut camera_rays));
-                            }
-                            let hero = if C::is_hero_only(l) {
-                                Photon::HERO_ONLY
-                            } else {
-                                0
-                            };
-                            let caustic = if first { Photon::CAUSTIC } else { 0 };
-                            out.push(Photon::new(v.p, v.wi, power.to_lanes(), hero | caustic));
-                        }
-                    });
-                    rays += camera_rays;
-                    if !budget.add(out.len() - before) {
+                    let before = chunk.surface.len();
+                    let run = (scene, &settings, splatter);
+                    chunk.trace_one::<C>(run, &ph, lambda, inv_n, &mut rng);
+                    if !budget.add(chunk.surface.len() - before) {
                         break;
                     }
                 }
-                (out, splats, rays)
+                chunk
             })
             .collect();
         budget.check(n, 1)?;
         self.photons.clear();
         self.photons
-            .reserve_exact(per_chunk.iter().map(|c| c.0.len()).sum());
+            .reserve_exact(per_chunk.iter().map(|c| c.surface.len()).sum());
         let (mut rays, mut splats) = (0, Vec::with_capacity(per_chunk.len()));
-        for (p, sp, r) in per_chunk {
-            self.photons.extend_from_slice(&p);
-            splats.push(sp);
-            rays += r;
+        if let Some(v) = &mut self.volume {
+            v.photons.clear();
+        }
+        for c in per_chunk {
+            self.photons.extend_from_slice(&c.surface);
+            splats.push(c.splats);
+            rays += c.rays;
+            if let Some(v) = &mut self.volume {
+                v.photons.extend_from_slice(&c.volume);
+            }
         }
         Ok((rays, splats))
     }

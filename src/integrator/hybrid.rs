@@ -92,6 +92,11 @@ fn run<C: Carrier>(
     observer: Option<Observer>,
 ) -> Result<(Film, RenderStats)> {
     let lanes = LaneWidth::choose(scene)?;
+    if scene.has_media() && cs.mode != CausticMode::Map {
+        return Err(crate::error::Error::Usage(
+            "--caustics light|mixed does not trace scattering media; use --caustics map".into(),
+        ));
+    }
     let pixels = u64::from(settings.width) * u64::from(settings.height);
     let emitter = caustic::emitter(scene);
     let schedule =
@@ -101,6 +106,9 @@ fn run<C: Carrier>(
     if let Some(b) = &budget {
         setup.rays += b.rays;
         setup.photons += b.photons;
+    }
+    if scene.has_media() {
+        map.volume = Some(super::volume_map::VolumeMap::new(cs.alpha));
     }
     let n_photons = caustic::photons_per_pass(cs.photons, pixels);
     let mut last_n = n_photons;
@@ -133,6 +141,9 @@ fn run<C: Carrier>(
             setup.photons += n_photons;
         }
         map.begin_gather(|ph| initial_radius(scene, camera, settings, ph));
+        if let Some(v) = &mut map.volume {
+            v.begin_gather(|ph| initial_radius(scene, camera, settings, ph));
+        }
         for p in 0..schedule.first {
             map.end_pass(p as u32);
         }
@@ -165,6 +176,10 @@ fn run<C: Carrier>(
                 .is_some()
                 .then(|| light_trace::splat_image(&splats, pixels as usize));
             let r = map.begin_gather(|ph| initial_radius(scene, camera, settings, ph));
+            let rv = map
+                .volume
+                .as_mut()
+                .map(|v| v.begin_gather(|ph| initial_radius(scene, camera, settings, ph)));
             // 3. Camera samples.
             let (rays, bad) = camera_pass::<C>(
                 scene,
@@ -180,6 +195,10 @@ fn run<C: Carrier>(
             map.end_pass(pass);
             env.bar.inc(film.tiles() as u64);
             round.note = format!(", r {r:.3e}, {} caustic photons", map.photons.len());
+            if let (Some(rv), Some(v)) = (rv, &mut map.volume) {
+                v.end_pass(pass);
+                round.note += &format!(", volume r {rv:.3e}, {} volume photons", v.photons.len());
+            }
             Ok(round)
         })?;
     stats.photons_per_pass = last_n;
@@ -226,7 +245,14 @@ fn camera_pass<C: Carrier>(
 ) -> (u64, u64) {
     let gather = |s: &crate::shading::Surface<C>, l: &C::Lambda| map.density(s, l, false);
     let later = |s: &crate::shading::Surface<C>, l: &C::Lambda| map.density(s, l, true);
+    let beam = |ray: &crate::math::Ray, seg: &crate::shading::media::Segment<'_>, l: &C::Lambda| {
+        map.volume.as_ref().map_or(C::ZERO, |v| v.beam(ray, seg, l))
+    };
     let split = match (splats, mode) {
+        _ if map.volume.is_some() => CausticSplit::Volume {
+            surface: &gather,
+            beam: &beam,
+        },
         (None, _) | (_, CausticMode::Map) => CausticSplit::Map(&gather),
         (Some(_), CausticMode::Light) => CausticSplit::Mixed {
             through: &gather,

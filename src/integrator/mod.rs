@@ -12,6 +12,7 @@ pub mod photon_map;
 mod settings;
 pub mod sppm;
 pub mod vcm;
+pub mod volume_map;
 pub mod whitted;
 
 use crate::camera::Camera;
@@ -246,6 +247,21 @@ impl Integrator {
         }
     }
 
+    /// Only the path tracer and the hybrid (with its volumetric caustic map,
+    /// [`volume_map`]) trace light through scattering media ([`crate::volume`]); another
+    /// method on a scene with media is a usage error naming what scatters.
+    pub fn check_media(&self, scene: &Scene) -> Result<()> {
+        if !scene.has_media() || matches!(self, Integrator::Path { .. } | Integrator::Hybrid { .. })
+        {
+            return Ok(());
+        }
+        let what = crate::shading::media::summary(scene);
+        Err(Error::Usage(format!(
+            "--method {} does not trace scattering media ({what}); use --method path, hybrid or auto",
+            self.method().name()
+        )))
+    }
+
     /// Renders `scene` through `camera` to the end (no observer).
     pub fn render(
         &self,
@@ -296,6 +312,7 @@ impl Integrator {
         observer: Option<Observer>,
     ) -> Result<(Film, RenderStats)> {
         self.check()?;
+        self.check_media(scene)?;
         check_memory(settings.width, settings.height, self.method())?;
         let total = self.total_units(settings);
         if let Some(r) = &range {

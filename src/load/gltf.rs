@@ -33,6 +33,7 @@ mod material;
 mod material_layers;
 mod mesh;
 mod meshopt;
+mod scatter;
 mod scene;
 mod source;
 mod spec_gloss;
@@ -57,6 +58,8 @@ const READ_EXTENSIONS: &[&str] = &[
     "KHR_materials_specular",
     "KHR_materials_emissive_strength",
     "KHR_materials_dispersion",
+    "KHR_materials_volume_scatter",
+    "KHR_materials_scatter",
     "KHR_materials_iridescence",
     "KHR_materials_anisotropy",
     "KHR_lights_punctual",

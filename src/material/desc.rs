@@ -11,6 +11,7 @@ use super::layers::LayerDesc;
 use super::texture::TextureRef;
 use crate::spectrum::ior::KNOWN_NAMES;
 use crate::spectrum::{EmissionSpectrum, IorModel as SpectralIor, Metal, UnknownIorName};
+use crate::volume::VolumeScatter;
 use glam::{Vec3, Vec4};
 
 /// How the base colour's alpha is used (glTF `alphaMode`).
@@ -93,6 +94,9 @@ pub struct MaterialDesc {
     pub attenuation_color: Vec3,
     /// KHR_materials_volume attenuation distance (world units), +∞ by default.
     pub attenuation_distance: f32,
+    /// Scattering inside the volume (KHR_materials_volume_scatter / KHR_materials_scatter,
+    /// or `extras.iris_medium`; [`crate::volume`]); `None`: the volume only absorbs.
+    pub scatter: Option<VolumeScatter>,
     /// KHR_materials_specular specularFactor.
     pub specular: f32,
     /// KHR_materials_specular specularColorFactor (linear).
@@ -141,6 +145,7 @@ impl Default for MaterialDesc {
             thickness: 0.0,
             attenuation_color: Vec3::ONE,
             attenuation_distance: f32::INFINITY,
+            scatter: None,
             specular: 1.0,
             specular_color: Vec3::ONE,
             specular_texture: None,

@@ -35,7 +35,32 @@ pub use texture::{Encoding, ImageDesc, TexCoords, TextureContext, TextureRef};
 
 use crate::bsdf::{Bsdf, LobeExtensions};
 use crate::spectrum::{self, effective_color, Carrier, EmitterShape, Metal};
+use crate::volume::Medium;
 use glam::Vec3;
+
+/// Whether a material's surface, between media of equal index, changes nothing but the
+/// medium: a volume (thickness > 0) of constant IOR exactly 1, fully and smoothly
+/// transmissive, untinted, untextured, without emission, coverage, layers, film or metal.
+/// Such a boundary (KHR_materials_ior 1.0 around a scattering medium) is crossed without
+/// a bounce, by camera and shadow rays alike ([`crate::shading::media`]).
+fn index_matched(d: &MaterialDesc, model: &spectrum::IorModel) -> bool {
+    let l = &d.layers;
+    d.thickness > 0.0
+        && d.ior != 0.0
+        && model.n_d() == 1.0
+        && !model.is_dispersive()
+        && d.transmission == 1.0
+        && d.roughness == 0.0
+        && d.base_color.truncate() == Vec3::ONE
+        && d.emissive == Vec3::ZERO
+        && matches!(d.alpha_mode, AlphaMode::Opaque)
+        && d.textures().iter().all(|(_, t)| t.is_none())
+        && l.clearcoat == 0.0
+        && l.sheen_color == Vec3::ZERO
+        && l.diffuse_transmission == 0.0
+        && d.iridescence.is_none()
+        && d.conductor.is_none()
+}
 
 /// One material of the render scene.
 #[derive(Debug, Clone)]
@@ -50,6 +75,11 @@ pub struct Material {
     /// The shading point of a material without textures, the same at every hit: computed
     /// once here, so [`Material::shade`] only copies it.
     constant: Option<ShadingPoint>,
+    /// The scattering medium the volume holds (a volume whose `scatter` scatters); its
+    /// absorption is then the medium's, not [`Material::transmittance_at`]'s.
+    medium: Option<Medium>,
+    /// A volume boundary that changes nothing but the medium ([`Material::is_index_matched`]).
+    index_matched: bool,
 }
 
 /// Material parameters at one surface point, textures applied.
@@ -90,12 +120,20 @@ impl Material {
         let emitter_shape = desc
             .emission_spectrum
             .map(|s| s.emitter_shape(desc.emissive));
+        let medium = desc
+            .scatter
+            .filter(|_| desc.thickness > 0.0)
+            .map(|s| s.medium(desc.attenuation_color, desc.attenuation_distance))
+            .filter(Medium::scatters);
+        let index_matched = index_matched(&desc, &ior_model);
         let mut material = Material {
             desc,
             ior_model,
             emission_tint,
             emitter_shape,
             constant: None,
+            medium,
+            index_matched,
         };
         if material.desc.textures().iter().all(|(_, t)| t.is_none()) {
             let untextured = TextureContext::new(&[], TexCoords::default());
@@ -238,13 +276,25 @@ impl Material {
         self.ior_model.is_dispersive()
     }
 
+    /// The scattering medium inside the volume, if it scatters ([`crate::volume`]).
+    pub fn medium(&self) -> Option<&Medium> {
+        self.medium.as_ref()
+    }
+
+    /// Whether the surface only separates media of equal index ([`index_matched`]).
+    pub fn is_index_matched(&self) -> bool {
+        self.index_matched
+    }
+
     /// Beer–Lambert transmittance c^(x/d) over distance `x` inside the medium
     /// (KHR_materials_volume), for any carrier: the attenuation colour (upsampled as a
     /// reflectance at the path's wavelengths in spectral transport) raised to x/d per
-    /// channel. Exactly 1 for the default infinite attenuation distance.
+    /// channel. Exactly 1 for the default infinite attenuation distance, and for a volume
+    /// holding a scattering medium, whose extinction the path's free-flight sampling takes
+    /// ([`crate::volume::track`]).
     pub fn transmittance_at<C: Carrier>(&self, x: f32, l: &C::Lambda) -> C {
         let d = self.desc.attenuation_distance;
-        if !d.is_finite() {
+        if !d.is_finite() || self.medium.is_some() {
             return C::ONE;
         }
         C::reflectance(self.desc.attenuation_color, l).powf(x / d)

@@ -3,6 +3,8 @@
 //!
 //! - [`has_caustic_paths`]: does any light reach a diffuse-like surface through specular
 //!   bounces only?
+//! - [`volume_caustic_share`]: how much of the light scattered in media arrives there
+//!   through specular bounces (a beam through a prism into haze, a lamp behind a glass);
 //! - [`kept_share`]: how much of the light a diffuse bounce keeps in the scene (an enclosed
 //!   room keeps its albedo's worth, a stone on a studio floor loses nearly all of it to the
 //!   open sky).
@@ -10,7 +12,7 @@
 //! Units: shares of luminance (Rec. 709 Y of the photons' RGB power), dimensionless.
 
 use super::emit::{PhotonEmitter, PhotonNumbers, DEFAULT_AIM};
-use super::trace::{trace, Roulette, TraceSettings};
+use super::trace::{trace, trace_in_media, Roulette, TraceSettings};
 use crate::math::Rng;
 use crate::photon::aim::Aim;
 use crate::scene::Scene;
@@ -76,6 +78,53 @@ pub fn kept_share(scene: &Scene, emitter: &PhotonEmitter, n: u32) -> f64 {
     }
     if first > 0.0 {
         second / first
+    } else {
+        0.0
+    }
+}
+
+/// Of the power `n` photons (fixed seed, RGB, emitted as the hybrid emits them, aimed at
+/// the caustic makers with [`DEFAULT_AIM`]) scatter at their first event in a medium, the
+/// share that got there through ≥ 1 specular bounce (L S+ M), in [0, 1]; 0 when no photon
+/// scatters in a medium. The path tracer reaches such light only when a phase-sampled ray
+/// happens to find the light through the glass (never for a point light); the hybrid's
+/// volumetric caustic map carries it ([`crate::integrator::volume_map`]).
+pub fn volume_caustic_share(scene: &Scene, emitter: &PhotonEmitter, n: u32) -> f64 {
+    let settings = TraceSettings {
+        max_depth: 8,
+        roulette: Roulette::Throughput,
+    };
+    const KEY: u64 = 0x7015_CA05;
+    let numbers = PhotonNumbers::new(KEY);
+    let (mut all, mut caustic) = (0.0f64, 0.0f64);
+    for i in 0..n {
+        let mut rng = Rng::new(&[KEY, u64::from(i)]);
+        let Some(ph) = emitter.emit_index(scene, &numbers, u64::from(i), DEFAULT_AIM) else {
+            continue;
+        };
+        let mut first = true;
+        trace_in_media::<Vec3>(
+            scene,
+            &ph,
+            (),
+            &settings,
+            &mut rng,
+            |_, _| {},
+            |v, power, _| {
+                if std::mem::take(&mut first) {
+                    let y = f64::from(crate::light::env::luminance(power));
+                    if y.is_finite() {
+                        all += y;
+                        if v.caustic {
+                            caustic += y;
+                        }
+                    }
+                }
+            },
+        );
+    }
+    if all > 0.0 {
+        caustic / all
     } else {
         0.0
     }

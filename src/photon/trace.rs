@@ -26,7 +26,7 @@ use crate::math::Rng;
 use crate::medium::MediumStack;
 use crate::optics::refract;
 use crate::scene::Scene;
-use crate::shading::{self, is_diffuse_like, Event, Surface, MAX_DELTA_BOUNCES};
+use crate::shading::{self, is_diffuse_like, media, Event, Surface, MAX_DELTA_BOUNCES};
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
 
@@ -78,6 +78,20 @@ pub struct PhotonVertex<'s, C: Carrier> {
     /// The surface there (hit, BSDF, shading frame; its `wo` is `wi` in the frame): what
     /// connecting the vertex to the camera needs ([`crate::integrator::light_trace`]).
     pub surface: &'s Surface<C>,
+}
+
+/// A photon scattering in a medium ([`crate::volume`], [`trace_in_media`]).
+#[derive(Debug, Clone, Copy)]
+pub struct MediumVertex {
+    /// Position.
+    pub p: Vec3,
+    /// Unit direction back toward where the photon came from (world).
+    pub wi: Vec3,
+    /// Bounces before this event (0: straight from the light).
+    pub bounces: u32,
+    /// The path so far is L S+ (at least one bounce, all delta or near-specular): a
+    /// volumetric caustic photon.
+    pub caustic: bool,
 }
 
 /// The lobe colours the seed paper's rule chooses among: (diffuse, specular, transmission).
@@ -155,10 +169,32 @@ fn seed_step<C: Carrier>(bsdf: &Bsdf<C>, wo: Vec3, rng: &mut Rng) -> Option<(Vec
 pub fn trace<C: Carrier>(
     scene: &Scene,
     photon: &EmittedPhoton,
+    lambda: C::Lambda,
+    settings: &TraceSettings,
+    rng: &mut Rng,
+    store: impl FnMut(&PhotonVertex<C>, &C::Lambda),
+) -> u64 {
+    trace_in_media(scene, photon, lambda, settings, rng, store, |_, _, _| {})
+}
+
+/// [`trace`], also reporting the photon's scattering events in media:
+/// `store_medium(vertex, power, lambda)` with the flux scattered there (the free-flight
+/// weight σ_s e^(−σ_t t) / p included, [`crate::shading::media::fly`]). In a scene with
+/// media the photon flies through them as camera paths do, crosses index-matched
+/// boundaries without a bounce ([`crate::shading::media::cross_matched`]), keeps only its
+/// hero wavelength in a chromatic medium (so that its weights do not depend on which lane
+/// is the hero, [`crate::shading::media::keep_hero_in`]), scatters by sampling the phase
+/// function exactly (value / density = 1; phase functions are symmetric, so importance and
+/// radiance transport agree) and is rouletted on the flight's weight. A medium event
+/// counts as a non-delta bounce.
+pub fn trace_in_media<C: Carrier>(
+    scene: &Scene,
+    photon: &EmittedPhoton,
     mut lambda: C::Lambda,
     settings: &TraceSettings,
     rng: &mut Rng,
     mut store: impl FnMut(&PhotonVertex<C>, &C::Lambda),
+    mut store_medium: impl FnMut(&MediumVertex, C, &C::Lambda),
 ) -> u64 {
     let mut beta = C::emitted(photon.power, photon.shape, &lambda);
     let mut ray = photon.ray;
@@ -168,11 +204,59 @@ pub fn trace<C: Carrier>(
     let mut rays = 0u64;
     loop {
         let arrival = shading::arrive::<C>(scene, &ray, &media, &lambda, &mut rays);
+        if scene.has_media() {
+            let t_hit = arrival.as_ref().map_or(f32::INFINITY, |a| a.hit.t);
+            let before = beta.max_element();
+            media::keep_hero_in(scene, &ray, t_hit, &media, (&mut beta, &mut lambda));
+            if let Some(sc) = media::fly(scene, &ray, t_hit, &media, (&mut beta, &mut lambda), rng)
+            {
+                let wo = -ray.dir.normalize();
+                let v = MediumVertex {
+                    p: sc.p,
+                    wi: wo,
+                    bounces,
+                    caustic: bounces > 0 && all_specular,
+                };
+                let survive = if before > 0.0 {
+                    (beta.max_element() / before).min(1.0)
+                } else {
+                    0.0
+                };
+                if bounces == 0 && photon.range.is_some() {
+                    beta *= crate::light::range_window((sc.p - ray.origin).length(), photon.range);
+                }
+                store_medium(&v, beta, &lambda);
+                if survive <= 0.0 || rng.next_f32() >= survive || !beta.is_finite() {
+                    break;
+                }
+                beta /= survive;
+                let (wi, _) = sc
+                    .phase
+                    .sample(wo, Vec2::new(rng.next_f32(), rng.next_f32()));
+                all_specular = false;
+                bounces += 1;
+                depth += 1;
+                if depth >= settings.max_depth {
+                    break;
+                }
+                ray = crate::math::Ray::new(sc.p, wi);
+                continue;
+            }
+        }
         let Some(at) = &arrival else {
             break;
         };
         if bounces == 0 && photon.range.is_some() {
             beta *= crate::light::range_window(at.hit.t, photon.range);
+        }
+        if scene.has_media() {
+            if let Some(after) =
+                media::cross_matched::<C>(scene, &at.hit, &at.coincident, media, &lambda)
+            {
+                media = after;
+                ray = at.hit.spawn_ray(-at.hit.wo);
+                continue;
+            }
         }
         beta *= at.transmittance;
         if beta == C::ZERO {

@@ -65,6 +65,9 @@ pub fn resolve_method(
 
 /// The rule of [`resolve_method`] for a pinhole camera or not.
 fn choose(scene: &Scene, pinhole: bool) -> (Method, String) {
+    if scene.has_media() {
+        return media_method(scene);
+    }
     let emitter = PhotonEmitter::new(scene);
     if emitter.is_empty() {
         return (
@@ -159,3 +162,44 @@ pub const AUTO_ENCLOSED_FROM: f64 = 0.35;
 
 /// Probe photons behind the decisions (the number [`resolve_method`] uses).
 pub const CAUSTIC_PROBE_PHOTONS: u32 = 4096;
+
+/// Probe photons for the volumetric caustic share.
+const VOLUME_PROBE_PHOTONS: u32 = 20_000;
+
+/// The volumetric caustic share from which `auto` adds the volumetric caustic map: 1 % of
+/// the light scattered in media arriving through specular bounces.
+pub const AUTO_VOLUME_CAUSTICS_FROM: f64 = 0.01;
+
+/// `auto` in a scene with scattering media: the path tracer, or the hybrid with its
+/// volumetric caustic map when light reaches the media through specular bounces
+/// ([`crate::photon::probe::volume_caustic_share`]).
+fn media_method(scene: &Scene) -> (Method, String) {
+    let emitter = PhotonEmitter::new(scene);
+    let share = if emitter.is_empty() {
+        0.0
+    } else {
+        crate::photon::probe::volume_caustic_share(scene, &emitter, VOLUME_PROBE_PHOTONS)
+    };
+    let carry = format!(
+        "light scatters in media; {:.2} % of it arrives through specular bounces",
+        100.0 * share
+    );
+    if share >= AUTO_VOLUME_CAUSTICS_FROM {
+        (
+            Method::Hybrid,
+            format!(
+                "{carry}: the hybrid, whose volumetric caustic map carries that light (the \
+                 volumetric path tracer for the rest)"
+            ),
+        )
+    } else {
+        (
+            Method::Path,
+            format!(
+                "{carry} (the volumetric caustic map is added from {:.0} %): the volumetric \
+                 path tracer",
+                100.0 * AUTO_VOLUME_CAUSTICS_FROM
+            ),
+        )
+    }
+}

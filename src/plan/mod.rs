@@ -82,9 +82,20 @@ impl SpectralMode {
                         || m.conductor().is_some()
                         || m.desc.is_iridescent()
                 }) || scene.lights().iter().any(|l| l.shape.is_some())
+                    || chromatic_media(scene)
             }
         }
     }
+}
+
+/// Whether a scattering medium's coefficients follow a spectral law RGB only approximates
+/// (Rayleigh's λ⁻⁴, [`crate::volume::Medium::wants_spectral`]).
+fn chromatic_media(scene: &Scene) -> bool {
+    let fog = scene.fog().is_some_and(|f| f.medium.wants_spectral());
+    fog || scene
+        .materials()
+        .iter()
+        .any(|m| m.medium().is_some_and(|med| med.wants_spectral()))
 }
 
 /// One stage of the pipeline.
@@ -131,6 +142,7 @@ impl Plan {
                 stages::transport(&ev, spectral, spectral_on),
                 stages::photons(&ev, method, resolved, method_note.as_deref()),
                 stages::volumes(&ev),
+                stages::media(scene),
                 stages::textures(&ev),
                 stages::acceleration(scene),
                 stages::lanes(scene, resolved),

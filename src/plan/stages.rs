@@ -186,6 +186,28 @@ pub(super) fn volumes(ev: &Evidence) -> Stage {
     }
 }
 
+/// Scattering media: what scatters, and how the path tracer treats it.
+pub(super) fn media(scene: &Scene) -> Stage {
+    let used = scene.has_media();
+    Stage {
+        name: "media",
+        used,
+        reason: if used {
+            format!(
+                "volumetric path tracing (free-flight sampling with spectral MIS, next-event \
+                 estimation from inside media, shadow rays through index-matched boundaries) \
+                 in {}",
+                crate::shading::media::summary(scene)
+            )
+        } else {
+            "no scattering medium and no fog: rays cross air and volumes without sampling \
+             distances"
+                .into()
+        },
+        cost: None,
+    }
+}
+
 /// Textures: decoded images against the images materials on triangles reference.
 pub(super) fn textures(ev: &Evidence) -> Stage {
     let scene = ev.scene;

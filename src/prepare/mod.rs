@@ -51,6 +51,8 @@ pub struct PrepareOptions {
     pub accel: Backend,
     /// `--env`: `Some(choice)` overrides the file's environment (and turns the studio off).
     pub env: Option<Option<Environment>>,
+    /// `--fog`: `Some(choice)` replaces the file's `iris_fog` ([`crate::volume::fog`]).
+    pub fog: Option<Option<crate::volume::Medium>>,
     /// `--camera` name or index.
     pub camera: Option<String>,
     /// Image size: `--size`, else a reference image's size; `None` = the default size.
@@ -115,6 +117,9 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
     };
     let load_time = start.elapsed();
     desc.environment_light = resolve_environment(opts.env.clone(), desc.environment.take())?;
+    if let Some(fog) = opts.fog {
+        desc.fog = fog;
+    }
     if let Some(Environment::Sky(sky)) = &desc.environment_light {
         desc.lights.extend(input::sun_light(sky));
     }

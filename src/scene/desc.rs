@@ -50,6 +50,9 @@ pub struct SceneDesc {
     /// The environment light the file asks for (glTF scene `extras.iris_environment`);
     /// used when `--env` is not given.
     pub environment: Option<EnvironmentDesc>,
+    /// The scene-wide medium filling the air ([`crate::volume::fog`]): the file's
+    /// `extras.iris_fog`, replaced by `--fog` in preparation; `None`: clear air.
+    pub fog: Option<crate::volume::Medium>,
     /// Things the loader saw and did not use (unsupported extensions, MTL keys, primitive
     /// modes), each listed once.
     pub warnings: Vec<String>,

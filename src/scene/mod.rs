@@ -30,6 +30,7 @@ use crate::light::env::Environment;
 use crate::light::{Light, LightId, LightSampler, PunctualLight};
 use crate::material::{ImageDesc, Material, MaterialDesc, TexCoords, TextureContext};
 use crate::math::Ray;
+use crate::volume::fog::Fog;
 use desc::{AddedLights, CameraDesc, SceneDesc};
 use geometry::Geometry;
 use glam::Vec3;
@@ -60,6 +61,9 @@ pub struct Scene {
     lights: Vec<PunctualLight>,
     area_lights: AreaLights,
     environment: Option<Environment>,
+    fog: Option<Fog>,
+    /// Some material holds a scattering medium, or there is fog.
+    has_media: bool,
     light_sampler: LightSampler,
     default_lights: bool,
     cameras: Vec<CameraDesc>,
@@ -127,6 +131,8 @@ impl Scene {
             warnings.extend(m.warnings().iter().cloned());
         }
         let has_cutouts = materials.iter().any(Material::may_cut_out);
+        let fog = desc.fog.map(|medium| Fog { medium, bounds });
+        let has_media = fog.is_some() || materials.iter().any(|m| m.medium().is_some());
         let light_sampler = nee_sampler(lights.len(), &area_lights, &desc.environment_light);
         let start = Instant::now();
         let indices: Vec<[u32; 3]> = g.triangles.iter().map(|t| t.vertices).collect();
@@ -143,6 +149,8 @@ impl Scene {
             lights,
             area_lights,
             environment: desc.environment_light,
+            fog,
+            has_media,
             light_sampler,
             default_lights: desc.added_lights == AddedLights::KeyFill,
             cameras: desc.cameras,
@@ -157,6 +165,17 @@ impl Scene {
         // The last step of the build: it probes the finished acceleration structure.
         scene.touching_triangles = contact::mark_touching(&mut scene);
         Ok(scene)
+    }
+
+    /// The scene-wide medium and the box it fills ([`crate::volume::fog`]).
+    pub fn fog(&self) -> Option<&Fog> {
+        self.fog.as_ref()
+    }
+
+    /// Whether light scatters in a medium somewhere: a material holds a scattering medium
+    /// or the air is fogged. Only the path tracer renders such scenes.
+    pub fn has_media(&self) -> bool {
+        self.has_media
     }
 
     /// The file the scene came from.

@@ -16,6 +16,7 @@
 //! images and materials (`material`) → lights and cameras (`light`) → mesh repair →
 //! `NoTriangles` if nothing is left.
 
+mod closed;
 mod light;
 mod material;
 mod repair;
@@ -52,6 +53,7 @@ pub fn validate(mut desc: SceneDesc) -> Result<SceneDesc, LoadError> {
         light::check_camera(&src, i, c)?;
     }
     repair_meshes(&src, &mut desc.meshes, &mut warnings);
+    closed::check_media(&desc)?;
     warnings.extend(material::extension_warnings(&desc));
     if desc.meshes.is_empty() {
         return Err(LoadError::new(

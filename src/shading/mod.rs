@@ -6,7 +6,9 @@
 //! - [`spectral_mis`]: spectral MIS over the 4 wavelengths at rough dispersive interfaces;
 //! - [`frame`]: the shading frame at a hit (the tangent frame anisotropy uses);
 //! - [`direct`]: direct light with shadow rays (the Whitted tracer's light step);
-//! - [`lights`]: one light sample toward a hit (punctual, emissive triangles, environment).
+//! - [`lights`]: one light sample toward a hit (punctual, emissive triangles, environment);
+//! - [`media`]: scattering media along a path's rays (free flight, medium-only boundaries,
+//!   shadow-ray transmittance).
 //!
 //! Units and frames are stated in each module: directions are unit vectors, world space
 //! unless said to be in the local frame of the outward shading normal.
@@ -15,6 +17,7 @@ pub mod direct;
 pub mod frame;
 pub mod lights;
 pub mod material_bsdf;
+pub mod media;
 pub mod spectral_mis;
 pub mod step;
 

@@ -57,6 +57,8 @@ impl LaneWidth {
                     "environment variable IRIS_LANES={v}: expected off, 8 or 16"
                 ))),
             },
+            // Packets of shadow rays cannot carry media's transmittance.
+            None if scene.has_media() => Ok(LaneWidth::Scalar),
             None => Ok(match scene.accel() {
                 Accel::Bvh(_) => LaneWidth::Scalar,
                 #[allow(unreachable_patterns)]
@@ -200,7 +202,12 @@ where
                 &mut lane.ctx,
                 &mut None,
             );
-            if let Some(r) = nee.as_ref().and_then(|p| p.shadow) {
+            // Shadow rays through media are traced alone, for their transmittance.
+            if let Some(r) = nee
+                .as_ref()
+                .filter(|p| p.through.is_none())
+                .and_then(|p| p.shadow)
+            {
                 shadows.set(i, r.origin, r.dir, r.t_max);
             }
             lane.pending = nee;
@@ -215,8 +222,13 @@ where
         };
         for i in lanes(active) {
             let lane = &mut lanes_[i];
-            if let Some(p) = lane.pending.take() {
-                p.resolve(blocked & (1 << i) != 0, &mut lane.walk.l);
+            match lane.pending.take() {
+                Some(p) if p.through.is_some() => {
+                    let w = &mut lane.walk;
+                    p.resolve_traced(scene, &w.lambda, &mut lane.ctx.rays, &mut w.l);
+                }
+                Some(p) => p.resolve(blocked & (1 << i) != 0, &mut lane.walk.l),
+                None => {}
             }
             if ended & (1 << i) != 0 {
                 if lane.walk.next_branch() {

@@ -17,6 +17,7 @@
 //! path splits into its 4 wavelengths,
 //! each traced on as its own sub-path ([`split`], which gives the unbiasedness argument).
 
+mod in_medium;
 mod lanes;
 mod own_hero;
 mod split;
@@ -83,6 +84,11 @@ pub enum StopAt {
 /// ([`super::caustic::CausticMap::density`]).
 pub type Gather<'a, C> = &'a (dyn Fn(&Surface<C>, &<C as Carrier>::Lambda) -> C + Sync);
 
+/// A volumetric caustic map's beam radiance estimate along a camera ray's segment through
+/// a medium ([`super::volume_map::VolumeMap::beam`]), per unit throughput.
+pub type Beam<'a, C> =
+    &'a (dyn Fn(&Ray, &crate::shading::media::Segment<'_>, &<C as Carrier>::Lambda) -> C + Sync);
+
 /// How the path tracer shares light transport with a caustic photon map (`--method hybrid`,
 /// [`super::caustic`]); the split is Jensen's caustic map in Heckbert's notation.
 #[derive(Clone, Copy)]
@@ -107,6 +113,26 @@ pub enum CausticSplit<'a, C: Carrier> {
         /// The gather at a D₁ seen directly (the photons light tracing does not splat).
         direct: Option<Gather<'a, C>>,
     },
+    /// As `Map` in a scene with media, where a path's first non-delta vertex may be a
+    /// scattering event: `surface` gathers at a surface D₁, and `beam` adds the volumetric
+    /// caustic map's estimate along every segment through a medium before the first
+    /// non-delta vertex ([`super::volume_map`] proves the split).
+    Volume {
+        /// The surface map's gather at D₁.
+        surface: Gather<'a, C>,
+        /// The volume map's beam estimate.
+        beam: Beam<'a, C>,
+    },
+}
+
+impl<'a, C: Carrier> CausticSplit<'a, C> {
+    /// The beam estimate of [`CausticSplit::Volume`].
+    pub fn beam(&self) -> Option<Beam<'a, C>> {
+        match self {
+            CausticSplit::Volume { beam, .. } => Some(*beam),
+            _ => None,
+        }
+    }
 }
 
 /// The first diffuse-like hit of a camera path: where photons are gathered.
@@ -189,8 +215,7 @@ fn trace<C: Carrier>(
         let arrival = shading::arrive::<C>(scene, &walk.ray, media, lambda, &mut ctx.rays);
         let (nee, next) = vertex::vertex(scene, rules, &mut walk, arrival, ctx, &mut visible);
         if let Some(nee) = nee {
-            let blocked = nee.shadow.is_some_and(|r| scene.occluded(&r));
-            nee.resolve(blocked, &mut walk.l);
+            nee.resolve_traced(scene, &walk.lambda, &mut ctx.rays, &mut walk.l);
         }
         if next == Next::End && !walk.next_branch() {
             return (walk.radiance(), visible);

@@ -100,7 +100,33 @@ impl<C: Carrier> PathState<C> {
         } else {
             Some(0)
         };
-        if bs.delta {
+        self.count_bounce(bs.delta, max_depth, u)
+    }
+
+    /// Follows a direction sampled with density `pdf` by the phase function at the point
+    /// `p` of a medium (the sample's value over its density is 1): the MIS record, then the
+    /// bounce limits and Russian roulette as for a non-delta surface bounce. `false` when
+    /// the path ends here.
+    pub fn advance_in_medium(
+        &mut self,
+        p: Vec3,
+        pdf: f32,
+        max_depth: u32,
+        u: &mut Bounce<'_>,
+    ) -> bool {
+        self.prev = Prev {
+            delta: false,
+            pdf,
+            p,
+        };
+        self.since_diffuse = Some(0);
+        self.count_bounce(false, max_depth, u)
+    }
+
+    /// The bounce limits (delta bounces and the others counted apart) and, after three
+    /// non-delta bounces, Russian roulette on `u`. `false` when the path ends here.
+    fn count_bounce(&mut self, delta: bool, max_depth: u32, u: &mut Bounce<'_>) -> bool {
+        if delta {
             self.delta_depth += 1;
             return self.delta_depth <= MAX_DELTA_BOUNCES;
         }

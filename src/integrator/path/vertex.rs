@@ -14,12 +14,15 @@ use super::split::Branches;
 use super::state::{PathState, Prev};
 use super::{CausticSplit, Gather, StopAt, VisiblePoint};
 use crate::bsdf::TransportMode;
+use crate::interaction::SurfaceHit;
 use crate::math::Ray;
+use crate::medium::MediumStack;
 use crate::render::Context;
 use crate::sampler::Bounce;
 use crate::scene::Scene;
-use crate::shading::{is_diffuse_like, lights, Arrival, Event, Surface};
+use crate::shading::{is_diffuse_like, lights, media, Arrival, Event, Surface};
 use crate::spectrum::Carrier;
+use crate::volume::Phase;
 use glam::{Vec2, Vec3};
 
 /// Power heuristic with β = 2.
@@ -66,9 +69,12 @@ impl<'a, C: Carrier> Rules<'a, C> {
             stop,
             split,
             rough: match (dispersion.spectral_mis, stop, &split) {
-                (false, _, _) | (_, _, CausticSplit::Map(_) | CausticSplit::Mixed { .. }) => {
-                    RoughLanes::Hero
-                }
+                (false, _, _)
+                | (
+                    _,
+                    _,
+                    CausticSplit::Map(_) | CausticSplit::Mixed { .. } | CausticSplit::Volume { .. },
+                ) => RoughLanes::Hero,
                 (true, StopAt::Never, CausticSplit::None) => RoughLanes::Mis,
                 (true, StopAt::Diffuse, CausticSplit::None) => RoughLanes::OwnHero,
             },
@@ -141,16 +147,36 @@ impl<C: Carrier> Walk<C> {
 pub(super) struct Pending<C: Carrier> {
     /// The shadow ray of next-event estimation (`None`: nothing to trace, `value` is zero).
     pub shadow: Option<Ray>,
+    /// In a scene with media: the media the shadow ray starts in; it is then traced alone
+    /// for its transmittance ([`Pending::resolve_traced`]), not in a packet.
+    pub through: Option<MediumStack>,
     beta: C,
     value: C,
     gather: Option<C>,
 }
 
 impl<C: Carrier> Pending<C> {
-    /// Adds the vertex's light to `l`, `blocked` being the shadow ray's answer.
+    /// Adds the vertex's light to `l`, `blocked` being the shadow ray's answer (a scene
+    /// without media).
     #[inline]
     pub fn resolve(self, blocked: bool, l: &mut C) {
         let v = if blocked { C::ZERO } else { self.value };
+        self.add(v, l);
+    }
+
+    /// Traces the shadow ray (through its media, [`media::shadow`]) and adds the vertex's
+    /// light to `l`.
+    pub fn resolve_traced(self, scene: &Scene, lambda: &C::Lambda, rays: &mut u64, l: &mut C) {
+        let v = match (self.shadow, self.through) {
+            (Some(r), Some(m)) => self.value * media::shadow::<C>(scene, &r, m, lambda, rays),
+            (Some(r), None) if !scene.occluded(&r) => self.value,
+            _ => C::ZERO,
+        };
+        self.add(v, l);
+    }
+
+    #[inline]
+    fn add(&self, v: C, l: &mut C) {
         *l += self.beta * v;
         if let Some(g) = self.gather {
             *l += g;
@@ -210,32 +236,87 @@ fn emitted<C: Carrier>(
 }
 
 /// A light sample's contribution and the shadow ray that decides it: `value` counts if
-/// nothing blocks `shadow`; with no shadow ray, `value` is zero.
-struct LightSample<C: Carrier> {
+/// nothing blocks `shadow` (times the shadow ray's transmittance through the media it
+/// starts in, `through`, in a scene with media); with no shadow ray, `value` is zero.
+pub(super) struct LightSample<C: Carrier> {
     shadow: Option<Ray>,
     value: C,
+    through: Option<MediumStack>,
 }
 
 impl<C: Carrier> LightSample<C> {
     const NONE: Self = LightSample {
         shadow: None,
         value: C::ZERO,
+        through: None,
     };
 }
 
-/// Next-event estimation at `s`: one light, chosen by the scene's light sampler
+/// Where next-event estimation starts: a surface, or a point in a medium.
+#[derive(Clone, Copy)]
+pub(super) enum Scatterer<'a, C: Carrier> {
+    /// A surface vertex.
+    Surface(&'a Surface<C>),
+    /// A scattering event in a medium: the point ([`SurfaceHit::in_medium`]), its phase
+    /// function and the media the path is in there.
+    Medium {
+        hit: SurfaceHit,
+        phase: Phase,
+        media: MediumStack,
+    },
+}
+
+impl<C: Carrier> Scatterer<'_, C> {
+    fn hit(&self) -> &SurfaceHit {
+        match self {
+            Scatterer::Surface(s) => &s.hit,
+            Scatterer::Medium { hit, .. } => hit,
+        }
+    }
+
+    /// f and |cos θ| (the phase function's value and 1 in a medium) toward the world
+    /// direction `wi`, and the density with which the vertex's own sampling picks `wi` (the
+    /// hero-marginal one at a rough dispersive interface).
+    fn eval(&self, wi: Vec3, lambda: &C::Lambda) -> (C, f32, f32) {
+        match self {
+            Scatterer::Surface(s) => {
+                let wi_local = s.frame.to_local(wi);
+                let (f, pdf) = s.eval_mis(wi_local, TransportMode::Radiance, lambda);
+                (f, wi_local.z.abs(), pdf)
+            }
+            Scatterer::Medium { hit, phase, .. } => {
+                let p = phase.eval(hit.wo, wi);
+                (C::splat(p), 1.0, p)
+            }
+        }
+    }
+
+    /// The media a ray leaving toward `wi` starts in.
+    fn media_toward(&self, wi: Vec3) -> MediumStack {
+        match self {
+            Scatterer::Surface(s) => {
+                let wi_local = s.frame.to_local(wi);
+                s.media_after(wi_local.z * s.wo.z < 0.0)
+            }
+            Scatterer::Medium { media, .. } => *media,
+        }
+    }
+}
+
+/// Next-event estimation at `at`: one light, chosen by the scene's light sampler
 /// ([`Scene::light_sampler`](crate::scene::Scene)), with the shadow ray left to the caller
 /// (counted in `rays` here). With `use_mis` false the light sample gets the full weight (the
-/// path stops here, so BSDF sampling will not find the light).
-fn next_event<C: Carrier>(
+/// path stops here, so BSDF sampling will not find the light). In a scene with media the
+/// shadow ray carries the media it starts in, for its transmittance.
+pub(super) fn next_event<C: Carrier>(
     scene: &Scene,
-    s: &Surface<C>,
+    at: &Scatterer<'_, C>,
     lambda: &C::Lambda,
     use_mis: bool,
     u: &mut Bounce<'_>,
     rays: &mut u64,
 ) -> LightSample<C> {
-    let hit = &s.hit;
+    let hit = at.hit();
     let sampler = &scene.light_sampler();
     if sampler.is_empty() {
         return LightSample::NONE;
@@ -270,21 +351,21 @@ fn next_event<C: Carrier>(
     // The light's pdf includes choosing it ([`lights::area_pdf`] and
     // [`lights::environment_pdf`] give the same for a BSDF-sampled direction).
     let light_pdf = ls.pdf.map(|p| p * p_sel);
-    let wi_local = s.frame.to_local(ls.wi);
     // Per lane with the hero-marginal pdf at a rough dispersive interface (spectral MIS).
-    let (f, bsdf_pdf) = s.eval_mis(wi_local, TransportMode::Radiance, lambda);
+    let (f, cos, pdf) = at.eval(ls.wi, lambda);
     if f == C::ZERO {
         return LightSample::NONE;
     }
     *rays += 1;
     let w = match light_pdf {
-        Some(lp) if use_mis => mis(lp, bsdf_pdf),
+        Some(lp) if use_mis => mis(lp, pdf),
         _ => 1.0,
     };
     let incident = C::emitted(ls.incident / p_sel, ls.shape, lambda);
     LightSample {
         shadow: Some(ls.shadow),
-        value: f * incident * (wi_local.z.abs() * w),
+        value: f * incident * (cos * w),
+        through: scene.has_media().then(|| at.media_toward(ls.wi)),
     }
 }
 
@@ -294,7 +375,7 @@ fn next_event<C: Carrier>(
 fn split_gather<'a, C: Carrier>(split: CausticSplit<'a, C>, direct: bool) -> Option<Gather<'a, C>> {
     match split {
         CausticSplit::None => None,
-        CausticSplit::Map(g) => Some(g),
+        CausticSplit::Map(g) | CausticSplit::Volume { surface: g, .. } => Some(g),
         CausticSplit::Mixed { through, direct: d } => {
             if direct {
                 d
@@ -325,6 +406,22 @@ pub(super) fn vertex<C: Carrier>(
     // A sub-path redoing its split vertex: what arrived there is counted.
     let resume = std::mem::take(&mut walk.branches.resume);
     let caustic = st.closes_caustic(&rules.split) || resume;
+    if scene.has_media() && !resume {
+        let t_hit = arrival.as_ref().map_or(f32::INFINITY, |a| a.hit.t);
+        if let (Some(beam), None) = (rules.split.beam(), st.since_diffuse) {
+            // Before the first non-delta vertex: the volume map's share of this segment.
+            let values = (&mut st.beta, &mut walk.lambda);
+            media::keep_hero_in(scene, &walk.ray, t_hit, &st.media, values);
+            if let Some(seg) = media::segment(scene, &walk.ray, t_hit, &st.media) {
+                walk.l += st.beta * beam(&walk.ray, &seg, &walk.lambda);
+            }
+        }
+        let values = (&mut st.beta, &mut walk.lambda);
+        let mut u = ctx.sample.bounce(st.vertex);
+        if let Some(sc) = media::fly(scene, &walk.ray, t_hit, &st.media, values, u.rng()) {
+            return super::in_medium::scatter(scene, rules, walk, sc, ctx);
+        }
+    }
     let Some(at) = &arrival else {
         let e = escaped(scene, &walk.ray, &st.prev, st.beta, &walk.lambda);
         if let (Some(e), false) = (e, caustic) {
@@ -337,6 +434,16 @@ pub(super) fn vertex<C: Carrier>(
     }
     if let (Some(e), false) = (emitted(scene, at, &st.prev, st.beta, &walk.lambda), caustic) {
         walk.l += e;
+    }
+    if scene.has_media() {
+        let crossed =
+            media::cross_matched::<C>(scene, &at.hit, &at.coincident, st.media, &walk.lambda);
+        if let Some(after) = crossed {
+            // A boundary that changes only the medium: no bounce, MIS state kept.
+            walk.ray = at.hit.spawn_ray(-at.hit.wo);
+            st.media = after;
+            return (None, Next::Trace);
+        }
     }
     let mut u = ctx.sample.bounce(st.vertex);
     let before = (rules.wavelength_split && !C::is_hero_only(&walk.lambda)).then_some(st.beta);
@@ -361,7 +468,14 @@ pub(super) fn vertex<C: Carrier>(
     }
     let lambda = &walk.lambda;
     if rules.stop == StopAt::Diffuse && is_diffuse_like(&s.bsdf) {
-        let ls = next_event(scene, s, lambda, false, &mut u, &mut ctx.rays);
+        let ls = next_event(
+            scene,
+            &Scatterer::Surface(s),
+            lambda,
+            false,
+            &mut u,
+            &mut ctx.rays,
+        );
         *visible = Some(VisiblePoint {
             p: s.hit.p,
             ng: s.hit.ng,
@@ -386,7 +500,14 @@ pub(super) fn vertex<C: Carrier>(
     let lambda = &walk.lambda;
     let mut nee = None;
     if !s.bsdf.is_delta() {
-        let ls = next_event(scene, s, lambda, true, &mut u, &mut ctx.rays);
+        let ls = next_event(
+            scene,
+            &Scatterer::Surface(s),
+            lambda,
+            true,
+            &mut u,
+            &mut ctx.rays,
+        );
         let first = st.since_diffuse.is_none();
         let gather = split_gather(rules.split, st.direct)
             .filter(|_| first && st.depth + 1 < rules.max_depth)
@@ -408,9 +529,10 @@ pub(super) fn vertex<C: Carrier>(
 }
 
 /// A light sample at throughput `beta`, with the gather to add after it.
-fn pending<C: Carrier>(beta: C, ls: LightSample<C>, gather: Option<C>) -> Pending<C> {
+pub(super) fn pending<C: Carrier>(beta: C, ls: LightSample<C>, gather: Option<C>) -> Pending<C> {
     Pending {
         shadow: ls.shadow,
+        through: ls.through,
         beta,
         value: ls.value,
         gather,

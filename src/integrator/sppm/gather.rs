@@ -75,7 +75,7 @@ impl GatherLanes {
 
     /// The power of `ph` in the camera path's lane order, with the bookkeeping's factor
     /// ([`photon_term`]).
-    fn power<C: Carrier>(self, ph: &Photon) -> C {
+    pub(in crate::integrator) fn power<C: Carrier>(self, ph: &Photon) -> C {
         match self {
             GatherLanes::SubPath(k) | GatherLanes::OwnHero(k) => {
                 C::from_lanes(rotate_lanes(ph.power(), k))

@@ -11,6 +11,8 @@
 //! - `KHR_materials_dispersion.dispersion` (= 20/V_d) is read from the raw extension JSON,
 //!   which the `gltf` crate does not type.
 //! - KHR_materials_iridescence and KHR_materials_anisotropy: `super::iridescence_anisotropy`.
+//! - KHR_materials_volume_scatter / KHR_materials_scatter and `extras.iris_medium`:
+//!   `super::scatter`.
 //! - Material `extras` (`docs/spectral.md`, "IOR models"): `{"iris_glass": "N-BK7"}` names a
 //!   built-in Sellmeier glass (`spectrum::ior::KNOWN_NAMES`, case-insensitive) and gives
 //!   `ExplicitIor::Glass`; `{"cauchy": {"b": B, "c": C}}` gives `ExplicitIor::Cauchy`
@@ -211,6 +213,7 @@ fn read_material(
         layers,
         iridescence,
         anisotropy,
+        scatter: super::scatter::read_scatter(ctx, m, &element, warnings)?,
         ..factors(ctx, m, &element, &tex)?
     };
     let (material, dropped) =

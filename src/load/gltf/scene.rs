@@ -15,6 +15,8 @@
 //!   computed sky `"sky:elevation=DEG[,azimuth=DEG,turbidity=T]"` (as `--env`,
 //!   [`crate::light::sky`]). The map must exist; it is decoded later, when the renderer
 //!   builds the environment. Other extras keys are ignored.
+//! - Fog: the chosen scene's `extras.iris_fog` is a fog specification as `--fog` takes it
+//!   (`"density=0.2,g=0.5"`, `"rayleigh=0.05"`; [`crate::volume::fog`]).
 //! - The graph is walked without recursion; a cycle (depth beyond the node count) is a
 //!   `Parse` error and runaway instancing a `TooLarge` error, so hostile files end cleanly.
 //! - EXT_mesh_gpu_instancing: a node's mesh is placed once per instance
@@ -41,6 +43,7 @@ pub(super) fn read_scene_graph(
     warnings: &mut Warnings,
 ) -> Result<(), LoadError> {
     desc.environment = read_environment(ctx)?;
+    desc.fog = read_fog(ctx)?;
     let node_count = ctx.doc.nodes().len();
     let mut stack: Vec<(gltf::Node<'_>, Mat4, usize)> = root_nodes(ctx.doc)
         .into_iter()
@@ -160,24 +163,51 @@ fn root_nodes(doc: &gltf::Document) -> Vec<gltf::Node<'_>> {
         .collect()
 }
 
+/// The chosen scene's label and its extras, if they are a JSON value.
+fn scene_extras(ctx: &Ctx<'_>) -> Option<(String, serde_json::Value)> {
+    let scene = ctx
+        .doc
+        .default_scene()
+        .or_else(|| ctx.doc.scenes().next())?;
+    let extras = serde_json::from_str(scene.extras().as_ref()?.get()).ok()?;
+    Some((label("scene", scene.index(), scene.name()), extras))
+}
+
+/// The chosen scene's `extras.iris_fog`: a fog specification string as `--fog` takes
+/// ([`crate::volume::fog`]).
+fn read_fog(ctx: &Ctx<'_>) -> Result<Option<crate::volume::Medium>, LoadError> {
+    let Some((scene, extras)) = scene_extras(ctx) else {
+        return Ok(None);
+    };
+    let Some(value) = extras.get("iris_fog") else {
+        return Ok(None);
+    };
+    let element = format!("{scene} extras.iris_fog");
+    let spec = value.as_str().ok_or_else(|| {
+        ctx.error(
+            &element,
+            LoadErrorKind::InvalidValue,
+            format!("{value} is not a fog specification string"),
+        )
+    })?;
+    crate::volume::fog::parse(spec).map(Some).map_err(|why| {
+        ctx.error(
+            &element,
+            LoadErrorKind::InvalidValue,
+            format!("{spec:?}: {why}"),
+        )
+    })
+}
+
 /// The chosen scene's `extras.iris_environment`, checked (see the module docs).
 fn read_environment(ctx: &Ctx<'_>) -> Result<Option<EnvironmentDesc>, LoadError> {
-    let Some(scene) = ctx.doc.default_scene().or_else(|| ctx.doc.scenes().next()) else {
-        return Ok(None);
-    };
-    let Some(raw) = scene.extras() else {
-        return Ok(None);
-    };
-    let Ok(extras) = serde_json::from_str::<serde_json::Value>(raw.get()) else {
+    let Some((scene, extras)) = scene_extras(ctx) else {
         return Ok(None);
     };
     let Some(value) = extras.get("iris_environment") else {
         return Ok(None);
     };
-    let element = format!(
-        "{} extras.iris_environment",
-        label("scene", scene.index(), scene.name())
-    );
+    let element = format!("{scene} extras.iris_environment");
     let err = |kind, detail: String| ctx.error(element.as_str(), kind, detail);
     let radiance = |v: &serde_json::Value| {
         v.as_f64()
