@@ -107,9 +107,6 @@ fn run<C: Carrier>(
         setup.rays += b.rays;
         setup.photons += b.photons;
     }
-    if scene.has_media() {
-        map.volume = Some(super::volume_map::VolumeMap::new(cs.alpha));
-    }
     let n_photons = caustic::photons_per_pass(cs.photons, pixels);
     let mut last_n = n_photons;
     let splatter = match cs.mode {
@@ -207,7 +204,8 @@ fn run<C: Carrier>(
 
 /// Without `--photons` in map mode, the pilot's budget ([`photon_budget`]: the photons a
 /// pass and the first radius, the same in every shard) and a map with its first radius;
-/// otherwise no budget and a map with `--radius` (or none yet).
+/// otherwise no budget and a map with `--radius` (or none yet). In a scene with media the
+/// map comes with an empty volume map ([`super::volume_map`]).
 fn caustic_budget<C: Carrier>(
     scene: &Scene,
     camera: &Camera,
@@ -216,8 +214,12 @@ fn caustic_budget<C: Carrier>(
     cs: &CausticSettings,
     emitter: &crate::photon::emit::PhotonEmitter,
 ) -> Result<(Option<photon_budget::Budget>, CausticMap)> {
+    let mut map = CausticMap::new(cs.radius, cs.alpha);
+    if scene.has_media() {
+        map.volume = Some(super::volume_map::VolumeMap::new(cs.alpha));
+    }
     if cs.photons > 0 || cs.mode != CausticMode::Map || emitter.is_empty() {
-        return Ok((None, CausticMap::new(cs.radius, cs.alpha)));
+        return Ok((None, map));
     }
     let b = photon_budget::choose::<C>(
         scene,
@@ -227,7 +229,9 @@ fn caustic_budget<C: Carrier>(
         emitter,
         (cs.radius, cs.alpha),
     )?;
-    Ok((Some(b), CausticMap::new(Some(b.first_radius), cs.alpha)))
+    let mut first = CausticMap::new(Some(b.first_radius), cs.alpha);
+    first.volume = map.volume;
+    Ok((Some(b), first))
 }
 
 /// One camera sample per pixel of the active tiles (each tile's next unit,

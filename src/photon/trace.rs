@@ -94,6 +94,61 @@ pub struct MediumVertex {
     pub caustic: bool,
 }
 
+/// What a photon's flight through a medium did ([`scatter_in_medium`]).
+enum Flight {
+    /// It reached the surface (or escaped).
+    Pass,
+    /// It scattered; its ray is the new direction.
+    Scattered,
+    /// Roulette ended it.
+    Absorbed,
+}
+
+/// Free flight of a photon (`beta`, `lambda` along `ray`, whose surface is at `t_hit`): a
+/// chromatic medium keeps the hero only, then [`media::fly`]. At a scattering event
+/// `store(vertex, power, lambda)` is called (the vertex's `bounces` and `caustic` are the
+/// caller's to fill), the photon is rouletted on the flight's weight (survivors keep their
+/// power), the light's range window `range` applied on its first flight, and `ray` becomes
+/// the phase-sampled direction.
+fn scatter_in_medium<C: Carrier>(
+    (scene, media, t_hit): (&Scene, &MediumStack, f32),
+    (beta, lambda, ray): (&mut C, &mut C::Lambda, &mut crate::math::Ray),
+    range: Option<f32>,
+    rng: &mut Rng,
+    store: impl FnOnce(MediumVertex, C, &C::Lambda),
+) -> Flight {
+    let before = beta.max_element();
+    media::keep_hero_in(scene, ray, t_hit, media, (&mut *beta, &mut *lambda));
+    let Some(sc) = media::fly(scene, ray, t_hit, media, (&mut *beta, &mut *lambda), rng) else {
+        return Flight::Pass;
+    };
+    let wo = -ray.dir.normalize();
+    let survive = if before > 0.0 {
+        (beta.max_element() / before).min(1.0)
+    } else {
+        0.0
+    };
+    if range.is_some() {
+        *beta *= crate::light::range_window((sc.p - ray.origin).length(), range);
+    }
+    let v = MediumVertex {
+        p: sc.p,
+        wi: wo,
+        bounces: 0,
+        caustic: false,
+    };
+    store(v, *beta, lambda);
+    if survive <= 0.0 || rng.next_f32() >= survive || !beta.is_finite() {
+        return Flight::Absorbed;
+    }
+    *beta /= survive;
+    let (wi, _) = sc
+        .phase
+        .sample(wo, Vec2::new(rng.next_f32(), rng.next_f32()));
+    *ray = crate::math::Ray::new(sc.p, wi);
+    Flight::Scattered
+}
+
 /// The lobe colours the seed paper's rule chooses among: (diffuse, specular, transmission).
 fn seed_colours<C: Carrier>(bsdf: &Bsdf<C>) -> (C, C, C) {
     let f0 = |eta: f32| {
@@ -163,6 +218,46 @@ fn seed_step<C: Carrier>(bsdf: &Bsdf<C>, wo: Vec3, rng: &mut Rng) -> Option<(Vec
     }
 }
 
+/// The photon's next direction at surface `s` under `roulette` (throughput roulette:
+/// survival = the throughput's change, survivors keep their power; or the seed paper's
+/// rule), updating `beta`: (direction, whether it is a transmission, whether the bounce
+/// counts as delta); `None` when the photon ends.
+fn next_direction<C: Carrier>(
+    s: &Surface<C>,
+    roulette: Roulette,
+    beta: &mut C,
+    rng: &mut Rng,
+) -> Option<(Vec3, bool, bool)> {
+    Some(match roulette {
+        Roulette::Throughput => {
+            let uc = rng.next_f32();
+            let u = Vec2::new(rng.next_f32(), rng.next_f32());
+            let bs = s.sample(uc, u, TransportMode::Importance)?;
+            let new_beta = *beta * bs.f * (bs.wi.z.abs() / bs.pdf);
+            let old = beta.max_element();
+            let p = if old > 0.0 {
+                (new_beta.max_element() / old).min(1.0)
+            } else {
+                0.0
+            };
+            if p <= 0.0 || rng.next_f32() >= p {
+                return None;
+            }
+            *beta = new_beta / p;
+            (bs.wi, bs.transmission, bs.delta)
+        }
+        Roulette::Seed => {
+            let (wi, colour, transmission) = seed_step(&s.bsdf, s.wo, rng)?;
+            *beta *= colour;
+            (
+                wi,
+                transmission,
+                !is_diffuse_like(&s.bsdf) || s.bsdf.is_delta(),
+            )
+        }
+    })
+}
+
 /// Traces one photon; `store(vertex, lambda)` is called at every non-delta hit with the
 /// photon's wavelengths at that point (hero-only after a dispersive interface). Returns the
 /// number of rays traced.
@@ -206,41 +301,33 @@ pub fn trace_in_media<C: Carrier>(
         let arrival = shading::arrive::<C>(scene, &ray, &media, &lambda, &mut rays);
         if scene.has_media() {
             let t_hit = arrival.as_ref().map_or(f32::INFINITY, |a| a.hit.t);
-            let before = beta.max_element();
-            media::keep_hero_in(scene, &ray, t_hit, &media, (&mut beta, &mut lambda));
-            if let Some(sc) = media::fly(scene, &ray, t_hit, &media, (&mut beta, &mut lambda), rng)
-            {
-                let wo = -ray.dir.normalize();
-                let v = MediumVertex {
-                    p: sc.p,
-                    wi: wo,
-                    bounces,
-                    caustic: bounces > 0 && all_specular,
-                };
-                let survive = if before > 0.0 {
-                    (beta.max_element() / before).min(1.0)
-                } else {
-                    0.0
-                };
-                if bounces == 0 && photon.range.is_some() {
-                    beta *= crate::light::range_window((sc.p - ray.origin).length(), photon.range);
+            let photon_state = (&mut beta, &mut lambda, &mut ray);
+            let first = (bounces == 0).then_some(photon.range).flatten();
+            let caustic = bounces > 0 && all_specular;
+            let keep = |v: MediumVertex, power: C, l: &C::Lambda| {
+                store_medium(
+                    &MediumVertex {
+                        bounces,
+                        caustic,
+                        ..v
+                    },
+                    power,
+                    l,
+                )
+            };
+            let at = (scene, &media, t_hit);
+            match scatter_in_medium(at, photon_state, first, rng, keep) {
+                Flight::Pass => {}
+                Flight::Scattered => {
+                    all_specular = false;
+                    bounces += 1;
+                    depth += 1;
+                    if depth >= settings.max_depth {
+                        break;
+                    }
+                    continue;
                 }
-                store_medium(&v, beta, &lambda);
-                if survive <= 0.0 || rng.next_f32() >= survive || !beta.is_finite() {
-                    break;
-                }
-                beta /= survive;
-                let (wi, _) = sc
-                    .phase
-                    .sample(wo, Vec2::new(rng.next_f32(), rng.next_f32()));
-                all_specular = false;
-                bounces += 1;
-                depth += 1;
-                if depth >= settings.max_depth {
-                    break;
-                }
-                ray = crate::math::Ray::new(sc.p, wi);
-                continue;
+                Flight::Absorbed => break,
             }
         }
         let Some(at) = &arrival else {
@@ -281,37 +368,9 @@ pub fn trace_in_media<C: Carrier>(
             };
             store(&v, &lambda);
         }
-        let (wi, transmission, delta) = match settings.roulette {
-            Roulette::Throughput => {
-                let uc = rng.next_f32();
-                let u = Vec2::new(rng.next_f32(), rng.next_f32());
-                let Some(bs) = s.sample(uc, u, TransportMode::Importance) else {
-                    break;
-                };
-                let new_beta = beta * bs.f * (bs.wi.z.abs() / bs.pdf);
-                let old = beta.max_element();
-                let p = if old > 0.0 {
-                    (new_beta.max_element() / old).min(1.0)
-                } else {
-                    0.0
-                };
-                if p <= 0.0 || rng.next_f32() >= p {
-                    break;
-                }
-                beta = new_beta / p;
-                (bs.wi, bs.transmission, bs.delta)
-            }
-            Roulette::Seed => {
-                let Some((wi, colour, transmission)) = seed_step(&s.bsdf, s.wo, rng) else {
-                    break;
-                };
-                beta *= colour;
-                (
-                    wi,
-                    transmission,
-                    !is_diffuse_like(&s.bsdf) || s.bsdf.is_delta(),
-                )
-            }
+        let Some((wi, transmission, delta)) = next_direction(s, settings.roulette, &mut beta, rng)
+        else {
+            break;
         };
         if !beta.is_finite() {
             break;

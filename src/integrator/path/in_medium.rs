@@ -9,17 +9,60 @@
 //! counts against `max_depth` like a non-delta bounce. Directions are unit vectors in world
 //! space.
 
-use super::vertex::{next_event, pending, Next, Pending, Rules, Scatterer, Walk};
+use super::light_sample::{next_event, Scatterer};
+use super::vertex::{pending, Next, Pending, Rules, Walk};
 use crate::interaction::SurfaceHit;
 use crate::math::Ray;
 use crate::render::Context;
 use crate::scene::Scene;
-use crate::shading::media::Scattered;
+use crate::shading::media::{self, Scattered};
+use crate::shading::Arrival;
 use crate::spectrum::Carrier;
+
+/// Before the surface its ray reached at distance `t_hit` (+∞ if it escaped): the volume
+/// caustic map's beam estimate along the segment while the path has no non-delta vertex
+/// yet ([`super::CausticSplit::Volume`], in a chromatic medium after keeping the hero
+/// only), then free flight ([`media::fly`]); `Some` with the vertex's outcome if the path
+/// scatters in the medium.
+pub(super) fn fly<C: Carrier>(
+    scene: &Scene,
+    rules: &Rules<'_, C>,
+    walk: &mut Walk<C>,
+    t_hit: f32,
+    ctx: &mut Context,
+) -> Option<(Option<Pending<C>>, Next)> {
+    let st = &mut walk.st;
+    if let (Some(beam), None) = (rules.split.beam(), st.since_diffuse) {
+        let values = (&mut st.beta, &mut walk.lambda);
+        media::keep_hero_in(scene, &walk.ray, t_hit, &st.media, values);
+        if let Some(seg) = media::segment(scene, &walk.ray, t_hit, &st.media) {
+            walk.l += st.beta * beam(&walk.ray, &seg, &walk.lambda);
+        }
+    }
+    let values = (&mut st.beta, &mut walk.lambda);
+    let mut u = ctx.sample.bounce(st.vertex);
+    let sc = media::fly(scene, &walk.ray, t_hit, &st.media, values, u.rng())?;
+    Some(scatter(scene, rules, walk, sc, ctx))
+}
+
+/// At the surface `at`: if it only changes the medium ([`media::cross_matched`]), the walk
+/// crosses it without a bounce (MIS state kept) and `true` is returned.
+pub(super) fn cross<C: Carrier>(scene: &Scene, walk: &mut Walk<C>, at: &Arrival<'_, C>) -> bool {
+    let st = &mut walk.st;
+    let crossed = media::cross_matched::<C>(scene, &at.hit, &at.coincident, st.media, &walk.lambda);
+    match crossed {
+        Some(after) => {
+            walk.ray = at.hit.spawn_ray(-at.hit.wo);
+            st.media = after;
+            true
+        }
+        None => false,
+    }
+}
 
 /// The vertex of `walk` at the scattering event `sc` on its ray: adds the light sample's
 /// pending contribution and sets the walk's next ray (module docs).
-pub(super) fn scatter<C: Carrier>(
+fn scatter<C: Carrier>(
     scene: &Scene,
     rules: &Rules<'_, C>,
     walk: &mut Walk<C>,

@@ -19,6 +19,7 @@
 
 mod in_medium;
 mod lanes;
+mod light_sample;
 mod own_hero;
 mod split;
 mod state;

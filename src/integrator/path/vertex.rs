@@ -9,24 +9,22 @@
 //! Units: radiance in the carrier's units (linear RGB or per-wavelength spectral
 //! radiance); frames as in [`crate::shading::step`].
 
+use super::light_sample::{next_event, LightSample, Scatterer};
 use super::own_hero::{self, HeroOf};
 use super::split::Branches;
 use super::state::{PathState, Prev};
 use super::{CausticSplit, Gather, StopAt, VisiblePoint};
 use crate::bsdf::TransportMode;
-use crate::interaction::SurfaceHit;
 use crate::math::Ray;
 use crate::medium::MediumStack;
 use crate::render::Context;
-use crate::sampler::Bounce;
 use crate::scene::Scene;
-use crate::shading::{is_diffuse_like, lights, media, Arrival, Event, Surface};
+use crate::shading::{is_diffuse_like, lights, media, Arrival, Event};
 use crate::spectrum::Carrier;
-use crate::volume::Phase;
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 /// Power heuristic with β = 2.
-fn mis(a: f32, b: f32) -> f32 {
+pub(super) fn mis(a: f32, b: f32) -> f32 {
     let (a2, b2) = (a * a, b * b);
     if a2 + b2 > 0.0 {
         a2 / (a2 + b2)
@@ -235,140 +233,6 @@ fn emitted<C: Carrier>(
     Some(beta * C::emitted(at.sp.emissive, mat.emitter_shape(), lambda) * w)
 }
 
-/// A light sample's contribution and the shadow ray that decides it: `value` counts if
-/// nothing blocks `shadow` (times the shadow ray's transmittance through the media it
-/// starts in, `through`, in a scene with media); with no shadow ray, `value` is zero.
-pub(super) struct LightSample<C: Carrier> {
-    shadow: Option<Ray>,
-    value: C,
-    through: Option<MediumStack>,
-}
-
-impl<C: Carrier> LightSample<C> {
-    const NONE: Self = LightSample {
-        shadow: None,
-        value: C::ZERO,
-        through: None,
-    };
-}
-
-/// Where next-event estimation starts: a surface, or a point in a medium.
-#[derive(Clone, Copy)]
-pub(super) enum Scatterer<'a, C: Carrier> {
-    /// A surface vertex.
-    Surface(&'a Surface<C>),
-    /// A scattering event in a medium: the point ([`SurfaceHit::in_medium`]), its phase
-    /// function and the media the path is in there.
-    Medium {
-        hit: SurfaceHit,
-        phase: Phase,
-        media: MediumStack,
-    },
-}
-
-impl<C: Carrier> Scatterer<'_, C> {
-    fn hit(&self) -> &SurfaceHit {
-        match self {
-            Scatterer::Surface(s) => &s.hit,
-            Scatterer::Medium { hit, .. } => hit,
-        }
-    }
-
-    /// f and |cos θ| (the phase function's value and 1 in a medium) toward the world
-    /// direction `wi`, and the density with which the vertex's own sampling picks `wi` (the
-    /// hero-marginal one at a rough dispersive interface).
-    fn eval(&self, wi: Vec3, lambda: &C::Lambda) -> (C, f32, f32) {
-        match self {
-            Scatterer::Surface(s) => {
-                let wi_local = s.frame.to_local(wi);
-                let (f, pdf) = s.eval_mis(wi_local, TransportMode::Radiance, lambda);
-                (f, wi_local.z.abs(), pdf)
-            }
-            Scatterer::Medium { hit, phase, .. } => {
-                let p = phase.eval(hit.wo, wi);
-                (C::splat(p), 1.0, p)
-            }
-        }
-    }
-
-    /// The media a ray leaving toward `wi` starts in.
-    fn media_toward(&self, wi: Vec3) -> MediumStack {
-        match self {
-            Scatterer::Surface(s) => {
-                let wi_local = s.frame.to_local(wi);
-                s.media_after(wi_local.z * s.wo.z < 0.0)
-            }
-            Scatterer::Medium { media, .. } => *media,
-        }
-    }
-}
-
-/// Next-event estimation at `at`: one light, chosen by the scene's light sampler
-/// ([`Scene::light_sampler`](crate::scene::Scene)), with the shadow ray left to the caller
-/// (counted in `rays` here). With `use_mis` false the light sample gets the full weight (the
-/// path stops here, so BSDF sampling will not find the light). In a scene with media the
-/// shadow ray carries the media it starts in, for its transmittance.
-pub(super) fn next_event<C: Carrier>(
-    scene: &Scene,
-    at: &Scatterer<'_, C>,
-    lambda: &C::Lambda,
-    use_mis: bool,
-    u: &mut Bounce<'_>,
-    rays: &mut u64,
-) -> LightSample<C> {
-    let hit = at.hit();
-    let sampler = &scene.light_sampler();
-    if sampler.is_empty() {
-        return LightSample::NONE;
-    }
-    // Numbers a light does not use are skipped ([`Bounce::skip_light_choice`]).
-    let u_choice = if sampler.lights().len() > 1 {
-        u.light_choice()
-    } else {
-        u.skip_light_choice();
-        0.0
-    };
-    let Some(choice) = sampler.sample(u_choice) else {
-        return LightSample::NONE;
-    };
-    let p_sel = choice.pmf;
-    let (reads_position, reads_member) = lights::numbers_read(choice.light);
-    let up = if reads_position {
-        u.light_position()
-    } else {
-        u.skip_light_position();
-        Vec2::ZERO
-    };
-    let uc = if reads_member {
-        u.light_member()
-    } else {
-        u.skip_light_member();
-        0.0
-    };
-    let Some(ls) = lights::sample(scene, hit, choice.light, uc, up) else {
-        return LightSample::NONE;
-    };
-    // The light's pdf includes choosing it ([`lights::area_pdf`] and
-    // [`lights::environment_pdf`] give the same for a BSDF-sampled direction).
-    let light_pdf = ls.pdf.map(|p| p * p_sel);
-    // Per lane with the hero-marginal pdf at a rough dispersive interface (spectral MIS).
-    let (f, cos, pdf) = at.eval(ls.wi, lambda);
-    if f == C::ZERO {
-        return LightSample::NONE;
-    }
-    *rays += 1;
-    let w = match light_pdf {
-        Some(lp) if use_mis => mis(lp, pdf),
-        _ => 1.0,
-    };
-    let incident = C::emitted(ls.incident / p_sel, ls.shape, lambda);
-    LightSample {
-        shadow: Some(ls.shadow),
-        value: f * incident * (cos * w),
-        through: scene.has_media().then(|| at.media_toward(ls.wi)),
-    }
-}
-
 /// The caustic map's gather at a path's first non-delta vertex under `split`: the whole
 /// map, or with [`CausticSplit::Mixed`] the part for a vertex seen `direct`ly or through
 /// delta bounces.
@@ -402,26 +266,16 @@ pub(super) fn vertex<C: Carrier>(
     ctx: &mut Context,
     visible: &mut Option<VisiblePoint<C>>,
 ) -> (Option<Pending<C>>, Next) {
-    let st = &mut walk.st;
     // A sub-path redoing its split vertex: what arrived there is counted.
     let resume = std::mem::take(&mut walk.branches.resume);
-    let caustic = st.closes_caustic(&rules.split) || resume;
+    let caustic = walk.st.closes_caustic(&rules.split) || resume;
     if scene.has_media() && !resume {
         let t_hit = arrival.as_ref().map_or(f32::INFINITY, |a| a.hit.t);
-        if let (Some(beam), None) = (rules.split.beam(), st.since_diffuse) {
-            // Before the first non-delta vertex: the volume map's share of this segment.
-            let values = (&mut st.beta, &mut walk.lambda);
-            media::keep_hero_in(scene, &walk.ray, t_hit, &st.media, values);
-            if let Some(seg) = media::segment(scene, &walk.ray, t_hit, &st.media) {
-                walk.l += st.beta * beam(&walk.ray, &seg, &walk.lambda);
-            }
-        }
-        let values = (&mut st.beta, &mut walk.lambda);
-        let mut u = ctx.sample.bounce(st.vertex);
-        if let Some(sc) = media::fly(scene, &walk.ray, t_hit, &st.media, values, u.rng()) {
-            return super::in_medium::scatter(scene, rules, walk, sc, ctx);
+        if let Some(scattered) = super::in_medium::fly(scene, rules, walk, t_hit, ctx) {
+            return scattered;
         }
     }
+    let st = &mut walk.st;
     let Some(at) = &arrival else {
         let e = escaped(scene, &walk.ray, &st.prev, st.beta, &walk.lambda);
         if let (Some(e), false) = (e, caustic) {
@@ -435,16 +289,10 @@ pub(super) fn vertex<C: Carrier>(
     if let (Some(e), false) = (emitted(scene, at, &st.prev, st.beta, &walk.lambda), caustic) {
         walk.l += e;
     }
-    if scene.has_media() {
-        let crossed =
-            media::cross_matched::<C>(scene, &at.hit, &at.coincident, st.media, &walk.lambda);
-        if let Some(after) = crossed {
-            // A boundary that changes only the medium: no bounce, MIS state kept.
-            walk.ray = at.hit.spawn_ray(-at.hit.wo);
-            st.media = after;
-            return (None, Next::Trace);
-        }
+    if scene.has_media() && super::in_medium::cross(scene, walk, at) {
+        return (None, Next::Trace);
     }
+    let st = &mut walk.st;
     let mut u = ctx.sample.bounce(st.vertex);
     let before = (rules.wavelength_split && !C::is_hero_only(&walk.lambda)).then_some(st.beta);
     let ev = if rules.rough != RoughLanes::Hero {

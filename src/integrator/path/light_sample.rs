@@ -1,0 +1,155 @@
+//! Next-event estimation of a camera path's vertex ([`next_event`]): one light chosen by
+//! the scene's light sampler, from a surface (its BSDF, per lane at a rough dispersive
+//! interface) or from a scattering event in a medium (its phase function), MIS-weighted
+//! against the vertex's own sampling (power heuristic). The shadow ray is left to the
+//! caller ([`super::vertex::Pending`]), with the media it starts in when the scene has
+//! media, for its transmittance.
+//!
+//! Units: the light sample's value is f · incident · |cos| (radiance per unit throughput);
+//! directions in world space unless said local.
+
+use super::vertex::mis;
+use crate::bsdf::TransportMode;
+use crate::interaction::SurfaceHit;
+use crate::math::Ray;
+use crate::medium::MediumStack;
+use crate::sampler::Bounce;
+use crate::scene::Scene;
+use crate::shading::{lights, Surface};
+use crate::spectrum::Carrier;
+use crate::volume::Phase;
+use glam::{Vec2, Vec3};
+
+/// A light sample's contribution and the shadow ray that decides it: `value` counts if
+/// nothing blocks `shadow` (times the shadow ray's transmittance through the media it
+/// starts in, `through`, in a scene with media); with no shadow ray, `value` is zero.
+pub(super) struct LightSample<C: Carrier> {
+    pub shadow: Option<Ray>,
+    pub value: C,
+    pub through: Option<MediumStack>,
+}
+
+impl<C: Carrier> LightSample<C> {
+    const NONE: Self = LightSample {
+        shadow: None,
+        value: C::ZERO,
+        through: None,
+    };
+}
+
+/// Where next-event estimation starts: a surface, or a point in a medium.
+#[derive(Clone, Copy)]
+pub(super) enum Scatterer<'a, C: Carrier> {
+    /// A surface vertex.
+    Surface(&'a Surface<C>),
+    /// A scattering event in a medium: the point ([`SurfaceHit::in_medium`]), its phase
+    /// function and the media the path is in there.
+    Medium {
+        hit: SurfaceHit,
+        phase: Phase,
+        media: MediumStack,
+    },
+}
+
+impl<C: Carrier> Scatterer<'_, C> {
+    fn hit(&self) -> &SurfaceHit {
+        match self {
+            Scatterer::Surface(s) => &s.hit,
+            Scatterer::Medium { hit, .. } => hit,
+        }
+    }
+
+    /// f and |cos θ| (the phase function's value and 1 in a medium) toward the world
+    /// direction `wi`, and the density with which the vertex's own sampling picks `wi` (the
+    /// hero-marginal one at a rough dispersive interface).
+    fn eval(&self, wi: Vec3, lambda: &C::Lambda) -> (C, f32, f32) {
+        match self {
+            Scatterer::Surface(s) => {
+                let wi_local = s.frame.to_local(wi);
+                let (f, pdf) = s.eval_mis(wi_local, TransportMode::Radiance, lambda);
+                (f, wi_local.z.abs(), pdf)
+            }
+            Scatterer::Medium { hit, phase, .. } => {
+                let p = phase.eval(hit.wo, wi);
+                (C::splat(p), 1.0, p)
+            }
+        }
+    }
+
+    /// The media a ray leaving toward `wi` starts in.
+    fn media_toward(&self, wi: Vec3) -> MediumStack {
+        match self {
+            Scatterer::Surface(s) => {
+                let wi_local = s.frame.to_local(wi);
+                s.media_after(wi_local.z * s.wo.z < 0.0)
+            }
+            Scatterer::Medium { media, .. } => *media,
+        }
+    }
+}
+
+/// Next-event estimation at `at`: one light, chosen by the scene's light sampler
+/// ([`Scene::light_sampler`](crate::scene::Scene)), with the shadow ray left to the caller
+/// (counted in `rays` here). With `use_mis` false the light sample gets the full weight (the
+/// path stops here, so BSDF sampling will not find the light). In a scene with media the
+/// shadow ray carries the media it starts in, for its transmittance.
+pub(super) fn next_event<C: Carrier>(
+    scene: &Scene,
+    at: &Scatterer<'_, C>,
+    lambda: &C::Lambda,
+    use_mis: bool,
+    u: &mut Bounce<'_>,
+    rays: &mut u64,
+) -> LightSample<C> {
+    let hit = at.hit();
+    let sampler = &scene.light_sampler();
+    if sampler.is_empty() {
+        return LightSample::NONE;
+    }
+    // Numbers a light does not use are skipped ([`Bounce::skip_light_choice`]).
+    let u_choice = if sampler.lights().len() > 1 {
+        u.light_choice()
+    } else {
+        u.skip_light_choice();
+        0.0
+    };
+    let Some(choice) = sampler.sample(u_choice) else {
+        return LightSample::NONE;
+    };
+    let p_sel = choice.pmf;
+    let (reads_position, reads_member) = lights::numbers_read(choice.light);
+    let up = if reads_position {
+        u.light_position()
+    } else {
+        u.skip_light_position();
+        Vec2::ZERO
+    };
+    let uc = if reads_member {
+        u.light_member()
+    } else {
+        u.skip_light_member();
+        0.0
+    };
+    let Some(ls) = lights::sample(scene, hit, choice.light, uc, up) else {
+        return LightSample::NONE;
+    };
+    // The light's pdf includes choosing it ([`lights::area_pdf`] and
+    // [`lights::environment_pdf`] give the same for a BSDF-sampled direction).
+    let light_pdf = ls.pdf.map(|p| p * p_sel);
+    // Per lane with the hero-marginal pdf at a rough dispersive interface (spectral MIS).
+    let (f, cos, pdf) = at.eval(ls.wi, lambda);
+    if f == C::ZERO {
+        return LightSample::NONE;
+    }
+    *rays += 1;
+    let w = match light_pdf {
+        Some(lp) if use_mis => mis(lp, pdf),
+        _ => 1.0,
+    };
+    let incident = C::emitted(ls.incident / p_sel, ls.shape, lambda);
+    LightSample {
+        shadow: Some(ls.shadow),
+        value: f * incident * (cos * w),
+        through: scene.has_media().then(|| at.media_toward(ls.wi)),
+    }
+}
