@@ -437,13 +437,13 @@ fn the_fog_flag_renders_or_fails_cleanly() {
 }
 
 /// A glass ball (r 0.35, IOR 1.5) at (0, 0.3, 0) in grey fog `fog` (a `--fog` spec) over a
-/// black floor at y = −1, lit from above by a point light of intensity `light`, or without
+/// Lambertian floor of albedo `floor` at y = −1, lit from above by a point light of intensity `light`, or without
 /// one by a 0.6 × 0.6 panel of radiance 10 at y = 1.4 facing down: the ball focuses it into
 /// a volumetric caustic cone below it, seen from the side.
-fn foggy_lens(fog: &str, light: Option<f32>) -> (Scene, CameraDesc) {
+fn foggy_lens(fog: &str, light: Option<f32>, floor: f32) -> (Scene, CameraDesc) {
     let black = MaterialDesc {
-        name: "black".into(),
-        base_color: glam::Vec4::new(0.0, 0.0, 0.0, 1.0),
+        name: "floor".into(),
+        base_color: glam::Vec4::new(floor, floor, floor, 1.0),
         specular: 0.0,
         ..Default::default()
     };
@@ -557,7 +557,9 @@ fn region(img: &[Vec3], size: u32, rows: std::ops::Range<u32>, cols: std::ops::R
 /// at 512, −1.2 % at 2048.
 #[test]
 fn the_volumetric_caustic_map_agrees_with_the_path_tracer() {
-    let (scene, cam) = foggy_lens("density=0.25", None);
+    // A grey floor: light paths mixing the ball's surface caustic, scattering in the fog and
+    // the floor's reflection are split between the maps and the path tracer.
+    let (scene, cam) = foggy_lens("density=0.25", None, 0.5);
     let (method, why) = iris::plan::resolve_method(Method::Auto, &scene, &cam.projection);
     assert_eq!(method, Method::Hybrid, "{why:?}");
     let size = 24;
@@ -591,7 +593,7 @@ fn the_volumetric_caustic_map_agrees_with_the_path_tracer() {
 /// passes, closer than at 64.
 #[test]
 fn the_volumetric_caustic_map_renders_a_point_lights_caustic() {
-    let (scene, cam) = foggy_lens("density=0.25,color=0.2:0.2:0.2", Some(3.0));
+    let (scene, cam) = foggy_lens("density=0.25,color=0.2:0.2:0.2", Some(3.0), 0.0);
     let size = 24;
     // The two columns the cone falls on, inside the ball's shadow.
     let cone = |img: &[Vec3]| region(img, size, 12..18, 11..13);

@@ -235,7 +235,7 @@ fn rgb_transport_keeps_the_head_on_colour() {
 #[test]
 fn measured_metals_make_auto_spectral() {
     let scene = common::sphere_in_white_environment(gold(Vec3::ONE));
-    assert!(SpectralMode::Auto.resolve(&scene));
+    assert!(SpectralMode::Auto.resolve(&scene, iris::integrator::Method::Path));
     let plan = iris::plan::Plan::new(&scene, &common::PINHOLE, Method::Path, SpectralMode::Auto);
     let transport = plan.stage("transport").expect("transport stage");
     assert!(
@@ -247,5 +247,8 @@ fn measured_metals_make_auto_spectral() {
         conductor: None,
         ..gold(Vec3::new(1.0, 0.78, 0.34))
     };
-    assert!(!SpectralMode::Auto.resolve(&common::sphere_in_white_environment(plain)));
+    assert!(!SpectralMode::Auto.resolve(
+        &common::sphere_in_white_environment(plain),
+        iris::integrator::Method::Path
+    ));
 }

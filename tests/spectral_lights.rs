@@ -461,11 +461,11 @@ fn auto_mode_goes_spectral_for_a_named_light_spectrum() {
         json!(null),
     );
     let (scene, _) = iris::app::load(&named, Backend::Auto).unwrap();
-    assert!(SpectralMode::Auto.resolve(&scene));
-    assert!(!SpectralMode::Off.resolve(&scene));
+    assert!(SpectralMode::Auto.resolve(&scene, iris::integrator::Method::Path));
+    assert!(!SpectralMode::Off.resolve(&scene, iris::integrator::Method::Path));
     let dir2 = common::scratch_dir("spectral_auto_plain");
     let plain = plane_gltf(&dir2, json!(null), json!(null));
     let (scene, _) = iris::app::load(&plain, Backend::Auto).unwrap();
-    assert!(!SpectralMode::Auto.resolve(&scene));
-    assert!(SpectralMode::On.resolve(&scene));
+    assert!(!SpectralMode::Auto.resolve(&scene, iris::integrator::Method::Path));
+    assert!(SpectralMode::On.resolve(&scene, iris::integrator::Method::Path));
 }

@@ -162,7 +162,7 @@ impl<'a> RenderJob<'a> {
         );
         let mut recorder = Recorder::new(run, self.reference.as_ref());
         recorder.verbose = !opts.quiet && measure.any();
-        let mut stop = TargetStop::new(measure.target_error);
+        let mut stop = TargetStop::for_render(measure.target_error, scene, method);
         let coverage = self.coverage(&camera, &settings)?;
         // `--denoise`: the auxiliary pass, once, before rendering.
         let mut denoiser = RenderDenoiser::new(&self.denoise, scene, &camera, &settings)?;
@@ -367,16 +367,13 @@ impl<'a> RenderJob<'a> {
         notes.extend(prepared.notes.iter().map(ToString::to_string));
         notes.extend(self.plan.method_note.clone());
         if spectral {
-            notes.push(match self.opts.spectral {
-                SpectralMode::On => "spectral transport (--spectral on)".into(),
-                _ if scene.materials().iter().any(|m| m.conductor().is_some()) => {
-                    "spectral transport: the scene has measured metals, dispersive materials \
-                     or spectral lights (--spectral off for RGB)"
-                        .into()
-                }
-                _ => "spectral transport: the scene has dispersive materials or spectral \
-                      lights (--spectral off for RGB)"
-                    .into(),
+            notes.push(match (self.opts.spectral, self.plan.stage("transport")) {
+                (SpectralMode::On, _) => "spectral transport (--spectral on)".into(),
+                (_, Some(stage)) => format!(
+                    "spectral transport, the plan's choice: {} (--spectral off for RGB)",
+                    stage.reason.trim_start_matches("spectral: ")
+                ),
+                (_, None) => "spectral transport (--spectral off for RGB)".into(),
             });
         }
         notes.extend(prepared.camera_note.as_ref().map(|n| n.to_string()));

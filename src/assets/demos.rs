@@ -16,10 +16,12 @@
 //! onto a screen) and `diamond.glb` (IOR 2.42, dispersion 0.36) are built in
 //! [`super::spectral`], which documents them. `fig5_3_1_rainbow.glb` (sunlight
 //! through a slit and an N-BK7 prism, the rainbow as a caustic on a screen) is built in
-//! [`super::rainbow`] and `gem_caustics.glb` (a diamond under a narrow spot light) in
-//! [`super::caustic`].
+//! [`super::rainbow`], `gem_caustics.glb` (a diamond under a narrow spot light) in
+//! [`super::caustic`], and the scattering-media scenes `milky_tank.glb`, `hazy_prism.glb`
+//! and `opal.glb` in [`super::media`].
 
 use super::caustic::gem_caustics;
+use super::media::{hazy_prism, milky_tank, opal};
 use super::paper::{add_checker, grey_pair, SceneBuilder};
 use super::parts::{add_mesh, add_panel, camera};
 use super::rainbow::fig5_3_1_rainbow;
@@ -39,7 +41,7 @@ pub const SKY_FILE: &str = "sky.hdr";
 
 /// File names and builders of the scenes, in the order [`write_scene_assets`] writes them
 /// (the sky map [`SKY_FILE`] comes last).
-pub const SCENES: [(&str, SceneBuilder); 8] = [
+pub const SCENES: [(&str, SceneBuilder); 11] = [
     ("glass_of_water.glb", glass_of_water),
     ("ruby.glb", ruby),
     ("prism_sky.glb", prism_sky),
@@ -48,6 +50,9 @@ pub const SCENES: [(&str, SceneBuilder); 8] = [
     ("fig5_3_1_rainbow.glb", fig5_3_1_rainbow),
     ("gem_caustics.glb", gem_caustics),
     ("sunset_sphere.glb", sunset_sphere),
+    ("milky_tank.glb", milky_tank),
+    ("hazy_prism.glb", hazy_prism),
+    ("opal.glb", opal),
 ];
 
 /// The drinking glass of [`glass_of_water`].
@@ -112,6 +117,7 @@ pub fn glass_of_water() -> GenScene {
         thickness: 0.06,
         attenuation_color: Vec3::new(0.8, 0.93, 0.96),
         attenuation_distance: Some(0.25),
+        scatter: None,
     });
     for (name, geometry, material) in [("Glass", parts.glass, glass), ("Water", parts.water, water)]
     {
@@ -159,6 +165,7 @@ pub fn ruby() -> GenScene {
         thickness: 0.012,
         attenuation_color: Vec3::new(0.9, 0.1, 0.18),
         attenuation_distance: Some(0.02),
+        scatter: None,
     });
     let stone = Brilliant::ideal(0.02).resting(0.0002);
     add_mesh(&mut s, "Ruby", stone, ruby, None);

@@ -5,7 +5,8 @@
 //! - [`paper`]: the seed paper's figure scenes shipped in `assets/paper/`.
 //! - [`demos`]: the demonstration scenes shipped in `assets/scenes/` (glass of water,
 //!   ruby, prism under the sky, and [`spectral`]: the prism beam of Fig. 5.3.1 and
-//!   a diamond); [`sky`]: the procedural sky map and its `.hdr` (RGBE) encoder.
+//!   a diamond; [`media`]: the milky tank, the hazy prism and the opal); [`sky`]: the
+//!   procedural sky map and its `.hdr` (RGBE) encoder.
 //! - [`caustic`]: scenes lit by delta lights for the photon mapper (Fig. 4.5.1's
 //!   sphere and prism caustics, a diamond's caustics); [`rainbow`]: the sun-through-a-slit
 //!   prism rainbow; [`focus_bench`]: the ball-lens test scene (not an asset);
@@ -25,6 +26,7 @@ pub mod focus_bench;
 pub mod gems;
 pub mod material_layers;
 pub mod materials;
+pub mod media;
 pub mod paper;
 mod parts;
 pub mod rainbow;

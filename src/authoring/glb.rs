@@ -281,6 +281,7 @@ mod tests {
             thickness: 0.1,
             attenuation_color: Vec3::new(0.9, 0.95, 1.0),
             attenuation_distance: Some(0.5),
+            scatter: None,
         });
         glass.extras = Some(serde_json::json!({"cauchy": {"b": 1.5, "c": 0.0042}}));
         GenScene {

@@ -74,6 +74,15 @@ pub(super) fn material(m: &GenMaterial, used: &mut BTreeSet<&'static str>) -> Va
             vol.insert("attenuationDistance".into(), num(d));
         }
         ext.insert("KHR_materials_volume".into(), Value::Object(vol));
+        if let Some(sc) = v.scatter {
+            ext.insert(
+                "KHR_materials_volume_scatter".into(),
+                json!({
+                    "multiscatterColor": vec3(sc.multiscatter),
+                    "scatterAnisotropy": num(sc.anisotropy),
+                }),
+            );
+        }
     }
     if let Some(d) = m.dispersion {
         ext.insert(
@@ -108,6 +117,7 @@ pub(super) fn material(m: &GenMaterial, used: &mut BTreeSet<&'static str>) -> Va
         "KHR_materials_ior",
         "KHR_materials_transmission",
         "KHR_materials_volume",
+        "KHR_materials_volume_scatter",
         "KHR_materials_dispersion",
     ] {
         if ext.contains_key(name) {

@@ -60,6 +60,18 @@ pub struct GenVolume {
     pub attenuation_color: Vec3,
     /// `attenuationDistance` (metres); `None` = no absorption (+∞).
     pub attenuation_distance: Option<f32>,
+    /// Scattering in the volume, written as the draft KHR_materials_volume_scatter
+    /// (`multiscatterColor`, `scatterAnisotropy`); `None` = it only absorbs.
+    pub scatter: Option<GenScatter>,
+}
+
+/// KHR_materials_volume_scatter (draft, glTF PR #2453) values.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GenScatter {
+    /// `multiscatterColor`: the multiple-scattering albedo, linear RGB in [0, 1].
+    pub multiscatter: Vec3,
+    /// `scatterAnisotropy`: Henyey–Greenstein g in (−1, 1).
+    pub anisotropy: f32,
 }
 
 /// A glTF metallic-roughness material with the optional KHR extensions Iris reads.
@@ -140,6 +152,7 @@ impl GenMaterial {
                 thickness,
                 attenuation_color: Vec3::ONE,
                 attenuation_distance: None,
+                scatter: None,
             }),
             dispersion: None,
             extras: None,

@@ -152,6 +152,7 @@ impl Stone {
                 thickness,
                 attenuation_color: colour,
                 attenuation_distance: Some(COLOUR_DISTANCE),
+                scatter: None,
             });
         }
         m

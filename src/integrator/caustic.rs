@@ -117,9 +117,11 @@ struct Chunk {
 impl Chunk {
     /// Traces the photon `ph` and keeps its caustic-origin vertices. The tracer calls back
     /// at every non-delta event, surface or (in media) scattering; the first decides the
-    /// photon's origin: after ≥ 1 bounce (L S+ D or L S+ M) it is stored there and at every
-    /// later non-delta event (surface photons in the surface map, scattering events in the
-    /// volume map); any other photon is not stored. The first surface vertex is flagged
+    /// photon's origin: after ≥ 1 bounce (L S+ D or L S+ M) it is stored at every non-delta
+    /// surface vertex before its first scattering event in a medium (the surface map) and,
+    /// if its first event scattered in a medium, there alone (the volume map: L S+ M only,
+    /// [`super::volume_map`] gives the split); any other photon is not stored. Without media
+    /// this is the caustic map of the module docs. The first surface vertex is flagged
     /// CAUSTIC, the later ones not ([`CausticMap::density`] can leave it to light tracing);
     /// with a `splatter`, kept surface vertices are also connected to the camera.
     fn trace_one<C: Carrier>(
@@ -146,15 +148,17 @@ impl Chunk {
         };
         let mut camera_rays = 0;
         let (surface, splats, volume) = (&mut self.surface, &mut self.splats, &mut self.volume);
+        let scattered = Cell::new(false);
         let keep_volume = |v: &MediumVertex, power: C, l: &C::Lambda| {
-            let (_, caustic_origin) = decide(v.bounces);
-            if caustic_origin && power != C::ZERO {
+            scattered.set(true);
+            let (first, caustic_origin) = decide(v.bounces);
+            if first && caustic_origin && power != C::ZERO {
                 volume.push(Photon::new(v.p, v.wi, (power * inv_n).to_lanes(), hero(l)));
             }
         };
         let keep_surface = |v: &trace::PhotonVertex<C>, l: &C::Lambda| {
             let (first, caustic_origin) = decide(v.bounces);
-            if caustic_origin && v.power != C::ZERO {
+            if caustic_origin && !scattered.get() && v.power != C::ZERO {
                 let power = v.power * inv_n;
                 if let Some(sp) = splatter.filter(|sp| first || sp.every_vertex()) {
                     splats.extend(sp.connect(v, power, l, &mut camera_rays));

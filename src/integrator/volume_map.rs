@@ -1,6 +1,7 @@
-//! The hybrid's volumetric caustic map: photons stored where they scatter in a medium
-//! after reaching it through a specular chain (L S+ M, and every later medium event of such
-//! a photon), gathered along the camera's rays by the beam radiance estimate (Jarosz,
+//! The hybrid's volumetric caustic map: photons stored where they first scatter in a
+//! medium after reaching it through a specular chain (L S+ M: the concentrated light of a
+//! volumetric caustic, not the diffuse glow it spreads into), gathered along the camera's
+//! rays by the beam radiance estimate (Jarosz,
 //! Zwicker & Jensen 2008, "The Beam Radiance Estimate for Volumetric Photon Mapping",
 //! Eurographics, eq. 12, with a constant 2D kernel):
 //!
@@ -15,13 +16,22 @@
 //! Photon Beams", §5, for the point-photon/beam-query pairing), so the average over passes
 //! converges like the surface map's.
 //!
-//! The split with the path tracer (proved with the surface map's in
-//! [`super::caustic`]): a camera path gathers the beam estimate along every ray segment
-//! through a medium **before** its first non-delta vertex, and drops emission found after a
-//! non-delta vertex (surface or medium) and ≥ 1 delta bounces. A full path whose light end
-//! starts L S+ and whose first non-delta camera vertex lies in a medium is counted by the
-//! beam estimate of the segment that vertex lies on; if it lies on a surface, by the
-//! surface map; every other path by the path tracer.
+//! The split with the path tracer and the surface map ([`super::caustic`]). Seen from the
+//! camera, a full path ends X S* L, X its last non-delta vertex (a surface point or a
+//! scattering event):
+//! - X = M (a scattering event) after ≥ 1 delta bounce from the light (L S+ M): the beam
+//!   estimate of the camera segment M lies on. Camera paths gather it along every segment
+//!   through a medium, whatever the free flight then samples there, and drop emission
+//!   found after a scattering event and ≥ 1 delta bounces;
+//! - X = D after L S+, the camera path's first non-delta vertex D₁ a surface and no
+//!   scattering event on the path: the surface map at D₁, whose photons are stored at every
+//!   non-delta surface vertex of a caustic-origin photon until it first scatters in a
+//!   medium; the path tracer drops such emission until the camera path scatters in a
+//!   medium;
+//! - everything else: the path tracer (the glow a caustic spreads into through the medium
+//!   included: stored as photons after their scattering, it made sparse blotches).
+//!
+//! Each full path is counted once.
 //!
 //! Units: world space; photon power is flux divided by the photons emitted in the pass;
 //! radiance as the film's. Determinism: photons come from the surface map's pass
@@ -34,6 +44,7 @@ use crate::photon::store::Photon;
 use crate::shading::media::Segment;
 use crate::spectrum::Carrier;
 use crate::volume::track;
+use glam::Vec3;
 
 /// Most gather steps along one segment (a segment longer than this many diameters is
 /// gathered over its first part only; 10⁵ steps of 2r).
@@ -45,6 +56,9 @@ pub struct VolumeMap {
     /// The pass's photons (power already divided by the photons emitted).
     pub photons: Vec<Photon>,
     grid: HashGrid,
+    /// The photons' bounding box grown by the radius: a segment is gathered only where it
+    /// crosses it.
+    bounds: Option<(Vec3, Vec3)>,
     r2: Option<f64>,
     alpha: f32,
 }
@@ -70,6 +84,15 @@ impl VolumeMap {
         // Queries are spheres of radius r√2 around steps of 2r (see `beam`).
         self.grid
             .rebuild(&self.photons, r * std::f32::consts::SQRT_2);
+        let grow = |(lo, hi): (Vec3, Vec3)| (lo - Vec3::splat(r), hi + Vec3::splat(r));
+        self.bounds = self
+            .photons
+            .iter()
+            .map(Photon::position)
+            .fold(None, |b: Option<(Vec3, Vec3)>, p| {
+                Some(b.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))))
+            })
+            .map(grow);
         r
     }
 
@@ -94,15 +117,22 @@ impl VolumeMap {
         }
         let r = r2.sqrt();
         let (o, d) = (ray.origin, ray.dir);
+        // Only where the segment crosses the photons' box.
+        let Some((start, end)) = self
+            .bounds
+            .and_then(|b| clip(b, o, d, (seg.start, seg.end)))
+        else {
+            return C::ZERO;
+        };
         let c = seg.medium.coeffs::<C>(lambda);
         let lanes = GatherLanes::of::<C>(lambda);
         let phase = seg.medium.phase;
         let step = 2.0 * r;
-        let steps = (((seg.end - seg.start) / step).ceil() as usize).clamp(1, MAX_STEPS);
+        let steps = (((end - start) / step).ceil() as usize).clamp(1, MAX_STEPS);
         let mut sum = C::ZERO;
         for k in 0..steps {
-            let s0 = seg.start + k as f32 * step;
-            let s1 = (s0 + step).min(seg.end);
+            let s0 = start + k as f32 * step;
+            let s1 = (s0 + step).min(end);
             let last = k + 1 == steps;
             let half = 0.5 * (s1 - s0);
             let query = (half * half + r2).sqrt();
@@ -125,4 +155,14 @@ impl VolumeMap {
         }
         sum / (std::f32::consts::PI * r2)
     }
+}
+
+/// The part of [t0, t1] along `o + t d` inside the box `(lo, hi)` (slab method), if any.
+fn clip((lo, hi): (Vec3, Vec3), o: Vec3, d: Vec3, (t0, t1): (f32, f32)) -> Option<(f32, f32)> {
+    let inv = d.recip();
+    let (a, b) = ((lo - o) * inv, (hi - o) * inv);
+    let (near, far) = (a.min(b), a.max(b));
+    let start = near.max_element().max(t0);
+    let end = far.min_element().min(t1);
+    (start < end).then_some((start, end))
 }

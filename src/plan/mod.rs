@@ -70,8 +70,12 @@ impl SpectralMode {
         crate::error::parse_name("--spectral", s, &names)
     }
 
-    /// Whether to render `scene` spectrally.
-    pub fn resolve(self, scene: &Scene) -> bool {
+    /// Whether to render `scene` spectrally with `method`. A Rayleigh medium asks for
+    /// spectral transport except under the hybrid, whose paths and photons would then keep
+    /// one wavelength each in it (colour noise, [`crate::shading::media::keep_hero_in`]):
+    /// there RGB's three channels carry the λ⁻⁴ law at their dominant wavelengths, unless
+    /// something else needs spectra.
+    pub fn resolve(self, scene: &Scene, method: Method) -> bool {
         match self {
             SpectralMode::On => true,
             SpectralMode::Off => false,
@@ -82,7 +86,7 @@ impl SpectralMode {
                         || m.conductor().is_some()
                         || m.desc.is_iridescent()
                 }) || scene.lights().iter().any(|l| l.shape.is_some())
-                    || chromatic_media(scene)
+                    || (chromatic_media(scene) && method != Method::Hybrid)
             }
         }
     }
@@ -90,7 +94,7 @@ impl SpectralMode {
 
 /// Whether a scattering medium's coefficients follow a spectral law RGB only approximates
 /// (Rayleigh's λ⁻⁴, [`crate::volume::Medium::wants_spectral`]).
-fn chromatic_media(scene: &Scene) -> bool {
+pub(super) fn chromatic_media(scene: &Scene) -> bool {
     let fog = scene.fog().is_some_and(|f| f.medium.wants_spectral());
     fog || scene
         .materials()
@@ -135,11 +139,11 @@ impl Plan {
         spectral: SpectralMode,
     ) -> Plan {
         let ev = stages::Evidence::new(scene);
-        let spectral_on = spectral.resolve(scene);
         let (resolved, method_note) = resolve_method(method, scene, projection);
+        let spectral_on = spectral.resolve(scene, resolved);
         Plan {
             stages: vec![
-                stages::transport(&ev, spectral, spectral_on),
+                stages::transport(&ev, (spectral, spectral_on), resolved),
                 stages::photons(&ev, method, resolved, method_note.as_deref()),
                 stages::volumes(&ev),
                 stages::media(scene),

@@ -56,7 +56,11 @@ fn names<'a>(list: impl IntoIterator<Item = &'a str>) -> String {
 }
 
 /// Transport: spectral or RGB, and the materials and lights that decide it.
-pub(super) fn transport(ev: &Evidence, spectral: SpectralMode, spectral_on: bool) -> Stage {
+pub(super) fn transport(
+    ev: &Evidence,
+    (spectral, spectral_on): (SpectralMode, bool),
+    method: Method,
+) -> Stage {
     let (scene, mats) = (ev.scene, |f: &dyn Fn(&Material) -> bool| ev.mats(f));
     let dispersive = mats(&|m: &Material| m.is_dispersive());
     let metals = mats(&|m: &Material| m.conductor().is_some());
@@ -79,8 +83,18 @@ pub(super) fn transport(ev: &Evidence, spectral: SpectralMode, spectral_on: bool
     if spectral_lights > 0 {
         evidence.push(format!("{spectral_lights} lights naming a spectrum"));
     }
+    if super::chromatic_media(scene) {
+        evidence.push(if method == Method::Hybrid {
+            "a medium scattering by Rayleigh's λ⁻⁴ law, which the hybrid carries in RGB at \
+             the channels' dominant wavelengths (spectrally its photons would keep one \
+             wavelength each)"
+                .into()
+        } else {
+            "a medium scattering by Rayleigh's λ⁻⁴ law".into()
+        });
+    }
     let evidence = if evidence.is_empty() {
-        "no dispersive material, spectral emitter or spectral light".to_string()
+        "no dispersive material, spectral emitter, spectral light or Rayleigh medium".to_string()
     } else {
         evidence.join("; ")
     };

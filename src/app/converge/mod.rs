@@ -170,6 +170,9 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
     // The reference's method (without --reference).
     let reference_method = given_reference.is_none().then(|| {
         match crate::plan::resolve_method(Method::Auto, &scene, &cam_desc.projection).0 {
+            // With media only the path tracer and the hybrid trace them: the reference is the
+            // path tracer, which does not share the hybrid's maps.
+            _ if scene.has_media() => Method::Path,
             // The reference stays SPPM for caustic scenes (not the hybrid or VCM under test).
             Method::Hybrid | Method::Vcm => Method::Sppm,
             m => m,
@@ -364,7 +367,7 @@ impl<'a> Job<'a> {
                 seed: opts.seed,
                 threads: opts.threads,
                 quiet: opts.quiet,
-                spectral: SpectralMode::Auto.resolve(scene),
+                spectral: SpectralMode::Auto.resolve(scene, crate::integrator::Method::Path),
                 time_limit: Some(opts.time),
                 sampler: opts.sampler,
                 adaptive: None,

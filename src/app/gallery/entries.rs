@@ -27,8 +27,8 @@ pub struct Entry {
     pub before: Option<&'static str>,
 }
 
-/// The gallery, in page order: the seed paper's figure scenes, the gems, then the Khronos
-/// samples with `KHR_materials_dispersion` (the only two in the shared folder's
+/// The gallery, in page order: the seed paper's figure scenes, the gems, the computed sky
+/// and the scattering media, then the Khronos samples with `KHR_materials_dispersion` (the only two in the shared folder's
 /// `MANIFEST.md`).
 pub const ENTRIES: &[Entry] = &[
     Entry {
@@ -106,6 +106,34 @@ pub const ENTRIES: &[Entry] = &[
         path: "assets/gems/round_diamond_bare.glb",
         origin: Origin::Project,
         about: "The drop-in preview: `iris gem --cut round --stone diamond --bare` writes the stone alone (no camera, light or floor, like most artists' files); Iris frames it from the three-quarter view, lights it with studio `soft` and adds the white floor.",
+        before: None,
+    },
+    Entry {
+        name: "sunset_sphere",
+        path: "assets/scenes/sunset_sphere.glb",
+        origin: Origin::Project,
+        about: "A glass sphere under a computed sky with the sun 4° up (Rayleigh and Mie single scattering, `sky:elevation=4`): orange light, a blue sky overhead, the caustic and shadow stretched towards the camera.",
+        before: None,
+    },
+    Entry {
+        name: "milky_tank",
+        path: "assets/scenes/milky_tank.glb",
+        origin: Origin::Project,
+        about: "The Tyndall effect: a white beam along a block of milky water (Rayleigh scattering, λ⁻⁴) shows blue from the side and leaves a warmer spot on the card; the hybrid's volumetric caustic map carries the beam, which enters through the water's refracting face.",
+        before: None,
+    },
+    Entry {
+        name: "hazy_prism",
+        path: "assets/scenes/hazy_prism.glb",
+        origin: Origin::Project,
+        about: "Paper Fig. 5.3.1 in haze (`iris_fog`): the white beam through the N-BK7 prism and its dispersed fan, visible in the air; the volumetric caustic map gathers the fan along the camera rays.",
+        before: None,
+    },
+    Entry {
+        name: "opal",
+        path: "assets/scenes/opal.glb",
+        origin: Origin::Project,
+        about: "An opalescent cabochon: Rayleigh-scattering inclusions (`iris_medium`) make it blue where light scatters back out, warmer where the hidden back light comes through.",
         before: None,
     },
     Entry {

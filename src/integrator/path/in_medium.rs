@@ -20,9 +20,8 @@ use crate::shading::Arrival;
 use crate::spectrum::Carrier;
 
 /// Before the surface its ray reached at distance `t_hit` (+∞ if it escaped): the volume
-/// caustic map's beam estimate along the segment while the path has no non-delta vertex
-/// yet ([`super::CausticSplit::Volume`], in a chromatic medium after keeping the hero
-/// only), then free flight ([`media::fly`]); `Some` with the vertex's outcome if the path
+/// caustic map's beam estimate along the segment ([`super::CausticSplit::Volume`], in a
+/// chromatic medium after keeping the hero only), then free flight ([`media::fly`]); `Some` with the vertex's outcome if the path
 /// scatters in the medium.
 pub(super) fn fly<C: Carrier>(
     scene: &Scene,
@@ -32,7 +31,7 @@ pub(super) fn fly<C: Carrier>(
     ctx: &mut Context,
 ) -> Option<(Option<Pending<C>>, Next)> {
     let st = &mut walk.st;
-    if let (Some(beam), None) = (rules.split.beam(), st.since_diffuse) {
+    if let Some(beam) = rules.split.beam() {
         let values = (&mut st.beta, &mut walk.lambda);
         media::keep_hero_in(scene, &walk.ray, t_hit, &st.media, values);
         if let Some(seg) = media::segment(scene, &walk.ray, t_hit, &st.media) {

@@ -44,6 +44,11 @@ pub(super) struct PathState<C: Carrier> {
     pub since_diffuse: Option<u32>,
     /// No bounce and no BLEND pass-through yet: the next vertex is seen directly.
     pub direct: bool,
+    /// The last non-delta vertex was a scattering event in a medium.
+    pub last_in_medium: bool,
+    /// No scattering event in a medium yet: a light end closing at a surface may still be
+    /// the surface map's ([`PathState::closes_caustic`]).
+    pub clear: bool,
 }
 
 impl<C: Carrier> PathState<C> {
@@ -63,13 +68,19 @@ impl<C: Carrier> PathState<C> {
             },
             since_diffuse: None,
             direct: true,
+            last_in_medium: false,
+            clear: true,
         }
     }
 
     /// Whether the light end found now closes a D S+ L chain: the caustic map's (or light
-    /// tracing's) share when the path is split.
+    /// tracing's) share when the path is split. With media: an M S+ L chain is always the
+    /// volume map's, a D S+ L chain the surface map's only while the path has not scattered
+    /// in a medium ([`crate::integrator::volume_map`] gives the split).
     pub fn closes_caustic(&self, split: &CausticSplit<'_, C>) -> bool {
-        !matches!(split, CausticSplit::None) && self.since_diffuse.unwrap_or(0) > 0
+        !matches!(split, CausticSplit::None)
+            && self.since_diffuse.unwrap_or(0) > 0
+            && (self.last_in_medium || self.clear)
     }
 
     /// Follows the BSDF sample `bs` taken at `s`: throughput, η scale, media and the MIS
@@ -98,6 +109,7 @@ impl<C: Carrier> PathState<C> {
         self.since_diffuse = if bs.delta {
             self.since_diffuse.map(|n| n + 1)
         } else {
+            self.last_in_medium = false;
             Some(0)
         };
         self.count_bounce(bs.delta, max_depth, u)
@@ -120,6 +132,8 @@ impl<C: Carrier> PathState<C> {
             p,
         };
         self.since_diffuse = Some(0);
+        self.last_in_medium = true;
+        self.clear = false;
         self.count_bounce(false, max_depth, u)
     }
 
