@@ -62,6 +62,8 @@ pub struct AdaptiveFlags {
     pub target: Option<f64>,
     /// `--shard` was given.
     pub shard: bool,
+    /// The scene has scattering media ([`crate::scene::Scene::has_media`]).
+    pub media: bool,
 }
 
 /// The choice for `flags` and the resolved `method`; a usage error for `--adaptive on` with
@@ -92,6 +94,13 @@ pub fn choose(flags: AdaptiveFlags, method: Method) -> Result<AdaptiveChoice> {
         return Ok(off(
             "off in a shard: shards take the same samples in every pixel, so they merge \
              into one render bit for bit",
+        ));
+    }
+    if flags.mode == AdaptiveMode::Auto && flags.media && method == Method::Hybrid {
+        return Ok(off(
+            "off for the hybrid with scattering media: its volumetric caustic map's blotches \
+             look alike in both halves of a tile, so tiles would rest too soon (--adaptive on \
+             to let them)",
         ));
     }
     if flags.mode == AdaptiveMode::Auto && !flags.open {
@@ -141,6 +150,7 @@ mod tests {
             open,
             target: Some(0.03),
             shard,
+            media: false,
         }
     }
 

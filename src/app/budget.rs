@@ -119,7 +119,9 @@ pub const MIN_STOP_UNITS: u64 = 8;
 /// caustic map starts with a wide gather radius that only passes shrink, and sparse
 /// photons blur into blotches the two denoised halves share; measured on the gallery's
 /// hazy prism, the denoised estimate read 0.0011 at 8 passes over an image of coloured
-/// blotches. 64 passes shrink r² to about a third of the first (α = 0.7).
+/// blotches. 64 passes shrink r² to about a third of the first (α = 0.7). Adaptive
+/// sampling is off there under `--adaptive auto` ([`super::adaptive::choose`]), so every
+/// tile has the passes.
 pub const MIN_STOP_UNITS_MEDIA_HYBRID: u64 = 64;
 
 /// The budget flags of `iris render` as given (`None` = not given).

@@ -374,6 +374,7 @@ fn info_plan(path: &Path, flags: &[LookFlag]) -> Result<String> {
             open: budget.open,
             target: budget.target_error,
             shard: false,
+            media: scene.has_media(),
         },
         plan.method,
     )?;

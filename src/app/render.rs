@@ -110,6 +110,7 @@ impl<'a> RenderJob<'a> {
                 open: opts.watch,
                 target: measure.target_error,
                 shard: opts.shard.is_some(),
+                media: prepared.scene.has_media(),
             },
             plan.method,
         )?;
