@@ -4,7 +4,9 @@
 //! environment as well (so every BSDF, environment sampling and MIS run on every file), and
 //! with `--method sppm` and `--method photon` under that environment (photons from every
 //! light type, including the environment, through every file's materials). The same runs
-//! cover the project's own assets/. Every run's film guard counts 0 bad (NaN/inf) samples.
+//! cover the project's own assets/; a scene with scattering media renders with the two
+//! methods that trace them, the path tracer and the hybrid. Every run's film guard counts 0
+//! bad (NaN/inf) samples.
 
 mod common;
 
@@ -54,8 +56,21 @@ fn render_all(files: &[PathBuf], scratch: &str) {
         (Method::Sppm, 1, env.clone(), photons(4000, 2)),
         (Method::Photon, 1, env.clone(), photons(20_000, 1)),
     ];
+    // Scenes with scattering media: the two methods that trace them (the others refuse,
+    // `tests/media.rs`).
+    let media_runs = [
+        (Method::Path, 4, env.clone(), PhotonSettings::default()),
+        (Method::Hybrid, 2, env.clone(), photons(4000, 2)),
+    ];
     for (i, scene) in files.iter().enumerate() {
-        for (method, spp, env, photon) in runs.clone() {
+        let desc = iris::load::load_scene(scene).expect("a project asset loads");
+        let media = desc.fog.is_some() || desc.materials.iter().any(|m| m.scatter.is_some());
+        let runs = if media {
+            media_runs.to_vec()
+        } else {
+            runs.to_vec()
+        };
+        for (method, spp, env, photon) in runs {
             let out = dir.join(format!("{i}-{method:?}.exr"));
             let opts = RenderOptions {
                 scene: scene.clone(),
