@@ -167,6 +167,25 @@ fn sppm_and_hybrid_merges_are_bit_identical_to_one_render() {
     assert_options_merge_exactly(&o, 2, &dir);
 }
 
+/// The hybrid with scattering media: shards after the first replay the surface and the
+/// volume map's radius sequences from pass 0, with the pilot's photon budget (the volume
+/// map's first radius comes from pass 0's photons, as many as one render's pass 0
+/// traces) and with a fixed count; the path tracer through a medium merges exactly too.
+#[test]
+fn media_merges_are_bit_identical_to_one_render() {
+    for (scene, method, photons) in [
+        ("scenes/milky_tank.glb", Method::Hybrid, 0),
+        ("scenes/hazy_prism.glb", Method::Hybrid, 3000),
+        ("scenes/opal.glb", Method::Path, 3000),
+    ] {
+        let name = format!("shards-media-{}-{photons}", method.name());
+        let dir = common::scratch_dir(&format!("{name}-{}", scene.len()));
+        let mut o = opts(&asset(scene), &dir.join("whole.exr"), method, 6);
+        o.photon.photons = photons;
+        assert_options_merge_exactly(&o, 3, &dir);
+    }
+}
+
 /// VCM and BPT (spectral, on a caustic scene): shards after the first take VCM's first
 /// radius from pass 0's light subpaths, as one render does.
 #[test]

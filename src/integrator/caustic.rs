@@ -262,7 +262,7 @@ impl CausticMap {
 
     /// The current pass's radius, choosing the first with `initial(photons)` when none was
     /// given (it must be finite and positive, else 1 mm), and builds the grid for it.
-    pub fn begin_gather(&mut self, initial: impl FnOnce(&[Photon]) -> f32) -> f32 {
+    pub fn begin_gather(&mut self, initial: impl Fn(&[Photon]) -> f32) -> f32 {
         if self.r2.is_none() {
             let r = initial(&self.photons);
             let r = if r.is_finite() && r > 0.0 { r } else { 1e-3 };
@@ -270,6 +270,10 @@ impl CausticMap {
         }
         let r = self.radius();
         self.grid.rebuild(&self.photons, r);
+        // The volume map likewise, its first radius from its own photons.
+        if let Some(v) = &mut self.volume {
+            v.begin_gather(&initial);
+        }
         r
     }
 
@@ -282,6 +286,11 @@ impl CausticMap {
     pub fn end_pass(&mut self, pass: u32) {
         let factor = super::sppm::radius2_factor(pass + 1, self.alpha);
         self.r2 = self.r2.map(|r2| r2 * factor);
+        // The volume map's radius follows the same pass sequence (a shard that starts
+        // later replays it from pass 0, as for the surface map).
+        if let Some(v) = &mut self.volume {
+            v.end_pass(pass);
+        }
     }
 
     /// Radiance the map reflects at the camera vertex `s` toward its `wo`:

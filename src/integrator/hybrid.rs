@@ -121,26 +121,26 @@ fn run<C: Carrier>(
     };
     if schedule.first > 0 {
         // A shard: the radius of its first pass, as one render reaches it (pass 0's
-        // photons choose r₀ unless --radius or the pilot gave it).
-        if !emitter.is_empty() && map.radius() == 0.0 {
+        // photons choose r₀ unless --radius or the pilot gave it; the volume map's always
+        // comes from pass 0's photons, traced as many as one render's pass 0 traces).
+        let volume_unset = map.volume.as_ref().is_some_and(|v| v.radius() == 0.0);
+        if !emitter.is_empty() && (map.radius() == 0.0 || volume_unset) {
+            let n0 = budget.map_or(n_photons, |b| b.per_pass(pixels, map.radius()));
             let lambda = C::sample_lambda(pass_wavelength_variate(0, settings.seed));
             let (rays, _) = map.trace_pass::<C>(
                 scene,
                 &emitter,
                 settings.seed,
                 0,
-                n_photons,
+                n0,
                 lambda,
                 max_depth,
                 None,
             )?;
             setup.rays += rays;
-            setup.photons += n_photons;
+            setup.photons += n0;
         }
         map.begin_gather(|ph| initial_radius(scene, camera, settings, ph));
-        if let Some(v) = &mut map.volume {
-            v.begin_gather(|ph| initial_radius(scene, camera, settings, ph));
-        }
         for p in 0..schedule.first {
             map.end_pass(p as u32);
         }
@@ -175,8 +175,8 @@ fn run<C: Carrier>(
             let r = map.begin_gather(|ph| initial_radius(scene, camera, settings, ph));
             let rv = map
                 .volume
-                .as_mut()
-                .map(|v| v.begin_gather(|ph| initial_radius(scene, camera, settings, ph)));
+                .as_ref()
+                .map(super::volume_map::VolumeMap::radius);
             // 3. Camera samples.
             let (rays, bad) = camera_pass::<C>(
                 scene,
@@ -192,8 +192,7 @@ fn run<C: Carrier>(
             map.end_pass(pass);
             env.bar.inc(film.tiles() as u64);
             round.note = format!(", r {r:.3e}, {} caustic photons", map.photons.len());
-            if let (Some(rv), Some(v)) = (rv, &mut map.volume) {
-                v.end_pass(pass);
+            if let (Some(rv), Some(v)) = (rv, &map.volume) {
                 round.note += &format!(", volume r {rv:.3e}, {} volume photons", v.photons.len());
             }
             Ok(round)
