@@ -170,9 +170,10 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
     // The reference's method (without --reference).
     let reference_method = given_reference.is_none().then(|| {
         match crate::plan::resolve_method(Method::Auto, &scene, &cam_desc.projection).0 {
-            // With media only the path tracer and the hybrid trace them: the reference is the
-            // path tracer, which does not share the hybrid's maps.
-            _ if scene.has_media() => Method::Path,
+            // With media only the path tracer and the hybrid trace them, and only the hybrid
+            // reaches a delta light's volumetric caustic: the reference is auto's choice
+            // between them (on its own seed).
+            m if scene.has_media() => m,
             // The reference stays SPPM for caustic scenes (not the hybrid or VCM under test).
             Method::Hybrid | Method::Vcm => Method::Sppm,
             m => m,
