@@ -42,21 +42,29 @@ fn render(
     max_depth: u32,
 ) -> Vec<Vec3> {
     let settings = RenderSettings {
-        width: size,
-        height: size,
-        spp,
-        seed,
-        threads: 2,
-        quiet: true,
         spectral,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
+        ..common::render_settings((size, size), spp, seed, 2)
     };
-    let integrator = Integrator::new(Method::Path, max_depth, &PhotonSettings::default())
-        .expect("a resolved method");
+    render_by(scene, cam, Method::Path, &settings, max_depth, 0)
+}
+
+/// `scene` through `cam` by `method` with `settings`, `photons` per hybrid pass.
+fn render_by(
+    scene: &Scene,
+    cam: &CameraDesc,
+    method: Method,
+    settings: &RenderSettings,
+    max_depth: u32,
+    photons: u64,
+) -> Vec<Vec3> {
+    let photon = PhotonSettings {
+        photons,
+        ..PhotonSettings::default()
+    };
+    let integrator = Integrator::new(method, max_depth, &photon).expect("a resolved method");
+    let (w, h) = (settings.width, settings.height);
     integrator
-        .render(scene, &Camera::new(cam, size, size), &settings)
+        .render(scene, &Camera::new(cam, w, h), settings)
         .expect("render")
         .0
         .data
@@ -125,6 +133,16 @@ fn mesh(name: &str, (p, t): (Vec<[f32; 3]>, Vec<[u32; 3]>), material: usize) -> 
     }
 }
 
+/// A black emitter of white radiance `radiance`.
+fn lamp(radiance: f32) -> MaterialDesc {
+    MaterialDesc {
+        name: "lamp".into(),
+        base_color: glam::Vec4::new(0.0, 0.0, 0.0, 1.0),
+        emissive: Vec3::splat(radiance),
+        ..Default::default()
+    }
+}
+
 /// σ_s(550 nm) of the Rayleigh slab, per unit: optical depth 3.5 at 400 nm, 0.38 at 700 nm
 /// through its thickness of 1.
 const SLAB_RAYLEIGH: f32 = 1.0;
@@ -140,12 +158,7 @@ fn rayleigh_slab() -> Scene {
         },
         Phase::Rayleigh,
     );
-    let lamp = MaterialDesc {
-        name: "lamp".into(),
-        base_color: glam::Vec4::new(0.0, 0.0, 0.0, 1.0),
-        emissive: Vec3::ONE,
-        ..Default::default()
-    };
+    let lamp = lamp(1.0);
     let h = 0.06;
     let quad = (
         vec![
@@ -447,12 +460,7 @@ fn foggy_lens(fog: &str, light: Option<f32>, floor: f32) -> (Scene, CameraDesc) 
         specular: 0.0,
         ..Default::default()
     };
-    let lamp = MaterialDesc {
-        name: "lamp".into(),
-        base_color: glam::Vec4::new(0.0, 0.0, 0.0, 1.0),
-        emissive: Vec3::splat(10.0),
-        ..Default::default()
-    };
+    let lamp = lamp(10.0);
     let (f, l) = (2.0f32, 0.3f32);
     let floor = (
         vec![[-f, -1.0, -f], [-f, -1.0, f], [f, -1.0, f], [f, -1.0, -f]],
@@ -511,28 +519,8 @@ fn render_with(
     method: Method,
     (size, passes, seed, photons): (u32, u32, u64, u64),
 ) -> Vec<Vec3> {
-    let settings = RenderSettings {
-        width: size,
-        height: size,
-        spp: passes,
-        seed,
-        threads: 2,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-    };
-    let photon = PhotonSettings {
-        photons,
-        ..PhotonSettings::default()
-    };
-    let integrator = Integrator::new(method, 6, &photon).expect("resolved");
-    integrator
-        .render(scene, &Camera::new(cam, size, size), &settings)
-        .expect("render")
-        .0
-        .data
+    let settings = common::render_settings((size, size), passes, seed, 2);
+    render_by(scene, cam, method, &settings, 6, photons)
 }
 
 /// Mean of `img` (size²) over the rows `rows` and columns `cols`.
