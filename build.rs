@@ -144,6 +144,9 @@ fn main() {
             provide(lib, &mut rpaths);
         }
     }
+    // For dependents' build scripts (DEP_IRIS_NATIVE_RPATH): python/build.rs.
+    let dirs: Vec<String> = rpaths.iter().map(|d| d.display().to_string()).collect();
+    println!("cargo:rpath={}", dirs.join(":"));
 }
 
 /// Finds `lib` and tells cargo how to link it (search path and RUNPATH once per directory in

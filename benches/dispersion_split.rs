@@ -64,6 +64,7 @@ fn render(path: &Path, (hybrid, split): (bool, bool), seed: u64) -> (ImageRgb, f
         time_limit: Some(Duration::from_secs(SECONDS)),
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let (img, stats) = integrator
         .render(&scene, &Camera::new(&camera, SIZE.0, SIZE.1), &settings)

@@ -73,6 +73,7 @@ fn path_tracer(c: &mut Criterion) {
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let mut group = c.benchmark_group("path_tracer_512");
     group.sample_size(10);
@@ -143,6 +144,7 @@ fn spectral_overhead(c: &mut Criterion) {
                 time_limit: None,
                 sampler: Default::default(),
                 adaptive: None,
+                cancel: Default::default(),
             };
             let id = if spectral {
                 "spectral_on"

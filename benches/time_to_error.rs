@@ -69,6 +69,7 @@ fn settings(spp: u32, seed: u64, time_limit: Option<Duration>) -> RenderSettings
         time_limit,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     }
 }
 

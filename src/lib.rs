@@ -58,6 +58,7 @@ pub mod scene;
 pub mod shading;
 pub mod spectrum;
 pub mod studio;
+pub mod view;
 pub mod volume;
 
 pub use error::{Error, LoadError, LoadErrorKind, Result};

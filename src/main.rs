@@ -36,6 +36,14 @@ fn run(cli: Cli) -> iris::Result<()> {
         Command::Gallery(a) => app::commands::gallery(&a.options()),
         Command::GenAssets { dir } => app::commands::gen_assets(&dir),
         Command::Turntable(a) => app::commands::turntable(&a.options()?),
+        Command::View(a) => iris::view::view_command(&iris::view::ViewOptions {
+            scene: a.scene,
+            port: a.port,
+            open: !a.no_open,
+            width: a.width,
+            threads: a.threads,
+            out_dir: a.out_dir,
+        }),
         Command::Merge(a) => app::commands::merge(&iris::app::merge::MergeOptions {
             parts: a.parts,
             output: a.output,
@@ -57,7 +65,7 @@ fn main() -> ExitCode {
         if iris::render::guard::stop_requested() {
             std::process::exit(INTERRUPTED.into());
         }
-        eprintln!("\niris: stopping: finishing the samples in flight and writing the image (again to quit at once)");
+        eprintln!("\niris: stopping: finishing the work in flight and writing what is done (again to quit at once)");
         iris::render::guard::request_stop();
     });
     if let Err(e) = handler {

@@ -162,6 +162,7 @@ fn render_path(scene: &Scene, cam: &CameraDesc, size: u32, spp: u32) -> Vec<Vec3
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let integrator =
         Integrator::new(Method::Path, 64, &PhotonSettings::default()).expect("a resolved method");

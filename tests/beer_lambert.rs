@@ -66,6 +66,7 @@ fn transmitted(thickness: f32, distance: f32, color: Vec3, backend: Backend) -> 
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let integrator = Integrator::new(Method::Whitted, 16, &PhotonSettings::default())
         .expect("a resolved method");

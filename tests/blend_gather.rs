@@ -93,6 +93,7 @@ fn left_mean(sheet: bool, seed: u64) -> f64 {
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let integrator = Integrator::new(
         Method::Photon,

@@ -299,6 +299,23 @@ fn absurd_numbers_are_rejected_before_anything_runs() {
         ),
         (render(&["--radius", "1e39"]), vec!["--radius", "1e39"]),
         (
+            render(&["--turn", "360/360"]),
+            vec!["--turn", "360/360", "F < N"],
+        ),
+        (render(&["--turn", "1/0"]), vec!["--turn", "1/0"]),
+        (
+            render(&["--camera-look-at", "0,0,1:0,0,1:30"]),
+            vec!["--camera-look-at", "same point"],
+        ),
+        (
+            render(&["--camera-look-at", "0,0,1:0,0,0:200"]),
+            vec!["--camera-look-at", "field of view"],
+        ),
+        (
+            render(&["--camera-look-at", "0,0,1:0,0,0:30", "--view", "top"]),
+            vec!["--camera-look-at", "--view top", "choose one camera"],
+        ),
+        (
             render(&["--time", "1e9"]),
             vec!["--time", "1e9", "10000000"],
         ),
@@ -436,6 +453,7 @@ fn library_rejects_absurd_threads_depth_and_photons() {
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let e = iris::render::thread_pool(&settings).expect_err("100000 threads");
     assert!(e.to_string().contains("--threads 100000"), "{e}");

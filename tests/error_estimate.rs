@@ -29,6 +29,7 @@ fn settings(spp: u32, seed: u64) -> RenderSettings {
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     }
 }
 

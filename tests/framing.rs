@@ -49,6 +49,7 @@ fn settings(w: u32, h: u32) -> RenderSettings {
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     }
 }
 

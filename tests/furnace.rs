@@ -65,6 +65,7 @@ fn furnace_render(
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let integrator =
         Integrator::new(Method::Path, 64, &PhotonSettings::default()).expect("a resolved method");

@@ -105,6 +105,7 @@ fn settings(spp: u64) -> RenderSettings {
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     }
 }
 

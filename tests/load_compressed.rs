@@ -188,6 +188,7 @@ fn render(file: &Path, seed: u64) -> Vec<Vec3> {
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let integrator =
         Integrator::new(Method::Whitted, 64, &PhotonSettings::default()).expect("whitted");

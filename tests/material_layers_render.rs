@@ -136,6 +136,7 @@ fn render(desc: SceneDesc, camera: CameraDesc, spectral: bool) -> Shot {
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let integrator =
         Integrator::new(Method::Path, 32, &PhotonSettings::default()).expect("path tracer");

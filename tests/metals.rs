@@ -97,6 +97,7 @@ fn furnace(material: MaterialDesc, spp: u32, spectral: bool) -> Vec<Vec3> {
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let integrator = Integrator::new(Method::Path, 8, &PhotonSettings::default()).expect("path");
     integrator

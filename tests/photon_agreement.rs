@@ -31,6 +31,7 @@ fn run(method: Method, spp: u32, photon: PhotonSettings, seed: u64) -> ImageRgb 
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let integrator = Integrator::new(method, 32, &photon).expect("a resolved method");
     integrator

@@ -22,6 +22,7 @@ fn image(method: Method, threads: usize, seed: u64, spectral: bool) -> Vec<glam:
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let integrator = Integrator::new(
         method,

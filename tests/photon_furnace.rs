@@ -71,6 +71,7 @@ fn mean_radiance(scene: &Scene, method: Method, photon: PhotonSettings, spp: u32
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let integrator = Integrator::new(method, 64, &photon).expect("a resolved method");
     let (img, _) = integrator

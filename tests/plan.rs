@@ -74,6 +74,7 @@ fn mean(scene: &Scene, cam: &CameraDesc, method: Method, spectral: bool, seed: u
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let (img, _) = integrator
         .render_progressive(scene, &Camera::new(cam, w, h), &settings, None)

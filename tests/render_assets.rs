@@ -88,6 +88,7 @@ fn render_all(files: &[PathBuf], scratch: &str) {
                 sampler: Default::default(),
                 threads: 2,
                 camera: None,
+                look_at: None,
                 display: DisplayOptions::default(),
                 quiet: true,
                 spectral: Default::default(),

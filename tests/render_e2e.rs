@@ -36,6 +36,7 @@ fn opts(scene: &Path, out: &Path, accel: Backend, threads: usize) -> RenderOptio
         sampler: Default::default(),
         threads,
         camera: None,
+        look_at: None,
         display: DisplayOptions::default(),
         quiet: true,
         spectral: Default::default(),
@@ -312,6 +313,7 @@ fn lambertian_sphere_in_uniform_environment_has_albedo_radiance() {
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let (img, _) = integrator.render(&scene, &cam, &settings).unwrap();
     // The sphere (radius 1 at distance 5, yfov 0.6) spans ~ ±0.2 rad: pixels within 6 of the

@@ -148,6 +148,7 @@ fn settings(w: u32, h: u32, spp: u32, seed: u64, sampler: SamplerKind) -> Render
         time_limit: None,
         sampler,
         adaptive: None,
+        cancel: Default::default(),
     }
 }
 

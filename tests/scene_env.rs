@@ -188,6 +188,7 @@ fn render_mean(scene: &Path, env: Option<Option<Environment>>, out: &Path) -> Ve
         sampler: Default::default(),
         threads: 1,
         camera: None,
+        look_at: None,
         display: DisplayOptions::default(),
         quiet: true,
         spectral: Default::default(),

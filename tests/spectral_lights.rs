@@ -339,6 +339,7 @@ fn render_under_a_2700_k_light_has_its_colour() {
             sampler: Default::default(),
             threads: 1,
             camera: None,
+            look_at: None,
             display: DisplayOptions::default(),
             quiet: true,
             spectral: iris::app::SpectralMode::Off, // the RGB renderer's colour
@@ -425,6 +426,7 @@ fn spectral_render_under_a_2700_k_light_has_the_planckian_chromaticity() {
         sampler: Default::default(),
         threads: 2,
         camera: None,
+        look_at: None,
         display: DisplayOptions::default(),
         quiet: true,
         spectral: iris::app::SpectralMode::On,

@@ -55,6 +55,7 @@ fn renders(scene: &Scene, size: u32, spp: u32, k: u64, spectral_mis: bool) -> Ve
                 time_limit: None,
                 sampler: Default::default(),
                 adaptive: None,
+                cancel: Default::default(),
             };
             integrator
                 .render(scene, &Camera::new(&camera(), size, size), &settings)

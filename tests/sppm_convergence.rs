@@ -34,6 +34,7 @@ fn settings(seed: u64) -> RenderSettings {
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     }
 }
 

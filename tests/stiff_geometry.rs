@@ -131,6 +131,7 @@ fn render_image(
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let integrator = Integrator::new(Method::Path, max_depth, &PhotonSettings::default())
         .expect("a resolved method");

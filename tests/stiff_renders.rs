@@ -96,6 +96,7 @@ fn shoot(scene: &Scene, cam: &CameraDesc, method: Method, spp: u32, spectral: bo
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let integrator =
         Integrator::new(method, 64, &PhotonSettings::default()).expect("a resolved method");
@@ -442,6 +443,7 @@ fn bubble_ring_starts_at_the_critical_impact_parameter() {
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let whitted = Integrator::new(Method::Whitted, 16, &PhotonSettings::default())
         .expect("a resolved method");
@@ -547,6 +549,7 @@ fn whitted_at_the_largest_depth_in_a_closed_mirror_box_keeps_its_stack() {
                 time_limit: None,
                 sampler: Default::default(),
                 adaptive: None,
+                cancel: Default::default(),
             };
             let integrator = Integrator::new(Method::Whitted, depth, &PhotonSettings::default())
                 .expect("a resolved method");

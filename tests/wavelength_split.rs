@@ -276,6 +276,7 @@ fn smooth_dispersive_sphere_vanishes_in_a_white_furnace() {
                 time_limit: None,
                 sampler: Default::default(),
                 adaptive: None,
+                cancel: Default::default(),
             };
             let img = integrator
                 .render(&scene, &Camera::new(&camera, size, size), &settings)

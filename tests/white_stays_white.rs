@@ -83,6 +83,7 @@ fn render_spectral(scene: &Scene, cam: &CameraDesc, size: u32, spp: u32, split: 
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     };
     let integrator = Integrator::Path {
         max_depth: 16,

@@ -14,6 +14,7 @@ pub mod converge;
 pub mod diff;
 pub mod gallery;
 pub mod info;
+pub mod live;
 pub mod merge;
 pub mod render;
 mod render_denoise;
@@ -32,5 +33,5 @@ pub use crate::prepare::input::{check_size, default_size, load, resolve_environm
 pub use budget::{Budget, BudgetFlags};
 pub use diff::{diff_command, DiffSummary};
 pub use info::{info_command, info_command_with};
-pub use render::{render_command, RenderJob, RenderSummary};
+pub use render::{render_command, RenderJob, RenderSummary, RunHooks};
 pub use render_options::RenderOptions;

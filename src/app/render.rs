@@ -40,11 +40,12 @@ pub fn render_command(opts: &RenderOptions) -> Result<RenderSummary> {
 /// prepared ([`crate::prepare::prepare`]) and the plan made (with costs under
 /// `--explain`), so a caller can show the plan before the render starts.
 pub struct RenderJob<'a> {
-    opts: &'a RenderOptions,
+    pub(super) opts: &'a RenderOptions,
     output: PathBuf,
     reference: Option<ImageRgb>,
-    prepared: crate::prepare::Prepared,
-    denoise: DenoiseChoice,
+    /// The prepared scene, camera and size.
+    pub prepared: crate::prepare::Prepared,
+    pub(super) denoise: DenoiseChoice,
     adaptive: super::adaptive::AdaptiveChoice,
     /// The render plan (method and transport resolved; its last stages are `denoise` and
     /// `adaptive`).
@@ -147,6 +148,25 @@ impl<'a> RenderJob<'a> {
     /// Renders through the plan's integrator, writing checkpoints (`--checkpoint`) and the
     /// image, then the measuring outputs; returns the summary.
     pub fn run(self) -> Result<RenderSummary> {
+        self.run_with(RunHooks {
+            write_image: true,
+            progress: None,
+        })
+    }
+
+    /// [`RenderJob::run`] with the caller's [`RunHooks`]: without `write_image` the image
+    /// stays in the summary (no output, checkpoint or shard file; `--report` and `--plot`
+    /// are still written); `progress` sees every checkpoint and may stop the render.
+    pub fn run_with(self, hooks: RunHooks) -> Result<RenderSummary> {
+        let RunHooks {
+            write_image,
+            mut progress,
+        } = hooks;
+        if !write_image && self.opts.shard.is_some() {
+            return Err(crate::Error::Usage(
+                "--shard writes a partial image: give it an output file".into(),
+            ));
+        }
         let (opts, measure) = (self.opts, &self.opts.measure);
         let (scene, (w, h)) = (&self.prepared.scene, self.prepared.size);
         let camera = Camera::new(&self.prepared.camera, w, h);
@@ -170,7 +190,10 @@ impl<'a> RenderJob<'a> {
         // `--checkpoint K` (K more units: samples, or SPPM passes, which the driver counts
         // in `Progress::samples`) or watching (an open budget): the image so far. With
         // `--reference` every checkpoint is denoised for the report.
-        let mut writes = CheckpointWrites::new(opts.checkpoint, opts.watch && shard.is_none());
+        let mut writes = CheckpointWrites::new(
+            opts.checkpoint.filter(|_| write_image),
+            write_image && opts.watch && shard.is_none(),
+        );
         let measure_denoised = self.reference.is_some();
         let mut observe = |p: &Progress| -> Result<Control> {
             let write_now = writes.due(p, Instant::now());
@@ -184,6 +207,11 @@ impl<'a> RenderJob<'a> {
                 writes.wrote(p, start.elapsed(), Instant::now());
             }
             recorder.record_denoised(p, denoised.as_ref().map(|(img, t)| (img, *t)))?;
+            if let Some(go_on) = progress.as_mut() {
+                if !go_on(p) {
+                    return Ok(crate::render::Control::Stop);
+                }
+            }
             stop.check(p, denoiser.stop_image())
         };
         let range = shard.as_ref().map(|s| s.range.clone());
@@ -193,12 +221,13 @@ impl<'a> RenderJob<'a> {
         let denoised = denoiser.finish(&image)?;
         let shard_note = match shard {
             Some(part) => Some(self.write_partial(part, &film, &stats, total)?),
-            None => {
+            None if write_image => {
                 let (main, layer) = denoiser.layout(&image, denoised.as_ref().map(|d| &d.image));
                 self.write_image(&self.output, main, layer, coverage.as_ref())?;
                 self.write_exr_copy(&image, denoised.as_ref(), coverage.as_ref())?;
                 None
             }
+            None => None,
         };
         rows.append(&mut recorder.rows);
         let measure_notes = measure.write_outputs(&rows, &opts.scene)?;
@@ -235,7 +264,7 @@ impl<'a> RenderJob<'a> {
     }
 
     /// The render's settings: the flags' counts and seed, the plan's transport.
-    fn settings(&self) -> RenderSettings {
+    pub(super) fn settings(&self) -> RenderSettings {
         let (opts, (width, height)) = (self.opts, self.prepared.size);
         RenderSettings {
             width,
@@ -248,6 +277,7 @@ impl<'a> RenderJob<'a> {
             spectral: self.plan.spectral,
             time_limit: opts.time_limit,
             adaptive: self.adaptive.adaptive,
+            cancel: Default::default(),
         }
     }
 
@@ -381,6 +411,16 @@ impl<'a> RenderJob<'a> {
         notes.extend(scene.warnings().iter().cloned());
         notes
     }
+}
+
+/// What a caller of [`RenderJob::run_with`] adds to a render.
+pub struct RunHooks<'h> {
+    /// Write the output image (and checkpoints, an `--exr-copy`, a shard's partial image);
+    /// `false` keeps the image in memory only.
+    pub write_image: bool,
+    /// Called at every checkpoint (1, 2, 4, … units and the end) with the image so far;
+    /// `false` stops the render there.
+    pub progress: Option<&'h mut (dyn FnMut(&crate::render::Progress) -> bool + Send)>,
 }
 
 /// A shard's part of the render (`--shard`): the shard, its units and the render's identity

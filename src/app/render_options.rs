@@ -50,6 +50,8 @@ pub struct RenderOptions {
     pub threads: usize,
     /// Camera name or index.
     pub camera: Option<String>,
+    /// `--camera-look-at`: eye, target and field of view ([`crate::prepare::look_at`]).
+    pub look_at: Option<crate::prepare::look_at::LookAt>,
     /// PNG display options.
     pub display: DisplayOptions,
     /// No progress bar.
@@ -115,6 +117,7 @@ impl RenderOptions {
             sampler: Default::default(),
             threads: 0,
             camera: None,
+            look_at: None,
             display: DisplayOptions::default(),
             quiet: false,
             env: None,
@@ -155,6 +158,7 @@ impl RenderOptions {
             env: self.env.clone(),
             fog: self.fog,
             camera: self.camera.clone(),
+            look_at: self.look_at,
             size: self.size.or(reference_size),
             preview: self.preview,
             looks: self.looks.clone(),

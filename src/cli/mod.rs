@@ -99,4 +99,30 @@ pub enum Command {
     /// options) and that no sample is missing or twice; with a fixed --spp/--passes the
     /// result is bit for bit one iris render of all the samples.
     Merge(MergeArgs),
+    /// Look at a scene live in the browser: a local web server (127.0.0.1 only, a random
+    /// token in the URL it prints) showing the render as it refines; orbit, zoom and pan
+    /// with the mouse, turn the model, choose stone, metal, studio, environment, exposure,
+    /// method and spectral mode, and render the final image with the `iris render` command
+    /// line that reproduces it. Ctrl-C stops the server.
+    View(ViewArgs),
+}
+
+/// `iris render ARGS…` (the arguments after `render`) parsed and checked as the command
+/// line does: the live view and the Python module build their renders through this, so
+/// every value obeys the flags' rules and a printed command line reproduces the render.
+/// A bad flag or value is a usage error naming it (clap's first line).
+pub fn parse_render(args: &[String]) -> crate::Result<crate::app::RenderOptions> {
+    let argv = ["iris", "render"]
+        .into_iter()
+        .map(String::from)
+        .chain(args.iter().cloned());
+    let cli = Cli::try_parse_from(argv).map_err(|e| {
+        let text = e.to_string();
+        let first = text.lines().next().unwrap_or("bad arguments");
+        crate::Error::Usage(first.trim_start_matches("error: ").to_string())
+    })?;
+    match cli.command {
+        Command::Render(a) => a.options(),
+        _ => Err(crate::Error::Usage("expected render arguments".into())),
+    }
 }

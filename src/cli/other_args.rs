@@ -210,3 +210,25 @@ impl GalleryArgs {
         }
     }
 }
+
+/// `iris view`: the live view's flags.
+#[derive(clap::Args)]
+pub struct ViewArgs {
+    /// Scene file (.gltf, .glb, .obj).
+    pub scene: PathBuf,
+    /// Port on 127.0.0.1 (0: a free port the system chooses).
+    #[arg(long, default_value_t = 0)]
+    pub port: u16,
+    /// Do not start a browser (print the URL only).
+    #[arg(long)]
+    pub no_open: bool,
+    /// Width of the live image in pixels, 64 to 1920 (the height from the camera's aspect).
+    #[arg(long, default_value_t = 640, value_parser = clap::value_parser!(u32).range(64..=1920))]
+    pub width: u32,
+    /// Worker threads, 0 to 1024 (0 = one per core).
+    #[arg(long, default_value_t = 0, value_parser = parse_threads())]
+    pub threads: usize,
+    /// Directory for the final renders (`<scene>-view-<k>.png`).
+    #[arg(long, default_value = ".")]
+    pub out_dir: PathBuf,
+}

@@ -90,3 +90,26 @@ pub(crate) fn parse_exposure(s: &str) -> Result<Exposure, String> {
         _ => Err(format!("expected `auto` or stops in [-64, 64], got {s:?}")),
     }
 }
+
+pub(crate) fn parse_look_at(s: &str) -> Result<crate::prepare::look_at::LookAt, String> {
+    crate::prepare::look_at::LookAt::parse(s)
+}
+
+/// `--turn F/N`: frame F of a turn of N frames, 0 ≤ F < N.
+pub(crate) fn parse_turn(s: &str) -> Result<crate::prepare::turntable::Spin, String> {
+    let bad = || {
+        format!(
+            "expected F/N with 0 ≤ F < N ≤ {}, e.g. 90/360, got {s:?}",
+            crate::prepare::turntable::MAX_FRAMES
+        )
+    };
+    let (f, n) = s.split_once('/').ok_or_else(bad)?;
+    let (f, n) = (
+        f.trim().parse::<u32>().map_err(|_| bad())?,
+        n.trim().parse::<u32>().map_err(|_| bad())?,
+    );
+    if f >= n {
+        return Err(bad());
+    }
+    crate::prepare::turntable::Spin::new(f, n).map_err(|_| bad())
+}

@@ -122,6 +122,15 @@ pub struct RenderArgs {
     /// Camera name or index from the file.
     #[arg(long)]
     pub camera: Option<String>,
+    /// A camera at the eye EX,EY,EZ looking at TX,TY,TZ (scene units, world space, +Y up)
+    /// with a vertical field of view of FOV degrees (0.1 to 170), e.g. `0,0.3,1:0,0,0:35`;
+    /// replaces the file's camera (not with --camera or --view). `iris view` prints it.
+    #[arg(long, value_name = "EX,EY,EZ:TX,TY,TZ:FOV", value_parser = parse_look_at, allow_hyphen_values = true)]
+    pub camera_look_at: Option<crate::prepare::look_at::LookAt>,
+    /// The model turned about the vertical axis through its centre by 360°·F/N, as frame F
+    /// of `iris turntable --frames N` (0 ≤ F < N ≤ 10000), e.g. `--turn 90/360`.
+    #[arg(long, value_name = "F/N", value_parser = parse_turn)]
+    pub turn: Option<crate::prepare::turntable::Spin>,
     /// PNG exposure and tone map.
     #[command(flatten)]
     pub png: PngArgs,
@@ -295,6 +304,7 @@ impl RenderArgs {
             sampler: a.sampler,
             threads: a.threads,
             camera: a.camera,
+            look_at: a.camera_look_at,
             display: a.png.display(),
             quiet: a.quiet,
             env: a
@@ -320,7 +330,7 @@ impl RenderArgs {
             explain: a.explain,
             denoise: a.denoise,
             adaptive: a.adaptive,
-            spin: None,
+            spin: a.turn,
             exr_copy: None,
             shard: a.shard,
         };

@@ -276,6 +276,7 @@ fn camera_pass<C: Carrier>(
         split,
         dispersion,
         lanes,
+        cancel: &settings.cancel,
     };
     let width = settings.width as usize;
     let mut nothing = vec![(); film.slots()];

@@ -35,6 +35,9 @@ pub(super) struct PassPaths<'a, C: Carrier> {
     pub dispersion: path::Dispersion,
     /// Lanes for paths that do not stop at a visible point ([`StopAt::Never`]).
     pub lanes: LaneWidth,
+    /// The render's cancellation ([`crate::render::guard::Cancel`]): once set, the tiles
+    /// not yet started are skipped (the pass is then incomplete, to be thrown away).
+    pub cancel: &'a crate::render::guard::Cancel,
 }
 
 impl<C: Carrier> PassPaths<'_, C> {
@@ -54,7 +57,7 @@ impl<C: Carrier> PassPaths<'_, C> {
         film.par_tiles_mut()
             .zip(slots.par_chunks_mut(TILE_PIXELS))
             .map(|(mut tile, tile_slots)| {
-                if !tile.active() {
+                if !tile.active() || self.cancel.is_cancelled() {
                     return (0, 0);
                 }
                 let (rays, bad) = if lanes {

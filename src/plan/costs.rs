@@ -66,6 +66,7 @@ impl Plan {
                 spectral,
                 time_limit: None,
                 adaptive: None,
+                cancel: Default::default(),
             };
             let start = Instant::now();
             integrator.render(scene, camera, &settings)?;

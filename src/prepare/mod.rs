@@ -28,6 +28,7 @@ pub use authored::Authored;
 pub use note::Note;
 
 pub mod input;
+pub mod look_at;
 pub mod looks;
 pub mod select;
 pub mod turntable;
@@ -55,6 +56,9 @@ pub struct PrepareOptions {
     pub fog: Option<Option<crate::volume::Medium>>,
     /// `--camera` name or index.
     pub camera: Option<String>,
+    /// `--camera-look-at`: a camera given by eye, target and field of view ([`look_at`]),
+    /// replacing the file's (not with `--camera` or `--view`).
+    pub look_at: Option<look_at::LookAt>,
     /// Image size: `--size`, else a reference image's size; `None` = the default size.
     pub size: Option<(u32, u32)>,
     /// Studio, ground, view and background choices.
@@ -126,20 +130,23 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
     let (w, h) = opts.size.unwrap_or_else(|| default_size(&desc.cameras));
     check_size(w, h)?;
     let meshes = &desc.meshes;
-    let (camera, camera_note) = choose_camera_in(
-        &desc.cameras,
-        &desc.source,
-        || match &turn {
-            Some(t) => t.framing_points(meshes),
-            None => meshes
-                .iter()
-                .flat_map(|m| m.positions.iter().copied())
-                .collect(),
-        },
-        opts.camera.as_deref(),
-        preview.view,
-        w as f32 / h as f32,
-    )?;
+    let (camera, camera_note) = match opts.look_at {
+        Some(look) => (given_camera(look, opts)?, None),
+        None => choose_camera_in(
+            &desc.cameras,
+            &desc.source,
+            || match &turn {
+                Some(t) => t.framing_points(meshes),
+                None => meshes
+                    .iter()
+                    .flat_map(|m| m.positions.iter().copied())
+                    .collect(),
+            },
+            opts.camera.as_deref(),
+            preview.view,
+            w as f32 / h as f32,
+        )?,
+    };
     let studio = light(&mut desc, opts, &camera);
     let build_start = Instant::now();
     if add_floor {
@@ -179,6 +186,22 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
         camera_note: camera_note.map(Note::Camera),
         looks,
     })
+}
+
+/// The `--camera-look-at` camera; a usage error with `--camera` or `--view`, which choose
+/// the camera too.
+fn given_camera(look: look_at::LookAt, opts: &PrepareOptions) -> Result<CameraDesc> {
+    let other = match (&opts.camera, opts.preview.view) {
+        (Some(c), _) => Some(format!("--camera {c}")),
+        (None, Some(v)) => Some(format!("--view {}", v.name())),
+        (None, None) => None,
+    };
+    match other {
+        Some(flag) => Err(crate::error::Error::Usage(format!(
+            "--camera-look-at {look} and {flag}: choose one camera"
+        ))),
+        None => Ok(look.camera()),
+    }
 }
 
 /// Lights a description that brings no light: with the studio when no `--env` is given

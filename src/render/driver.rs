@@ -76,6 +76,8 @@ pub struct RoundEnv<'a> {
     /// Asked before each tile of a round after the first; `true` skips the rest of the
     /// round's tiles and ends the render.
     pub stop: &'a (dyn Fn() -> bool + Sync),
+    /// The render's own stop request: skips any tile, the first round's too.
+    pub cancel: &'a super::guard::Cancel,
     /// The absolute index of the render's first unit.
     pub first: u64,
     /// The progress bar; its length is `target · tiles`: a step adds 1 per tile and unit.
@@ -83,10 +85,10 @@ pub struct RoundEnv<'a> {
 }
 
 impl RoundEnv<'_> {
-    /// Whether a tile of round `k0..` (absolute) should be skipped (never in the first
-    /// round).
+    /// Whether a tile of round `k0..` (absolute) should be skipped: on the render's
+    /// cancellation, or on the stop request in a round after the first.
     pub fn skip(&self, k0: u64) -> bool {
-        k0 > self.first && (self.stop)()
+        self.cancel.is_cancelled() || (k0 > self.first && (self.stop)())
     }
 }
 
@@ -139,6 +141,7 @@ pub fn drive(
     );
     let env = RoundEnv {
         stop,
+        cancel: &settings.cancel,
         first,
         bar: &bar,
     };

@@ -14,10 +14,17 @@
 //!   round, SPPM ends after the current pass; the render returns the image so far with
 //!   [`super::RenderStats::interrupted`] set. The first round (pass) always completes, so an
 //!   interrupted render still has an image.
+//! - **Cancellation.** A [`Cancel`] stops one render, not the process (the live view's
+//!   restarts, [`crate::view`]): before each tile of any round, the first included, a
+//!   cancelled render skips the rest; the tiles already started finish, so it ends within
+//!   one tile per worker thread (per-sample methods; the hybrid's and SPPM's camera passes
+//!   skip their remaining tiles too, after the pass's photons), or the pass in flight (VCM, BPT).
+//!   Its image is incomplete and meant to be thrown away.
 
 use crate::image::fixed::LIMIT;
 use glam::DVec3;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 /// The process-wide stop request.
 static STOP: AtomicBool = AtomicBool::new(false);
@@ -31,6 +38,30 @@ pub fn request_stop() {
 /// True once [`request_stop`] was called.
 pub fn stop_requested() -> bool {
     STOP.load(Ordering::Relaxed)
+}
+
+/// A stop request for one render, shared between the render and whoever may cancel it;
+/// the default can never be cancelled.
+#[derive(Debug, Clone, Default)]
+pub struct Cancel(Option<Arc<AtomicBool>>);
+
+impl Cancel {
+    /// A request that [`Cancel::cancel`] can set.
+    pub fn new() -> Cancel {
+        Cancel(Some(Arc::new(AtomicBool::new(false))))
+    }
+
+    /// Asks the render holding this request (or a clone) to stop before its next tile.
+    pub fn cancel(&self) {
+        if let Some(flag) = &self.0 {
+            flag.store(true, Ordering::SeqCst);
+        }
+    }
+
+    /// True once [`Cancel::cancel`] was called on this request or a clone of it.
+    pub fn is_cancelled(&self) -> bool {
+        self.0.as_ref().is_some_and(|f| f.load(Ordering::Relaxed))
+    }
 }
 
 /// `v` if all its components are finite and within ±[`LIMIT`], else zero

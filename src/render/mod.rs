@@ -71,6 +71,8 @@ pub struct RenderSettings {
     /// Adaptive sampling ([`adaptive`]), for the methods whose schedule allows it
     /// ([`Schedule::adaptive`]); `None` gives every tile every unit.
     pub adaptive: Option<Adaptive>,
+    /// This render's own stop request ([`guard::Cancel`]; the default is never set).
+    pub cancel: guard::Cancel,
 }
 
 /// Per-thread state an integrator carries along one camera sample (or photon).

@@ -288,17 +288,20 @@ mod tests {
         stop: &(dyn Fn() -> bool + Sync),
         sampler: SamplerKind,
     ) -> (ImageRgb, Vec<u64>, RenderStats) {
-        let (film, seen, stats) = render_range(w, h, spp, None, max_round, threads, stop, sampler);
+        let (film, seen, stats) =
+            render_range(w, h, spp, (None, None), max_round, threads, stop, sampler);
         (film.mean(), seen, stats)
     }
 
-    /// [`render_with`] of the samples `range` only, returning the film.
+    /// [`render_with`] of the samples `range` only, returning the film; with
+    /// `cancel_at` = Some(n), the estimate cancels the render ([`crate::render::guard::Cancel`])
+    /// as it takes its n-th sample.
     #[allow(clippy::too_many_arguments)]
     fn render_range(
         w: u32,
         h: u32,
         spp: u32,
-        range: Option<std::ops::Range<u64>>,
+        (range, cancel_at): (Option<std::ops::Range<u64>>, Option<u64>),
         max_round: u64,
         threads: usize,
         stop: &(dyn Fn() -> bool + Sync),
@@ -315,7 +318,9 @@ mod tests {
             time_limit: None,
             sampler,
             adaptive: None,
+            cancel: crate::render::guard::Cancel::new(),
         };
+        let taken = std::sync::atomic::AtomicU64::new(0);
         let desc = CameraDesc {
             name: "c".into(),
             projection: Projection::Perspective {
@@ -341,6 +346,10 @@ mod tests {
                     Some(&mut obs),
                     stop,
                     one_by_one(|ray, u, ctx| {
+                        let n = taken.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
+                        if cancel_at == Some(n) {
+                            settings.cancel.cancel();
+                        }
                         if ray.dir.x > 0.3 && u < 0.01 {
                             // A numerical failure on a few samples: counted, never painted.
                             Vec3::NAN
@@ -358,7 +367,7 @@ mod tests {
     fn shards_of_the_samples_add_up_to_the_whole_render() {
         for sampler in [ZSOBOL, SamplerKind::Independent] {
             let never = &|| false;
-            let (whole, ..) = render_range(19, 13, 23, None, u64::MAX, 2, never, sampler);
+            let (whole, ..) = render_range(19, 13, 23, (None, None), u64::MAX, 2, never, sampler);
             let mut merged = crate::image::ExactImage::new(19, 13);
             // Shards in any order, with their own round splits.
             for (range, max_round) in [(15..23, 3), (0..8, u64::MAX), (8..15, 1)] {
@@ -366,7 +375,7 @@ mod tests {
                     19,
                     13,
                     23,
-                    Some(range.clone()),
+                    (Some(range.clone()), None),
                     max_round,
                     1,
                     never,
@@ -396,6 +405,27 @@ mod tests {
             stats.bad_samples
         );
         assert_eq!(stats.end, crate::render::EndReason::Samples);
+    }
+
+    #[test]
+    fn a_cancelled_render_stops_within_the_tile_in_flight() {
+        // 40×40 = 3×3 tiles of 16, 16 and 8 columns; one thread takes them in order. The
+        // cancellation comes with the first sample of the third tile, in the first round
+        // (which a stop request never cuts): that tile finishes, the six others are skipped.
+        for cancel_at in [16 * 16 * 2 + 1, 16 * 16 * 2 + 8 * 16] {
+            let never = &|| false;
+            let ind = SamplerKind::Independent;
+            let (film, seen, stats) =
+                render_range(40, 40, 8, (None, Some(cancel_at)), u64::MAX, 1, never, ind);
+            assert!(stats.interrupted());
+            assert_eq!(
+                stats.samples,
+                16 * 16 * 2 + 8 * 16,
+                "cancel at sample {cancel_at}"
+            );
+            assert_eq!(film.tile_states().filter(|t| t.units > 0).count(), 3);
+            assert!(seen.len() <= 1, "{seen:?}");
+        }
     }
 
     #[test]

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 pub mod alloc;
 pub mod splitmix;
+pub mod view;
 
 /// The third-party test scenes in `../shared/assets` (override with `IRIS_SHARED_ASSETS`).
 ///
@@ -332,6 +333,7 @@ pub fn render_settings(
         time_limit: None,
         sampler: Default::default(),
         adaptive: None,
+        cancel: Default::default(),
     }
 }
 

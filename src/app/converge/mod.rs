@@ -372,6 +372,7 @@ impl<'a> Job<'a> {
                 time_limit: Some(opts.time),
                 sampler: opts.sampler,
                 adaptive: None,
+                cancel: Default::default(),
             },
         }
     }

@@ -79,6 +79,7 @@ pub fn locked(opts: &TurntableOptions, method: Method) -> Result<(Exposure, Opti
                 .spectral,
             time_limit: None,
             adaptive: None,
+            cancel: Default::default(),
         };
         let camera = Camera::new(&p.camera, pw, ph);
         let integrator = Integrator::new(method, r.max_depth, &photon)?;

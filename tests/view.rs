@@ -1,0 +1,245 @@
+//! `iris view` over HTTP, without a browser (tests/view_browser.rs drives the page): the
+//! token and Host guard, nothing served outside the page's assets, changes checked by the
+//! command line's rules, every page getting the same frames, a change ending the old
+//! render's frames, the final render reproduced by its printed command, Ctrl-C.
+
+mod common;
+use common::view::View;
+use std::time::Duration;
+
+const SCENE: &str = "assets/scenes/ruby.glb";
+const LONG: Duration = Duration::from_secs(120);
+
+fn start(name: &str) -> View {
+    let out = common::scratch_dir(name);
+    View::start(SCENE, &out, &["--width", "96", "--threads", "2"])
+}
+
+#[test]
+fn requests_without_the_token_or_from_another_host_are_refused() {
+    let v = start("view_token");
+    let (s, _) = v.request("GET", "/", None, None);
+    assert_eq!(s, 403);
+    let (s, body) = v.request("GET", "/state?token=0123", None, None);
+    assert_eq!(s, 403);
+    assert!(String::from_utf8_lossy(&body).contains("token"));
+    let wrong_host = format!("evil.example:{}", v.port);
+    let (s, _) = v.request("GET", &v.with_token("/"), Some(&wrong_host), None);
+    assert_eq!(s, 403);
+    let (s, page) = v.get("/");
+    assert_eq!(s, 200);
+    assert!(page.contains("<title>Iris view</title>"));
+    assert_eq!(v.get("/app.js").0, 200);
+    assert_eq!(v.get("/style.css").0, 200);
+}
+
+#[test]
+fn nothing_outside_the_page_assets_is_served() {
+    let v = start("view_paths");
+    for path in [
+        "/../Cargo.toml",
+        "/%2e%2e/Cargo.toml",
+        "/src/view/page/app.js",
+        "/assets/scenes/ruby.glb",
+        "/ruby.glb",
+        "/frame/../../Cargo.toml",
+        "/frame/abc",
+        "/frame/999999",
+        "/final/1",
+        "/etc/passwd",
+    ] {
+        let (s, body) = v.get(path);
+        assert_eq!(s, 404, "{path}: {body}");
+        assert!(!body.contains("[package]"), "{path}");
+    }
+}
+
+#[test]
+fn bad_changes_are_refused_naming_the_flag_or_the_control() {
+    let v = start("view_bad");
+    for (change, says) in [
+        (r#"{"stone": "unobtainium"}"#, "--stone"),
+        (r#"{"exposure": "99"}"#, "--exposure"),
+        (r#"{"method": "magic"}"#, "--method"),
+        (r#"{"env": "sky:elevation=200"}"#, "elevation"),
+        (r#"{"colour": "red"}"#, "colour"),
+        (
+            r#"{"camera": {"eye": [0, 0, 1], "target": [0, 0, 1], "fov": 30}}"#,
+            "camera",
+        ),
+        (r#"{"turn": "left"}"#, "turn"),
+        ("not json", "JSON"),
+    ] {
+        let (s, body) = v.post("/controls", change);
+        assert_eq!(s, 400, "{change}: {body}");
+        assert!(body.to_string().contains(says), "{change}: {body}");
+    }
+    let (s, body) = v.post("/render", r#"{"width": 0, "height": 10, "units": 4}"#);
+    assert_eq!(s, 400);
+    assert!(body.to_string().contains("width"), "{body}");
+    // Nothing restarted.
+    assert_eq!(v.wait_state(LONG, |_| true)["restarts"], 0);
+}
+
+/// Frame events (generation, id) of a stream until it holds `n` frames of `generation`.
+fn frames_until(events: &mut common::view::Events, generation: u64, n: usize) -> Vec<(u64, u64)> {
+    let mut seen = Vec::new();
+    for (name, data) in events {
+        if name == "frame" {
+            seen.push((
+                data["generation"].as_u64().unwrap(),
+                data["id"].as_u64().unwrap(),
+            ));
+            if seen.iter().filter(|f| f.0 == generation).count() >= n {
+                break;
+            }
+        }
+    }
+    seen
+}
+
+#[test]
+fn every_page_gets_the_same_frames_and_a_change_ends_the_old_ones() {
+    let v = start("view_frames");
+    v.wait_state(LONG, |s| s["frame"].is_u64());
+    let (mut a, mut b) = (v.events(), v.events());
+    let state = v.wait_state(LONG, |_| true);
+    let mut camera = state["controls"]["camera"].clone();
+    camera["eye"][0] = serde_json::json!(camera["eye"][0].as_f64().unwrap() + 0.01);
+    let (s, answer) = v.post(
+        "/controls",
+        &serde_json::json!({ "camera": camera }).to_string(),
+    );
+    assert_eq!(s, 200, "{answer}");
+    let generation = answer["generation"].as_u64().unwrap();
+    assert_eq!(generation, 2);
+    let (fa, fb) = (
+        frames_until(&mut a, generation, 3),
+        frames_until(&mut b, generation, 3),
+    );
+    for seen in [&fa, &fb] {
+        // Once the new generation shows, the old one never does again.
+        let first_new = seen.iter().position(|f| f.0 == generation).unwrap();
+        assert!(
+            seen[first_new..].iter().all(|f| f.0 == generation),
+            "{seen:?}"
+        );
+        assert!(seen.windows(2).all(|w| w[0].1 < w[1].1), "{seen:?}");
+    }
+    // The same frames in both, over the ids both saw.
+    let (lo, hi) = (
+        fa[0].1.max(fb[0].1),
+        fa.last().unwrap().1.min(fb.last().unwrap().1),
+    );
+    let pick = |s: &[(u64, u64)]| {
+        s.iter()
+            .filter(|f| (lo..=hi).contains(&f.1))
+            .copied()
+            .collect::<Vec<_>>()
+    };
+    assert!(hi >= lo);
+    assert_eq!(pick(&fa), pick(&fb));
+    // A frame announced is a PNG of the live size.
+    let (s, png) = v.request(
+        "GET",
+        &v.with_token(&format!("/frame/{}", fa.last().unwrap().1)),
+        None,
+        None,
+    );
+    assert_eq!(s, 200);
+    assert_eq!(&png[1..4], b"PNG");
+}
+
+#[test]
+fn the_final_render_is_reproduced_by_its_command_line() {
+    let v = start("view_final");
+    let (s, _) = v.post("/controls", r#"{"stone": "sapphire", "turn": 30}"#);
+    assert_eq!(s, 200);
+    let (s, answer) = v.post("/render", r#"{"width": 80, "height": 45, "units": 4}"#);
+    assert_eq!(s, 200, "{answer}");
+    let command = answer["command"].as_str().unwrap();
+    assert!(command.starts_with("iris render assets/scenes/ruby.glb --camera-look-at "));
+    assert!(command.contains("--turn 30/360") && command.contains("--stone sapphire"));
+    let args: Vec<String> = answer["args"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| a.as_str().unwrap().to_string())
+        .collect();
+    let written = std::path::PathBuf::from(answer["output"].as_str().unwrap());
+    assert!(written.starts_with(&v.out_dir));
+    // The same arguments from the shell, into another file.
+    let (x, y) = (
+        std::fs::read(&written).unwrap(),
+        common::view::rerun(&args, &v.out_dir.join("again.png")),
+    );
+    assert!(x == y, "the view's final render and its command's differ");
+    // The page can fetch it.
+    let (s, png) = v.request(
+        "GET",
+        &v.with_token(&format!("/final/{}", answer["id"])),
+        None,
+        None,
+    );
+    assert_eq!((s, png), (200, x));
+}
+
+#[test]
+fn ctrl_c_stops_the_server() {
+    let mut v = start("view_stop");
+    v.wait_state(LONG, |s| s["frame"].is_u64());
+    let pid = v.child.id().to_string();
+    assert!(std::process::Command::new("kill")
+        .args(["-INT", &pid])
+        .status()
+        .unwrap()
+        .success());
+    let start = std::time::Instant::now();
+    let status = loop {
+        if let Some(s) = v.child.try_wait().unwrap() {
+            break s;
+        }
+        assert!(start.elapsed() < LONG, "iris view did not stop on SIGINT");
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    assert_eq!(status.code(), Some(130));
+    assert!(std::net::TcpStream::connect(("127.0.0.1", v.port)).is_err());
+}
+
+#[test]
+fn a_bad_scene_or_flag_fails_before_listening() {
+    let out = common::scratch_dir("view_bad_scene");
+    let missing = out.join("missing.glb");
+    for args in [
+        vec![
+            "view".to_string(),
+            missing.display().to_string(),
+            "--no-open".into(),
+        ],
+        vec![
+            "view".into(),
+            SCENE.into(),
+            "--no-open".into(),
+            "--width".into(),
+            "10".into(),
+        ],
+    ] {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_iris"))
+            .args(&args)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .unwrap();
+        assert!(!o.status.success());
+        let (out, err) = (
+            String::from_utf8_lossy(&o.stdout),
+            String::from_utf8_lossy(&o.stderr),
+        );
+        assert!(!out.contains("http://"), "{out}");
+        let names = if args[1].ends_with("missing.glb") {
+            "missing.glb"
+        } else {
+            "--width"
+        };
+        assert!(err.contains(names), "{err}");
+    }
+}
