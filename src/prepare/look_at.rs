@@ -83,7 +83,7 @@ impl LookAt {
     pub fn camera(&self) -> CameraDesc {
         let forward = (self.target - self.eye).normalize_or_zero();
         let up = if forward.y.abs() > (1.0f32 - 5e-7) {
-            Vec3::new(0.0, 0.0, -forward.y.signum())
+            Vec3::new(0.0, 0.0, forward.y.signum())
         } else {
             Vec3::Y
         };
