@@ -97,7 +97,7 @@ impl RenderJob<'_> {
                     estimate,
                 }
             };
-            if cancel.is_cancelled() || !show(&frame) {
+            if !show(&frame) {
                 return Ok(Control::Stop);
             }
             Ok(Control::ContinueTo(p.samples + 1))

@@ -328,7 +328,7 @@ impl Shared {
         let display = opts.display;
         let mut last_sent: Option<Instant> = None;
         let mut converged = false;
-        let stats = job.live(cancel, REST, |f: &LiveFrame| {
+        job.live(cancel, REST, |f: &LiveFrame| {
             let due = last_sent.is_none_or(|t| t.elapsed() >= FRAME_INTERVAL) || f.denoised;
             if let (Some(image), true) = (f.image, due) {
                 let png = super::encode::png(image, display);
@@ -338,7 +338,6 @@ impl Shared {
             converged = f.units >= MAX_UNITS || f.estimate.is_some_and(|e| e <= CONVERGED);
             !converged
         })?;
-        let _ = stats;
         Ok(if cancel.is_cancelled() {
             "cancelled"
         } else if converged {
