@@ -37,6 +37,13 @@ pub struct Projected {
 }
 
 impl Camera {
+    /// The image's right and up directions (world, unit): the camera frame's x and y.
+    pub fn basis(&self) -> (Vec3, Vec3) {
+        let right = self.world_from_camera.x_axis.truncate().normalize_or_zero();
+        let up = self.world_from_camera.y_axis.truncate().normalize_or_zero();
+        (right, up)
+    }
+
     /// The projection (perspective or orthographic) the camera was built from.
     pub fn projection(&self) -> &Projection {
         &self.projection

@@ -51,6 +51,7 @@ pub mod optics;
 pub mod output;
 pub mod photon;
 pub mod plan;
+pub mod polar;
 pub mod prepare;
 pub mod render;
 pub mod sampler;

@@ -92,6 +92,8 @@ fn render_all(files: &[PathBuf], scratch: &str) {
                 display: DisplayOptions::default(),
                 quiet: true,
                 spectral: Default::default(),
+                polarization: Default::default(),
+                polarizer: None,
                 env: env.map(Some),
                 fog: None,
                 measure: Default::default(),

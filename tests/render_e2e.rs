@@ -40,6 +40,8 @@ fn opts(scene: &Path, out: &Path, accel: Backend, threads: usize) -> RenderOptio
         display: DisplayOptions::default(),
         quiet: true,
         spectral: Default::default(),
+        polarization: Default::default(),
+        polarizer: None,
         env: None,
         fog: None,
         measure: Default::default(),

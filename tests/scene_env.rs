@@ -192,6 +192,8 @@ fn render_mean(scene: &Path, env: Option<Option<Environment>>, out: &Path) -> Ve
         display: DisplayOptions::default(),
         quiet: true,
         spectral: Default::default(),
+        polarization: Default::default(),
+        polarizer: None,
         env,
         fog: None,
         measure: Default::default(),

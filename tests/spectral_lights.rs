@@ -343,6 +343,8 @@ fn render_under_a_2700_k_light_has_its_colour() {
             display: DisplayOptions::default(),
             quiet: true,
             spectral: iris::app::SpectralMode::Off, // the RGB renderer's colour
+            polarization: Default::default(),
+            polarizer: None,
             env: None,
             fog: None,
             measure: Default::default(),
@@ -430,6 +432,8 @@ fn spectral_render_under_a_2700_k_light_has_the_planckian_chromaticity() {
         display: DisplayOptions::default(),
         quiet: true,
         spectral: iris::app::SpectralMode::On,
+        polarization: Default::default(),
+        polarizer: None,
         env: None,
         fog: None,
         measure: Default::default(),

@@ -104,6 +104,11 @@ impl<'a> RenderJob<'a> {
             opts.method,
             opts.spectral,
         );
+        plan.decide_polarization(
+            &prepared.scene,
+            (opts.polarization, opts.polarizer),
+            (opts.method, opts.spectral),
+        )?;
         plan.stages.push(denoise.stage());
         let adaptive = super::adaptive::choose(
             super::adaptive::AdaptiveFlags {
@@ -171,7 +176,8 @@ impl<'a> RenderJob<'a> {
         let (scene, (w, h)) = (&self.prepared.scene, self.prepared.size);
         let camera = Camera::new(&self.prepared.camera, w, h);
         let method = self.plan.method;
-        let integrator = Integrator::new(method, opts.max_depth, &opts.photon)?;
+        let integrator = Integrator::new(method, opts.max_depth, &opts.photon)?
+            .polarized(self.plan.polarization);
         let settings = self.settings();
         let run = method.name();
         let total = integrator.total_units(&settings);

@@ -65,6 +65,10 @@ pub struct RenderOptions {
     pub fog: Option<Option<crate::volume::Medium>>,
     /// `--spectral`: spectral transport always, never, or when the scene needs it.
     pub spectral: SpectralMode,
+    /// `--polarization`: polarized transport always, never, or when the scene needs it.
+    pub polarization: crate::plan::PolarizationMode,
+    /// `--polarizer`: a linear polarizer on the camera, degrees from the image horizontal.
+    pub polarizer: Option<f32>,
     /// The measuring flags (`--reference`, `--report`, `--plot`, `--target-error`).
     pub measure: MeasureOptions,
     /// The drop-in preview choices (`--studio`, `--ground`, `--view`, `--background`).
@@ -123,6 +127,8 @@ impl RenderOptions {
             env: None,
             fog: None,
             spectral: SpectralMode::Auto,
+            polarization: crate::plan::PolarizationMode::Auto,
+            polarizer: None,
             measure: MeasureOptions::default(),
             preview: PreviewOptions::default(),
             looks: Vec::new(),

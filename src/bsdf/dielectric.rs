@@ -79,7 +79,7 @@ fn specular_reflection<C: Carrier>(wo: Vec3, r: f32) -> BsdfSample<C> {
 /// +z, with η' and whether it is a reflection; `None` for degenerate or back-facing
 /// configurations (microfacet on the wrong side of either direction).
 #[inline]
-fn half_vector(eta: f32, wo: Vec3, wi: Vec3) -> Option<(Vec3, f32, bool)> {
+pub(crate) fn half_vector(eta: f32, wo: Vec3, wi: Vec3) -> Option<(Vec3, f32, bool)> {
     let (co, ci) = (wo.z, wi.z);
     if co == 0.0 || ci == 0.0 {
         return None;

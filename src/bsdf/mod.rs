@@ -11,7 +11,7 @@
 
 mod albedo_table;
 pub mod anisotropic;
-mod dielectric;
+pub(crate) mod dielectric;
 mod energy;
 #[cfg(test)]
 mod energy_tests;

@@ -113,3 +113,13 @@ pub(crate) fn parse_turn(s: &str) -> Result<crate::prepare::turntable::Spin, Str
     }
     crate::prepare::turntable::Spin::new(f, n).map_err(|_| bad())
 }
+
+/// `--polarizer ANGLE`: degrees, finite, within ±360.
+pub(crate) fn parse_polarizer(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(a) if a.is_finite() && a.abs() <= 360.0 => Ok(a),
+        _ => Err(format!(
+            "{s:?} is not an angle in degrees from -360 to 360 (e.g. 0 or 90)"
+        )),
+    }
+}

@@ -154,6 +154,15 @@ pub struct RenderArgs {
     /// materials use n_d).
     #[arg(long, default_value = "auto", value_parser = SpectralMode::parse)]
     pub spectral: SpectralMode,
+    /// Polarized transport (Stokes vectors; docs/gem-optics.md): `auto` when a material
+    /// is a birefringent crystal or `--polarizer` is given, `on` always, `off` never
+    /// (crystals then render with one index). Needs the path tracer and spectral transport.
+    #[arg(long, default_value = "auto", value_parser = crate::plan::PolarizationMode::parse)]
+    pub polarization: crate::plan::PolarizationMode,
+    /// A linear polarizer in front of the camera, its transmission axis ANGLE degrees
+    /// (−360 to 360) from the image's horizontal, counter-clockwise.
+    #[arg(long, value_parser = super::parse::parse_polarizer, allow_hyphen_values = true)]
+    pub polarizer: Option<f32>,
     /// Studio lighting (not with `--env`): `soft` (grey, broad softboxes; the default for a
     /// file with no light of its own), `jeweller` (dark, small bright strips: fire),
     /// `bright` (white high-key), or `none` (plain directional key and fill). A file that
@@ -314,6 +323,8 @@ impl RenderArgs {
                 .transpose()?,
             fog: a.fog.as_deref().map(parse_fog).transpose()?,
             spectral: a.spectral,
+            polarization: a.polarization,
+            polarizer: a.polarizer,
             measure: MeasureOptions {
                 reference: a.reference,
                 report: a.report,

@@ -112,6 +112,14 @@ pub enum Integrator {
         /// interfaces ([`path::Dispersion::ALL`] by default; less for comparisons).
         dispersion: path::Dispersion,
     },
+    /// The path tracer with polarized transport ([`path::polarized`]): Stokes vectors, one
+    /// wavelength a path, birefringent crystals, a polarizer on the camera.
+    Polarized {
+        /// Bounces per path, at most [`MAX_DEPTH`].
+        max_depth: u32,
+        /// What the camera looks through.
+        polarization: path::polarized::Polarization,
+    },
     /// Classic photon mapping with a final gather ([`photon_map`]).
     PhotonMap {
         /// Bounces per camera path and non-delta bounces per photon.
@@ -181,7 +189,7 @@ impl Integrator {
     pub fn method(&self) -> Method {
         match self {
             Integrator::Whitted { .. } => Method::Whitted,
-            Integrator::Path { .. } => Method::Path,
+            Integrator::Path { .. } | Integrator::Polarized { .. } => Method::Path,
             Integrator::PhotonMap { .. } => Method::Photon,
             Integrator::Sppm { .. } => Method::Sppm,
             Integrator::Hybrid { .. } => Method::Hybrid,
@@ -195,6 +203,7 @@ impl Integrator {
         match *self {
             Integrator::Whitted { max_depth }
             | Integrator::Path { max_depth, .. }
+            | Integrator::Polarized { max_depth, .. }
             | Integrator::PhotonMap { max_depth, .. }
             | Integrator::Sppm { max_depth, .. }
             | Integrator::Hybrid { max_depth, .. }
@@ -208,7 +217,9 @@ impl Integrator {
     pub fn check(&self) -> Result<()> {
         check_depth(self.max_depth())?;
         match self {
-            Integrator::Whitted { .. } | Integrator::Path { .. } => Ok(()),
+            Integrator::Whitted { .. } | Integrator::Path { .. } | Integrator::Polarized { .. } => {
+                Ok(())
+            }
             Integrator::PhotonMap { photons, .. } => photons.check(),
             Integrator::Sppm { sppm, .. } => sppm.check(),
             Integrator::Hybrid { caustics, .. } => caustics.check(),
@@ -241,6 +252,7 @@ impl Integrator {
                 ctx,
             )),
             Integrator::PhotonMap { .. }
+            | Integrator::Polarized { .. }
             | Integrator::Sppm { .. }
             | Integrator::Hybrid { .. }
             | Integrator::Vcm { .. } => None,
@@ -260,6 +272,20 @@ impl Integrator {
             "--method {} does not trace scattering media ({what}); use --method path, hybrid or auto",
             self.method().name()
         )))
+    }
+
+    /// This integrator with polarized transport when `polarization` says so (the plan's
+    /// [`crate::plan::Plan::decide_polarization`]): the path tracer becomes
+    /// [`Integrator::Polarized`]; other methods are returned unchanged (the plan has
+    /// already refused them).
+    pub fn polarized(self, polarization: Option<path::polarized::Polarization>) -> Integrator {
+        match (self, polarization) {
+            (Integrator::Path { max_depth, .. }, Some(polarization)) => Integrator::Polarized {
+                max_depth,
+                polarization,
+            },
+            (other, _) => other,
+        }
     }
 
     /// Renders `scene` through `camera` to the end (no observer).
@@ -351,6 +377,26 @@ impl Integrator {
                     )
                 })
             }
+            Integrator::Polarized {
+                max_depth,
+                polarization,
+            } => pool.install(|| {
+                render_samples(
+                    camera,
+                    settings,
+                    range,
+                    Setup::now(),
+                    observer,
+                    |ray, u, ctx| {
+                        let a = polarization.analyzer(camera.basis(), ray.dir);
+                        let lambda = SampledSpectrum::sample_lambda(u);
+                        let l = path::polarized::radiance::<SampledSpectrum>(
+                            scene, ray, *max_depth, lambda, a, ctx,
+                        );
+                        l.to_rgb(&lambda)
+                    },
+                )
+            }),
             Integrator::Whitted { .. } | Integrator::Path { .. } => pool.install(|| {
                 render_samples(
                     camera,

@@ -25,6 +25,7 @@
 //! `material`, `scene` (node graph, lights, cameras).
 
 mod accessor;
+pub(crate) mod crystal;
 mod draco;
 mod draco_header;
 mod instancing;

@@ -186,6 +186,7 @@ fn to_meshes(
             uvs,
             uvs1: Vec::new(),
             tangents: Vec::new(),
+            orientation: glam::Mat3::IDENTITY,
             indices: mesh
                 .indices
                 .chunks_exact(3)

@@ -6,6 +6,7 @@
 //! the IOR model's wavelengths in µm (Cauchy, Sellmeier) as the formulas write them.
 
 use super::anisotropy::AnisotropyDesc;
+use super::crystal::CrystalDesc;
 use super::iridescence::IridescenceDesc;
 use super::layers::LayerDesc;
 use super::texture::TextureRef;
@@ -124,6 +125,15 @@ pub struct MaterialDesc {
     pub iridescence: Option<IridescenceDesc>,
     /// KHR_materials_anisotropy (`None` without the extension).
     pub anisotropy: Option<AnisotropyDesc>,
+    /// A birefringent crystal (extras `iris_crystal`, or `--stone` naming one): a
+    /// volumetric dielectric whose light splits into two modes ([`CrystalDesc`]); `ior`
+    /// is then its isotropic stand-in for transport without polarization.
+    pub crystal: Option<CrystalDesc>,
+    /// An ideal linear polarizer sheet (extras `iris_polarizer`): a thin-walled surface that
+    /// passes the light's field component along this transmission axis (the mesh's frame
+    /// as loaded, world space once built) under polarized transport, and everything
+    /// without it.
+    pub polarizer: Option<Vec3>,
 }
 
 impl Default for MaterialDesc {
@@ -158,6 +168,8 @@ impl Default for MaterialDesc {
             layers: LayerDesc::default(),
             iridescence: None,
             anisotropy: None,
+            crystal: None,
+            polarizer: None,
         }
     }
 }
@@ -171,6 +183,12 @@ impl MaterialDesc {
     pub fn spectral_ior(&self) -> Result<SpectralIor, UnknownIorName> {
         if self.ior == 0.0 {
             return Ok(SpectralIor::Constant(f32::INFINITY));
+        }
+        // A crystal's isotropic stand-in: its principal y index (n_o, or n_β).
+        match self.crystal.map(|c| c.optics) {
+            Some(super::CrystalOptics::Table(c)) => return Ok(c.axes[1]),
+            Some(super::CrystalOptics::Indices(n)) => return Ok(SpectralIor::Constant(n[1])),
+            None => {}
         }
         match &self.ior_model {
             Some(ExplicitIor::Glass(name)) => SpectralIor::named(name),

@@ -22,12 +22,14 @@
 
 pub mod anisotropy;
 mod check;
+pub mod crystal;
 pub mod desc;
 pub mod iridescence;
 pub mod layers;
 pub mod texture;
 
 pub use anisotropy::{AnisotropyDesc, AnisotropyPoint};
+pub use crystal::{CrystalDesc, CrystalOptics};
 pub use desc::{describe_ior, AlphaMode, ExplicitIor, MaterialDesc};
 pub use iridescence::{IridescenceDesc, IridescencePoint};
 pub use layers::{LayerDesc, LayerPoint};

@@ -38,11 +38,13 @@ use crate::scene::Scene;
 
 mod costs;
 mod method;
+mod polarization;
 mod stages;
 pub use costs::{COST_PHOTONS, PROBE_REPEATS, PROBE_SIZE};
 pub use method::{
     resolve_method, AUTO_ENCLOSED_FROM, AUTO_HYBRID_BELOW, CAUSTIC_PROBE_PHOTONS, ROUGH_GLASS,
 };
+pub use polarization::{Polarization, PolarizationMode};
 use std::fmt::Write as _;
 
 /// `--spectral auto|on|off`.
@@ -127,6 +129,8 @@ pub struct Plan {
     pub method: Method,
     /// The `--method auto` decision, for the render notes.
     pub method_note: Option<String>,
+    /// Polarized transport ([`Plan::decide_polarization`]); `None`: left out.
+    pub polarization: Option<Polarization>,
 }
 
 impl Plan {
@@ -156,6 +160,7 @@ impl Plan {
             spectral: spectral_on,
             method: resolved,
             method_note,
+            polarization: None,
         }
     }
 

@@ -198,6 +198,10 @@ impl Turn {
                 let (x, z) = turn(f64::from(v.x), f64::from(v.z));
                 *v = Vec3::new(x as f32, v.y, z as f32);
             }
+            let (s, c) = (s as f32, c as f32);
+            let rotation =
+                glam::Mat3::from_cols(Vec3::new(c, 0.0, -s), Vec3::Y, Vec3::new(s, 0.0, c));
+            m.orientation = rotation * m.orientation;
         }
         if desc.subject_bounds.is_some() {
             desc.subject_bounds = Some(desc.meshes[..n].iter().flat_map(|m| &m.positions).fold(

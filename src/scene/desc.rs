@@ -29,7 +29,7 @@ pub use added::{AddedLights, SpotKey};
 use crate::light::env::Environment;
 use crate::material::{ImageDesc, MaterialDesc};
 use crate::spectrum::EmissionSpectrum;
-use glam::{Mat4, Vec2, Vec3, Vec4};
+use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 use std::path::PathBuf;
 
 /// A whole scene as read from a file.
@@ -113,6 +113,10 @@ pub struct MeshDesc {
     pub indices: Vec<[u32; 3]>,
     /// Index into `SceneDesc::materials`; `None` uses the default material.
     pub material: Option<usize>,
+    /// The linear part of the transform from the mesh's own frame (its glTF node's) to
+    /// world space: where a crystal material's axes, given in that frame, point
+    /// ([`crate::material::CrystalDesc`]). The identity for meshes given in world space.
+    pub orientation: Mat3,
 }
 
 /// A punctual light (KHR_lights_punctual) in world space.

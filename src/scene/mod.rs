@@ -12,6 +12,7 @@
 //! are private and read through methods. Rays reach it only through [`crate::interaction`].
 
 pub mod contact;
+mod crystal_axes;
 pub mod desc;
 pub mod geometry;
 pub mod lighting;
@@ -109,6 +110,7 @@ impl Scene {
         backend: Backend,
         lights: Vec<PunctualLight>,
     ) -> Result<Scene> {
+        crystal_axes::orient(&mut desc);
         let g = Geometry::gather(&desc);
         let mut materials: Vec<Material> = std::mem::take(&mut desc.materials)
             .into_iter()

@@ -12,6 +12,9 @@
 //!   Sellmeier) and named materials.
 //! - [`metals`]: complex indices n(λ) + ik(λ) of jewellery metals (measured tables in
 //!   `metals_data.rs`, with their sources) and their RGB stand-ins.
+//! - [`crystals`]: gemstones' crystal optics: principal indices n(λ) along three axes,
+//!   optical character, birefringence, 2V and polarised absorption (table in
+//!   `crystals_data.rs`, sources in the module doc).
 //!
 //! Units everywhere: wavelength λ in nm (vacuum); the IOR formulas that are defined in µm
 //! convert internally. Spectral values are f32; table sums accumulate in f64.
@@ -21,6 +24,7 @@
 pub mod carrier;
 pub mod cie;
 mod cie_data;
+pub mod crystals;
 pub mod emission;
 mod fit;
 pub mod ior;

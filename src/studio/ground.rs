@@ -222,6 +222,7 @@ pub fn add_ground(desc: &mut SceneDesc) {
         tangents: Vec::new(),
         indices: vec![[0, 1, 2], [0, 2, 3]],
         material: Some(desc.materials.len() - 1),
+        orientation: glam::Mat3::IDENTITY,
     });
 }
 

@@ -25,6 +25,8 @@ use glam::{Vec2, Vec3};
 /// starts in, `through`, in a scene with media); with no shadow ray, `value` is zero.
 pub(super) struct LightSample<C: Carrier> {
     pub shadow: Option<Ray>,
+    /// The direction toward the light (world, unit; zero without a sample).
+    pub wi: Vec3,
     pub value: C,
     pub through: Option<MediumStack>,
 }
@@ -32,6 +34,7 @@ pub(super) struct LightSample<C: Carrier> {
 impl<C: Carrier> LightSample<C> {
     const NONE: Self = LightSample {
         shadow: None,
+        wi: Vec3::ZERO,
         value: C::ZERO,
         through: None,
     };
@@ -149,6 +152,7 @@ pub(super) fn next_event<C: Carrier>(
     let incident = C::emitted(ls.incident / p_sel, ls.shape, lambda);
     LightSample {
         shadow: Some(ls.shadow),
+        wi: ls.wi,
         value: f * incident * (cos * w),
         through: scene.has_media().then(|| at.media_toward(ls.wi)),
     }

@@ -21,6 +21,7 @@ mod in_medium;
 mod lanes;
 mod light_sample;
 mod own_hero;
+pub mod polarized;
 mod split;
 mod state;
 mod vertex;

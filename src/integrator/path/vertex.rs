@@ -194,7 +194,7 @@ pub(super) enum Next {
 /// The environment seen along an escaped ray, times `beta`, MIS-weighted against the light
 /// sampling of the previous bounce (the light sampler's probability of the environment);
 /// `None` without an environment.
-fn escaped<C: Carrier>(
+pub(super) fn escaped<C: Carrier>(
     scene: &Scene,
     ray: &Ray,
     prev: &Prev,
@@ -214,7 +214,7 @@ fn escaped<C: Carrier>(
 /// Emission of the surface arrived at (its emitting side only), times `beta`, MIS-weighted
 /// like [`escaped`] with the probability of the emissive group; `None` if it does not emit
 /// toward the path.
-fn emitted<C: Carrier>(
+pub(super) fn emitted<C: Carrier>(
     scene: &Scene,
     at: &Arrival<'_, C>,
     prev: &Prev,

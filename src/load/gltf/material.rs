@@ -277,6 +277,8 @@ fn factors(
         dispersion: dispersion(ctx, m, element)?,
         ior_model: explicit_ior(ctx, m, element)?,
         priority: priority(ctx, m, element)?,
+        crystal: super::crystal::read_crystal(ctx, m, element)?,
+        polarizer: super::crystal::read_polarizer(ctx, m, element)?,
         double_sided: m.double_sided(),
         alpha_mode,
         name: element.to_string(),

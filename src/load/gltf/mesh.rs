@@ -330,6 +330,7 @@ pub(super) fn instantiate(local: &LocalPrimitive, world: &Mat4, name: String) ->
         tangents,
         indices,
         material: local.material,
+        orientation: linear,
     }
 }
 

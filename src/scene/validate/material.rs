@@ -63,6 +63,8 @@ pub(super) fn check_material(
     let extension_rules = [
         m.iridescence.map(|i| i.check()),
         m.anisotropy.map(|a| a.check()),
+        m.crystal.map(|_| crystal_rule(m)),
+        m.polarizer.map(|_| polarizer_rule(m)),
     ];
     for rule in extension_rules.into_iter().flatten() {
         rule.map_err(|detail| invalid(LoadErrorKind::InvalidValue, detail))?;
@@ -269,5 +271,30 @@ fn short(names: &[&str]) -> String {
     match names.len().saturating_sub(6) {
         0 => shown,
         more => format!("{shown} and {more} more"),
+    }
+}
+
+/// A crystal (`extras.iris_crystal`) is a volume: transmissive with a thickness.
+fn crystal_rule(m: &MaterialDesc) -> Result<(), String> {
+    if m.transmission > 0.0 && m.thickness > 0.0 && m.metallic < 1.0 {
+        Ok(())
+    } else {
+        Err("extras.iris_crystal needs a transmissive volume (KHR_materials_transmission > 0 and KHR_materials_volume thicknessFactor > 0, not metallic)".into())
+    }
+}
+
+/// A polarizer sheet (`extras.iris_polarizer`) is thin-walled and transmissive, with a
+/// direction.
+fn polarizer_rule(m: &MaterialDesc) -> Result<(), String> {
+    let axis = m.polarizer.unwrap_or_default();
+    if !axis.is_finite() || axis.length_squared() < 1e-20 {
+        return Err(format!(
+            "extras.iris_polarizer.axis {axis} must be a finite non-zero direction"
+        ));
+    }
+    if m.transmission > 0.0 && m.thickness == 0.0 && m.metallic < 1.0 {
+        Ok(())
+    } else {
+        Err("extras.iris_polarizer needs a thin-walled transmissive surface (KHR_materials_transmission > 0, no KHR_materials_volume thickness, not metallic)".into())
     }
 }

@@ -1,0 +1,132 @@
+//! The polarization stage: whether light is traced with Stokes vectors
+//! ([`crate::integrator::path::polarized`]) — only when the scene needs it, a birefringent
+//! crystal ([`crate::material::CrystalDesc`]) or a polarizer on the camera
+//! (`--polarizer`), like spectral transport for dispersion — and the method and transport
+//! it then requires: the path tracer, spectral.
+
+use super::{Plan, SpectralMode, Stage};
+use crate::error::{Error, Result};
+use crate::integrator::Method;
+use crate::scene::Scene;
+
+/// `--polarization auto|on|off`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum PolarizationMode {
+    /// Polarized when a material is a crystal or a polarizer is on the camera.
+    #[default]
+    Auto,
+    /// Always polarized.
+    On,
+    /// Never (crystals render with one index, their principal y one).
+    Off,
+}
+
+impl PolarizationMode {
+    /// Parses `--polarization auto|on|off`.
+    pub fn parse(s: &str) -> Result<PolarizationMode> {
+        let names = [
+            ("auto", PolarizationMode::Auto),
+            ("on", PolarizationMode::On),
+            ("off", PolarizationMode::Off),
+        ];
+        crate::error::parse_name("--polarization", s, &names)
+    }
+}
+
+pub use crate::integrator::path::polarized::Polarization;
+
+/// What in the scene needs polarized transport: its crystal materials and polarizer
+/// sheets, named (each material once, however many orientations it has).
+fn crystals(scene: &Scene) -> Vec<String> {
+    let mut names = Vec::new();
+    for m in scene.materials() {
+        let what = match (&m.desc.crystal, &m.desc.polarizer) {
+            (Some(_), _) => format!("birefringent {}", m.desc.name),
+            (None, Some(_)) => format!("polarizer sheet {}", m.desc.name),
+            (None, None) => continue,
+        };
+        if !names.contains(&what) {
+            names.push(what);
+        }
+    }
+    names
+}
+
+impl Plan {
+    /// Decides the polarization stage under `--polarization mode` and `--polarizer`
+    /// (degrees), given the `--method` and `--spectral` flags the plan was made with:
+    /// polarized transport needs the path tracer and spectral transport, which it takes
+    /// when those were `auto`, and refuses scattering media. A usage error names the
+    /// flags that conflict.
+    pub fn decide_polarization(
+        &mut self,
+        scene: &Scene,
+        (mode, polarizer_deg): (PolarizationMode, Option<f32>),
+        (method, spectral): (Method, SpectralMode),
+    ) -> Result<()> {
+        let names = crystals(scene);
+        let why = match (&names[..], polarizer_deg) {
+            ([], None) => None,
+            ([], Some(a)) => Some(format!("--polarizer {a}°")),
+            (n, _) => Some(n.join(", ")),
+        };
+        let on = match (mode, &why) {
+            (PolarizationMode::Off, _) if polarizer_deg.is_some() => {
+                return Err(Error::Usage(
+                    "--polarizer needs polarized transport: drop --polarization off".into(),
+                ))
+            }
+            (PolarizationMode::Off, _) => false,
+            (PolarizationMode::On, _) => true,
+            (PolarizationMode::Auto, w) => w.is_some(),
+        };
+        let reason = match (on, mode, &why) {
+            (true, PolarizationMode::On, None) => "on (--polarization on)".to_string(),
+            (true, _, Some(w)) => format!("on: {w} (Stokes vectors, one wavelength a path)"),
+            (false, PolarizationMode::Off, Some(w)) => {
+                format!("off (--polarization off): {w} rendered with one index")
+            }
+            _ => "no birefringent material, no polarizer".to_string(),
+        };
+        self.stages.push(Stage {
+            name: "polarization",
+            used: on,
+            reason,
+            cost: None,
+        });
+        if !on {
+            return Ok(());
+        }
+        if !matches!(method, Method::Auto | Method::Path) {
+            return Err(Error::Usage(format!(
+                "--method {} does not trace polarized light; use --method path or auto, or --polarization off",
+                method.name()
+            )));
+        }
+        if spectral == SpectralMode::Off {
+            return Err(Error::Usage(
+                "polarized transport is spectral: drop --spectral off, or use --polarization off"
+                    .into(),
+            ));
+        }
+        if scene.has_media() {
+            let what = crate::shading::media::summary(scene);
+            return Err(Error::Usage(format!(
+                "polarized transport does not trace scattering media ({what}); use --polarization off"
+            )));
+        }
+        if self.method != Method::Path {
+            self.method_note = Some(format!(
+                "path: polarized transport ({} chose {})",
+                "--method auto",
+                self.method.name()
+            ));
+            self.method = Method::Path;
+        }
+        self.spectral = true;
+        self.polarization = Some(Polarization {
+            polarizer: polarizer_deg.map(f32::to_radians),
+        });
+        Ok(())
+    }
+}

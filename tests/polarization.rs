@@ -1,0 +1,399 @@
+//! Polarized transport against closed forms (issue 34), rendered end to end with the
+//! polarized path tracer ([`Integrator::Polarized`]):
+//!
+//! - Malus's law: unpolarized light through a polarizer sheet and the camera's polarizer at
+//!   θ gives ½ cos²θ of the light. Both renders use the same seed, so they share every
+//!   random number and the ratio is exact up to f32 rounding: the 1 % tolerance is slack.
+//! - Brewster: light reflected by glass (n = 1.5, no dispersion) at θ_B = atan 1.5 is
+//!   purely s-polarized — the camera's polarizer across the plane of incidence passes all
+//!   of it, along it none (every path that reaches the emitter, the internal ones too,
+//!   meets its interfaces at the Brewster angles, where r_p = 0).
+//! - Furnace: lossless glass in a uniform environment of 1 gives 1 on average whatever the
+//!   polarization does on the way; the polarized and unpolarized images agree.
+//! - Calcite (constant n_o = 1.6584, n_e = 1.4864, optic axis 45° from the normal) over a
+//!   small emitter: two images of it, separated by t·tan ρ with tan(45° + ρ) =
+//!   (n_o/n_e)² (walk-off; Born & Wolf §15.3.3) within 2 %; the camera's polarizer along
+//!   one mode's D field keeps that image alone; turning the crystal by 90° about the
+//!   normal turns the offset by 90°.
+//! - Tourmaline (the crystal table's dichroic entry) viewed through a slab: the colour
+//!   along the optic axis is the ordinary spectrum's CIE colour, across it with the
+//!   polarizer along c the extraordinary one's (chromaticity within 0.006).
+
+mod common;
+
+use common::mesh;
+use glam::{Mat3, Vec3};
+use iris::accel::Backend;
+use iris::authoring::shapes::{cuboid, ground_plane, icosphere, quarter_turn_x};
+use iris::camera::{look_at, Camera};
+use iris::image::ImageRgb;
+use iris::integrator::path::polarized::Polarization;
+use iris::integrator::{Integrator, Method, PhotonSettings};
+use iris::light::env::Environment;
+use iris::material::{CrystalDesc, CrystalOptics, MaterialDesc};
+use iris::render::RenderSettings;
+use iris::scene::desc::{CameraDesc, Projection, SceneDesc};
+use iris::scene::Scene;
+
+fn settings(size: u32, spp: u32) -> RenderSettings {
+    RenderSettings {
+        width: size,
+        height: size,
+        spp,
+        seed: 11,
+        threads: 0,
+        quiet: true,
+        spectral: true,
+        time_limit: None,
+        sampler: Default::default(),
+        adaptive: None,
+        cancel: Default::default(),
+    }
+}
+
+fn polarized(
+    scene: &Scene,
+    cam: &CameraDesc,
+    polarizer: Option<f32>,
+    size: u32,
+    spp: u32,
+) -> ImageRgb {
+    let integrator = Integrator::Polarized {
+        max_depth: 32,
+        polarization: Polarization {
+            polarizer: polarizer.map(f32::to_radians),
+        },
+    };
+    integrator
+        .render(scene, &Camera::new(cam, size, size), &settings(size, spp))
+        .expect("render")
+        .0
+}
+
+fn ortho(eye: Vec3, target: Vec3, up: Vec3, half: f32) -> CameraDesc {
+    CameraDesc {
+        name: "ortho".into(),
+        projection: Projection::Orthographic {
+            xmag: half,
+            ymag: half,
+        },
+        world_from_camera: look_at(eye, target, up),
+    }
+}
+
+fn emitter() -> MaterialDesc {
+    MaterialDesc {
+        name: "light".into(),
+        base_color: glam::Vec4::new(0.0, 0.0, 0.0, 1.0),
+        metallic: 0.0,
+        emissive: Vec3::ONE,
+        double_sided: true,
+        ..Default::default()
+    }
+}
+
+fn glass(ior: f32) -> MaterialDesc {
+    MaterialDesc {
+        name: "glass".into(),
+        metallic: 0.0,
+        roughness: 0.0,
+        transmission: 1.0,
+        thickness: 1.0,
+        ior,
+        ..Default::default()
+    }
+}
+
+fn crystal(name: &str, optics: CrystalOptics, axis: Vec3) -> MaterialDesc {
+    MaterialDesc {
+        name: name.into(),
+        crystal: Some(CrystalDesc::oriented(optics, axis, None).expect("axis")),
+        ..glass(1.6)
+    }
+}
+
+fn build(desc: SceneDesc, env: Option<f32>) -> Scene {
+    let desc = SceneDesc {
+        environment_light: env.map(|r| Environment::Uniform {
+            radiance: Vec3::splat(r),
+        }),
+        ..iris::scene::validate::validate(desc).expect("valid scene")
+    };
+    Scene::build(desc, Backend::Auto).expect("build")
+}
+
+fn mean(img: &ImageRgb) -> Vec3 {
+    img.data.iter().copied().sum::<Vec3>() / img.data.len() as f32
+}
+
+fn luminance(v: Vec3) -> f32 {
+    0.2126 * v.x + 0.7152 * v.y + 0.0722 * v.z
+}
+
+#[test]
+fn malus_law_through_two_polarizers() {
+    // Emitter at z = −2 facing the camera, a polarizer sheet (axis x) at z = −1.
+    let wall =
+        |z: f32| ground_plane(2.0, 2.0).transformed(quarter_turn_x(), Vec3::new(0.0, 0.0, z));
+    let sheet = MaterialDesc {
+        name: "sheet".into(),
+        metallic: 0.0,
+        transmission: 1.0,
+        ior: 1.0,
+        polarizer: Some(Vec3::X),
+        ..Default::default()
+    };
+    let scene = |with_sheet: bool| {
+        let mut desc = SceneDesc {
+            source: "malus".into(),
+            meshes: vec![mesh("light", wall(-2.0), 0)],
+            materials: vec![emitter(), sheet.clone()],
+            ..Default::default()
+        };
+        if with_sheet {
+            desc.meshes.push(mesh("sheet", wall(-1.0), 1));
+        }
+        build(desc, None)
+    };
+    let cam = ortho(Vec3::new(0.0, 0.0, 1.0), Vec3::ZERO, Vec3::Y, 0.5);
+    let bare = luminance(mean(&polarized(&scene(false), &cam, None, 16, 4)));
+    let through = scene(true);
+    let sheet_only = luminance(mean(&polarized(&through, &cam, None, 16, 4)));
+    assert!(
+        (sheet_only / bare - 0.5).abs() < 0.005,
+        "one polarizer passes {}",
+        sheet_only / bare
+    );
+    for deg in [0.0f32, 30.0, 45.0, 60.0, 90.0] {
+        let i = luminance(mean(&polarized(&through, &cam, Some(deg), 16, 4)));
+        let expect = 0.5 * deg.to_radians().cos().powi(2);
+        assert!(
+            (i / bare - expect).abs() <= 0.01 * expect.max(0.01),
+            "{deg}°: {} vs cos²θ/2 = {expect}",
+            i / bare
+        );
+    }
+}
+
+#[test]
+fn brewster_reflection_is_s_polarized() {
+    let th = 1.5f32.atan();
+    // The camera looks down at the slab's top face at θ_B from its normal; the mirror
+    // direction meets a large emitter.
+    let d = Vec3::new(th.sin(), -th.cos(), 0.0);
+    let r = Vec3::new(th.sin(), th.cos(), 0.0);
+    let slab =
+        cuboid(Vec3::new(6.0, 0.25, 6.0)).transformed(Mat3::IDENTITY, Vec3::new(0.0, -0.25, 0.0));
+    let panel = ground_plane(8.0, 8.0).transformed(
+        Mat3::from_quat(glam::Quat::from_rotation_arc(Vec3::Y, -r)),
+        r * 6.0,
+    );
+    let scene = build(
+        SceneDesc {
+            source: "brewster".into(),
+            meshes: vec![mesh("slab", slab, 0), mesh("panel", panel, 1)],
+            materials: vec![glass(1.5), emitter()],
+            ..Default::default()
+        },
+        None,
+    );
+    let cam = ortho(-d * 3.0, Vec3::ZERO, Vec3::Y, 0.3);
+    let basis = Camera::new(&cam, 8, 8).basis();
+    // The image's horizontal is ⊥ the plane of incidence (the xy plane): s.
+    assert!(basis.0.z.abs() > 0.999, "camera right {:?}", basis.0);
+    let open = luminance(mean(&polarized(&scene, &cam, None, 12, 4)));
+    let s = luminance(mean(&polarized(&scene, &cam, Some(0.0), 12, 4)));
+    let p = luminance(mean(&polarized(&scene, &cam, Some(90.0), 12, 4)));
+    assert!(open > 0.01, "the reflection is seen: {open}");
+    assert!((s / open - 1.0).abs() < 1e-3, "s passes all: {}", s / open);
+    assert!(p / open < 1e-4, "p is extinguished: {}", p / open);
+}
+
+#[test]
+fn a_furnace_gives_the_same_light_polarized_or_not() {
+    let desc = |m: MaterialDesc| SceneDesc {
+        source: "furnace".into(),
+        meshes: vec![mesh("sphere", icosphere(1.0, 3), 0)],
+        materials: vec![m],
+        ..Default::default()
+    };
+    let cam = ortho(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, Vec3::Y, 1.1);
+    let glass_scene = build(desc(glass(1.5)), Some(1.0));
+    let pol = mean(&polarized(&glass_scene, &cam, None, 24, 16));
+    let integrator = Integrator::new(Method::Path, 32, &PhotonSettings::default()).unwrap();
+    let plain = mean(
+        &integrator
+            .render(&glass_scene, &Camera::new(&cam, 24, 24), &settings(24, 16))
+            .unwrap()
+            .0,
+    );
+    for (what, m) in [("polarized", pol), ("unpolarized", plain)] {
+        assert!((luminance(m) - 1.0).abs() < 0.01, "{what}: {m}");
+    }
+    // A calcite sphere too: the two modes share the light without gain or loss beyond the
+    // isotropic-Fresnel approximation's.
+    let calcite = CrystalOptics::Indices([1.6584, 1.6584, 1.4864]);
+    let c = build(
+        desc(crystal("calcite", calcite, Vec3::new(1.0, 1.0, 0.0))),
+        Some(1.0),
+    );
+    let m = luminance(mean(&polarized(&c, &cam, None, 24, 16)));
+    assert!((m - 1.0).abs() < 0.02, "calcite furnace {m}");
+}
+
+/// A calcite slab (thickness `t`, top at y = t) over a small emitter at the origin, seen
+/// from above by an orthographic camera (image right = +x, up = −z).
+fn calcite_over_dot(t: f32, axis: Vec3) -> (Scene, CameraDesc) {
+    let slab = cuboid(Vec3::new(0.6, t / 2.0, 0.6))
+        .transformed(Mat3::IDENTITY, Vec3::new(0.0, t / 2.0, 0.0));
+    let dot = ground_plane(0.004, 0.004).transformed(Mat3::IDENTITY, Vec3::new(0.0, -0.002, 0.0));
+    let calcite = CrystalOptics::Indices([1.6584, 1.6584, 1.4864]);
+    let scene = build(
+        SceneDesc {
+            source: "calcite".into(),
+            meshes: vec![mesh("slab", slab, 0), mesh("dot", dot, 1)],
+            materials: vec![crystal("calcite", calcite, axis), emitter()],
+            ..Default::default()
+        },
+        None,
+    );
+    let cam = ortho(Vec3::new(0.0, 2.0, 0.0), Vec3::ZERO, Vec3::NEG_Z, 0.1);
+    (scene, cam)
+}
+
+/// The luminance-weighted centroid (world x, z) of the pixels in `window` (world units
+/// around `at`), for an image of `size` over the camera's ±0.1.
+fn centroid(img: &ImageRgb, at: (f32, f32), window: f32) -> ((f32, f32), f32) {
+    let size = img.width as f32;
+    let (mut sx, mut sz, mut sw) = (0.0f64, 0.0f64, 0.0f64);
+    for y in 0..img.height {
+        for x in 0..img.width {
+            // Pixel centre in world: right = +x, image up = −z (so image down = +z).
+            let wx = ((x as f32 + 0.5) / size * 2.0 - 1.0) * 0.1;
+            let wz = ((y as f32 + 0.5) / size * 2.0 - 1.0) * 0.1;
+            if (wx - at.0).abs() > window || (wz - at.1).abs() > window {
+                continue;
+            }
+            let w = f64::from(luminance(img.data[(y * img.width + x) as usize]));
+            sx += w * f64::from(wx);
+            sz += w * f64::from(wz);
+            sw += w;
+        }
+    }
+    (((sx / sw) as f32, (sz / sw) as f32), sw as f32)
+}
+
+#[test]
+fn calcite_doubles_a_dot_by_the_walk_off() {
+    let t = 0.5;
+    let (n_o, n_e) = (1.6584f32, 1.4864f32);
+    let rho = ((n_o / n_e).powi(2)).atan() - std::f32::consts::FRAC_PI_4;
+    let offset = t * rho.tan();
+    let axis = Vec3::new(1.0, 1.0, 0.0);
+    let (scene, cam) = calcite_over_dot(t, axis);
+    let size = 128;
+    let basis = Camera::new(&cam, size, size).basis();
+    assert!((basis.0 - Vec3::X).length() < 1e-5, "{basis:?}");
+    // Unfiltered: the ordinary image at the dot, the extraordinary one offset along ±x.
+    let open = polarized(&scene, &cam, None, size, 64);
+    let (o, wo) = centroid(&open, (0.0, 0.0), 0.012);
+    let e_at = if centroid(&open, (offset, 0.0), 0.012).1 > centroid(&open, (-offset, 0.0), 0.012).1
+    {
+        offset
+    } else {
+        -offset
+    };
+    let (e, we) = centroid(&open, (e_at, 0.0), 0.012);
+    let sep = ((e.0 - o.0).powi(2) + (e.1 - o.1).powi(2)).sqrt();
+    assert!(
+        (sep / offset - 1.0).abs() < 0.02,
+        "separation {sep} vs t·tanρ = {offset}"
+    );
+    assert!(
+        (we / wo - 1.0).abs() < 0.15,
+        "two images of equal brightness: {wo} {we}"
+    );
+    // The ordinary D field is ⊥ the optic axis and the wave normal: along z (image
+    // vertical, 90°); the extraordinary along x (0°). Each polarizer keeps one image.
+    let only_e = polarized(&scene, &cam, Some(0.0), size, 64);
+    let only_o = polarized(&scene, &cam, Some(90.0), size, 64);
+    let (_, e_kept) = centroid(&only_e, (e_at, 0.0), 0.012);
+    let (_, o_gone) = centroid(&only_e, (0.0, 0.0), 0.012);
+    let (_, o_kept) = centroid(&only_o, (0.0, 0.0), 0.012);
+    let (_, e_gone) = centroid(&only_o, (e_at, 0.0), 0.012);
+    assert!(
+        o_gone < 0.02 * e_kept,
+        "0° removes the ordinary image: {o_gone} vs {e_kept}"
+    );
+    assert!(
+        e_gone < 0.02 * o_kept,
+        "90° removes the extraordinary image: {e_gone} vs {o_kept}"
+    );
+    // Turning the crystal 90° about the normal turns the offset to ±z.
+    let (turned, cam) = calcite_over_dot(t, Vec3::new(0.0, 1.0, 1.0));
+    let img = polarized(&turned, &cam, None, size, 64);
+    let z_at = if centroid(&img, (0.0, offset), 0.012).1 > centroid(&img, (0.0, -offset), 0.012).1 {
+        offset
+    } else {
+        -offset
+    };
+    let (e2, w2) = centroid(&img, (0.0, z_at), 0.012);
+    assert!(w2 > 0.5 * we, "the turned image is there: {w2}");
+    assert!(
+        e2.0.abs() < 0.1 * offset && (e2.1.abs() / offset - 1.0).abs() < 0.02,
+        "{e2:?}"
+    );
+}
+
+#[test]
+fn tourmaline_shows_its_two_colours() {
+    use iris::spectrum::cie::{chromaticity, d65_normalized, linear_srgb_to_xyz, spectrum_to_xyz};
+    let stone = iris::spectrum::crystals::named("tourmaline").expect("in the table");
+    let d = 0.005;
+    // A slab d thick (1 cm wide) in front of an emitter, viewed along −z.
+    let slab = |axis: Vec3| {
+        let s = cuboid(Vec3::new(0.01, 0.01, d / 2.0));
+        let panel =
+            ground_plane(0.05, 0.05).transformed(quarter_turn_x(), Vec3::new(0.0, 0.0, -0.02));
+        build(
+            SceneDesc {
+                source: "tourmaline".into(),
+                meshes: vec![mesh("slab", s, 0), mesh("panel", panel, 1)],
+                materials: vec![
+                    crystal("tourmaline", CrystalOptics::Table(stone), axis),
+                    emitter(),
+                ],
+                ..Default::default()
+            },
+            None,
+        )
+    };
+    let cam = ortho(Vec3::new(0.0, 0.0, 0.1), Vec3::ZERO, Vec3::Y, 0.006);
+    let xy = |img: &ImageRgb| {
+        let m = mean(img);
+        chromaticity(linear_srgb_to_xyz([m.x, m.y, m.z]))
+    };
+    let expect = |axis: usize| {
+        chromaticity(spectrum_to_xyz(|nm| {
+            d65_normalized(nm) * (-stone.absorption_at(nm)[axis] * d).exp()
+        }))
+    };
+    // Along c (z): both modes ordinary (D ⊥ c, absorption of x).
+    let along = xy(&polarized(&slab(Vec3::Z), &cam, None, 12, 32));
+    // Across (c along image x), polarizer along c: the extraordinary mode (absorption of z).
+    let across_e = xy(&polarized(&slab(Vec3::X), &cam, Some(0.0), 12, 32));
+    let across_o = xy(&polarized(&slab(Vec3::X), &cam, Some(90.0), 12, 32));
+    for (what, got, want) in [
+        ("along c", along, expect(0)),
+        ("across c, E ∥ c", across_e, expect(2)),
+        ("across c, E ⊥ c", across_o, expect(0)),
+    ] {
+        let dist = ((got[0] - want[0]).powi(2) + (got[1] - want[1]).powi(2)).sqrt();
+        assert!(dist < 0.006, "{what}: xy {got:?} vs {want:?}");
+    }
+    let (o, e) = (expect(0), expect(2));
+    assert!(
+        ((o[0] - e[0]).powi(2) + (o[1] - e[1]).powi(2)).sqrt() > 0.02,
+        "the two colours differ: {o:?} {e:?}"
+    );
+}
