@@ -247,8 +247,14 @@ fn plan_of_every_shared_asset_matches_the_snapshot() {
             iris::app::default_preview_scene(&path, Backend::Bvh, (16, 9)).map(|(scene, _)| {
                 let mut plan =
                     Plan::new(&scene, &common::PINHOLE, Method::Auto, SpectralMode::Auto);
-                plan.add_file_counts(&path);
-                plan.text()
+                let flags = (Method::Auto, SpectralMode::Auto);
+                match plan.decide_polarization(&scene, (Default::default(), None), flags) {
+                    Ok(()) => {
+                        plan.add_file_counts(&path);
+                        plan.text()
+                    }
+                    Err(e) => format!("error: {e}\n"),
+                }
             });
         match planned {
             Ok(t) => text.push_str(&t),

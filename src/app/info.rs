@@ -172,6 +172,16 @@ fn write_material(s: &mut String, m: &MaterialDesc) {
             metal.name()
         );
     }
+    if let Some(optics) = crate::material::crystal::describe_optics(m) {
+        let _ = write!(s, " {optics}");
+    }
+    if let Some(a) = m.polarizer {
+        let _ = write!(
+            s,
+            " polarizer sheet (axis [{:.3} {:.3} {:.3}])",
+            a.x, a.y, a.z
+        );
+    }
     if m.priority != 0 {
         let _ = write!(s, " priority {}", m.priority);
     }
@@ -363,6 +373,11 @@ fn info_plan(path: &Path, flags: &[LookFlag]) -> Result<String> {
     )?;
     let (scene, cam) = (&prepared.scene, &prepared.camera);
     let mut plan = crate::plan::Plan::new(scene, &cam.projection, Method::Auto, SpectralMode::Auto);
+    plan.decide_polarization(
+        scene,
+        (Default::default(), None),
+        (Method::Auto, SpectralMode::Auto),
+    )?;
     // `iris render`'s default output is a PNG under --denoise auto.
     let denoise = crate::denoise::mode::choose(Default::default(), Path::new("render.png"))?;
     plan.stages.push(denoise.stage());

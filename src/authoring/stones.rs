@@ -4,8 +4,13 @@
 //!
 //! The glTF material is smooth (roughness 0), fully transmissive (KHR_materials_transmission
 //! 1), with KHR_materials_ior = n_d and KHR_materials_dispersion = 20 / V_d (the extension's
-//! definition). Birefringent stones (corundum, quartz) use their ordinary index: Iris's
-//! dielectrics are isotropic.
+//! definition). The birefringent stones (every one but diamond, cubic zirconia and the
+//! glass) are also crystals of the crystal table ([`crate::spectrum::crystals`], which
+//! holds their principal indices, absorption per axis and sources): material
+//! `extras.iris_crystal = {"stone": NAME}` with the optic axis along the model's +Y (the
+//! table normal of Iris's cuts), so polarized transport renders their two modes; n_d and
+//! V_d are then their ordinary (uniaxial) or n_β (biaxial) index's, what renderers without
+//! birefringence use.
 //!
 //! | stone | n_d | V_d | source |
 //! |---|---|---|---|
@@ -15,6 +20,7 @@
 //! | cubic zirconia | 2.16 | 28 | GIA Gem Reference Guide (RI 2.15–2.18); refractiveindex.info, ZrO₂:Y₂O₃, Wood & Nassau 1982: V_d ≈ 28 |
 //! | quartz | 1.544 | 70 | GIA Gem Reference Guide (RI 1.544–1.553, ordinary 1.544); refractiveindex.info, SiO₂ ordinary ray, Ghosh 1999: V_d ≈ 70 |
 //! | crown glass (N-BK7) | 1.5168 | 64.17 | SCHOTT N-BK7 data sheet |
+//! | calcite, zircon, peridot, tourmaline, tanzanite, topaz, moissanite, rutile | the crystal table's n_o or n_β at 587.6 nm | from the same model's n_F, n_C | [`crate::spectrum::crystals`] |
 //!
 //! Colours (linear RGB `attenuationColor` reached after `attenuationDistance`) are visual
 //! choices, not measured spectra: ruby (0.9, 0.08, 0.16), sapphire (0.12, 0.25, 0.9) and
@@ -25,7 +31,10 @@
 
 use super::scene::{GenMaterial, GenVolume};
 use crate::error::{Error, Result};
-use crate::material::MaterialDesc;
+use crate::material::{CrystalDesc, CrystalOptics, MaterialDesc};
+use crate::spectrum::cie;
+use crate::spectrum::crystals::{self, Character, Crystal};
+use crate::spectrum::ior::{IorModel, LAMBDA_D};
 use glam::{Vec3, Vec4};
 
 /// A named gem material.
@@ -45,10 +54,26 @@ pub enum Stone {
     Quartz,
     /// SCHOTT N-BK7 crown glass.
     CrownGlass,
+    /// Calcite (Iceland spar): strongly birefringent, colourless.
+    Calcite,
+    /// High zircon: birefringent, high dispersion.
+    Zircon,
+    /// Peridot (forsterite-rich olivine): biaxial, yellowish green.
+    Peridot,
+    /// Green tourmaline (elbaite): strongly dichroic.
+    Tourmaline,
+    /// Tanzanite (zoisite): trichroic.
+    Tanzanite,
+    /// Topaz: biaxial, colourless.
+    Topaz,
+    /// Moissanite (6H-SiC): birefringent, high index and dispersion.
+    Moissanite,
+    /// Rutile (TiO₂): extreme birefringence and dispersion.
+    Rutile,
 }
 
 /// Every stone, in the order the CLI lists them.
-pub const STONES: [Stone; 7] = [
+pub const STONES: [Stone; 15] = [
     Stone::Diamond,
     Stone::Sapphire,
     Stone::Ruby,
@@ -56,6 +81,14 @@ pub const STONES: [Stone; 7] = [
     Stone::CubicZirconia,
     Stone::Quartz,
     Stone::CrownGlass,
+    Stone::Calcite,
+    Stone::Zircon,
+    Stone::Peridot,
+    Stone::Tourmaline,
+    Stone::Tanzanite,
+    Stone::Topaz,
+    Stone::Moissanite,
+    Stone::Rutile,
 ];
 
 /// Distance over which the coloured stones reach their attenuation colour, metres.
@@ -72,7 +105,27 @@ impl Stone {
             Stone::CubicZirconia => "cubic-zirconia",
             Stone::Quartz => "quartz",
             Stone::CrownGlass => "crown-glass",
+            Stone::Calcite => "calcite",
+            Stone::Zircon => "zircon",
+            Stone::Peridot => "peridot",
+            Stone::Tourmaline => "tourmaline",
+            Stone::Tanzanite => "tanzanite",
+            Stone::Topaz => "topaz",
+            Stone::Moissanite => "moissanite",
+            Stone::Rutile => "rutile",
         }
+    }
+
+    /// The stone's entry in the crystal table when it is birefringent
+    /// ([`crate::spectrum::crystals`]); `None` for the isotropic ones.
+    pub fn crystal(self) -> Option<&'static Crystal> {
+        crystals::named(self.name()).filter(|c| c.character() != Character::Isotropic)
+    }
+
+    /// The index the isotropic stand-in uses from the crystal table: n_o (uniaxial) or
+    /// n_β (biaxial), the principal y index.
+    fn table_index(self) -> Option<IorModel> {
+        crystals::named(self.name()).map(|c| c.axes[1])
     }
 
     /// Parses a CLI name (case-insensitive; `_` and `-` alike); the error lists the names.
@@ -90,7 +143,8 @@ impl Stone {
             })
     }
 
-    /// Refractive index at 587.6 nm (see the module table).
+    /// Refractive index at 587.6 nm (see the module table), rounded to 4 decimals for the
+    /// crystal table's stones.
     pub fn n_d(self) -> f32 {
         match self {
             Stone::Diamond => 2.417,
@@ -99,10 +153,14 @@ impl Stone {
             Stone::CubicZirconia => 2.16,
             Stone::Quartz => 1.544,
             Stone::CrownGlass => 1.5168,
+            _ => self
+                .table_index()
+                .map_or(1.5, |m| (m.ior(LAMBDA_D) * 1e4).round() / 1e4),
         }
     }
 
-    /// Abbe number V_d (see the module table).
+    /// Abbe number V_d (see the module table), rounded to 0.1 for the crystal table's
+    /// stones.
     pub fn abbe(self) -> f32 {
         match self {
             Stone::Diamond => 55.0,
@@ -110,6 +168,9 @@ impl Stone {
             Stone::CubicZirconia => 28.0,
             Stone::Quartz => 70.0,
             Stone::CrownGlass => 64.17,
+            _ => self
+                .table_index()
+                .map_or(60.0, |m| (m.abbe_number() * 10.0).round() / 10.0),
         }
     }
 
@@ -118,13 +179,16 @@ impl Stone {
         20.0 / self.abbe()
     }
 
-    /// Linear RGB colour reached after [`COLOUR_DISTANCE`], `None` for colourless stones.
+    /// Linear RGB colour reached after [`COLOUR_DISTANCE`], `None` for colourless stones:
+    /// chosen for ruby, sapphire and emerald; for the other pleochroic stones the colour of
+    /// D65 light through [`COLOUR_DISTANCE`] with the mean of the table's three absorption
+    /// spectra (unpolarized light sees their mean on average), white normalized to 1.
     pub fn attenuation(self) -> Option<Vec3> {
         match self {
             Stone::Ruby => Some(Vec3::new(0.9, 0.08, 0.16)),
             Stone::Sapphire => Some(Vec3::new(0.12, 0.25, 0.9)),
             Stone::Emerald => Some(Vec3::new(0.12, 0.7, 0.3)),
-            _ => None,
+            _ => self.crystal().and_then(mean_colour),
         }
     }
 
@@ -138,6 +202,14 @@ impl Stone {
             Stone::CubicZirconia => "Cubic zirconia",
             Stone::Quartz => "Quartz",
             Stone::CrownGlass => "Crown glass N-BK7",
+            Stone::Calcite => "Calcite",
+            Stone::Zircon => "Zircon",
+            Stone::Peridot => "Peridot",
+            Stone::Tourmaline => "Tourmaline",
+            Stone::Tanzanite => "Tanzanite",
+            Stone::Topaz => "Topaz",
+            Stone::Moissanite => "Moissanite",
+            Stone::Rutile => "Rutile",
         };
         format!("{name} (n_d {}, Abbe {})", self.n_d(), self.abbe())
     }
@@ -147,6 +219,9 @@ impl Stone {
     pub fn material(self, thickness: f32) -> GenMaterial {
         let mut m = GenMaterial::clear_glass(&self.title(), self.n_d(), thickness);
         m.dispersion = Some(self.dispersion());
+        if self.crystal().is_some() {
+            m.extras = Some(serde_json::json!({"iris_crystal": {"stone": self.name()}}));
+        }
         if let Some(colour) = self.attenuation() {
             m.volume = Some(GenVolume {
                 thickness,
@@ -183,9 +258,26 @@ impl Stone {
             thickness: 1.0,
             attenuation_color,
             attenuation_distance,
+            crystal: self
+                .crystal()
+                .and_then(|c| CrystalDesc::oriented(CrystalOptics::Table(c), Vec3::Y, None).ok()),
             ..MaterialDesc::default()
         }
     }
+}
+
+/// The colour of D65 through [`COLOUR_DISTANCE`] of the mean of a crystal's three
+/// absorption spectra, normalized so that no absorption is white (1, 1, 1); `None`
+/// without absorption.
+fn mean_colour(c: &Crystal) -> Option<Vec3> {
+    c.absorption.as_ref()?;
+    let through = |nm: f32| {
+        let a = c.absorption_at(nm);
+        cie::d65_normalized(nm) * (-(a[0] + a[1] + a[2]) / 3.0 * COLOUR_DISTANCE).exp()
+    };
+    let rgb = cie::xyz_to_linear_srgb(cie::spectrum_to_xyz(through));
+    let white = cie::xyz_to_linear_srgb(cie::spectrum_to_xyz(cie::d65_normalized));
+    Some(Vec3::from(rgb) / Vec3::from(white)).map(|v| v.clamp(Vec3::splat(1e-3), Vec3::ONE))
 }
 
 #[cfg(test)]

@@ -90,7 +90,8 @@ pub struct GemArgs {
     /// pear (brilliant, L/W 1.6).
     #[arg(long, value_parser = crate::authoring::cuts::Cut::parse)]
     pub cut: crate::authoring::cuts::Cut,
-    /// Stone: diamond, sapphire, ruby, emerald, cubic-zirconia, quartz, crown-glass.
+    /// Stone: diamond, sapphire, ruby, emerald, cubic-zirconia, quartz, crown-glass, calcite,
+    /// zircon, peridot, tourmaline, tanzanite, topaz, moissanite, rutile.
     #[arg(long, value_parser = crate::authoring::stones::Stone::parse)]
     pub stone: crate::authoring::stones::Stone,
     /// Girdle diameter (round) or length (emerald, oval, pear) in millimetres, from 0.1 to

@@ -40,7 +40,9 @@ impl PngArgs {
 #[derive(clap::Args, Clone, Default)]
 pub struct LookArgs {
     /// Make materials a stone (repeatable): NAME is diamond, sapphire, ruby, emerald,
-    /// cubic-zirconia, quartz or crown-glass. Without =SELECTOR it changes every material
+    /// cubic-zirconia, quartz, crown-glass, calcite, zircon, peridot, tourmaline,
+    /// tanzanite, topaz, moissanite or rutile (the birefringent ones with their optic axis
+    /// along the model's +Y; docs/gem-optics.md). Without =SELECTOR it changes every material
     /// no other --stone/--metal names; NAME=MATERIAL changes that material (a mesh name if
     /// no material has it), NAME=material:MATERIAL or NAME=mesh:MESH say which.
     #[arg(long, value_name = "NAME[=SELECTOR]")]

@@ -108,6 +108,46 @@ impl CrystalDesc {
     }
 }
 
+/// A material's optical character for `iris info`: the crystal's class, indices at
+/// 589.3 nm, birefringence, optic axis and pleochroism; "isotropic" for other transmissive
+/// volumes; `None` for the rest.
+pub fn describe_optics(m: &super::MaterialDesc) -> Option<String> {
+    let Some(c) = &m.crystal else {
+        return (m.transmission > 0.0 && m.thickness > 0.0).then(|| "optics isotropic".into());
+    };
+    let nm = crate::spectrum::crystals::LAMBDA_NA_D;
+    let n = c.indices(nm);
+    let (class, ns) = match c.character() {
+        Character::Isotropic => ("isotropic".to_string(), format!("n {:.4}", n[0])),
+        Character::Uniaxial { positive } => (
+            format!("uniaxial {}", if positive { "+" } else { "−" }),
+            format!("n_o {:.4} n_e {:.4}", n[0], n[2]),
+        ),
+        Character::Biaxial { positive } => (
+            format!("biaxial {}", if positive { "+" } else { "−" }),
+            format!("n_α {:.4} n_β {:.4} n_γ {:.4}", n[0], n[1], n[2]),
+        ),
+    };
+    let max = n.iter().copied().fold(f32::MIN, f32::max);
+    let min = n.iter().copied().fold(f32::MAX, f32::min);
+    let name = match c.optics {
+        CrystalOptics::Table(t) => format!(" {}", t.name),
+        CrystalOptics::Indices(_) => String::new(),
+    };
+    let z = c.axes.z_axis;
+    let pleo = match c.optics {
+        CrystalOptics::Table(t) if t.absorption.is_some() => ", pleochroic",
+        _ => "",
+    };
+    Some(format!(
+        "optics{name} {class} ({ns} at {nm} nm, birefringence {:.4}, optic axis [{:.3} {:.3} {:.3}]{pleo})",
+        max - min,
+        z.x,
+        z.y,
+        z.z
+    ))
+}
+
 /// The character of principal indices (x, y, z).
 pub fn character_of(n: [f32; 3]) -> Character {
     let eq = |a: f32, b: f32| (a - b).abs() < 1e-6;

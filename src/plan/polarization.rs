@@ -70,6 +70,9 @@ impl Plan {
             ([], Some(a)) => Some(format!("--polarizer {a}°")),
             (n, _) => Some(n.join(", ")),
         };
+        // An explicit method other than the path tracer keeps automatic polarization off
+        // (a polarizer on the camera still needs it).
+        let other_method = !matches!(method, Method::Auto | Method::Path);
         let on = match (mode, &why) {
             (PolarizationMode::Off, _) if polarizer_deg.is_some() => {
                 return Err(Error::Usage(
@@ -78,6 +81,7 @@ impl Plan {
             }
             (PolarizationMode::Off, _) => false,
             (PolarizationMode::On, _) => true,
+            (PolarizationMode::Auto, _) if other_method && polarizer_deg.is_none() => false,
             (PolarizationMode::Auto, w) => w.is_some(),
         };
         let reason = match (on, mode, &why) {
@@ -86,6 +90,10 @@ impl Plan {
             (false, PolarizationMode::Off, Some(w)) => {
                 format!("off (--polarization off): {w} rendered with one index")
             }
+            (false, _, Some(w)) => format!(
+                "off: --method {} does not trace polarized light ({w} rendered with one index)",
+                method.name()
+            ),
             _ => "no birefringent material, no polarizer".to_string(),
         };
         self.stages.push(Stage {
@@ -116,12 +124,20 @@ impl Plan {
             )));
         }
         if self.method != Method::Path {
-            self.method_note = Some(format!(
-                "path: polarized transport ({} chose {})",
-                "--method auto",
+            let note = format!(
+                "path: polarized transport (--method auto had chosen {})",
                 self.method.name()
-            ));
+            );
+            if let Some(photons) = self.stages.iter_mut().find(|s| s.name == "photons") {
+                photons.used = false;
+                photons.reason = note.clone();
+            }
+            self.method_note = Some(note);
             self.method = Method::Path;
+        }
+        if let Some(lanes) = self.stages.iter_mut().find(|s| s.name == "lanes") {
+            lanes.used = false;
+            lanes.reason = "the polarized path tracer traces single rays".into();
         }
         self.spectral = true;
         self.polarization = Some(Polarization {

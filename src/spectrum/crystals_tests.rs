@@ -214,7 +214,7 @@ fn every_axis_is_finite_normal_and_pole_free() {
 }
 
 /// Shared coefficients equal the named models they copy, and every `--stone` is in the table
-/// with the index the gem table uses (its ordinary index, at 587.56 nm).
+/// with the index the gem table uses (its principal y index: n_o, or n_β, at 587.56 nm).
 #[test]
 fn agrees_with_ior_models_and_the_stone_table() {
     let ior = |n| IorModel::named(n).expect("known");
@@ -224,7 +224,7 @@ fn agrees_with_ior_models_and_the_stone_table() {
     assert_eq!(get("crown-glass").axes, [ior("N-BK7"); 3]);
     for st in crate::authoring::stones::STONES {
         let c = named(st.name()).unwrap_or_else(|| panic!("--stone {}", st.name()));
-        let n = c.axes[0].ior(LAMBDA_D);
+        let n = c.axes[1].ior(LAMBDA_D);
         assert!(
             (n - st.n_d()).abs() < 0.002,
             "{}: {n} vs {}",
