@@ -34,6 +34,7 @@ fn run(cli: Cli) -> iris::Result<()> {
             app::commands::gem(&spec, &a.output)
         }
         Command::Gallery(a) => app::commands::gallery(&a.options()),
+        Command::GemReport(a) => app::commands::gem_report(&a.options()?),
         Command::GenAssets { dir } => app::commands::gen_assets(&dir),
         Command::Turntable(a) => app::commands::turntable(&a.options()?),
         Command::View(a) => iris::view::view_command(&iris::view::ViewOptions {

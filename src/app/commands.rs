@@ -282,3 +282,46 @@ pub fn gen_assets(dir: &Path) -> Result<()> {
     }
     Ok(())
 }
+
+/// `iris gem-report`: renders the shots (a line each, unless `--quiet`), then prints the
+/// face-up figures on stdout and where the report went; after an interruption says that
+/// nothing was written.
+pub fn gem_report(opts: &crate::app::gem_report::GemReportOptions) -> Result<()> {
+    let r = crate::app::gem_report::gem_report(opts)?;
+    let Some(f) = &r.figures else {
+        eprintln!(
+            "iris: gem-report interrupted after {} renders: nothing written to {}",
+            r.renders.len(),
+            opts.out_dir.display()
+        );
+        return Ok(());
+    };
+    let p = |x: f64| 100.0 * x;
+    let u = &f.face_up;
+    println!(
+        "light return {:.1} %  (high {:.1} %, low {:.1} %)  obscured {:.1} %  leakage {:.1} %  other {:.1} %",
+        p(u.light_return()),
+        p(u.high),
+        p(u.low),
+        p(u.obscured),
+        p(u.leakage),
+        p(u.other)
+    );
+    println!(
+        "brilliance {:.1} %  fire {:.1} % (median spread {:.2}°)  flashes {} ({:.1} % lit)",
+        p(f.brilliance),
+        p(f.fire),
+        f.median_spread,
+        f.flashes,
+        p(f.lit)
+    );
+    eprintln!(
+        "iris: gem-report {} -> {}: {} renders, {} files, {:.2} s",
+        opts.scene.display(),
+        opts.out_dir.display(),
+        r.renders.len(),
+        r.written.len(),
+        r.time.as_secs_f64()
+    );
+    Ok(())
+}

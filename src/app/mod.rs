@@ -2,7 +2,8 @@
 //! subprocess: `iris render` ([`render`], its flags: [`render_options`], its budget:
 //! [`budget`]; `--shard`: [`shard`], [`shard_id`]), `iris merge` ([`merge`]), `iris
 //! converge` ([`converge`]), `iris info` ([`info`]), `iris diff` ([`diff`]), `iris gallery`
-//! ([`gallery`]), `iris turntable` ([`turntable`]), and the printing of each ([`commands`],
+//! ([`gallery`]), `iris turntable` ([`turntable`]), `iris gem-report` ([`gem_report`]),
+//! and the printing of each ([`commands`],
 //! what `main.rs` calls: one function per command). This is the top of the crate: nothing
 //! below imports it.
 
@@ -13,6 +14,7 @@ pub mod commands;
 pub mod converge;
 pub mod diff;
 pub mod gallery;
+pub mod gem_report;
 pub mod info;
 pub mod live;
 pub mod merge;

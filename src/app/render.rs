@@ -55,6 +55,25 @@ pub struct RenderJob<'a> {
 impl<'a> RenderJob<'a> {
     /// Checks every flag, prepares the scene and makes the plan.
     pub fn new(opts: &'a RenderOptions) -> Result<RenderJob<'a>> {
+        RenderJob::build(opts, None)
+    }
+
+    /// [`RenderJob::new`] for a scene the caller prepared itself (an instrument's stage,
+    /// [`crate::prepare::stage`]): the same flag checks and plan; `opts.scene` only names
+    /// the render, and the flags that shape a preparation (`--size`, `--env`, cameras,
+    /// looks) are the caller's business.
+    pub fn with_prepared(
+        opts: &'a RenderOptions,
+        prepared: crate::prepare::Prepared,
+    ) -> Result<RenderJob<'a>> {
+        RenderJob::build(opts, Some(prepared))
+    }
+
+    /// The checks, the preparation (unless `given`) and the plan.
+    fn build(
+        opts: &'a RenderOptions,
+        given: Option<crate::prepare::Prepared>,
+    ) -> Result<RenderJob<'a>> {
         if let Some((w, h)) = opts.size {
             check_size(w, h)?;
         }
@@ -84,10 +103,13 @@ impl<'a> RenderJob<'a> {
             .as_deref()
             .map(crate::measure::read_reference_file)
             .transpose()?;
-        let prepared = crate::prepare::prepare(
-            &opts.scene,
-            &opts.prepare_options(reference.as_ref().map(|r| (r.width, r.height))),
-        )?;
+        let prepared = match given {
+            Some(p) => p,
+            None => crate::prepare::prepare(
+                &opts.scene,
+                &opts.prepare_options(reference.as_ref().map(|r| (r.width, r.height))),
+            )?,
+        };
         let (w, h) = prepared.size;
         if let (Some(r), Some(path)) = (&reference, &measure.reference) {
             crate::measure::check_reference_size(

@@ -2,14 +2,16 @@
 //! (the binary `src/main.rs` parses it and dispatches to [`crate::app`]; `tests/docs.rs`
 //! parses every command shown in the documentation with it). The flags, by command:
 //! [`render_args`] (`iris render`, and the overrides shared with converge and info),
-//! [`other_args`] (merge, turntable, gallery, gem, converge), [`parse`] (value parsers with
-//! their bounds).
+//! [`other_args`] (merge, turntable, gallery, gem, converge), [`gem_report_args`]
+//! (gem-report), [`parse`] (value parsers with their bounds).
 
+pub mod gem_report_args;
 pub mod other_args;
 mod parse;
 pub mod render_args;
 
 use clap::{Parser, Subcommand};
+use gem_report_args::GemReportArgs;
 use other_args::*;
 use render_args::*;
 use std::path::PathBuf;
@@ -74,6 +76,12 @@ pub enum Command {
     /// Write a gem in a standard cut as .glb (KHR ior, transmission, volume, dispersion),
     /// in a preview scene (camera, lights, white floor) unless --bare.
     Gem(GemArgs),
+    /// The gemologist's images and cut figures of a stone: ASET and Ideal-Scope images
+    /// face-up and tilted, light return, obscuration and leakage (overall and by zone),
+    /// brilliance, fire and scintillation (flashes), rendered under the standard
+    /// instruments, into DIR as PNGs, report.md, report.html and report.json. Nothing is
+    /// written unless everything rendered.
+    GemReport(GemReportArgs),
     /// Render the gallery (the paper's figure scenes, the gems, the Khronos dispersion
     /// samples) into DIR/<name>.png with a Markdown page DIR/README.md (plan, method, time).
     Gallery(GalleryArgs),

@@ -31,6 +31,7 @@ pub mod input;
 pub mod look_at;
 pub mod looks;
 pub mod select;
+pub mod stage;
 pub mod turntable;
 
 use crate::accel::Backend;

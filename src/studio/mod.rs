@@ -33,6 +33,7 @@
 
 pub mod env;
 pub mod ground;
+pub mod instrument;
 
 use crate::error::{Error, Result};
 use crate::light::env::Environment;
