@@ -26,6 +26,8 @@ fn render_with(scene: &Path, method: &[&str], lanes: &str, accel: &str, out: &Pa
         .arg("--method")
         .args(method)
         .args(["--size", "40x30", "--spp", "3", "--seed", "11"])
+        // The lanes are the unpolarized loops' (the crystals' polarized one is scalar).
+        .args(["--polarization", "off"])
         .args([
             "--denoise",
             "off",

@@ -109,6 +109,15 @@ impl View {
 }
 
 fn material(stone: &str, planes: &[indicatrix::geometry::GpuFacetPlane]) -> GemMaterial {
+    // `NAME-iso`: the stone with its birefringence removed (one index, n_o: what Iris's
+    // `--polarization off` renders), for isolating the birefringent transport.
+    if let Some(base) = stone.strip_suffix("-iso") {
+        let mut m = material(base, planes);
+        m.optical_character = indicatrix::optics::materials::OpticalCharacter::Isotropic;
+        m.birefringence_delta = 0.0;
+        m.uniaxial_extraordinary_dispersion = None;
+        return m;
+    }
     let name = match stone {
         "diamond" => "Diamond",
         "moissanite" => "Synthetic Moissanite",
