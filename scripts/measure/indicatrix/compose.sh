@@ -22,9 +22,11 @@ ix_sub() { # the spp and time of an indicatrix render
 iris_sub() { # the spp and time of an Iris render
   local line spp secs
   line=$(grep '^iris:' "$R/$1.log" | head -1)
-  spp=$(echo "$line" | grep -o '[0-9]* spp' | head -1)
+  # "512x512, 26 spp, ..." or, adaptive, "512x512, 32 to 90 (mean 53.3) spp, ..."
+  spp=$(echo "$line" | sed -E 's/.*[0-9]+x[0-9]+, (.*) spp, [0-9]+ triangles.*/\1/' \
+    | sed -E 's/^([0-9]+) to ([0-9]+) \(mean ([0-9.]+)\)$/\3 (\1–\2)/')
   secs=$(echo "$line" | grep -o 'render [0-9.]* s' | head -1 | cut -d' ' -f2)
-  echo "$2 · $spp in $secs s · 4 λ"
+  echo "$2 · $spp spp in $secs s · 4 λ"
 }
 
 FOOT="same stone (Iris's Tolkowsky mesh), face-up camera (100 radii, FOV 1.32°), display (indicatrix's ACES), no denoising"
@@ -58,4 +60,51 @@ for S in $STONES; do
       --out "$OUT/check_bake_${S}_tent.png" | tee -a "$STATS"
     echo >> "$STATS"
   fi
+done
+
+# Checks (run.sh PHASES=checks).
+if [ -f "$R/furnace_iris.exr" ]; then
+  for MB in 12 64; do
+    "$BIN" compose --glb "$OUT/diamond.glb" \
+      --left "$R/furnace_ix_b$MB.exr" --right "$R/furnace_iris.exr" \
+      --label-left "indicatrix — white furnace, $MB bounces" --sub-left "16 spp; a lossless stone is exactly 1" \
+      --label-right "Iris — white furnace (--env 1)" --sub-right "16 spp; smooth bounces up to 1024" \
+      --out "$OUT/check_furnace_b$MB.png" | tee -a "$STATS"
+    echo >> "$STATS"
+  done
+fi
+if [ -f "$R/irisiso_moissanite_tent_s0.exr" ]; then
+  "$BIN" compose --glb "$OUT/moissanite.glb" \
+    --left "$R/ix_moissanite_tent_s0.exr" --right "$R/ixiso_moissanite_tent_s0.exr" \
+    --label-left "indicatrix — moissanite, birefringent" --sub-left "$(ix_sub ix_moissanite_tent_s0 "light tent")" \
+    --label-right "indicatrix — moissanite, one index n_o" --sub-right "$(ix_sub ixiso_moissanite_tent_s0 "light tent")" \
+    --footer "indicatrix reflects every mode as a mirror: the birefringent stone looks like the one-index one" \
+    --out "$OUT/check_biref_indicatrix.png" | tee -a "$STATS"
+  echo >> "$STATS"
+  "$BIN" compose --glb "$OUT/moissanite.glb" \
+    --left "$R/iris_moissanite_tent_s0.exr" --right "$R/irisiso_moissanite_tent_s0.exr" \
+    --label-left "Iris — moissanite, polarized (birefringent)" --sub-left "$(iris_sub iris_moissanite_tent_s0 "light tent")" \
+    --label-right "Iris — moissanite, --polarization off (n_o)" --sub-right "$(iris_sub irisiso_moissanite_tent_s0 "light tent")" \
+    --footer "Iris conserves n·k_t per mode at internal reflections: the table shows two images ~10° apart" \
+    --out "$OUT/check_biref_iris.png" | tee -a "$STATS"
+  echo >> "$STATS"
+  "$BIN" compose --glb "$OUT/moissanite.glb" \
+    --left "$R/ixiso_moissanite_tent_s0.exr" --right "$R/irisiso_moissanite_tent_s0.exr" \
+    --label-left "indicatrix — moissanite, one index n_o" --sub-left "$(ix_sub ixiso_moissanite_tent_s0 "light tent")" \
+    --label-right "Iris — moissanite, one index n_o" --sub-right "$(iris_sub irisiso_moissanite_tent_s0 "light tent")" \
+    --footer "with one index the two renderers agree, as for diamond" \
+    --out "$OUT/check_moissanite_one_index.png" | tee -a "$STATS"
+  echo >> "$STATS"
+fi
+
+# Enlarged crops (mean of the two seeds), 200 px at 2x.
+for S in $STONES; do
+  [ -f "$R/iris_${S}_tent_s1.exr" ] || continue
+  "$BIN" compose --glb "$OUT/$S.glb" \
+    --left "$R/ix_${S}_tent_s0.exr" --left2 "$R/ix_${S}_tent_s1.exr" \
+    --right "$R/iris_${S}_tent_s0.exr" --right2 "$R/iris_${S}_tent_s1.exr" \
+    --zoom 20,150,200,2 \
+    --label-left "indicatrix — $S, light tent (crop, 2 seeds)" \
+    --label-right "Iris — $S, light tent (crop, 2 seeds)" \
+    --out "$OUT/zoom_${S}_tent.png" > /dev/null
 done

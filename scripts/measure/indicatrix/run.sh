@@ -18,6 +18,7 @@ LIGHTINGS=${LIGHTINGS:-"tent ring"}
 # --max-depth at all (up to 1024, src/shading/step.rs), so indicatrix gets 64 here (white
 # furnace: 0.996 of the light kept at 64, 0.968 at 12).
 BOUNCES=${BOUNCES:-64}
+PHASES=${PHASES:-"main checks"}   # main: the side-by-side renders; checks: furnace, one-index controls
 export CARGO_TARGET_DIR=${CARGO_TARGET_DIR:-/work/target-indicatrix}
 
 cargo build --release --manifest-path "$HERE/Cargo.toml"
@@ -55,7 +56,8 @@ ix() { # NAME ARGS...: one indicatrix render, timed
 
 iris() { # NAME ARGS...: one Iris render, timed
   local name=$1; shift
-  echo "-- $(date -u +%T) load $(cut -d' ' -f1-3 /proc/loadavg) iris $name" | tee -a "$LOG"
+  # The checkout's binary may be rebuilt by others between renders: name the one used.
+  echo "-- $(date -u +%T) load $(cut -d' ' -f1-3 /proc/loadavg) iris $name (binary $(date -u -r "$IRIS" +%FT%TZ), sha256 $(sha256sum "$IRIS" | cut -c1-16))" | tee -a "$LOG"
   /usr/bin/time -f "process wall %e s, user %U s, sys %S s" -o "$R/$name.time" \
     "$IRIS" render --camera-look-at "$LOOKAT" --ground off --denoise off --threads "$THREADS" \
     --size "${SIZE}x${SIZE}" --time "$T" --explain -o "$R/$name.exr" "$@" > "$R/$name.log" 2>&1
@@ -63,18 +65,39 @@ iris() { # NAME ARGS...: one Iris render, timed
   cat "$R/$name.time" | tee -a "$LOG"
 }
 
+if [[ " $PHASES " == *" main "* ]]; then
 for S in $STONES; do
   for L in $LIGHTINGS; do
     for SEED in 0 1; do
-      ix "ix_${S}_${L}_s$SEED" --glb "$OUT/$S.glb" --stone "$S" --lighting "$L" --seed "$SEED"
-      iris "iris_${S}_${L}_s$SEED" "$OUT/$S.glb" --stone "$S" --env "$OUT/env_$L.exr" --seed "$SEED"
+      [ "${SIDES:-ix iris}" = iris ] || ix "ix_${S}_${L}_s$SEED" --glb "$OUT/$S.glb" --stone "$S" --lighting "$L" --seed "$SEED"
+      [ "${SIDES:-ix iris}" = ix ] || iris "iris_${S}_${L}_s$SEED" "$OUT/$S.glb" --stone "$S" --env "$OUT/env_$L.exr" --seed "$SEED"
     done
   done
   # Check of the map: indicatrix itself lit by the baked light tent (an EnvironmentMap)
   # instead of its analytic studio.
-  case " $LIGHTINGS " in *" tent "*)
+  [ "${SIDES:-ix iris}" = iris ] || case " $LIGHTINGS " in *" tent "*)
     ix "ixbaked_${S}_tent_s0" --glb "$OUT/$S.glb" --stone "$S" --lighting tent --env baked ;;
   esac
 done
+fi
+
+if [[ " $PHASES " == *" checks "* ]]; then
+  # White furnace: a uniform white environment and a clear stone; every stone pixel should
+  # be exactly 1 (D65 white, Y = 1) if no light is lost. 16 spp, 256x256.
+  for MB in 12 64; do
+    "$BIN" render --glb "$OUT/diamond.glb" --stone diamond --lighting furnace --size 256 --spp 16 \
+      --threads "$THREADS" --max-bounces "$MB" --out "$R/furnace_ix_b$MB" | grep '^result' | tee -a "$LOG"
+  done
+  "$IRIS" render "$OUT/diamond.glb" --stone diamond --env 1 --camera-look-at "$LOOKAT" --ground off \
+    --denoise off --threads "$THREADS" --size 256x256 --spp 16 -q -o "$R/furnace_iris.exr" \
+    2>&1 | grep '^iris:' | tee -a "$LOG"
+  # Birefringence controls: moissanite with one index (n_o) in both renderers.
+  if [[ " $STONES " == *" moissanite "* ]]; then
+    ix "ixiso_moissanite_tent_s0" --glb "$OUT/moissanite.glb" --stone moissanite-iso --lighting tent
+    iris "irisiso_moissanite_tent_s0" "$OUT/moissanite.glb" --stone moissanite --polarization off \
+      --env "$OUT/env_tent.exr"
+    python3 "$HERE/birefringence_exit_angles.py" | tee "$OUT/birefringence_exit_angles.txt"
+  fi
+fi
 
 "$HERE/compose.sh"

@@ -286,9 +286,31 @@ fn main() {
             let mask = stone_mask(&s.planes, &View::from_args(&args), w, h);
             let dl = images::display(w, h, &left);
             let dr = images::display(w, h, &right);
+            // `--zoom X,Y,SIZE,FACTOR`: the panels show the mean of both seeds (when given)
+            // cropped to SIZE×SIZE at (X, Y) and enlarged FACTOR times (nearest pixel).
+            let zoomed = args.get("--zoom").map(|z| {
+                let v: Vec<u32> = z.split(',').map(|n| n.parse().expect("--zoom X,Y,SIZE,FACTOR")).collect();
+                let view = |xyz: &[Vec3], second: Option<&str>| {
+                    let mean: Vec<Vec3> = match second {
+                        Some(p) => {
+                            let (_, _, b) = images::read_exr_xyz(p);
+                            xyz.iter().zip(&b).map(|(a, b)| 0.5 * (*a + *b)).collect()
+                        }
+                        None => xyz.to_vec(),
+                    };
+                    let d = images::display(w, h, &mean);
+                    let crop = image::imageops::crop_imm(&d, v[0], v[1], v[2], v[2]).to_image();
+                    image::imageops::resize(&crop, v[2] * v[3], v[2] * v[3], image::imageops::FilterType::Nearest)
+                };
+                (view(&left, args.get("--left2")), view(&right, args.get("--right2")))
+            });
+            let (pl, pr) = match &zoomed {
+                Some((a, b)) => (a, b),
+                None => (&dl, &dr),
+            };
             let panels = [
-                (&dl, args.req("--label-left"), args.get("--sub-left").unwrap_or("")),
-                (&dr, args.req("--label-right"), args.get("--sub-right").unwrap_or("")),
+                (pl, args.req("--label-left"), args.get("--sub-left").unwrap_or("")),
+                (pr, args.req("--label-right"), args.get("--sub-right").unwrap_or("")),
             ];
             let img = images::compose(&panels, args.get("--footer").unwrap_or(""));
             let out = args.req("--out");
