@@ -26,7 +26,7 @@ iris_sub() { # the spp and time of an Iris render
   spp=$(echo "$line" | sed -E 's/.*[0-9]+x[0-9]+, (.*) spp, [0-9]+ triangles.*/\1/' \
     | sed -E 's/^([0-9]+) to ([0-9]+) \(mean ([0-9.]+)\)$/\3 (\1–\2)/')
   secs=$(echo "$line" | grep -o 'render [0-9.]* s' | head -1 | cut -d' ' -f2)
-  echo "$2 · $spp spp in $secs s · 4 λ"
+  echo "$2 · $spp spp in $secs s · ${3:-4 λ}"
 }
 
 FOOT="same stone (Iris's Tolkowsky mesh), face-up camera (100 radii, FOV 1.32°), display (indicatrix's ACES), no denoising"
@@ -37,14 +37,14 @@ for S in $STONES; do
       tent) what="light tent + white tray" ;;
       ring) what="studio ring lights" ;;
     esac
-    if [ "$S" = moissanite ]; then pol=" · Stokes"; else pol=""; fi
+    if [ "$S" = moissanite ]; then lam="Stokes, 1 λ a path"; else lam="4 λ"; fi
     "$BIN" compose --glb "$OUT/$S.glb" \
       --left "$R/ix_${S}_${L}_s0.exr" --left2 "$R/ix_${S}_${L}_s1.exr" \
       --right "$R/iris_${S}_${L}_s0.exr" --right2 "$R/iris_${S}_${L}_s1.exr" \
       --label-left "indicatrix 0.9.0 — $S, $what" \
       --sub-left "$(ix_sub "ix_${S}_${L}_s0" "analytic studio")" \
       --label-right "Iris — $S, $what" \
-      --sub-right "$(iris_sub "iris_${S}_${L}_s0" "baked: --env env_$L.exr${pol}")" \
+      --sub-right "$(iris_sub "iris_${S}_${L}_s0" "baked: --env env_$L.exr" "$lam")" \
       --footer "$FOOT" \
       --out "$OUT/side_${S}_${L}.png" | tee -a "$STATS"
     echo >> "$STATS"
@@ -67,8 +67,9 @@ if [ -f "$R/furnace_iris.exr" ]; then
   for MB in 12 64; do
     "$BIN" compose --glb "$OUT/diamond.glb" \
       --left "$R/furnace_ix_b$MB.exr" --right "$R/furnace_iris.exr" \
-      --label-left "indicatrix — white furnace, $MB bounces" --sub-left "16 spp; a lossless stone is exactly 1" \
-      --label-right "Iris — white furnace (--env 1)" --sub-right "16 spp; smooth bounces up to 1024" \
+      --label-left "indicatrix, $MB bounces" --sub-left "white furnace, 16 spp" \
+      --label-right "Iris, --env 1" --sub-right "white furnace, 16 spp" \
+      --footer "a lossless stone is 1 everywhere" \
       --out "$OUT/check_furnace_b$MB.png" | tee -a "$STATS"
     echo >> "$STATS"
   done
@@ -83,7 +84,7 @@ if [ -f "$R/irisiso_moissanite_tent_s0.exr" ]; then
   echo >> "$STATS"
   "$BIN" compose --glb "$OUT/moissanite.glb" \
     --left "$R/iris_moissanite_tent_s0.exr" --right "$R/irisiso_moissanite_tent_s0.exr" \
-    --label-left "Iris — moissanite, polarized (birefringent)" --sub-left "$(iris_sub iris_moissanite_tent_s0 "light tent")" \
+    --label-left "Iris — moissanite, polarized (birefringent)" --sub-left "$(iris_sub iris_moissanite_tent_s0 "light tent" "Stokes, 1 λ a path")" \
     --label-right "Iris — moissanite, --polarization off (n_o)" --sub-right "$(iris_sub irisiso_moissanite_tent_s0 "light tent")" \
     --footer "Iris conserves n·k_t per mode at internal reflections: the table shows two images ~10° apart" \
     --out "$OUT/check_biref_iris.png" | tee -a "$STATS"
