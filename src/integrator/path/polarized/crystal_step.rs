@@ -82,20 +82,16 @@ fn from_outside(
     let t = (d + n * cos1) * n1;
     let modes = BOTH.map(|w| c.refract(t, -n, w).map(|m| (w, m)));
     let found: Vec<_> = modes.iter().flatten().collect();
-    let r_mean = if found.is_empty() {
-        1.0
-    } else {
-        let n_mean = found.iter().map(|(_, m)| m.n).sum::<f32>() / found.len() as f32;
-        fresnel_dielectric(cos1, n_mean / n1)
-    };
+    // The mean index of the modes that propagate (none: total reflection).
+    let n_mean = (!found.is_empty())
+        .then(|| found.iter().map(|(_, m)| m.n).sum::<f32>() / found.len() as f32);
+    let r_mean = n_mean.map_or(1.0, |nm| fresnel_dielectric(cos1, nm / n1));
     if u.0 < r_mean {
         let dir = d + n * (2.0 * cos1);
-        let n_mean = if found.is_empty() {
-            c.n[1]
-        } else {
-            found.iter().map(|(_, m)| m.n).sum::<f32>() / found.len() as f32
-        };
-        let (r, _) = fresnel::dielectric(cos1, n_mean / n1);
+        // With no mode propagating the reflection is total: the mean principal index then
+        // gives its retardance (and R = 1 beyond that index's critical angle).
+        let n_total = n_mean.unwrap_or((c.n[0] + c.n[1] + c.n[2]) / 3.0);
+        let (r, _) = fresnel::dielectric(cos1, n_total / n1);
         let k_in = -dir;
         let s = super::surface::s_basis(k_in, n, pol);
         return Some(CrystalBounce {
@@ -115,24 +111,42 @@ fn from_outside(
             (w, mode, project(&row_mul(&a, &t_m), &mode, s))
         })
     });
-    let (w, mode, (a_new, weight), total) = choose(&weighted, u.1)?;
-    let scale = total / (1.0 - r_mean);
-    let etap = mode.n / n1;
-    Some(CrystalBounce {
+    let chosen = choose(&weighted, u.1)?;
+    let etap = chosen.1.n / n1;
+    Some(into_mode(
+        chosen,
+        1.0 - r_mean,
+        s,
+        (true, 1.0 / (etap * etap)),
+    ))
+}
+
+/// The bounce into the `chosen` mode, whose interface was picked with probability
+/// `p_interface`: the analyzer becomes the projected one over the choice's probability,
+/// in the basis `s` ⊥ the mode's wave normal; `(crossed, radiance)` as in
+/// [`CrystalBounce`].
+fn into_mode(
+    (w, mode, (a_new, weight), total): Chosen,
+    p_interface: f32,
+    s: Vec3,
+    (crossed, radiance): (bool, f32),
+) -> CrystalBounce {
+    let scale = total / p_interface / weight.max(f32::MIN_POSITIVE);
+    CrystalBounce {
         dir: mode.ray,
         inside: Some(InCrystal {
             which: w,
             k: mode.k,
             d: mode.d,
         }),
-        crossed: true,
+        crossed,
         analyzer: Analyzer {
-            a: a_new.map(|v| v * scale / weight.max(f32::MIN_POSITIVE)),
+            a: a_new.map(|v| v * scale),
             x: s,
             k: -mode.k,
         },
-        radiance: 1.0 / (etap * etap),
-    })
+        radiance,
+    }
 }
 
 /// The path, inside in mode `inside`, meets the surface: the light refracted in from
@@ -174,23 +188,8 @@ fn from_inside(
         c.refract(t, -n, w)
             .map(|mode| (w, mode, project(&a, &mode, s)))
     });
-    let (w, mode, (a_new, weight), total) = choose(&weighted, u.1)?;
-    let scale = total / r_mean;
-    Some(CrystalBounce {
-        dir: mode.ray,
-        inside: Some(InCrystal {
-            which: w,
-            k: mode.k,
-            d: mode.d,
-        }),
-        crossed: false,
-        analyzer: Analyzer {
-            a: a_new.map(|v| v * scale / weight.max(f32::MIN_POSITIVE)),
-            x: s,
-            k: -mode.k,
-        },
-        radiance: 1.0,
-    })
+    let chosen = choose(&weighted, u.1)?;
+    Some(into_mode(chosen, r_mean, s, (false, 1.0)))
 }
 
 /// The analyzer row `a` (basis s ⊥ the light's direction −mode.k) through the mode's
