@@ -377,42 +377,20 @@ impl Integrator {
                     )
                 })
             }
-            Integrator::Polarized {
-                max_depth,
-                polarization,
-            } => pool.install(|| {
-                render_samples(
-                    camera,
-                    settings,
-                    range,
-                    Setup::now(),
-                    observer,
-                    |ray, u, ctx| {
-                        let a = polarization.analyzer(camera.basis(), ray.dir);
-                        let lambda = SampledSpectrum::sample_lambda(u);
-                        let l = path::polarized::radiance::<SampledSpectrum>(
-                            scene, ray, *max_depth, lambda, a, ctx,
-                        );
-                        l.to_rgb(&lambda)
-                    },
-                )
-            }),
-            Integrator::Whitted { .. } | Integrator::Path { .. } => pool.install(|| {
-                render_samples(
-                    camera,
-                    settings,
-                    range,
-                    Setup::now(),
-                    observer,
-                    |ray, u, ctx| {
-                        if settings.spectral {
-                            self.sample::<SampledSpectrum>(scene, ray, u, ctx)
-                        } else {
-                            self.sample::<Vec3>(scene, ray, u, ctx)
-                        }
-                    },
-                )
-            }),
+            Integrator::Whitted { .. } | Integrator::Path { .. } | Integrator::Polarized { .. } => {
+                pool.install(|| {
+                    render_samples(
+                        camera,
+                        settings,
+                        range,
+                        Setup::now(),
+                        observer,
+                        |ray, u, ctx| {
+                            self.per_sample(scene, camera, settings.spectral, ray, u, ctx)
+                        },
+                    )
+                })
+            }
             Integrator::PhotonMap { max_depth, photons } => pool.install(|| {
                 photon_map::render(
                     scene, camera, *max_depth, photons, settings, range, observer,
@@ -437,6 +415,32 @@ impl Integrator {
     /// One camera sample's radiance as linear RGB: wavelengths drawn for spectral transport
     /// from the hero variate `u_lambda` ∈ [0, 1), and the film's conversion
     /// ([`Carrier::to_rgb`], spectrum → XYZ → sRGB) — the only place colour is converted.
+    /// One camera sample of a per-sample method: the polarized path tracer with its
+    /// camera's analyzer, or [`Integrator::sample`] in spectral or RGB transport.
+    fn per_sample(
+        &self,
+        scene: &Scene,
+        camera: &Camera,
+        spectral: bool,
+        ray: &Ray,
+        u: f32,
+        ctx: &mut Context,
+    ) -> Vec3 {
+        match self {
+            Integrator::Polarized {
+                max_depth,
+                polarization,
+            } => {
+                let a = polarization.analyzer(camera.basis(), ray.dir);
+                let lambda = SampledSpectrum::sample_lambda(u);
+                path::polarized::radiance::<SampledSpectrum>(scene, ray, *max_depth, lambda, a, ctx)
+                    .to_rgb(&lambda)
+            }
+            _ if spectral => self.sample::<SampledSpectrum>(scene, ray, u, ctx),
+            _ => self.sample::<Vec3>(scene, ray, u, ctx),
+        }
+    }
+
     fn sample<C: Carrier>(
         &self,
         scene: &Scene,
