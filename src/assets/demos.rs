@@ -18,8 +18,11 @@
 //! through a slit and an N-BK7 prism, the rainbow as a caustic on a screen) is built in
 //! [`super::rainbow`], `gem_caustics.glb` (a diamond under a narrow spot light) in
 //! [`super::caustic`], and the scattering-media scenes `milky_tank.glb`, `hazy_prism.glb`
-//! and `opal.glb` in [`super::media`].
+//! and `opal.glb` in [`super::media`], and the birefringence scenes `calcite_rhomb.glb`,
+//! `moissanite_and_diamond.glb` and `pleochroic_tourmaline.glb` in
+//! [`super::birefringence`].
 
+use super::birefringence::{calcite_rhomb, moissanite_and_diamond, pleochroic_tourmaline};
 use super::caustic::gem_caustics;
 use super::media::{hazy_prism, milky_tank, opal};
 use super::paper::{add_checker, grey_pair, SceneBuilder};
@@ -41,7 +44,7 @@ pub const SKY_FILE: &str = "sky.hdr";
 
 /// File names and builders of the scenes, in the order [`write_scene_assets`] writes them
 /// (the sky map [`SKY_FILE`] comes last).
-pub const SCENES: [(&str, SceneBuilder); 11] = [
+pub const SCENES: [(&str, SceneBuilder); 14] = [
     ("glass_of_water.glb", glass_of_water),
     ("ruby.glb", ruby),
     ("prism_sky.glb", prism_sky),
@@ -53,6 +56,9 @@ pub const SCENES: [(&str, SceneBuilder); 11] = [
     ("milky_tank.glb", milky_tank),
     ("hazy_prism.glb", hazy_prism),
     ("opal.glb", opal),
+    ("calcite_rhomb.glb", calcite_rhomb),
+    ("moissanite_and_diamond.glb", moissanite_and_diamond),
+    ("pleochroic_tourmaline.glb", pleochroic_tourmaline),
 ];
 
 /// The drinking glass of [`glass_of_water`].

@@ -5,7 +5,8 @@
 //! - [`paper`]: the seed paper's figure scenes shipped in `assets/paper/`.
 //! - [`demos`]: the demonstration scenes shipped in `assets/scenes/` (glass of water,
 //!   ruby, prism under the sky, and [`spectral`]: the prism beam of Fig. 5.3.1 and
-//!   a diamond; [`media`]: the milky tank, the hazy prism and the opal); [`sky`]: the
+//!   a diamond; [`media`]: the milky tank, the hazy prism and the opal; [`birefringence`]:
+//!   the calcite rhomb, moissanite beside diamond, the tourmaline bars); [`sky`]: the
 //!   procedural sky map and its `.hdr` (RGBE) encoder.
 //! - [`caustic`]: scenes lit by delta lights for the photon mapper (Fig. 4.5.1's
 //!   sphere and prism caustics, a diamond's caustics); [`rainbow`]: the sun-through-a-slit
@@ -20,6 +21,7 @@
 //! `root/gems/` and `root/materials/` (`iris gen-assets assets`).
 
 pub mod bench;
+pub mod birefringence;
 pub mod caustic;
 pub mod demos;
 pub mod focus_bench;

@@ -1,6 +1,7 @@
 //! The gallery's fixed list of images ([`ENTRIES`]): the seed paper's figure scenes, the
-//! gem previews and the bare stone through the drop-in preview (all in `assets/`), then
-//! the Khronos dispersion samples from the shared third-party folder. Paths are relative
+//! gem previews and the bare stone through the drop-in preview, the sky and media scenes,
+//! the birefringent crystals (all in `assets/`), then the Khronos dispersion samples from
+//! the shared third-party folder. Paths are relative
 //! to the project root or to that folder ([`Origin`]).
 
 /// Where an entry's scene file lives.
@@ -27,8 +28,8 @@ pub struct Entry {
     pub before: Option<&'static str>,
 }
 
-/// The gallery, in page order: the seed paper's figure scenes, the gems, the computed sky
-/// and the scattering media, then the Khronos samples with `KHR_materials_dispersion` (the only two in the shared folder's
+/// The gallery, in page order: the seed paper's figure scenes, the gems, the computed sky,
+/// the scattering media and the birefringent crystals, then the Khronos samples with `KHR_materials_dispersion` (the only two in the shared folder's
 /// `MANIFEST.md`).
 pub const ENTRIES: &[Entry] = &[
     Entry {
@@ -134,6 +135,27 @@ pub const ENTRIES: &[Entry] = &[
         path: "assets/scenes/opal.glb",
         origin: Origin::Project,
         about: "An opalescent cabochon: Rayleigh-scattering inclusions (`iris_medium`) make it blue where light scatters back out, warmer where the hidden back light comes through.",
+        before: None,
+    },
+    Entry {
+        name: "calcite_rhomb",
+        path: "assets/scenes/calcite_rhomb.glb",
+        origin: Origin::Project,
+        about: "A calcite cleavage rhomb (30 mm edges, faces meeting at 101.9° and 78.1°, the optic axis along the three-fold axis of its blunt corners) on a printed card: through its top face the print is doubled, the extraordinary image 3.1 mm (the walk-off, h·tan 6.2°) above the ordinary one, each at half contrast; the fainter rows higher up are reflections inside the side faces.",
+        before: None,
+    },
+    Entry {
+        name: "moissanite_and_diamond",
+        path: "assets/scenes/moissanite_and_diamond.glb",
+        origin: Origin::Project,
+        about: "A 6.5 mm round brilliant moissanite (right; its optic axis in the girdle plane, across the view) beside a diamond of the same cut, seen 40° off the table normal: the moissanite shows more colour (Abbe 26 against 55). Its doubled pavilion facets lie 0.3 % of the depth apart (about 0.013 mm), under a pixel here; `tests/moissanite_doubling.rs` measures the doubling at a loupe's magnification.",
+        before: None,
+    },
+    Entry {
+        name: "pleochroic_tourmaline",
+        path: "assets/scenes/pleochroic_tourmaline.glb",
+        origin: Origin::Project,
+        about: "Two green tourmaline bars on a light table: the far one with its optic axis along the view (both modes ordinary, E ⊥ c: dark green), the near one with its axis along its length (half the light E ∥ c: lighter and yellower). With `--polarizer 0` (along the near bar's axis) the near bar turns pale yellowish green; with `--polarizer 90` it is as dark as the far one.",
         before: None,
     },
     Entry {

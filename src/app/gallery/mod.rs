@@ -345,10 +345,17 @@ mod tests {
 
     #[test]
     fn select_keeps_matches_and_rejects_unknown_patterns() {
-        // Case-insensitive substring: both diamonds, in page order.
+        // Case-insensitive substring: the three diamonds, in page order.
         let got = select(&["DIAMOND".into()]).expect("matches");
         let names: Vec<&str> = got.iter().map(|e| e.name).collect();
-        assert_eq!(names, ["round_diamond", "round_diamond_bare"]);
+        assert_eq!(
+            names,
+            [
+                "round_diamond",
+                "round_diamond_bare",
+                "moissanite_and_diamond"
+            ]
+        );
         assert_eq!(select(&[]).expect("all").len(), ENTRIES.len());
         let err = select(&["prism".into(), "nothing_like_this".into()]).expect_err("unknown");
         assert!(err.to_string().contains("nothing_like_this"), "{err}");

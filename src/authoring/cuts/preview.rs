@@ -87,6 +87,18 @@ pub fn gem_scene(spec: &GemSpec) -> Result<GenScene> {
         material: 0,
         translation: Some(DVec3::new(0.0, lift, 0.0).as_vec3()),
     });
+    let centre = 0.5 * (lo + hi) + DVec3::new(0.0, lift, 0.0);
+    add_setting(&mut s, centre, size);
+    let radius = 0.5 * (hi - lo).length();
+    s.camera = Some(preview_camera(centre, radius, (35.0, 25.0), 4.0 / 3.0));
+    Ok(s)
+}
+
+/// Adds the preview's setting around stones centred at `centre` (metres) whose size
+/// (girdle diameter or length) is `size` metres, as the module docs give it: the faint
+/// uniform environment (scene extras), the white floor at y = 0, the key and the rim
+/// panels. Appends its materials and meshes after those already in `s`.
+pub fn add_setting(s: &mut GenScene, centre: DVec3, size: f64) {
     s.extras = Some(serde_json::json!({ "iris_environment": AMBIENT }));
     s.materials
         .push(GenMaterial::diffuse("Floor", Vec3::splat(0.85)));
@@ -94,14 +106,13 @@ pub fn gem_scene(spec: &GemSpec) -> Result<GenScene> {
     s.meshes.push(GenMesh {
         name: "Floor".into(),
         geometry: ground_plane(half, half),
-        material: 1,
+        material: s.materials.len() - 1,
         translation: None,
     });
-    let centre = 0.5 * (lo + hi) + DVec3::new(0.0, lift, 0.0);
     let key = direction(55.0, -40.0);
     let rim = direction(40.0, 150.0);
     add_panel(
-        &mut s,
+        s,
         "Key light",
         KEY_RADIANCE,
         centre + 15.0 * size * key,
@@ -109,31 +120,41 @@ pub fn gem_scene(spec: &GemSpec) -> Result<GenScene> {
         0.8 * size,
     );
     add_panel(
-        &mut s,
+        s,
         "Rim light",
         RIM_RADIANCE,
         centre + 15.0 * size * rim,
         rim,
         0.5 * size,
     );
-    let radius = 0.5 * (hi - lo).length();
+}
+
+/// The preview's camera ("Preview", yfov 25°, +Y up) looking at `centre` from
+/// `(elevation, azimuth)` degrees ([`direction`]), at the distance that fits a sphere of
+/// `radius` metres about `centre` in the vertical field with 10 % margin; `aspect` is
+/// width / height.
+pub fn preview_camera(
+    centre: DVec3,
+    radius: f64,
+    (elevation, azimuth): (f64, f64),
+    aspect: f32,
+) -> GenCamera {
     let yfov = 25.0f64;
     let (half_sin, _) = sin_cos((0.5 * yfov).to_radians());
-    let eye = centre + 1.1 * radius / half_sin * direction(35.0, 25.0);
-    s.camera = Some(GenCamera {
+    let eye = centre + 1.1 * radius / half_sin * direction(elevation, azimuth);
+    GenCamera {
         name: "Preview".into(),
         eye: eye.as_vec3(),
         target: centre.as_vec3(),
         up: Vec3::Y,
         yfov: yfov.to_radians() as f32,
-        aspect: Some(4.0 / 3.0),
-    });
-    Ok(s)
+        aspect: Some(aspect),
+    }
 }
 
 /// Unit vector `elevation` degrees above the horizon, `azimuth` degrees round from +Z
 /// towards +X.
-fn direction(elevation: f64, azimuth: f64) -> DVec3 {
+pub fn direction(elevation: f64, azimuth: f64) -> DVec3 {
     let (se, ce) = sin_cos(elevation.to_radians());
     let (sa, ca) = sin_cos(azimuth.to_radians());
     DVec3::new(ce * sa, se, ce * ca)
