@@ -409,3 +409,61 @@ fn tourmaline_shows_its_two_colours() {
         "the two colours differ: {o:?} {e:?}"
     );
 }
+
+#[test]
+fn light_along_an_optic_axis_keeps_its_polarization() {
+    // A polarizer sheet at 45°, then a slab, then the camera's polarizer: crossed (−45°)
+    // it is dark through glass, through calcite seen along its optic axis (the two modes
+    // are one wave there) and through a crystal with three equal indices.
+    let wall =
+        |z: f32| ground_plane(2.0, 2.0).transformed(quarter_turn_x(), Vec3::new(0.0, 0.0, z));
+    let sheet = MaterialDesc {
+        name: "sheet".into(),
+        metallic: 0.0,
+        transmission: 1.0,
+        ior: 1.0,
+        polarizer: Some(Vec3::new(1.0, 1.0, 0.0)),
+        ..Default::default()
+    };
+    let cam = ortho(Vec3::new(0.0, 0.0, 1.0), Vec3::ZERO, Vec3::Y, 0.3);
+    let calcite = CrystalOptics::Indices([1.6584, 1.6584, 1.4864]);
+    let equal = CrystalOptics::Indices([1.6, 1.6, 1.6]);
+    for (what, slab) in [
+        ("glass", glass(1.6)),
+        (
+            "calcite along its axis",
+            crystal("calcite", calcite, Vec3::Z),
+        ),
+        (
+            "equal indices",
+            crystal("equal", equal, Vec3::new(1.0, 0.3, 0.2)),
+        ),
+    ] {
+        let scene = build(
+            SceneDesc {
+                source: "crossed".into(),
+                meshes: vec![
+                    mesh("light", wall(-3.0), 0),
+                    mesh("sheet", wall(-2.0), 1),
+                    mesh(
+                        "slab",
+                        cuboid(Vec3::new(1.0, 1.0, 0.25))
+                            .transformed(Mat3::IDENTITY, Vec3::new(0.0, 0.0, -1.0)),
+                        2,
+                    ),
+                ],
+                materials: vec![emitter(), sheet.clone(), slab],
+                ..Default::default()
+            },
+            None,
+        );
+        let parallel = luminance(mean(&polarized(&scene, &cam, Some(45.0), 12, 8)));
+        let crossed = luminance(mean(&polarized(&scene, &cam, Some(-45.0), 12, 8)));
+        eprintln!("{what}: parallel {parallel}, crossed {crossed}");
+        assert!(parallel > 0.3, "{what}: {parallel}");
+        assert!(
+            crossed < 1e-3 * parallel,
+            "{what}: crossed {crossed} vs {parallel}"
+        );
+    }
+}

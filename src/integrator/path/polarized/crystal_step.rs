@@ -105,12 +105,11 @@ fn from_outside(
     let s = super::surface::s_basis(-d, n, pol);
     let a = pol.in_basis(s).a;
     // Light from each mode refracting out toward the path: T then the mode's polarizer.
-    let weighted = modes.map(|m| {
-        m.map(|(w, mode)| {
-            let (_, t_m) = fresnel::dielectric(mode.k.dot(n).abs(), n1 / mode.n);
-            (w, mode, project(&row_mul(&a, &t_m), &mode, s))
-        })
-    });
+    let through = |mode: &Mode| {
+        let (_, t_m) = fresnel::dielectric(mode.k.dot(n).abs(), n1 / mode.n);
+        row_mul(&a, &t_m)
+    };
+    let weighted = split(modes.map(|m| m.map(|(_, mode)| mode)), through, s);
     let chosen = choose(&weighted, u.1)?;
     let etap = chosen.1.n / n1;
     Some(into_mode(
@@ -184,12 +183,32 @@ fn from_inside(
     let (r, _) = fresnel::dielectric(cos_k, n2 / n_m);
     let s = super::surface::s_basis(-k, n, pol);
     let a = row_mul(&pol.in_basis(s).a, &r);
-    let weighted = BOTH.map(|w| {
-        c.refract(t, -n, w)
-            .map(|mode| (w, mode, project(&a, &mode, s)))
-    });
+    let weighted = split(BOTH.map(|w| c.refract(t, -n, w)), |_| a, s);
     let chosen = choose(&weighted, u.1)?;
     Some(into_mode(chosen, r_mean, s, (false, 1.0)))
+}
+
+/// Relative index difference below which the two modes are one (along an optic axis, or
+/// an isotropic "crystal"): their phase difference over a stone is then a small fraction
+/// of a wave, so the light keeps its polarization instead of splitting.
+const DEGENERATE: f32 = 1e-5;
+
+/// The modes (slow, fast) the light may come from, each with the analyzer `through` it
+/// gives (basis s) projected on the mode's polarization ([`project`]). Degenerate modes
+/// ([`DEGENERATE`]) are one wave whose analyzer is not projected: projecting it on an
+/// arbitrary basis would depolarize light travelling along an optic axis.
+fn split(modes: [Option<Mode>; 2], through: impl Fn(&Mode) -> [f32; 4], s: Vec3) -> [Weighted; 2] {
+    if let [Some(slow), Some(fast)] = modes {
+        if slow.n - fast.n < DEGENERATE * slow.n {
+            let a = through(&slow);
+            return [Some((Which::Slow, slow, (a, a[0].max(0.0)))), None];
+        }
+    }
+    let mut out = [None, None];
+    for (i, (m, w)) in modes.iter().zip(BOTH).enumerate() {
+        out[i] = m.map(|mode| (w, mode, project(&through(&mode), &mode, s)));
+    }
+    out
 }
 
 /// The analyzer row `a` (basis s ⊥ the light's direction −mode.k) through the mode's
