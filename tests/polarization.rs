@@ -37,17 +37,8 @@ use iris::scene::Scene;
 
 fn settings(size: u32, spp: u32) -> RenderSettings {
     RenderSettings {
-        width: size,
-        height: size,
-        spp,
-        seed: 11,
-        threads: 0,
-        quiet: true,
         spectral: true,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
+        ..common::render_settings((size, size), spp, 11, 0)
     }
 }
 
@@ -78,6 +69,23 @@ fn ortho(eye: Vec3, target: Vec3, up: Vec3, half: f32) -> CameraDesc {
             ymag: half,
         },
         world_from_camera: look_at(eye, target, up),
+    }
+}
+
+/// A 4×4 wall at depth `z` facing the camera on +z.
+fn wall(z: f32) -> iris::authoring::shapes::TriMesh {
+    ground_plane(2.0, 2.0).transformed(quarter_turn_x(), Vec3::new(0.0, 0.0, z))
+}
+
+/// An ideal polarizer sheet with its transmission axis along `axis`.
+fn sheet(axis: Vec3) -> MaterialDesc {
+    MaterialDesc {
+        name: "sheet".into(),
+        metallic: 0.0,
+        transmission: 1.0,
+        ior: 1.0,
+        polarizer: Some(axis),
+        ..Default::default()
     }
 }
 
@@ -133,16 +141,7 @@ fn luminance(v: Vec3) -> f32 {
 #[test]
 fn malus_law_through_two_polarizers() {
     // Emitter at z = −2 facing the camera, a polarizer sheet (axis x) at z = −1.
-    let wall =
-        |z: f32| ground_plane(2.0, 2.0).transformed(quarter_turn_x(), Vec3::new(0.0, 0.0, z));
-    let sheet = MaterialDesc {
-        name: "sheet".into(),
-        metallic: 0.0,
-        transmission: 1.0,
-        ior: 1.0,
-        polarizer: Some(Vec3::X),
-        ..Default::default()
-    };
+    let sheet = sheet(Vec3::X);
     let scene = |with_sheet: bool| {
         let mut desc = SceneDesc {
             source: "malus".into(),
@@ -415,16 +414,7 @@ fn light_along_an_optic_axis_keeps_its_polarization() {
     // A polarizer sheet at 45°, then a slab, then the camera's polarizer: crossed (−45°)
     // it is dark through glass, through calcite seen along its optic axis (the two modes
     // are one wave there) and through a crystal with three equal indices.
-    let wall =
-        |z: f32| ground_plane(2.0, 2.0).transformed(quarter_turn_x(), Vec3::new(0.0, 0.0, z));
-    let sheet = MaterialDesc {
-        name: "sheet".into(),
-        metallic: 0.0,
-        transmission: 1.0,
-        ior: 1.0,
-        polarizer: Some(Vec3::new(1.0, 1.0, 0.0)),
-        ..Default::default()
-    };
+    let sheet = sheet(Vec3::new(1.0, 1.0, 0.0));
     let cam = ortho(Vec3::new(0.0, 0.0, 1.0), Vec3::ZERO, Vec3::Y, 0.3);
     let calcite = CrystalOptics::Indices([1.6584, 1.6584, 1.4864]);
     let equal = CrystalOptics::Indices([1.6, 1.6, 1.6]);
