@@ -135,6 +135,27 @@ impl Plan {
             self.method_note = Some(note);
             self.method = Method::Path;
         }
+        let pleochroic: Vec<String> = scene
+            .materials()
+            .iter()
+            .filter(|m| {
+                m.desc
+                    .crystal
+                    .is_some_and(|c| c.absorption(550.0) != [0.0; 3])
+            })
+            .map(|m| m.desc.name.clone())
+            .collect();
+        if let (Some(volumes), false) = (
+            self.stages.iter_mut().find(|s| s.name == "volumes"),
+            pleochroic.is_empty(),
+        ) {
+            volumes.used = true;
+            volumes.reason = format!(
+                "{}; pleochroic {} absorb each mode by the crystal table's spectra instead",
+                volumes.reason,
+                pleochroic.join(", ")
+            );
+        }
         if let Some(lanes) = self.stages.iter_mut().find(|s| s.name == "lanes") {
             lanes.used = false;
             lanes.reason = "the polarized path tracer traces single rays".into();
