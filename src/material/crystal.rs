@@ -11,7 +11,7 @@
 //! `{"stone": "calcite", "optic_axis": [0, 0, 1]}` or
 //! `{"n": [1.654, 1.672, 1.690], "optic_axis": [0, 1, 0], "x_axis": [1, 0, 0]}`.
 
-use crate::spectrum::crystals::{Character, Crystal};
+use crate::spectrum::crystals::{character_of, Character, Crystal};
 use glam::{Mat3, Vec3};
 
 /// Where a crystal's principal indices come from.
@@ -146,22 +146,6 @@ pub fn describe_optics(m: &super::MaterialDesc) -> Option<String> {
         z.y,
         z.z
     ))
-}
-
-/// The character of principal indices (x, y, z).
-pub fn character_of(n: [f32; 3]) -> Character {
-    let eq = |a: f32, b: f32| (a - b).abs() < 1e-6;
-    if eq(n[0], n[1]) && eq(n[1], n[2]) {
-        Character::Isotropic
-    } else if eq(n[0], n[1]) {
-        Character::Uniaxial {
-            positive: n[2] > n[0],
-        }
-    } else {
-        Character::Biaxial {
-            positive: n[2] - n[1] > n[1] - n[0],
-        }
-    }
 }
 
 /// Checks principal indices given in a file: finite, within [`INDEX_RANGE`].

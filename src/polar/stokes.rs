@@ -141,9 +141,13 @@ impl Analyzer {
     pub fn polarizer(dir: Vec3, right: Vec3, up: Vec3, angle: f32) -> Analyzer {
         let k = -dir.normalize();
         let axis = (right * angle.cos() + up * angle.sin()).normalize();
+        // The first row of a polarizer along x: ½(1, 1, 0, 0).
         let x = transverse(axis, k);
-        let p = linear_polarizer(0.0);
-        Analyzer { a: p[0], x, k }
+        Analyzer {
+            a: [0.5, 0.5, 0.0, 0.0],
+            x,
+            k,
+        }
     }
 
     /// The same analyzer in the basis `x_new` (⊥ `k`).

@@ -262,7 +262,7 @@ fn sorted(mut n: [f32; 3]) -> [f32; 3] {
 }
 
 /// Character from three principal indices (any order); equal means within 1e-5.
-fn character_of(n: [f32; 3]) -> Character {
+pub fn character_of(n: [f32; 3]) -> Character {
     const EQ: f32 = 1e-5;
     let [a, b, g] = sorted(n);
     if g - a <= EQ {

@@ -147,7 +147,7 @@ const N_BK7: IorModel = sellmeier3(
 );
 
 /// Every crystal, in the module table's order.
-pub const CRYSTALS: [Crystal; 15] = [
+pub static CRYSTALS: [Crystal; 15] = [
     Crystal {
         name: "calcite",
         axes: uniaxial(

@@ -81,10 +81,12 @@ fn from_outside(
     let cos1 = -d.dot(n);
     let t = (d + n * cos1) * n1;
     let modes = BOTH.map(|w| c.refract(t, -n, w).map(|m| (w, m)));
-    let found: Vec<_> = modes.iter().flatten().collect();
     // The mean index of the modes that propagate (none: total reflection).
-    let n_mean = (!found.is_empty())
-        .then(|| found.iter().map(|(_, m)| m.n).sum::<f32>() / found.len() as f32);
+    let (sum, count) = modes
+        .iter()
+        .flatten()
+        .fold((0.0, 0.0), |(s, c), (_, m)| (s + m.n, c + 1.0));
+    let n_mean = (count > 0.0).then(|| sum / count);
     let r_mean = n_mean.map_or(1.0, |nm| fresnel_dielectric(cos1, nm / n1));
     if u.0 < r_mean {
         let dir = d + n * (2.0 * cos1);

@@ -50,7 +50,7 @@ pub(super) fn mueller<C: Carrier>(b: &Bsdf<C>, wo: Vec3, wi: Vec3) -> Option<(Mu
         }
         Bsdf::ThinDielectric { eta, .. } => {
             let (r, t) = fresnel::dielectric(wi.z.abs(), eta);
-            let through = mat_mul(&t, &fresnel::dielectric(wi.z.abs(), eta).1);
+            let through = mat_mul(&t, &t);
             (if wo.z * wi.z > 0.0 { r } else { through }, Vec3::Z)
         }
     };
