@@ -380,8 +380,25 @@ fn ctrl_c_stops_and_writes_nothing() {
         .stderr(Stdio::piped())
         .spawn()
         .expect("start iris");
-    // Long enough for the process to install its Ctrl-C handler (it does so first thing).
-    std::thread::sleep(std::time::Duration::from_secs(1));
+    // Wait until the process catches SIGINT (its Ctrl-C handler is installed: bit 2 of
+    // SigCgt in /proc/PID/status), however loaded the machine is.
+    let catches_int = || {
+        std::fs::read_to_string(format!("/proc/{}/status", child.id()))
+            .ok()
+            .and_then(|s| {
+                let line = s.lines().find(|l| l.starts_with("SigCgt:"))?;
+                u64::from_str_radix(line["SigCgt:".len()..].trim(), 16).ok()
+            })
+            .is_some_and(|mask| mask & (1 << (SIGINT - 1)) != 0)
+    };
+    let start = std::time::Instant::now();
+    while !catches_int() {
+        assert!(
+            start.elapsed().as_secs() < 120,
+            "the handler was never installed"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
     let status = Command::new("kill")
         .args(["-INT", &child.id().to_string()])
         .status()
@@ -396,3 +413,6 @@ fn ctrl_c_stops_and_writes_nothing() {
     );
     assert!(!dir.join("out").exists(), "{err}");
 }
+
+/// SIGINT's number on Linux.
+const SIGINT: u32 = 2;
