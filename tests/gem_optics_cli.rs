@@ -130,8 +130,8 @@ fn polarization_flags_are_checked() {
             "--polarizer needs polarized transport",
         ),
         (
-            &["--polarization", "on", "--method", "hybrid"][..],
-            "--method hybrid does not trace polarized light",
+            &["--polarization", "on", "--method", "sppm"][..],
+            "--method sppm does not trace polarized light",
         ),
         (
             &["--polarization", "on", "--spectral", "off"][..],

@@ -158,7 +158,8 @@ pub struct RenderArgs {
     pub spectral: SpectralMode,
     /// Polarized transport (Stokes vectors; docs/gem-optics.md): `auto` when a material
     /// is a birefringent crystal or `--polarizer` is given, `on` always, `off` never
-    /// (crystals then render with one index). Needs the path tracer and spectral transport.
+    /// (crystals then render with one index). Needs spectral transport and the path tracer
+    /// or the hybrid (`auto` takes the hybrid where it would have chosen a photon method).
     #[arg(long, default_value = "auto", value_parser = crate::plan::PolarizationMode::parse)]
     pub polarization: crate::plan::PolarizationMode,
     /// A linear polarizer in front of the camera, its transmission axis ANGLE degrees

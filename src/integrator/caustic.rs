@@ -58,7 +58,9 @@ use crate::photon::emit::{Aim, EmittedPhoton, PhotonEmitter, PhotonNumbers};
 use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, MediumVertex, Roulette, TraceSettings};
+use crate::polar::stokes::{angle_between, rotate, Analyzer, Light};
 use crate::scene::Scene;
+use crate::shading::polarized::{mueller, s_basis};
 use crate::shading::Surface;
 use crate::spectrum::Carrier;
 use rayon::prelude::*;
@@ -112,6 +114,8 @@ struct Chunk {
     splats: Vec<Splat>,
     rays: u64,
     volume: Vec<Photon>,
+    /// Polarized photons: each surface photon's normalized (s₁, s₂, s₃) ([`CausticMap::stokes`]).
+    stokes: Vec<[f32; 3]>,
 }
 
 impl Chunk {
@@ -171,6 +175,46 @@ impl Chunk {
             trace::trace_in_media::<C>(scene, ph, lambda, settings, rng, keep_surface, keep_volume);
         self.rays += camera_rays;
     }
+
+    /// [`Self::trace_one`] for the polarized hybrid: the photon traced with its Stokes
+    /// vector ([`crate::photon::polarized`]; no media, no light tracing: the plan and
+    /// [`super::hybrid`] refuse them), each kept surface photon with its polarization in the
+    /// basis [`photon_basis`] of its stored direction.
+    fn trace_polarized<C: Carrier>(
+        &mut self,
+        (scene, max_depth): (&Scene, u32),
+        ph: &EmittedPhoton<'_>,
+        lambda: C::Lambda,
+        inv_n: f32,
+        rng: &mut Rng,
+    ) {
+        let mut origin = None;
+        let (surface, stokes) = (&mut self.surface, &mut self.stokes);
+        let keep = |v: &trace::PhotonVertex<C>, light: &Light, l: &C::Lambda| {
+            let first = origin.is_none();
+            let caustic_origin = *origin.get_or_insert(v.bounces > 0);
+            if !caustic_origin || v.power == C::ZERO {
+                return;
+            }
+            let hero = if C::is_hero_only(l) {
+                Photon::HERO_ONLY
+            } else {
+                0
+            };
+            let flags = hero | if first { Photon::CAUSTIC } else { 0 };
+            let p = Photon::new(v.p, v.wi, (v.power * inv_n).to_lanes(), flags);
+            let s = light.in_basis(photon_basis(&p));
+            surface.push(p);
+            stokes.push([s[1], s[2], s[3]]);
+        };
+        self.rays += crate::photon::polarized::trace::<C>(scene, ph, lambda, max_depth, rng, keep);
+    }
+}
+
+/// The basis x of a polarized photon's Stokes vector: any unit vector ⊥ its stored
+/// direction of travel −wi, a function of that direction alone (the gather rebuilds it).
+fn photon_basis(p: &Photon) -> glam::Vec3 {
+    crate::polar::stokes::perpendicular(-p.wi())
 }
 
 /// One pass's caustic photons, their grid and the radius sequence.
@@ -184,6 +228,11 @@ pub struct CausticMap {
     alpha: f32,
     /// In a scene with media: the volume photons of the same pass ([`VolumeMap`]).
     pub volume: Option<VolumeMap>,
+    /// Photons traced with polarization (the polarized hybrid, [`Self::polarized`]).
+    polarized: bool,
+    /// With polarization: each photon's Stokes vector over s₀ (s₁, s₂, s₃) in the basis
+    /// [`photon_basis`], by photon index.
+    stokes: Vec<[f32; 3]>,
 }
 
 impl CausticMap {
@@ -193,6 +242,15 @@ impl CausticMap {
             r2: radius.map(|r| f64::from(r) * f64::from(r)),
             alpha,
             ..CausticMap::default()
+        }
+    }
+
+    /// The same map traced with polarized photons ([`crate::photon::polarized`]), gathered
+    /// with [`Self::density_polarized`].
+    pub fn polarized(self) -> CausticMap {
+        CausticMap {
+            polarized: true,
+            ..self
         }
     }
 
@@ -221,6 +279,7 @@ impl CausticMap {
         let budget = StoreBudget::default();
         let inv_n = 1.0 / n.max(1) as f32;
         let numbers = PhotonNumbers::new(seed ^ KEY);
+        let polarized = self.polarized;
         let per_chunk: Vec<Chunk> = (0..n.div_ceil(CHUNK))
             .into_par_iter()
             .map(|c| {
@@ -232,8 +291,13 @@ impl CausticMap {
                         continue;
                     };
                     let before = chunk.surface.len();
-                    let run = (scene, &settings, splatter);
-                    chunk.trace_one::<C>(run, &ph, lambda, inv_n, &mut rng);
+                    if polarized {
+                        let run = (scene, max_depth);
+                        chunk.trace_polarized::<C>(run, &ph, lambda, inv_n, &mut rng);
+                    } else {
+                        let run = (scene, &settings, splatter);
+                        chunk.trace_one::<C>(run, &ph, lambda, inv_n, &mut rng);
+                    }
                     if !budget.add(chunk.surface.len() - before) {
                         break;
                     }
@@ -243,6 +307,7 @@ impl CausticMap {
             .collect();
         budget.check(n, 1)?;
         self.photons.clear();
+        self.stokes.clear();
         self.photons
             .reserve_exact(per_chunk.iter().map(|c| c.surface.len()).sum());
         let (mut rays, mut splats) = (0, Vec::with_capacity(per_chunk.len()));
@@ -251,6 +316,7 @@ impl CausticMap {
         }
         for c in per_chunk {
             self.photons.extend_from_slice(&c.surface);
+            self.stokes.extend_from_slice(&c.stokes);
             splats.push(c.splats);
             rays += c.rays;
             if let Some(v) = &mut self.volume {
@@ -300,22 +366,68 @@ impl CausticMap {
     /// mixed mode, [`super::light_trace`]). Hero-wavelength bookkeeping and split camera
     /// samples as in SPPM ([`super::sppm::photon_term`]).
     pub fn density<C: Carrier>(&self, s: &Surface<C>, lambda: &C::Lambda, later_only: bool) -> C {
+        let lanes = super::sppm::GatherLanes::of::<C>(lambda);
+        self.sum_within(s, |_, ph| {
+            if later_only && ph.flags() & Photon::CAUSTIC != 0 {
+                return C::ZERO;
+            }
+            super::sppm::photon_term(&s.bsdf, &s.frame, s.wo, lanes, ph)
+        })
+    }
+
+    /// [`Self::density`] of a polarized map read through the camera path's `analyzer` at
+    /// `s` (the analyzer of the light leaving toward the camera): Σ f(wo, wiₚ) Φₚ
+    /// (a·N·Sₚ) / (π r²), N the surface's normalized Mueller matrix for the photon's
+    /// direction ([`crate::shading::polarized::mueller`]; a depolarizing surface reads a₀)
+    /// and Sₚ the photon's Stokes vector over s₀.
+    pub fn density_polarized<C: Carrier>(
+        &self,
+        s: &Surface<C>,
+        lambda: &C::Lambda,
+        analyzer: &Analyzer,
+    ) -> C {
+        if self.stokes.len() != self.photons.len() {
+            return C::ZERO;
+        }
+        let lanes = super::sppm::GatherLanes::of::<C>(lambda);
+        self.sum_within(s, |i, ph| {
+            let f = super::sppm::photon_term(&s.bsdf, &s.frame, s.wo, lanes, ph);
+            let wi = ph.wi();
+            let read = match mueller(&s.bsdf, s.wo, s.frame.to_local(wi)) {
+                None => analyzer.unpolarized(),
+                Some((n, m)) => {
+                    let k_in = -wi;
+                    let x = s_basis(k_in, s.frame.to_world(m), analyzer.x);
+                    let a = analyzer.through(&n, x, x, k_in, 1.0).a;
+                    let [s1, s2, s3] = self.stokes[i];
+                    let phi = angle_between(photon_basis(ph), x, k_in);
+                    let sp = rotate(&[1.0, s1, s2, s3], phi);
+                    a[0] * sp[0] + a[1] * sp[1] + a[2] * sp[2] + a[3] * sp[3]
+                }
+            };
+            f * read
+        })
+    }
+
+    /// Σ `term(index, photon)` over the photons within the current radius of the camera
+    /// vertex `s` and in its disc ([`crate::photon::grid::in_disc`]), over π r² (zero
+    /// before the first radius or without photons).
+    fn sum_within<C: Carrier>(
+        &self,
+        s: &Surface<C>,
+        mut term: impl FnMut(usize, &Photon) -> C,
+    ) -> C {
         let r2 = self.r2.unwrap_or(0.0);
         if self.photons.is_empty() || r2 <= 0.0 {
             return C::ZERO;
         }
         let r = r2.sqrt() as f32;
-        let lanes = super::sppm::GatherLanes::of::<C>(lambda);
         let mut sum = C::ZERO;
         self.grid.for_each_within(s.hit.p, r, |i, _| {
             let ph = &self.photons[i as usize];
-            if later_only && ph.flags() & Photon::CAUSTIC != 0 {
-                return;
+            if crate::photon::grid::in_disc(s.hit.p, s.hit.ng, ph.position(), r) {
+                sum += term(i as usize, ph);
             }
-            if !crate::photon::grid::in_disc(s.hit.p, s.hit.ng, ph.position(), r) {
-                return;
-            }
-            sum += super::sppm::photon_term(&s.bsdf, &s.frame, s.wo, lanes, ph);
         });
         sum / (std::f64::consts::PI * r2) as f32
     }

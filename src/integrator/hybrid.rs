@@ -35,6 +35,7 @@
 use super::caustic::{self, CausticMap};
 use super::light_trace::{self, Splatter};
 use super::pass_paths::PassPaths;
+use super::path::polarized::{Polarization, PolarizedGather};
 use super::path::LaneWidth;
 use super::path::{CausticSplit, Dispersion, StopAt};
 use super::photon_budget;
@@ -42,6 +43,7 @@ use super::sppm::{first_radius, pass_wavelength_variate};
 use super::{CausticMode, CausticSettings};
 use crate::camera::Camera;
 use crate::error::Result;
+use crate::polar::Analyzer;
 use crate::render::{
     drive_passes, pixel_sampler, Film, Observer, RenderSettings, RenderStats, Round, Setup,
 };
@@ -92,11 +94,7 @@ fn run<C: Carrier>(
     observer: Option<Observer>,
 ) -> Result<(Film, RenderStats)> {
     let lanes = LaneWidth::choose(scene)?;
-    if scene.has_media() && cs.mode != CausticMode::Map {
-        return Err(crate::error::Error::Usage(
-            "--caustics light|mixed does not trace scattering media; use --caustics map".into(),
-        ));
-    }
+    check_modes::<C>(scene, cs)?;
     let pixels = u64::from(settings.width) * u64::from(settings.height);
     let emitter = caustic::emitter(scene);
     let schedule =
@@ -181,7 +179,7 @@ fn run<C: Carrier>(
             let (rays, bad) = camera_pass::<C>(
                 scene,
                 camera,
-                (max_depth, cs.dispersion()),
+                (max_depth, cs.dispersion(), cs.polarization),
                 (settings, lanes),
                 lambda,
                 (&map, image.as_deref(), cs.mode),
@@ -201,6 +199,25 @@ fn run<C: Carrier>(
     Ok((film, stats))
 }
 
+/// The usage errors of the caustic settings: light tracing (`--caustics light|mixed`) does
+/// not trace scattering media; the polarized hybrid is spectral, without media, and counts
+/// its caustics with the map alone.
+fn check_modes<C: Carrier>(scene: &Scene, cs: &CausticSettings) -> Result<()> {
+    let usage = |m: &str| Err(crate::error::Error::Usage(m.into()));
+    if scene.has_media() && cs.mode != CausticMode::Map {
+        return usage("--caustics light|mixed does not trace scattering media; use --caustics map");
+    }
+    if cs.polarization.is_some()
+        && (cs.mode != CausticMode::Map || scene.has_media() || !C::SPECTRAL)
+    {
+        return usage(
+            "the polarized hybrid is spectral and counts caustics with its map only, without \
+             scattering media: use --caustics map, or --polarization off",
+        );
+    }
+    Ok(())
+}
+
 /// Without `--photons` in map mode, the pilot's budget ([`photon_budget`]: the photons a
 /// pass and the first radius, the same in every shard) and a map with its first radius;
 /// otherwise no budget and a map with `--radius` (or none yet). In a scene with media the
@@ -213,7 +230,11 @@ fn caustic_budget<C: Carrier>(
     cs: &CausticSettings,
     emitter: &crate::photon::emit::PhotonEmitter,
 ) -> Result<(Option<photon_budget::Budget>, CausticMap)> {
-    let mut map = CausticMap::new(cs.radius, cs.alpha);
+    let polarize = |m: CausticMap| match cs.polarization {
+        Some(_) => m.polarized(),
+        None => m,
+    };
+    let mut map = polarize(CausticMap::new(cs.radius, cs.alpha));
     if scene.has_media() {
         map.volume = Some(super::volume_map::VolumeMap::new(cs.alpha));
     }
@@ -228,7 +249,7 @@ fn caustic_budget<C: Carrier>(
         emitter,
         (cs.radius, cs.alpha),
     )?;
-    let mut first = CausticMap::new(Some(b.first_radius), cs.alpha);
+    let mut first = polarize(CausticMap::new(Some(b.first_radius), cs.alpha));
     first.volume = map.volume;
     Ok((Some(b), first))
 }
@@ -240,13 +261,16 @@ fn caustic_budget<C: Carrier>(
 fn camera_pass<C: Carrier>(
     scene: &Scene,
     camera: &Camera,
-    (max_depth, dispersion): (u32, Dispersion),
+    (max_depth, dispersion, polarization): (u32, Dispersion, Option<Polarization>),
     (settings, lanes): (&RenderSettings, LaneWidth),
     lambda: C::Lambda,
     (map, splats, mode): (&CausticMap, Option<&[Vec3]>, CausticMode),
     film: &mut Film,
 ) -> (u64, u64) {
     let gather = |s: &crate::shading::Surface<C>, l: &C::Lambda| map.density(s, l, false);
+    let polarized = |s: &crate::shading::Surface<C>, l: &C::Lambda, a: &Analyzer| {
+        map.density_polarized(s, l, a)
+    };
     let later = |s: &crate::shading::Surface<C>, l: &C::Lambda| map.density(s, l, true);
     let beam = |ray: &crate::math::Ray, seg: &crate::shading::media::Segment<'_>, l: &C::Lambda| {
         map.volume.as_ref().map_or(C::ZERO, |v| v.beam(ray, seg, l))
@@ -276,6 +300,7 @@ fn camera_pass<C: Carrier>(
         split,
         dispersion,
         lanes,
+        polarized: polarization.map(|p| (p, &polarized as PolarizedGather<C>)),
         cancel: &settings.cancel,
     };
     let width = settings.width as usize;

@@ -5,7 +5,9 @@
 pub mod caustic;
 pub mod hybrid;
 pub mod light_trace;
+mod memory;
 mod pass_paths;
+pub use memory::{bytes_per_pixel, check_memory};
 pub mod path;
 pub mod photon_budget;
 pub mod photon_map;
@@ -276,14 +278,27 @@ impl Integrator {
 
     /// This integrator with polarized transport when `polarization` says so (the plan's
     /// [`crate::plan::Plan::decide_polarization`]): the path tracer becomes
-    /// [`Integrator::Polarized`]; other methods are returned unchanged (the plan has
-    /// already refused them).
+    /// [`Integrator::Polarized`], the hybrid traces polarized photons and camera paths;
+    /// other methods are returned unchanged (the plan has already refused them).
     pub fn polarized(self, polarization: Option<path::polarized::Polarization>) -> Integrator {
         match (self, polarization) {
             (Integrator::Path { max_depth, .. }, Some(polarization)) => Integrator::Polarized {
                 max_depth,
                 polarization,
             },
+            (
+                Integrator::Hybrid {
+                    max_depth,
+                    mut caustics,
+                },
+                p @ Some(_),
+            ) => {
+                caustics.polarization = p;
+                Integrator::Hybrid {
+                    max_depth,
+                    caustics,
+                }
+            }
             (other, _) => other,
         }
     }
@@ -433,8 +448,15 @@ impl Integrator {
             } => {
                 let a = polarization.analyzer(camera.basis(), ray.dir);
                 let lambda = SampledSpectrum::sample_lambda(u);
-                path::polarized::radiance::<SampledSpectrum>(scene, ray, *max_depth, lambda, a, ctx)
-                    .to_rgb(&lambda)
+                path::polarized::radiance::<SampledSpectrum>(
+                    scene,
+                    ray,
+                    (*max_depth, None),
+                    lambda,
+                    a,
+                    ctx,
+                )
+                .to_rgb(&lambda)
             }
             _ if spectral => self.sample::<SampledSpectrum>(scene, ray, u, ctx),
             _ => self.sample::<Vec3>(scene, ray, u, ctx),
@@ -452,36 +474,4 @@ impl Integrator {
         self.radiance::<C>(scene, ray, lambda, ctx)
             .map_or(Vec3::ZERO, |l| l.to_rgb(&lambda))
     }
-}
-
-/// Bytes each pixel costs `method` (the accumulation buffers, the images handed to
-/// observers and writers, coverage and the output's encoding; SPPM adds its per-pixel
-/// visible point).
-pub fn bytes_per_pixel(method: Method) -> u64 {
-    use std::mem::size_of;
-    let common = size_of::<crate::image::fixed::PixelSums>() + 3 * size_of::<Vec3>() + 16 + 8;
-    let extra = match method {
-        Method::Sppm => size_of::<Option<path::VisiblePoint<SampledSpectrum>>>(),
-        _ => 0,
-    };
-    (common + extra) as u64
-}
-
-/// Rejects a `width × height` image whose per-pixel buffers for `method` would exceed
-/// [`crate::render::PIXEL_MEMORY_BUDGET`] (SPPM needs several times what the other methods need).
-pub fn check_memory(width: u32, height: u32, method: Method) -> Result<()> {
-    let per = bytes_per_pixel(method);
-    let pixels = u64::from(width) * u64::from(height);
-    let budget = crate::render::PIXEL_MEMORY_BUDGET;
-    if pixels.saturating_mul(per) > budget {
-        return Err(Error::Usage(format!(
-            "--size {width}x{height}: --method {} needs {per} bytes per pixel, {:.1} GiB for \
-             this image, over the {} GiB budget (at most {} pixels)",
-            method.name(),
-            (pixels * per) as f64 / (1u64 << 30) as f64,
-            budget >> 30,
-            budget / per
-        )));
-    }
-    Ok(())
 }

@@ -9,6 +9,7 @@
 //!
 //! Units: linear RGB radiance on the film; the carrier `C` along the paths.
 
+use super::path::polarized::PolarizedGather;
 use super::path::{self, LaneWidth, StopAt, VisiblePoint};
 use super::Context;
 use crate::camera::Camera;
@@ -35,6 +36,10 @@ pub(super) struct PassPaths<'a, C: Carrier> {
     pub dispersion: path::Dispersion,
     /// Lanes for paths that do not stop at a visible point ([`StopAt::Never`]).
     pub lanes: LaneWidth,
+    /// Polarized camera paths (the polarized hybrid): what the camera looks through and
+    /// the caustic map's polarized gather ([`path::polarized::radiance`]; `split` and
+    /// `dispersion` then unused, single rays).
+    pub polarized: Option<(path::polarized::Polarization, PolarizedGather<'a, C>)>,
     /// The render's cancellation ([`crate::render::guard::Cancel`]): once set, the tiles
     /// not yet started are skipped (the pass is then incomplete, to be thrown away).
     pub cancel: &'a crate::render::guard::Cancel,
@@ -53,7 +58,9 @@ impl<C: Carrier> PassPaths<'_, C> {
         done: bool,
         keep: impl Fn((u32, u32), C, Option<VisiblePoint<C>>, &mut S) -> Vec3 + Sync,
     ) -> (u64, u64) {
-        let lanes = self.stop == StopAt::Never && self.lanes != LaneWidth::Scalar;
+        let lanes = self.stop == StopAt::Never
+            && self.lanes != LaneWidth::Scalar
+            && self.polarized.is_none();
         film.par_tiles_mut()
             .zip(slots.par_chunks_mut(TILE_PIXELS))
             .map(|(mut tile, tile_slots)| {
@@ -91,15 +98,30 @@ impl<C: Carrier> PassPaths<'_, C> {
                 rays: 0,
             };
             let ray = primary_ray(self.camera, x, y, false, &mut ctx.sample);
-            let (l, vp) = path::camera_path::<C>(
-                self.scene,
-                &ray,
-                (self.max_depth, self.dispersion),
-                self.lambda,
-                self.stop,
-                self.split,
-                &mut ctx,
-            );
+            let (l, vp) = match self.polarized {
+                Some((polarization, gather)) => {
+                    let a = polarization.analyzer(self.camera.basis(), ray.dir);
+                    let rules = (self.max_depth, Some(gather));
+                    let l = path::polarized::radiance(
+                        self.scene,
+                        &ray,
+                        rules,
+                        self.lambda,
+                        a,
+                        &mut ctx,
+                    );
+                    (l, None)
+                }
+                None => path::camera_path::<C>(
+                    self.scene,
+                    &ray,
+                    (self.max_depth, self.dispersion),
+                    self.lambda,
+                    self.stop,
+                    self.split,
+                    &mut ctx,
+                ),
+            };
             tile.add(i, k, keep((x, y), l, vp, slot).as_dvec3(), &mut bad);
             rays += ctx.rays;
         }

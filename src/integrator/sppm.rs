@@ -260,6 +260,7 @@ fn camera_pass<C: Carrier>(
             split: false,
         },
         lanes: LaneWidth::Scalar,
+        polarized: None,
         cancel: &settings.cancel,
     };
     paths.trace(film, vps, false, |_, l, vp, slot| {

@@ -106,6 +106,18 @@ impl CrystalDesc {
             n: self.indices(nm),
         }
     }
+
+    /// The transmittance e^(−σ t) over `t` metres of light at `nm` in the mode whose D field
+    /// is along `d` (σ from the absorption per axis, [`crate::polar::crystal::Crystal::absorption`]);
+    /// `None` for a crystal without an absorption table (the material's Beer–Lambert volume
+    /// applies then).
+    pub fn mode_transmittance(&self, nm: f32, d: glam::Vec3, t: f32) -> Option<f32> {
+        let sigma = self.absorption(nm);
+        if sigma == [0.0; 3] {
+            return None;
+        }
+        Some((-self.at(nm).absorption(d, sigma) * t).exp())
+    }
 }
 
 /// A material's optical character for `iris info`: the crystal's class, indices at

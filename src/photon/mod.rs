@@ -9,7 +9,8 @@
 //! - [`store`]: the compact stored photon (32 bytes, octahedral direction, flags).
 //! - [`kdtree`]: the photon map, a kd-tree with k-nearest and radius queries.
 //! - [`grid`]: the hash grid for fixed-radius queries, rebuilt every SPPM pass.
-//! - [`trace`]: photon paths through the shared per-hit step in importance mode.
+//! - [`trace`]: photon paths through the shared per-hit step in importance mode;
+//!   [`polarized`]: the same carrying a Stokes vector, through birefringent crystals.
 //! - [`probe`]: fixed-seed probes for the render plan (caustic paths, light kept by a bounce).
 //!
 //! Units: photon power is flux in the lights' units (cd·sr = lm for punctual lights, nit·m²·sr
@@ -22,6 +23,7 @@ pub mod flux;
 pub mod grid;
 pub mod kdtree;
 pub mod numbers;
+pub mod polarized;
 pub mod probe;
 pub mod store;
 pub mod trace;

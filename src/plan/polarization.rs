@@ -2,7 +2,9 @@
 //! ([`crate::integrator::path::polarized`]) — only when the scene needs it, a birefringent
 //! crystal ([`crate::material::CrystalDesc`]) or a polarizer on the camera
 //! (`--polarizer`), like spectral transport for dispersion — and the method and transport
-//! it then requires: the path tracer, spectral.
+//! it then requires: spectral, and the path tracer or, where `--method auto` found the
+//! caustics worth photons, the polarized hybrid (polarized caustic photons,
+//! [`crate::photon::polarized`]).
 
 use super::{Plan, SpectralMode, Stage};
 use crate::error::{Error, Result};
@@ -70,9 +72,9 @@ impl Plan {
             ([], Some(a)) => Some(format!("--polarizer {a}°")),
             (n, _) => Some(n.join(", ")),
         };
-        // An explicit method other than the path tracer keeps automatic polarization off
-        // (a polarizer on the camera still needs it).
-        let other_method = !matches!(method, Method::Auto | Method::Path);
+        // An explicit method other than the path tracer and the hybrid keeps automatic
+        // polarization off (a polarizer on the camera still needs it).
+        let other_method = !matches!(method, Method::Auto | Method::Path | Method::Hybrid);
         let on = match (mode, &why) {
             (PolarizationMode::Off, _) if polarizer_deg.is_some() => {
                 return Err(Error::Usage(
@@ -86,7 +88,9 @@ impl Plan {
         };
         let reason = match (on, mode, &why) {
             (true, PolarizationMode::On, None) => "on (--polarization on)".to_string(),
-            (true, _, Some(w)) => format!("on: {w} (Stokes vectors, one wavelength a path)"),
+            (true, _, Some(w)) => format!(
+                "on: {w} (Stokes vectors; a path keeps its hero wavelength alone from a crystal on)"
+            ),
             (false, PolarizationMode::Off, Some(w)) => {
                 format!("off (--polarization off): {w} rendered with one index")
             }
@@ -105,9 +109,9 @@ impl Plan {
         if !on {
             return Ok(());
         }
-        if !matches!(method, Method::Auto | Method::Path) {
+        if other_method {
             return Err(Error::Usage(format!(
-                "--method {} does not trace polarized light; use --method path or auto, or --polarization off",
+                "--method {} does not trace polarized light; use --method path, hybrid or auto, or --polarization off",
                 method.name()
             )));
         }
@@ -123,18 +127,7 @@ impl Plan {
                 "polarized transport does not trace scattering media ({what}); use --polarization off"
             )));
         }
-        if self.method != Method::Path {
-            let note = format!(
-                "path: polarized transport (--method auto had chosen {})",
-                self.method.name()
-            );
-            if let Some(photons) = self.stages.iter_mut().find(|s| s.name == "photons") {
-                photons.used = false;
-                photons.reason = note.clone();
-            }
-            self.method_note = Some(note);
-            self.method = Method::Path;
-        }
+        self.polarized_method();
         let pleochroic: Vec<String> = scene
             .materials()
             .iter()
@@ -158,12 +151,41 @@ impl Plan {
         }
         if let Some(lanes) = self.stages.iter_mut().find(|s| s.name == "lanes") {
             lanes.used = false;
-            lanes.reason = "the polarized path tracer traces single rays".into();
+            lanes.reason = "polarized camera paths are single rays".into();
         }
         self.spectral = true;
         self.polarization = Some(Polarization {
             polarizer: polarizer_deg.map(f32::to_radians),
         });
         Ok(())
+    }
+
+    /// The method under polarized transport: the path tracer and the hybrid stay; another
+    /// method `--method auto` chose for its photons (SPPM, VCM, BPT, photon mapping: none
+    /// traces polarized light) becomes the polarized hybrid, whose caustic photons carry
+    /// Stokes vectors; the plan's note says which it had chosen.
+    fn polarized_method(&mut self) {
+        let to = match self.method {
+            Method::Path | Method::Hybrid => return,
+            Method::Whitted => Method::Path,
+            _ => Method::Hybrid,
+        };
+        let note = match to {
+            Method::Hybrid => format!(
+                "hybrid: polarized transport; its caustic photons carry Stokes vectors \
+                 (--method auto had chosen {})",
+                self.method.name()
+            ),
+            _ => format!(
+                "path: polarized transport (--method auto had chosen {})",
+                self.method.name()
+            ),
+        };
+        if let Some(photons) = self.stages.iter_mut().find(|s| s.name == "photons") {
+            photons.used = to == Method::Hybrid;
+            photons.reason = note.clone();
+        }
+        self.method_note = Some(note);
+        self.method = to;
     }
 }

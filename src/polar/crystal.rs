@@ -145,17 +145,19 @@ impl Crystal {
     }
 }
 
+/// Calcite at 589 nm, its optic axis along z: n_o = 1.6584, n_e = 1.4864 (the unit tests'
+/// uniaxial crystal).
+#[cfg(test)]
+pub(crate) fn calcite() -> Crystal {
+    Crystal {
+        axes: Mat3::IDENTITY,
+        n: [1.6584, 1.6584, 1.4864],
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn calcite() -> Crystal {
-        // Calcite at 589 nm: n_o = 1.6584, n_e = 1.4864 (optic axis z).
-        Crystal {
-            axes: Mat3::IDENTITY,
-            n: [1.6584, 1.6584, 1.4864],
-        }
-    }
 
     #[test]
     fn uniaxial_modes_have_the_ordinary_and_extraordinary_indices() {

@@ -5,6 +5,8 @@
 
 pub mod crystal;
 pub mod fresnel;
+pub mod interface;
+pub mod modes;
 pub mod stokes;
 
 pub use stokes::{Analyzer, Mueller, Stokes};

@@ -179,6 +179,58 @@ impl Analyzer {
     }
 }
 
+/// Light as a photon carries it: the Stokes vector `s` normalized to s₀ = 1 (the photon's
+/// scalar weight carries the intensity) in the basis `x` ⊥ `k`, `k` the direction it
+/// propagates (inside a birefringent crystal the wave normal).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Light {
+    /// The Stokes vector, s₀ = 1.
+    pub s: Stokes,
+    /// The basis' x (unit, ⊥ `k`).
+    pub x: Vec3,
+    /// The direction of propagation (unit).
+    pub k: Vec3,
+}
+
+impl Light {
+    /// Unpolarized light propagating along `k`.
+    pub fn unpolarized(k: Vec3) -> Light {
+        let k = k.normalize();
+        Light {
+            s: [1.0, 0.0, 0.0, 0.0],
+            x: perpendicular(k),
+            k,
+        }
+    }
+
+    /// The same light's Stokes vector in the basis `x_new` (⊥ `k`).
+    pub fn in_basis(&self, x_new: Vec3) -> Stokes {
+        rotate(&self.s, angle_between(self.x, x_new, self.k))
+    }
+
+    /// The light after an interaction with Mueller matrix `m` given in the incident basis
+    /// `x_in` (⊥ `self.k`) and the outgoing basis `x_out` ⊥ `k_out`, normalized, with the
+    /// intensity factor (M·S)₀ ≥ 0; `None` when nothing passes.
+    pub fn after(&self, m: &Mueller, x_in: Vec3, x_out: Vec3, k_out: Vec3) -> Option<(Light, f32)> {
+        let out = mul(m, &self.in_basis(x_in));
+        Light::normalized(out, x_out, k_out)
+    }
+
+    /// The light of Stokes vector `s` (any s₀ > 0) in the basis `x` ⊥ `k`, normalized, with
+    /// its s₀; `None` unless s₀ is positive and finite.
+    pub fn normalized(s: Stokes, x: Vec3, k: Vec3) -> Option<(Light, f32)> {
+        let i = s[0];
+        (i > 0.0 && i.is_finite()).then(|| {
+            let light = Light {
+                s: s.map(|v| v / i),
+                x,
+                k,
+            };
+            (light, i)
+        })
+    }
+}
+
 /// The unit vector along the part of `v` ⊥ `k`, or any unit vector ⊥ `k` when `v` has
 /// none.
 pub fn transverse(v: Vec3, k: Vec3) -> Vec3 {

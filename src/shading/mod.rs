@@ -18,6 +18,7 @@ pub mod frame;
 pub mod lights;
 pub mod material_bsdf;
 pub mod media;
+pub mod polarized;
 pub mod spectral_mis;
 pub mod step;
 

@@ -4,6 +4,7 @@
 use std::path::PathBuf;
 
 pub mod alloc;
+pub mod optics;
 pub mod splitmix;
 pub mod view;
 

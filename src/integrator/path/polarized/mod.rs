@@ -1,8 +1,10 @@
 //! The polarized path tracer (`--polarization on`, chosen by the plan for scenes with a
-//! birefringent crystal or a polarizer on the camera): the path tracer's loop at one
-//! wavelength per path (the hero; the crystals' indices are dispersive and the modes' paths
-//! differ by wavelength), carrying an [`Analyzer`] — the row vector a with a·S the pixel's
-//! reading of light of Stokes vector S ([`crate::polar::stokes`]).
+//! birefringent crystal or a polarizer on the camera): the path tracer's loop carrying an
+//! [`Analyzer`] — the row vector a with a·S the pixel's reading of light of Stokes vector S
+//! ([`crate::polar::stokes`]). One analyzer serves the sample's 4 wavelengths while the
+//! Mueller matrices met do not depend on them; at a crystal (dispersive indices, modes
+//! whose paths differ by wavelength), a dispersive interface or a measured metal
+//! ([`crate::shading::polarized::hero_polarizes`]) the path keeps its hero alone.
 //!
 //! At each vertex: emission and the environment (unpolarized) count with a₀; next-event
 //! estimation with a·N(light direction)₀, N the surface's normalized Mueller matrix
@@ -14,8 +16,12 @@
 //! Mueller matrices the same way, its `polarized` variants; Wilkie & Weidlich 2012,
 //! "Polarised light in computer graphics", SIGGRAPH Asia course).
 //!
-//! Not handled here: scattering media (the plan refuses them with polarization), the
-//! caustic map. Rough crystals scatter as isotropic dielectrics with their mean index.
+//! With a caustic map (the polarized hybrid, [`crate::integrator::hybrid`]) the split is
+//! the unpolarized one ([`super::CausticSplit::Map`]): at the first non-delta vertex D₁ the
+//! map's polarized photons are gathered through the analyzer ([`PolarizedGather`]), and
+//! light found after D S+ (crystal surfaces and polarizer sheets count as delta bounces) is
+//! dropped. Not handled: scattering media (the plan refuses them with polarization). Rough
+//! crystals scatter as isotropic dielectrics with their mean index.
 
 mod crystal_step;
 mod surface;
@@ -23,16 +29,19 @@ mod surface;
 use super::light_sample::{next_event, Scatterer};
 use super::state::PathState;
 use super::vertex::{emitted, escaped};
-use crate::bsdf::{TransportMode, SMOOTH_ALPHA};
+use crate::bsdf::TransportMode;
 use crate::material::CrystalDesc;
 use crate::math::Ray;
+use crate::polar::modes::InMode;
 use crate::polar::stokes::{linear_polarizer, transverse};
 use crate::polar::Analyzer;
 use crate::render::Context;
 use crate::scene::Scene;
-use crate::shading::{self, media, Arrival, Event};
+use crate::shading::polarized::{
+    hero_polarizes, polarizer_sheet, segment_transmittance, smooth_crystal,
+};
+use crate::shading::{self, media, Arrival, Event, Surface};
 use crate::spectrum::Carrier;
-use crystal_step::InCrystal;
 
 /// What the camera of a polarized render looks through.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -54,18 +63,25 @@ impl Polarization {
     }
 }
 
-/// The polarized radiance along the camera `ray` seen through `analyzer`, at the hero of
-/// `lambda` (the others are dropped at once, [`Carrier::keep_hero`]).
+/// A caustic map's gather at a polarized camera vertex: the radiance its photons reflect
+/// toward the camera as read by the path's analyzer there (the analyzer of the light
+/// leaving the vertex), [`crate::integrator::caustic::CausticMap::density_polarized`].
+pub type PolarizedGather<'a, C> =
+    &'a (dyn Fn(&Surface<C>, &<C as Carrier>::Lambda, &Analyzer) -> C + Sync);
+
+/// The polarized radiance along the camera `ray` seen through `analyzer` at the
+/// wavelengths `lambda` (the hero alone from a crystal, a dispersive interface or a
+/// measured metal on, [`Carrier::keep_hero`]); with `gather`, the caustic paths are the
+/// map's (module docs).
 pub fn radiance<C: Carrier>(
     scene: &Scene,
     ray: &Ray,
-    max_depth: u32,
+    (max_depth, gather): (u32, Option<PolarizedGather<'_, C>>),
     mut lambda: C::Lambda,
     analyzer: Analyzer,
     ctx: &mut Context,
 ) -> C {
     let mut st = PathState::<C>::new(ray.origin);
-    st.beta = st.beta.keep_hero(&mut lambda);
     let mut walk = Polarized {
         ray: *ray,
         pol: analyzer,
@@ -74,7 +90,8 @@ pub fn radiance<C: Carrier>(
     };
     loop {
         let at = shading::arrive::<C>(scene, &walk.ray, &st.media, &lambda, &mut ctx.rays);
-        if !vertex(scene, max_depth, &mut walk, &mut st, at, &lambda, ctx) {
+        let rules = (max_depth, gather);
+        if !vertex(scene, rules, &mut walk, &mut st, at, &mut lambda, ctx) {
             return walk.l;
         }
     }
@@ -84,52 +101,75 @@ pub fn radiance<C: Carrier>(
 struct Polarized<C: Carrier> {
     ray: Ray,
     pol: Analyzer,
-    crystal: Option<InCrystal>,
+    crystal: Option<InMode>,
     l: C,
+}
+
+/// Counts a delta bounce at `p` that no light sample can see through (a crystal surface, a
+/// polarizer sheet): no MIS for what the path finds next, one more delta bounce since the
+/// last non-delta one. `false` past the delta bounce limit.
+fn delta_bounce<C: Carrier>(st: &mut PathState<C>, p: glam::Vec3) -> bool {
+    st.prev = super::state::Prev {
+        delta: true,
+        pdf: 0.0,
+        p,
+    };
+    st.since_diffuse = st.since_diffuse.map(|n| n + 1);
+    st.delta_depth += 1;
+    st.delta_depth <= shading::MAX_DELTA_BOUNCES
 }
 
 /// One vertex; `false` when the path ends.
 fn vertex<C: Carrier>(
     scene: &Scene,
-    max_depth: u32,
+    (max_depth, gather): (u32, Option<PolarizedGather<'_, C>>),
     w: &mut Polarized<C>,
     st: &mut PathState<C>,
     arrival: Option<Arrival<'_, C>>,
-    lambda: &C::Lambda,
+    lambda: &mut C::Lambda,
     ctx: &mut Context,
 ) -> bool {
+    // Light found after D S+ is the caustic map's.
+    let caustic = gather.is_some() && st.since_diffuse.unwrap_or(0) > 0;
     let Some(at) = arrival else {
-        if let Some(e) = escaped(scene, &w.ray, &st.prev, st.beta, lambda) {
+        if let (Some(e), false) = (escaped(scene, &w.ray, &st.prev, st.beta, lambda), caustic) {
             w.l += e * w.pol.unpolarized();
         }
         return false;
     };
-    st.beta *= segment_transmittance(scene, st, w, &at, lambda);
-    if let Some(e) = emitted(scene, &at, &st.prev, st.beta, lambda) {
+    let mode_d = w.crystal.map(|m| m.d);
+    st.beta *= segment_transmittance(scene, &st.media, mode_d, &at, lambda);
+    if let (Some(e), false) = (emitted(scene, &at, &st.prev, st.beta, lambda), caustic) {
         w.l += e * w.pol.unpolarized();
     }
-    if let Some(axis) = at.mat.desc.polarizer.filter(|_| at.sp.transmission > 0.0) {
+    if let Some(axis) = polarizer_sheet(&at) {
         // An ideal polarizer sheet: straight through, the analyzer times the sheet's
         // polarizer with its axis made ⊥ the light.
         let k = w.pol.k;
         let x = transverse(axis, k);
         w.pol = w.pol.through(&linear_polarizer(0.0), x, x, k, 1.0);
         w.ray = at.hit.spawn_ray(w.ray.dir);
-        return true;
+        return delta_bounce(st, at.hit.p);
     }
     let mut u = ctx.sample.bounce(st.vertex);
     if let (Some(crystal), Some(nm)) = (smooth_crystal(&at), C::hero(lambda)) {
+        // The crystal's modes and their paths depend on the wavelength: the hero alone.
+        st.beta = st.beta.keep_hero(lambda);
         let uc = (u.bsdf_lobe(), u.bsdf_direction().x);
         return crystal_vertex(scene, (crystal, nm), w, st, &at, lambda, uc);
     }
     w.crystal = None;
-    let s = match at.event(scene, st.media, &mut st.beta, &mut lambda.clone(), &mut u) {
+    let s = match at.event(scene, st.media, &mut st.beta, lambda, &mut u) {
         Event::PassThrough(next) => {
             w.ray = next;
             return true;
         }
         Event::Scatter(s) => s,
     };
+    if hero_polarizes(&s.bsdf) {
+        st.beta = st.beta.keep_hero(lambda);
+    }
+    let lambda = &*lambda;
     let k_out = s.hit.wo;
     if !s.bsdf.is_delta() {
         let ls = next_event(
@@ -149,6 +189,9 @@ fn vertex<C: Carrier>(
             };
             w.l += st.beta * v * a.unpolarized();
         }
+        if let Some(g) = gather.filter(|_| st.since_diffuse.is_none() && st.depth + 1 < max_depth) {
+            w.l += st.beta * g(&s, lambda, &w.pol);
+        }
     }
     let uc = u.bsdf_lobe();
     let ud = u.bsdf_direction_if(s.bsdf.samples_direction());
@@ -163,39 +206,6 @@ fn vertex<C: Carrier>(
     w.ray = s.spawn(bs.wi);
     st.vertex += 1;
     true
-}
-
-/// The crystal at an arrival if its material is one and smooth there.
-fn smooth_crystal<'a, C: Carrier>(at: &Arrival<'a, C>) -> Option<&'a CrystalDesc> {
-    let c = at.mat.desc.crystal.as_ref()?;
-    let smooth = at.sp.roughness * at.sp.roughness < SMOOTH_ALPHA;
-    (smooth && at.mat.is_volume() && at.sp.transmission > 0.0).then_some(c)
-}
-
-/// The transmittance of the segment just travelled: inside a crystal with an absorption
-/// table, e^(−σ_m t) for the mode's σ_m; elsewhere the arrival's (Beer–Lambert).
-fn segment_transmittance<C: Carrier>(
-    scene: &Scene,
-    st: &PathState<C>,
-    w: &Polarized<C>,
-    at: &Arrival<'_, C>,
-    lambda: &C::Lambda,
-) -> C {
-    let crystal = st
-        .media
-        .current()
-        .and_then(|m| scene.materials()[m as usize].desc.crystal.as_ref());
-    match (crystal, w.crystal, C::hero(lambda)) {
-        (Some(c), Some(mode), Some(nm)) => {
-            let sigma = c.absorption(nm);
-            if sigma == [0.0; 3] {
-                return at.transmittance;
-            }
-            let s = c.at(nm).absorption(mode.d, sigma);
-            C::splat((-s * at.hit.t).exp())
-        }
-        _ => at.transmittance,
-    }
 }
 
 /// The vertex at a smooth crystal surface ([`crystal_step::bounce`]).
@@ -225,13 +235,7 @@ fn crystal_vertex<C: Carrier>(
     if b.crossed {
         st.media = beyond;
     }
-    st.prev = super::state::Prev {
-        delta: true,
-        pdf: 0.0,
-        p: at.hit.p,
-    };
-    st.delta_depth += 1;
-    if st.delta_depth > shading::MAX_DELTA_BOUNCES {
+    if !delta_bounce(st, at.hit.p) {
         return false;
     }
     w.pol = b.analyzer;
