@@ -167,6 +167,26 @@ fn sppm_and_hybrid_merges_are_bit_identical_to_one_render() {
     assert_options_merge_exactly(&o, 2, &dir);
 }
 
+/// The polarized hybrid on the calcite rhomb (a crystal: `--polarization auto` turns it on):
+/// shards after the first replay pass 0's polarized photons for the radius, and merge
+/// exactly.
+#[test]
+fn polarized_hybrid_merges_are_bit_identical_to_one_render() {
+    let scene = asset("scenes/calcite_rhomb.glb");
+    let dir = common::scratch_dir("shards-hybrid-polarized");
+    assert_merge_is_exact(&scene, Method::Hybrid, 5, 3, &dir);
+    // It was polarized: the same render with the mode off is another image.
+    let mut off = opts(&scene, &dir.join("off.exr"), Method::Hybrid, 5);
+    off.polarization = iris::plan::PolarizationMode::Off;
+    let off = render_command(&off).expect("unpolarized render");
+    let on = iris::output::read_exr(&dir.join("whole.exr"));
+    assert!(on.is_ok(), "the whole render is readable");
+    assert!(
+        off.image.data != on.unwrap().data,
+        "polarized and unpolarized hybrids gave the same image"
+    );
+}
+
 /// The hybrid with scattering media: shards after the first replay the surface and the
 /// volume map's radius sequences from pass 0, with the pilot's photon budget (the volume
 /// map's first radius comes from pass 0's photons, as many as one render's pass 0

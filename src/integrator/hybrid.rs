@@ -6,6 +6,11 @@
 //! [`super::caustic`]'s; the camera side is [`path::camera_path`] with
 //! [`CausticSplit::Map`].
 //!
+//! Under polarized transport ([`CausticSettings::polarization`], docs/gem-optics.md) the
+//! same passes run with polarized photons ([`crate::photon::polarized`], the map keeping
+//! each photon's Stokes vector) and polarized camera paths ([`path::polarized::radiance`]
+//! gathering through their analyzer), single rays, map mode only.
+//!
 //! Each pass (one unit of the progressive driver [`crate::render::drive`], one round):
 //! 1. draws ONE set of wavelengths shared by its photons and camera paths (spectral
 //!    transport; as SPPM: the map's photon powers are per lane of that set);
