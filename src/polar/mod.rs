@@ -1,7 +1,9 @@
 //! Polarized light: Stokes vectors and Mueller matrices ([`stokes`]), the Mueller matrices of
-//! smooth interfaces ([`fresnel`]), and the two modes of light in a birefringent crystal
-//! ([`crystal`]). Pure functions and small value types; the transport that uses them is
-//! [`crate::integrator`]'s polarized path tracer.
+//! smooth interfaces ([`fresnel`]), the two modes of light in a birefringent crystal
+//! ([`crystal`]), where a path meets a crystal's surface ([`interface`]) and how it picks a
+//! mode there ([`modes`]). Pure functions and small value types; the transport that uses
+//! them is [`crate::integrator`]'s polarized path tracer and the polarized photons of
+//! [`crate::photon::polarized`].
 
 pub mod crystal;
 pub mod fresnel;
