@@ -44,7 +44,7 @@ pub use costs::{COST_PHOTONS, PROBE_REPEATS, PROBE_SIZE};
 pub use method::{
     resolve_method, AUTO_ENCLOSED_FROM, AUTO_HYBRID_BELOW, CAUSTIC_PROBE_PHOTONS, ROUGH_GLASS,
 };
-pub use polarization::{Polarization, PolarizationMode};
+pub use polarization::{needs_polarization, Polarization, PolarizationMode};
 use std::fmt::Write as _;
 
 /// `--spectral auto|on|off`.

@@ -54,6 +54,12 @@ fn crystals(scene: &Scene) -> Vec<String> {
     names
 }
 
+/// Whether `scene` has what `--polarization auto` turns polarized transport on for (a
+/// crystal or a polarizer sheet; a polarizer on the camera aside).
+pub fn needs_polarization(scene: &Scene) -> bool {
+    !crystals(scene).is_empty()
+}
+
 impl Plan {
     /// Decides the polarization stage under `--polarization mode` and `--polarizer`
     /// (degrees), given the `--method` and `--spectral` flags the plan was made with:

@@ -389,11 +389,17 @@ impl<'a> Job<'a> {
             passes: UNBOUNDED_PASSES,
             ..PhotonSettings::default()
         };
-        Integrator::new(method, 64, &photon)?.render_progressive(
-            self.scene,
-            &self.camera,
-            settings,
-            observer,
-        )
+        // As `iris render --polarization auto` without a polarizer: a scene with a crystal
+        // or a polarizer sheet is polarized (and so spectral) for the methods that trace
+        // polarized light.
+        let polarized = crate::plan::needs_polarization(self.scene)
+            .then_some(crate::plan::Polarization { polarizer: None });
+        let settings = RenderSettings {
+            spectral: settings.spectral || polarized.is_some(),
+            ..settings.clone()
+        };
+        Integrator::new(method, 64, &photon)?
+            .polarized(polarized)
+            .render_progressive(self.scene, &self.camera, &settings, observer)
     }
 }
