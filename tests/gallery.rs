@@ -219,3 +219,37 @@ fn a_before_image_in_the_folder_makes_a_before_after_pair() {
         "before image untouched"
     );
 }
+
+#[test]
+fn a_partial_run_keeps_the_other_entries_of_the_page() {
+    // Two `--only` runs into one directory: the second puts its entry into the page the
+    // first wrote, in the gallery's order, and leaves the first's section as it was.
+    let out = scratch_dir("gallery_partial");
+    let out_s = out.to_string_lossy().into_owned();
+    let run = |only: &str| {
+        let args = [
+            "gallery", "--out", &out_s, "--size", "24x16", "--time", "0.2", "--only", only, "-q",
+        ];
+        let o = iris(&args, root());
+        assert!(o.status.success(), "gallery --only {only}: {}", stderr(&o));
+        std::fs::read_to_string(out.join("README.md")).expect("page written")
+    };
+    let first = run("round_diamond_bare");
+    let section = |page: &str, name: &str| {
+        let start = page.find(&format!("## {name}\n")).expect("section");
+        let rest = &page[start + 3..];
+        page[start..start + 3 + rest.find("\n## ").unwrap_or(rest.len())].to_string()
+    };
+    let diamond = section(&first, "round_diamond_bare");
+    let page = run("fig4_4_1");
+    assert!(page.contains("## fig4_4_1_prism\n"), "{page}");
+    assert_eq!(
+        section(&page, "round_diamond_bare").trim_end(),
+        diamond.trim_end()
+    );
+    assert!(
+        page.find("## fig4_4_1_prism").unwrap() < page.find("## round_diamond_bare").unwrap(),
+        "the gallery's order: {page}"
+    );
+    assert_eq!(page.matches("```text\nrender plan:").count(), 2, "{page}");
+}

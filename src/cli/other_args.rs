@@ -75,7 +75,8 @@ pub struct GalleryArgs {
     /// (estimated error 0.03 of the written image, or 120 s).
     #[arg(long, value_parser = parse_seconds)]
     pub time: Option<f64>,
-    /// Render only the entries whose name contains SUBSTR (repeatable).
+    /// Render only the entries whose name contains SUBSTR (repeatable); an existing page in
+    /// the output directory keeps its other entries.
     #[arg(long, value_name = "SUBSTR")]
     pub only: Vec<String>,
     /// No progress output.

@@ -29,6 +29,8 @@
 //! Invariants: every image and the page are written atomically (temporary name + rename,
 //! [`crate::output::atomic::write_file_atomic`]); a `--only` pattern that matches no entry
 //! is an error before anything renders; the page lists the entries in [`ENTRIES`] order.
+//! With `--only`, an existing page keeps its header and its other entries, the rendered
+//! ones replacing theirs ([`splice`]).
 
 use crate::app::budget::BudgetFlags;
 use crate::app::{self, RenderOptions, RenderSummary};
@@ -38,6 +40,7 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 mod entries;
+mod splice;
 pub use entries::{Entry, Origin, ENTRIES};
 
 /// What `iris gallery` was asked for.
@@ -192,12 +195,17 @@ pub fn run(opts: &GalleryOptions) -> Result<GallerySummary> {
         }
     }
     let page = opts.out.join("README.md");
-    let text = page_text(
+    let mut text = page_text(
         opts,
         &rendered,
         shared.as_deref(),
         shared_missing.as_deref(),
     );
+    // `--only` into a gallery that has a page: put the new sections into it.
+    if let (false, Ok(old)) = (opts.only.is_empty(), std::fs::read_to_string(&page)) {
+        let names: Vec<&str> = ENTRIES.iter().map(|e| e.name).collect();
+        text = splice::splice(&old, &text, &names);
+    }
     crate::output::atomic::write_file_atomic(&page, text.as_bytes())?;
     Ok(GallerySummary {
         rendered,
