@@ -20,7 +20,7 @@ use crate::polar::crystal::{Crystal, Mode};
 use crate::polar::fresnel;
 use crate::polar::interface::{meet, Inside, Meeting, Outside};
 use crate::polar::modes::{choose, split, Chosen, InMode, Travel};
-use crate::polar::stokes::{mul, Light};
+use crate::polar::stokes::{mul, Light, Mueller};
 use crate::shading::polarized::s_basis;
 use glam::Vec3;
 
@@ -67,14 +67,7 @@ fn from_outside(
     let s = s_basis(d, n, light.x);
     if u.0 < o.r_mean {
         let (r, _) = fresnel::dielectric(o.cos1, o.n_reflect / n1);
-        let (light, f) = light.after(&r, s, s, o.reflected)?;
-        return Some(Step {
-            dir: o.reflected,
-            inside: None,
-            crossed: false,
-            light,
-            weight: f / o.r_mean,
-        });
+        return leave(light, (&r, s), o.reflected, (false, o.r_mean));
     }
     let v = light.in_basis(s);
     let through = |mode: &Mode| {
@@ -97,18 +90,29 @@ fn from_inside(
     let (r, tm) = fresnel::dielectric(i.cos_k, n2 / i.n_mode);
     let s = s_basis(k, n, light.x);
     if let (Some(dir), true) = (i.out, u.0 >= i.r_mean) {
-        let (light, f) = light.after(&tm, s, s, dir)?;
-        return Some(Step {
-            dir,
-            inside: None,
-            crossed: true,
-            light,
-            weight: f / (1.0 - i.r_mean),
-        });
+        return leave(light, (&tm, s), dir, (true, 1.0 - i.r_mean));
     }
     let v = mul(&r, &light.in_basis(s));
     let chosen = choose(&split(i.reflected, |_| v, s, Travel::Along), u.1)?;
     into_mode(chosen, i.r_mean, s, false)
+}
+
+/// The step out along `dir` (a reflection outside or a refraction out) through the Mueller
+/// matrix `m` in the basis `s`, whose event had probability `p`; `crossed` as in [`Step`].
+fn leave(
+    light: &Light,
+    (m, s): (&Mueller, Vec3),
+    dir: Vec3,
+    (crossed, p): (bool, f32),
+) -> Option<Step> {
+    let (light, f) = light.after(m, s, s, dir)?;
+    Some(Step {
+        dir,
+        inside: None,
+        crossed,
+        light,
+        weight: f / p,
+    })
 }
 
 /// The step into the `chosen` mode, whose interface event had probability `p_interface`:
