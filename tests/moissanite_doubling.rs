@@ -143,17 +143,8 @@ fn camera(depth: f32, top: f32, n: f32) -> CameraDesc {
 
 fn render(scene: &Scene, cam: &CameraDesc, polarizer_deg: f32, seed: u64) -> ImageRgb {
     let settings = RenderSettings {
-        width: PIXELS,
-        height: PIXELS,
-        spp: SPP,
-        seed,
-        threads: 0,
-        quiet: true,
         spectral: true,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
+        ..common::render_settings((PIXELS, PIXELS), SPP, seed, 0)
     };
     let integrator = Integrator::Polarized {
         max_depth: 32,

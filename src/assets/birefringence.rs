@@ -30,7 +30,7 @@ use crate::authoring::lathe::sin_cos;
 use crate::authoring::scene::{GenMaterial, GenMesh, GenScene};
 use crate::authoring::shapes::{cuboid, ground_plane, push_flat_facing_away, TriMesh};
 use crate::authoring::stones::Stone;
-use glam::{DVec3, Mat3, Vec3};
+use glam::{DVec3, Mat3, Quat, Vec3};
 
 /// A rhombohedron with edges of equal length meeting at its two blunt vertices at
 /// `blunt_angle` degrees to each other, one face down (module docs).
@@ -135,16 +135,17 @@ fn glyph(ch: char) -> [&'static str; 7] {
     }
 }
 
+/// Pushes the flat horizontal polygon `pts` (corners in order), facing +Y.
+fn push_up(mesh: &mut TriMesh, pts: Vec<DVec3>) {
+    let n = newell(&pts);
+    let below = pts[0] - DVec3::Y;
+    push_flat_facing_away(mesh, pts, n, below);
+}
+
 /// Pushes the quad [x0, x1] × [z0, z1] at height `y`, facing +Y.
 fn push_patch(mesh: &mut TriMesh, (x0, x1): (f64, f64), (z0, z1): (f64, f64), y: f64) {
-    let pts = vec![
-        DVec3::new(x0, y, z0),
-        DVec3::new(x1, y, z0),
-        DVec3::new(x1, y, z1),
-        DVec3::new(x0, y, z1),
-    ];
-    let n = newell(&pts);
-    push_flat_facing_away(mesh, pts, n, DVec3::new(x0, y - 1.0, z0));
+    let corners = [(x0, z0), (x1, z0), (x1, z1), (x0, z1)];
+    push_up(mesh, corners.map(|(x, z)| DVec3::new(x, y, z)).to_vec());
 }
 
 /// `text` in the 5 × 7 font with square pixels of side `px` at height `y`, its top-left
@@ -179,8 +180,7 @@ fn dot(mesh: &mut TriMesh, c: DVec3, radius: f64) {
             c + DVec3::new(radius * co, 0.0, radius * s)
         })
         .collect();
-    let n = newell(&pts);
-    push_flat_facing_away(mesh, pts, n, c - DVec3::Y);
+    push_up(mesh, pts);
 }
 
 /// The rhomb of `calcite_rhomb.glb`.
@@ -252,19 +252,12 @@ pub fn calcite_rhomb() -> GenScene {
     s
 }
 
-/// The rotation turning +Y into −`dir` (a panel at `dir` facing the origin), about
-/// `Y × dir`.
+/// The rotation turning +Y into −`dir` (a panel at `dir` facing the origin).
 fn key_rotation(dir: DVec3) -> Mat3 {
-    let to = -dir;
-    let axis = DVec3::Y.cross(to);
-    let (sin, cos) = (axis.length(), DVec3::Y.dot(to));
-    let k = axis / sin;
-    let col = |v: DVec3| v * cos + k.cross(v) * sin + k * k.dot(v) * (1.0 - cos);
-    Mat3::from_cols(
-        col(DVec3::X).as_vec3(),
-        col(DVec3::Y).as_vec3(),
-        col(DVec3::Z).as_vec3(),
-    )
+    Mat3::from_quat(Quat::from_rotation_arc(
+        Vec3::Y,
+        (-dir).normalize().as_vec3(),
+    ))
 }
 
 /// Size of the two brilliants of `moissanite_and_diamond.glb`, metres.

@@ -60,7 +60,7 @@ use crate::photon::store::Photon;
 use crate::photon::trace::{self, MediumVertex, Roulette, TraceSettings};
 use crate::polar::stokes::{angle_between, rotate, Analyzer, Light};
 use crate::scene::Scene;
-use crate::shading::polarized::{mueller, s_basis};
+use crate::shading::polarized::{depolarizes, mueller, s_basis};
 use crate::shading::Surface;
 use crate::spectrum::Carrier;
 use rayon::prelude::*;
@@ -137,19 +137,8 @@ impl Chunk {
         rng: &mut Rng,
     ) {
         let origin: Cell<Option<bool>> = Cell::new(None);
-        let decide = |bounces: u32| {
-            let first = origin.get().is_none();
-            let o = origin.get().unwrap_or(bounces > 0);
-            origin.set(Some(o));
-            (first, o)
-        };
-        let hero = |l: &C::Lambda| {
-            if C::is_hero_only(l) {
-                Photon::HERO_ONLY
-            } else {
-                0
-            }
-        };
+        let decide = |bounces: u32| decide_origin(&origin, bounces);
+        let hero = hero_flag::<C>;
         let mut camera_rays = 0;
         let (surface, splats, volume) = (&mut self.surface, &mut self.splats, &mut self.volume);
         let scattered = Cell::new(false);
@@ -188,26 +177,39 @@ impl Chunk {
         inv_n: f32,
         rng: &mut Rng,
     ) {
-        let mut origin = None;
+        let origin = Cell::new(None);
         let (surface, stokes) = (&mut self.surface, &mut self.stokes);
         let keep = |v: &trace::PhotonVertex<C>, light: &Light, l: &C::Lambda| {
-            let first = origin.is_none();
-            let caustic_origin = *origin.get_or_insert(v.bounces > 0);
+            let (first, caustic_origin) = decide_origin(&origin, v.bounces);
             if !caustic_origin || v.power == C::ZERO {
                 return;
             }
-            let hero = if C::is_hero_only(l) {
-                Photon::HERO_ONLY
-            } else {
-                0
-            };
-            let flags = hero | if first { Photon::CAUSTIC } else { 0 };
+            let flags = hero_flag::<C>(l) | if first { Photon::CAUSTIC } else { 0 };
             let p = Photon::new(v.p, v.wi, (v.power * inv_n).to_lanes(), flags);
             let s = light.in_basis(photon_basis(&p));
             surface.push(p);
             stokes.push([s[1], s[2], s[3]]);
         };
         self.rays += crate::photon::polarized::trace::<C>(scene, ph, lambda, max_depth, rng, keep);
+    }
+}
+
+/// At a photon's non-delta event after `bounces` bounces: whether it is the first (which
+/// decides the photon's origin, kept in `origin`) and whether the photon is caustic-origin
+/// (its first non-delta event came after ≥ 1 bounce).
+fn decide_origin(origin: &Cell<Option<bool>>, bounces: u32) -> (bool, bool) {
+    let first = origin.get().is_none();
+    let o = origin.get().unwrap_or(bounces > 0);
+    origin.set(Some(o));
+    (first, o)
+}
+
+/// [`Photon::HERO_ONLY`] for a photon that kept its hero wavelength alone, else 0.
+fn hero_flag<C: Carrier>(l: &C::Lambda) -> u32 {
+    if C::is_hero_only(l) {
+        Photon::HERO_ONLY
+    } else {
+        0
     }
 }
 
@@ -388,6 +390,10 @@ impl CausticMap {
     ) -> C {
         if self.stokes.len() != self.photons.len() {
             return C::ZERO;
+        }
+        // A depolarizing surface reads every photon as unpolarized light.
+        if depolarizes(&s.bsdf) {
+            return self.density(s, lambda, false) * analyzer.unpolarized();
         }
         let lanes = super::sppm::GatherLanes::of::<C>(lambda);
         self.sum_within(s, |i, ph| {

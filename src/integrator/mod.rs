@@ -427,9 +427,6 @@ impl Integrator {
         }
     }
 
-    /// One camera sample's radiance as linear RGB: wavelengths drawn for spectral transport
-    /// from the hero variate `u_lambda` ∈ [0, 1), and the film's conversion
-    /// ([`Carrier::to_rgb`], spectrum → XYZ → sRGB) — the only place colour is converted.
     /// One camera sample of a per-sample method: the polarized path tracer with its
     /// camera's analyzer, or [`Integrator::sample`] in spectral or RGB transport.
     fn per_sample(
@@ -463,6 +460,9 @@ impl Integrator {
         }
     }
 
+    /// One camera sample's radiance as linear RGB: wavelengths drawn for spectral transport
+    /// from the hero variate `u_lambda` ∈ [0, 1), and the film's conversion
+    /// ([`Carrier::to_rgb`], spectrum → XYZ → sRGB).
     fn sample<C: Carrier>(
         &self,
         scene: &Scene,

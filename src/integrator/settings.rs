@@ -211,7 +211,7 @@ pub struct CausticSettings {
     /// default), rather than keeping the hero only (for comparisons).
     pub split: bool,
     /// Polarized transport (the plan's [`crate::plan::Plan::decide_polarization`]): polarized
-    /// photons and camera paths at one wavelength each ([`super::hybrid`]); `None`: off.
+    /// photons and camera paths ([`super::hybrid`]); `None`: off.
     pub polarization: Option<super::path::polarized::Polarization>,
 }
 

@@ -218,6 +218,22 @@ fn seed_step<C: Carrier>(bsdf: &Bsdf<C>, wo: Vec3, rng: &mut Rng) -> Option<(Vec
     }
 }
 
+/// Throughput Russian roulette from `old` to `new` (Jensen 2001 §5.1): the photon survives
+/// with probability min(1, max(new)/max(old)), one number of `rng`, and keeps its power,
+/// `new / p`; `None` when it ends.
+pub(super) fn survive<C: Carrier>(old: C, new: C, rng: &mut Rng) -> Option<C> {
+    let before = old.max_element();
+    let p = if before > 0.0 {
+        (new.max_element() / before).min(1.0)
+    } else {
+        0.0
+    };
+    if p <= 0.0 || rng.next_f32() >= p {
+        return None;
+    }
+    Some(new / p)
+}
+
 /// The photon's next direction at surface `s` under `roulette` (throughput roulette:
 /// survival = the throughput's change, survivors keep their power; or the seed paper's
 /// rule), updating `beta`: (direction, whether it is a transmission, whether the bounce
@@ -233,17 +249,7 @@ fn next_direction<C: Carrier>(
             let uc = rng.next_f32();
             let u = Vec2::new(rng.next_f32(), rng.next_f32());
             let bs = s.sample(uc, u, TransportMode::Importance)?;
-            let new_beta = *beta * bs.f * (bs.wi.z.abs() / bs.pdf);
-            let old = beta.max_element();
-            let p = if old > 0.0 {
-                (new_beta.max_element() / old).min(1.0)
-            } else {
-                0.0
-            };
-            if p <= 0.0 || rng.next_f32() >= p {
-                return None;
-            }
-            *beta = new_beta / p;
+            *beta = survive(*beta, *beta * bs.f * (bs.wi.z.abs() / bs.pdf), rng)?;
             (bs.wi, bs.transmission, bs.delta)
         }
         Roulette::Seed => {

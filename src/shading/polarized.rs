@@ -28,6 +28,7 @@ use glam::Vec3;
 /// (surface or microfacet) its s/p bases refer to; `None` for a depolarizing BSDF.
 pub fn mueller<C: Carrier>(b: &Bsdf<C>, wo: Vec3, wi: Vec3) -> Option<(Mueller, Vec3)> {
     let m = match *b {
+        // The BSDFs of [`depolarizes`].
         Bsdf::Lambert { .. } | Bsdf::GltfPbr { .. } => return None,
         Bsdf::Conductor { .. } => return Some((MIRROR, Vec3::Z)),
         Bsdf::ComplexConductor { eta, k, alpha, .. } => {
@@ -59,6 +60,12 @@ pub fn mueller<C: Carrier>(b: &Bsdf<C>, wo: Vec3, wi: Vec3) -> Option<(Mueller, 
         }
     };
     normalized(m.0).map(|n| (n, m.1))
+}
+
+/// Whether `b` depolarizes whatever the directions (Lambert, the glTF PBR mix): the light
+/// it scatters is read as unpolarized, [`mueller`] is `None`.
+pub fn depolarizes<C: Carrier>(b: &Bsdf<C>) -> bool {
+    matches!(b, Bsdf::Lambert { .. } | Bsdf::GltfPbr { .. })
 }
 
 /// Whether `b`'s polarization depends on the wavelength beyond what the shared step

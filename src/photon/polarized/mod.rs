@@ -96,17 +96,14 @@ pub fn trace<C: Carrier>(
         let Some(b) = b else {
             continue;
         };
-        let old = f.beta.max_element();
         let new_beta = f.beta * b.weight;
-        let p = if old > 0.0 {
-            (new_beta.max_element() / old).min(1.0)
-        } else {
-            0.0
-        };
-        if p <= 0.0 || p.is_nan() || rng.next_f32() >= p || !new_beta.is_finite() {
+        if !new_beta.is_finite() {
             break;
         }
-        f.beta = new_beta / p;
+        let Some(beta) = super::trace::survive(f.beta, new_beta, rng) else {
+            break;
+        };
+        f.beta = beta;
         all_specular &= !b.diffuse;
         bounces += 1;
         if b.delta {
