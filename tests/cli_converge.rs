@@ -400,3 +400,38 @@ fn converge_bad_inputs_fail_cleanly() {
     assert!(text(&o.stderr).contains("p.pdf"), "{}", text(&o.stderr));
     assert_eq!(entries(&dir), vec!["file".to_string()]);
 }
+
+/// `iris converge` checks every requested method against the scene before it renders
+/// anything (issue 48: with media it rendered the reference and the path image, then
+/// failed on the photon map, leaving reference.exr, path.exr and path.png).
+#[test]
+fn converge_refuses_a_method_that_cannot_render_the_scene_before_rendering() {
+    let dir = common::scratch_dir("cli_converge_media");
+    let hazy = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/hazy_prism.glb");
+    for methods in [None, Some("path,vcm"), Some("bpt"), Some("path,photon")] {
+        let mut args = vec![
+            "converge",
+            hazy.to_str().unwrap(),
+            "--time",
+            "0.2",
+            "--size",
+            "16x12",
+            "-o",
+            "out",
+            "-q",
+        ];
+        args.extend(methods.iter().flat_map(|m| ["--methods", *m]));
+        let o = iris(&args, &dir);
+        let e = text(&o.stderr);
+        assert!(!o.status.success(), "{methods:?}: {e}");
+        assert!(
+            e.contains("does not trace scattering media"),
+            "{methods:?}: {e}"
+        );
+        assert!(
+            entries(&dir).is_empty(),
+            "{methods:?} wrote {:?}",
+            entries(&dir)
+        );
+    }
+}

@@ -83,13 +83,89 @@ fn merge_refuses_parts_of_other_renders() {
             "different --max-depth values",
         ),
         (&["--spp", "9"], "total.exr", "different totals"),
-        (&["--alpha", "0.5"], "alpha.exr", "different options"),
+        (&["--alpha", "0.5"], "alpha.exr", "different --alpha values"),
         (&["--view", "front"], "view.exr", "different cameras"),
+        // Options that change the image without changing the scene file or the counts.
+        (
+            &["--polarizer", "30"],
+            "polarizer.exr",
+            // A polarizer turns polarized (hence spectral) transport on.
+            "different transports (spectral): false in p1.exr, true",
+        ),
+        (
+            &["--fog", "density=0.3"],
+            "fog.exr",
+            "different --fog values",
+        ),
+        (
+            &["--radius", "0.01"],
+            "radius.exr",
+            "different --radius values",
+        ),
     ];
     for (extra, out, says) in cases {
         shard(&dir, out, "2/3", extra);
         refused(&dir, &["p1.exr", out, "p3.exr"], &[says, out]);
     }
+    // Pairs of shards that differ in one image-changing option, neither the default.
+    let pairs: &[(&[&str], &[&str], &str)] = &[
+        (
+            &["--polarizer", "0"],
+            &["--polarizer", "90"],
+            "--polarizer values",
+        ),
+        (
+            &["--fog", "density=0.3"],
+            &["--fog", "density=0.6"],
+            "--fog values",
+        ),
+        (
+            &["--fog", "density=0.3"],
+            &["--fog", "density=0.3,g=0.5"],
+            "--fog values",
+        ),
+        (
+            &["--stone", "ruby"],
+            &["--stone", "diamond"],
+            "--stone/--metal values",
+        ),
+    ];
+    for (i, (one, two, says)) in pairs.iter().enumerate() {
+        let (a, b) = (format!("pa{i}.exr"), format!("pb{i}.exr"));
+        shard(&dir, &a, "1/2", one);
+        shard(&dir, &b, "2/2", two);
+        refused(&dir, &[&a, &b], &[says, &a, &b]);
+    }
+    // `--fog none` against the file's own `iris_fog`.
+    let hazy = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/hazy_prism.glb");
+    for (i_n, out, fog) in [
+        ("1/2", "hazy1.exr", None),
+        ("2/2", "hazy2.exr", Some("none")),
+    ] {
+        let mut args = vec![
+            "render",
+            hazy.to_str().unwrap(),
+            "--size",
+            "16x12",
+            "--method",
+            "path",
+            "--spp",
+            "2",
+            "-q",
+            "--shard",
+            i_n,
+            "-o",
+            out,
+        ];
+        args.extend(fog.iter().flat_map(|f| ["--fog", *f]));
+        let o = iris(&args, &dir);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    refused(
+        &dir,
+        &["hazy1.exr", "hazy2.exr"],
+        &["different --fog values: None in hazy1.exr, Some(None) in hazy2.exr"],
+    );
     // Another scene file.
     let other = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/paper/fig7_2_bubble.glb");
     let o = iris(

@@ -6,6 +6,8 @@
 //! Library calls on the repository's own small scenes at 32×24.
 
 mod common;
+#[path = "shards/identity_flags.rs"]
+mod identity_flags;
 
 use iris::app::merge::{merge_command, MergeOptions, MergeSummary};
 use iris::app::shard::Shard;

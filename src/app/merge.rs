@@ -122,7 +122,7 @@ fn read_part(path: &Path) -> Result<Part> {
 /// Refuses `b` unless it belongs to the same render as `a` (identity and shard count).
 fn check_same_render(a: &Part, b: &Part) -> Result<()> {
     let differ = |what: &str, va: &str, vb: &str| {
-        let values = if va.len() + vb.len() <= 160 {
+        let values = if va.len() + vb.len() <= 600 {
             format!(
                 ": {va} in {}, {vb} in {}",
                 a.path.display(),
@@ -137,14 +137,31 @@ fn check_same_render(a: &Part, b: &Part) -> Result<()> {
             b.path.display()
         )))
     };
-    let keys = a.header.identity.iter().map(|(k, _)| k);
-    for key in keys.chain(b.header.identity.iter().map(|(k, _)| k)) {
-        let (va, vb) = (a.header.get(key), b.header.get(key));
-        if va != vb {
-            let what = super::shard_id::describe(key);
-            return differ(what, va.unwrap_or("none"), vb.unwrap_or("none"));
+    // The readable entries first (seed, size, method, …), then the options as given
+    // (named by their flag), then the hashes and the integrator's settings.
+    let keys: Vec<&String> = (a.header.identity.iter().chain(&b.header.identity))
+        .map(|(k, _)| k)
+        .collect();
+    let compare = |readable: bool| {
+        for key in &keys {
+            if super::shard_id::is_readable(key) != readable {
+                continue;
+            }
+            let (va, vb) = (a.header.get(key), b.header.get(key));
+            if va != vb {
+                let what = super::shard_id::describe(key);
+                return differ(what, va.unwrap_or("none"), vb.unwrap_or("none"));
+            }
         }
+        Ok(())
+    };
+    compare(true)?;
+    if let Some((what, va, vb)) =
+        super::shard_id::option_difference(a.header.get("options"), b.header.get("options"))
+    {
+        return differ(&what, &va, &vb);
     }
+    compare(false)?;
     if a.header.shard.count != b.header.shard.count {
         let (na, nb) = (a.header.shard.count, b.header.shard.count);
         return differ("shard counts", &na.to_string(), &nb.to_string());

@@ -143,6 +143,14 @@ impl<'a> RenderJob<'a> {
             plan.method,
         )?;
         plan.stages.push(adaptive.stage());
+        // What the method cannot render is refused now, before any pass runs.
+        Integrator::new(plan.method, opts.max_depth, &opts.photon)?
+            .polarized(plan.polarization)
+            .check_scene(
+                &prepared.scene,
+                &Camera::new(&prepared.camera, w, h),
+                plan.spectral,
+            )?;
         if opts.shard.is_some()
             && opts.watch
             && !opts.quiet
@@ -203,7 +211,7 @@ impl<'a> RenderJob<'a> {
         let settings = self.settings();
         let run = method.name();
         let total = integrator.total_units(&settings);
-        let shard = self.shard_part(total)?;
+        let shard = self.shard_part(total, (&integrator, &settings))?;
         let mut rows = crate::measure::report::setup_rows(
             run,
             self.prepared.load_time,
@@ -309,9 +317,14 @@ impl<'a> RenderJob<'a> {
         }
     }
 
-    /// `--shard`: the units to take of the render's `total` and the render's identity,
-    /// before rendering; `None` without the flag.
-    fn shard_part(&self, total: u64) -> Result<Option<ShardPart>> {
+    /// `--shard`: the units to take of the render's `total` and the render's identity
+    /// (with the integrator and settings it renders with), before rendering; `None`
+    /// without the flag.
+    fn shard_part(
+        &self,
+        total: u64,
+        rendered: (&Integrator, &RenderSettings),
+    ) -> Result<Option<ShardPart>> {
         let Some(shard) = self.opts.shard else {
             return Ok(None);
         };
@@ -319,10 +332,8 @@ impl<'a> RenderJob<'a> {
         let range = shard.range(total, unit_name(method))?;
         let identity = super::shard_id::identity(
             self.opts,
-            &self.prepared.scene,
-            &self.prepared.camera,
-            self.prepared.size,
-            (method, self.plan.spectral),
+            (&self.prepared.scene, &self.prepared.camera),
+            rendered,
             (total < crate::render::OPEN_UNITS).then_some(total),
         )?;
         Ok(Some(ShardPart {

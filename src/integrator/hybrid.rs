@@ -99,7 +99,6 @@ fn run<C: Carrier>(
     observer: Option<Observer>,
 ) -> Result<(Film, RenderStats)> {
     let lanes = LaneWidth::choose(scene)?;
-    check_modes::<C>(scene, cs)?;
     let pixels = u64::from(settings.width) * u64::from(settings.height);
     let emitter = caustic::emitter(scene);
     let schedule =
@@ -202,25 +201,6 @@ fn run<C: Carrier>(
         })?;
     stats.photons_per_pass = last_n;
     Ok((film, stats))
-}
-
-/// The usage errors of the caustic settings: light tracing (`--caustics light|mixed`) does
-/// not trace scattering media; the polarized hybrid is spectral, without media, and counts
-/// its caustics with the map alone.
-fn check_modes<C: Carrier>(scene: &Scene, cs: &CausticSettings) -> Result<()> {
-    let usage = |m: &str| Err(crate::error::Error::Usage(m.into()));
-    if scene.has_media() && cs.mode != CausticMode::Map {
-        return usage("--caustics light|mixed does not trace scattering media; use --caustics map");
-    }
-    if cs.polarization.is_some()
-        && (cs.mode != CausticMode::Map || scene.has_media() || !C::SPECTRAL)
-    {
-        return usage(
-            "the polarized hybrid is spectral and counts caustics with its map only, without \
-             scattering media: use --caustics map, or --polarization off",
-        );
-    }
-    Ok(())
 }
 
 /// Without `--photons` in map mode, the pilot's budget ([`photon_budget`]: the photons a

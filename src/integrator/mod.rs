@@ -2,6 +2,7 @@
 //! maths lives in its own module, and the per-hit step shared between them (and with photon
 //! tracing) lives below them in [`crate::shading`].
 
+pub mod capability;
 pub mod caustic;
 pub mod hybrid;
 pub mod light_trace;
@@ -261,21 +262,6 @@ impl Integrator {
         }
     }
 
-    /// Only the path tracer and the hybrid (with its volumetric caustic map,
-    /// [`volume_map`]) trace light through scattering media ([`crate::volume`]); another
-    /// method on a scene with media is a usage error naming what scatters.
-    pub fn check_media(&self, scene: &Scene) -> Result<()> {
-        if !scene.has_media() || matches!(self, Integrator::Path { .. } | Integrator::Hybrid { .. })
-        {
-            return Ok(());
-        }
-        let what = crate::shading::media::summary(scene);
-        Err(Error::Usage(format!(
-            "--method {} does not trace scattering media ({what}); use --method path, hybrid or auto",
-            self.method().name()
-        )))
-    }
-
     /// This integrator with polarized transport when `polarization` says so (the plan's
     /// [`crate::plan::Plan::decide_polarization`]): the path tracer becomes
     /// [`Integrator::Polarized`], the hybrid traces polarized photons and camera paths;
@@ -352,8 +338,7 @@ impl Integrator {
         range: Option<Range<u64>>,
         observer: Option<Observer>,
     ) -> Result<(Film, RenderStats)> {
-        self.check()?;
-        self.check_media(scene)?;
+        self.check_scene(scene, camera, settings.spectral)?;
         check_memory(settings.width, settings.height, self.method())?;
         let total = self.total_units(settings);
         if let Some(r) = &range {

@@ -12,6 +12,7 @@
 //! are private and read through methods. Rays reach it only through [`crate::interaction`].
 
 pub mod contact;
+mod content;
 mod crystal_axes;
 pub mod desc;
 pub mod geometry;

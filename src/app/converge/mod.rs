@@ -153,7 +153,6 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
         .as_deref()
         .map(crate::measure::read_reference_file)
         .transpose()?;
-    prepare_dir(&opts.out_dir)?;
     // The scene `iris render` renders for the same file and flags (the default drop-in
     // preview: floor, studio, framing), from the one preparation.
     let reference_size = given_reference.as_ref().map(|r| (r.width, r.height));
@@ -181,6 +180,8 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
     });
     check_fit(opts, given_reference.as_ref(), reference_method, (w, h))?;
     let job = Job::new(opts, &scene, Camera::new(&cam_desc, w, h), (w, h));
+    job.check_methods(opts.methods.iter().chain(reference_method.as_ref()))?;
+    prepare_dir(&opts.out_dir)?;
     let mut files = Vec::new();
     let (reference, rendered_reference) = match given_reference {
         Some(r) => (r, None),
@@ -385,21 +386,44 @@ impl<'a> Job<'a> {
         settings: &RenderSettings,
         observer: Option<crate::render::Observer>,
     ) -> Result<(ImageRgb, RenderStats)> {
+        let (integrator, settings) = self.integrator(method, settings)?;
+        integrator.render_progressive(self.scene, &self.camera, &settings, observer)
+    }
+
+    /// The integrator of `method` and the settings it renders with: as `iris render
+    /// --polarization auto` without a polarizer, a scene with a crystal or a polarizer
+    /// sheet is polarized (and so spectral) for the methods that trace polarized light.
+    fn integrator(
+        &self,
+        method: Method,
+        settings: &RenderSettings,
+    ) -> Result<(Integrator, RenderSettings)> {
         let photon = PhotonSettings {
             passes: UNBOUNDED_PASSES,
             ..PhotonSettings::default()
         };
-        // As `iris render --polarization auto` without a polarizer: a scene with a crystal
-        // or a polarizer sheet is polarized (and so spectral) for the methods that trace
-        // polarized light.
         let polarized = crate::plan::needs_polarization(self.scene)
             .then_some(crate::plan::Polarization { polarizer: None });
         let settings = RenderSettings {
             spectral: settings.spectral || polarized.is_some(),
             ..settings.clone()
         };
-        Integrator::new(method, 64, &photon)?
-            .polarized(polarized)
-            .render_progressive(self.scene, &self.camera, &settings, observer)
+        let integrator = Integrator::new(method, 64, &photon)?.polarized(polarized);
+        Ok((integrator, settings))
+    }
+
+    /// Refuses, before anything is rendered, a method in `methods` that cannot render the
+    /// scene ([`Integrator::check_scene`]: media, the camera, the caustic modes).
+    fn check_methods<'m>(&self, methods: impl IntoIterator<Item = &'m Method>) -> Result<()> {
+        for &method in methods {
+            let (integrator, settings) = self.integrator(method, &self.base)?;
+            integrator
+                .check_scene(self.scene, &self.camera, settings.spectral)
+                .map_err(|e| match e {
+                    Error::Usage(m) => Error::Usage(format!("--methods {}: {m}", method.name())),
+                    e => e,
+                })?;
+        }
+        Ok(())
     }
 }

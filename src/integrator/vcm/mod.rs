@@ -39,7 +39,7 @@ pub mod mis;
 
 use super::sppm::{first_radius, pass_wavelength_variate, radius2_factor};
 use crate::camera::Camera;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::integrator::light_trace::{self, Splatter};
 use crate::photon::emit::{PhotonEmitter, PhotonNumbers};
 use crate::photon::grid::HashGrid;
@@ -88,13 +88,6 @@ pub fn render(
     range: Option<std::ops::Range<u64>>,
     observer: Option<Observer>,
 ) -> Result<(Film, RenderStats)> {
-    if !camera.is_perspective() {
-        return Err(Error::Usage(format!(
-            "--method {}: connecting light paths to the camera needs a perspective camera; \
-             this scene's is orthographic (use --method path or sppm)",
-            if vcm.merge { "vcm" } else { "bpt" }
-        )));
-    }
     let run = Run {
         scene,
         camera,
