@@ -181,6 +181,9 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
     });
     check_fit(opts, given_reference.as_ref(), reference_method, (w, h))?;
     let job = Job::new(opts, &scene, Camera::new(&cam_desc, w, h), (w, h));
+    // From the first render on, a signal asks the renders to stop at their safe points
+    // and the report is written; before it (loading, checks) the process exits at once.
+    let _honour = crate::interrupt::Honour::begin();
     let mut files = Vec::new();
     let (reference, rendered_reference) = match given_reference {
         Some(r) => (r, None),
