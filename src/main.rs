@@ -1,12 +1,14 @@
 //! The `iris` command line: parses flags, calls [`iris::app`], prints a summary, and turns
 //! errors into a message on stderr and a non-zero exit code.
 //!
-//! Interruption: the first SIGINT (Ctrl-C) or SIGTERM asks the render to stop
-//! ([`iris::render::guard::request_stop`]); it finishes the tiles (SPPM: the pass) in
-//! flight, writes the image so far atomically, says so, and exits with 130 (128 + SIGINT,
-//! so shells and scripts see the interruption). A second one exits at once with 130;
-//! outputs are written to a temporary name and renamed, so no half-written file is left
-//! under the output's name.
+//! Interruption ([`iris::interrupt`]): during a render, the first SIGINT (Ctrl-C) or
+//! SIGTERM asks it to stop ([`iris::render::guard::request_stop`]); it finishes the tiles
+//! (SPPM: the pass) in flight, writes the image so far atomically, says so, and exits with
+//! 130 (128 + SIGINT, so shells and scripts see the interruption). Outside a render
+//! (loading, reading or merging images) nothing would act on the request, so the signal
+//! exits at once with 130, as a second signal always does; outputs are written to a
+//! temporary name and renamed, and an exit waits for a write in flight, so no half-written
+//! or temporary file is left.
 #![forbid(unsafe_code)]
 
 use clap::Parser;
@@ -56,15 +58,12 @@ fn run(cli: Cli) -> iris::Result<()> {
     }
 }
 
-/// Exit code of an interrupted run: 128 + SIGINT.
-const INTERRUPTED: u8 = 130;
-
 fn main() -> ExitCode {
     let cli = Cli::parse();
     iris::load::panic_net::show_caught_panics(cli.verbose);
     let handler = ctrlc::set_handler(|| {
-        if iris::render::guard::stop_requested() {
-            std::process::exit(INTERRUPTED.into());
+        if iris::render::guard::stop_requested() || !iris::interrupt::honoured() {
+            iris::interrupt::exit_now();
         }
         eprintln!("\niris: stopping: finishing the work in flight and writing what is done (again to quit at once)");
         iris::render::guard::request_stop();
@@ -73,7 +72,9 @@ fn main() -> ExitCode {
         eprintln!("warning: cannot catch Ctrl-C ({e}): an interrupted render writes nothing");
     }
     match run(cli) {
-        Ok(()) if iris::render::guard::stop_requested() => ExitCode::from(INTERRUPTED),
+        Ok(()) if iris::render::guard::stop_requested() => {
+            ExitCode::from(iris::interrupt::EXIT_INTERRUPTED)
+        }
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");

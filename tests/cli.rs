@@ -1,8 +1,13 @@
 //! The `iris` binary as a user meets it: a successful render writes the image and a
 //! one-line summary; bad files, values and flags end in a clear message naming the file or
-//! the flag, a non-zero exit code, and no output (not even a temporary file).
+//! the flag, a non-zero exit code, and no output (not even a temporary file). Special and
+//! oversized input files: `cli/files.rs`; outputs checked before the work: `cli/outputs.rs`.
 
 mod common;
+#[path = "cli/files.rs"]
+mod files;
+#[path = "cli/outputs.rs"]
+mod outputs;
 
 use common::{entries, iris, stderr};
 

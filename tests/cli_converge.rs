@@ -435,3 +435,33 @@ fn converge_refuses_a_method_that_cannot_render_the_scene_before_rendering() {
         );
     }
 }
+
+/// A `--reference` inside DIR under a name a run writes is refused before rendering (the
+/// path run would overwrite it).
+#[test]
+fn converge_refuses_a_reference_its_runs_would_overwrite() {
+    let dir = common::scratch_dir("cli_converge_overwrite");
+    std::fs::create_dir_all(dir.join("out")).unwrap();
+    let r = reference(&dir);
+    std::fs::rename(&r, dir.join("out/path.exr")).unwrap();
+    let o = iris(
+        &[
+            "converge",
+            &asset("fig7_1_spheres.glb"),
+            "--methods",
+            "path",
+            "--time",
+            "0.2",
+            "--reference",
+            "out/path.exr",
+            "-o",
+            "out",
+            "-q",
+        ],
+        &dir,
+    );
+    let e = text(&o.stderr);
+    assert!(!o.status.success(), "{e}");
+    assert!(e.contains("path.exr") && e.contains("--reference"), "{e}");
+    assert_eq!(entries(&dir.join("out")), vec!["path.exr".to_string()]);
+}

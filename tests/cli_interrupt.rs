@@ -1,7 +1,8 @@
 //! Interrupting `iris render` (issue 7): SIGINT or SIGTERM during a long render writes the
 //! image rendered so far (atomically: the output name holds a whole image, no temporary file
 //! is left) and exits with 130; every method stops at its next safe point (per-sample
-//! methods: after the tiles in flight; SPPM: after the pass).
+//! methods: after the tiles in flight; SPPM: after the pass). Outside a render, where nothing
+//! would act on a stop request, a signal exits at once with 130 (issue 48).
 
 mod common;
 
@@ -120,4 +121,53 @@ fn an_uninterrupted_render_exits_zero_and_reports_no_bad_samples() {
         !err.contains("interrupted") && !err.contains("NaN"),
         "{err}"
     );
+}
+
+#[test]
+fn sigterm_outside_a_render_exits_at_once() {
+    // `iris info` of a file with 20 000 objects prints about 0.6 MB on stdout at the end.
+    // The test reads its first bytes (so the handler is installed and the scene loaded),
+    // then stops reading: the child waits on the full pipe, as it would on any slow I/O,
+    // with no render running that could act on a stop request. SIGTERM must end it with
+    // 130 at once, not leave it waiting for a reader (it would wait forever: the bound
+    // only catches that).
+    let dir = common::scratch_dir("interrupt_info");
+    let mut obj = String::new();
+    for i in 0..20_000 {
+        let x = i as f32;
+        obj.push_str(&format!(
+            "o part{i}\nv {x} 0 0\nv {} 0 0\nv {x} 1 0\nf -3 -2 -1\n",
+            x + 0.5
+        ));
+    }
+    std::fs::write(dir.join("many.obj"), obj).expect("write obj");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_iris"))
+        .args(["info", "many.obj"])
+        .current_dir(&dir)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("start iris");
+    let mut stdout = child.stdout.take().expect("stdout");
+    let mut first = [0u8; 16];
+    std::io::Read::read_exact(&mut stdout, &mut first).expect("the first bytes of info");
+    let status = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .expect("kill");
+    assert!(status.success(), "kill -TERM failed");
+    let t = Instant::now();
+    let code = loop {
+        if let Some(s) = child.try_wait().expect("wait") {
+            break s.code();
+        }
+        if t.elapsed() > HANG {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("iris info still waiting on its output {HANG:?} after SIGTERM");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    drop(stdout);
+    assert_eq!(code, Some(130));
 }

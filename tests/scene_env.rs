@@ -112,7 +112,10 @@ fn bad_values_name_the_file_and_the_element() {
     let dir = common::scratch_dir("scene_env_bad");
     std::fs::write(dir.join("sky.png"), b"not a map").expect("write");
     let cases = [
-        (json!("missing.hdr"), "file not found"),
+        (
+            json!("missing.hdr"),
+            "missing.hdr: No such file or directory",
+        ),
         (json!("sky.png"), ".exr or .hdr"),
         (json!(""), "expected a .exr/.hdr file name"),
         (json!(-1.0), "finite and ≥ 0"),

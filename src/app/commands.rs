@@ -253,6 +253,7 @@ pub fn diff(image: &Path, reference: &Path, exact: bool) -> Result<()> {
 
 /// `iris gem`: writes the gem's .glb and says so.
 pub fn gem(spec: &crate::authoring::cuts::preview::GemSpec, output: &Path) -> Result<()> {
+    crate::fileio::output::check_file(output)?;
     crate::authoring::cuts::preview::write_gem(output, spec)?;
     eprintln!("wrote {}", output.display());
     Ok(())
@@ -277,6 +278,7 @@ pub fn gallery(opts: &crate::app::gallery::GalleryOptions) -> Result<()> {
 
 /// `iris gen-assets`: regenerates the project's scenes under `dir`, one line per file.
 pub fn gen_assets(dir: &Path) -> Result<()> {
+    crate::fileio::output::check_dir(dir)?;
     for p in crate::assets::write_all_assets(dir)? {
         eprintln!("wrote {}", p.display());
     }

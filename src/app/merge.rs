@@ -119,6 +119,21 @@ fn read_part(path: &Path) -> Result<Part> {
     })
 }
 
+/// The outputs (`-o`, `--report`) checked before any part is read
+/// ([`crate::fileio::output`]): writable, distinct, and none of them a part or the
+/// `--reference`.
+fn check_outputs(opts: &MergeOptions) -> Result<()> {
+    use crate::fileio::output::{check_distinct, check_file};
+    let mut outputs = vec![("-o", opts.output.as_path())];
+    outputs.extend(opts.report.as_deref().map(|p| ("--report", p)));
+    for (_, path) in &outputs {
+        check_file(path)?;
+    }
+    let mut inputs: Vec<(&str, &Path)> = opts.parts.iter().map(|p| ("part", p.as_path())).collect();
+    inputs.extend(opts.reference.as_deref().map(|p| ("--reference", p)));
+    check_distinct(&outputs, &inputs)
+}
+
 /// Refuses `b` unless it belongs to the same render as `a` (identity and shard count).
 fn check_same_render(a: &Part, b: &Part) -> Result<()> {
     let differ = |what: &str, va: &str, vb: &str| {
@@ -223,6 +238,7 @@ fn missing(parts: &[Part], n: u32, total: Option<u64>, unit: &str) -> Result<Vec
 pub fn merge_command(opts: &MergeOptions) -> Result<MergeSummary> {
     let start = Instant::now();
     output::check_extension(&opts.output)?;
+    check_outputs(opts)?;
     let parts = read_parts(opts)?;
     let first = &parts[0].header;
     let (unit, total, n) = (first.unit().to_string(), first.total(), first.shard.count);

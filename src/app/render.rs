@@ -98,6 +98,7 @@ impl<'a> RenderJob<'a> {
         let denoise = crate::denoise::mode::choose(opts.denoise, &output)?;
         let measure = &opts.measure;
         measure.check_flags()?;
+        opts.check_outputs(opts.output.as_deref())?;
         let reference = measure
             .reference
             .as_deref()
@@ -197,10 +198,17 @@ impl<'a> RenderJob<'a> {
             write_image,
             mut progress,
         } = hooks;
+        // A signal from here on stops the render at a safe point, and its image and
+        // measuring outputs are written ([`crate::interrupt`]).
+        let _honour = crate::interrupt::Honour::begin();
         if !write_image && self.opts.shard.is_some() {
             return Err(crate::Error::Usage(
                 "--shard writes a partial image: give it an output file".into(),
             ));
+        }
+        if write_image {
+            // The default output (`-o` not given) is checked here, before rendering.
+            self.opts.check_outputs(Some(&self.output))?;
         }
         let (opts, measure) = (self.opts, &self.opts.measure);
         let (scene, (w, h)) = (&self.prepared.scene, self.prepared.size);

@@ -172,6 +172,28 @@ impl RenderOptions {
         }
     }
 
+    /// Checks the outputs before any work ([`crate::fileio::output`]): `output` (the image,
+    /// when one is written), `--exr-copy`, `--report` and `--plot` are writable, no two name
+    /// one file, and none is the scene or the `--reference`.
+    pub(super) fn check_outputs(&self, output: Option<&Path>) -> crate::error::Result<()> {
+        use crate::fileio::output::{check_distinct, check_file};
+        let mut outputs: Vec<(&str, &Path)> = output.map(|o| ("-o", o)).into_iter().collect();
+        outputs.extend(self.exr_copy.as_deref().map(|p| ("--exr-copy", p)));
+        outputs.extend(self.measure.report.as_deref().map(|p| ("--report", p)));
+        outputs.extend(self.measure.plot.as_deref().map(|p| ("--plot", p)));
+        for (_, path) in &outputs {
+            check_file(path)?;
+        }
+        let mut inputs = vec![("scene", self.scene.as_path())];
+        inputs.extend(
+            self.measure
+                .reference
+                .as_deref()
+                .map(|p| ("--reference", p)),
+        );
+        check_distinct(&outputs, &inputs)
+    }
+
     /// The most units `method` takes: samples per pixel, or passes for SPPM.
     pub(super) fn units(&self, method: Method) -> u32 {
         if method == Method::Sppm {

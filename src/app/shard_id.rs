@@ -52,11 +52,15 @@ pub fn sha256_text(s: &str) -> String {
     hex(&Sha256::digest(s.as_bytes()))
 }
 
-/// SHA-256 of the file at `path`, hex; an error names the file.
+/// SHA-256 of the scene file at `path` (read as [`crate::fileio::Input::Scene`]), hex; an
+/// error names the file.
 pub fn file_sha256(path: &Path) -> Result<String> {
-    let bytes = std::fs::read(path)
+    let mut file = crate::fileio::input::open(path, crate::fileio::Input::Scene)
+        .map_err(|e| e.at(path, ""))?;
+    let mut hasher = Sha256::new();
+    std::io::copy(&mut file, &mut hasher)
         .map_err(|e| LoadError::new(path, "", LoadErrorKind::Io, e.to_string()))?;
-    Ok(hex(&Sha256::digest(&bytes)))
+    Ok(hex(&hasher.finalize()))
 }
 
 /// SHA-256 of the render scene's content ([`Scene::write_content`]).

@@ -80,14 +80,9 @@ const MAX_TRIANGLES: usize = 1 << 27;
 
 /// Loads a glTF/GLB file into a world-space scene description (not yet validated).
 pub fn load_gltf(path: &Path) -> Result<SceneDesc, LoadError> {
-    let bytes = Files::Disk.read(path).map_err(|e| {
-        LoadError::new(
-            path,
-            "",
-            LoadErrorKind::Io,
-            format!("cannot read file: {e}"),
-        )
-    })?;
+    let bytes = Files::Disk
+        .read(path, crate::fileio::Input::Scene)
+        .map_err(|e| e.at(path, ""))?;
     load_gltf_bytes(path, &bytes, Files::Disk)
 }
 

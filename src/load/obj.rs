@@ -49,8 +49,8 @@ struct Libraries {
 /// Loads an OBJ file (and its MTL libraries) into a world-space scene description.
 pub fn load_obj(path: &Path) -> Result<SceneDesc, LoadError> {
     let bytes = Files::Disk
-        .read(path)
-        .map_err(|e| LoadError::new(path, "", LoadErrorKind::Io, e.to_string()))?;
+        .read(path, crate::fileio::Input::Scene)
+        .map_err(|e| e.at(path, ""))?;
     load_obj_bytes(path, bytes, Files::Disk)
 }
 
@@ -261,7 +261,7 @@ fn load_library(
             repeated = true;
             continue;
         }
-        let text = match files.read(&file) {
+        let text = match files.read(&file, crate::fileio::Input::Scene) {
             Ok(bytes) => utf8_lossy(&file, bytes, &mut state.warnings),
             Err(e) => {
                 state.warnings.push(format!(

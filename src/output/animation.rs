@@ -43,8 +43,10 @@ impl Frame8 {
     /// Reads a PNG frame (8-bit RGB or RGBA, as `iris render` writes them; other layouts
     /// are converted). Errors name the file.
     pub fn read_png(path: &Path) -> Result<Frame8> {
-        let img = image::ImageReader::open(path)
-            .and_then(|r| r.with_guessed_format())
+        let file = crate::fileio::input::open(path, crate::fileio::Input::Image)
+            .map_err(|e| bad(path, e.to_string()))?;
+        let img = image::ImageReader::new(std::io::BufReader::new(file))
+            .with_guessed_format()
             .map_err(|e| bad(path, e.to_string()))?
             .decode()
             .map_err(|e| bad(path, e.to_string()))?;

@@ -1,7 +1,9 @@
 //! Atomic file replacement: the bytes go to a temporary file in the target's directory
 //! (`.<name>.tmp-<pid>-<n>`), are flushed to disk with `fsync`, and only then renamed over
 //! the target. A reader therefore sees either the old file or the complete new one, never a
-//! half-written output. On any failure the temporary file is removed.
+//! half-written output. On any failure the temporary file is removed. A Ctrl-C or SIGTERM
+//! that ends the process waits for a write in flight ([`crate::interrupt::Writing`]), and a
+//! write does not start once the process is ending, so no temporary file outlives it.
 //!
 //! Invariant: the temporary file lives in the same directory as the target, so the final
 //! `rename` never crosses a file system (POSIX `rename(2)` is atomic only within one).
@@ -30,12 +32,24 @@ pub fn write_file_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => PathBuf::from("."),
     };
+    // The rename would replace a directory, device or FIFO itself (`/dev/null` as root).
+    if let Ok(meta) = fs::metadata(path) {
+        if !meta.is_file() {
+            let what = crate::fileio::input::describe(path, &meta);
+            return Err(output_err(format!("it is {what}, not a regular file")));
+        }
+    }
     let n = COUNTER.fetch_add(1, Ordering::Relaxed);
     let mut tmp_name = std::ffi::OsString::from(".");
     tmp_name.push(name);
     tmp_name.push(format!(".tmp-{}-{n}", std::process::id()));
     let tmp = dir.join(tmp_name);
 
+    let Some(_writing) = crate::interrupt::Writing::begin() else {
+        return Err(output_err(
+            "not written: the process is ending on a signal".into(),
+        ));
+    };
     let result = write_and_sync(&tmp, bytes).and_then(|()| fs::rename(&tmp, path));
     match result {
         Ok(()) => {

@@ -9,11 +9,13 @@
 //! Pixel (x, y) is row-major with y = 0 the top row, matching the EXR data window.
 
 use crate::error::{LoadError, LoadErrorKind};
+use crate::fileio::input::Reader;
+use crate::fileio::Input;
 use crate::image::ImageRgb;
 use exr::image::write::channels::WritableChannels;
 use exr::image::write::layers::WritableLayers;
 use exr::prelude::*;
-use std::io::Cursor;
+use std::io::{BufReader, Cursor, Seek, SeekFrom};
 use std::path::Path;
 
 /// Largest image [`decode`] accepts (pixels): 2^28 ≈ 268 M, i.e. 3 GiB of f32 RGB.
@@ -126,17 +128,19 @@ fn to_bytes<'i, L: WritableLayers<'i>>(
     Ok(bytes)
 }
 
-/// The file's bytes, once every layer's size is within [`MAX_PIXELS`]; errors name the
-/// file and the element: `parsed` for a header that does not parse, `sized(i)` for layer
-/// `i` that is too large.
-pub(super) fn read_checked(
+/// The file opened for decoding ([`crate::fileio::input`]: a regular file within
+/// [`crate::fileio::input::EXR_BYTES`]), at its start, once the header parses and every
+/// layer's size is within [`MAX_PIXELS`]; errors name the file and the element: `parsed`
+/// for a header that does not parse, `sized(i)` for layer `i` that is too large. Only the
+/// header is read here; the decoder reads the pixels from the file.
+pub(super) fn open_checked(
     path: &Path,
     parsed: &str,
     sized: impl Fn(usize) -> String,
-) -> std::result::Result<Vec<u8>, LoadError> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| LoadError::new(path, "", LoadErrorKind::Io, e.to_string()))?;
-    let meta = MetaData::read_from_buffered(Cursor::new(&bytes), false)
+) -> std::result::Result<BufReader<Reader>, LoadError> {
+    let file = crate::fileio::input::open(path, Input::Exr).map_err(|e| e.at(path, ""))?;
+    let mut reader = BufReader::new(file);
+    let meta = MetaData::read_from_buffered(&mut reader, false)
         .map_err(|e| parse_error(path, parsed.to_string(), e))?;
     for (i, header) in meta.headers.iter().enumerate() {
         let size = header.layer_size;
@@ -153,7 +157,10 @@ pub(super) fn read_checked(
             ));
         }
     }
-    Ok(bytes)
+    reader
+        .seek(SeekFrom::Start(0))
+        .map_err(|e| LoadError::new(path, "", LoadErrorKind::Io, e.to_string()))?;
+    Ok(reader)
 }
 
 /// A parse error of the EXR reader, naming the file and `element`.
@@ -182,7 +189,7 @@ fn set_pixel(img: &mut ImageRgb, pos: Vec2<usize>, (r, g, b): (f32, f32, f32)) {
 /// extra image [`encode_with_layer`] writes) at full resolution.
 pub fn decode_layer(path: &Path, name: &str) -> std::result::Result<ImageRgb, LoadError> {
     let element = format!("layer {name}");
-    let bytes = read_checked(path, &element, |_| element.clone())?;
+    let file = open_checked(path, &element, |_| element.clone())?;
     let channel = |c: &str| format!("{name}.{c}");
     let image = read()
         .no_deep_data()
@@ -195,14 +202,14 @@ pub fn decode_layer(path: &Path, name: &str) -> std::result::Result<ImageRgb, Lo
         .first_valid_layer()
         .all_attributes()
         .non_parallel()
-        .from_buffered(Cursor::new(&bytes))
+        .from_buffered(file)
         .map_err(|e| parse_error(path, element.clone(), e))?;
     Ok(image.layer_data.channel_data.pixels)
 }
 
 /// Reads the first RGB layer of an EXR file at its full resolution.
 pub fn decode(path: &Path) -> std::result::Result<ImageRgb, LoadError> {
-    let bytes = read_checked(path, "", |i| format!("layer {i}"))?;
+    let file = open_checked(path, "", |i| format!("layer {i}"))?;
     let image = read()
         .no_deep_data()
         .largest_resolution_level()
@@ -213,7 +220,7 @@ pub fn decode(path: &Path) -> std::result::Result<ImageRgb, LoadError> {
         .first_valid_layer()
         .all_attributes()
         .non_parallel()
-        .from_buffered(Cursor::new(&bytes))
+        .from_buffered(file)
         .map_err(|e| parse_error(path, String::new(), e))?;
     Ok(image.layer_data.channel_data.pixels)
 }

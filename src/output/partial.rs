@@ -18,11 +18,10 @@
 //! ([`read`] says so, naming it).
 
 use super::atomic::write_file_atomic;
-use super::exr_io::{encode_channels, plane, read_checked};
+use super::exr_io::{encode_channels, open_checked, plane};
 use crate::error::{Error, LoadError, LoadErrorKind, Result};
 use crate::image::ExactImage;
 use exr::prelude::*;
-use std::io::Cursor;
 use std::path::Path;
 
 /// The attribute holding the shard's header.
@@ -127,10 +126,10 @@ pub fn write(path: &Path, entries: &[(String, String)], exact: &ExactImage) -> R
 /// Reads a partial image; errors name the file and what is wrong (not an EXR, not a
 /// partial — no [`ATTRIBUTE`] —, another format version, a missing channel).
 pub fn read(path: &Path) -> std::result::Result<Partial, LoadError> {
-    let bytes = read_checked(path, "", |i| format!("layer {i}"))?;
+    let file = open_checked(path, "", |i| format!("layer {i}"))?;
     let err = |element: &str, kind, detail: String| LoadError::new(path, element, kind, detail);
-    let image = read_all_channels_from_bytes(&bytes)
-        .map_err(|e| err("", LoadErrorKind::Parse, e.to_string()))?;
+    let image =
+        read_all_channels(file).map_err(|e| err("", LoadErrorKind::Parse, e.to_string()))?;
     let layer = image.layer_data.first().ok_or_else(|| {
         err(
             "",
@@ -221,9 +220,9 @@ fn text_or_empty(s: &str) -> Text {
     Text::new_or_none(s).unwrap_or_default()
 }
 
-/// Every channel of every layer of EXR `bytes`, at full resolution, with attributes.
-fn read_all_channels_from_bytes(
-    bytes: &[u8],
+/// Every channel of every layer of the EXR `file`, at full resolution, with attributes.
+fn read_all_channels(
+    file: impl std::io::Read + std::io::Seek,
 ) -> exr::error::Result<Image<Layers<AnyChannels<FlatSamples>>>> {
     exr::prelude::read()
         .no_deep_data()
@@ -232,7 +231,7 @@ fn read_all_channels_from_bytes(
         .all_layers()
         .all_attributes()
         .non_parallel()
-        .from_buffered(Cursor::new(bytes))
+        .from_buffered(file)
 }
 
 #[cfg(test)]

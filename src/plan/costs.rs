@@ -152,7 +152,7 @@ fn gltf_counts(path: &Path) -> Option<(usize, usize)> {
     if ext != "gltf" && ext != "glb" {
         return None;
     }
-    let bytes = std::fs::read(path).ok()?;
+    let bytes = crate::fileio::input::read(path, crate::fileio::Input::Scene).ok()?;
     let g = gltf::Gltf::from_slice_without_validation(&bytes).ok()?;
     Some((g.document.images().len(), g.document.meshes().len()))
 }

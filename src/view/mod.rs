@@ -57,6 +57,7 @@ pub fn view_command(opts: &ViewOptions) -> Result<()> {
             opts.out_dir.display()
         )));
     }
+    crate::fileio::output::check_dir(&opts.out_dir)?;
     let setup = session::Setup {
         scene,
         preview_size,
@@ -64,6 +65,8 @@ pub fn view_command(opts: &ViewOptions) -> Result<()> {
         out_dir: opts.out_dir.clone(),
     };
     let shared = session::Shared::new(setup, controls::Controls::new(camera));
+    // While serving, a signal shuts the server down gracefully (`serve`).
+    let _honour = crate::interrupt::Honour::begin();
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
         .enable_all()

@@ -421,7 +421,8 @@ impl Shared {
         let started = Instant::now();
         let opts = crate::cli::parse_render(&args).map_err(|e| e.to_string())?;
         let summary = crate::app::render_command(&opts).map_err(|e| e.to_string())?;
-        let png = std::fs::read(&output).map_err(|e| format!("{}: {e}", output.display()))?;
+        let png = crate::fileio::input::read(&output, crate::fileio::Input::Image)
+            .map_err(|e| format!("{}: {e}", output.display()))?;
         let mut inner = self.lock();
         let id = inner.finals.back().map_or(1, |f| f.0 + 1);
         inner.finals.push_back((id, Arc::new(png)));

@@ -181,7 +181,11 @@ pub fn converge_command(opts: &ConvergeOptions) -> Result<ConvergeSummary> {
     check_fit(opts, given_reference.as_ref(), reference_method, (w, h))?;
     let job = Job::new(opts, &scene, Camera::new(&cam_desc, w, h), (w, h));
     job.check_methods(opts.methods.iter().chain(reference_method.as_ref()))?;
+    check_outputs(opts, reference_method.is_some())?;
     prepare_dir(&opts.out_dir)?;
+    // From the first render on, a signal asks the renders to stop at their safe points
+    // and the report is written; before it (loading, checks) the process exits at once.
+    let _honour = crate::interrupt::Honour::begin();
     let mut files = Vec::new();
     let (reference, rendered_reference) = match given_reference {
         Some(r) => (r, None),
@@ -333,6 +337,23 @@ fn write_plot(opts: &ConvergeOptions, curves: &[Curve]) -> Result<PathBuf> {
         &series,
     )?;
     Ok(plot)
+}
+
+/// Refuses an output in DIR that names an input (the scene or `--reference`): the runs
+/// would overwrite what the command reads.
+fn check_outputs(opts: &ConvergeOptions, renders_reference: bool) -> Result<()> {
+    let dir = &opts.out_dir;
+    let mut outputs: Vec<PathBuf> = vec![dir.join("report.csv"), dir.join("convergence.png")];
+    if renders_reference {
+        outputs.push(dir.join("reference.exr"));
+    }
+    for m in &opts.methods {
+        outputs.extend(["exr", "png"].map(|ext| dir.join(format!("{}.{ext}", m.name()))));
+    }
+    let outputs: Vec<(&str, &Path)> = outputs.iter().map(|p| ("-o", p.as_path())).collect();
+    let mut inputs = vec![("scene", opts.scene.as_path())];
+    inputs.extend(opts.reference.as_deref().map(|r| ("--reference", r)));
+    crate::fileio::output::check_distinct(&outputs, &inputs)
 }
 
 /// Creates the output directory and proves it writable (a probe file, removed again), so a

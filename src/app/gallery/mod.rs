@@ -167,12 +167,15 @@ pub fn run(opts: &GalleryOptions) -> Result<GallerySummary> {
         }
         _ => None,
     };
+    crate::fileio::output::check_dir(&opts.out)?;
     std::fs::create_dir_all(&opts.out).map_err(|e| Error::Output {
         path: opts.out.clone(),
         reason: format!("cannot create directory: {e}"),
     })?;
     let mut rendered = Vec::new();
     let count = entries.len();
+    // A signal stops the entry in flight, and the page of what is done is written.
+    let _honour = crate::interrupt::Honour::begin();
     for (i, entry) in entries.into_iter().enumerate() {
         let source = match (entry.origin, &shared) {
             (Origin::Project, _) => PathBuf::from(entry.path),
@@ -202,7 +205,7 @@ pub fn run(opts: &GalleryOptions) -> Result<GallerySummary> {
         shared_missing.as_deref(),
     );
     // `--only` into a gallery that has a page: put the new sections into it.
-    if let (false, Ok(old)) = (opts.only.is_empty(), std::fs::read_to_string(&page)) {
+    if let (false, Some(old)) = (opts.only.is_empty(), read_text(&page)) {
         let names: Vec<&str> = ENTRIES.iter().map(|e| e.name).collect();
         text = splice::splice(&old, &text, &names);
     }
@@ -212,6 +215,13 @@ pub fn run(opts: &GalleryOptions) -> Result<GallerySummary> {
         shared_missing,
         page,
     })
+}
+
+/// The text of the page or manifest at `path` (a regular file within
+/// [`crate::fileio::input::TEXT_BYTES`], UTF-8 with invalid bytes replaced), if there is one.
+fn read_text(path: &Path) -> Option<String> {
+    let bytes = crate::fileio::input::read(path, crate::fileio::Input::Text).ok()?;
+    Some(String::from_utf8_lossy(&bytes).into_owned())
 }
 
 /// The licence / attribution cell of `MANIFEST.md`'s table row for `path` (relative to the
@@ -235,7 +245,7 @@ fn page_text(
 ) -> String {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let manifest = shared
-        .and_then(|d| std::fs::read_to_string(d.join("MANIFEST.md")).ok())
+        .and_then(|d| read_text(&d.join("MANIFEST.md")))
         .unwrap_or_default();
     let mut s = String::from("# Iris gallery\n\n");
     let _ = writeln!(

@@ -161,6 +161,7 @@ pub fn check(opts: &GemReportOptions) -> Result<()> {
             opts.out_dir.display()
         )));
     }
+    crate::fileio::output::check_dir(&opts.out_dir)?;
     Ok(())
 }
 
@@ -249,6 +250,8 @@ fn render_all(
     order.sort_by_key(|&i| instrument_rank(list[i].instrument));
     let mut images: Vec<Option<ImageRgb>> = vec![None; list.len()];
     let mut built: Option<(Instrument, Environment)> = None;
+    // A signal stops the shot in flight, and nothing is written.
+    let _honour = crate::interrupt::Honour::begin();
     for (k, &i) in order.iter().enumerate() {
         let shot = &list[i];
         let lighting = match built.take() {

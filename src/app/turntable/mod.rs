@@ -212,6 +212,8 @@ pub fn turntable_command(
         render,
         ..opts.clone()
     };
+    // A signal stops the frame in flight, which is removed ([`TurntableSummary::interrupted`]).
+    let _honour = crate::interrupt::Honour::begin();
     for &frame in &frames {
         let ro = frame_options(opts, frame)?;
         let job = RenderJob::new(&ro)?;

@@ -31,6 +31,7 @@ pub use map::{luminance, EnvMap, MAX_TEXELS};
 pub use mapping::{dir_to_uv, uv_to_dir};
 
 use crate::error::{Error, LoadError, LoadErrorKind, Result};
+use crate::fileio::{input, Input};
 use crate::image::ImageRgb;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
@@ -175,6 +176,8 @@ fn uniform_sphere(u: Vec2) -> Vec3 {
 
 /// Loads an equirectangular map from a `.exr` or `.hdr` file (extension, case-insensitive).
 pub fn load(path: &Path) -> Result<EnvMap> {
+    // A directory, FIFO or device is named as such before its name is judged.
+    input::refuse_special(path).map_err(|e| e.at(path, ""))?;
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -200,11 +203,10 @@ pub fn load(path: &Path) -> Result<EnvMap> {
 
 /// Rejects EXR files whose layers exceed [`MAX_TEXELS`] before decoding the pixels.
 fn check_exr_size(path: &Path) -> Result<()> {
-    let file = std::fs::File::open(path)
-        .map_err(|e| LoadError::new(path, "", LoadErrorKind::Io, e.to_string()))?;
+    let file = input::open(path, Input::Exr).map_err(|e| e.at(path, ""))?;
+    let file_len = file.len();
     let meta = exr::meta::MetaData::read_from_buffered(std::io::BufReader::new(file), false)
         .map_err(|e| LoadError::new(path, "", LoadErrorKind::Parse, e.to_string()))?;
-    let file_len = std::fs::metadata(path).map_or(0, |m| m.len());
     for (i, h) in meta.headers.iter().enumerate() {
         let n = h.layer_size.width() as u64 * h.layer_size.height() as u64;
         if n > MAX_TEXELS {
@@ -249,10 +251,10 @@ fn check_plausible(path: &Path, element: &str, texels: u64, file_len: u64) -> Re
 /// Reads a Radiance RGBE (.hdr) file as linear RGB, checking its size before decoding.
 fn read_hdr(path: &Path) -> Result<ImageRgb> {
     use image::ImageDecoder;
-    let io = |e: std::io::Error| LoadError::new(path, "", LoadErrorKind::Io, e.to_string());
     let parse =
         |e: image::ImageError| LoadError::new(path, "", LoadErrorKind::Parse, e.to_string());
-    let file = std::fs::File::open(path).map_err(io)?;
+    let file = input::open(path, Input::Image).map_err(|e| e.at(path, ""))?;
+    let file_len = file.len();
     let decoder =
         image::codecs::hdr::HdrDecoder::new(std::io::BufReader::new(file)).map_err(parse)?;
     let (w, h) = decoder.dimensions();
@@ -269,7 +271,6 @@ fn read_hdr(path: &Path) -> Result<ImageRgb> {
         )
         .into());
     }
-    let file_len = std::fs::metadata(path).map_or(0, |m| m.len());
     check_plausible(path, "header", u64::from(w) * u64::from(h), file_len)?;
     let rgb = image::DynamicImage::from_decoder(decoder)
         .map_err(parse)?

@@ -233,11 +233,12 @@ fn read_environment(ctx: &Ctx<'_>) -> Result<Option<EnvironmentDesc>, LoadError>
                     format!("{file:?}: environment maps must be .exr or .hdr (equirectangular)"),
                 ));
             }
-            if !ctx.files.is_file(&path) {
-                return Err(err(
-                    LoadErrorKind::Io,
-                    format!("file not found: {}", path.display()),
-                ));
+            let kind = match ext.as_deref() {
+                Some("exr") => crate::fileio::Input::Exr,
+                _ => crate::fileio::Input::Image,
+            };
+            if let Err(e) = ctx.files.check(&path, kind) {
+                return Err(err(e.kind, format!("{}: {e}", path.display())));
             }
             EnvironmentDesc::Map(path)
         }

@@ -53,7 +53,7 @@ pub(super) fn load_buffers(
                 UriSource::Embedded(bytes) => (bytes, "its data URI".to_string()),
                 UriSource::File(file) => {
                     let data = files
-                        .read(&file)
+                        .read(&file, crate::fileio::Input::Scene)
                         .map_err(|e| missing(format!("cannot read {}: {e}", file.display())))?;
                     (data, file.display().to_string())
                 }
@@ -162,7 +162,7 @@ fn decode_image(ctx: &Ctx<'_>, index: usize) -> Result<ImageDesc, LoadError> {
             UriSource::Embedded(bytes) => bytes,
             UriSource::File(file) => ctx
                 .files
-                .read(&file)
+                .read(&file, crate::fileio::Input::Image)
                 .map_err(|e| missing(format!("cannot read {}: {e}", file.display())))?,
         };
         &owned

@@ -67,7 +67,7 @@ impl Images {
             path.file_name().unwrap_or_default().to_string_lossy()
         );
         let decoded = files
-            .read(path)
+            .read(path, crate::fileio::Input::Image)
             .map_err(|e| e.to_string())
             .and_then(|bytes| decode_rgba8(&bytes, name).map_err(|(_, e)| e));
         let index = match decoded {
