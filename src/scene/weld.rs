@@ -20,13 +20,16 @@
 //! **The rule.** Points are taken in order; each joins the lowest-indexed earlier
 //! *representative* within ε (max norm), or becomes one. Representatives are never within
 //! ε of each other, so the welding does not chain along a row of close points. A hash grid
-//! of cells 2ε wide holds the representatives; a point within ε of another lies in the same
-//! or an adjacent cell (the 27 around it are searched, so points straddling a cell border
-//! are found), and a cell holds at most 8 representatives: O(n) in all. Non-finite points
-//! weld to nothing. The result depends only on the input (no hashing order, no threads).
+//! of cells 2ε wide holds the representatives; a point within ε of p lies, on each axis, in
+//! p's cell or the neighbour on the side of the cell's middle p is on, so 8 cells are
+//! searched and points straddling a cell border are found. A cell holds at most 8
+//! representatives: O(n) in all. Non-finite points weld to nothing. The result depends only
+//! on the input (no hashing order, no threads).
 
+use crate::math::mix64;
 use glam::{DVec3, Vec3};
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 
 /// ε / D (module docs): 2⁻²⁰ ≈ 9.5·10⁻⁷.
 pub const WELD_SCALE: f64 = 1.0 / (1u32 << 20) as f64;
@@ -59,14 +62,8 @@ pub fn tolerance(points: &[Vec3]) -> f64 {
 pub fn weld(points: &[Vec3]) -> Welded {
     let eps = tolerance(points);
     let cell = 2.0 * eps;
-    let key = |p: DVec3| -> [i64; 3] {
-        if cell > 0.0 {
-            (p / cell).floor().to_array().map(|c| c as i64)
-        } else {
-            [0; 3]
-        }
-    };
-    let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::with_capacity(points.len());
+    let mut grid: HashMap<u64, Vec<u32>, BuildHasherDefault<Premixed>> =
+        HashMap::with_capacity_and_hasher(points.len(), BuildHasherDefault::default());
     let mut corner = Vec::with_capacity(points.len());
     for (i, p) in points.iter().enumerate() {
         if !p.is_finite() {
@@ -74,31 +71,65 @@ pub fn weld(points: &[Vec3]) -> Welded {
             continue;
         }
         let p = p.as_dvec3();
-        let k = key(p);
+        // The cell of p and, per axis, the neighbour on the side p is nearer: a point
+        // within ε of p (cells are 2ε wide) lies in one of these 2 × 2 × 2 cells.
+        let (k, near) = if cell > 0.0 {
+            let u = p / cell;
+            let k = u.floor();
+            (k, (u - k).cmplt(DVec3::splat(0.5)))
+        } else {
+            (DVec3::ZERO, glam::BVec3::FALSE)
+        };
+        let k = k.to_array().map(|c| c as i64);
+        let near = [near.x, near.y, near.z].map(|lower| if lower { -1 } else { 0 });
         let mut found: Option<u32> = None;
-        for dx in -1..=1 {
-            for dy in -1..=1 {
-                for dz in -1..=1 {
-                    let Some(reps) = grid.get(&[k[0] + dx, k[1] + dy, k[2] + dz]) else {
-                        continue;
-                    };
-                    for &r in reps {
-                        let q = points[r as usize].as_dvec3();
-                        if (q - p).abs().max_element() <= eps && found.is_none_or(|f| r < f) {
-                            found = Some(r);
-                        }
-                    }
+        for d in 0..8 {
+            let c = std::array::from_fn(|a| k[a] + near[a] + ((d >> a) & 1));
+            let Some(reps) = grid.get(&cell_key(c)) else {
+                continue;
+            };
+            for &r in reps {
+                let q = points[r as usize].as_dvec3();
+                if (q - p).abs().max_element() <= eps && found.is_none_or(|f| r < f) {
+                    found = Some(r);
                 }
             }
         }
         corner.push(found.unwrap_or_else(|| {
-            grid.entry(k).or_default().push(i as u32);
+            grid.entry(cell_key(k)).or_default().push(i as u32);
             i as u32
         }));
     }
     Welded {
         corner,
         tolerance: eps,
+    }
+}
+
+/// A grid cell's hash key: its three indices mixed by SplitMix64 ([`mix64`]). Two cells
+/// sharing a key only add candidates, each checked by distance, so a collision costs time,
+/// never a wrong weld.
+fn cell_key([x, y, z]: [i64; 3]) -> u64 {
+    mix64(x as u64 ^ mix64(y as u64 ^ mix64(z as u64)))
+}
+
+/// The hasher of keys already mixed by [`cell_key`]: the key itself.
+#[derive(Default)]
+struct Premixed(u64);
+
+impl Hasher for Premixed {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = mix64(self.0 ^ u64::from(b));
+        }
+    }
+
+    fn write_u64(&mut self, v: u64) {
+        self.0 = v;
     }
 }
 
