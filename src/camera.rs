@@ -125,9 +125,12 @@ impl Camera {
     }
 }
 
-/// World-from-camera matrix of a camera at `eye` looking at `target` (camera −Z forward).
+/// World-from-camera matrix of a camera at `eye` looking at `target` (camera −Z forward;
+/// −Z itself when they coincide). The view direction is the f64 difference normalised
+/// safely ([`crate::math::unit_direction`]), so eyes and targets 1e-30 or 1e38 apart
+/// look the right way.
 pub fn look_at(eye: Vec3, target: Vec3, up: Vec3) -> Mat4 {
-    let f = (target - eye).normalize_or(Vec3::NEG_Z);
+    let f = crate::math::unit_direction(target.as_dvec3() - eye.as_dvec3()).unwrap_or(Vec3::NEG_Z);
     let right = f
         .cross(up)
         .try_normalize()

@@ -1,8 +1,9 @@
 //! Small math shared by every module: rays, a deterministic random-number generator,
-//! orthonormal frames and f64 complex numbers (for complex indices of refraction).
+//! orthonormal frames, f64 complex numbers (for complex indices of refraction) and the one
+//! normaliser for directions read from files and flags ([`unit_direction`]).
 //! Directions are unit vectors unless stated; lengths in world units.
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 /// A ray `origin + t·dir`, valid for `t` in `[0, t_max)`.
 ///
@@ -136,6 +137,42 @@ impl Frame {
     }
 }
 
+/// Why a vector given as a direction names none ([`unit_direction`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NoDirection {
+    /// Every component is zero.
+    Zero,
+    /// A component is NaN or infinite.
+    NotFinite,
+}
+
+impl std::fmt::Display for NoDirection {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            NoDirection::Zero => "is zero (a direction needs a non-zero component)",
+            NoDirection::NotFinite => "is not finite (a component is NaN or infinite)",
+        })
+    }
+}
+
+/// The unit vector along `v`: the one normaliser for directions read from files, flags and
+/// node transforms (an optic axis, a polarizer's axis, a light's or camera's direction).
+/// `v` is first divided by its largest |component|, so its squared length lies in [1, 3]
+/// and can neither overflow (3e38 in f32, 1e200 in f64) nor underflow (1e-30 in f32) on
+/// the way; any finite non-zero `v` gives its direction, to f32 rounding. Zero and
+/// non-finite vectors have no direction.
+pub fn unit_direction(v: DVec3) -> Result<Vec3, NoDirection> {
+    if !v.is_finite() {
+        return Err(NoDirection::NotFinite);
+    }
+    let largest = v.abs().max_element();
+    if largest == 0.0 {
+        return Err(NoDirection::Zero);
+    }
+    let scaled = v / largest;
+    Ok((scaled / scaled.length()).as_vec3())
+}
+
 /// A complex number in f64: just what complex indices of refraction n + ik and the
 /// conductor Fresnel equations need (arithmetic, principal square root, |z|²).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -226,6 +263,27 @@ impl std::ops::Div for Complex {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn directions_normalise_without_overflow_or_underflow() {
+        let diagonal = Vec3::new(1.0, 1.0, 0.0) / 2f32.sqrt();
+        for v in [
+            DVec3::new(3e38, 3e38, 0.0),
+            DVec3::new(1e300, 1e300, 0.0),
+            DVec3::new(1e-30, 1e-30, 0.0),
+            DVec3::new(1e-320, 1e-320, 0.0),
+            DVec3::new(2.0, 2.0, 0.0),
+        ] {
+            let u = unit_direction(v).unwrap();
+            assert!((u - diagonal).length() < 1e-7, "{v}: {u}");
+        }
+        assert_eq!(unit_direction(DVec3::ZERO), Err(NoDirection::Zero));
+        assert_eq!(unit_direction(-DVec3::ZERO), Err(NoDirection::Zero));
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let v = DVec3::new(1.0, bad, 0.0);
+            assert_eq!(unit_direction(v), Err(NoDirection::NotFinite));
+        }
+    }
 
     #[test]
     fn rng_is_reproducible_and_uniform() {

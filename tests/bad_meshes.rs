@@ -31,6 +31,20 @@ use std::path::Path;
 /// Writes a one-primitive glTF (`name`.gltf + `name`.bin) with node "Gem", mesh "Cut", the
 /// given positions, optional normals and indices, and a clear glass material.
 fn write_gltf(dir: &Path, name: &str, positions: &[Vec3], normals: &[Vec3], indices: &[u32]) {
+    let glass = serde_json::json!({"name": "glass", "extensions": {
+        "KHR_materials_transmission": {"transmissionFactor": 1.0},
+        "KHR_materials_volume": {"thicknessFactor": 1.0}
+    }, "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.0}});
+    write_gltf_with(dir, name, (positions, normals, indices), glass);
+}
+
+/// [`write_gltf`] with `material` as the primitive's material.
+fn write_gltf_with(
+    dir: &Path,
+    name: &str,
+    (positions, normals, indices): (&[Vec3], &[Vec3], &[u32]),
+    material: serde_json::Value,
+) {
     let mut bin: Vec<u8> = Vec::new();
     let floats = |v: &[Vec3], bin: &mut Vec<u8>| {
         for p in v {
@@ -83,10 +97,7 @@ fn write_gltf(dir: &Path, name: &str, positions: &[Vec3], normals: &[Vec3], indi
         "meshes": [{"name": "Cut", "primitives": [{
             "attributes": attributes, "indices": accessors.len() - 1, "material": 0
         }]}],
-        "materials": [{"name": "glass", "extensions": {
-            "KHR_materials_transmission": {"transmissionFactor": 1.0},
-            "KHR_materials_volume": {"thicknessFactor": 1.0}
-        }, "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.0}}],
+        "materials": [material],
         "extensionsUsed": ["KHR_materials_transmission", "KHR_materials_volume"],
         "buffers": [{"uri": format!("{name}.bin"), "byteLength": bin.len()}],
         "bufferViews": views,
@@ -572,5 +583,165 @@ fn shared_assets_repair_report() {
         for w in repairs {
             eprintln!("  {w}");
         }
+    }
+}
+
+/// A unit UV sphere of `rings` × `segments` computed in f32 as procedural generators do:
+/// vertex (i, j) at θ = π i / rings from +Y, φ = 2π j / segments, with a seam column
+/// (j = segments) and a vertex per segment at each pole. Computed so, the seam copies sit
+/// at sin(2π) ≈ 1.7e-7 from their twins and the south pole's copies at sin(π) ≈ −8.7e-8
+/// from each other; `welded` snaps every copy onto its twin's exact position instead.
+/// Triangles are outward (counter-clockwise from outside), one per segment at each pole.
+fn uv_sphere(rings: u32, segments: u32, welded: bool) -> (Vec<Vec3>, Vec<u32>) {
+    let at = |i: u32, j: u32| -> Vec3 {
+        let theta = std::f32::consts::PI * i as f32 / rings as f32;
+        let phi = std::f32::consts::TAU * j as f32 / segments as f32;
+        Vec3::new(
+            theta.sin() * phi.sin(),
+            theta.cos(),
+            theta.sin() * phi.cos(),
+        )
+    };
+    let mut positions = Vec::new();
+    for i in 0..=rings {
+        for j in 0..=segments {
+            let pole = i == 0 || i == rings;
+            positions.push(match (welded, pole, j == segments) {
+                (true, true, _) => at(i, 0),
+                (true, false, true) => at(i, 0),
+                _ => at(i, j),
+            });
+        }
+    }
+    let id = |i: u32, j: u32| i * (segments + 1) + j;
+    let mut indices = Vec::new();
+    let mut push = |t: [u32; 3]| {
+        let [a, b, c] = t.map(|v| positions[v as usize]);
+        let outward = (b - a).cross(c - a).dot(a + b + c) > 0.0;
+        indices.extend(if outward { t } else { [t[0], t[2], t[1]] });
+    };
+    for i in 0..rings {
+        for j in 0..segments {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            if i != 0 {
+                push([a, b, d]);
+            }
+            if i + 1 != rings {
+                push([b, c, d]);
+            }
+        }
+    }
+    (positions, indices)
+}
+
+/// Issue 48: a UV sphere whose seam and pole copies differ in the last bits (f32 sin and
+/// cos, as generators write them) is closed. As a scattering medium and as a crystal it
+/// loads (welding only bit-identical positions refused it as open), its winding repair
+/// finds one closed component, and the medium renders as the exactly welded sphere does.
+/// With one triangle removed it is refused for a medium and a crystal alike.
+#[test]
+fn a_uv_sphere_with_last_bit_seams_is_closed_for_media_and_crystals() {
+    let dir = common::scratch_dir("bad_meshes_uv_sphere");
+    let (rings, segments) = (12, 24);
+    let (seam, indices) = uv_sphere(rings, segments, false);
+    let (welded, welded_indices) = uv_sphere(rings, segments, true);
+    assert_eq!(indices, welded_indices);
+    // The copies differ in the last bits: on the seam and at the south pole.
+    let id = |i: u32, j: u32| (i * (segments + 1) + j) as usize;
+    assert_ne!(seam[id(1, segments)], seam[id(1, 0)]);
+    assert_ne!(seam[id(rings, 1)], seam[id(rings, 0)]);
+    assert!((seam[id(1, segments)] - seam[id(1, 0)]).length() < 1e-6);
+    let medium = serde_json::json!({"name": "milk", "extensions": {
+        "KHR_materials_transmission": {"transmissionFactor": 1.0},
+        "KHR_materials_ior": {"ior": 1.0},
+        "KHR_materials_volume": {"thicknessFactor": 1.0, "attenuationColor": [0.2, 0.2, 0.2],
+                                 "attenuationDistance": 0.5},
+        "KHR_materials_volume_scatter": {"multiscatterColor": [0.3, 0.3, 0.3]}
+    }, "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.0}});
+    let mut crystal = serde_json::json!({"name": "calcite", "extensions": {
+        "KHR_materials_transmission": {"transmissionFactor": 1.0},
+        "KHR_materials_volume": {"thicknessFactor": 1.0}
+    }, "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.0}});
+    crystal["extras"] = serde_json::json!({"iris_crystal": {"stone": "calcite"}});
+    let load = |name: &str, positions: &[Vec3], indices: &[u32], material: &serde_json::Value| {
+        write_gltf_with(&dir, name, (positions, &[], indices), material.clone());
+        iris::load::load_scene(&dir.join(format!("{name}.gltf")))
+    };
+    let mut descs = Vec::new();
+    for (name, positions) in [("seam", &seam), ("welded", &welded)] {
+        for (kind, material) in [("medium", &medium), ("crystal", &crystal)] {
+            let desc = load(&format!("{name}_{kind}"), positions, &indices, material)
+                .unwrap_or_else(|e| panic!("{name} {kind}: {e}"));
+            if kind == "medium" {
+                descs.push(desc);
+            }
+        }
+    }
+    let mut mesh = MeshDesc {
+        positions: seam.clone(),
+        indices: indices.chunks(3).map(|t| [t[0], t[1], t[2]]).collect(),
+        ..Default::default()
+    };
+    let report = iris::scene::winding::orient(&mut mesh);
+    assert_eq!(
+        (report.components, report.open, report.flipped),
+        (1, 0, 0),
+        "{report:?}"
+    );
+
+    // The seam sphere renders as the welded one: the same samples meet positions at most
+    // 2e-7 apart, so only paths grazing the seam or the pole can differ.
+    let cam = CameraDesc {
+        name: "c".into(),
+        projection: Projection::Perspective {
+            yfov: 0.9,
+            aspect: None,
+        },
+        world_from_camera: look_at(Vec3::new(0.0, 0.6, 3.0), Vec3::ZERO, Vec3::Y),
+    };
+    let images: Vec<Vec<Vec3>> = descs
+        .into_iter()
+        .map(|desc| {
+            let desc = SceneDesc {
+                environment_light: Some(Environment::Uniform {
+                    radiance: Vec3::ONE,
+                }),
+                ..desc
+            };
+            let scene = Scene::build(desc, Backend::Auto).expect("build");
+            render_path(&scene, &cam, 16, 64)
+        })
+        .collect();
+    let mean =
+        |img: &[Vec3]| img.iter().map(|p| p.as_dvec3()).sum::<glam::DVec3>() / img.len() as f64;
+    let (a, b) = (mean(&images[0]), mean(&images[1]));
+    let diff: f64 = images[0]
+        .iter()
+        .zip(&images[1])
+        .map(|(p, q)| f64::from((*p - *q).abs().max_element()))
+        .sum::<f64>()
+        / images[0].len() as f64;
+    eprintln!("uv sphere medium: seam mean {a}, welded mean {b}, mean |Δ| per pixel {diff:.2e}");
+    assert!(
+        (a - b).abs().max_element() < 0.005 * b.max_element(),
+        "{a} vs {b}"
+    );
+    // A path that diverges changes its pixel by about 1/64: this allows 16 of 16 384.
+    assert!(diff < 1e-3, "{diff}");
+    assert!(b.max_element() < 0.95, "the medium is visible: {b}");
+
+    // One triangle removed: open for a medium and a crystal alike.
+    let open: Vec<u32> = indices[3..].to_vec();
+    for (kind, material) in [("medium", &medium), ("crystal", &crystal)] {
+        let e = load(&format!("open_{kind}"), &seam, &open, material)
+            .err()
+            .unwrap_or_else(|| panic!("an open {kind} loaded"));
+        let text = e.to_string();
+        assert!(
+            text.contains(&format!("open_{kind}.gltf"))
+                && text.contains("surface is open: 3 edges bound a single triangle even after welding vertices within")
+                && text.contains("Cut"),
+            "{kind}: {text}"
+        );
     }
 }

@@ -6,6 +6,8 @@
 
 #[path = "load_gltf/assets.rs"]
 mod assets;
+#[path = "load_gltf/axes.rs"]
+mod axes;
 #[path = "load_gltf/bad_inputs.rs"]
 mod bad_inputs;
 mod common;

@@ -102,6 +102,9 @@ fn the_sun_below_the_horizon_lights_nothing_and_bad_values_are_refused() {
         ("sky:elevation=10,elevation=20", "twice"),
         ("sky:elevation=inf", "elevation"),
         ("sky:elevation", "KEY=VALUE"),
+        ("sky:elevation=10,azimuth=1e30", "azimuth"),
+        ("sky:elevation=10,azimuth=-360.5", "azimuth"),
+        ("sky:elevation=10,azimuth=nan", "azimuth"),
     ] {
         let e = Environment::parse_arg(arg)
             .err()

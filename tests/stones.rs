@@ -241,6 +241,35 @@ fn errors_name_the_choices() {
     assert!(e.contains("both name material"), "{e}");
 }
 
+/// A birefringent stone is a crystal, held to a crystal's rule (issue 48): on an open mesh
+/// `--stone calcite` is refused naming the file, the material and the flag, as an
+/// `extras.iris_crystal` there is; an isotropic stone (diamond) on it is not a crystal and
+/// is accepted.
+#[test]
+fn a_birefringent_stone_on_an_open_mesh_is_refused_as_a_crystal() {
+    let mut d = ring("looks_open_crystal");
+    let gem = d
+        .meshes
+        .iter()
+        .position(|m| m.name.contains("Gem"))
+        .unwrap();
+    d.meshes[gem].indices.pop();
+    let e = apply(&mut d.clone(), &[stone("calcite=Placeholder")])
+        .expect_err("an open crystal")
+        .to_string();
+    for needle in [
+        "ring.glb",
+        "Placeholder",
+        "--stone calcite",
+        "birefringent crystal",
+        "surface is open: 3 edges",
+        "even after welding",
+    ] {
+        assert!(e.contains(needle), "{needle} missing from: {e}");
+    }
+    apply(&mut d, &[stone("diamond=Placeholder")]).expect("diamond is isotropic");
+}
+
 /// The CLI takes the flags on render and info, and fails with the names on a bad one.
 #[test]
 fn cli_takes_the_flags() {

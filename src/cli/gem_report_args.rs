@@ -84,11 +84,17 @@ impl GemReportArgs {
 }
 
 /// `--tilts`: `none` or comma-separated degrees (their bounds are checked with the other
-/// flags, [`crate::app::gem_report::check`]).
+/// flags, [`crate::app::gem_report::check`]). An empty value is an error, not `none`: an
+/// unset shell variable must not silently drop the tilted views.
 pub fn parse_tilts(s: &str) -> Result<Vec<f32>> {
     let t = s.trim();
-    if t.eq_ignore_ascii_case("none") || t.is_empty() {
+    if t.eq_ignore_ascii_case("none") {
         return Ok(Vec::new());
+    }
+    if t.is_empty() {
+        return Err(Error::Usage(format!(
+            "--tilts {s:?} is empty: give degrees separated by commas (e.g. 10,20), or none              for face-up alone"
+        )));
     }
     t.split(',')
         .map(|p| {
@@ -109,6 +115,13 @@ mod tests {
     fn tilts_parse() {
         assert_eq!(parse_tilts("10, 20,30").unwrap(), vec![10.0, 20.0, 30.0]);
         assert_eq!(parse_tilts("none").unwrap(), Vec::<f32>::new());
+        for empty in ["", " "] {
+            let e = parse_tilts(empty).unwrap_err().to_string();
+            assert!(
+                e.contains("--tilts") && e.contains("empty"),
+                "{empty:?}: {e}"
+            );
+        }
         assert_eq!(parse_tilts("-5").unwrap(), vec![-5.0]);
         assert!(parse_tilts("10,x")
             .unwrap_err()

@@ -28,6 +28,7 @@ mod accessor;
 pub(crate) mod crystal;
 mod draco;
 mod draco_header;
+mod extras;
 mod instancing;
 mod iridescence_anisotropy;
 mod material;

@@ -175,15 +175,9 @@ pub fn check_indices(n: &[f32]) -> Result<(), String> {
     Ok(())
 }
 
+/// `v` as a unit vector ([`crate::math::unit_direction`]); the error names `what`.
 fn unit(v: Vec3, what: &str) -> Result<Vec3, String> {
-    if !v.is_finite() {
-        return Err(format!("{what} {v} is not finite"));
-    }
-    let len = v.length();
-    if len.is_nan() || len <= 1e-12 {
-        return Err(format!("{what} is zero; give a direction"));
-    }
-    Ok(v / len)
+    crate::math::unit_direction(v.as_dvec3()).map_err(|why| format!("{what} {why}: {v}"))
 }
 
 #[cfg(test)]

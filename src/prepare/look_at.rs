@@ -71,17 +71,22 @@ impl LookAt {
         if !self.eye.is_finite() || !self.target.is_finite() {
             return Err("the eye and the target must be finite".into());
         }
-        // The direction must have a non-zero, finite length to be normalised.
-        let d2 = (self.target - self.eye).length_squared();
-        if !(d2 > 0.0 && d2.is_finite()) {
-            return Err("the eye and the target are the same point (or too far apart)".into());
+        if self.forward().is_none() {
+            return Err("the eye and the target are the same point".into());
         }
         Ok(())
     }
 
+    /// The unit view direction, from the eye to the target, taken in f64 and normalised
+    /// safely ([`crate::math::unit_direction`]: any two distinct finite points give one);
+    /// `None` when they are the same point.
+    fn forward(&self) -> Option<Vec3> {
+        crate::math::unit_direction(self.target.as_dvec3() - self.eye.as_dvec3()).ok()
+    }
+
     /// The camera: perspective, looking down its local −Z (glTF), the aspect from the image.
     pub fn camera(&self) -> CameraDesc {
-        let forward = (self.target - self.eye).normalize_or_zero();
+        let forward = self.forward().unwrap_or(Vec3::NEG_Z);
         let up = if forward.y.abs() > (1.0f32 - 5e-7) {
             Vec3::new(0.0, 0.0, forward.y.signum())
         } else {
@@ -164,6 +169,25 @@ mod tests {
         ] {
             let e = LookAt::parse(text).unwrap_err();
             assert!(e.contains(says), "{text}: {e}");
+        }
+    }
+
+    /// Eyes and targets whose f32 difference would overflow or underflow when squared
+    /// still look from the eye to the target.
+    #[test]
+    fn far_and_near_targets_look_the_right_way() {
+        let diagonal = Vec3::new(1.0, 1.0, 0.0) / 2f32.sqrt();
+        for (text, forward) in [
+            ("0,0,0:3e38,3e38,0:40", diagonal),
+            ("-3e38,-3e38,0:3e38,3e38,0:40", diagonal),
+            ("0,0,0:1e-30,1e-30,0:40", diagonal),
+            ("0,0,0:1e-45,0,0:40", Vec3::X),
+        ] {
+            let look = LookAt::parse(text).unwrap();
+            let m = look.camera().world_from_camera;
+            let f = -m.z_axis.truncate();
+            assert!((f - forward).length() < 1e-6, "{text}: {f}");
+            assert!(m.is_finite(), "{text}: {m}");
         }
     }
 }

@@ -166,7 +166,9 @@ pub fn stone_names() -> String {
 }
 
 /// Applies the flags to `desc` (see the module docs); returns what each changed, in flag
-/// order. Errors name the flag and the file.
+/// order. Errors name the flag and the file; a birefringent stone (a crystal) on an open
+/// surface is refused as an `extras.iris_crystal` there is
+/// ([`crate::scene::validate::check_crystals_closed`]).
 pub fn apply(desc: &mut SceneDesc, flags: &[LookFlag]) -> Result<Vec<Applied>> {
     if flags.is_empty() {
         return Ok(Vec::new());
@@ -281,6 +283,8 @@ pub fn apply(desc: &mut SceneDesc, flags: &[LookFlag]) -> Result<Vec<Applied>> {
         desc.meshes[mesh_i].material = Some(index);
         applied[fi].meshes += 1;
     }
+    // A birefringent stone is a crystal: its surface must be closed, as a file's is.
+    crate::scene::validate::check_crystals_closed(desc)?;
     Ok(applied)
 }
 

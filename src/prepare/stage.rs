@@ -69,16 +69,17 @@ impl Table {
         if t.eq_ignore_ascii_case("auto") {
             return Ok(Table::Auto);
         }
-        let nums: Option<Vec<f32>> = t.split(',').map(|p| p.trim().parse().ok()).collect();
+        let nums: Option<Vec<f64>> = t.split(',').map(|p| p.trim().parse().ok()).collect();
+        let bad = |why: String| {
+            Error::Usage(format!(
+                "--table {s:?}: expected auto or a direction X,Y,Z (finite, not zero){why}"
+            ))
+        };
         match nums.as_deref() {
-            Some(&[x, y, z])
-                if Vec3::new(x, y, z).is_finite() && Vec3::new(x, y, z).length() > 0.0 =>
-            {
-                Ok(Table::Given(Vec3::new(x, y, z).normalize()))
-            }
-            _ => Err(Error::Usage(format!(
-                "--table {s:?}: expected auto or a direction X,Y,Z (finite, not zero)"
-            ))),
+            Some(&[x, y, z]) => crate::math::unit_direction(glam::DVec3::new(x, y, z))
+                .map(Table::Given)
+                .map_err(|why| bad(format!("; the direction {why}"))),
+            _ => Err(bad(String::new())),
         }
     }
 }
@@ -345,6 +346,17 @@ mod tests {
         assert!(Table::parse("1,2").is_err());
         assert!(Table::parse("up").is_err());
         assert!(Table::parse("nan,1,0").is_err());
+        assert!(Table::parse("0,inf,0").is_err());
+        // Lengths that overflow or underflow f32 when squared are still directions.
+        for big in ["3e38,3e38,0", "1e300,1e300,0", "1e-30,1e-30,0"] {
+            let Ok(Table::Given(d)) = Table::parse(big) else {
+                panic!("{big} refused")
+            };
+            assert!(
+                (d - Vec3::new(1.0, 1.0, 0.0) / 2f32.sqrt()).length() < 1e-6,
+                "{big}: {d}"
+            );
+        }
     }
 
     fn brilliant_mesh(turn: Quat) -> MeshDesc {

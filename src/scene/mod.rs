@@ -20,6 +20,7 @@ pub mod lighting;
 mod thin;
 pub mod triangle;
 pub mod validate;
+pub mod weld;
 pub mod winding;
 
 pub use geometry::Vertices;

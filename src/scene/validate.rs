@@ -14,12 +14,15 @@
 //!
 //! Order: sizes ([`MAX_ELEMENTS`], before anything else allocates) → mesh structure →
 //! images and materials (`material`) → lights and cameras (`light`) → mesh repair →
-//! `NoTriangles` if nothing is left.
+//! media and crystals (`closed`: closed surfaces, one weld rule; a medium no path can
+//! enter is dropped with a warning) → polarizer sheets (`sheets`: the axis not along the
+//! sheet's normal) → `NoTriangles` if nothing is left.
 
 mod closed;
 mod light;
 mod material;
 mod repair;
+mod sheets;
 #[cfg(test)]
 mod tests;
 
@@ -53,7 +56,9 @@ pub fn validate(mut desc: SceneDesc) -> Result<SceneDesc, LoadError> {
         light::check_camera(&src, i, c)?;
     }
     repair_meshes(&src, &mut desc.meshes, &mut warnings);
-    closed::check_media(&desc)?;
+    closed::check_media(&mut desc, &mut warnings)?;
+    closed::check_crystals(&desc)?;
+    sheets::check_sheets(&desc)?;
     warnings.extend(material::extension_warnings(&desc));
     if desc.meshes.is_empty() {
         return Err(LoadError::new(
@@ -65,6 +70,13 @@ pub fn validate(mut desc: SceneDesc) -> Result<SceneDesc, LoadError> {
     }
     desc.warnings.extend(warnings);
     Ok(desc)
+}
+
+/// Checks that every crystal material of an already validated `desc` has a closed
+/// surface (the rule media and `extras.iris_crystal` are held to in [`validate`]); for
+/// materials made crystals after validation (`--stone`).
+pub fn check_crystals_closed(desc: &SceneDesc) -> Result<(), LoadError> {
+    closed::check_crystals(desc)
 }
 
 /// The element name for messages: the stored name, or `{kind} {index}` when it is empty.

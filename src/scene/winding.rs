@@ -5,9 +5,12 @@
 //!
 //! Method (the classic manifold orientation pass, e.g. Botsch et al., *Polygon Mesh
 //! Processing*, §2.5 "orientability"):
-//! 1. **Weld by position.** Vertices with bit-identical positions (−0 = +0) are one corner,
-//!    so flat-shaded meshes (one vertex per facet corner, like [`crate::authoring::gem`]) are still
-//!    connected. Positions are world-space metres as in [`MeshDesc`].
+//! 1. **Weld by position** ([`crate::scene::weld`], the rule every closedness test uses):
+//!    vertices within 2⁻²⁰ of the mesh's size are one corner, so flat-shaded meshes (one
+//!    vertex per facet corner, like [`crate::authoring::gem`]) and seams whose copies differ
+//!    in the last bits are still connected. A triangle whose corners weld together (a
+//!    sliver thinner than the tolerance) joins nothing and counts as open. Positions are
+//!    world-space metres as in [`MeshDesc`].
 //! 2. **Edge adjacency.** An undirected edge used by exactly two triangles joins them; two
 //!    triangles agree when they traverse the shared edge in **opposite** directions. Edges
 //!    used by one triangle are borders; by three or more, non-manifold: neither joins.
@@ -27,12 +30,11 @@
 //! Invariants: only the order of each triangle's corners changes (a flip swaps the last
 //! two indices); triangles keep their index in the mesh; the result depends only on the
 //! input (no hashing order, no threads), so it is deterministic. Cost: O(T log T) for T
-//! triangles (one sort of the 3T directed edges), plus, for closed shells whose bounding
+//! triangles (the O(V) weld, one sort of the 3T directed edges), plus, for closed shells whose bounding
 //! boxes nest, one winding-number sum over the outer shell per nested shell.
 
 use crate::scene::desc::MeshDesc;
 use glam::DVec3;
-use std::collections::HashMap;
 
 /// What [`orient`] did to one mesh.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -47,17 +49,6 @@ pub struct WindingReport {
     pub non_orientable: usize,
 }
 
-/// Canonical corner ids: the first vertex index holding each distinct position.
-fn weld(mesh: &MeshDesc) -> Vec<u32> {
-    let key = |v: glam::Vec3| (v + glam::Vec3::ZERO).to_array().map(f32::to_bits);
-    let mut first: HashMap<[u32; 3], u32> = HashMap::with_capacity(mesh.positions.len());
-    mesh.positions
-        .iter()
-        .enumerate()
-        .map(|(i, &p)| *first.entry(key(p)).or_insert(i as u32))
-        .collect()
-}
-
 /// Per triangle, for each of its three edges, the neighbour across it and whether that
 /// neighbour traverses the edge in the same direction (`None` for a border or a
 /// non-manifold edge), plus whether any edge is a border or non-manifold, per triangle.
@@ -66,7 +57,13 @@ type Adjacency = (Vec<[Option<(u32, bool)>; 3]>, Vec<bool>);
 fn adjacency(tris: &[[u32; 3]], corner: &[u32]) -> Adjacency {
     // (min, max, triangle, edge slot, forward?) sorted groups the uses of each edge.
     let mut uses: Vec<(u32, u32, u32, u8, bool)> = Vec::with_capacity(tris.len() * 3);
+    let mut open = vec![false; tris.len()];
     for (t, tri) in tris.iter().enumerate() {
+        let [a, b, c] = tri.map(|v| corner[v as usize]);
+        if a == b || b == c || a == c {
+            open[t] = true; // collapsed by the weld: joins nothing
+            continue;
+        }
         for e in 0..3 {
             let a = corner[tri[e] as usize];
             let b = corner[tri[(e + 1) % 3] as usize];
@@ -75,7 +72,6 @@ fn adjacency(tris: &[[u32; 3]], corner: &[u32]) -> Adjacency {
     }
     uses.sort_unstable();
     let mut adj = vec![[None; 3]; tris.len()];
-    let mut open = vec![false; tris.len()];
     let mut i = 0;
     while i < uses.len() {
         let mut j = i + 1;
@@ -101,7 +97,7 @@ fn adjacency(tris: &[[u32; 3]], corner: &[u32]) -> Adjacency {
 /// Triangles whose corners collapse after welding must have been removed first (they are
 /// skipped as borders otherwise, which is harmless).
 pub fn orient(mesh: &mut MeshDesc) -> WindingReport {
-    let corner = weld(mesh);
+    let corner = crate::scene::weld::weld(&mesh.positions).corner;
     let (adj, open_tri) = adjacency(&mesh.indices, &corner);
     let n = mesh.indices.len();
     let mut flip = vec![false; n];

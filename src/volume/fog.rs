@@ -9,7 +9,8 @@
 //!   `multiscatterColor`, linear RGB in [0, 1], default white: nothing absorbed);
 //! - `g=G`: Henyey–Greenstein anisotropy in (−1, 1) (default 0, isotropic).
 //!
-//! Exactly one of `density` and `rayleigh`; `color` goes with `density` only. The fog
+//! Each key at most once (a repeated key is an error, not the last value); exactly one of
+//! `density` and `rayleigh`; `color` goes with `density` only. The fog
 //! applies where a path is in air (inside no volume); volumes keep their own media.
 
 use super::medium::{Medium, Scattering};
@@ -46,6 +47,7 @@ impl Fog {
 /// A fog specification (module docs) parsed into its medium; `Err` says what is wrong.
 pub fn parse(spec: &str) -> Result<Medium, String> {
     let (mut density, mut rayleigh, mut color, mut g) = (None, None, None, 0.0f32);
+    let mut seen: Vec<&str> = Vec::new();
     for part in spec.split(',').map(str::trim).filter(|p| !p.is_empty()) {
         let (key, value) = part.split_once('=').unwrap_or(("density", part));
         let number = |v: &str| -> Result<f32, String> {
@@ -55,7 +57,15 @@ pub fn parse(spec: &str) -> Result<Medium, String> {
                 .filter(|x| x.is_finite())
                 .ok_or_else(|| format!("{key}={v}: not a finite number"))
         };
-        match key.trim() {
+        let key = key.trim();
+        let canonical = if key == "colour" { "color" } else { key };
+        if seen.contains(&canonical) {
+            return Err(format!(
+                "{canonical} is given twice (each key at most once; a bare number is density)"
+            ));
+        }
+        seen.push(canonical);
+        match key {
             "density" => density = Some(number(value)?),
             "rayleigh" => rayleigh = Some(number(value)?),
             "g" => g = number(value)?,
@@ -144,6 +154,22 @@ mod tests {
             "fog=1",
         ] {
             assert!(parse(bad).is_err(), "{bad:?} accepted");
+        }
+    }
+
+    /// A repeated key is refused naming it, rather than the last value winning.
+    #[test]
+    fn repeated_keys_are_refused() {
+        for (spec, key) in [
+            ("density=1,density=2", "density"),
+            ("0.5,0.6", "density"),
+            ("0.5,density=0.6", "density"),
+            ("rayleigh=1,rayleigh=1", "rayleigh"),
+            ("density=1,g=0.2,g=0.3", "g"),
+            ("density=1,color=1:1:1,colour=0.5:0.5:0.5", "color"),
+        ] {
+            let e = parse(spec).unwrap_err();
+            assert!(e.contains(key) && e.contains("twice"), "{spec}: {e}");
         }
     }
 

@@ -28,10 +28,11 @@ fn expect_error(path: &std::path::Path, kind: LoadErrorKind, element: &str) -> i
     err
 }
 
-/// The cube as a volume (KHR_materials_volume thickness 1, attenuation 0.5 over 2) with
-/// `ext` as its material's extensions on top.
+/// The cube as a transmissive volume (not metallic, KHR_materials_volume thickness 1,
+/// attenuation 0.5 over 2) with `ext` as its material's extensions on top.
 fn medium_cube(extra: Value) -> Value {
     let mut doc = cube_doc();
+    doc["materials"][0]["pbrMetallicRoughness"] = json!({"metallicFactor": 0.0});
     let mut ext = json!({
         "KHR_materials_transmission": {"transmissionFactor": 1.0},
         "KHR_materials_volume": {"thicknessFactor": 1.0, "attenuationColor": [0.5, 0.5, 0.5],
@@ -176,4 +177,116 @@ fn an_open_mesh_bounding_a_medium_is_refused() {
     doc["materials"][0]["extensions"]["KHR_materials_volume_scatter"]["multiscatterColor"] =
         json!([0.0, 0.0, 0.0]);
     iris::load::load_scene(&write_json(&dir, "open_clear.gltf", &doc)).expect("no medium");
+}
+
+/// A crystal is held to the medium's rule: the same open cube with `extras.iris_crystal`
+/// is refused with the same message (edges still open after welding within the tolerance,
+/// the mesh named); closed, it loads.
+#[test]
+fn an_open_mesh_is_refused_for_a_crystal_as_for_a_medium() {
+    let dir = common::scratch_dir("gltf_crystal_open");
+    let (positions, mut triangles) = cube();
+    triangles.pop();
+    let (mut doc, bin) = mesh_doc(&positions, &triangles);
+    doc["buffers"][0]["uri"] = json!(data_uri("application/octet-stream", &bin));
+    let mut messages = Vec::new();
+    for (case, extra, extras) in [
+        (
+            "medium",
+            json!({"KHR_materials_volume_scatter": {"multiscatterColor": [0.9, 0.9, 0.9]}}),
+            json!({}),
+        ),
+        (
+            "crystal",
+            json!({}),
+            json!({"iris_crystal": {"stone": "calcite"}}),
+        ),
+    ] {
+        let mut doc = doc.clone();
+        doc["materials"] = medium_cube(extra)["materials"].clone();
+        doc["materials"][0]["extras"] = extras;
+        let err = expect_error(
+            &write_json(&dir, &format!("open_{case}.gltf"), &doc),
+            LoadErrorKind::InvalidValue,
+            "material 0 \"Glass\"",
+        );
+        let text = err.to_string();
+        assert!(
+            text.contains("surface is open: 3 edges bound a single triangle even after welding")
+                && text.contains("CubeMesh")
+                && text.contains("needs a closed mesh"),
+            "{case}: {text}"
+        );
+        messages.push(text);
+    }
+    let rule = |m: &str| m[m.find("surface is open").unwrap()..].to_string();
+    assert_eq!(
+        rule(&messages[0]).replace("a medium", "X"),
+        rule(&messages[1]).replace("a crystal", "X")
+    );
+    let mut closed = medium_cube(json!({}));
+    closed["materials"][0]["extras"] = json!({"iris_crystal": {"stone": "calcite"}});
+    iris::load::load_scene(&write_json(&dir, "closed_crystal.gltf", &closed))
+        .expect("a closed crystal loads");
+}
+
+/// A scattering medium no path can enter (a thin-walled material, an opaque one) is
+/// dropped with a warning naming the file, the material and why, for the drafts'
+/// extensions and `iris_medium` alike.
+#[test]
+fn a_medium_on_a_thin_walled_or_opaque_material_is_ignored_with_a_warning() {
+    let dir = common::scratch_dir("gltf_media_ignored");
+    let scatter = json!({"KHR_materials_scatter": {"multiscatterColor": [0.9, 0.9, 0.9]}});
+    let rayleigh = json!({"iris_medium": {"rayleigh": 0.5}});
+    for (case, drop_key, extras, why) in [
+        ("thin", "KHR_materials_volume", None, "thin-walled"),
+        (
+            "thin_rayleigh",
+            "KHR_materials_volume",
+            Some(&rayleigh),
+            "thin-walled",
+        ),
+        ("opaque", "KHR_materials_transmission", None, "opaque"),
+    ] {
+        let mut doc = medium_cube(scatter.clone());
+        doc["materials"][0]["extensions"]
+            .as_object_mut()
+            .unwrap()
+            .remove(drop_key);
+        if let Some(extras) = extras {
+            doc["materials"][0]["extras"] = extras.clone();
+        }
+        let name = format!("{case}.gltf");
+        let desc = iris::load::load_scene(&write_json(&dir, &name, &doc))
+            .unwrap_or_else(|e| panic!("{case}: {e}"));
+        let warning = desc
+            .warnings
+            .iter()
+            .find(|w| w.contains("scattering medium"))
+            .unwrap_or_else(|| panic!("{case}: no warning in {:?}", desc.warnings));
+        assert!(
+            warning.contains(&name)
+                && warning.contains("material 0 \"Glass\"")
+                && warning.contains("ignored")
+                && warning.contains(why),
+            "{case}: {warning}"
+        );
+        let source = if extras.is_some() {
+            "iris_medium"
+        } else {
+            "KHR_materials_scatter"
+        };
+        assert!(warning.contains(source), "{case}: {warning}");
+        assert!(material(&desc, "Glass").scatter.is_none(), "{case}");
+    }
+    // A medium in a transmissive volume loads without that warning.
+    let desc = iris::load::load_scene(&write_json(&dir, "volume.gltf", &medium_cube(scatter)))
+        .expect("loads");
+    assert!(
+        desc.warnings
+            .iter()
+            .all(|w| !w.contains("scattering medium")),
+        "{:?}",
+        desc.warnings
+    );
 }

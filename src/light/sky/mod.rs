@@ -48,12 +48,17 @@ pub const SUN_KELVIN: f32 = 5772.0;
 /// Wavelengths the spectra are integrated over: 380, 390, …, 780 nm.
 const LAMBDAS: usize = 41;
 
+/// The largest |azimuth| accepted, degrees: one turn either way, the range of
+/// `--polarizer`. Beyond it an angle is a mistake rather than a direction (1e30° has lost
+/// every digit that would say where the sun is).
+pub const AZIMUTH_LIMIT: f32 = 360.0;
+
 /// The parameters of `--env sky:…`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SkyParams {
     /// The sun's elevation above the horizon, degrees, in [−10, 90].
     pub elevation: f32,
-    /// The sun's azimuth from −Z towards +X, degrees (finite).
+    /// The sun's azimuth from −Z towards +X, degrees, in [−360, 360] ([`AZIMUTH_LIMIT`]).
     pub azimuth: f32,
     /// Preetham's turbidity, in [1, 10] (1: air alone; 2: a clear day).
     pub turbidity: f32,
@@ -104,6 +109,12 @@ impl SkyParams {
         }
         if !(1.0..=10.0).contains(&p.turbidity) {
             return Err(format!("turbidity {} is outside 1 … 10", p.turbidity));
+        }
+        if p.azimuth.abs() > AZIMUTH_LIMIT {
+            return Err(format!(
+                "azimuth {} is outside −{AZIMUTH_LIMIT} … {AZIMUTH_LIMIT} degrees",
+                p.azimuth
+            ));
         }
         Ok(p)
     }

@@ -6,15 +6,18 @@
 //! principal indices instead (each from 1 to 4). `"optic_axis": [x, y, z]` is the principal
 //! z axis (uniaxial: the optic axis c) in the mesh's frame, default +Y (the glTF up, the
 //! table normal of Iris's gems); `"x_axis"` the principal x axis (made ⊥ the optic axis),
-//! needed only to orient a biaxial crystal's other axes. Malformed values (unknown keys or
-//! stones, a zero or non-finite axis, indices out of range) are `InvalidValue` errors naming
-//! the material and the field.
+//! needed only to orient a biaxial crystal's other axes. Axes are directions of any length,
+//! normalised safely ([`unit_direction`]: `[3e38, 3e38, 0]` is the diagonal). Malformed
+//! values (unknown keys or stones, a zero or non-finite axis, indices out of range) are
+//! `InvalidValue` errors naming the material and the field.
 
+use super::extras::extras_key;
 use super::Ctx;
 use crate::error::{LoadError, LoadErrorKind};
 use crate::material::crystal::check_indices;
 use crate::material::{CrystalDesc, CrystalOptics};
-use glam::Vec3;
+use crate::math::unit_direction;
+use glam::{DVec3, Vec3};
 use serde_json::Value;
 
 /// The material's crystal (module docs); `None` without `extras.iris_crystal`.
@@ -23,17 +26,10 @@ pub(super) fn read_crystal(
     m: &gltf::Material<'_>,
     element: &str,
 ) -> Result<Option<CrystalDesc>, LoadError> {
-    let Some(extras) = m
-        .extras()
-        .as_ref()
-        .and_then(|raw| serde_json::from_str::<Value>(raw.get()).ok())
-    else {
+    let Some(v) = extras_key(ctx, m.extras(), element, "iris_crystal")? else {
         return Ok(None);
     };
-    let Some(v) = extras.get("iris_crystal") else {
-        return Ok(None);
-    };
-    crystal(v).map(Some).map_err(|d| {
+    crystal(&v).map(Some).map_err(|d| {
         ctx.error(
             element,
             LoadErrorKind::InvalidValue,
@@ -49,12 +45,7 @@ pub(super) fn read_polarizer(
     m: &gltf::Material<'_>,
     element: &str,
 ) -> Result<Option<Vec3>, LoadError> {
-    let Some(v) = m
-        .extras()
-        .as_ref()
-        .and_then(|raw| serde_json::from_str::<Value>(raw.get()).ok())
-        .and_then(|e| e.get("iris_polarizer").cloned())
-    else {
+    let Some(v) = extras_key(ctx, m.extras(), element, "iris_polarizer")? else {
         return Ok(None);
     };
     let invalid = |d: String| ctx.error(element, LoadErrorKind::InvalidValue, d);
@@ -67,13 +58,9 @@ pub(super) fn read_polarizer(
                 "extras.iris_polarizer must be {{\"axis\": [x, y, z]}}, found {v}"
             ))
         })?;
-    let axis = vector(axis, "extras.iris_polarizer.axis").map_err(invalid)?;
-    if !axis.is_finite() || axis.length_squared() < 1e-20 {
-        return Err(invalid(format!(
-            "extras.iris_polarizer.axis {axis} must be a finite non-zero direction"
-        )));
-    }
-    Ok(Some(axis.normalize()))
+    direction(axis, "extras.iris_polarizer.axis")
+        .map(Some)
+        .map_err(invalid)
 }
 
 /// Parses the `iris_crystal` object.
@@ -107,10 +94,13 @@ pub fn crystal(v: &Value) -> Result<CrystalDesc, String> {
         (None, Some(n)) => CrystalOptics::Indices(indices(n)?),
     };
     let c = match obj.get("optic_axis") {
-        Some(a) => vector(a, "optic_axis")?,
+        Some(a) => direction(a, "optic_axis")?,
         None => Vec3::Y,
     };
-    let x = obj.get("x_axis").map(|a| vector(a, "x_axis")).transpose()?;
+    let x = obj
+        .get("x_axis")
+        .map(|a| direction(a, "x_axis"))
+        .transpose()?;
     CrystalDesc::oriented(optics, c, x)
 }
 
@@ -129,13 +119,17 @@ fn indices(n: &Value) -> Result<[f32; 3], String> {
     }
 }
 
-/// A 3-vector of finite numbers.
-fn vector(a: &Value, what: &str) -> Result<Vec3, String> {
+/// A direction `[x, y, z]` as a unit vector, normalised in f64 before any rounding to f32
+/// ([`unit_direction`]: any finite non-zero numbers, however large or small); the error
+/// names `what` and the value as written.
+fn direction(a: &Value, what: &str) -> Result<Vec3, String> {
     let v: Option<Vec<f64>> = a
         .as_array()
         .and_then(|a| a.iter().map(Value::as_f64).collect());
     match v.as_deref() {
-        Some(&[x, y, z]) => Ok(Vec3::new(x as f32, y as f32, z as f32)),
+        Some(&[x, y, z]) => {
+            unit_direction(DVec3::new(x, y, z)).map_err(|why| format!("{what} {why}: {a}"))
+        }
         _ => Err(format!("{what} must be [x, y, z], found {a}")),
     }
 }

@@ -28,6 +28,7 @@
 //!   colour / `emissiveFactor` then acts as a filter. Anything else is `InvalidValue`
 //!   naming the element and `extras.iris_spectrum`.
 
+use super::extras::extras_key;
 use super::material_layers;
 use super::source::ImageCache;
 use super::{label, spec_gloss, texture_source, texture_transform, unlit, Ctx, Warnings};
@@ -311,30 +312,24 @@ fn explicit_ior(
     m: &gltf::Material<'_>,
     element: &str,
 ) -> Result<Option<ExplicitIor>, LoadError> {
-    let Some(raw) = m.extras() else {
-        return Ok(None);
-    };
-    let Ok(extras) = serde_json::from_str::<Value>(raw.get()) else {
-        return Ok(None);
-    };
     let invalid = |detail: String| ctx.error(element, LoadErrorKind::InvalidValue, detail);
-    let keys = ["iris_glass", "cauchy", "sellmeier"];
-    let given: Vec<&str> = keys
-        .into_iter()
-        .filter(|k| extras.get(k).is_some())
-        .collect();
+    let mut given: Vec<(&str, Value)> = Vec::new();
+    for key in ["iris_glass", "cauchy", "sellmeier"] {
+        if let Some(v) = extras_key(ctx, m.extras(), element, key)? {
+            given.push((key, v));
+        }
+    }
     if given.len() > 1 {
+        let keys: Vec<&str> = given.iter().map(|(k, _)| *k).collect();
         return Err(invalid(format!(
             "extras give both {}; keep one IOR model",
-            given.join(" and ")
+            keys.join(" and ")
         )));
     }
-    match given.first().copied() {
-        Some("iris_glass") => glass_name(&extras["iris_glass"]).map(Some).map_err(invalid),
-        Some("cauchy") => cauchy_model(&extras["cauchy"]).map(Some).map_err(invalid),
-        Some(_) => sellmeier_model(&extras["sellmeier"])
-            .map(Some)
-            .map_err(invalid),
+    match given.first() {
+        Some(("iris_glass", v)) => glass_name(v).map(Some).map_err(invalid),
+        Some(("cauchy", v)) => cauchy_model(v).map(Some).map_err(invalid),
+        Some((_, v)) => sellmeier_model(v).map(Some).map_err(invalid),
         None => Ok(None),
     }
 }
@@ -370,13 +365,7 @@ fn sellmeier_model(sellmeier: &Value) -> Result<ExplicitIor, String> {
 
 /// `extras.iris_priority`: the nested-media priority, an integer in ±1,000,000 (default 0).
 fn priority(ctx: &Ctx<'_>, m: &gltf::Material<'_>, element: &str) -> Result<i32, LoadError> {
-    let Some(raw) = m.extras() else {
-        return Ok(0);
-    };
-    let Ok(extras) = serde_json::from_str::<Value>(raw.get()) else {
-        return Ok(0);
-    };
-    let Some(p) = extras.get("iris_priority") else {
+    let Some(p) = extras_key(ctx, m.extras(), element, "iris_priority")? else {
         return Ok(0);
     };
     p.as_i64()
@@ -435,16 +424,10 @@ pub(super) fn iris_spectrum(
     extras: &gltf::json::Extras,
     element: &str,
 ) -> Result<Option<EmissionSpectrum>, LoadError> {
-    let Some(raw) = extras else {
+    let Some(value) = extras_key(ctx, extras, element, "iris_spectrum")? else {
         return Ok(None);
     };
-    let Ok(extras) = serde_json::from_str::<Value>(raw.get()) else {
-        return Ok(None);
-    };
-    let Some(value) = extras.get("iris_spectrum") else {
-        return Ok(None);
-    };
-    spectrum_value(value).map(Some).map_err(|detail| {
+    spectrum_value(&value).map(Some).map_err(|detail| {
         ctx.error(
             format!("{element} extras.iris_spectrum"),
             LoadErrorKind::InvalidValue,

@@ -21,8 +21,9 @@ use super::accessor::{read_floats, read_indices, AccessorError};
 use super::draco::{read_draco, DracoPrimitive};
 use super::Ctx;
 use crate::error::{LoadError, LoadErrorKind};
+use crate::math::unit_direction;
 use crate::scene::desc::MeshDesc;
-use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
+use glam::{DMat3, Mat3, Mat4, Vec2, Vec3, Vec4};
 use gltf::mesh::Mode;
 use gltf::Semantic;
 use std::borrow::Cow;
@@ -272,14 +273,18 @@ fn assemble(mode: Mode, idx: &[u32]) -> Vec<[u32; 3]> {
     }
 }
 
-/// The world-space instance of `local` under `world`.
+/// The world-space instance of `local` under `world`. The mirror test and the normal and
+/// tangent transforms are taken in f64 and normalised safely
+/// ([`crate::math::unit_direction`]), so a node scaled by 1e-20 or 1e20 (whose determinant
+/// and cofactors underflow or overflow f32) shades as one scaled by 1.
 pub(super) fn instantiate(local: &LocalPrimitive, world: &Mat4, name: String) -> MeshDesc {
     let linear = Mat3::from_mat4(*world);
-    let det = linear.determinant();
+    let linear64 = linear.as_dmat3();
+    let det = linear64.determinant();
     let normal_matrix = if det < 0.0 {
-        -cofactor(&linear)
+        -cofactor(&linear64)
     } else {
-        cofactor(&linear)
+        cofactor(&linear64)
     };
     let positions = local
         .positions
@@ -290,13 +295,9 @@ pub(super) fn instantiate(local: &LocalPrimitive, world: &Mat4, name: String) ->
         .normals
         .iter()
         .map(|&n| {
-            let t = normal_matrix * n;
-            let len = t.length();
-            if len > 0.0 && len.is_finite() {
-                t / len
-            } else {
-                t
-            }
+            // Zero or non-finite normals stay so, for the mesh repair to replace.
+            let t = normal_matrix * n.as_dvec3();
+            unit_direction(t).unwrap_or(t.as_vec3())
         })
         .collect();
     let tangents = local
@@ -305,15 +306,15 @@ pub(super) fn instantiate(local: &LocalPrimitive, world: &Mat4, name: String) ->
         .zip(&local.normals)
         .zip(&normals)
         .map(|((&t, &n), &n_world)| {
-            let t3 = t.truncate();
-            let b_world = linear * (n.cross(t3) * t.w);
-            let t_world = linear * t3;
-            let w = if n_world.cross(t_world).dot(b_world) < 0.0 {
+            let t3 = t.truncate().as_dvec3();
+            let b_world = linear64 * (n.as_dvec3().cross(t3) * f64::from(t.w));
+            let t_world = linear64 * t3;
+            let w = if n_world.as_dvec3().cross(t_world).dot(b_world) < 0.0 {
                 -1.0
             } else {
                 1.0
             };
-            t_world.normalize_or_zero().extend(w)
+            unit_direction(t_world).unwrap_or(Vec3::ZERO).extend(w)
         })
         .collect();
     let indices = if det < 0.0 {
@@ -335,8 +336,8 @@ pub(super) fn instantiate(local: &LocalPrimitive, world: &Mat4, name: String) ->
 }
 
 /// Cofactor matrix `det(M)·M⁻ᵀ`: columns `(b×c, c×a, a×b)` for `M = [a b c]`.
-fn cofactor(m: &Mat3) -> Mat3 {
-    Mat3::from_cols(
+fn cofactor(m: &DMat3) -> DMat3 {
+    DMat3::from_cols(
         m.y_axis.cross(m.z_axis),
         m.z_axis.cross(m.x_axis),
         m.x_axis.cross(m.y_axis),
@@ -363,7 +364,7 @@ mod tests {
 
     #[test]
     fn cofactor_is_scaled_inverse_transpose() {
-        let m = Mat3::from_cols_array(&[2.0, 0.0, 1.0, 0.5, 3.0, 0.0, 0.0, 1.0, -1.0]);
+        let m = DMat3::from_cols_array(&[2.0, 0.0, 1.0, 0.5, 3.0, 0.0, 0.0, 1.0, -1.0]);
         let expected = m.inverse().transpose() * m.determinant();
         assert!(cofactor(&m).abs_diff_eq(expected, 1e-5));
     }
@@ -380,9 +381,17 @@ mod tests {
             material: None,
             extra_points: None,
         };
-        let mirror = Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0));
-        let mesh = instantiate(&local, &mirror, "m".into());
-        assert_eq!(mesh.indices, vec![[0, 2, 1]]);
-        assert!(mesh.normals[0].abs_diff_eq(Vec3::new(-1.0, 1.0, 1.0).normalize(), 1e-6));
+        // At scales whose determinant (s³) and cofactors (s²) underflow or overflow f32.
+        for s in [1.0, 1e-20, 1e20] {
+            let mirror = Mat4::from_scale(Vec3::new(-s, s, s));
+            let mesh = instantiate(&local, &mirror, "m".into());
+            assert_eq!(mesh.indices, vec![[0, 2, 1]], "scale {s}");
+            let expected = Vec3::new(-1.0, 1.0, 1.0).normalize();
+            assert!(
+                mesh.normals[0].abs_diff_eq(expected, 1e-6),
+                "scale {s}: {}",
+                mesh.normals[0]
+            );
+        }
     }
 }

@@ -32,14 +32,8 @@ pub(super) fn read_scatter(
     warnings: &mut Warnings,
 ) -> Result<Option<VolumeScatter>, LoadError> {
     let invalid = |detail: String| ctx.error(element, LoadErrorKind::InvalidValue, detail);
-    if let Some(extras) = m
-        .extras()
-        .as_ref()
-        .and_then(|raw| serde_json::from_str::<Value>(raw.get()).ok())
-    {
-        if let Some(medium) = extras.get("iris_medium") {
-            return iris_medium(medium).map(Some).map_err(invalid);
-        }
+    if let Some(medium) = super::extras::extras_key(ctx, m.extras(), element, "iris_medium")? {
+        return iris_medium(&medium).map(Some).map_err(invalid);
     }
     for name in EXTENSIONS {
         let Some(ext) = m.extension_value(name) else {

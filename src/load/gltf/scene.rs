@@ -163,23 +163,21 @@ fn root_nodes(doc: &gltf::Document) -> Vec<gltf::Node<'_>> {
         .collect()
 }
 
-/// The chosen scene's label and its extras, if they are a JSON value.
-fn scene_extras(ctx: &Ctx<'_>) -> Option<(String, serde_json::Value)> {
-    let scene = ctx
-        .doc
-        .default_scene()
-        .or_else(|| ctx.doc.scenes().next())?;
-    let extras = serde_json::from_str(scene.extras().as_ref()?.get()).ok()?;
-    Some((label("scene", scene.index(), scene.name()), extras))
+/// The chosen scene's label and the value of its extras key `key`
+/// ([`super::extras::extras_key`]), if it has one.
+fn scene_key(ctx: &Ctx<'_>, key: &str) -> Result<Option<(String, serde_json::Value)>, LoadError> {
+    let Some(scene) = ctx.doc.default_scene().or_else(|| ctx.doc.scenes().next()) else {
+        return Ok(None);
+    };
+    let name = label("scene", scene.index(), scene.name());
+    let value = super::extras::extras_key(ctx, scene.extras(), &name, key)?;
+    Ok(value.map(|v| (name, v)))
 }
 
 /// The chosen scene's `extras.iris_fog`: a fog specification string as `--fog` takes
 /// ([`crate::volume::fog`]).
 fn read_fog(ctx: &Ctx<'_>) -> Result<Option<crate::volume::Medium>, LoadError> {
-    let Some((scene, extras)) = scene_extras(ctx) else {
-        return Ok(None);
-    };
-    let Some(value) = extras.get("iris_fog") else {
+    let Some((scene, value)) = scene_key(ctx, "iris_fog")? else {
         return Ok(None);
     };
     let element = format!("{scene} extras.iris_fog");
@@ -201,12 +199,10 @@ fn read_fog(ctx: &Ctx<'_>) -> Result<Option<crate::volume::Medium>, LoadError> {
 
 /// The chosen scene's `extras.iris_environment`, checked (see the module docs).
 fn read_environment(ctx: &Ctx<'_>) -> Result<Option<EnvironmentDesc>, LoadError> {
-    let Some((scene, extras)) = scene_extras(ctx) else {
+    let Some((scene, value)) = scene_key(ctx, "iris_environment")? else {
         return Ok(None);
     };
-    let Some(value) = extras.get("iris_environment") else {
-        return Ok(None);
-    };
+    let value = &value;
     let element = format!("{scene} extras.iris_environment");
     let err = |kind, detail: String| ctx.error(element.as_str(), kind, detail);
     let radiance = |v: &serde_json::Value| {
@@ -300,17 +296,17 @@ fn light_desc(
         &label("light", light.index(), light.name()),
     )?;
     let direction = || {
-        world
-            .transform_vector3(Vec3::NEG_Z)
-            .try_normalize()
-            .ok_or_else(|| {
+        crate::math::unit_direction(world.as_dmat4().transform_vector3(glam::DVec3::NEG_Z))
+            .map_err(|why| {
                 ctx.error(
                     format!(
                         "{node_label} {}",
                         label("light", light.index(), light.name())
                     ),
                     LoadErrorKind::InvalidValue,
-                    "the node transform collapses the light's direction (zero scale)",
+                    format!(
+                        "the node transform gives the light no direction: its −Z {why}                          (a zero or non-finite scale)"
+                    ),
                 )
             })
     };
@@ -401,10 +397,13 @@ fn camera_desc(
 }
 
 /// `m` without scale or shear: keeps the −Z (view) axis and the +Y (up) axis direction,
-/// makes X = Y × Z, keeps the translation. `None` if the axes are degenerate.
+/// makes X = Y × Z, keeps the translation. The axes are normalised safely
+/// ([`crate::math::unit_direction`]), so any finite non-zero scale works; `None` if the
+/// axes are degenerate (a zero scale, or Y along Z).
 fn rigid(m: &Mat4) -> Option<Mat4> {
-    let z = m.z_axis.truncate().try_normalize()?;
-    let y_in = m.y_axis.truncate();
+    let unit = |v: Vec3| crate::math::unit_direction(v.as_dvec3()).ok();
+    let z = unit(m.z_axis.truncate())?;
+    let y_in = unit(m.y_axis.truncate())?;
     let y = (y_in - z * y_in.dot(z)).try_normalize()?;
     let x = y.cross(z);
     Some(Mat4::from_cols(

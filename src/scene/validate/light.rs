@@ -62,9 +62,8 @@ pub(super) fn check_light(
     }
     if let Some(d) = direction {
         let v = *d;
-        *d = v
-            .try_normalize()
-            .ok_or_else(|| invalid(format!("direction {v} is zero or not finite")))?;
+        *d = crate::math::unit_direction(v.as_dvec3())
+            .map_err(|why| invalid(format!("direction {why}: {v}")))?;
     }
     if !color.is_finite() || color.min_element() < 0.0 {
         return Err(invalid(format!("colour {color} must be finite and ≥ 0")));

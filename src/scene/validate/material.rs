@@ -64,10 +64,15 @@ pub(super) fn check_material(
         m.iridescence.map(|i| i.check()),
         m.anisotropy.map(|a| a.check()),
         m.crystal.map(|_| crystal_rule(m)),
-        m.polarizer.map(|_| polarizer_rule(m)),
     ];
     for rule in extension_rules.into_iter().flatten() {
         rule.map_err(|detail| invalid(LoadErrorKind::InvalidValue, detail))?;
+    }
+    if let Some(axis) = m.polarizer {
+        m.polarizer = Some(
+            polarizer_rule(m, axis)
+                .map_err(|detail| invalid(LoadErrorKind::InvalidValue, detail))?,
+        );
     }
 
     let cutoff = match m.alpha_mode {
@@ -284,16 +289,12 @@ fn crystal_rule(m: &MaterialDesc) -> Result<(), String> {
 }
 
 /// A polarizer sheet (`extras.iris_polarizer`) is thin-walled and transmissive, with a
-/// direction.
-fn polarizer_rule(m: &MaterialDesc) -> Result<(), String> {
-    let axis = m.polarizer.unwrap_or_default();
-    if !axis.is_finite() || axis.length_squared() < 1e-20 {
-        return Err(format!(
-            "extras.iris_polarizer.axis {axis} must be a finite non-zero direction"
-        ));
-    }
+/// direction: its axis `axis` as a unit vector.
+fn polarizer_rule(m: &MaterialDesc, axis: Vec3) -> Result<Vec3, String> {
+    let axis = crate::math::unit_direction(axis.as_dvec3())
+        .map_err(|why| format!("extras.iris_polarizer.axis {why}: {axis}"))?;
     if m.transmission > 0.0 && m.thickness == 0.0 && m.metallic < 1.0 {
-        Ok(())
+        Ok(axis)
     } else {
         Err("extras.iris_polarizer needs a thin-walled transmissive surface (KHR_materials_transmission > 0, no KHR_materials_volume thickness, not metallic)".into())
     }
