@@ -276,14 +276,10 @@ fn assemble(mode: Mode, idx: &[u32]) -> Vec<[u32; 3]> {
 pub(super) fn instantiate(local: &LocalPrimitive, world: &Mat4, name: String) -> MeshDesc {
     let linear = Mat3::from_mat4(*world);
     let det = linear.determinant();
-    // The cofactor's entries are products of two of the matrix's: taken of the matrix
-    // scaled to entries near 1 (a positive factor, which leaves the normals' directions),
-    // so a node scaled by 1e±30 neither overflows nor underflows them.
-    let unit = linear * (1.0 / power_of_two_near(max_abs(&linear)));
     let normal_matrix = if det < 0.0 {
-        -cofactor(&unit)
+        -cofactor(&linear)
     } else {
-        cofactor(&unit)
+        cofactor(&linear)
     };
     let positions = local
         .positions
@@ -338,25 +334,6 @@ pub(super) fn instantiate(local: &LocalPrimitive, world: &Mat4, name: String) ->
     }
 }
 
-/// The largest |entry| of `m`.
-fn max_abs(m: &Mat3) -> f32 {
-    m.x_axis
-        .abs()
-        .max(m.y_axis.abs())
-        .max(m.z_axis.abs())
-        .max_element()
-}
-
-/// The power of two nearest `x` in the log (1 for zero, subnormal or non-finite `x`), so
-/// dividing by it is exact.
-fn power_of_two_near(x: f32) -> f32 {
-    if x.is_normal() {
-        x.log2().round().exp2()
-    } else {
-        1.0
-    }
-}
-
 /// Cofactor matrix `det(M)·M⁻ᵀ`: columns `(b×c, c×a, a×b)` for `M = [a b c]`.
 fn cofactor(m: &Mat3) -> Mat3 {
     Mat3::from_cols(
@@ -369,30 +346,6 @@ fn cofactor(m: &Mat3) -> Mat3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn normals_survive_extreme_node_scales() {
-        // A node scaled by 1e±30 (and squashed along y): the cofactor of the raw matrix
-        // would overflow or underflow; the normals stay unit and point the same way.
-        let local = LocalPrimitive {
-            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Z],
-            normals: vec![Vec3::new(0.0, 1.0, 1.0).normalize(); 3],
-            uvs: Vec::new(),
-            uvs1: Vec::new(),
-            tangents: Vec::new(),
-            triangles: vec![[0, 1, 2]],
-            material: None,
-            extra_points: None,
-        };
-        for s in [1e30f32, 1e-30, 1.0] {
-            let world = Mat4::from_scale(Vec3::new(s, 0.5 * s, s));
-            let m = instantiate(&local, &world, "n".into());
-            let expect = Vec3::new(0.0, 2.0, 1.0).normalize();
-            for n in &m.normals {
-                assert!((*n - expect).length() < 1e-6, "scale {s}: {n}");
-            }
-        }
-    }
 
     #[test]
     fn strip_and_fan_follow_the_spec() {
