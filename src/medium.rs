@@ -12,14 +12,21 @@
 //! modelled overlapping its glass (glass at a higher priority) refracts at the glass's inner
 //! wall both ways, and its own faces inside the glass are ignored. Entering pushes, exiting
 //! removes the last occurrence. A path that exits a medium it never entered (open meshes, a
-//! camera inside glass) is handled as that-medium-to-current, the best guess. Depth is
-//! bounded by [`MAX_NESTING`]; deeper nesting drops the oldest entry.
+//! camera inside glass) is handled as that-medium-to-current, the best guess; a path in
+//! no medium at all that exits one (a camera or a light inside it) learns the media beyond
+//! the surface from a probe ray ([`media_beyond`]), so a camera inside a stone inside
+//! water meets stone → water, and the segment it ran in that medium
+//! ([`segment_medium`]). Depth is bounded by [`MAX_NESTING`]; deeper nesting drops the
+//! oldest entry.
 
 use crate::interaction::{CoincidentFaces, SurfaceHit, MAX_COINCIDENT};
 use crate::scene::Scene;
 
 /// Deepest nesting tracked.
 pub const MAX_NESTING: usize = 8;
+
+/// Most surfaces a probe ray of [`media_beyond`] crosses.
+pub const PROBE_HITS: usize = 64;
 
 /// The media a path is inside, innermost last. `Copy`, so each branch gets its own.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -148,7 +155,56 @@ pub fn crossing(
             n += 1;
         }
     }
+    // A path in no medium leaving one started inside it: the media it was in are the
+    // media beyond the surface and, innermost, the ones it leaves.
+    let started_inside = media.current().is_none() && crossings[..n].iter().any(|c| !c.1);
+    let media = if started_inside {
+        crossings[..n]
+            .iter()
+            .filter(|c| !c.1)
+            .fold(media_beyond(scene, hit), |s, c| s.entered(c.0, c.2))
+    } else {
+        media
+    };
     interface_merged(media, &crossings[..n], ior)
+}
+
+/// The volumetric media containing the point just beyond `hit` on its normal's side, outermost
+/// first: a probe ray from there along the normal, each volume whose first face on it is
+/// left rather than entered contains the point (closed meshes; the first left is the
+/// innermost). At most [`PROBE_HITS`] faces are crossed.
+pub fn media_beyond(scene: &Scene, hit: &SurfaceHit) -> MediumStack {
+    let mut entered: [u32; PROBE_HITS] = [u32::MAX; PROBE_HITS];
+    let mut containing: Vec<u32> = Vec::new();
+    let mut ray = hit.spawn_ray(hit.ng);
+    for k in 0..PROBE_HITS {
+        let Some(h) = scene.intersect(&ray) else {
+            break;
+        };
+        let m = h.material;
+        if scene.materials()[m as usize].is_volume() && !entered[..k].contains(&m) {
+            if h.front_face {
+                entered[k] = m;
+            } else if !containing.contains(&m) {
+                containing.push(m);
+            }
+        }
+        ray = h.spawn_ray(ray.dir);
+    }
+    let priority = |m: u32| scene.materials()[m as usize].desc.priority;
+    containing
+        .iter()
+        .rev()
+        .fold(MediumStack::new(), |s, &m| s.entered(m, priority(m)))
+}
+
+/// The medium a segment ending at `hit` ran in: the path's current one or, for a path in
+/// no medium leaving a volume through `hit` (it started inside), that volume.
+pub fn segment_medium(scene: &Scene, media: &MediumStack, hit: &SurfaceHit) -> Option<u32> {
+    let m = hit.material;
+    media
+        .current()
+        .or_else(|| (!hit.front_face && scene.materials()[m as usize].is_volume()).then_some(m))
 }
 
 #[cfg(test)]

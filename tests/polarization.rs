@@ -141,6 +141,73 @@ fn a_furnace_gives_the_same_light_polarized_or_not() {
     assert!((m - 1.0).abs() < 0.02, "calcite furnace {m}");
 }
 
+/// Issue 48 item 4: a camera inside a crystal. The camera sits at the centre of a ball in
+/// a uniform environment of 1 and looks out along (1, 0, 1)/√2; every ray leaves through
+/// the wall nearly along a radius and, the ball being lossless, whatever the Fresnel
+/// split the radiance it brings back is n² (radiance scales by n² into a medium of index
+/// n, pbrt-v4 §9.5.2): 2.56 for glass and for a "crystal" of three equal indices 1.6,
+/// polarized or not. In calcite (optic axis z, 45° from the view) light reaches the camera
+/// in two modes of half the light each: the ordinary one brings n_o², the extraordinary
+/// one n_e(θ_k)², θ_k the angle of its wave normal from the axis, which the walk-off puts
+/// at tan θ_k = (n_e/n_o)² tan 45° (Born & Wolf §15.3.3). A polarizer along one mode's E
+/// field (vertical: ordinary; horizontal: extraordinary) keeps half of that mode alone.
+/// Tolerance 1 %: reflections inside (about 6 % of the light, half of it changing mode)
+/// move the calcite values by a few tenths of a percent; noise is smaller.
+#[test]
+fn a_camera_inside_a_crystal_sees_out() {
+    let ball = |m: MaterialDesc| {
+        let desc = SceneDesc {
+            source: "camera inside".into(),
+            meshes: vec![mesh("ball", icosphere(1.0, 3), 0)],
+            materials: vec![m],
+            ..Default::default()
+        };
+        build(desc, Some(1.0))
+    };
+    let dir = Vec3::new(1.0, 0.0, 1.0).normalize();
+    let cam = ortho(Vec3::ZERO, dir, Vec3::Y, 0.02);
+    let iso = crystal("one index", CrystalOptics::Indices([1.6; 3]), Vec3::Z);
+    let path = Integrator::new(Method::Path, 32, &PhotonSettings::default()).unwrap();
+    for (what, m) in [("glass", glass(1.6)), ("one-index crystal", iso)] {
+        let scene = ball(m);
+        let pol = luminance(mean(&polarized(&scene, &cam, None, 16, 16)));
+        let img = path.render(&scene, &Camera::new(&cam, 16, 16), &settings(16, 16));
+        let plain = luminance(mean(&img.unwrap().0));
+        eprintln!("inside {what}: polarized {pol}, unpolarized {plain}");
+        for v in [pol, plain] {
+            assert!(
+                (v / 2.56 - 1.0).abs() < 0.01,
+                "inside {what}: {v} vs n² = 2.56"
+            );
+        }
+    }
+    let (n_o, n_e) = (1.6584f32, 1.4864f32);
+    let theta_k = ((n_e / n_o).powi(2)).atan();
+    let n_k2 = 1.0 / ((theta_k.cos() / n_o).powi(2) + (theta_k.sin() / n_e).powi(2));
+    let calcite = ball(crystal(
+        "calcite",
+        CrystalOptics::Indices([n_o, n_o, n_e]),
+        Vec3::Z,
+    ));
+    let open = luminance(mean(&polarized(&calcite, &cam, None, 16, 16)));
+    let ordinary = luminance(mean(&polarized(&calcite, &cam, Some(90.0), 16, 16)));
+    let extraordinary = luminance(mean(&polarized(&calcite, &cam, Some(0.0), 16, 16)));
+    eprintln!(
+        "inside calcite: open {open} (expect {}), ordinary {ordinary} (expect {}), \
+         extraordinary {extraordinary} (expect {})",
+        0.5 * (n_o * n_o + n_k2),
+        0.5 * n_o * n_o,
+        0.5 * n_k2
+    );
+    for (what, got, want) in [
+        ("open", open, 0.5 * (n_o * n_o + n_k2)),
+        ("ordinary", ordinary, 0.5 * n_o * n_o),
+        ("extraordinary", extraordinary, 0.5 * n_k2),
+    ] {
+        assert!((got / want - 1.0).abs() < 0.01, "{what}: {got} vs {want}");
+    }
+}
+
 /// A calcite slab (thickness `t`, top at y = t) over a small emitter at the origin, seen
 /// from above by an orthographic camera (image right = +x, up = −z).
 fn calcite_over_dot(t: f32, axis: Vec3) -> (Scene, CameraDesc) {
@@ -348,6 +415,74 @@ fn light_along_an_optic_axis_keeps_its_polarization() {
         assert!(
             crossed < 1e-3 * parallel,
             "{what}: crossed {crossed} vs {parallel}"
+        );
+    }
+}
+
+/// Issue 48 item 4, the same class of fault: a camera inside nested volumes and inside an
+/// absorbing one. In a uniform environment of 1, the camera at the common centre of a ball
+/// of index 1.6 (radius 0.5) inside one of index 1.3 (radius 1), glass or a crystal of
+/// three equal indices, sees n² = 2.56 of the inner index whatever the outer one (the
+/// radiance scales by (1.6/1.3)² then (1.3/1)²); a camera that took the inner ball's
+/// outside for air would see 2.56 × 1.3². Inside one absorbing glass ball (index 1.6,
+/// radius 1, attenuation colour 0.5 at distance 1): a radial ray leaves with Fresnel
+/// transmittance T = 1 − R, R = ((n − 1)/(n + 1))², after a = 0.5 of absorption, or is
+/// reflected back across the ball (a² more) to try again, so L = n²·T·a / (1 − R·a²) =
+/// 1.228. Tolerance 1.5 %: the icosphere's facets lie up to about 1 % inside the sphere.
+#[test]
+fn a_camera_inside_nested_or_absorbing_volumes_sees_out() {
+    let cam = ortho(Vec3::ZERO, Vec3::new(1.0, 0.0, 1.0), Vec3::Y, 0.02);
+    let path = Integrator::new(Method::Path, 32, &PhotonSettings::default()).unwrap();
+    let both = |scene: &Scene| {
+        let pol = luminance(mean(&polarized(scene, &cam, None, 16, 16)));
+        let img = path.render(scene, &Camera::new(&cam, 16, 16), &settings(16, 16));
+        (pol, luminance(mean(&img.unwrap().0)))
+    };
+    let iso = crystal("one index", CrystalOptics::Indices([1.6; 3]), Vec3::Z);
+    for (what, inner) in [("glass", glass(1.6)), ("one-index crystal", iso)] {
+        let scene = build(
+            SceneDesc {
+                source: "nested".into(),
+                meshes: vec![
+                    mesh("inner", icosphere(0.5, 3), 0),
+                    mesh("outer", icosphere(1.0, 3), 1),
+                ],
+                materials: vec![inner, glass(1.3)],
+                ..Default::default()
+            },
+            Some(1.0),
+        );
+        let (pol, plain) = both(&scene);
+        eprintln!("{what} inside glass 1.3: polarized {pol}, unpolarized {plain}");
+        for v in [pol, plain] {
+            assert!(
+                (v / 2.56 - 1.0).abs() < 0.015,
+                "{what} in glass: {v} vs 2.56"
+            );
+        }
+    }
+    let dark = MaterialDesc {
+        attenuation_color: Vec3::splat(0.5),
+        attenuation_distance: 1.0,
+        ..glass(1.6)
+    };
+    let scene = build(
+        SceneDesc {
+            source: "absorbing".into(),
+            meshes: vec![mesh("ball", icosphere(1.0, 3), 0)],
+            materials: vec![dark],
+            ..Default::default()
+        },
+        Some(1.0),
+    );
+    let r = (0.6f32 / 2.6).powi(2);
+    let expect = 2.56 * (1.0 - r) * 0.5 / (1.0 - r * 0.25);
+    let (pol, plain) = both(&scene);
+    eprintln!("inside absorbing glass: polarized {pol}, unpolarized {plain}, expect {expect}");
+    for v in [pol, plain] {
+        assert!(
+            (v / expect - 1.0).abs() < 0.015,
+            "absorbing: {v} vs {expect}"
         );
     }
 }

@@ -110,6 +110,40 @@ impl Crystal {
         }
     }
 
+    /// The crystal whose principal indices are the reciprocals 1/n_x, 1/n_y, 1/n_z: its
+    /// impermeability is this crystal's permittivity ε = R·diag(n_x², n_y², n_z²)·Rᵀ.
+    fn dual(&self) -> Crystal {
+        Crystal {
+            axes: self.axes,
+            n: self.n.map(|n| 1.0 / n),
+        }
+    }
+
+    /// The mode `which` whose ray (energy) direction is `s` (unit): the inverse of the
+    /// walk-off, for light met travelling inside the crystal along a known ray (a camera or
+    /// a light inside it). The ray equations are the wave equations with k ↔ s, D ↔ E and
+    /// n_i ↔ 1/n_i (Born & Wolf §15.2.2): the E fields a ray direction s admits are the
+    /// D fields of the [`Crystal::dual`] crystal for the wave normal s, and its ray index
+    /// n_r = n cos ρ the reciprocal of the dual's index, so the dual's slow mode is this
+    /// crystal's fast one. Then D = ε·E, and k is the unit part of s ⊥ D (k, s, D and E lie
+    /// in one plane, with D ⊥ k and E ⊥ s).
+    pub fn mode_along_ray(&self, s: Vec3, which: Which) -> Mode {
+        let dual = self.dual();
+        let dual_which = match which {
+            Which::Slow => Which::Fast,
+            Which::Fast => Which::Slow,
+        };
+        let e = dual.mode(s, dual_which).d;
+        let d = dual.impermeability(e).normalize_or(e);
+        let k = (s - d * s.dot(d)).normalize_or(s);
+        self.mode(if k.dot(s) > 0.0 { k } else { -k }, which)
+    }
+
+    /// The direction of the E field (unit) of a mode whose D field is along `d`: E ∝ η·D.
+    pub fn e_field(&self, d: Vec3) -> Vec3 {
+        self.impermeability(d).normalize_or(d)
+    }
+
     /// The mode `which` of the wave refracted or reflected into the crystal across a plane
     /// with unit normal `into` (pointing into the crystal) whose tangential wave vector is
     /// `t` (⊥ `into`, |t| = n_i sin θ_i): k̂ ∝ t + ξ·into with ξ = √(n(k̂)² − |t|²).
@@ -214,6 +248,49 @@ mod tests {
             assert!((tang - t).length() < 1e-5, "{which:?}: {tang} vs {t}");
             assert!((c.mode(m.k, which).n - m.n).abs() < 1e-6);
         }
+    }
+
+    #[test]
+    fn the_mode_along_a_ray_walks_off_onto_that_ray() {
+        // Calcite with a tilted axis and a biaxial crystal: for rays in several directions,
+        // each mode found along the ray has that ray as its own ray direction, and its
+        // index is the mode's index for its wave normal.
+        let mut cal = calcite();
+        cal.axes = Mat3::from_rotation_y(0.6) * Mat3::from_rotation_x(0.3);
+        let biaxial = Crystal {
+            axes: Mat3::from_rotation_z(0.4),
+            n: [1.654, 1.672, 1.690],
+        };
+        for c in [cal, biaxial] {
+            for s in [
+                Vec3::new(1.0, 0.0, 1.0),
+                Vec3::new(0.3, -0.5, 0.8),
+                Vec3::new(-0.9, 0.2, 0.1),
+            ] {
+                let s = s.normalize();
+                for which in BOTH {
+                    let m = c.mode_along_ray(s, which);
+                    assert!((m.ray - s).length() < 1e-4, "{which:?}: {} vs {s}", m.ray);
+                    assert!((c.mode(m.k, which).n - m.n).abs() < 1e-6);
+                }
+                let (slow, fast) = (
+                    c.mode_along_ray(s, Which::Slow),
+                    c.mode_along_ray(s, Which::Fast),
+                );
+                assert!(slow.n >= fast.n, "{} < {}", slow.n, fast.n);
+                // The two E fields of one ray are orthogonal (they split unpolarized light
+                // half and half).
+                assert!(c.e_field(slow.d).dot(c.e_field(fast.d)).abs() < 1e-4);
+            }
+        }
+        // Calcite at 45° from the axis: the extraordinary wave normal lies at θ with
+        // tan θ = (n_e/n_o)² tan 45° (Born & Wolf §15.3.3), the ordinary one along the ray.
+        let c = calcite();
+        let s = Vec3::new(1.0, 0.0, 1.0).normalize();
+        let e = c.mode_along_ray(s, Which::Fast);
+        let theta = e.k.x.atan2(e.k.z);
+        assert!((theta - (1.4864f32 / 1.6584).powi(2).atan()).abs() < 1e-4);
+        assert!((c.mode_along_ray(s, Which::Slow).k - s).length() < 1e-5);
     }
 
     #[test]

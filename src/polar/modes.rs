@@ -9,7 +9,7 @@
 //! [`super::stokes::linear_polarizer`]`(ψ)`, symmetric, so the row a·P and the column P·S
 //! have the same entries.
 
-use super::crystal::{Mode, Which, BOTH};
+use super::crystal::{Crystal, Mode, Which, BOTH};
 use glam::Vec3;
 
 /// Relative index difference below which the two modes are one (along an optic axis, or an
@@ -85,6 +85,44 @@ pub fn project(v: &[f32; 4], mode: &Mode, s: Vec3, travel: Travel) -> ([f32; 4],
     let (sin2, cos2) = (2.0 * psi).sin_cos();
     let w = (0.5 * (v[0] + v[1] * cos2 + v[2] * sin2)).max(0.0);
     ([w, w * cos2, w * sin2, 0.0], w)
+}
+
+/// The mode of light met travelling inside a crystal along the ray direction `ray` in no
+/// known mode — a camera or a light inside the crystal, or a path leaving a surface that
+/// is not the crystal's inside it — chosen with `u` as [`choose`] does: each mode whose
+/// ray runs along `ray` ([`Crystal::mode_along_ray`]) weighted by what its linear
+/// polarizer passes of `v` (basis `s` ⊥ `ray`), the polarizer along the mode's E field,
+/// which is ⊥ the ray as `v`'s basis is. Returns the choice with the chosen vector in the
+/// basis of the second value, ⊥ the mode's wave normal: fully polarized along its D field
+/// (E along the ray is D along the wave normal), or `v` unchanged in `s` when the two
+/// modes are one ([`DEGENERATE`]: no walk-off, no split).
+pub fn along_ray(
+    c: &Crystal,
+    ray: Vec3,
+    (v, s): (&[f32; 4], Vec3),
+    travel: Travel,
+    u: f32,
+) -> Option<(Chosen, Vec3)> {
+    let modes = BOTH.map(|w| c.mode_along_ray(ray, w));
+    if modes[0].n - modes[1].n < DEGENERATE * modes[0].n {
+        let w = v[0].max(0.0);
+        let one = [Some((Which::Slow, modes[0], (*v, w))), None];
+        return choose(&one, u).map(|c| (c, s));
+    }
+    let weighted = BOTH.map(|w| {
+        let mode = modes[usize::from(w == Which::Fast)];
+        // The projection in the ray's frame: the mode's E field in place of D, the ray in
+        // place of the wave normal.
+        let seen = Mode {
+            k: ray,
+            d: super::stokes::transverse(c.e_field(mode.d), ray),
+            ..mode
+        };
+        let (_, weight) = project(v, &seen, s, travel);
+        Some((w, mode, ([weight, weight, 0.0, 0.0], weight)))
+    });
+    let chosen = choose(&weighted, u)?;
+    Some((chosen, chosen.1.d))
 }
 
 /// Picks one of the weighted modes with probability w / Σw using `u`; returns it with Σw.

@@ -121,7 +121,8 @@ pub fn polarizer_sheet<C: Carrier>(at: &Arrival<'_, C>) -> Option<Vec3> {
 /// The transmittance of the segment just travelled to `at` inside `media`: in a crystal
 /// with an absorption table, with the light in the mode whose D field is `mode_d`,
 /// e^(−σ_m t) ([`CrystalDesc::mode_transmittance`]) at the hero of `lambda`; elsewhere the
-/// arrival's (Beer–Lambert).
+/// arrival's (Beer–Lambert). A path in no medium leaving a volume (it started inside)
+/// travelled in that volume ([`crate::medium::segment_medium`]).
 pub fn segment_transmittance<C: Carrier>(
     scene: &Scene,
     media: &MediumStack,
@@ -129,8 +130,7 @@ pub fn segment_transmittance<C: Carrier>(
     at: &Arrival<'_, C>,
     lambda: &C::Lambda,
 ) -> C {
-    let crystal = media
-        .current()
+    let crystal = crate::medium::segment_medium(scene, media, &at.hit)
         .and_then(|m| scene.materials()[m as usize].desc.crystal.as_ref());
     match (crystal, mode_d, C::hero(lambda)) {
         (Some(c), Some(d), Some(nm)) => c

@@ -71,7 +71,7 @@ pub struct Arrival<'s, C: Carrier> {
     /// The material at the hit (textures evaluated).
     pub sp: ShadingPoint,
     /// Beer–Lambert transmittance of the segment just travelled, in the medium the ray was
-    /// in (one outside every medium).
+    /// in ([`crate::medium::segment_medium`]; one outside every medium).
     pub transmittance: C,
 }
 
@@ -98,7 +98,7 @@ pub fn arrival<'s, C: Carrier>(
     lambda: &C::Lambda,
 ) -> Option<Arrival<'s, C>> {
     let hit = hit?;
-    let transmittance = match media.current() {
+    let transmittance = match crate::medium::segment_medium(scene, media, &hit) {
         Some(m) => scene.materials()[m as usize].transmittance_at::<C>(hit.t, lambda),
         None => C::ONE,
     };

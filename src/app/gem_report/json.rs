@@ -1,7 +1,8 @@
 //! `report.json`: the gem report's numbers for programs. Fractions are percentages (0 to
 //! 100, rounded to 0.001), the median spread in degrees (0.0001), lengths in the file's units; no
 //! times, so the same file and flags give the same bytes. Keys:
-//! `file`, `stone` {`meshes`, `table`, `table_found`, `girdle_radius`, `height`},
+//! `file`, `stone` {`meshes`, `table`, `table_found`, `girdle_radius`, `height`,
+//! `birefringent`},
 //! `settings` {`size`, `spp`, `seed`, `tilts`}, `face_up` and each `zones[]` / `tilts[]`
 //! entry {`light_return`, `high`, `low`, `obscured`, `leakage`, `other`} (zones add `zone`,
 //! `from`, `to` as fractions of the girdle radius, `to` null when unbounded; tilts add
@@ -74,6 +75,7 @@ pub fn json(opts: &GemReportOptions, report: &GemReport, f: &Figures) -> Result<
             "table_found": s.table_found,
             "girdle_radius": s.girdle_radius,
             "height": s.height,
+            "birefringent": s.birefringent,
         },
         "settings": {
             "size": opts.size,

@@ -121,6 +121,8 @@ pub struct StoneInfo {
     pub girdle_radius: f32,
     /// Height along the axis, file units.
     pub height: f32,
+    /// Whether the stone is birefringent (each picture the mean of its two modes').
+    pub birefringent: bool,
 }
 
 /// What a report did.
@@ -201,6 +203,7 @@ pub fn gem_report(opts: &GemReportOptions) -> Result<GemReport> {
         table_found: stage.table_found,
         girdle_radius: stage.girdle_radius,
         height: stage.height,
+        birefringent: stage.birefringent,
     };
     let settings = Settings {
         size: opts.size,

@@ -222,6 +222,12 @@ fn about(opts: &GemReportOptions, report: &GemReport) -> String {
         opts.size,
         opts.spp
     );
+    if s.birefringent {
+        text += " The stone is birefringent: every picture is the mean of two renders, one \
+                 per polarization mode, each as an isotropic stone whose index is the middle \
+                 of the range that mode's index runs over (n_o itself for the ordinary mode \
+                 of a uniaxial stone).";
+    }
     if !opts.command.is_empty() {
         let _ = write!(text, " Command: `{}`.", opts.command);
     }

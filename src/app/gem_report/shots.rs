@@ -8,6 +8,10 @@
 //! Images are linear RGB, square, the stage's field; the coverage (the fraction of a
 //! pixel's camera samples that hit the stone, [`crate::render::coverage`]) is computed
 //! once per tilt with the same samples.
+//!
+//! A birefringent stone ([`Stage::birefringent`]) is rendered once per mode, each as the
+//! isotropic stone of that mode's index ([`crate::prepare::stage`]'s module docs), and a
+//! shot's image is the mean of the two: each mode carries half of the unpolarized light.
 
 use crate::app::{RenderJob, RenderOptions, RunHooks};
 use crate::error::Result;
@@ -15,6 +19,7 @@ use crate::image::{Coverage, ImageRgb};
 use crate::integrator::Method;
 use crate::light::env::Environment;
 use crate::plan::SpectralMode;
+use crate::polar::crystal::Which;
 use crate::prepare::stage::{Setup, Stage};
 use crate::spectrum::ior::{LAMBDA_C, LAMBDA_D, LAMBDA_F};
 use crate::studio::instrument::Instrument;
@@ -129,7 +134,8 @@ fn options(stage_file: &std::path::Path, s: &Settings, spp: u32) -> RenderOption
 }
 
 /// Renders `shot` of `stage` under the already built `environment` (the shot's
-/// instrument's).
+/// instrument's): the mean of its two modes' images for a birefringent stone (module
+/// docs), with their summed time.
 pub fn render(
     stage: &Stage,
     file: &std::path::Path,
@@ -137,12 +143,45 @@ pub fn render(
     environment: &Environment,
     s: &Settings,
 ) -> Result<Rendered> {
+    let first = render_mode(stage, file, shot, environment, s, Which::Fast)?;
+    if !stage.birefringent || first.interrupted {
+        return Ok(first);
+    }
+    let second = render_mode(stage, file, shot, environment, s, Which::Slow)?;
+    let image = ImageRgb {
+        data: first
+            .image
+            .data
+            .iter()
+            .zip(&second.image.data)
+            .map(|(a, b)| 0.5 * (*a + *b))
+            .collect(),
+        ..first.image
+    };
+    Ok(Rendered {
+        image,
+        spp: first.spp.min(second.spp),
+        time: first.time + second.time,
+        interrupted: second.interrupted,
+    })
+}
+
+/// Renders `shot` with the stone showing `mode` ([`Setup::mode`]).
+fn render_mode(
+    stage: &Stage,
+    file: &std::path::Path,
+    shot: &Shot,
+    environment: &Environment,
+    s: &Settings,
+    mode: Which,
+) -> Result<Rendered> {
     let setup = Setup {
         environment: environment.clone(),
         tilt: shot.tilt,
         lambda_nm: shot.lambda_nm,
         size: s.size,
         grey_body: shot.instrument.codes_by_channel(),
+        mode,
     };
     let prepared = stage.prepare(&setup, s.accel)?;
     let opts = options(file, s, shot.spp(s.spp));
@@ -174,6 +213,7 @@ pub fn coverage(
         lambda_nm: LAMBDA_D,
         size: s.size,
         grey_body: false,
+        mode: Which::Fast,
     };
     let prepared = stage.prepare(&setup, s.accel)?;
     let opts = options(file, s, s.spp);

@@ -19,7 +19,7 @@
 use crate::polar::crystal::{Crystal, Mode};
 use crate::polar::fresnel;
 use crate::polar::interface::{meet, Inside, Meeting, Outside};
-use crate::polar::modes::{choose, split, Chosen, InMode, Travel};
+use crate::polar::modes::{along_ray, choose, split, Chosen, InMode, Travel};
 use crate::polar::stokes::{mul, Light, Mueller};
 use crate::shading::polarized::s_basis;
 use glam::Vec3;
@@ -37,6 +37,25 @@ pub(super) struct Step {
     pub light: Light,
     /// The factor on its power: the true power over the choice's probability.
     pub weight: f32,
+}
+
+/// The mode of a photon met inside the crystal in none, moving along the ray `d` (its
+/// light is inside, or it left a surface inside that is not the crystal's): chosen with
+/// `u` by the power each mode's polarizer passes of its light ([`along_ray`]); with the
+/// light in that mode and the factor on its power (the true power over the choice's
+/// probability: Σw, the light's s₀ = 1 shared between the two orthogonal modes). `None`
+/// when nothing passes.
+pub(super) fn start(c: &Crystal, d: Vec3, light: &Light, u: f32) -> Option<(InMode, Light, f32)> {
+    let s = light.x;
+    let chosen = along_ray(c, d, (&light.in_basis(s), s), Travel::Along, u)?;
+    let ((which, mode, (v, _), total), x) = chosen;
+    let (light, _) = Light::normalized(v, x, mode.k)?;
+    let inside = InMode {
+        which,
+        k: mode.k,
+        d: mode.d,
+    };
+    Some((inside, light, total))
 }
 
 /// The bounce of a photon moving along `d` at a crystal surface with outward unit normal

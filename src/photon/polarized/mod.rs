@@ -19,7 +19,10 @@
 //! Every non-delta hit is reported with the light arriving there. Sheets and crystal
 //! surfaces count as delta bounces, as on the camera side. Russian roulette on the
 //! throughput's change (survivors keep their power: Jensen 2001 §5.1). Scattering media are
-//! not traced (the plan refuses them with polarization); lights are outside every volume.
+//! not traced (the plan refuses them with polarization). A photon of a light inside a
+//! crystal (or leaving a surface inside one) is in no mode until it meets the crystal's
+//! surface from inside; it takes the mode its segment ran in there
+//! ([`crystal::start`]), as camera paths starting inside do.
 
 mod crystal;
 
@@ -84,6 +87,9 @@ pub fn trace<C: Carrier>(
         if bounces == 0 && photon.range.is_some() {
             f.beta *= crate::light::range_window(at.hit.t, photon.range);
         }
+        if !start_in_crystal(&mut f, &at, rng) {
+            break;
+        }
         f.beta *= segment_transmittance(scene, &f.media, f.mode.map(|m| m.d), &at, &f.lambda);
         if f.beta == C::ZERO {
             break;
@@ -119,6 +125,31 @@ pub fn trace<C: Carrier>(
         }
     }
     rays
+}
+
+/// A photon meeting a smooth crystal's surface from inside in no mode (its light is
+/// inside the crystal, or it left a surface inside that is not the crystal's) takes the
+/// mode it travelled the segment in now ([`crystal::start`]), before the segment's
+/// absorption, which is the mode's; its hero alone from there. `false` when nothing of
+/// its light is in either mode.
+fn start_in_crystal<C: Carrier>(f: &mut Flight<C>, at: &Arrival<'_, C>, rng: &mut Rng) -> bool {
+    let (Some(c), Some(nm), None) = (smooth_crystal(at), C::hero(&f.lambda), f.mode) else {
+        return true;
+    };
+    let d = f.ray.dir.normalize();
+    if d.dot(at.hit.ng) <= 0.0 {
+        return true;
+    }
+    f.beta = f.beta.keep_hero(&mut f.lambda);
+    match crystal::start(&c.at(nm), d, &f.light, rng.next_f32()) {
+        Some((mode, light, power)) => {
+            f.mode = Some(mode);
+            f.light = light;
+            f.beta *= C::splat(power);
+            true
+        }
+        None => false,
+    }
 }
 
 /// The photon `f` at the hit `at` (`bounces` so far, a `caustic` path so far): stores a

@@ -22,7 +22,7 @@
 use crate::polar::crystal::{Crystal, Mode};
 use crate::polar::fresnel;
 use crate::polar::interface::{meet, Inside, Meeting, Outside};
-use crate::polar::modes::{choose, split, Chosen, InMode, Travel};
+use crate::polar::modes::{along_ray, choose, split, Chosen, InMode, Travel};
 use crate::polar::stokes::{row_mul, Analyzer};
 use crate::shading::polarized::s_basis;
 use glam::Vec3;
@@ -40,6 +40,29 @@ pub(super) struct CrystalBounce {
     pub analyzer: Analyzer,
     /// The refraction's radiance factor 1/η'² (1 for a reflection).
     pub radiance: f32,
+}
+
+/// The mode of a path met inside the crystal in none, travelling along the ray `d` (it
+/// started inside, or left a surface inside that is not the crystal's): chosen with `u`
+/// by what each mode's polarizer passes of the analyzer ([`along_ray`]), the analyzer
+/// becoming the projected one over the choice's probability. `None` when it passes
+/// nothing.
+pub(super) fn start(c: &Crystal, d: Vec3, pol: &Analyzer, u: f32) -> Option<(InMode, Analyzer)> {
+    let s = pol.x;
+    let chosen = along_ray(c, d, (&pol.in_basis(s).a, s), Travel::Against, u)?;
+    let ((which, mode, (a, weight), total), x) = chosen;
+    let scale = total / weight.max(f32::MIN_POSITIVE);
+    let inside = InMode {
+        which,
+        k: mode.k,
+        d: mode.d,
+    };
+    let analyzer = Analyzer {
+        a: a.map(|v| v * scale),
+        x,
+        k: -mode.k,
+    };
+    Some((inside, analyzer))
 }
 
 /// The bounce of a path travelling along `d` at a crystal surface with outward unit normal

@@ -137,6 +137,25 @@ fn vertex<C: Carrier>(
         }
         return false;
     };
+    let mut u = ctx.sample.bounce(st.vertex);
+    // A smooth crystal surface: its numbers (reflect or refract, which mode, the mode of a
+    // path met inside in none) and the hero alone (the modes depend on the wavelength).
+    let crystal = smooth_crystal(&at).zip(C::hero(lambda));
+    let uc = crystal.map(|_| (u.bsdf_lobe(), u.bsdf_direction()));
+    if let (Some((c, nm)), Some((_, ud))) = (crystal, uc) {
+        st.beta = st.beta.keep_hero(lambda);
+        if w.crystal.is_none() && w.ray.dir.dot(at.hit.ng) > 0.0 {
+            // Inside the crystal in no mode: the path started inside, or left a surface
+            // inside that is not the crystal's. Its mode is chosen now, for the segment
+            // just travelled (its absorption is the mode's).
+            let d = w.ray.dir.normalize();
+            let Some((mode, pol)) = crystal_step::start(&c.at(nm), d, &w.pol, ud.y) else {
+                return false;
+            };
+            w.crystal = Some(mode);
+            w.pol = pol;
+        }
+    }
     let mode_d = w.crystal.map(|m| m.d);
     st.beta *= segment_transmittance(scene, &st.media, mode_d, &at, lambda);
     if let (Some(e), false) = (emitted(scene, &at, &st.prev, st.beta, lambda), caustic) {
@@ -151,12 +170,8 @@ fn vertex<C: Carrier>(
         w.ray = at.hit.spawn_ray(w.ray.dir);
         return delta_bounce(st, at.hit.p);
     }
-    let mut u = ctx.sample.bounce(st.vertex);
-    if let (Some(crystal), Some(nm)) = (smooth_crystal(&at), C::hero(lambda)) {
-        // The crystal's modes and their paths depend on the wavelength: the hero alone.
-        st.beta = st.beta.keep_hero(lambda);
-        let uc = (u.bsdf_lobe(), u.bsdf_direction().x);
-        return crystal_vertex(scene, (crystal, nm), w, st, &at, lambda, uc);
+    if let (Some((c, nm)), Some((lobe, ud))) = (crystal, uc) {
+        return crystal_vertex(scene, (c, nm), w, st, &at, lambda, (lobe, ud.x));
     }
     w.crystal = None;
     let s = match at.event(scene, st.media, &mut st.beta, lambda, &mut u) {

@@ -16,6 +16,15 @@
 //!   largest flat facet among those facing up (normal within 45° of the file's +Y;
 //!   coplanar triangles with the same normal to 10⁻³ count as one facet), else +Y, the
 //!   frame of Iris's own gems ([`crate::authoring::cuts`]: girdle plane y = 0, table up).
+//! - **Scale.** The stone is first centred on its bounding box and scaled by the power of
+//!   two that brings its largest coordinate into [2^-½, 2^½) (exact in floating point;
+//!   lengths of its materials, the attenuation distance, the volume thickness and
+//!   Rayleigh's σ_s, scaled with it), so every figure is the same for the same stone at
+//!   any size the file's f32 coordinates can hold, and the table search and the ray
+//!   tracing never meet products of coordinates beyond f32's range. A stone whose extent
+//!   is outside [`EXTENTS`] is refused with an error naming the file.
+//!   Lengths the stage reports ([`Stage::girdle_radius`], [`Stage::height`],
+//!   [`Stage::half_field`]) are in the file's units.
 //! - The stone is turned so the table direction is +Y (the shortest rotation), then moved
 //!   so the centre of its bounding box is the origin. The **girdle radius** is the largest
 //!   distance of a vertex from the Y axis then (half the girdle diameter of a round stone).
@@ -33,7 +42,23 @@
 //! The renders use RGB transport with the stone's index at one wavelength ([`Setup::lambda_nm`]):
 //! every stone material's n(λ) model ([`crate::material::MaterialDesc::spectral_ior`]) is
 //! replaced by the constant n(λ), so a render is deterministic and noise-free in colour,
-//! and two renders at two Fraunhofer lines show the dispersion between them. For the
+//! and two renders at two Fraunhofer lines show the dispersion between them.
+//!
+//! A **birefringent** stone (a crystal material, [`crate::material::CrystalDesc`], that is
+//! not isotropic: [`Stage::birefringent`]) splits unpolarized light into two modes of
+//! orthogonal polarization, each carrying half of it. The stage shows one mode at a time
+//! ([`Setup::mode`]) as an isotropic stone of that mode's index at the wavelength
+//! ([`mode_index`]): with n₁ ≤ n₂ ≤ n₃ the principal indices at λ, the fast mode's index
+//! runs over [n₁, n₂] with the direction of travel and the slow mode's over [n₂, n₃]
+//! (Born & Wolf §15.3), and each takes the middle of its range. For a uniaxial stone one
+//! of them is the ordinary mode, exactly n_o in every direction, the other the
+//! extraordinary wave at (n_o + n_e)/2. The gem report renders each shot once per mode and
+//! takes the mean of the two images ([`crate::app::gem_report::shots`]), so every figure,
+//! fire included, is that of both modes' light, each dispersing with its own n(λ).
+//! Simplified: each mode keeps its index through the stone (reflections inside do not
+//! exchange light between the modes), the extraordinary index does not vary with the
+//! direction, and the crystal's absorption per mode gives way to the material's
+//! colour. For the
 //! instruments that code angles in colour channels ([`Setup::grey_body`]: ASET,
 //! Ideal-Scope, the direction code) a coloured stone's body colour is made grey with the
 //! same luminance-weighted absorption ([`grey`]), so a blue sapphire does not paint
@@ -41,15 +66,21 @@
 //!
 //! Units: the file's (metres for glTF); angles in degrees at the API.
 
+mod frame;
+
+pub use frame::EXTENTS;
+
 use super::looks::{self, LookFlag};
 use super::Prepared;
 use crate::accel::Backend;
 use crate::error::{Error, LoadError, LoadErrorKind, Result};
 use crate::light::env::Environment;
+use crate::material::CrystalDesc;
+use crate::polar::crystal::Which;
 use crate::scene::desc::{AddedLights, CameraDesc, MeshDesc, Projection, SceneDesc};
 use crate::scene::Scene;
+use frame::{bounds, normalised, reach, scale_lengths, turned, up_facet};
 use glam::{Mat4, Quat, Vec3};
-use std::collections::BTreeMap;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
@@ -86,8 +117,14 @@ impl Table {
 
 /// The stone on the stage, ready to be prepared under any instrument and tilt.
 pub struct Stage {
-    /// The stone alone, table +Y, bounding-box centre at the origin, untilted.
+    /// The stone alone, table +Y, bounding-box centre at the origin, untilted, in stage
+    /// units (the file's times [`Stage::scale`]).
     desc: SceneDesc,
+    /// Stage units per file unit: a power of two (module docs).
+    scale: f32,
+    /// Whether a stone material is a crystal that is not isotropic: each shot is then
+    /// rendered once per mode ([`Setup::mode`]).
+    pub birefringent: bool,
     /// The stone's mesh names, as the file names them.
     pub meshes: Vec<String>,
     /// The table direction in the file's frame (unit).
@@ -118,6 +155,8 @@ pub struct Setup {
     /// Make the stone's body colour grey (see the module docs): for the instruments that
     /// code directions in colour channels.
     pub grey_body: bool,
+    /// The mode a birefringent stone shows (module docs); no effect on other stones.
+    pub mode: Which,
 }
 
 impl Stage {
@@ -128,6 +167,7 @@ impl Stage {
         let mut desc = crate::load::load_scene(path)?;
         looks::apply(&mut desc, looks)?;
         let (stone, names) = stone_meshes(&desc)?;
+        let (stone, scale) = normalised(path, stone)?;
         let (table, table_found) = match table {
             Table::Given(t) => (t, false),
             Table::Auto => match up_facet(&stone) {
@@ -162,21 +202,29 @@ impl Stage {
             )
             .into());
         }
+        let mut materials = desc.materials;
+        materials.iter_mut().for_each(|m| scale_lengths(m, scale));
+        let birefringent = meshes
+            .iter()
+            .filter_map(|m| materials.get(m.material?)?.crystal)
+            .any(|c| c.character() != crate::spectrum::crystals::Character::Isotropic);
         let stage_desc = SceneDesc {
             source: desc.source.clone(),
             meshes,
-            materials: desc.materials,
+            materials,
             images: desc.images,
             ..SceneDesc::default()
         };
         Ok(Stage {
             desc: stage_desc,
+            scale,
+            birefringent,
             meshes: names,
             table,
             table_found,
-            girdle_radius,
-            height: hi.y - lo.y,
-            half_field,
+            girdle_radius: girdle_radius / scale,
+            height: (hi.y - lo.y) / scale,
+            half_field: half_field / scale,
             load_time: start.elapsed(),
         })
     }
@@ -197,7 +245,11 @@ impl Stage {
             let model = m
                 .spectral_ior()
                 .map_err(|e| Error::Usage(format!("material {:?}: {e}", m.name)))?;
-            m.ior = model.ior(setup.lambda_nm);
+            // A crystal becomes the isotropic stone of the mode shown (module docs).
+            m.ior = match m.crystal.take() {
+                Some(c) => mode_index(&c, setup.lambda_nm, setup.mode),
+                None => model.ior(setup.lambda_nm),
+            };
             m.dispersion = 0.0;
             m.ior_model = None;
             if setup.grey_body {
@@ -220,8 +272,8 @@ impl Stage {
 
     /// The viewer: orthographic, on +Y looking down, image up = −Z (see the module docs).
     pub fn camera(&self) -> CameraDesc {
-        let h = self.half_field;
-        let eye = Vec3::new(0.0, 4.0 * (h + self.height), 0.0);
+        let h = self.half_field * self.scale;
+        let eye = Vec3::new(0.0, 4.0 * (h + self.height * self.scale), 0.0);
         CameraDesc {
             name: "gem stage viewer".into(),
             projection: Projection::Orthographic { xmag: h, ymag: h },
@@ -232,6 +284,18 @@ impl Stage {
                 eye.extend(1.0),
             ),
         }
+    }
+}
+
+/// The index of the isotropic stand-in for mode `which` of crystal `c` at `nm`: the middle
+/// of the range of indices the mode takes, (n₁ + n₂)/2 for the fast mode and (n₂ + n₃)/2
+/// for the slow one, n₁ ≤ n₂ ≤ n₃ the principal indices (module docs).
+pub fn mode_index(c: &CrystalDesc, nm: f32, which: Which) -> f32 {
+    let mut n = c.indices(nm);
+    n.sort_by(f32::total_cmp);
+    match which {
+        Which::Fast => 0.5 * (n[0] + n[1]),
+        Which::Slow => 0.5 * (n[1] + n[2]),
     }
 }
 
@@ -279,61 +343,6 @@ fn stone_meshes(desc: &SceneDesc) -> Result<(Vec<MeshDesc>, Vec<String>)> {
     Ok((stone, names))
 }
 
-/// The outward normal of the largest flat facet within 45° of +Y, if any.
-fn up_facet(meshes: &[MeshDesc]) -> Option<Vec3> {
-    let mut areas: BTreeMap<[i32; 3], (f64, Vec3)> = BTreeMap::new();
-    for m in meshes {
-        for t in &m.indices {
-            let [a, b, c] = t.map(|i| m.positions.get(i as usize).copied().unwrap_or(Vec3::ZERO));
-            let cross = (b - a).cross(c - a);
-            let area = 0.5 * f64::from(cross.length());
-            let n = cross.normalize_or_zero();
-            if area <= 0.0 || n.y < std::f32::consts::FRAC_1_SQRT_2 {
-                continue;
-            }
-            let key = (n * 1000.0).round().as_ivec3().to_array();
-            let e = areas.entry(key).or_insert((0.0, Vec3::ZERO));
-            e.0 += area;
-            e.1 += n * area as f32;
-        }
-    }
-    areas
-        .values()
-        .max_by(|x, y| x.0.total_cmp(&y.0))
-        .map(|(_, n)| n.normalize())
-}
-
-/// A mesh turned by `q` about the origin (positions, normals, tangents).
-fn turned(mut m: MeshDesc, q: Quat) -> MeshDesc {
-    m.positions.iter_mut().for_each(|p| *p = q * *p);
-    m.normals.iter_mut().for_each(|n| *n = q * *n);
-    m.tangents
-        .iter_mut()
-        .for_each(|t| *t = (q * t.truncate()).extend(t.w));
-    m
-}
-
-/// Bounding box of every vertex.
-fn bounds(meshes: &[MeshDesc]) -> (Vec3, Vec3) {
-    meshes.iter().flat_map(|m| m.positions.iter()).fold(
-        (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
-        |(lo, hi), &p| (lo.min(p), hi.max(p)),
-    )
-}
-
-/// The largest |x| or |z| of a vertex after a tilt of `tilt` degrees.
-fn reach(meshes: &[MeshDesc], tilt: f32) -> f32 {
-    let q = Quat::from_rotation_x(tilt.to_radians());
-    meshes
-        .iter()
-        .flat_map(|m| m.positions.iter())
-        .map(|&p| {
-            let r = q * p;
-            r.x.abs().max(r.z.abs())
-        })
-        .fold(0.0f32, f32::max)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -359,25 +368,6 @@ mod tests {
         }
     }
 
-    fn brilliant_mesh(turn: Quat) -> MeshDesc {
-        let mesh = crate::authoring::gem::Brilliant::tolkowsky(0.0065).build();
-        turned(mesh.into_mesh_desc("stone", 0), turn)
-    }
-
-    #[test]
-    fn auto_table_is_the_brilliants_table() {
-        let n = up_facet(&[brilliant_mesh(Quat::IDENTITY)]).unwrap();
-        assert!((n - Vec3::Y).length() < 1e-5, "{n}");
-        // Tipped by 30°: still found, and the direction follows the stone.
-        let q = Quat::from_rotation_z(30f32.to_radians());
-        let n = up_facet(&[brilliant_mesh(q)]).unwrap();
-        assert!((n - q * Vec3::Y).length() < 1e-4, "{n}");
-        // Upside down: no facet faces up by 45°, except the pavilion's, which is smaller
-        // than a table would be but still a facet: the rule takes it (documented).
-        let down = up_facet(&[brilliant_mesh(Quat::from_rotation_x(std::f32::consts::PI))]);
-        assert!(down.is_some_and(|n| n.y > std::f32::consts::FRAC_1_SQRT_2));
-    }
-
     #[test]
     fn grey_keeps_the_luminance_weighted_absorption() {
         let mut m = crate::material::MaterialDesc {
@@ -396,16 +386,5 @@ mod tests {
         let mut clear = crate::material::MaterialDesc::default();
         grey(&mut clear);
         assert_eq!(clear.attenuation_color, Vec3::ONE);
-    }
-
-    #[test]
-    fn reach_grows_with_tilt_for_a_tall_stone() {
-        let mut m = brilliant_mesh(Quat::IDENTITY);
-        let (lo, hi) = bounds(std::slice::from_ref(&m));
-        let c = 0.5 * (lo + hi);
-        m.positions.iter_mut().for_each(|p| *p -= c);
-        let r0 = reach(std::slice::from_ref(&m), 0.0);
-        assert!((r0 - 0.00325).abs() < 2e-5, "{r0}");
-        assert!(reach(std::slice::from_ref(&m), 30.0) > r0);
     }
 }
