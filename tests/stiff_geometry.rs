@@ -190,7 +190,14 @@ fn gem_at_power_of_two_scales_renders_bit_identically() {
 fn gem_at_1e_minus_4_and_1e4_matches_unit_scale() {
     for backend in backends() {
         let unit = gem_image(1.0, backend);
-        for scale in [1e-4f32, 1e4] {
+        // 1e-4 and 1e4, and the ends of the range where scenes render without a scale
+        // warning (`iris::scene::geometry::SCALE_RANGE`), 1 % inside it.
+        let (lo, hi) = iris::scene::geometry::SCALE_RANGE;
+        let k = gem_scene(1.0, backend).0.scale();
+        for scale in [1e-4f32, 1e4, 1.01 * lo / k, 0.99 * hi / k] {
+            let (scene, _) = gem_scene(scale, backend);
+            let s = scene.scale();
+            assert!(lo <= s && s <= hi && scene.warnings().is_empty(), "{s}");
             let img = gem_image(scale, backend);
             let (dmean, differ) = compare(&unit, &img);
             eprintln!("{backend:?} scale {scale}: Δmean {dmean:.2e}, pixels differing {differ:.3}");
@@ -204,6 +211,20 @@ fn gem_at_1e_minus_4_and_1e4_matches_unit_scale() {
                 "{backend:?} scale {scale}: Δmean {dmean}, pixels differing {differ}"
             );
         }
+    }
+}
+
+/// Outside the scale range a scene is built with a warning naming the file and the range.
+#[test]
+fn a_scene_outside_the_scale_range_is_built_with_a_warning() {
+    let (lo, hi) = iris::scene::geometry::SCALE_RANGE;
+    for scale in [lo / 100.0, hi * 10.0] {
+        let (scene, _) = gem_scene(scale, Backend::Auto);
+        let w = scene.warnings().join("\n");
+        assert!(
+            w.contains("gem at scale") && w.contains("outside"),
+            "{scale}: {w:?}"
+        );
     }
 }
 

@@ -17,7 +17,7 @@ use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 
-/// Smallest `--radius` over the scene's scale ([`scene_scale`]): below about a millionth
+/// Smallest `--radius` over the scene's scale ([`Scene::scale`]): below about a millionth
 /// of the coordinates' magnitude, photon positions are not resolved (f32 positions carry a
 /// relative rounding of 2⁻²⁴ ≈ 6·10⁻⁸, and the ray offset rule moves points by more).
 pub const MIN_RELATIVE_RADIUS: f32 = 1e-6;
@@ -30,24 +30,10 @@ pub const MIN_RADIUS: f32 = 1e-15;
 /// Largest `--radius` in scene units, whatever the scene (r² stays a finite f32).
 pub const MAX_RADIUS: f32 = 1e15;
 
-/// The scene's scale in scene units: the larger of its bounding box's diagonal and the
-/// largest coordinate magnitude of its corners (a small scene far from the origin has
-/// coarse coordinates).
-pub fn scene_scale(scene: &Scene) -> f32 {
-    let (lo, hi) = scene.bounds();
-    let diagonal = (hi - lo).length();
-    let far = lo.abs().max(hi.abs()).max_element();
-    if diagonal.is_finite() && far.is_finite() {
-        diagonal.max(far)
-    } else {
-        0.0
-    }
-}
-
 /// Rejects a gather radius `r` (`--radius`) outside the bounds of the module docs for
 /// `scene`, naming the flag, the bound and the scene's scale.
 pub fn check_radius(r: f32, scene: &Scene) -> Result<()> {
-    let scale = scene_scale(scene);
+    let scale = scene.scale();
     let lo = (MIN_RELATIVE_RADIUS * scale).max(MIN_RADIUS);
     let hi = if scale > 0.0 {
         (MAX_RELATIVE_RADIUS * scale).min(MAX_RADIUS)

@@ -167,3 +167,35 @@ fn morton_order(tris: &[Triangle]) -> Vec<usize> {
     keyed.sort_unstable();
     keyed.into_iter().map(|(_, i)| i).collect()
 }
+
+/// The range of scene scales ([`scale`]) in which f32 geometry renders as at unit scale
+/// (`tests/stiff_geometry.rs` renders one diamond across it); outside it the scene is
+/// rendered with a warning.
+pub const SCALE_RANGE: (f32, f32) = (1e-6, 1e10);
+
+/// A scene's scale in scene units: the larger of its bounding box's diagonal and the
+/// largest coordinate magnitude of its corners (a small scene far from the origin has
+/// coarse coordinates); 0 for empty or non-finite bounds.
+pub fn scale((lo, hi): (Vec3, Vec3)) -> f32 {
+    let diagonal = (hi - lo).length();
+    let far = lo.abs().max(hi.abs()).max_element();
+    if diagonal.is_finite() && far.is_finite() {
+        diagonal.max(far)
+    } else {
+        0.0
+    }
+}
+
+/// The warning for a scene whose scale lies outside [`SCALE_RANGE`], naming the file.
+pub fn scale_warning(source: &std::path::Path, bounds: (Vec3, Vec3)) -> Option<String> {
+    let s = scale(bounds);
+    let (lo, hi) = SCALE_RANGE;
+    (s > 0.0 && !(lo..=hi).contains(&s)).then(|| {
+        format!(
+            "{}: the scene's scale is {s:.3e} scene units, outside {lo:e}..{hi:e} where its \
+             f32 geometry renders as at unit scale: the image may be wrong; scale the model \
+             (a node's scale) into that range",
+            source.display()
+        )
+    })
+}

@@ -134,6 +134,7 @@ impl Scene {
         if let Some(Environment::Map(m)) = &desc.environment_light {
             warnings.extend(m.warnings().iter().cloned());
         }
+        warnings.extend(geometry::scale_warning(&desc.source, bounds));
         let has_cutouts = materials.iter().any(Material::may_cut_out);
         let fog = desc.fog.map(|medium| Fog { medium, bounds });
         let has_media = fog.is_some() || materials.iter().any(|m| m.medium().is_some());
@@ -275,6 +276,11 @@ impl Scene {
     /// World bounding box (min, max).
     pub fn bounds(&self) -> (Vec3, Vec3) {
         self.bounds
+    }
+
+    /// The scene's scale in scene units ([`geometry::scale`]).
+    pub fn scale(&self) -> f32 {
+        geometry::scale(self.bounds)
     }
 
     /// Bounds of the file's own geometry, which cameras frame and the studio lights: equal
