@@ -156,12 +156,17 @@ pub fn crossing(
         }
     }
     // A path in no medium leaving one started inside it: the media it was in are the
-    // media beyond the surface and, innermost, the ones it leaves.
-    let started_inside = media.current().is_none() && crossings[..n].iter().any(|c| !c.1);
+    // media beyond the surface and, innermost, the ones it leaves. A medium both entered
+    // and left at this interface (a sheet thinner than the merge distance) is passed
+    // through, not started in.
+    let crossed = &crossings[..n];
+    let leaves_unentered =
+        |c: &&(u32, bool, _)| !c.1 && !crossed.iter().any(|d| d.1 && d.0 == c.0);
+    let started_inside = media.current().is_none() && crossed.iter().any(|c| leaves_unentered(&c));
     let media = if started_inside {
-        crossings[..n]
+        crossed
             .iter()
-            .filter(|c| !c.1)
+            .filter(leaves_unentered)
             .fold(media_beyond(scene, hit), |s, c| s.entered(c.0, c.2))
     } else {
         media
