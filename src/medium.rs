@@ -160,8 +160,7 @@ pub fn crossing(
     // and left at this interface (a sheet thinner than the merge distance) is passed
     // through, not started in.
     let crossed = &crossings[..n];
-    let leaves_unentered =
-        |c: &&(u32, bool, _)| !c.1 && !crossed.iter().any(|d| d.1 && d.0 == c.0);
+    let leaves_unentered = |c: &&(u32, bool, _)| !c.1 && !crossed.iter().any(|d| d.1 && d.0 == c.0);
     let started_inside = media.current().is_none() && crossed.iter().any(|c| leaves_unentered(&c));
     let media = if started_inside {
         crossed

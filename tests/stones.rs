@@ -97,6 +97,8 @@ fn assert_only(before: &SceneDesc, after: &SceneDesc, changed: &[usize]) {
     assert_eq!(before.lights, after.lights);
 }
 
+/// No material of the ring is a transmissive volume, so `--stone` without a selector takes
+/// the closed surfaces: the gem and the plinth (a box), not the named setting or the lamp.
 #[test]
 fn a_bare_flag_changes_every_material_the_others_do_not_name() {
     let before = ring("looks_bare");
@@ -134,11 +136,13 @@ fn a_bare_flag_changes_every_material_the_others_do_not_name() {
                     before.materials[2].name.clone()
                 ],
                 meshes: 2,
+                scope: Some("no selector: the stones; =* for every material"),
             },
             Applied {
                 flag: "--metal gold=material:Setting".into(),
                 materials: vec![before.materials[1].name.clone()],
                 meshes: 2,
+                scope: None,
             },
         ]
     );
@@ -367,4 +371,61 @@ fn the_sketchfab_diamond_becomes_a_diamond() {
     );
     assert_eq!(stoned.looks.len(), 1);
     assert_eq!(stoned.looks[0].meshes, 1);
+}
+
+/// A gem of glass on an open floor plane, a lamp: `--stone sapphire` without a selector
+/// changes the stone alone (the floor stays a floor, and the birefringent sapphire is not
+/// refused for the floor's open surface); `=*` changes every material but the light,
+/// and a birefringent stone on the open floor is then refused naming it.
+#[test]
+fn a_bare_stone_flag_changes_the_stones_and_star_every_material() {
+    let dir = common::scratch_dir("looks_stones");
+    let mesh = |name: &str, geometry, material| GenMesh {
+        name: name.into(),
+        geometry,
+        material,
+        translation: None,
+    };
+    let scene = GenScene {
+        name: "gem on a floor".into(),
+        meshes: vec![
+            mesh("Gem", icosphere(0.00325, 2), 0),
+            mesh(
+                "Floor",
+                iris::authoring::shapes::ground_plane(0.05, 0.05),
+                1,
+            ),
+            mesh("Panel", cuboid(Vec3::new(0.01, 0.0005, 0.01)), 2),
+        ],
+        materials: vec![
+            GenMaterial::clear_glass("Glass", 1.5, 0.0065),
+            GenMaterial::diffuse("Floor", Vec3::splat(0.8)),
+            GenMaterial::emitter("Lamp", Vec3::splat(5.0)),
+        ],
+        lights: vec![],
+        camera: None,
+        extras: None,
+        light_extras: vec![],
+        mesh_uvs: vec![],
+    };
+    let path = dir.join("gem_on_floor.glb");
+    iris::authoring::glb::write_glb(&path, &scene).expect("write");
+    let before = iris::load::load_scene(&path).expect("load");
+    let mut d = before.clone();
+    let applied = apply(&mut d, &[stone("sapphire")]).expect("stones only");
+    assert_only(&before, &d, &[0]);
+    assert!(d.materials[0].crystal.is_some(), "sapphire is birefringent");
+    assert!(
+        applied[0].to_string().contains("the stones"),
+        "{}",
+        applied[0]
+    );
+    let mut d = before.clone();
+    apply(&mut d, &[stone("diamond=*")]).expect("every material");
+    assert_only(&before, &d, &[0, 1]);
+    let mut d = before.clone();
+    let e = apply(&mut d, &[stone("sapphire=*")])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("Floor") && e.contains("open"), "{e}");
 }

@@ -42,9 +42,11 @@ pub struct LookArgs {
     /// Make materials a stone (repeatable): NAME is diamond, sapphire, ruby, emerald,
     /// cubic-zirconia, quartz, crown-glass, calcite, zircon, peridot, tourmaline,
     /// tanzanite, topaz, moissanite or rutile (the birefringent ones with their optic axis
-    /// along the model's +Y; docs/gem-optics.md). Without =SELECTOR it changes every material
-    /// no other --stone/--metal names; NAME=MATERIAL changes that material (a mesh name if
-    /// no material has it), NAME=material:MATERIAL or NAME=mesh:MESH say which.
+    /// along the model's +Y; docs/gem-optics.md). Without =SELECTOR it changes the stones
+    /// (transmissive volumes; in a file with none, closed surfaces) no other
+    /// --stone/--metal names; NAME=* changes every material but the lights;
+    /// NAME=MATERIAL changes that material (a mesh name if no material has it),
+    /// NAME=material:MATERIAL or NAME=mesh:MESH say which.
     #[arg(long, value_name = "NAME[=SELECTOR]")]
     pub stone: Vec<String>,
     /// Make materials a measured metal (repeatable), for settings: gold, silver, platinum,

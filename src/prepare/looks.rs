@@ -15,10 +15,18 @@
 //! - `=SELECTOR` naming materials changes those materials (every mesh using them);
 //!   naming meshes gives those meshes a new material (their old one, which other meshes
 //!   may share, is left as it was);
-//! - a flag without a selector (at most one) changes every material no selector named
-//!   except emissive ones (lights stay lights), and gives meshes without a material one;
-//!   so `--stone diamond --metal gold=Setting` makes the material `Setting` gold and
-//!   everything else that does not glow diamond;
+//! - `--stone NAME` without a selector changes the **stones** ([`stones`]): the materials no
+//!   selector named that are transmissive volumes or crystals; in a file with none, the
+//!   materials whose surfaces are closed (a gem model with a viewer's opaque placeholder),
+//!   and meshes without a material whose surface is closed; in a file with neither, every
+//!   material. A floor, a table or a backdrop (open surfaces, opaque) stays as it was; the
+//!   note says which materials changed;
+//! - `--metal NAME` without a selector, and either flag with `=*`, changes every material
+//!   no selector named except emissive ones (lights stay lights), and gives meshes without
+//!   a material one; so `--stone diamond --metal gold=Setting` makes the material
+//!   `Setting` gold and the stones diamond, and `--stone diamond=*` makes everything that
+//!   does not glow diamond;
+//! - at most one flag goes without a selector or with `=*`;
 //! - two selectors naming the same material, or the same mesh, are an error; a mesh named
 //!   by a mesh selector takes that flag even if its material is named by another.
 //!
@@ -57,10 +65,21 @@ pub enum Look {
 pub struct LookFlag {
     /// What the selected materials become.
     pub look: Look,
-    /// Which materials or meshes; `None` = every material no other flag names.
-    pub selector: Option<Selector>,
+    /// Which materials or meshes it changes.
+    pub target: Target,
     /// The flag as written, for messages and material names (`--stone ruby=Gem`).
     pub text: String,
+}
+
+/// Which materials or meshes a flag changes (module docs).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Target {
+    /// `--stone NAME`: the stones no selector named ([`stones`]).
+    Stones,
+    /// `--metal NAME` or `NAME=*`: every material no selector named, lights aside.
+    Every,
+    /// `NAME=SELECTOR`.
+    Named(Selector),
 }
 
 /// What one flag changed, for the render notes.
@@ -72,12 +91,18 @@ pub struct Applied {
     pub materials: Vec<String>,
     /// How many meshes use them.
     pub meshes: usize,
+    /// For a flag without a selector, which materials it took (the stones or every one).
+    pub scope: Option<&'static str>,
 }
 
 impl std::fmt::Display for Applied {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let flag = match self.scope {
+            Some(scope) => format!("{} ({scope})", self.flag),
+            None => self.flag.clone(),
+        };
         if self.materials.is_empty() {
-            return write!(f, "{}: changes no material on a mesh", self.flag);
+            return write!(f, "{flag}: changes no material on a mesh");
         }
         let shown: Vec<&str> = self.materials.iter().take(3).map(String::as_str).collect();
         let more = match self.materials.len() {
@@ -88,25 +113,25 @@ impl std::fmt::Display for Applied {
             1 => "1 mesh".to_string(),
             n => format!("{n} meshes"),
         };
-        write!(f, "{}: {}{more} ({meshes})", self.flag, shown.join(", "))
+        write!(f, "{flag}: {}{more} ({meshes})", shown.join(", "))
     }
 }
 
 impl LookFlag {
     /// Parses `--stone NAME[=SELECTOR]`; unknown stones list the known ones.
     pub fn stone(arg: &str) -> Result<LookFlag> {
-        let (name, selector) = split(arg, "--stone")?;
+        let (name, target) = split(arg, "--stone")?;
         let stone = Stone::parse(name)?;
         Ok(LookFlag {
             look: Look::Stone(stone),
-            selector,
+            target: target.unwrap_or(Target::Stones),
             text: format!("--stone {}", arg.trim()),
         })
     }
 
     /// Parses `--metal NAME[=SELECTOR]` with the `--metal-roughness` value (in [0, 1]).
     pub fn metal(arg: &str, roughness: f32) -> Result<LookFlag> {
-        let (name, selector) = split(arg, "--metal")?;
+        let (name, target) = split(arg, "--metal")?;
         let metal = Metal::named(name).ok_or_else(|| {
             let names: Vec<&str> = METALS.iter().map(|m| m.name()).collect();
             Error::Usage(format!(
@@ -121,7 +146,7 @@ impl LookFlag {
         }
         Ok(LookFlag {
             look: Look::Metal { metal, roughness },
-            selector,
+            target: target.unwrap_or(Target::Every),
             text: format!("--metal {}", arg.trim()),
         })
     }
@@ -146,15 +171,16 @@ impl LookFlag {
     }
 }
 
-/// `NAME[=SELECTOR]` → the name and the selector.
-fn split<'a>(arg: &'a str, flag: &str) -> Result<(&'a str, Option<Selector>)> {
+/// `NAME[=SELECTOR]` → the name and the target (`None` without `=`).
+fn split<'a>(arg: &'a str, flag: &str) -> Result<(&'a str, Option<Target>)> {
     match arg.split_once('=') {
         None => Ok((arg.trim(), None)),
+        Some((name, sel)) if sel.trim() == "*" => Ok((name.trim(), Some(Target::Every))),
         Some((name, sel)) => match Selector::parse(sel) {
-            Some(s) => Ok((name.trim(), Some(s))),
+            Some(s) => Ok((name.trim(), Some(Target::Named(s)))),
             None => Err(Error::Usage(format!(
-                "{flag} {arg:?}: empty selector after '=' (NAME=MATERIAL, NAME=mesh:MESH or \
-                 NAME=material:MATERIAL)"
+                "{flag} {arg:?}: empty selector after '=' (NAME=MATERIAL, NAME=mesh:MESH, \
+                 NAME=material:MATERIAL or NAME=* for every material)"
             ))),
         },
     }
@@ -174,12 +200,12 @@ pub fn apply(desc: &mut SceneDesc, flags: &[LookFlag]) -> Result<Vec<Applied>> {
         return Ok(Vec::new());
     }
     let rest: Vec<usize> = (0..flags.len())
-        .filter(|&i| flags[i].selector.is_none())
+        .filter(|&i| !matches!(flags[i].target, Target::Named(_)))
         .collect();
     if rest.len() > 1 {
         return Err(Error::Usage(format!(
-            "{} and {}: only one --stone or --metal may go without =SELECTOR (it changes \
-             every material the others do not name)",
+            "{} and {}: only one --stone or --metal may go without =SELECTOR or with =* (it \
+             changes the stones, or every material, the others do not name)",
             flags[rest[0]].text, flags[rest[1]].text
         )));
     }
@@ -188,7 +214,7 @@ pub fn apply(desc: &mut SceneDesc, flags: &[LookFlag]) -> Result<Vec<Applied>> {
         vec![None::<usize>; desc.meshes.len()],
     );
     for (fi, flag) in flags.iter().enumerate() {
-        let Some(selector) = &flag.selector else {
+        let Target::Named(selector) = &flag.target else {
             continue;
         };
         let (owners, picked, what) = match pick(desc, selector, &flag.text)? {
@@ -210,11 +236,14 @@ pub fn apply(desc: &mut SceneDesc, flags: &[LookFlag]) -> Result<Vec<Applied>> {
             }
         }
     }
-    if let Some(&r) = rest.first() {
-        for (owner, m) in by_material.iter_mut().zip(&desc.materials) {
-            if owner.is_none() && !is_emitter(m) {
-                *owner = Some(r);
-            }
+    // The flag without a selector: its materials, and whether it also takes the meshes
+    // without a material (closed ones only, under the stones' second rule).
+    let scope = rest
+        .first()
+        .map(|&r| (r, scope(desc, &flags[r].target, &by_material)));
+    if let Some((r, (chosen, _))) = &scope {
+        for &mi in chosen {
+            by_material[mi] = Some(*r);
         }
     }
     let mut applied: Vec<Applied> = flags
@@ -223,6 +252,11 @@ pub fn apply(desc: &mut SceneDesc, flags: &[LookFlag]) -> Result<Vec<Applied>> {
             flag: f.text.clone(),
             materials: Vec::new(),
             meshes: 0,
+            scope: match f.target {
+                Target::Stones => Some("no selector: the stones; =* for every material"),
+                Target::Every => Some("every material"),
+                Target::Named(_) => None,
+            },
         })
         .collect();
     let originals = desc.materials.clone();
@@ -249,9 +283,9 @@ pub fn apply(desc: &mut SceneDesc, flags: &[LookFlag]) -> Result<Vec<Applied>> {
         .meshes
         .iter()
         .zip(&by_mesh)
-        .map(|(m, o)| match (o, m.material, rest.first()) {
+        .map(|(m, o)| match (o, m.material, &scope) {
             (Some(fi), _, _) => Some(*fi),
-            (None, None, Some(&r)) => Some(r),
+            (None, None, Some((r, (_, bare)))) if bare.takes(m) => Some(*r),
             _ => None,
         })
         .collect();
@@ -286,6 +320,74 @@ pub fn apply(desc: &mut SceneDesc, flags: &[LookFlag]) -> Result<Vec<Applied>> {
     // A birefringent stone is a crystal: its surface must be closed, as a file's is.
     crate::scene::validate::check_crystals_closed(desc)?;
     Ok(applied)
+}
+
+/// Which meshes without a material the flag without a selector takes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Bare {
+    /// None.
+    None,
+    /// Those whose surface is closed.
+    Closed,
+    /// All.
+    All,
+}
+
+impl Bare {
+    fn takes(self, mesh: &MeshDesc) -> bool {
+        match self {
+            Bare::None => false,
+            Bare::Closed => crate::scene::validate::mesh_is_closed(mesh),
+            Bare::All => true,
+        }
+    }
+}
+
+/// The materials the flag without a selector changes (those no selector named,
+/// `by_material[i]` is `None`) and which meshes without a material it takes: every
+/// non-emissive material for [`Target::Every`]; for [`Target::Stones`] the stones
+/// ([`stones`]).
+fn scope(desc: &SceneDesc, target: &Target, by_material: &[Option<usize>]) -> (Vec<usize>, Bare) {
+    let free: Vec<usize> = (0..desc.materials.len())
+        .filter(|&i| by_material[i].is_none() && !is_emitter(&desc.materials[i]))
+        .collect();
+    match target {
+        Target::Stones => stones(desc, &free),
+        _ => (free, Bare::All),
+    }
+}
+
+/// The stones among the materials `free`: the transmissive volumes (KHR transmission
+/// and a volume) and crystals; in a file with none, the materials whose surfaces are
+/// closed, with the closed meshes that have no material; with neither, all of them.
+fn stones(desc: &SceneDesc, free: &[usize]) -> (Vec<usize>, Bare) {
+    let volumes: Vec<usize> = free
+        .iter()
+        .copied()
+        .filter(|&i| {
+            let m = &desc.materials[i];
+            m.crystal.is_some() || (m.transmission > 0.0 && m.thickness > 0.0)
+        })
+        .collect();
+    if !volumes.is_empty() {
+        return (volumes, Bare::None);
+    }
+    let closed: Vec<usize> = free
+        .iter()
+        .copied()
+        .filter(|&i| {
+            desc.meshes.iter().any(|m| m.material == Some(i))
+                && crate::scene::validate::is_closed(desc, i)
+        })
+        .collect();
+    let bare_closed = desc
+        .meshes
+        .iter()
+        .any(|m| m.material.is_none() && Bare::Closed.takes(m));
+    if !closed.is_empty() || bare_closed {
+        return (closed, Bare::Closed);
+    }
+    (free.to_vec(), Bare::All)
 }
 
 /// Whether a material emits light: the selector-less flag leaves it (lights stay lights).

@@ -79,6 +79,17 @@ pub fn check_crystals_closed(desc: &SceneDesc) -> Result<(), LoadError> {
     closed::check_crystals(desc)
 }
 
+/// Whether the triangles of material `material` in `desc` form closed surfaces, by the
+/// rule media and crystals are held to (welded within [`crate::scene::weld`]'s tolerance).
+pub fn is_closed(desc: &SceneDesc, material: usize) -> bool {
+    closed::is_closed(desc, material)
+}
+
+/// Whether one mesh's triangles form closed surfaces, by the same rule.
+pub fn mesh_is_closed(mesh: &crate::scene::desc::MeshDesc) -> bool {
+    closed::mesh_is_closed(mesh)
+}
+
 /// The element name for messages: the stored name, or `{kind} {index}` when it is empty.
 fn element(name: &str, kind: &str, index: usize) -> String {
     if name.is_empty() {

@@ -24,7 +24,7 @@ pub struct Controls {
     pub camera: LookAt,
     /// The model's turn, whole degrees in [0, 360).
     pub turn: u32,
-    /// `--stone NAME` for every material, or empty.
+    /// `--stone NAME` for the stones (no selector: the transmissive volumes), or empty.
     pub stone: String,
     /// `--metal NAME` for every material no stone names, or empty.
     pub metal: String,

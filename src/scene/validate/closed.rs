@@ -17,7 +17,7 @@
 use super::{element, fail};
 use crate::error::{LoadError, LoadErrorKind};
 use crate::material::MaterialDesc;
-use crate::scene::desc::SceneDesc;
+use crate::scene::desc::{MeshDesc, SceneDesc};
 use crate::scene::weld::weld;
 use crate::volume::Scattering;
 use std::collections::HashMap;
@@ -72,6 +72,11 @@ pub(super) fn check_crystals(desc: &SceneDesc) -> Result<(), LoadError> {
         }
     }
     Ok(())
+}
+
+/// Whether material `material`'s triangles are closed (module docs).
+pub(super) fn is_closed(desc: &SceneDesc, material: usize) -> bool {
+    open_edges(desc, material).is_none()
 }
 
 /// Why no path can enter material `m`'s volume, if none can (module docs).
@@ -130,18 +135,30 @@ struct Open {
 /// The boundary edges of material `material`'s triangles, welded across its meshes;
 /// `None` when they are closed.
 fn open_edges(desc: &SceneDesc, material: usize) -> Option<Open> {
-    let meshes: Vec<usize> = (0..desc.meshes.len())
-        .filter(|&k| desc.meshes[k].material == Some(material))
+    let meshes: Vec<&MeshDesc> = desc
+        .meshes
+        .iter()
+        .filter(|m| m.material == Some(material))
         .collect();
+    open_edges_of(&meshes)
+}
+
+/// Whether `mesh`'s triangles alone form closed surfaces (module docs).
+pub(super) fn mesh_is_closed(mesh: &MeshDesc) -> bool {
+    open_edges_of(&[mesh]).is_none()
+}
+
+/// The boundary edges of the triangles of `meshes`, welded across them; `None` when they
+/// are closed.
+fn open_edges_of(meshes: &[&MeshDesc]) -> Option<Open> {
     let points: Vec<glam::Vec3> = meshes
         .iter()
-        .flat_map(|&k| desc.meshes[k].positions.iter().copied())
+        .flat_map(|m| m.positions.iter().copied())
         .collect();
     let welded = weld(&points);
     let mut edges: HashMap<(u32, u32), (u32, usize)> = HashMap::new();
     let mut base = 0usize;
-    for &k in &meshes {
-        let mesh = &desc.meshes[k];
+    for (k, mesh) in meshes.iter().enumerate() {
         for t in &mesh.indices {
             let v = t.map(|i| welded.corner[base + i as usize]);
             for (a, b) in [(v[0], v[1]), (v[1], v[2]), (v[2], v[0])] {
@@ -164,7 +181,7 @@ fn open_edges(desc: &SceneDesc, material: usize) -> Option<Open> {
     let first = *open.first()?;
     Some(Open {
         edges: open.len(),
-        mesh: desc.meshes[first].name.clone(),
+        mesh: meshes[first].name.clone(),
         tolerance: welded.tolerance,
     })
 }
