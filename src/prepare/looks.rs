@@ -209,33 +209,7 @@ pub fn apply(desc: &mut SceneDesc, flags: &[LookFlag]) -> Result<Vec<Applied>> {
             flags[rest[0]].text, flags[rest[1]].text
         )));
     }
-    let (mut by_material, mut by_mesh) = (
-        vec![None::<usize>; desc.materials.len()],
-        vec![None::<usize>; desc.meshes.len()],
-    );
-    for (fi, flag) in flags.iter().enumerate() {
-        let Target::Named(selector) = &flag.target else {
-            continue;
-        };
-        let (owners, picked, what) = match pick(desc, selector, &flag.text)? {
-            Picked::Materials(ix) => (&mut by_material, ix, "material"),
-            Picked::Meshes(ix) => (&mut by_mesh, ix, "mesh"),
-        };
-        for i in picked {
-            if let Some(other) = owners[i].replace(fi) {
-                let label = match what {
-                    "material" => &desc.materials[i].name,
-                    _ => &desc.meshes[i].name,
-                };
-                return Err(Error::Usage(format!(
-                    "{} and {} both name {what} {label} in {}",
-                    flags[other].text,
-                    flag.text,
-                    desc.source.display()
-                )));
-            }
-        }
-    }
+    let (mut by_material, by_mesh) = named_owners(desc, flags)?;
     // The flag without a selector: its materials, and whether it also takes the meshes
     // without a material (closed ones only, under the stones' second rule).
     let scope = rest
@@ -320,6 +294,42 @@ pub fn apply(desc: &mut SceneDesc, flags: &[LookFlag]) -> Result<Vec<Applied>> {
     // A birefringent stone is a crystal: its surface must be closed, as a file's is.
     crate::scene::validate::check_crystals_closed(desc)?;
     Ok(applied)
+}
+
+/// For each material and each mesh, the flag (index into `flags`) that names it, if any.
+type Owners = (Vec<Option<usize>>, Vec<Option<usize>>);
+
+/// The flag that names each material and each mesh by its selector; an error when two
+/// name the same one.
+fn named_owners(desc: &SceneDesc, flags: &[LookFlag]) -> Result<Owners> {
+    let (mut by_material, mut by_mesh) = (
+        vec![None::<usize>; desc.materials.len()],
+        vec![None::<usize>; desc.meshes.len()],
+    );
+    for (fi, flag) in flags.iter().enumerate() {
+        let Target::Named(selector) = &flag.target else {
+            continue;
+        };
+        let (owners, picked, what) = match pick(desc, selector, &flag.text)? {
+            Picked::Materials(ix) => (&mut by_material, ix, "material"),
+            Picked::Meshes(ix) => (&mut by_mesh, ix, "mesh"),
+        };
+        for i in picked {
+            if let Some(other) = owners[i].replace(fi) {
+                let label = match what {
+                    "material" => &desc.materials[i].name,
+                    _ => &desc.meshes[i].name,
+                };
+                return Err(Error::Usage(format!(
+                    "{} and {} both name {what} {label} in {}",
+                    flags[other].text,
+                    flag.text,
+                    desc.source.display()
+                )));
+            }
+        }
+    }
+    Ok((by_material, by_mesh))
 }
 
 /// Which meshes without a material the flag without a selector takes.
