@@ -18,6 +18,12 @@ pub struct Ray {
     pub dir: Vec3,
     /// Exclusive upper bound of the ray parameter.
     pub t_max: f32,
+    /// Distance (world units, whatever |dir|) along the ray's line between the surface it
+    /// left and `origin`, which the intersection layer moved off that surface: the ray
+    /// really starts this far before `origin`. Intersection ignores it; media count it
+    /// ([`crate::shading::media`]), so the offset never skips a medium. 0 for camera rays
+    /// and rays leaving a point in a medium.
+    pub skipped: f32,
 }
 
 impl Ray {
@@ -27,6 +33,7 @@ impl Ray {
             origin,
             dir,
             t_max: f32::INFINITY,
+            skipped: 0.0,
         }
     }
 

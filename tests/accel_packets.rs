@@ -188,6 +188,7 @@ where
                     origin: ray.0,
                     dir: ray.1,
                     t_max: ray.2,
+                    skipped: 0.0,
                 }
                 .is_valid();
                 assert_eq!(p.untraceable() & bit != 0, invalid, "{}", ctx());

@@ -8,8 +8,8 @@
 //! [`TransportMode::Radiance`] transmission is divided by η'² (η' = n_t/n_i along the path
 //! from `wo` to `wi`, pbrt-v4 §9.5.2). `tint` multiplies transmission only.
 //! The rough interface's `eval`/`sample` include the multiple-scattering compensation of
-//! [`super::energy`] (a factor 1/E_ss(wo); pdf unchanged); [`Rough::eval_ss`] is the
-//! single-scatter, reciprocal part.
+//! [`super::energy`] (a factor 1/E_ss(wo) in Radiance mode, 1/E_ss(wi) in Importance mode,
+//! its adjoint; pdf unchanged); [`Rough::eval_ss`] is the single-scatter, reciprocal part.
 
 use super::{reflect_z, same_hemisphere, BsdfSample, TransportMode};
 use crate::optics::{fresnel_either_side as fresnel, reflect, refract};
@@ -126,14 +126,21 @@ pub(crate) struct Rough<C: Carrier> {
 impl<C: Carrier> Rough<C> {
     /// f(wo, wi) with multiple-scattering compensation (Turquin 2019, see
     /// [`super::energy`]): the single-scatter [`Rough::eval_ss`] divided by its directional
-    /// albedo E_ss(wo), so that ∫ f |cos θi| dωi = 1 (Importance mode, tint 1) for every wo.
-    /// Not reciprocal: f(wo, wi)·E(wo) = f(wi, wo)·E(wi).
+    /// albedo, in Radiance mode E_ss(wo), so that a camera path's expected throughput at the
+    /// vertex is 1 (white furnace); in Importance mode E_ss(wi), so that the mode is the
+    /// exact adjoint, f_Importance(wo, wi) = f_Radiance(wi, wo), and photons and light
+    /// subpaths estimate what camera paths do. Not reciprocal: f(wo, wi)·E(wo) =
+    /// f(wi, wo)·E(wi).
     pub fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> C {
         let f = self.eval_ss(wo, wi, mode);
         if f == C::ZERO {
             return f;
         }
-        f * energy::compensation(self.eta, self.alpha, wo)
+        let seen_from = match mode {
+            TransportMode::Radiance => wo,
+            TransportMode::Importance => wi,
+        };
+        f * energy::compensation(self.eta, self.alpha, seen_from)
     }
 
     /// Single-scatter f_ss(wo, wi): Walter 2007 eq. 20 (reflection) and eq. 21

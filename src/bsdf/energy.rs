@@ -37,12 +37,16 @@
 //! range. Worse where E_ss is steep: η_eff ∈ (0.9, 1) with large α at grazing μo < 0.1 (a
 //! few %).
 //!
-//! Non-reciprocity: the scale depends on wo only, so with the reciprocal single-scatter
-//! part f(wo, wi)·E(wo) = f(wi, wo)·E(wi): the compensated BSDF breaks (generalised)
-//! reciprocity by the factor E(wi)/E(wo), and Radiance and Importance modes are no longer
-//! exact adjoints (a photon map and the path tracer then differ by that factor at rough
-//! glass). Measured for η 1.5, |cos| ≥ 0.1: E(wi)/E(wo) ∈ [0.91, 1.08] at α 0.1,
-//! [0.80, 1.10] at α 0.3, [0.58, 1.23] at α 0.8. Both modes conserve energy.
+//! Non-reciprocity: in Radiance mode the scale depends on wo only, so with the reciprocal
+//! single-scatter part f(wo, wi)·E(wo) = f(wi, wo)·E(wi): the compensated BSDF breaks
+//! (generalised) reciprocity by the factor E(wi)/E(wo) (for η 1.5, |cos| ≥ 0.1: within
+//! [0.91, 1.08] at α 0.1, [0.80, 1.10] at α 0.3, [0.58, 1.23] at α 0.8). Importance mode
+//! divides by E(wi) instead, the exact adjoint f_Importance(wo, wi) = f_Radiance(wi, wo), so
+//! photons, light subpaths and camera paths estimate the same transport (a photon that
+//! conserved its own energy instead would see a different BSDF from the camera's, and SPPM
+//! gathering on rough glass would differ from the path tracer by that ratio). Camera paths
+//! conserve energy at every vertex; a photon's throughput at a vertex is E(wo)/E(wi) on
+//! average.
 
 use super::albedo_table;
 use super::microfacet::{Distribution, Ggx};

@@ -32,14 +32,15 @@
 //! itself, so existing renders are unchanged).
 //!
 //! Reciprocity: the diffuse transmission is reciprocal (like the base), the layer scalings
-//! are not: they depend on wo only, like the rough dielectric's energy compensation
-//! (`super::energy`), so f(wo, wi)·… breaks f(wo, wi) = f(wi, wo) by a_c(wi)a_s(wi) /
-//! a_c(wo)a_s(wo) on the base part. The spec's reciprocal alternatives (the min over both
-//! directions for the sheen, the max F_c for the coat) lose energy instead: a white sheen
-//! (α 0.5) over a white Lambertian base then scatters only 0.86 at normal incidence
-//! (measured), against exactly 1 with the view-only form; Iris keeps energy. A photon
-//! map (Importance mode, same f) then differs from the path tracer by that ratio at these
-//! layers, as at rough glass.
+//! are not: in Radiance mode they depend on wo only, like the rough dielectric's energy
+//! compensation (`super::energy`), so f(wo, wi)·… breaks f(wo, wi) = f(wi, wo) by
+//! a_c(wi)a_s(wi) / a_c(wo)a_s(wo) on the base part. The spec's reciprocal alternatives (the
+//! min over both directions for the sheen, the max F_c for the coat) lose energy instead: a
+//! white sheen (α 0.5) over a white Lambertian base then scatters only 0.86 at normal
+//! incidence (measured), against exactly 1 with the view-only form; Iris keeps energy.
+//! Importance mode takes the scalings from wi, the exact adjoint (f_Importance(wo, wi) =
+//! f_Radiance(wi, wo)), so photon methods estimate what the path tracer does, as at rough
+//! glass.
 //! Sampling: one of coat GGX (VNDF), base GGX, cosine on wo's side (diffuse reflection and
 //! sheen), cosine on the other side (diffuse transmission), chosen by `uc` with
 //! probabilities proportional to each lobe's weight estimated at |cos θo|, each present lobe
@@ -50,7 +51,7 @@ use super::pbr::{
     cosine_hemisphere, ggx_reflect_pdf, ggx_reflect_sample, ggx_spec, half_reflect, lambert_pdf,
     Gltf, GLTF_MIN_ALPHA,
 };
-use super::{same_hemisphere, sheen, BsdfSample};
+use super::{same_hemisphere, sheen, BsdfSample, TransportMode};
 use crate::optics::fresnel_schlick;
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
@@ -165,12 +166,18 @@ impl<C: Carrier> Layered<C> {
         (a_c, self.sheen_scale(mu_o))
     }
 
-    /// f(wo, wi) (module doc).
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> C {
+    /// f(wo, wi) (module doc): the layer scalings from |cos θo| in Radiance mode, from
+    /// |cos θi| in Importance mode (its exact adjoint, f_Importance(wo, wi) =
+    /// f_Radiance(wi, wo)).
+    pub fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> C {
         if wo.z == 0.0 || wi.z == 0.0 {
             return C::ZERO;
         }
-        let (a_c, a_s) = self.attenuation(wo.z.abs());
+        let seen_from = match mode {
+            TransportMode::Radiance => wo,
+            TransportMode::Importance => wi,
+        };
+        let (a_c, a_s) = self.attenuation(seen_from.z.abs());
         let b = &self.base;
         let m = b.metallic;
         if same_hemisphere(wo, wi) {
@@ -260,8 +267,9 @@ impl<C: Carrier> Layered<C> {
         pdf
     }
 
-    /// One-sample lobe selection by `uc`; returns the full f and the mixture pdf.
-    pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2) -> Option<BsdfSample<C>> {
+    /// One-sample lobe selection by `uc`; returns the full f (in `mode`) and the mixture
+    /// pdf.
+    pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample<C>> {
         if wo.z == 0.0 {
             return None;
         }
@@ -276,6 +284,8 @@ impl<C: Carrier> Layered<C> {
             mirror(cosine_hemisphere(wo, u))
         };
         let transmission = !same_hemisphere(wo, wi);
-        BsdfSample::lobe(wi, self.pdf(wo, wi), transmission, || self.eval(wo, wi))
+        BsdfSample::lobe(wi, self.pdf(wo, wi), transmission, || {
+            self.eval(wo, wi, mode)
+        })
     }
 }

@@ -260,7 +260,7 @@ impl<C: Carrier> Bsdf<C> {
             }
             Bsdf::ThinDielectric { .. } => C::ZERO,
             Bsdf::GltfPbr { .. } => match self.layered() {
-                Some(l) => l.eval(wo, wi),
+                Some(l) => l.eval(wo, wi, mode),
                 None => self.gltf().map_or(C::ZERO, |g| g.eval(wo, wi)),
             },
         }
@@ -305,7 +305,7 @@ impl<C: Carrier> Bsdf<C> {
             }
             Bsdf::ThinDielectric { eta, tint } => dielectric::thin_sample(eta, tint, wo, uc),
             Bsdf::GltfPbr { .. } => match self.layered() {
-                Some(l) => l.sample(wo, uc, u),
+                Some(l) => l.sample(wo, uc, u, mode),
                 None => self.gltf()?.sample(wo, uc, u),
             },
         }

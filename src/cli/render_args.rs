@@ -107,7 +107,9 @@ pub struct RenderArgs {
     #[arg(long, value_parser = Method::parse)]
     pub method: Option<Method>,
     /// Maximum number of bounces (reflections and refractions) per path, 1 to 1024 (also
-    /// the Whitted tracer's recursion depth and the photons stored per photon path).
+    /// the Whitted tracer's recursion depth and the photons stored per photon path); a
+    /// camera path's random walk through a scattering medium counts once (1: single
+    /// scattering).
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=i64::from(crate::integrator::MAX_DEPTH)))]
     pub max_depth: u32,
     /// Intersection backend: auto (Embree when compiled in), embree, bvh.

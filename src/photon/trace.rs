@@ -22,12 +22,15 @@
 
 use super::emit::EmittedPhoton;
 use crate::bsdf::{Bsdf, TransportMode};
+use crate::interaction::{Leave, SurfaceHit};
 use crate::math::Rng;
 use crate::medium::MediumStack;
 use crate::optics::refract;
 use crate::scene::Scene;
-use crate::shading::{self, is_diffuse_like, media, Event, Surface, MAX_DELTA_BOUNCES};
+use crate::shading::media::Ends;
+use crate::shading::{self, is_diffuse_like, media, Arrival, Event, Surface, MAX_DELTA_BOUNCES};
 use crate::spectrum::Carrier;
+use crate::volume::coarse::Scale;
 use glam::{Vec2, Vec3};
 
 /// How photon paths are terminated.
@@ -104,22 +107,38 @@ enum Flight {
     Absorbed,
 }
 
-/// Free flight of a photon (`beta`, `lambda` along `ray`, whose surface is at `t_hit`): a
-/// chromatic medium keeps the hero only, then [`media::fly`]. At a scattering event
-/// `store(vertex, power, lambda)` is called (the vertex's `bounces` and `caustic` are the
-/// caller's to fill), the photon is rouletted on the flight's weight (survivors keep their
-/// power), the light's range window `range` applied on its first flight, and `ray` becomes
-/// the phase-sampled direction.
+/// Free flight of a photon (`beta`, `lambda` along `ray` between its `ends`): a chromatic
+/// medium keeps the hero only, then [`media::fly`] (at the fine scale: photon walks count
+/// every event against `max_depth`). At a scattering event `store(vertex, power, lambda)` is
+/// called (the vertex's `bounces` and `caustic` are the caller's to fill), the photon is
+/// rouletted on the flight's weight (survivors keep their power), the light's range window
+/// `range` applied on its first flight, and the photon leaves along a phase-sampled
+/// direction as the event lets it ([`media::Scattered::leave`]): `ray` and `next` set.
+/// `next` says where `ray` left from (a free point of a medium: `media` are checked first,
+/// [`media::starting`]), `at` what it meets.
 fn scatter_in_medium<C: Carrier>(
-    (scene, media, t_hit): (&Scene, &MediumStack, f32),
+    (scene, media, at): (&Scene, &mut MediumStack, Option<&Arrival<'_, C>>),
     (beta, lambda, ray): (&mut C, &mut C::Lambda, &mut crate::math::Ray),
-    range: Option<f32>,
+    (range, next): (Option<f32>, &mut Leaving),
     rng: &mut Rng,
     store: impl FnOnce(MediumVertex, C, &C::Lambda),
 ) -> Flight {
+    if let Leaving::Point = next {
+        *media = media::starting(scene, *media, at.map(|a| (&a.hit, &a.coincident)));
+    }
+    let from = match *next {
+        Leaving::Surface(h) => Some(h),
+        _ => None,
+    };
+    let ends = Ends {
+        from: from.as_ref(),
+        meets: at.map(|a| &a.hit),
+    };
     let before = beta.max_element();
+    let t_hit = ends.meets.map_or(f32::INFINITY, |h| h.t);
     media::keep_hero_in(scene, ray, t_hit, media, (&mut *beta, &mut *lambda));
-    let Some(sc) = media::fly(scene, ray, t_hit, media, (&mut *beta, &mut *lambda), rng) else {
+    let values = (&mut *beta, &mut *lambda);
+    let Some(sc) = media::fly(scene, (ray, ends), media, Scale::FINE, values, rng) else {
         return Flight::Pass;
     };
     let wo = -ray.dir.normalize();
@@ -145,8 +164,37 @@ fn scatter_in_medium<C: Carrier>(
     let (wi, _) = sc
         .phase
         .sample(wo, Vec2::new(rng.next_f32(), rng.next_f32()));
-    *ray = crate::math::Ray::new(sc.p, wi);
+    *next = match sc.leave(wi) {
+        Leave::Ray(r) => {
+            *ray = r;
+            match sc.band {
+                Some(b) => Leaving::Surface(*b.surface()),
+                None => Leaving::Point,
+            }
+        }
+        Leave::Meets { hit, distance } => {
+            *ray = crate::math::Ray {
+                t_max: distance,
+                ..crate::math::Ray::new(sc.p, wi)
+            };
+            Leaving::Meets(hit)
+        }
+    };
     Flight::Scattered
+}
+
+/// Where a photon's ray leaves from and what it meets untraced (the path tracer keeps the
+/// same in its `PathState::from` and `meet`).
+#[derive(Debug, Clone, Copy)]
+enum Leaving {
+    /// The light (or an unknown surface).
+    Light,
+    /// A surface, its origin offset from it ([`crate::math::Ray::skipped`]).
+    Surface(SurfaceHit),
+    /// A free point of a medium ([`media::starting`] checks its media).
+    Point,
+    /// A band point toward its surface: it meets that surface untraced.
+    Meets(SurfaceHit),
 }
 
 /// The lobe colours the seed paper's rule chooses among: (diffuse, specular, transmission).
@@ -303,10 +351,13 @@ pub fn trace_in_media<C: Carrier>(
     let (mut bounces, mut depth, mut delta_depth) = (0u32, 0u32, 0u32);
     let mut all_specular = true;
     let mut rays = 0u64;
+    let mut leaving = Leaving::Light;
     loop {
-        let arrival = shading::arrive::<C>(scene, &ray, &media, &lambda, &mut rays);
+        let arrival = match leaving {
+            Leaving::Meets(h) => shading::arrival::<C>(scene, &ray, Some(h), &media, &lambda),
+            _ => shading::arrive::<C>(scene, &ray, &media, &lambda, &mut rays),
+        };
         if scene.has_media() {
-            let t_hit = arrival.as_ref().map_or(f32::INFINITY, |a| a.hit.t);
             let photon_state = (&mut beta, &mut lambda, &mut ray);
             let first = (bounces == 0).then_some(photon.range).flatten();
             let caustic = bounces > 0 && all_specular;
@@ -321,8 +372,8 @@ pub fn trace_in_media<C: Carrier>(
                     l,
                 )
             };
-            let at = (scene, &media, t_hit);
-            match scatter_in_medium(at, photon_state, first, rng, keep) {
+            let at = (scene, &mut media, arrival.as_ref());
+            match scatter_in_medium(at, photon_state, (first, &mut leaving), rng, keep) {
                 Flight::Pass => {}
                 Flight::Scattered => {
                     all_specular = false;
@@ -348,6 +399,7 @@ pub fn trace_in_media<C: Carrier>(
             {
                 media = after;
                 ray = at.hit.spawn_ray(-at.hit.wo);
+                leaving = Leaving::Surface(at.hit);
                 continue;
             }
         }
@@ -359,6 +411,7 @@ pub fn trace_in_media<C: Carrier>(
         let s = match &ev {
             Event::PassThrough(next) => {
                 ray = *next;
+                leaving = Leaving::Surface(at.hit);
                 continue;
             }
             Event::Scatter(s) => s,
@@ -396,6 +449,7 @@ pub fn trace_in_media<C: Carrier>(
             }
         }
         ray = s.spawn(wi);
+        leaving = Leaving::Surface(s.hit);
     }
     rays
 }

@@ -361,6 +361,7 @@ impl Scene {
             origin: p + ng * half,
             dir: -ng,
             t_max: 2.0 * half,
+            skipped: 0.0,
         };
         if half.is_nan() || half <= 0.0 {
             return (probe, HitList::default());

@@ -85,21 +85,26 @@ pub fn arrive<'s, C: Carrier>(
     rays: &mut u64,
 ) -> Option<Arrival<'s, C>> {
     *rays += 1;
-    arrival(scene, scene.intersect(ray), media, lambda)
+    arrival(scene, ray, scene.intersect(ray), media, lambda)
 }
 
-/// [`arrive`] for a ray already traced ([`Scene::intersect`] or a lane of
-/// [`Scene::intersect_packet`]) to `hit`.
+/// [`arrive`] for `ray` already traced ([`Scene::intersect`] or a lane of
+/// [`Scene::intersect_packet`]) to `hit`. The Beer–Lambert segment starts where the ray
+/// really starts ([`Ray::skipped`] before its origin).
 #[inline]
 pub fn arrival<'s, C: Carrier>(
     scene: &'s Scene,
+    ray: &Ray,
     hit: Option<SurfaceHit>,
     media: &MediumStack,
     lambda: &C::Lambda,
 ) -> Option<Arrival<'s, C>> {
     let hit = hit?;
     let transmittance = match crate::medium::segment_medium(scene, media, &hit) {
-        Some(m) => scene.materials()[m as usize].transmittance_at::<C>(hit.t, lambda),
+        Some(m) => {
+            let x = hit.t + ray.skipped;
+            scene.materials()[m as usize].transmittance_at::<C>(x, lambda)
+        }
         None => C::ONE,
     };
     let (hit, coincident) = meet(scene, hit);

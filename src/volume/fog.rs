@@ -27,10 +27,11 @@ pub struct Fog {
 }
 
 impl Fog {
-    /// The part [t0, t1] of the ray `origin + t dir` (t in [0, t_max], `dir` of any
-    /// length, t in its units) inside the box; `None` if it misses or the part is empty
-    /// (slab method, Kay & Kajiya 1986).
-    pub fn clip(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<(f32, f32)> {
+    /// The part [t0, t1] of the ray `origin + t dir` (t in [t_min, t_max], `dir` of any
+    /// length, t in its units; t_min ≤ 0 where the ray really starts behind its origin)
+    /// inside the box; `None` if it misses or the part is empty (slab method, Kay & Kajiya
+    /// 1986).
+    pub fn clip(&self, origin: Vec3, dir: Vec3, (t_min, t_max): (f32, f32)) -> Option<(f32, f32)> {
         let (lo, hi) = self.bounds;
         let inv = dir.recip();
         let a = (lo - origin) * inv;
@@ -38,7 +39,7 @@ impl Fog {
         let near = a.min(b);
         let far = a.max(b);
         // NaN (0 · ∞ on an axis-parallel ray through a face) is ignored by max/min.
-        let t0 = near.x.max(near.y).max(near.z).max(0.0);
+        let t0 = near.x.max(near.y).max(near.z).max(t_min);
         let t1 = far.x.min(far.y).min(far.z).min(t_max);
         (t0 < t1).then_some((t0, t1))
     }
@@ -181,11 +182,12 @@ mod tests {
         };
         let x = Vec3::X;
         assert_eq!(
-            fog.clip(Vec3::new(-3.0, 0.0, 0.0), x, 100.0),
+            fog.clip(Vec3::new(-3.0, 0.0, 0.0), x, (0.0, 100.0)),
             Some((2.0, 4.0))
         );
-        assert_eq!(fog.clip(Vec3::ZERO, x, 0.5), Some((0.0, 0.5)));
-        assert_eq!(fog.clip(Vec3::new(-3.0, 2.0, 0.0), x, 100.0), None);
-        assert_eq!(fog.clip(Vec3::new(3.0, 0.0, 0.0), x, 100.0), None);
+        assert_eq!(fog.clip(Vec3::ZERO, x, (0.0, 0.5)), Some((0.0, 0.5)));
+        assert_eq!(fog.clip(Vec3::ZERO, x, (-0.25, 0.5)), Some((-0.25, 0.5)));
+        assert_eq!(fog.clip(Vec3::new(-3.0, 2.0, 0.0), x, (0.0, 100.0)), None);
+        assert_eq!(fog.clip(Vec3::new(3.0, 0.0, 0.0), x, (0.0, 100.0)), None);
     }
 }

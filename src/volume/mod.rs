@@ -10,7 +10,9 @@
 //! - [`medium`]: a medium's description and its coefficients at a path's wavelengths.
 //! - [`track`]: distance sampling with spectral MIS and exact transmittance.
 //! - [`fog`]: the scene-wide medium (`--fog`, scene `extras.iris_fog`) and its bounds.
+//! - [`coarse`]: the coarse-graining of long random walks in dense media.
 
+pub mod coarse;
 pub mod coefficients;
 pub mod fog;
 pub mod medium;

@@ -5,32 +5,40 @@
 //! [`crate::shading::media::fly`] (pbrt-v4 `VolPathIntegrator`, §14.2).
 //!
 //! The vertex takes the bounce's scheduled dimensions like a surface vertex (light choice,
-//! member and position; the phase direction in the BSDF-direction slot; roulette) and
-//! counts against `max_depth` like a non-delta bounce. Directions are unit vectors in world
-//! space.
+//! member and position; the phase direction in the BSDF-direction slot; roulette); its
+//! bounce limits and the walk's coarse scale are [`super::state`]'s. A vertex in a
+//! surface's offset band leaves it as the band says ([`crate::interaction::BandPoint`]:
+//! its rays from the surface's offset origin, or meeting the surface untraced), its shadow
+//! ray too ([`media::shadow_from`]). Directions are unit vectors in world space.
 
 use super::light_sample::{next_event, Scatterer};
 use super::vertex::{pending, Next, Pending, Rules, Walk};
-use crate::interaction::SurfaceHit;
+use crate::interaction::{Leave, SurfaceHit};
 use crate::math::Ray;
 use crate::render::Context;
 use crate::scene::Scene;
-use crate::shading::media::{self, Scattered};
+use crate::shading::media::{self, Ends, Scattered};
 use crate::shading::Arrival;
 use crate::spectrum::Carrier;
 
-/// Before the surface its ray reached at distance `t_hit` (+∞ if it escaped): the volume
-/// caustic map's beam estimate along the segment ([`super::CausticSplit::Volume`], in a
-/// chromatic medium after keeping the hero only), then free flight ([`media::fly`]); `Some` with the vertex's outcome if the path
-/// scatters in the medium.
+/// Before the surface `at` its ray reached (`None` if it escaped; `met`: reached untraced,
+/// [`super::state::PathState::meet`]): the media checked where the ray leaves a point of a
+/// medium ([`media::starting`]), the volume caustic map's beam estimate along the segment
+/// ([`super::CausticSplit::Volume`], in a chromatic medium after keeping the hero only),
+/// then free flight ([`media::fly`]); `Some` with the vertex's outcome if the path scatters
+/// in the medium, else the path has met the surface (a new run).
 pub(super) fn fly<C: Carrier>(
     scene: &Scene,
     rules: &Rules<'_, C>,
     walk: &mut Walk<C>,
-    t_hit: f32,
+    (at, met): (Option<&Arrival<'_, C>>, bool),
     ctx: &mut Context,
 ) -> Option<(Option<Pending<C>>, Next)> {
     let st = &mut walk.st;
+    let t_hit = at.map_or(f32::INFINITY, |a| a.hit.t);
+    if st.run > 0 && st.from.is_none() && !met {
+        st.media = media::starting(scene, st.media, at.map(|a| (&a.hit, &a.coincident)));
+    }
     if let Some(beam) = rules.split.beam() {
         let values = (&mut st.beta, &mut walk.lambda);
         media::keep_hero_in(scene, &walk.ray, t_hit, &st.media, values);
@@ -38,9 +46,18 @@ pub(super) fn fly<C: Carrier>(
             walk.l += st.beta * beam(&walk.ray, &seg, &walk.lambda);
         }
     }
+    let scale = st.scale();
     let values = (&mut st.beta, &mut walk.lambda);
+    let ends = Ends {
+        from: st.from.as_ref(),
+        meets: at.map(|a| &a.hit),
+    };
     let mut u = ctx.sample.bounce(st.vertex);
-    let sc = media::fly(scene, &walk.ray, t_hit, &st.media, values, u.rng())?;
+    let flight = (&walk.ray, ends);
+    let Some(sc) = media::fly(scene, flight, &st.media, scale, values, u.rng()) else {
+        st.met_surface();
+        return None;
+    };
     Some(scatter(scene, rules, walk, sc, ctx))
 }
 
@@ -52,6 +69,7 @@ pub(super) fn cross<C: Carrier>(scene: &Scene, walk: &mut Walk<C>, at: &Arrival<
     match crossed {
         Some(after) => {
             walk.ray = at.hit.spawn_ray(-at.hit.wo);
+            st.from = Some(at.hit);
             st.media = after;
             true
         }
@@ -76,7 +94,16 @@ fn scatter<C: Carrier>(
         media: st.media,
     };
     let mut u = ctx.sample.bounce(st.vertex);
-    let ls = next_event(scene, &at, &walk.lambda, true, &mut u, &mut ctx.rays);
+    let mut ls = next_event(scene, &at, &walk.lambda, true, &mut u, &mut ctx.rays);
+    if let (Some(shadow), Some(through)) = (ls.shadow, ls.through) {
+        let through = media::Through {
+            scale: st.event_scale(),
+            from_point: true,
+            ..through
+        };
+        let (r, through, band) = media::shadow_from::<C>(scene, &sc, shadow, through, &walk.lambda);
+        (ls.shadow, ls.through, ls.value) = (Some(r), Some(through), ls.value * band);
+    }
     let nee = pending(st.beta, ls, None);
     if st.beta == C::ZERO {
         return (Some(nee), Next::End);
@@ -85,7 +112,19 @@ fn scatter<C: Carrier>(
     if pdf.is_nan() || pdf <= 0.0 || !st.advance_in_medium(sc.p, pdf, rules.max_depth, &mut u) {
         return (Some(nee), Next::End);
     }
-    walk.ray = Ray::new(sc.p, wi);
+    match sc.leave(wi) {
+        Leave::Ray(r) => {
+            walk.ray = r;
+            st.from = sc.band.map(|b| *b.surface());
+        }
+        Leave::Meets { hit, distance } => {
+            walk.ray = Ray {
+                t_max: distance,
+                ..Ray::new(sc.p, wi)
+            };
+            (st.from, st.meet) = (None, Some(hit));
+        }
+    }
     st.vertex += 1;
     st.direct = false;
     (Some(nee), Next::Trace)

@@ -192,8 +192,8 @@ where
             let lane = &mut lanes_[i];
             lane.ctx.rays += 1;
             let w = &lane.walk;
-            let hit = scene.lane_hit(&w.ray, raw.get(i));
-            let arrival = shading::arrival(scene, hit, &w.st.media, &w.lambda);
+            let hit = w.st.meet.or_else(|| scene.lane_hit(&w.ray, raw.get(i)));
+            let arrival = shading::arrival(scene, &w.ray, hit, &w.st.media, &w.lambda);
             let (nee, next) = vertex::vertex(
                 scene,
                 &rules,

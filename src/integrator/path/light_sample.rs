@@ -15,6 +15,7 @@ use crate::math::Ray;
 use crate::medium::MediumStack;
 use crate::sampler::Bounce;
 use crate::scene::Scene;
+use crate::shading::media::Through;
 use crate::shading::{lights, Surface};
 use crate::spectrum::Carrier;
 use crate::volume::Phase;
@@ -28,7 +29,7 @@ pub(super) struct LightSample<C: Carrier> {
     /// The direction toward the light (world, unit; zero without a sample).
     pub wi: Vec3,
     pub value: C,
-    pub through: Option<MediumStack>,
+    pub through: Option<Through>,
 }
 
 impl<C: Carrier> LightSample<C> {
@@ -79,14 +80,19 @@ impl<C: Carrier> Scatterer<'_, C> {
         }
     }
 
-    /// The media a ray leaving toward `wi` starts in.
-    fn media_toward(&self, wi: Vec3) -> MediumStack {
+    /// Where a shadow ray leaving toward `wi` starts: the media beyond or before a
+    /// surface, or a medium's point at the fine scale (its walk's scale and band are the
+    /// caller's, [`super::in_medium`]).
+    fn through(&self, wi: Vec3) -> Through {
         match self {
             Scatterer::Surface(s) => {
                 let wi_local = s.frame.to_local(wi);
-                s.media_after(wi_local.z * s.wo.z < 0.0)
+                Through::surface(s.media_after(wi_local.z * s.wo.z < 0.0))
             }
-            Scatterer::Medium { media, .. } => *media,
+            Scatterer::Medium { media, .. } => Through {
+                from_point: true,
+                ..Through::surface(*media)
+            },
         }
     }
 }
@@ -154,6 +160,6 @@ pub(super) fn next_event<C: Carrier>(
         shadow: Some(ls.shadow),
         wi: ls.wi,
         value: f * incident * (cos * w),
-        through: scene.has_media().then(|| at.media_toward(ls.wi)),
+        through: scene.has_media().then(|| at.through(ls.wi)),
     }
 }

@@ -214,7 +214,10 @@ fn trace<C: Carrier>(
     let mut visible = None;
     loop {
         let (media, lambda) = (&walk.st.media, &walk.lambda);
-        let arrival = shading::arrive::<C>(scene, &walk.ray, media, lambda, &mut ctx.rays);
+        let arrival = match walk.st.meet {
+            Some(h) => shading::arrival::<C>(scene, &walk.ray, Some(h), media, lambda),
+            None => shading::arrive::<C>(scene, &walk.ray, media, lambda, &mut ctx.rays),
+        };
         let (nee, next) = vertex::vertex(scene, rules, &mut walk, arrival, ctx, &mut visible);
         if let Some(nee) = nee {
             nee.resolve_traced(scene, &walk.lambda, &mut ctx.rays, &mut walk.l);

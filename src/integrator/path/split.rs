@@ -49,6 +49,7 @@
 
 use super::state::PathState;
 use super::StopAt;
+use crate::interaction::SurfaceHit;
 use crate::math::Ray;
 use crate::spectrum::{Carrier, N_LAMBDA};
 use glam::Vec3;
@@ -102,7 +103,8 @@ impl<C: Carrier> Branches<C> {
         }
     }
 
-    /// Splits the path that reached its vertex along `ray` with radiance `l` and state
+    /// Splits the path that reached its vertex along `ray` (untraced, meeting `met`, if
+    /// [`PathState::meet`] took it there) with radiance `l` and state
     /// `st`, whose throughput was `beta` before the event kept the hero only; `lambda` are
     /// the path's wavelengths. The walk continues as lane 0's sub-path (`l` and `st.beta`
     /// become lane 0's alone, at weight 1, and `lambda` is marked as its sub-path's,
@@ -111,7 +113,7 @@ impl<C: Carrier> Branches<C> {
         &mut self,
         l: &mut C,
         st: &mut PathState<C>,
-        ray: Ray,
+        (ray, met): (Ray, Option<SurfaceHit>),
         (beta, lambda): (C, &mut C::Lambda),
     ) {
         let b = beta.to_lanes();
@@ -123,6 +125,7 @@ impl<C: Carrier> Branches<C> {
                 lambda: C::lane_as_hero(lambda, lane),
                 st: PathState {
                     beta: lane_only(b[lane]),
+                    meet: met,
                     ..*st
                 },
             });
@@ -190,7 +193,7 @@ mod tests {
         b.split(
             &mut l,
             &mut st,
-            ray,
+            (ray, None),
             (S::new([0.5, 0.0, 0.25, 1.0]), &mut lambda.clone()),
         );
         assert_eq!((l, st.beta), (S::ZERO, S::new([0.5, 0.0, 0.0, 0.0])));

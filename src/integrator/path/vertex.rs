@@ -16,9 +16,9 @@ use super::state::{PathState, Prev};
 use super::{CausticSplit, Gather, StopAt, VisiblePoint};
 use crate::bsdf::TransportMode;
 use crate::math::Ray;
-use crate::medium::MediumStack;
 use crate::render::Context;
 use crate::scene::Scene;
+use crate::shading::media::Through;
 use crate::shading::{is_diffuse_like, lights, media, Arrival, Event};
 use crate::spectrum::Carrier;
 use glam::Vec3;
@@ -145,9 +145,9 @@ impl<C: Carrier> Walk<C> {
 pub(super) struct Pending<C: Carrier> {
     /// The shadow ray of next-event estimation (`None`: nothing to trace, `value` is zero).
     pub shadow: Option<Ray>,
-    /// In a scene with media: the media the shadow ray starts in; it is then traced alone
-    /// for its transmittance ([`Pending::resolve_traced`]), not in a packet.
-    pub through: Option<MediumStack>,
+    /// In a scene with media: where the shadow ray starts; it is then traced alone for its
+    /// transmittance ([`Pending::resolve_traced`]), not in a packet.
+    pub through: Option<Through>,
     beta: C,
     value: C,
     gather: Option<C>,
@@ -166,7 +166,7 @@ impl<C: Carrier> Pending<C> {
     /// light to `l`.
     pub fn resolve_traced(self, scene: &Scene, lambda: &C::Lambda, rays: &mut u64, l: &mut C) {
         let v = match (self.shadow, self.through) {
-            (Some(r), Some(m)) => self.value * media::shadow::<C>(scene, &r, m, lambda, rays),
+            (Some(r), Some(t)) => self.value * media::shadow::<C>(scene, &r, t, lambda, rays),
             (Some(r), None) if !scene.occluded(&r) => self.value,
             _ => C::ZERO,
         };
@@ -269,9 +269,10 @@ pub(super) fn vertex<C: Carrier>(
     // A sub-path redoing its split vertex: what arrived there is counted.
     let resume = std::mem::take(&mut walk.branches.resume);
     let caustic = walk.st.closes_caustic(&rules.split) || resume;
+    let met = walk.st.meet.take();
     if scene.has_media() && !resume {
-        let t_hit = arrival.as_ref().map_or(f32::INFINITY, |a| a.hit.t);
-        if let Some(scattered) = super::in_medium::fly(scene, rules, walk, t_hit, ctx) {
+        let at = (arrival.as_ref(), met.is_some());
+        if let Some(scattered) = super::in_medium::fly(scene, rules, walk, at, ctx) {
             return scattered;
         }
     }
@@ -304,6 +305,7 @@ pub(super) fn vertex<C: Carrier>(
     let s = match &ev {
         Event::PassThrough(next) => {
             walk.ray = *next;
+            st.from = Some(at.hit);
             st.direct = false;
             return (None, Next::Trace);
         }
@@ -312,7 +314,7 @@ pub(super) fn vertex<C: Carrier>(
     // The event kept the hero only at a smooth dispersive interface: split instead.
     if let (Some(beta), true) = (before, C::is_hero_only(&walk.lambda) && s.bsdf.is_delta()) {
         let split = (beta, &mut walk.lambda);
-        walk.branches.split(&mut walk.l, st, walk.ray, split);
+        walk.branches.split(&mut walk.l, st, (walk.ray, met), split);
     }
     let lambda = &walk.lambda;
     if rules.stop == StopAt::Diffuse && is_diffuse_like(&s.bsdf) {
@@ -371,6 +373,7 @@ pub(super) fn vertex<C: Carrier>(
         return (nee, Next::End);
     }
     walk.ray = s.spawn(bs.wi);
+    st.from = Some(s.hit);
     st.vertex += 1;
     st.direct = false;
     (nee, Next::Trace)

@@ -16,7 +16,10 @@
 //!   at 1e4 m behaves the same (Wächter & Binder 2019, "A Fast and Robust Method for
 //!   Avoiding Self-Intersection", Ray Tracing Gems ch. 6, offset the origin by a multiple of
 //!   the position's ulp; we use one magnitude for all three axes so coordinates near zero on
-//!   a large triangle are covered too). No other module adds an epsilon.
+//!   a large triangle are covered too). No other module adds an epsilon. A spawned ray
+//!   records the part of its line the offset skipped ([`Ray::skipped`]) for media to count,
+//!   and a medium's scattering event within that offset of a surface is kept as a depth
+//!   below the surface's plane ([`BandPoint`]), so no ray from it starts on the wrong side.
 //! - Alpha-masked (glTF `MASK`) hits below the cutoff are skipped here, so integrators never
 //!   see them.
 //! - Coincident surfaces ([`Scene::coincident`]): where two objects share a face (water
@@ -31,6 +34,11 @@
 //!   packet hits equal their single-ray hits bit for bit (`tests/accel_packets.rs`), the
 //!   hit record is built by the same code ([`Scene::lane_hit`]), and a lane whose first
 //!   hit is an alpha cut-out is traced again alone.
+
+mod band;
+
+use band::skipped;
+pub use band::{BandPoint, Leave};
 
 use crate::accel::packet::{lanes, Coherence, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
 use crate::accel::RawHit;
@@ -178,13 +186,15 @@ impl SurfaceHit {
         }
     }
 
-    /// A ray leaving the surface in unit direction `dir` (reflection, refraction, bounce).
+    /// A ray leaving the surface in unit direction `dir` (reflection, refraction, bounce);
+    /// its [`Ray::skipped`] is the part of its line the offset skipped.
     #[inline]
     pub fn spawn_ray(&self, dir: Vec3) -> Ray {
         Ray {
             origin: self.offset_origin(dir),
             dir,
             t_max: f32::INFINITY,
+            skipped: skipped(self.offset, dir, self.ng),
         }
     }
 
@@ -197,6 +207,7 @@ impl SurfaceHit {
             origin,
             dir: target - origin,
             t_max: 1.0 - SHADOW_EPSILON,
+            skipped: skipped(self.offset, target - self.p, self.ng),
         }
     }
 }
@@ -208,7 +219,11 @@ impl Scene {
         let t = self.triangle(prim);
         let ng = geometric_normal(t.p).unwrap_or(Vec3::Z);
         let side = if dir.dot(ng) >= 0.0 { 1.0 } else { -1.0 };
-        Ray::new(p + ng * (side * t.magnitude() * OFFSET_SCALE), dir)
+        let offset = t.magnitude() * OFFSET_SCALE;
+        Ray {
+            skipped: skipped(offset, dir, ng),
+            ..Ray::new(p + ng * (side * offset), dir)
+        }
     }
 
     /// Builds the hit record for a raw backend hit.
@@ -389,6 +404,7 @@ impl Scene {
                     origin: rays.origin(lane),
                     dir: rays.dir(lane),
                     t_max: rays.t_max[lane],
+                    skipped: 0.0,
                 };
                 if self.occluded(&ray) {
                     blocked |= 1 << lane;
