@@ -15,7 +15,7 @@ use crate::scene::Scene;
 /// - the **kept share** k ([`kept_share`]): of the light the lights bring to their first
 ///   non-delta hits, the part a diffuse bounce brings to a second one. An enclosed room
 ///   keeps about its albedo (the McGuire Cornell boxes: 0.57–0.59); every open scene
-///   measured keeps at most 0.21 (TransmissionRoughnessTest; the studio-lit stones 0.002).
+///   measured keeps at most 0.24 (TransmissionRoughnessTest; the studio-lit stones 0.002).
 ///   Where k ≥ [`AUTO_ENCLOSED_FROM`], most light reaching the camera has bounced, and
 ///   light subpaths find it more cheaply than camera paths do.
 /// - the **caustic share** s ([`caustic::probe_share`]): of the light at first non-delta
@@ -156,7 +156,7 @@ pub const ROUGH_GLASS: f32 = 0.05;
 pub const AUTO_HYBRID_BELOW: f64 = 0.04;
 
 /// The kept share from which `--method auto` counts a scene as enclosed and picks the
-/// bidirectional methods ([`resolve_method`]): between the open scenes' largest (0.21) and
+/// bidirectional methods ([`resolve_method`]): between the open scenes' largest (0.24) and
 /// the Cornell boxes' smallest (0.57) measured.
 pub const AUTO_ENCLOSED_FROM: f64 = 0.35;
 
