@@ -133,16 +133,3 @@ pub fn merged<'py>(
     }
     Ok(all)
 }
-
-#[cfg(test)]
-mod tests {
-    use super::edit_distance;
-
-    #[test]
-    fn edit_distance_counts_single_character_edits() {
-        assert_eq!(edit_distance("colour", "color"), 1);
-        assert_eq!(edit_distance("spp", "spp"), 0);
-        assert_eq!(edit_distance("", "abc"), 3);
-        assert_eq!(edit_distance("kitten", "sitting"), 3);
-    }
-}

@@ -161,6 +161,18 @@ fn load(
 }
 
 /// Iris, a spectral renderer for glass, gems and caustics.
+///
+/// render(path, progress=None, **flags), render_summary(…), plan(path, **flags) and
+/// info(path) take a scene file (str or os.PathLike) and the `iris render` flags as
+/// keyword arguments (spp=64, size=(640, 360), stone="sapphire", camera_look_at=…;
+/// `_` for `-`, True for a bare flag, a list repeats it); an unknown keyword raises
+/// TypeError, a bad value ValueError naming the flag, a bad file iris.IrisError.
+/// load(path, **flags) -> Scene reads a file once to render it many times
+/// (scene.render(**flags) with other stones, cameras, sizes …). tonemap(image, exposure,
+/// tonemap) and save(image, path, …) apply the command's PNG transform and writers;
+/// read_exr(path) reads an EXR. Images are float32 height × width × 3 linear RGB arrays.
+/// progress(info) runs on the calling thread at each checkpoint and every second;
+/// returning False stops the render; Ctrl-C raises KeyboardInterrupt.
 #[pymodule]
 #[pyo3(name = "iris")]
 fn iris_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
