@@ -434,3 +434,61 @@ fn info_plans_the_scene_render_plans() {
     assert!(a.len() >= 8, "{info_text}");
     assert_eq!(a, b, "info:\n{info_text}\nrender:\n{r_err}");
 }
+
+/// A description loaded once renders as its file does (`RenderJob::with_loaded`, the
+/// Python module's `Scene`), with flags that act at preparation (`--stone`, the camera);
+/// and a render cancelled through its hooks (`RunHooks::cancel`, Ctrl-C in the module)
+/// ends at once, interrupted, instead of running to its time limit.
+#[test]
+fn a_loaded_description_renders_as_its_file_and_a_cancelled_render_stops() {
+    use iris::app::{RenderJob, RunHooks};
+    let ruby = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/ruby.glb");
+    let desc = iris::load::load_scene(&ruby).unwrap();
+    let hooks = |cancel| RunHooks {
+        write_image: false,
+        progress: None,
+        cancel,
+    };
+    for flags in [
+        &[][..],
+        &["--stone=sapphire", "--camera-look-at=0.3,0.2,0.3:0,0,0:30"],
+    ] {
+        let mut args: Vec<String> = ["--size=24x16", "--spp=2", "--method=path", "--quiet"]
+            .iter()
+            .chain(flags)
+            .map(|s| s.to_string())
+            .collect();
+        args.push(ruby.display().to_string());
+        let opts = iris::cli::parse_render(&args).unwrap();
+        let file = RenderJob::new(&opts)
+            .unwrap()
+            .run_with(hooks(Default::default()));
+        let loaded = RenderJob::with_loaded(&opts, desc.clone(), Default::default())
+            .unwrap()
+            .run_with(hooks(Default::default()));
+        assert_eq!(
+            file.unwrap().image.data,
+            loaded.unwrap().image.data,
+            "{flags:?}"
+        );
+    }
+    let args = [
+        "--size=64x40",
+        "--time=60",
+        "--quiet",
+        &ruby.display().to_string(),
+    ]
+    .map(String::from);
+    let opts = iris::cli::parse_render(&args).unwrap();
+    let cancel = iris::render::guard::Cancel::new();
+    cancel.cancel();
+    let start = std::time::Instant::now();
+    let s = RenderJob::with_loaded(&opts, desc, Default::default())
+        .unwrap()
+        .run_with(hooks(cancel))
+        .unwrap();
+    assert!(s.stats.interrupted() && start.elapsed().as_secs() < 30);
+    assert!(iris::cli::render_flags()
+        .iter()
+        .any(|f| f == "camera-look-at"));
+}

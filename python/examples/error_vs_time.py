@@ -25,7 +25,7 @@ def curve(scene, method, seconds, size):
     points = []
 
     def progress(p):
-        if p["estimate"] is not None:
+        if p["checkpoint"] and p["estimate"] is not None:
             points.append((p["seconds"], p["estimate"]))
         return True
 

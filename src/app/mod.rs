@@ -1,11 +1,11 @@
 //! The commands behind the CLI, as library functions so tests can run them without a
 //! subprocess: `iris render` ([`render`], its flags: [`render_options`], its budget:
-//! [`budget`]; `--shard`: [`shard`], [`shard_id`]), `iris merge` ([`merge`]), `iris
-//! converge` ([`converge`]), `iris info` ([`info`]), `iris diff` ([`diff`]), `iris gallery`
-//! ([`gallery`]), `iris turntable` ([`turntable`]), `iris gem-report` ([`gem_report`]),
-//! and the printing of each ([`commands`],
-//! what `main.rs` calls: one function per command). This is the top of the crate: nothing
-//! below imports it.
+//! [`budget`], a library caller's hooks: [`render_hooks`]; `--shard`: [`shard`],
+//! [`shard_id`]), `iris merge` ([`merge`]), `iris converge` ([`converge`]), `iris info`
+//! ([`info`]), `iris diff` ([`diff`]), `iris gallery` ([`gallery`]), `iris turntable`
+//! ([`turntable`]), `iris gem-report` ([`gem_report`]), and the printing of each
+//! ([`commands`], what `main.rs` calls: one function per command). This is the top of the
+//! crate: nothing below imports it.
 
 pub mod adaptive;
 pub mod budget;
@@ -20,6 +20,7 @@ pub mod live;
 pub mod merge;
 pub mod render;
 mod render_denoise;
+pub mod render_hooks;
 pub mod render_options;
 pub mod shard;
 pub mod shard_id;

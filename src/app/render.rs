@@ -13,6 +13,7 @@
 use super::budget::TargetStop;
 use super::checkpoint_writes::CheckpointWrites;
 use super::render_denoise::RenderDenoiser;
+pub use super::render_hooks::RunHooks;
 use super::render_options::{unit_name, RenderOptions};
 pub use super::summary::RenderSummary;
 use crate::camera::Camera;
@@ -55,7 +56,7 @@ pub struct RenderJob<'a> {
 impl<'a> RenderJob<'a> {
     /// Checks every flag, prepares the scene and makes the plan.
     pub fn new(opts: &'a RenderOptions) -> Result<RenderJob<'a>> {
-        RenderJob::build(opts, None)
+        RenderJob::build(opts, Source::File)
     }
 
     /// [`RenderJob::new`] for a scene the caller prepared itself (an instrument's stage,
@@ -66,14 +67,23 @@ impl<'a> RenderJob<'a> {
         opts: &'a RenderOptions,
         prepared: crate::prepare::Prepared,
     ) -> Result<RenderJob<'a>> {
-        RenderJob::build(opts, Some(prepared))
+        RenderJob::build(opts, Source::Prepared(Box::new(prepared)))
     }
 
-    /// The checks, the preparation (unless `given`) and the plan.
-    fn build(
+    /// [`RenderJob::new`] for the description of `opts.scene` the caller loaded
+    /// ([`crate::load::load_scene`], which took `load_time`): the same checks, preparation
+    /// ([`crate::prepare::prepare_loaded`]) and plan, without reading the file again, so a
+    /// scene loaded once renders many times with other flags (the Python module's `Scene`).
+    pub fn with_loaded(
         opts: &'a RenderOptions,
-        given: Option<crate::prepare::Prepared>,
+        desc: crate::scene::desc::SceneDesc,
+        load_time: std::time::Duration,
     ) -> Result<RenderJob<'a>> {
+        RenderJob::build(opts, Source::Loaded(Box::new(desc), load_time))
+    }
+
+    /// The checks, the preparation (unless `given` prepared) and the plan.
+    fn build(opts: &'a RenderOptions, given: Source) -> Result<RenderJob<'a>> {
         if let Some((w, h)) = opts.size {
             check_size(w, h)?;
         }
@@ -104,12 +114,14 @@ impl<'a> RenderJob<'a> {
             .as_deref()
             .map(crate::measure::read_reference_file)
             .transpose()?;
+        let prepare_options =
+            || opts.prepare_options(reference.as_ref().map(|r| (r.width, r.height)));
         let prepared = match given {
-            Some(p) => p,
-            None => crate::prepare::prepare(
-                &opts.scene,
-                &opts.prepare_options(reference.as_ref().map(|r| (r.width, r.height))),
-            )?,
+            Source::Prepared(p) => *p,
+            Source::File => crate::prepare::prepare(&opts.scene, &prepare_options())?,
+            Source::Loaded(desc, load_time) => {
+                crate::prepare::prepare_loaded(*desc, load_time, &prepare_options())?
+            }
         };
         let (w, h) = prepared.size;
         if let (Some(r), Some(path)) = (&reference, &measure.reference) {
@@ -187,6 +199,7 @@ impl<'a> RenderJob<'a> {
         self.run_with(RunHooks {
             write_image: true,
             progress: None,
+            cancel: Default::default(),
         })
     }
 
@@ -197,6 +210,7 @@ impl<'a> RenderJob<'a> {
         let RunHooks {
             write_image,
             mut progress,
+            cancel,
         } = hooks;
         // A signal from here on stops the render at a safe point, and its image and
         // measuring outputs are written ([`crate::interrupt`]).
@@ -216,7 +230,10 @@ impl<'a> RenderJob<'a> {
         let method = self.plan.method;
         let integrator = Integrator::new(method, opts.max_depth, &opts.photon)?
             .polarized(self.plan.polarization);
-        let settings = self.settings();
+        let settings = RenderSettings {
+            cancel,
+            ..self.settings()
+        };
         let run = method.name();
         let total = integrator.total_units(&settings);
         let shard = self.shard_part(total, (&integrator, &settings))?;
@@ -460,14 +477,14 @@ impl<'a> RenderJob<'a> {
     }
 }
 
-/// What a caller of [`RenderJob::run_with`] adds to a render.
-pub struct RunHooks<'h> {
-    /// Write the output image (and checkpoints, an `--exr-copy`, a shard's partial image);
-    /// `false` keeps the image in memory only.
-    pub write_image: bool,
-    /// Called at every checkpoint (1, 2, 4, … units and the end) with the image so far;
-    /// `false` stops the render there.
-    pub progress: Option<&'h mut (dyn FnMut(&crate::render::Progress) -> bool + Send)>,
+/// Where [`RenderJob::build`] gets its scene.
+enum Source {
+    /// Load and prepare `opts.scene`.
+    File,
+    /// Prepare this description (loaded in this time).
+    Loaded(Box<crate::scene::desc::SceneDesc>, std::time::Duration),
+    /// Already prepared by the caller.
+    Prepared(Box<crate::prepare::Prepared>),
 }
 
 /// A shard's part of the render (`--shard`): the shard, its units and the render's identity

@@ -115,6 +115,31 @@ pub enum Command {
     View(ViewArgs),
 }
 
+/// The long names of the `iris render` flags (`spp`, `camera-look-at`, …, their aliases
+/// too), without `help` and `version`: what a caller building the arguments from names
+/// (the Python module's keyword arguments) may pass to [`parse_render`].
+pub fn render_flags() -> Vec<String> {
+    use clap::CommandFactory;
+    let cli = Cli::command();
+    let Some(render) = cli.get_subcommands().find(|c| c.get_name() == "render") else {
+        return Vec::new();
+    };
+    let mut names: Vec<String> = render
+        .get_arguments()
+        .chain(cli.get_arguments().filter(|a| a.is_global_set()))
+        .flat_map(|a| {
+            a.get_long()
+                .into_iter()
+                .chain(a.get_all_aliases().into_iter().flatten())
+        })
+        .filter(|n| !matches!(*n, "help" | "version"))
+        .map(String::from)
+        .collect();
+    names.sort();
+    names.dedup();
+    names
+}
+
 /// `iris render ARGS…` (the arguments after `render`) parsed and checked as the command
 /// line does: the live view and the Python module build their renders through this, so
 /// every value obeys the flags' rules and a printed command line reproduces the render.

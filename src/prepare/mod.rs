@@ -104,9 +104,22 @@ impl Prepared {
 
 /// Loads `path` and prepares it as described in the module docs.
 pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
+    let start = Instant::now();
+    let desc = crate::load::load_scene(path)?;
+    prepare_loaded(desc, start.elapsed(), opts)
+}
+
+/// [`prepare`] for a description the caller loaded ([`crate::load::load_scene`], which
+/// took `load_time`), so a scene loaded once can be prepared again with other options
+/// (the Python module's `Scene`): the same scene, camera and notes as [`prepare`] of its
+/// file.
+pub fn prepare_loaded(
+    mut desc: SceneDesc,
+    load_time: Duration,
+    opts: &PrepareOptions,
+) -> Result<Prepared> {
     let preview = &opts.preview;
     let start = Instant::now();
-    let mut desc = crate::load::load_scene(path)?;
     let looks = looks::apply(&mut desc, &opts.looks)?;
     let turn = opts
         .spin
@@ -120,7 +133,7 @@ pub fn prepare(path: &Path, opts: &PrepareOptions) -> Result<Prepared> {
     } else {
         ground::decide(&desc, preview.ground)
     };
-    let load_time = start.elapsed();
+    let load_time = load_time + start.elapsed();
     desc.environment_light = resolve_environment(opts.env.clone(), desc.environment.take())?;
     if let Some(fog) = opts.fog {
         desc.fog = fog;

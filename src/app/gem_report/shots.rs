@@ -188,6 +188,7 @@ fn render_mode(
     let summary = RenderJob::with_prepared(&opts, prepared)?.run_with(RunHooks {
         write_image: false,
         progress: None,
+        cancel: Default::default(),
     })?;
     let pixels = u64::from(s.size) * u64::from(s.size);
     Ok(Rendered {
