@@ -73,6 +73,9 @@ fn bad_changes_are_refused_naming_the_flag_or_the_control() {
             "camera",
         ),
         (r#"{"turn": "left"}"#, "turn"),
+        (r#"{"reset": 1}"#, "reset"),
+        (r#"{"pivot": [0, "a", 0]}"#, "pivot"),
+        (r#"{"view": "sideways"}"#, "view"),
         ("not json", "JSON"),
     ] {
         let (s, body) = v.post("/controls", change);

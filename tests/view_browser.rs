@@ -211,7 +211,7 @@ fn the_page_orbits_switches_and_renders_what_the_command_reproduces() {
         return;
     };
     let out = common::scratch_dir("view_browser");
-    let view = View::start(
+    let mut view = View::start(
         "assets/scenes/ruby.glb",
         &out,
         &["--width", "320", "--threads", "2"],
@@ -288,6 +288,20 @@ fn the_page_orbits_switches_and_renders_what_the_command_reproduces() {
     assert!(
         std::fs::read(&written).unwrap() == common::view::rerun(&words[2..], &again),
         "{written} and the command's image differ"
+    );
+
+    // 5. The server killed without a word: the dropped event stream shows.
+    view.child.kill().unwrap();
+    let _ = view.child.wait();
+    b.wait("window.iris.disconnected === true");
+    let state = b.eval("document.getElementById('state').textContent");
+    assert!(
+        state.as_str().unwrap().starts_with("disconnected"),
+        "{state}"
+    );
+    assert_eq!(
+        b.eval("document.getElementById('spinner').hidden"),
+        json!(true)
     );
 }
 
