@@ -4,7 +4,9 @@
 //! - **A change** of the controls ([`Shared::change`]) is checked by the command line's
 //!   parser first (a bad value is refused, nothing restarts), then bumps the generation and
 //!   cancels the running render ([`crate::render::guard::Cancel`]: it stops before its next
-//!   tile); the thread starts the new generation's render at once.
+//!   tile); the thread starts the new generation's render at once. A preset, Reset and a
+//!   double-click's pick prepare the scene first ([`super::aim`]), outside the lock; a
+//!   change of the orbit's pivot alone restarts nothing.
 //! - **Frames.** The render shows its image after every unit ([`crate::app::live`]); the
 //!   thread encodes one as PNG at most every [`FRAME_INTERVAL`] (always the first and every
 //!   denoised one), keeps the last [`KEPT_FRAMES`] by id and announces each on the event
