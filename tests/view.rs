@@ -31,6 +31,11 @@ fn requests_without_the_token_or_from_another_host_are_refused() {
     assert!(page.contains("<title>Iris view</title>"));
     assert_eq!(v.get("/app.js").0, 200);
     assert_eq!(v.get("/style.css").0, 200);
+    // The browser's own request for an icon carries no token: no content, not 403.
+    let (s, body) = v.request("GET", "/favicon.ico", None, None);
+    assert_eq!((s, body.len()), (204, 0));
+    let (s, _) = v.request("GET", "/favicon.ico", Some(&wrong_host), None);
+    assert_eq!(s, 403);
 }
 
 #[test]
@@ -68,6 +73,9 @@ fn bad_changes_are_refused_naming_the_flag_or_the_control() {
             "camera",
         ),
         (r#"{"turn": "left"}"#, "turn"),
+        (r#"{"reset": 1}"#, "reset"),
+        (r#"{"pivot": [0, "a", 0]}"#, "pivot"),
+        (r#"{"view": "sideways"}"#, "view"),
         ("not json", "JSON"),
     ] {
         let (s, body) = v.post("/controls", change);
@@ -188,6 +196,8 @@ fn the_final_render_is_reproduced_by_its_command_line() {
 fn ctrl_c_stops_the_server() {
     let mut v = start("view_stop");
     v.wait_state(LONG, |s| s["frame"].is_u64());
+    // Two open event streams, as two tabs or `curl -N /events` hold them.
+    let streams = [v.events(), v.events()];
     let pid = v.child.id().to_string();
     assert!(std::process::Command::new("kill")
         .args(["-INT", &pid])
@@ -204,6 +214,80 @@ fn ctrl_c_stops_the_server() {
     };
     assert_eq!(status.code(), Some(130));
     assert!(std::net::TcpStream::connect(("127.0.0.1", v.port)).is_err());
+    // Each stream's last event is `bye`, then it ends.
+    for events in streams {
+        let names: Vec<String> = events.map(|(name, _)| name).collect();
+        assert_eq!(names.first().map(String::as_str), Some("state"));
+        assert_eq!(names.last().map(String::as_str), Some("bye"), "{names:?}");
+    }
+}
+
+const GEM: &str = "assets/gems/round_diamond.glb";
+
+#[test]
+fn the_view_orbits_the_stones_and_its_stone_control_leaves_the_floor_alone() {
+    let out = common::scratch_dir("view_gem");
+    let v = View::start(GEM, &out, &["--width", "96", "--threads", "2"]);
+    let first = v.wait_state(LONG, |s| s["status"]["plan"].is_array());
+    // The subject is the diamond alone (the file also holds a floor and two light panels),
+    // and the first camera's pivot is its centre.
+    let subject = &first["subject"];
+    assert_eq!(subject["kind"], "stones");
+    let names = subject["names"].as_array().unwrap();
+    assert_eq!(names.len(), 1, "{subject}");
+    assert!(names[0].as_str().unwrap().contains("Diamond"), "{subject}");
+    assert_eq!(first["controls"]["pivot"], subject["centre"]);
+    let radius = subject["radius"].as_f64().unwrap();
+    assert!(radius > 0.001 && radius < 0.01, "{subject}");
+    // The stone control: only the diamond's material changes.
+    let (s, answer) = v.post("/controls", r#"{"stone": "sapphire"}"#);
+    assert_eq!(s, 200, "{answer}");
+    let generation = answer["generation"].clone();
+    let state = v.wait_state(LONG, |s| {
+        s["status"]["generation"] == generation && s["status"]["looks"].is_array()
+    });
+    let looks = state["status"]["looks"].as_array().unwrap();
+    assert_eq!(looks.len(), 1, "{looks:?}");
+    let changed = looks[0]["materials"].as_array().unwrap();
+    assert_eq!(changed.len(), 1, "{looks:?}");
+    assert!(
+        changed[0].as_str().unwrap().contains("Diamond"),
+        "{looks:?}"
+    );
+    assert_eq!(looks[0]["meshes"], 1);
+    for other in ["Floor", "light"] {
+        assert!(!looks[0].to_string().contains(other), "{looks:?}");
+    }
+}
+
+#[test]
+fn presets_reset_and_the_pivot_are_about_the_subject() {
+    let v = start("view_aim");
+    let home = v.wait_state(LONG, |s| s["frame"].is_u64());
+    let centre = home["subject"]["centre"].clone();
+    // A preset frames the subject and orbits about its centre.
+    let (s, answer) = v.post("/controls", r#"{"view": "top"}"#);
+    assert_eq!(s, 200, "{answer}");
+    assert_eq!(answer["controls"]["pivot"], centre);
+    assert_ne!(answer["controls"]["camera"], home["controls"]["camera"]);
+    let generation = answer["generation"].as_u64().unwrap();
+    // The pivot alone restarts nothing.
+    let (s, answer) = v.post("/controls", r#"{"pivot": [0.001, 0.002, 0.003]}"#);
+    assert_eq!(s, 200, "{answer}");
+    assert_eq!(answer["generation"].as_u64(), Some(generation));
+    let pivot = &answer["controls"]["pivot"];
+    assert!((pivot[2].as_f64().unwrap() - 0.003).abs() < 1e-9, "{pivot}");
+    // Reset: the first camera and pivot again.
+    let (s, answer) = v.post("/controls", r#"{"reset": true}"#);
+    assert_eq!(s, 200, "{answer}");
+    assert_eq!(answer["controls"]["camera"], home["controls"]["camera"]);
+    assert_eq!(answer["controls"]["pivot"], centre);
+    // A pick outside the image, or where nothing is, is refused and changes nothing.
+    for (pick, says) in [("[2, 0.5]", "pick"), ("[0.5]", "pick")] {
+        let (s, body) = v.post("/controls", &format!(r#"{{"pick": {pick}}}"#));
+        assert_eq!(s, 400, "{pick}: {body}");
+        assert!(body.to_string().contains(says), "{body}");
+    }
 }
 
 #[test]

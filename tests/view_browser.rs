@@ -1,9 +1,14 @@
 //! `iris view` in a real browser: Debian's headless Chromium driven over the Chrome DevTools
-//! Protocol (a WebSocket; no browser is downloaded). The page loads and shows a first
-//! frame; a mouse drag orbits the camera and the image changes; switching the stone changes
-//! the plan; the Render button renders the final image, whose printed command line, run
-//! from the shell, writes the same bytes. Screenshots of each step go to
-//! target/view-screenshots/ (docs/view-*.png are copies).
+//! Protocol (a WebSocket; no browser is downloaded). On the ruby: the page loads and shows
+//! a first frame; a mouse drag orbits the camera and the image changes; switching the stone
+//! changes the plan; the Render button renders the final image, whose printed command line,
+//! run from the shell, writes the same bytes. On the round diamond (a file with its own
+//! floor and light panels): the stone stays in the middle of the frame through a 160-pixel
+//! drag and the three-quarter preset (by one ray per pixel, [`common::view::subject_mask`]),
+//! the first drag after the preset starts from it, Reset restores the first camera, a
+//! double-click moves the pivot, and after Ctrl-C the page says "disconnected".
+//! Screenshots of each step go to target/view-screenshots/ (docs/images/view-*.png are
+//! copies).
 //!
 //! The browser is `$IRIS_CHROMIUM` or `chromium` on the PATH; without one the test says so
 //! and passes, unless IRIS_REQUIRE_BROWSER=1 (set by `.ci/run`), which makes it fail.
@@ -186,19 +191,27 @@ fn base64(text: &str) -> Vec<u8> {
         .collect()
 }
 
-#[test]
-fn the_page_orbits_switches_and_renders_what_the_command_reproduces() {
-    let Some(chromium) = find_chromium() else {
+/// The browser, or `None` (the test then passes, saying why) unless one is required.
+fn chromium_or_skip() -> Option<String> {
+    let found = find_chromium();
+    if found.is_none() {
         let required = std::env::var("IRIS_REQUIRE_BROWSER").is_ok_and(|v| v == "1");
         assert!(
             !required,
             "IRIS_REQUIRE_BROWSER=1 but no chromium (apt-get install chromium)"
         );
         eprintln!("SKIPPED: no chromium on the PATH (set IRIS_CHROMIUM, or IRIS_REQUIRE_BROWSER=1 to fail)");
+    }
+    found
+}
+
+#[test]
+fn the_page_orbits_switches_and_renders_what_the_command_reproduces() {
+    let Some(chromium) = chromium_or_skip() else {
         return;
     };
     let out = common::scratch_dir("view_browser");
-    let view = View::start(
+    let mut view = View::start(
         "assets/scenes/ruby.glb",
         &out,
         &["--width", "320", "--threads", "2"],
@@ -238,17 +251,26 @@ fn the_page_orbits_switches_and_renders_what_the_command_reproduces() {
     let plan = b.wait("window.iris.plan.includes('--stone diamond') && window.iris.plan");
     assert_ne!(plan, first_plan);
     b.wait("window.iris.controls && window.iris.controls.stone === 'diamond'");
+    let generation = view.wait_state(LIMIT, |_| true)["generation"].clone();
+    b.wait(&format!(
+        "window.iris.generation === {generation} && window.iris.units >= 4"
+    ));
 
     // 4. Render: the printed command writes the same image.
     b.eval(
-        "(() => { document.getElementById('final-width').value = 96; \
-            document.getElementById('final-height').value = 54; \
+        "(() => { const w = document.getElementById('final-width'); w.value = 96; \
+            w.dispatchEvent(new Event('input')); \
             document.getElementById('final-units').value = 4; return true; })()",
     );
     let button = b.centre("render");
     b.mouse("mousePressed", button, 1);
     b.mouse("mouseReleased", button, 0);
     let answer = b.wait("window.iris.final");
+    // The final render has the view's aspect (the ruby's camera is square).
+    assert_eq!(
+        b.eval("document.getElementById('final-height').value"),
+        json!("96")
+    );
     b.wait("!document.getElementById('final-result').hidden");
     b.screenshot("final");
     let command = answer["command"].as_str().unwrap();
@@ -267,6 +289,20 @@ fn the_page_orbits_switches_and_renders_what_the_command_reproduces() {
         std::fs::read(&written).unwrap() == common::view::rerun(&words[2..], &again),
         "{written} and the command's image differ"
     );
+
+    // 5. The server killed without a word: the dropped event stream shows.
+    view.child.kill().unwrap();
+    let _ = view.child.wait();
+    b.wait("window.iris.disconnected === true");
+    let state = b.eval("document.getElementById('state').textContent");
+    assert!(
+        state.as_str().unwrap().starts_with("disconnected"),
+        "{state}"
+    );
+    assert_eq!(
+        b.eval("document.getElementById('spinner').hidden"),
+        json!(true)
+    );
 }
 
 #[test]
@@ -274,4 +310,177 @@ fn base64_decodes_rfc4648_vectors() {
     assert_eq!(base64("Zm9vYmFy"), b"foobar");
     assert_eq!(base64("Zm9vYg=="), b"foob");
     assert_eq!(base64("Zm8="), b"fo");
+}
+
+const GEM: &str = "assets/gems/round_diamond.glb";
+/// The size of the subject masks ([`common::view::subject_mask`]).
+const MASK: (u32, u32) = (96, 72);
+
+/// Waits until the page has no change on its way and the server holds the camera it
+/// shows; the server's state.
+fn settled(b: &mut Browser, v: &View) -> Value {
+    b.wait("window.iris.busy === false && window.iris.camera !== null");
+    let page = b.eval("window.iris.camera");
+    let state = v.wait_state(LIMIT, |_| true);
+    let server = &state["controls"]["camera"];
+    for key in ["eye", "target"] {
+        for k in 0..3 {
+            let (p, s) = (
+                page[key][k].as_f64().unwrap(),
+                server[key][k].as_f64().unwrap(),
+            );
+            assert!(
+                (p - s).abs() <= 1e-6 * (1.0 + s.abs()),
+                "page {page} server {server}"
+            );
+        }
+    }
+    state
+}
+
+fn distance(a: &Value, b: &Value) -> f64 {
+    (0..3)
+        .map(|k| (a[k].as_f64().unwrap() - b[k].as_f64().unwrap()).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// The stone is in the middle of the frame and at least `share` of `first`'s area.
+fn in_frame(state: &Value, first: &common::view::Mask, share: f64, what: &str) -> f64 {
+    let m = common::view::subject_mask(GEM, &state["controls"]["camera"], MASK);
+    let (cx, cy) = m.centroid;
+    assert!(
+        (cx - 0.5).abs() < 0.2 && (cy - 0.5).abs() < 0.2,
+        "{what}: the stone's centroid ({cx:.2}, {cy:.2}) is off the middle"
+    );
+    assert!(
+        m.area >= share * first.area,
+        "{what}: the stone covers {:.4} of the frame, was {:.4}",
+        m.area,
+        first.area
+    );
+    m.area
+}
+
+fn drag(b: &mut Browser, (dx, dy): (f64, f64)) {
+    let c = b.centre("frame-box");
+    b.mouse("mousePressed", c, 1);
+    for k in 1..=16 {
+        let t = f64::from(k) / 16.0;
+        b.mouse("mouseMoved", (c.0 + t * dx, c.1 + t * dy), 1);
+    }
+    b.mouse("mouseReleased", (c.0 + dx, c.1 + dy), 0);
+}
+
+/// Waits for a denoised frame of the server's current generation, then takes a screenshot.
+fn shot_at_rest(b: &mut Browser, v: &View, name: &str) {
+    let generation = v.wait_state(LIMIT, |_| true)["generation"].clone();
+    b.wait(&format!(
+        "window.iris.generation === {generation} && window.iris.denoised === true \
+         && window.iris.units >= 8"
+    ));
+    b.eval("window.scrollTo(0, 0)");
+    b.screenshot(name);
+}
+
+#[test]
+fn the_stone_stays_in_frame_through_a_drag_a_preset_and_a_reset_and_ctrl_c_shows() {
+    let Some(chromium) = chromium_or_skip() else {
+        return;
+    };
+    let out = common::scratch_dir("view_browser_gem");
+    let mut view = View::start(GEM, &out, &["--width", "400", "--threads", "2"]);
+    let mut b = Browser::launch(&chromium, &out.join("profile"));
+    b.call("Page.navigate", json!({"url": view.url}));
+    b.wait("window.iris && window.iris.framesShown >= 1 && window.iris.subject !== null");
+    // The Stone control says what it changes: the diamond, not the floor.
+    let scope = b.eval("document.getElementById('stone-scope').textContent");
+    let scope = scope.as_str().unwrap();
+    assert!(scope.starts_with("applies to the stones:") && scope.contains("Diamond"));
+    assert!(!scope.contains("Floor"), "{scope}");
+    let home = settled(&mut b, &view);
+    let first = common::view::subject_mask(GEM, &home["controls"]["camera"], MASK);
+    assert!(
+        first.area > 0.01,
+        "the stone covers {:.4} of the first frame",
+        first.area
+    );
+    shot_at_rest(&mut b, &view, "diamond-first-frame");
+
+    // A 160-pixel drag orbits about the stone: it stays in the middle, as large.
+    drag(&mut b, (160.0, 0.0));
+    let orbited = settled(&mut b, &view);
+    assert_ne!(orbited["controls"]["camera"], home["controls"]["camera"]);
+    in_frame(&orbited, &first, 0.5, "after a 160-pixel drag");
+    shot_at_rest(&mut b, &view, "diamond-orbit");
+
+    // The three-quarter preset frames the stone, not the file's floor and lights.
+    b.eval(
+        "(() => { const s = document.getElementById('view'); s.value = 'threequarter'; \
+            s.dispatchEvent(new Event('change')); return true; })()",
+    );
+    b.wait("window.iris.busy === false");
+    let preset = settled(&mut b, &view);
+    let area = in_frame(&preset, &first, 1.0, "after View → threequarter");
+    assert!(area > 0.1, "the framed stone covers {area:.4} of the frame");
+    shot_at_rest(&mut b, &view, "diamond-threequarter");
+
+    // The first drag after the preset starts from the preset's camera.
+    drag(&mut b, (20.0, 0.0));
+    let nudged = settled(&mut b, &view);
+    let (eye, preset_eye) = (
+        &nudged["controls"]["camera"]["eye"],
+        &preset["controls"]["camera"]["eye"],
+    );
+    let reach = distance(preset_eye, &preset["controls"]["pivot"]);
+    assert!(
+        distance(eye, preset_eye) < 0.3 * reach,
+        "the drag after the preset moved the eye {} (orbit radius {reach})",
+        distance(eye, preset_eye)
+    );
+    in_frame(&nudged, &first, 1.0, "after the preset and a drag");
+
+    // Reset: the first camera and pivot again.
+    let button = b.centre("reset");
+    b.mouse("mousePressed", button, 1);
+    b.mouse("mouseReleased", button, 0);
+    let reset = settled(&mut b, &view);
+    assert_eq!(reset["controls"]["camera"], home["controls"]["camera"]);
+    assert_eq!(reset["controls"]["pivot"], home["controls"]["pivot"]);
+
+    // A double-click on the stone moves the pivot onto its surface; nothing restarts.
+    let generation = reset["generation"].clone();
+    b.eval(
+        "(() => { const r = document.getElementById('frame').getBoundingClientRect(); \
+            document.getElementById('frame-box').dispatchEvent(new MouseEvent('dblclick', \
+            {bubbles: true, clientX: r.x + r.width / 2, clientY: r.y + r.height / 2})); \
+            return true; })()",
+    );
+    let picked = view.wait_state(LIMIT, |s| {
+        s["controls"]["pivot"] != home["controls"]["pivot"]
+    });
+    assert_eq!(picked["generation"], generation);
+    let radius = picked["subject"]["radius"].as_f64().unwrap();
+    let off = distance(&picked["controls"]["pivot"], &picked["subject"]["centre"]);
+    assert!(off <= 1.01 * radius, "picked {off} from the stone's centre");
+
+    // Ctrl-C: the page says disconnected and stops the spinner.
+    let pid = view.child.id().to_string();
+    assert!(Command::new("kill")
+        .args(["-INT", &pid])
+        .status()
+        .unwrap()
+        .success());
+    b.wait("window.iris.disconnected && document.getElementById('state').textContent");
+    let state = b.eval("document.getElementById('state').textContent");
+    assert!(
+        state.as_str().unwrap().starts_with("disconnected"),
+        "{state}"
+    );
+    assert_eq!(
+        b.eval("document.getElementById('spinner').hidden"),
+        json!(true)
+    );
+    b.screenshot("diamond-disconnected");
+    let _ = view.child.wait();
 }

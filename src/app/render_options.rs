@@ -169,6 +169,7 @@ impl RenderOptions {
             preview: self.preview,
             looks: self.looks.clone(),
             spin: self.spin,
+            subject: false,
         }
     }
 

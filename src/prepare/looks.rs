@@ -400,6 +400,22 @@ fn stones(desc: &SceneDesc, free: &[usize]) -> (Vec<usize>, Bare) {
     (free.to_vec(), Bare::All)
 }
 
+/// The meshes of `desc` a `--stone NAME` without a selector would change: those with a
+/// stone material ([`stones`], every material but the lights free), and the meshes without
+/// a material it takes. The live view orbits and frames them ([`super::subject`]).
+pub fn stone_meshes(desc: &SceneDesc) -> Vec<usize> {
+    let free: Vec<usize> = (0..desc.materials.len())
+        .filter(|&i| !is_emitter(&desc.materials[i]))
+        .collect();
+    let (materials, bare) = stones(desc, &free);
+    (0..desc.meshes.len())
+        .filter(|&i| match desc.meshes[i].material {
+            Some(m) => materials.contains(&m),
+            None => bare.takes(&desc.meshes[i]),
+        })
+        .collect()
+}
+
 /// Whether a material emits light: the selector-less flag leaves it (lights stay lights).
 pub fn is_emitter(m: &MaterialDesc) -> bool {
     m.emissive.max_element() > 0.0

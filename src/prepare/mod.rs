@@ -32,6 +32,7 @@ pub mod look_at;
 pub mod looks;
 pub mod select;
 pub mod stage;
+pub mod subject;
 pub mod turntable;
 
 use crate::accel::Backend;
@@ -69,6 +70,9 @@ pub struct PrepareOptions {
     /// A turntable frame (`iris turntable`): the model turned about the vertical axis
     /// ([`turntable`]); `None` = as the file has it.
     pub spin: Option<turntable::Spin>,
+    /// Whether to find [`Prepared::subject`] (the live view's; the closed-surface rule
+    /// reads every triangle).
+    pub subject: bool,
 }
 
 /// A scene ready to render: built, lit, with its camera and image size.
@@ -89,6 +93,9 @@ pub struct Prepared {
     /// What each `--stone` / `--metal` flag changed, in flag order (printed before the
     /// notes).
     pub looks: Vec<looks::Applied>,
+    /// What the live view orbits and frames: the stones, else the file's meshes
+    /// ([`subject`]); found when [`PrepareOptions::subject`] asks.
+    pub subject: Option<subject::Subject>,
 }
 
 impl Prepared {
@@ -120,6 +127,8 @@ pub fn prepare_loaded(
 ) -> Result<Prepared> {
     let preview = &opts.preview;
     let start = Instant::now();
+    let file_meshes = desc.meshes.len();
+    let stones = opts.subject.then(|| looks::stone_meshes(&desc));
     let looks = looks::apply(&mut desc, &opts.looks)?;
     let turn = opts
         .spin
@@ -169,6 +178,7 @@ pub fn prepare_loaded(
     if let Some(t) = &turn {
         t.apply(&mut desc);
     }
+    let subject = stones.map(|s| subject::Subject::new(&desc, &s, file_meshes));
     let scene = Scene::build(desc, opts.accel)?;
     let load_time = load_time + build_start.elapsed();
     let touching = (scene.touching_triangles() > 0).then_some(Note::Touching {
@@ -199,6 +209,7 @@ pub fn prepare_loaded(
         notes: notes.into_iter().flatten().collect(),
         camera_note: camera_note.map(Note::Camera),
         looks,
+        subject,
     })
 }
 

@@ -1,7 +1,7 @@
 //! What a person chose in the live view, and the `iris render` command line it means.
 //!
-//! [`Controls`] hold the choices (camera, turn, stone, metal, studio, environment,
-//! exposure, method, spectral mode); [`Controls::merge`] applies a JSON change from the page
+//! [`Controls`] hold the choices (camera and the pivot it orbits about, turn, stone, metal,
+//! studio, environment, exposure, method, spectral mode); [`Controls::merge`] applies a JSON change from the page
 //! (unknown keys and wrong types are refused, naming the key); [`Controls::args`] writes
 //! the `iris render` arguments, which the view parses with the command line's own parser
 //! ([`crate::cli::parse_render`]) so that every value is checked by the same rules and the
@@ -22,6 +22,8 @@ pub const TURN_FRAMES: u32 = 360;
 pub struct Controls {
     /// The camera (always explicit: the page orbits it).
     pub camera: LookAt,
+    /// The point the page orbits the camera about and zooms towards (not a render flag).
+    pub pivot: glam::Vec3,
     /// The model's turn, whole degrees in [0, 360).
     pub turn: u32,
     /// `--stone NAME` for the stones (no selector: the transmissive volumes), or empty.
@@ -41,10 +43,11 @@ pub struct Controls {
 }
 
 impl Controls {
-    /// The defaults for a scene whose camera is `camera`.
-    pub fn new(camera: LookAt) -> Controls {
+    /// The defaults for a scene whose camera is `camera`, orbiting about `pivot`.
+    pub fn new(camera: LookAt, pivot: glam::Vec3) -> Controls {
         Controls {
             camera,
+            pivot,
             turn: 0,
             stone: String::new(),
             metal: String::new(),
@@ -57,7 +60,8 @@ impl Controls {
     }
 
     /// Applies the keys of `change` (a JSON object with any of the fields, the camera as
-    /// `{"eye": [x, y, z], "target": [x, y, z], "fov": deg}`); an error names the key.
+    /// `{"eye": [x, y, z], "target": [x, y, z], "fov": deg}`, the pivot as `[x, y, z]`); an
+    /// error names the key.
     /// Values are checked later, by the command line's parser.
     pub fn merge(&mut self, change: &Value) -> Result<(), String> {
         let Some(map) = change.as_object() else {
@@ -66,6 +70,7 @@ impl Controls {
         for (key, value) in map {
             match key.as_str() {
                 "camera" => self.camera = camera_of(value)?,
+                "pivot" => self.pivot = point(value, "pivot")?,
                 "turn" => {
                     let t = value
                         .as_f64()
@@ -135,6 +140,7 @@ impl Controls {
         let c = self.camera;
         json!({
             "camera": {"eye": c.eye.to_array(), "target": c.target.to_array(), "fov": c.fov_deg},
+            "pivot": self.pivot.to_array(),
             "turn": self.turn,
             "stone": self.stone, "metal": self.metal, "studio": self.studio, "env": self.env,
             "exposure": self.exposure, "method": self.method, "spectral": self.spectral,
@@ -142,24 +148,31 @@ impl Controls {
     }
 }
 
+/// `[x, y, z]` (finite numbers) as a point; an error names `key`.
+fn point(value: &Value, key: &str) -> Result<glam::Vec3, String> {
+    let v = value
+        .as_array()
+        .filter(|a| a.len() == 3)
+        .ok_or_else(|| format!("{key}: expected [x, y, z]"))?;
+    let c: Vec<f32> = v
+        .iter()
+        .map(|x| x.as_f64().map(|x| x as f32).filter(|x| x.is_finite()))
+        .collect::<Option<_>>()
+        .ok_or_else(|| format!("{key}: expected finite numbers"))?;
+    Ok(glam::Vec3::new(c[0], c[1], c[2]))
+}
+
 /// `{"eye": [x, y, z], "target": [x, y, z], "fov": deg}` as a checked camera.
 fn camera_of(value: &Value) -> Result<LookAt, String> {
-    let point = |key: &str| -> Result<glam::Vec3, String> {
-        let v = value
-            .get(key)
-            .and_then(Value::as_array)
-            .filter(|a| a.len() == 3)
-            .ok_or_else(|| format!("camera.{key}: expected [x, y, z]"))?;
-        let c: Vec<f32> = v
-            .iter()
-            .map(|x| x.as_f64().map(|x| x as f32))
-            .collect::<Option<_>>()
-            .ok_or_else(|| format!("camera.{key}: expected numbers"))?;
-        Ok(glam::Vec3::new(c[0], c[1], c[2]))
+    let at = |key: &str| {
+        point(
+            value.get(key).unwrap_or(&Value::Null),
+            &format!("camera.{key}"),
+        )
     };
     let look = LookAt {
-        eye: point("eye")?,
-        target: point("target")?,
+        eye: at("eye")?,
+        target: at("target")?,
         fov_deg: value
             .get("fov")
             .and_then(Value::as_f64)
@@ -213,11 +226,14 @@ mod tests {
     use glam::Vec3;
 
     fn controls() -> Controls {
-        Controls::new(LookAt {
-            eye: Vec3::new(0.0, 1.0, 3.0),
-            target: Vec3::ZERO,
-            fov_deg: 35.0,
-        })
+        Controls::new(
+            LookAt {
+                eye: Vec3::new(0.0, 1.0, 3.0),
+                target: Vec3::ZERO,
+                fov_deg: 35.0,
+            },
+            Vec3::ZERO,
+        )
     }
 
     #[test]
@@ -235,6 +251,10 @@ mod tests {
         assert!(e.unwrap_err().contains("camera.eye"));
         let e = c.merge(&json!({"camera": {"eye": [0, 0, 0], "target": [0, 0, 0], "fov": 30}}));
         assert!(e.unwrap_err().contains("same point"));
+        c.merge(&json!({"pivot": [1, 2, 3]})).unwrap();
+        assert_eq!(c.pivot, Vec3::new(1.0, 2.0, 3.0));
+        let e = c.merge(&json!({"pivot": [1, "x", 3]})).unwrap_err();
+        assert!(e.contains("pivot"), "{e}");
     }
 
     #[test]

@@ -5,27 +5,29 @@
 //!   the renderer's own error and nothing listens.
 //! - The server ([`server`]) listens on 127.0.0.1 only and answers only requests carrying
 //!   the random token of the URL it prints (128 bits from the operating system).
-//! - The page ([`page`]) orbits, zooms and pans the camera and sends each change as
-//!   controls ([`controls`]); the render thread ([`session`]) cancels the running render and
-//!   starts the new one, showing frames as they refine.
+//! - The page ([`page`]) orbits, zooms and pans the camera about a pivot, the scene's
+//!   subject (the stones, [`aim`]), and sends each change as controls ([`controls`]); the
+//!   render thread ([`session`]) cancels the running render and starts the new one, showing
+//!   frames as they refine.
 //! - Every render the view makes is an `iris render` command line parsed by the command
 //!   line's own parser ([`crate::cli::parse_render`]): the camera is
 //!   `--camera-look-at EYE:TARGET:FOV` (exact `f32` text), the model's turn `--turn F/360`,
 //!   so the final render's printed command reproduces its image bit for bit.
 //! - Ctrl-C (the process-wide stop request, [`crate::render::guard`]) stops the server: the
-//!   render stops after its tile in flight, pages get a `bye` event, the thread is joined.
+//!   render stops after its tile in flight, every open event stream gets a last `bye`
+//!   event, the thread is joined.
 //!
 //! Units: the camera in scene units and degrees; image sizes in pixels.
 
+pub mod aim;
 pub mod controls;
 mod encode;
 pub mod page;
 pub mod server;
 pub mod session;
+mod status;
 
 use crate::error::{Error, Result};
-use crate::prepare::look_at::{LookAt, FOV_RANGE};
-use crate::scene::desc::Projection;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Duration;
@@ -50,7 +52,7 @@ pub struct ViewOptions {
 /// Runs the view until Ctrl-C: prepares the scene, listens, prints the URL, serves.
 pub fn view_command(opts: &ViewOptions) -> Result<()> {
     let scene = opts.scene.display().to_string();
-    let (camera, preview_size) = first_look(&scene, opts.width)?;
+    let (home, preview_size, subject) = aim::home(&scene, 0, opts.width)?;
     if !opts.out_dir.is_dir() {
         return Err(Error::Usage(format!(
             "--out-dir {}: not a directory",
@@ -63,8 +65,9 @@ pub fn view_command(opts: &ViewOptions) -> Result<()> {
         preview_size,
         threads: opts.threads,
         out_dir: opts.out_dir.clone(),
+        subject,
     };
-    let shared = session::Shared::new(setup, controls::Controls::new(camera));
+    let shared = session::Shared::new(setup, controls::Controls::new(home.camera, home.pivot));
     // While serving, a signal shuts the server down gracefully (`serve`).
     let _honour = crate::interrupt::Honour::begin();
     let runtime = tokio::runtime::Builder::new_multi_thread()
@@ -123,53 +126,6 @@ async fn serve(shared: Arc<session::Shared>, opts: &ViewOptions) -> Result<()> {
     served.map_err(|e| Error::Usage(format!("the web server failed: {e}")))?;
     println!("iris view: stopped");
     Ok(())
-}
-
-/// The scene's first camera as a look-at (aimed at the model's centre) and the live
-/// image's size: `width` at the camera's aspect. Fails with the renderer's error for a
-/// bad scene.
-fn first_look(scene: &str, width: u32) -> Result<(LookAt, (u32, u32))> {
-    look_of(scene, &[], width)
-}
-
-/// The camera `--view NAME` frames (for the model turned by `turn` degrees), as a look-at.
-fn framed(scene: &str, name: &str, turn: u32) -> std::result::Result<LookAt, String> {
-    let mut extra = vec!["--view".to_string(), name.to_string()];
-    if turn != 0 {
-        extra.extend(["--turn".into(), format!("{turn}/{}", controls::TURN_FRAMES)]);
-    }
-    look_of(scene, &extra, 64)
-        .map(|(look, _)| look)
-        .map_err(|e| e.to_string())
-}
-
-/// [`first_look`] with extra `iris render` arguments.
-fn look_of(scene: &str, extra: &[String], width: u32) -> Result<(LookAt, (u32, u32))> {
-    let mut args = vec![scene.to_string(), "--quiet".into()];
-    args.extend(extra.iter().cloned());
-    let opts = crate::cli::parse_render(&args)?;
-    let prepared = crate::prepare::prepare(&opts.scene, &opts.prepare_options(None))?;
-    let (w, h) = prepared.size;
-    let height = ((u64::from(width) * u64::from(h) + u64::from(w) / 2) / u64::from(w)).max(16);
-    let m = prepared.camera.world_from_camera;
-    let eye = m.w_axis.truncate();
-    let forward = (-m.z_axis.truncate()).normalize_or(glam::Vec3::NEG_Z);
-    let (lo, hi) = prepared.scene.subject_bounds();
-    let centre = 0.5 * (lo + hi);
-    let reach = (hi - lo).length().max(1e-6);
-    let depth = (centre - eye).dot(forward).max(0.05 * reach);
-    let fov = match prepared.camera.projection {
-        Projection::Perspective { yfov, .. } => yfov.to_degrees(),
-        Projection::Orthographic { .. } => crate::framing::AUTO_YFOV_DEG,
-    };
-    let look = LookAt {
-        eye,
-        target: eye + forward * depth,
-        fov_deg: fov.clamp(FOV_RANGE.0, FOV_RANGE.1),
-    };
-    look.check()
-        .map_err(|e| Error::Usage(format!("{scene}: the camera: {e}")))?;
-    Ok((look, (width, height as u32)))
 }
 
 /// 128 random bits from the operating system, as 32 hex digits.

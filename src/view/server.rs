@@ -7,13 +7,14 @@
 //! | route | answer |
 //! |---|---|
 //! | `GET /` | the page ([`super::page`]) |
+//! | `GET /favicon.ico` | 204, no content, without the token (the page's icon is inline) |
 //! | `GET /app.js`, `GET /style.css` | its script and style, compiled into the binary |
 //! | `GET /choices` | the values each control accepts ([`super::controls::choices`]) |
-//! | `GET /state` | the controls, the status, the newest frame's id |
+//! | `GET /state` | the controls, the status, the newest frame, the subject, the live size |
 //! | `GET /events` | server-sent events: `status`, `frame`, `final`, `bye` ([`super::session`]) |
 //! | `GET /frame/{id}` | frame `id` as PNG, while kept (else 404) |
 //! | `GET /final/{id}` | final render `id` as PNG |
-//! | `POST /controls` | a JSON change; 200 with the generation, 400 naming what is wrong |
+//! | `POST /controls` | a JSON change (also `view`, `reset`, `pick`: [`Shared::change`]); 200 with the generation and the controls, 400 naming what is wrong |
 //! | `POST /render` | `{"width", "height", "units"}`: renders, answers with the command line |
 //!
 //! Nothing else exists: every other path is 404, and no file is read from disk except the
@@ -74,7 +75,8 @@ fn error(status: StatusCode, message: &str) -> Response {
     (status, Json(json!({"error": message}))).into_response()
 }
 
-/// The token and Host check of the module docs, before any route.
+/// The token and Host check of the module docs, before any route (`/favicon.ico`, which
+/// browsers ask for without the token, needs only the Host).
 async fn guard(State(app): State<App>, request: Request, next: Next) -> Response {
     let host_ok = request
         .headers()
@@ -90,6 +92,9 @@ async fn guard(State(app): State<App>, request: Request, next: Next) -> Response
         });
     if !host_ok {
         return error(StatusCode::FORBIDDEN, "this server answers 127.0.0.1 only");
+    }
+    if request.uri().path() == "/favicon.ico" {
+        return StatusCode::NO_CONTENT.into_response();
     }
     let from_query = request.uri().query().and_then(|q| {
         q.split('&')
@@ -127,9 +132,11 @@ async fn events(State(app): State<App>) -> impl IntoResponse {
         data: app.shared.snapshot().to_string(),
     };
     // A page that falls behind by more than the channel holds skips to the newest events.
+    // The stream sends `bye` and ends at the `end` after it (so the graceful shutdown can
+    // finish).
     let stream = tokio_stream::once(hello)
         .chain(BroadcastStream::new(receiver).filter_map(Result::ok))
-        .take_while(|e| e.kind != "bye")
+        .take_while(|e| e.kind != "end")
         .map(|e| Ok::<_, Infallible>(sse::Event::default().event(e.kind).data(e.data)));
     Sse::new(stream).keep_alive(KeepAlive::default())
 }
@@ -187,7 +194,9 @@ async fn controls(State(app): State<App>, headers: HeaderMap, body: axum::body::
     // The change parses the command line (and may read an environment map): off the
     // async workers.
     match tokio::task::spawn_blocking(move || shared.change(&change)).await {
-        Ok(Ok(generation)) => Json(json!({"generation": generation})).into_response(),
+        Ok(Ok((generation, controls))) => {
+            Json(json!({"generation": generation, "controls": controls})).into_response()
+        }
         Ok(Err(e)) => error(StatusCode::BAD_REQUEST, &e),
         Err(_) => error(StatusCode::INTERNAL_SERVER_ERROR, "the change failed"),
     }

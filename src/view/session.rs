@@ -4,7 +4,9 @@
 //! - **A change** of the controls ([`Shared::change`]) is checked by the command line's
 //!   parser first (a bad value is refused, nothing restarts), then bumps the generation and
 //!   cancels the running render ([`crate::render::guard::Cancel`]: it stops before its next
-//!   tile); the thread starts the new generation's render at once.
+//!   tile); the thread starts the new generation's render at once. A preset, Reset and a
+//!   double-click's pick prepare the scene first ([`super::aim`]), outside the lock; a
+//!   change of the orbit's pivot alone restarts nothing.
 //! - **Frames.** The render shows its image after every unit ([`crate::app::live`]); the
 //!   thread encodes one as PNG at most every [`FRAME_INTERVAL`] (always the first and every
 //!   denoised one), keeps the last [`KEPT_FRAMES`] by id and announces each on the event
@@ -40,7 +42,8 @@ pub const REST: Duration = Duration::from_millis(1500);
 /// A message for every connected page: an SSE event name and its JSON.
 #[derive(Debug, Clone)]
 pub struct Event {
-    /// `frame`, `status`, `final` or `bye` (the server is stopping).
+    /// `state`, `controls`, `frame`, `status`, `final` or `bye` (the server is stopping);
+    /// `end`, after `bye`, ends the streams.
     pub kind: &'static str,
     /// JSON text.
     pub data: String,
@@ -74,6 +77,9 @@ pub struct Setup {
     pub threads: usize,
     /// Where final renders are written.
     pub out_dir: PathBuf,
+    /// The scene's subject as the page reads it ([`super::aim::home`]): what the view
+    /// orbits and what the Stone control changes.
+    pub subject: Value,
 }
 
 /// The state the server and the render thread share (module docs).
@@ -96,6 +102,9 @@ struct Inner {
     final_job: Option<FinalRequest>,
     shutdown: bool,
     restarts: u64,
+    /// The newest frame's event (samples, estimate, time to clean), for a page that
+    /// connects.
+    last_frame: Value,
 }
 
 impl Shared {
@@ -115,6 +124,7 @@ impl Shared {
                 final_job: None,
                 shutdown: false,
                 restarts: 0,
+                last_frame: Value::Null,
             }),
             wake: Condvar::new(),
             events,
@@ -138,16 +148,20 @@ impl Shared {
         });
     }
 
-    /// The controls, the status and the newest frame's id, for a page that connects.
+    /// The controls, the status and the newest frame, for a page that connects.
     pub fn snapshot(&self) -> Value {
         let inner = self.lock();
+        let (w, h) = self.setup.preview_size;
         json!({
             "scene": self.setup.scene,
             "controls": inner.controls.to_json(),
             "status": inner.status,
             "frame": inner.frames.back().map(|f| f.id),
+            "last_frame": inner.last_frame,
             "generation": inner.generation,
             "restarts": inner.restarts,
+            "subject": self.setup.subject,
+            "preview_size": [w, h],
         })
     }
 
@@ -167,32 +181,69 @@ impl Shared {
         inner.finals.iter().find(|f| f.0 == id).map(|f| f.1.clone())
     }
 
-    /// Applies a change from a page (module docs); returns the new generation, or the
-    /// error naming the control or flag.
-    pub fn change(&self, change: &Value) -> Result<u64, String> {
+    /// Applies a change from a page (module docs): the controls' keys, and `view` (a
+    /// preset), `reset` (the home camera) or `pick` (`[x, y]`: the pivot under that point
+    /// of the image), which set the camera or the pivot ([`super::aim`]). A change of the
+    /// pivot alone restarts nothing. Returns the generation and the controls, or the error
+    /// naming the control or flag.
+    pub fn change(&self, change: &Value) -> Result<(u64, Value), String> {
+        let scene = &self.setup.scene;
+        let mut change = change.clone();
+        let current = self.lock().controls.clone();
+        let mut aim = None;
+        if let Some(map) = change.as_object_mut() {
+            if let Some(view) = map.remove("view") {
+                let name = view.as_str().ok_or("view: expected a view name")?;
+                aim = Some(super::aim::preset(scene, name, current.turn)?);
+            }
+            if let Some(reset) = map.remove("reset") {
+                if reset != Value::Bool(true) {
+                    return Err("reset: expected true".into());
+                }
+                let width = self.setup.preview_size.0;
+                let home = super::aim::home(scene, current.turn, width);
+                aim = Some(home.map_err(|e| e.to_string())?.0);
+            }
+            if let Some(at) = map.remove("pick") {
+                let xy = at
+                    .as_array()
+                    .filter(|a| a.len() == 2)
+                    .and_then(|a| Some((a[0].as_f64()?, a[1].as_f64()?)))
+                    .ok_or("pick: expected [x, y]")?;
+                let pivot = super::aim::pick(scene, &current, xy)?;
+                aim = Some(super::aim::Aim {
+                    camera: current.camera,
+                    pivot,
+                });
+            }
+        }
         let mut inner = self.lock();
         let mut next = inner.controls.clone();
-        let mut change = change.clone();
-        if let Some(view) = change.as_object_mut().and_then(|m| m.remove("view")) {
-            let name = view.as_str().ok_or("view: expected a view name")?;
-            next.camera = super::framed(&self.setup.scene, name, next.turn)?;
+        if let Some(a) = aim {
+            (next.camera, next.pivot) = (a.camera, a.pivot);
         }
         next.merge(&change)?;
-        crate::cli::parse_render(&next.args(&self.setup.scene, &[])).map_err(|e| e.to_string())?;
-        if next == inner.controls {
-            return Ok(inner.generation);
+        let args = next.args(scene, &[]);
+        crate::cli::parse_render(&args).map_err(|e| e.to_string())?;
+        let restart = args != inner.controls.args(scene, &[]);
+        let changed = next != inner.controls;
+        if changed {
+            inner.controls = next;
+            if restart {
+                inner.generation += 1;
+                inner.restarts += 1;
+                if let Some(c) = &inner.running {
+                    c.cancel();
+                }
+                self.wake.notify_all();
+            }
         }
-        inner.controls = next;
-        inner.generation += 1;
-        inner.restarts += 1;
-        if let Some(c) = &inner.running {
-            c.cancel();
-        }
-        self.wake.notify_all();
         let (generation, controls) = (inner.generation, inner.controls.to_json());
         drop(inner);
-        self.send("controls", controls);
-        Ok(generation)
+        if changed {
+            self.send("controls", controls.clone());
+        }
+        Ok((generation, controls))
     }
 
     /// Queues a final render (the thread answers on the request's channel).
@@ -219,6 +270,8 @@ impl Shared {
         self.wake.notify_all();
         drop(inner);
         self.send("bye", json!({}));
+        // Ends every event stream right after its `bye` (never sent to a page).
+        self.send("end", json!({}));
     }
 
     /// The render thread's loop: one preview per generation, final renders in between.
@@ -306,25 +359,8 @@ impl Shared {
         started: Instant,
     ) -> crate::Result<&'static str> {
         let job = RenderJob::new(opts)?;
-        let plan: Vec<Value> = job
-            .plan
-            .stages
-            .iter()
-            .map(|s| match s.name {
-                // The live render refines every tile (crate::app::live).
-                "adaptive" => json!({"name": s.name, "used": false,
-                                     "reason": "off while viewing: every tile refines"}),
-                _ => json!({"name": s.name, "used": s.used, "reason": s.reason}),
-            })
-            .collect();
-        let notes: Vec<String> = job.prepared.notes().iter().map(|n| n.to_string()).collect();
-        let unit = crate::app::render_options::unit_name(job.plan.method);
-        self.status(
-            generation,
-            json!({"state": "rendering", "method": job.plan.method.name(),
-                   "spectral": job.plan.spectral, "plan": plan, "notes": notes,
-                   "unit": unit, "prepare_ms": started.elapsed().as_millis() as u64}),
-        );
+        let prepare_ms = started.elapsed().as_millis() as u64;
+        self.status(generation, super::status::rendering(&job, prepare_ms));
         let display = opts.display;
         let mut last_sent: Option<Instant> = None;
         let mut converged = false;
@@ -362,14 +398,19 @@ impl Shared {
         while inner.frames.len() > KEPT_FRAMES {
             inner.frames.pop_front();
         }
-        drop(inner);
-        self.send(
-            "frame",
-            json!({"id": id, "generation": generation, "units": f.units,
+        // The preview stops at the error target or at MAX_UNITS, whichever comes first.
+        let left = (MAX_UNITS as f64 / f.units.max(1) as f64 - 1.0).max(0.0);
+        let by_units = Duration::try_from_secs_f64(f.elapsed.as_secs_f64() * left).ok();
+        let clean = super::status::time_to_clean(f.estimate, f.elapsed, CONVERGED)
+            .map(|d| by_units.map_or(d, |u| d.min(u)));
+        let event = json!({"id": id, "generation": generation, "units": f.units,
                    "elapsed_ms": f.elapsed.as_millis() as u64,
                    "since_change_ms": started.elapsed().as_millis() as u64,
-                   "estimate": f.estimate, "denoised": f.denoised}),
-        );
+                   "estimate": f.estimate, "target": CONVERGED, "denoised": f.denoised,
+                   "clean_in_ms": clean.map(|d| d.as_millis() as u64)});
+        inner.last_frame = event.clone();
+        drop(inner);
+        self.send("frame", event);
     }
 
     /// Replaces the status of `generation` (if still current) and announces it.

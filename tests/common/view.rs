@@ -216,3 +216,66 @@ impl Iterator for Events {
         }
     }
 }
+
+/// Where the scene's subject (the stones, `iris::prepare::subject`) is in the image a view
+/// camera sees: the fraction of the image it covers and its centroid (fractions of the
+/// width and height from the top-left), from one ray per pixel of a `w`×`h` image.
+/// `camera` is the view's `{"eye", "target", "fov"}` JSON; `turn` in degrees.
+pub struct Mask {
+    /// Fraction of the pixels whose first hit is on the subject.
+    pub area: f64,
+    /// Centroid of those pixels, (x, y) in [0, 1]² (0.5, 0.5 when there are none).
+    pub centroid: (f64, f64),
+}
+
+/// [`Mask`] of `scene` (from the crate's root) seen by the view camera `camera`.
+pub fn subject_mask(scene: &str, camera: &serde_json::Value, (w, h): (u32, u32)) -> Mask {
+    let xyz = |key: &str| {
+        let v: Vec<String> = camera[key]
+            .as_array()
+            .expect("camera point")
+            .iter()
+            .map(|x| x.as_f64().unwrap().to_string())
+            .collect();
+        v.join(",")
+    };
+    let look = format!(
+        "{}:{}:{}",
+        xyz("eye"),
+        xyz("target"),
+        camera["fov"].as_f64().unwrap()
+    );
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let extra = [
+        "--camera-look-at".to_string(),
+        look,
+        "--size".into(),
+        format!("{w}x{h}"),
+    ];
+    let path = root.join(scene).display().to_string();
+    let p = iris::view::aim::prepared(&path, &extra).expect("prepare the scene");
+    let subject = p.subject.as_ref().expect("the subject");
+    let cam = iris::camera::Camera::new(&p.camera, w, h);
+    let (mut n, mut sx, mut sy) = (0u64, 0.0f64, 0.0f64);
+    for y in 0..h {
+        for x in 0..w {
+            let ray = cam.generate_ray(glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
+            let on = p
+                .scene
+                .intersect(&ray)
+                .is_some_and(|hit| subject.holds(p.scene.triangle(hit.prim).mesh as usize));
+            if on {
+                n += 1;
+                sx += (f64::from(x) + 0.5) / f64::from(w);
+                sy += (f64::from(y) + 0.5) / f64::from(h);
+            }
+        }
+    }
+    let area = n as f64 / f64::from(w * h);
+    let centroid = if n == 0 {
+        (0.5, 0.5)
+    } else {
+        (sx / n as f64, sy / n as f64)
+    };
+    Mask { area, centroid }
+}

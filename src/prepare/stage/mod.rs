@@ -267,6 +267,7 @@ impl Stage {
             notes: Vec::new(),
             camera_note: None,
             looks: Vec::new(),
+            subject: None,
         })
     }
 
