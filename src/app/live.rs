@@ -15,8 +15,15 @@
 //!   image then incomplete and not shown), when the callback answers `false`, or at the
 //!   options' unit count.
 //!
+//! - **Estimates.** Every frame from 2 units on carries the half-buffer relative error of
+//!   the raw image; a resting denoised frame also carries the error of the denoised picture,
+//!   measured as `iris render`'s stop test measures a denoised PNG
+//!   ([`super::budget::stop_error`] on the denoised halves), so the view can say when the
+//!   picture is clean by the command's standard ([`super::budget::DEFAULT_TARGET`]).
+//!
 //! Images are linear RGB; times wall-clock.
 
+use super::budget::stop_error;
 use super::render::RenderJob;
 use super::render_denoise::RenderDenoiser;
 use crate::camera::Camera;
@@ -39,6 +46,9 @@ pub struct LiveFrame<'a> {
     pub elapsed: Duration,
     /// The half-buffer relative error estimate of the raw image (from 2 units on).
     pub estimate: Option<f64>,
+    /// The estimated relative error of the denoised picture (resting denoised frames from
+    /// [`super::budget::MIN_STOP_UNITS`] units on), as the command's stop test measures it.
+    pub denoised_estimate: Option<f64>,
 }
 
 impl RenderJob<'_> {
@@ -75,6 +85,7 @@ impl RenderJob<'_> {
                     units: p.samples,
                     elapsed: p.elapsed,
                     estimate,
+                    denoised_estimate: None,
                 }
             } else {
                 let at_power = p.samples.is_power_of_two() || p.done;
@@ -86,6 +97,10 @@ impl RenderJob<'_> {
                         &settings,
                     )?);
                 }
+                let denoised_estimate = match (&denoiser, at_power) {
+                    (Some(d), true) => stop_error(p, d.denoised_stop())?,
+                    _ => None,
+                };
                 let d = match (&mut denoiser, at_power) {
                     (Some(d), true) => d.checkpoint(p.image, true)?.map(|d| &d.image),
                     _ => None,
@@ -96,6 +111,7 @@ impl RenderJob<'_> {
                     units: p.samples,
                     elapsed: p.elapsed,
                     estimate,
+                    denoised_estimate,
                 }
             };
             if !show(&frame) {

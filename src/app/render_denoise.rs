@@ -63,6 +63,13 @@ impl<'a> RenderDenoiser<'a> {
         }
     }
 
+    /// The denoised image's stop test ([`StopImage::Denoised`]) with this render's
+    /// auxiliary images, whatever the written file holds (the live view shows the
+    /// denoised picture).
+    pub(super) fn denoised_stop(&self) -> StopImage<'_> {
+        StopImage::Denoised(self.aux.as_ref().map(|a| &a.0))
+    }
+
     /// Denoises `image` when `needed` and the render denoises, keeping the result.
     pub(super) fn checkpoint(
         &mut self,

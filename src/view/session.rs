@@ -36,6 +36,9 @@ pub const KEPT_FRAMES: usize = 8;
 pub const CONVERGED: f64 = 0.005;
 /// … or after this many units.
 pub const MAX_UNITS: u64 = 1 << 16;
+/// The error at which the page calls the picture clean: `iris render`'s default target,
+/// compared with the estimate of the picture shown (the denoised one once resting).
+pub const CLEAN: f64 = crate::app::budget::DEFAULT_TARGET;
 /// Seconds without a change after which frames are denoised.
 pub const REST: Duration = Duration::from_millis(1500);
 
@@ -401,12 +404,16 @@ impl Shared {
         // The preview stops at the error target or at MAX_UNITS, whichever comes first.
         let left = (MAX_UNITS as f64 / f.units.max(1) as f64 - 1.0).max(0.0);
         let by_units = Duration::try_from_secs_f64(f.elapsed.as_secs_f64() * left).ok();
-        let clean = super::status::time_to_clean(f.estimate, f.elapsed, CONVERGED)
+        // The picture shown is clean by the command's standard: its own estimate (the
+        // denoised picture's, for a denoised frame) at `iris render`'s default target.
+        let shown = f.denoised_estimate.or(f.estimate);
+        let clean = super::status::time_to_clean(shown, f.elapsed, CLEAN)
             .map(|d| by_units.map_or(d, |u| d.min(u)));
         let event = json!({"id": id, "generation": generation, "units": f.units,
                    "elapsed_ms": f.elapsed.as_millis() as u64,
                    "since_change_ms": started.elapsed().as_millis() as u64,
-                   "estimate": f.estimate, "target": CONVERGED, "denoised": f.denoised,
+                   "estimate": shown, "raw_estimate": f.estimate, "target": CLEAN,
+                   "denoised": f.denoised,
                    "clean_in_ms": clean.map(|d| d.as_millis() as u64)});
         inner.last_frame = event.clone();
         drop(inner);
