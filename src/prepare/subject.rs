@@ -144,27 +144,29 @@ mod tests {
 
     #[test]
     fn the_stones_not_the_floor_are_the_subject_and_without_stones_the_model_is() {
-        let mut desc = SceneDesc::default();
-        desc.materials = vec![
-            MaterialDesc {
-                name: "Gem".into(),
-                ..Default::default()
-            },
-            MaterialDesc {
-                name: "Floor".into(),
-                ..Default::default()
-            },
-        ];
-        desc.meshes = vec![
-            mesh("gem", Vec3::splat(-0.01), Vec3::splat(0.01), Some(0)),
-            mesh(
-                "floor",
-                Vec3::splat(-1.0),
-                Vec3::new(1.0, -0.5, 1.0),
-                Some(1),
-            ),
-            mesh("added", Vec3::splat(-9.0), Vec3::splat(9.0), None),
-        ];
+        let desc = SceneDesc {
+            materials: vec![
+                MaterialDesc {
+                    name: "Gem".into(),
+                    ..Default::default()
+                },
+                MaterialDesc {
+                    name: "Floor".into(),
+                    ..Default::default()
+                },
+            ],
+            meshes: vec![
+                mesh("gem", Vec3::splat(-0.01), Vec3::splat(0.01), Some(0)),
+                mesh(
+                    "floor",
+                    Vec3::splat(-1.0),
+                    Vec3::new(1.0, -0.5, 1.0),
+                    Some(1),
+                ),
+                mesh("added", Vec3::splat(-9.0), Vec3::splat(9.0), None),
+            ],
+            ..Default::default()
+        };
         let s = Subject::new(&desc, &[0], 2);
         assert_eq!((s.kind, s.meshes.clone()), (SubjectKind::Stones, vec![0]));
         assert_eq!(s.names, ["Gem"]);
