@@ -116,6 +116,7 @@ fn download_wheel(lib: &Lib, dir: &Path) -> Result<PathBuf, String> {
         python3(&["-c", FETCH_WHEEL, pin, sha256], dir).map_err(|e| {
             format!("pip download failed ({pip_err}), and so did the download without pip ({e})")
         })?;
+        println!("cargo:warning=pip download failed ({pip_err}); fetched {pin} without pip");
     }
     let wheel = fs::read_dir(dir)
         .map_err(at(dir))?
