@@ -8,7 +8,9 @@
 //!    silently trying something else.
 //! 2. pkg-config (`embree4` >= 4.0, `OpenImageDenoise` >= 2.0): distribution packages.
 //! 3. A project-local copy taken from a pinned Python wheel (fetched by name with
-//!    `python3 -m pip download`, SHA-256 checked), of which only the named shared libraries
+//!    `python3 -m pip download`, or where python3 has no pip (pip's build isolation) with
+//!    Python's standard library from the package index, `build/fetch_wheel.py`; SHA-256
+//!    checked either way; `build/wheel.rs`), of which only the named shared libraries
 //!    are extracted into `.cache/<name>/lib/` (override the directory that holds `lib/` with
 //!    `IRIS_EMBREE_CACHE` / `IRIS_OIDN_CACHE`). The cache is written to a temporary sibling
 //!    and renamed into place, so an interrupted build never leaves half a cache.
@@ -25,14 +27,16 @@
 //! binaries' RUNPATH, so `target/release/iris`, tests and benches need no LD_LIBRARY_PATH.
 //! `embree4-sys` emits `rustc-link-lib=embree4` itself; this script links
 //! `OpenImageDenoise`. How each was found is exported to the crate as `IRIS_EMBREE_SOURCE` /
-//! `IRIS_OIDN_SOURCE`.
+//! `IRIS_OIDN_SOURCE`. For the Python module's build script (python/build.rs) the metadata
+//! `rpath` lists every library directory and `bundle` those of the wheel caches (whose files
+//! the Python wheel carries, `DEP_IRIS_NATIVE_RPATH` / `DEP_IRIS_NATIVE_BUNDLE`).
 #![forbid(unsafe_code)]
 
+#[path = "build/wheel.rs"]
+mod wheel;
+
 use std::env;
-use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::Command;
-use std::time::{Duration, SystemTime};
 
 /// One C library and every way of providing it.
 struct Lib {
@@ -128,32 +132,36 @@ fn oidn_link(marker: &str) -> String {
     }
 }
 
-/// Fixed mtime for extracted files (2025-01-01): files created during this build script run
-/// would otherwise look newer than the run and make cargo rerun it (and relink) once more.
-const EXTRACTED_MTIME_SECS: u64 = 1_735_689_600;
-
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
+    println!("cargo:rerun-if-changed=build");
     println!("cargo:rerun-if-env-changed=PKG_CONFIG_PATH");
-    let mut rpaths: Vec<PathBuf> = Vec::new();
+    let (mut rpaths, mut bundle) = (Vec::new(), Vec::new());
     for lib in [&EMBREE, &OIDN] {
         println!("cargo:rerun-if-env-changed={}", lib.dir_env);
         println!("cargo:rerun-if-env-changed={}", lib.cache.0);
         let feature = format!("CARGO_FEATURE_{}", lib.feature.to_uppercase());
         if env::var_os(feature).is_some() {
-            provide(lib, &mut rpaths);
+            provide(lib, &mut rpaths, &mut bundle);
         }
     }
-    // For dependents' build scripts (DEP_IRIS_NATIVE_RPATH): python/build.rs.
-    let dirs: Vec<String> = rpaths.iter().map(|d| d.display().to_string()).collect();
-    println!("cargo:rpath={}", dirs.join(":"));
+    // For dependents' build scripts (DEP_IRIS_NATIVE_*): python/build.rs.
+    let join = |dirs: &[PathBuf]| {
+        let dirs: Vec<String> = dirs.iter().map(|d| d.display().to_string()).collect();
+        dirs.join(":")
+    };
+    println!("cargo:rpath={}", join(&rpaths));
+    println!("cargo:bundle={}", join(&bundle));
 }
 
 /// Finds `lib` and tells cargo how to link it (search path and RUNPATH once per directory in
-/// `rpaths`), or ends the build with the ways to provide it.
-fn provide(lib: &Lib, rpaths: &mut Vec<PathBuf>) {
+/// `rpaths`; a wheel cache's also in `bundle`), or ends the build with the ways to provide it.
+fn provide(lib: &Lib, rpaths: &mut Vec<PathBuf>, bundle: &mut Vec<PathBuf>) {
     match locate(lib) {
         Ok(found) => {
+            if found.from_wheel {
+                bundle.extend(found.dirs.iter().cloned());
+            }
             for dir in found.dirs {
                 if !rpaths.contains(&dir) {
                     println!("cargo:rustc-link-search=native={}", dir.display());
@@ -173,7 +181,8 @@ fn provide(lib: &Lib, rpaths: &mut Vec<PathBuf>) {
                  Provide it one of three ways:\n\
                  \x20 1. {}=<prefix containing lib/{}>\n\
                  \x20 2. a system package visible to `pkg-config {pkg}` (>= {min}; {example})\n\
-                 \x20 3. the automatic download of the pinned {pin} wheel, which needs python3 with pip\n\
+                 \x20 3. the automatic download of the pinned {pin} wheel, which needs python3 and\n\
+                 \x20    network access to the package index (pip's; else PIP_INDEX_URL or PyPI)\n\
                  or build without it: {}\n",
                 lib.feature, lib.name, lib.dir_env, lib.markers[0], lib.without
             );
@@ -190,6 +199,8 @@ struct Found {
     marker: String,
     /// How it was found, for `IRIS_*_SOURCE`.
     source: String,
+    /// Whether it is a wheel cache (a directory of this library's files alone).
+    from_wheel: bool,
 }
 
 /// Tries the three ways in order; the error lists why each failed.
@@ -203,6 +214,7 @@ fn locate(lib: &Lib) -> Result<Found, String> {
                     source: format!("{} ({})", lib.dir_env, found.display()),
                     dirs: vec![found],
                     marker: marker.into(),
+                    from_wheel: false,
                 })
             }
             None => Err(format!(
@@ -233,6 +245,7 @@ fn locate(lib: &Lib) -> Result<Found, String> {
                 dirs: found.link_paths,
                 marker: marker.into(),
                 source: format!("pkg-config {pkg} {} ({how})", found.version),
+                from_wheel: false,
             });
         }
         Err(e) => {
@@ -245,11 +258,12 @@ fn locate(lib: &Lib) -> Result<Found, String> {
             why.unwrap_or("not found").to_string()
         }
     };
-    match wheel_cache(lib) {
+    match wheel::wheel_cache(lib) {
         Ok((dir, source)) => Ok(Found {
             dirs: vec![dir],
             marker: lib.markers[0].into(),
             source,
+            from_wheel: true,
         }),
         Err(wheel_err) => Err(format!(
             "  - {}: not set\n  - pkg-config {pkg}: {pkg_err}\n  - {} wheel: {wheel_err}",
@@ -268,190 +282,7 @@ fn lib_dir_in(lib: &Lib, prefix: &Path) -> Option<(PathBuf, &'static str)> {
     })
 }
 
-/// The cache's `lib/` directory, filled from the wheel unless already complete.
-fn wheel_cache(lib: &Lib) -> Result<(PathBuf, String), String> {
-    let root = match env::var_os(lib.cache.0) {
-        Some(d) => PathBuf::from(d),
-        None => PathBuf::from(env::var("CARGO_MANIFEST_DIR").unwrap()).join(lib.cache.1),
-    };
-    let dir = root.join("lib");
-    // Deleting the cache must make cargo rerun this script (a missing path counts as changed).
-    rerun_if_changed(&dir.join(lib.markers[0]));
-    let how = format!("{} wheel, cached in {}", lib.wheel.0, dir.display());
-    if cache_complete(lib, &dir) {
-        return Ok((dir, how));
-    }
-    let out = PathBuf::from(env::var("OUT_DIR").unwrap());
-    let download = out.join(format!("{}-wheel", lib.feature));
-    let wheel = download_wheel(lib, &download)?;
-    let parent = root.parent().ok_or("cache directory has no parent")?;
-    fs::create_dir_all(parent).map_err(at(parent))?;
-    let name = root
-        .file_name()
-        .ok_or("bad cache directory name")?
-        .to_string_lossy();
-    let tmp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
-    let _ = fs::remove_dir_all(&tmp);
-    let result = extract(lib, &wheel, &tmp.join("lib")).and_then(|()| {
-        if root.exists() {
-            // A leftover from an older layout, or another build finished first.
-            if cache_complete(lib, &dir) {
-                return Ok(());
-            }
-            fs::remove_dir_all(&root)
-                .map_err(|e| format!("cannot replace {}: {e}", root.display()))?;
-        }
-        fs::rename(&tmp, &root)
-            .map_err(|e| format!("cannot move cache into {}: {e}", root.display()))
-    });
-    let _ = fs::remove_dir_all(&tmp);
-    let _ = fs::remove_dir_all(&download);
-    result?;
-    if !cache_complete(lib, &dir) {
-        return Err(format!("{} is incomplete after extraction", dir.display()));
-    }
-    Ok((dir, how))
-}
-
-/// Whether `name` matches `pattern` (at most one `*`, standing for any run of characters).
-fn matches(pattern: &str, name: &str) -> bool {
-    match pattern.split_once('*') {
-        Some((head, tail)) => {
-            name.len() >= head.len() + tail.len() && name.starts_with(head) && name.ends_with(tail)
-        }
-        None => name == pattern,
-    }
-}
-
-/// Whether `dir` holds a regular file for every extracted pattern and every link resolves
-/// to a file.
-fn cache_complete(lib: &Lib, dir: &Path) -> bool {
-    let Ok(entries) = fs::read_dir(dir) else {
-        return false;
-    };
-    let names: Vec<String> = entries
-        .flatten()
-        .filter(|e| e.file_type().is_ok_and(|t| t.is_file()))
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .collect();
-    let files = lib
-        .extract
-        .iter()
-        .all(|p| names.iter().any(|n| matches(p, n)));
-    let links = lib
-        .links
-        .iter()
-        .all(|(l, _)| fs::metadata(dir.join(l)).is_ok_and(|m| m.is_file()));
-    files && links
-}
-
-/// Downloads the pinned wheel into `dir` and checks its SHA-256; returns its path.
-/// A digest mismatch aborts the build outright: it never falls back to anything else.
-fn download_wheel(lib: &Lib, dir: &Path) -> Result<PathBuf, String> {
-    let (pin, sha256, platform) = lib.wheel;
-    let _ = fs::remove_dir_all(dir);
-    fs::create_dir_all(dir).map_err(at(dir))?;
-    // The package is named, never a URL.
-    #[rustfmt::skip]
-    let args = [
-        "-m", "pip", "download", "--no-deps", "--only-binary=:all:", "--platform", platform,
-        "--python-version", "3.11", "--implementation", "cp", "--abi", "cp311", pin, "-d",
-    ];
-    let output = Command::new("python3")
-        .args(args)
-        .arg(dir)
-        .env("PIP_DISABLE_PIP_VERSION_CHECK", "1")
-        .output()
-        .map_err(|e| format!("cannot run `python3 -m pip`: {e}"))?;
-    if !output.status.success() {
-        let stderr = String::from_utf8_lossy(&output.stderr);
-        let last = stderr.lines().rev().find(|l| !l.trim().is_empty());
-        return Err(format!(
-            "pip download failed: {}",
-            last.unwrap_or("").trim()
-        ));
-    }
-    let wheel = fs::read_dir(dir)
-        .map_err(at(dir))?
-        .flatten()
-        .map(|e| e.path())
-        .find(|p| p.to_string_lossy().ends_with(".whl"))
-        .ok_or("pip reported success but saved no wheel")?;
-    let digest = sha256_hex(&wheel)?;
-    if digest != sha256 {
-        eprintln!(
-            "\nerror: SHA-256 MISMATCH for {}\n  expected {sha256}\n  got      {digest}\n\
-             Refusing to use it. Set {} or install pkg-config {} instead.\n",
-            wheel.display(),
-            lib.dir_env,
-            lib.pkg.0
-        );
-        std::process::exit(1);
-    }
-    Ok(wheel)
-}
-
-/// `map_err` helper: prefixes an error with the path it concerns.
-fn at<E: std::fmt::Display>(path: &Path) -> impl FnOnce(E) -> String + '_ {
-    move |e| format!("{}: {e}", path.display())
-}
-
 /// Tells cargo to rerun this script when `path` changes or disappears.
 fn rerun_if_changed(path: &Path) {
     println!("cargo:rerun-if-changed={}", path.display());
-}
-
-fn sha256_hex(path: &Path) -> Result<String, String> {
-    use sha2::{Digest, Sha256};
-    let mut file = fs::File::open(path).map_err(at(path))?;
-    let mut hasher = Sha256::new();
-    std::io::copy(&mut file, &mut hasher).map_err(at(path))?;
-    Ok(format!("{:x}", hasher.finalize()))
-}
-
-/// Extracts the files `lib.extract` names from `lib.wheel_dir` of the wheel into `dir`
-/// (nothing else: no subdirectories, no other libraries), then creates `lib.links`.
-fn extract(lib: &Lib, wheel: &Path, dir: &Path) -> Result<(), String> {
-    let file = fs::File::open(wheel).map_err(at(wheel))?;
-    let mut zip = zip::ZipArchive::new(file).map_err(at(wheel))?;
-    fs::create_dir_all(dir).map_err(at(dir))?;
-    let mut got: Vec<Option<String>> = vec![None; lib.extract.len()];
-    for i in 0..zip.len() {
-        let mut entry = zip.by_index(i).map_err(|e| e.to_string())?;
-        let Some(name) = entry.name().strip_prefix(lib.wheel_dir).map(str::to_owned) else {
-            continue;
-        };
-        let Some(k) = lib.extract.iter().position(|p| matches(p, &name)) else {
-            continue;
-        };
-        if name.contains('/') || !entry.is_file() {
-            continue;
-        }
-        if let Some(first) = &got[k] {
-            return Err(format!(
-                "the wheel has both {first} and {name} for {}{}",
-                lib.wheel_dir, lib.extract[k]
-            ));
-        }
-        let dest = dir.join(&name);
-        let mut out = fs::File::create(&dest).map_err(at(&dest))?;
-        std::io::copy(&mut entry, &mut out).map_err(at(&dest))?;
-        out.set_modified(SystemTime::UNIX_EPOCH + Duration::from_secs(EXTRACTED_MTIME_SECS))
-            .map_err(at(&dest))?;
-        got[k] = Some(name);
-    }
-    for (k, pattern) in lib.extract.iter().enumerate() {
-        if got[k].is_none() {
-            return Err(format!("the wheel has no {}{pattern}", lib.wheel_dir));
-        }
-    }
-    for (link, pattern) in lib.links {
-        let k = lib.extract.iter().position(|p| p == pattern);
-        let Some(Some(target)) = k.map(|k| &got[k]) else {
-            return Err(format!("no extracted file for {pattern} (link {link})"));
-        };
-        std::os::unix::fs::symlink(target, dir.join(link))
-            .map_err(|e| format!("cannot create the {link} link: {e}"))?;
-    }
-    Ok(())
 }

@@ -177,7 +177,8 @@ fn a_missing_oidn_fails_the_build_naming_the_three_ways() {
         "OIDN_DIR=/nonexistent/oidn has no libOpenImageDenoise.so",
         "1. OIDN_DIR=<prefix containing lib/libOpenImageDenoise.so>",
         "2. a system package visible to `pkg-config OpenImageDenoise` (>= 2.0",
-        "3. the automatic download of the pinned pyoidn==2.5.1.0 wheel, which needs python3 with pip",
+        "3. the automatic download of the pinned pyoidn==2.5.1.0 wheel, which needs python3 and",
+        "network access to the package index",
         "cargo build --no-default-features --features embree",
     ] {
         assert!(err.contains(needle), "missing {needle:?} in:\n{err}");

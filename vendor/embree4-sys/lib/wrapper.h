@@ -1,0 +1,1 @@
+#include "embree4/rtcore.h"
