@@ -24,7 +24,7 @@ use crate::image::ImageRgb;
 use crate::math::Ray;
 pub use crate::render::Context;
 use crate::render::{
-    render_batches, render_samples, Film, Observer, RenderSettings, RenderStats, Setup,
+    render_batches, render_samples, Film, Observer, Prepass, RenderSettings, RenderStats,
 };
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
@@ -362,7 +362,7 @@ impl Integrator {
                         camera,
                         settings,
                         range,
-                        Setup::now(),
+                        Prepass::now(),
                         observer,
                         |starts, jobs, out| {
                             path::estimate_path(
@@ -383,7 +383,7 @@ impl Integrator {
                         camera,
                         settings,
                         range,
-                        Setup::now(),
+                        Prepass::now(),
                         observer,
                         |ray, u, ctx| {
                             self.per_sample(scene, camera, settings.spectral, ray, u, ctx)

@@ -48,7 +48,7 @@ use crate::photon::emit::{PhotonEmitter, PhotonNumbers, DEFAULT_AIM};
 use crate::photon::kdtree::PhotonMap;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
-use crate::render::{render_samples, Film, Observer, RenderSettings, RenderStats, Setup};
+use crate::render::{render_samples, Film, Observer, Prepass, RenderSettings, RenderStats};
 use crate::scene::Scene;
 use crate::shading::{self, is_diffuse_like, Event};
 use crate::spectrum::{Carrier, SampledSpectrum};
@@ -324,7 +324,7 @@ pub fn render(
         emitted: n,
     };
     let k = (ps.k_caustic.max(1), ps.k_global.max(1));
-    let setup = Setup {
+    let setup = Prepass {
         start,
         rays: maps.rays,
         photons: maps.emitted,

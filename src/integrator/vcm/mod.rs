@@ -44,8 +44,8 @@ use crate::integrator::light_trace::{self, Splatter};
 use crate::photon::emit::{PhotonEmitter, PhotonNumbers};
 use crate::photon::grid::HashGrid;
 use crate::render::{
-    drive_passes, pixel_sampler, primary_ray, Context, Film, Observer, RenderSettings, RenderStats,
-    Round, Setup,
+    drive_passes, pixel_sampler, primary_ray, Context, Film, Observer, Prepass, RenderSettings,
+    RenderStats, Round,
 };
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
@@ -179,7 +179,7 @@ impl Run<'_> {
         let label = if self.vcm.merge { "vcm" } else { "bpt" };
         let schedule =
             crate::render::schedule(u64::from(settings.spp.max(1)), range, 1, false, label);
-        let mut setup = Setup::now();
+        let mut setup = Prepass::now();
         let n = self.light_paths();
         let r0 = if self.vcm.merge { self.r0::<C>() } else { 0.0 };
         if self.vcm.merge && self.vcm.radius.is_none() {
