@@ -30,8 +30,8 @@
 //!   caustics, already counted).
 //!
 //! Spectral scenes: photons are traced spectrally (4 random wavelengths each, a dispersive
-//! interface keeps the hero, as in the seed paper: one wavelength per photon), and each
-//! stored photon's flux is converted to linear RGB through the film's conversion
+//! interface keeps the hero, as in Cropp & Zhang, "Light Refraction with Dispersion": one
+//! wavelength per photon), and each stored photon's flux is converted to linear RGB through the film's conversion
 //! ([`Carrier::to_rgb`]) when it is stored; camera paths and gathering are RGB (dispersive
 //! glass seen directly uses n_d). `--method sppm` is fully spectral.
 //!
@@ -43,7 +43,7 @@ use crate::bsdf::TransportMode;
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::math::{Frame, Ray, Rng};
-use crate::medium::MediumStack;
+use crate::medium_stack::MediumStack;
 use crate::photon::emit::{PhotonEmitter, PhotonNumbers, DEFAULT_AIM};
 use crate::photon::kdtree::PhotonMap;
 use crate::photon::store::Photon;

@@ -9,7 +9,7 @@
 use crate::bsdf::Bsdf;
 use crate::interaction::{CoincidentFaces, SurfaceHit};
 use crate::material::ShadingPoint;
-use crate::medium::{self, MediumStack};
+use crate::medium_stack::{self, MediumStack};
 use crate::scene::Scene;
 use crate::spectrum::Carrier;
 

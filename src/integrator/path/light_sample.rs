@@ -12,7 +12,7 @@ use super::vertex::mis;
 use crate::bsdf::TransportMode;
 use crate::interaction::SurfaceHit;
 use crate::math::Ray;
-use crate::medium::MediumStack;
+use crate::medium_stack::MediumStack;
 use crate::sampler::Bounce;
 use crate::scene::Scene;
 use crate::shading::media::Through;
