@@ -273,7 +273,7 @@ impl CausticMap {
         max_depth: u32,
         splatter: Option<&Splatter>,
     ) -> Result<(u64, Vec<Vec<Splat>>)> {
-        // Throughput roulette only: the seed rule's "specular" is not the delta split.
+        // Throughput roulette only: the lobe rule's "specular" is not the delta split.
         let settings = TraceSettings {
             max_depth,
             roulette: Roulette::Throughput,

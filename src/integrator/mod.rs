@@ -39,8 +39,8 @@ use std::ops::Range;
 /// The rendering method (`--method`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Method {
-    /// Recursive ray tracing after the seed paper §4: direct light from punctual lights,
-    /// Fresnel-weighted reflection and refraction branches.
+    /// Recursive ray tracing after Cropp & Zhang, "Light Refraction with Dispersion", §4:
+    /// direct light from punctual lights, Fresnel-weighted reflection and refraction branches.
     Whitted,
     /// Unidirectional path tracing with next-event estimation and MIS.
     Path,
