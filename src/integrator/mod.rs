@@ -58,9 +58,9 @@ pub enum Method {
     Vcm,
     /// Bidirectional path tracing: [`vcm`] without merging (unbiased).
     Bpt,
-    /// `Path`, `Hybrid` or `Sppm` from the caustic probes: a choice the render plan
-    /// makes ([`crate::plan::resolve_method`]) before an [`Integrator`] exists; [`Integrator::new`]
-    /// rejects it unresolved.
+    /// `Path`, `Bpt`, `Hybrid`, `Vcm` or `Sppm` from the materials and the photon probes: a
+    /// choice the render plan makes ([`crate::plan::resolve_method`]) before an
+    /// [`Integrator`] exists; [`Integrator::new`] rejects it unresolved.
     Auto,
 }
 

@@ -31,9 +31,9 @@
 //!
 //! Spectral scenes: photons are traced spectrally (4 random wavelengths each, a dispersive
 //! interface keeps the hero, as in Cropp & Zhang, "Light Refraction with Dispersion": one
-//! wavelength per photon), and each stored photon's flux is converted to linear RGB through the film's conversion
-//! ([`Carrier::to_rgb`]) when it is stored; camera paths and gathering are RGB (dispersive
-//! glass seen directly uses n_d). `--method sppm` is fully spectral.
+//! wavelength per photon), and each stored photon's flux is converted to linear RGB
+//! through the film's conversion ([`Carrier::to_rgb`]) when it is stored; camera paths and
+//! gathering are RGB (dispersive glass seen directly uses n_d). `--method sppm` is fully spectral.
 //!
 //! Flux in the maps is per emitted photon (already divided by their number).
 

@@ -1,6 +1,7 @@
 //! Whitted-style recursive ray tracing, as in Cropp & Zhang, "Light Refraction with
-//! Dispersion", §4: at a dielectric the ray splits into a reflected and a refracted branch weighted by the exact Fresnel equations
-//! (total internal reflection sends everything to the reflected branch); opaque surfaces
+//! Dispersion", §4: at a dielectric the ray splits into a reflected and a refracted branch
+//! weighted by the exact Fresnel equations (total internal reflection sends everything to
+//! the reflected branch); opaque surfaces
 //! get direct light (punctual, emissive triangles, environment); smooth metals recurse as
 //! mirrors (Schlick from the base colour, or a measured metal's complex Fresnel). Entering vs exiting comes from `front_face`; each branch carries the stack of
 //! media it is inside ([`crate::medium_stack`]), so η is the ratio of the indices on the two
