@@ -4,8 +4,8 @@
 //!
 //! Scenes, all 128 × 96, RGB transport, 2 threads (all cores), `max_depth` 16:
 //!
-//! - `fig4_5_1_caustics` (`assets/paper`): the seed paper's caustic figure, its own camera
-//!   and lights;
+//! - `fig4_5_1_caustics` (`assets/paper`): the caustic figure (Fig. 4.5.1) of Cropp &
+//!   Zhang, "Light Refraction with Dispersion", its own camera and lights;
 //! - `TransmissionTest` (shared assets): its camera, lit by a uniform environment of
 //!   radiance 0.5 (as `benches/path.rs` and `--env 0.5`);
 //! - `CornellBox-Water` (shared assets): its emissive ceiling, auto-framed camera.

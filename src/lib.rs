@@ -48,7 +48,7 @@ pub mod load;
 pub mod material;
 pub mod math;
 pub mod measure;
-pub mod medium;
+pub mod medium_stack;
 pub mod optics;
 pub mod output;
 pub mod photon;

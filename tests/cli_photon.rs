@@ -52,9 +52,9 @@ fn sppm_renders_in_passes_and_reports_them() {
 }
 
 #[test]
-fn photon_method_and_seed_roulette_render() {
+fn photon_method_and_lobe_roulette_render() {
     let dir = common::scratch_dir("cli_photon");
-    for rr in ["throughput", "seed"] {
+    for rr in ["throughput", "lobe"] {
         let out = format!("p_{rr}.png");
         let o = iris(
             &[

@@ -21,7 +21,7 @@ use glam::Vec3;
 use iris::accel::Backend;
 use iris::material::{ExplicitIor, MaterialDesc};
 use iris::math::Ray;
-use iris::medium::MediumStack;
+use iris::medium_stack::MediumStack;
 use iris::optics::{reflect, refract};
 use iris::scene::desc::{MeshDesc, SceneDesc};
 use iris::scene::Scene;

@@ -536,7 +536,11 @@ fn auto_says_why_from_the_caustic_share() {
 }
 
 /// The pilot's budget ([`iris::integrator::photon_budget`]) for `scene` at 48 × 36.
-fn pilot(scene: &Scene, cam: &CameraDesc, seed: u64) -> iris::integrator::photon_budget::Budget {
+fn pilot(
+    scene: &Scene,
+    cam: &CameraDesc,
+    seed: u64,
+) -> iris::integrator::photon_budget::PhotonBudget {
     let s = settings(16, seed, 2);
     iris::integrator::photon_budget::choose::<Vec3>(
         scene,

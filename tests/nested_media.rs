@@ -24,7 +24,7 @@ use glam::{Vec2, Vec3};
 use iris::accel::Backend;
 use iris::material::MaterialDesc;
 use iris::math::Ray;
-use iris::medium::MediumStack;
+use iris::medium_stack::MediumStack;
 use iris::optics::refract;
 use iris::scene::desc::{MeshDesc, SceneDesc};
 use iris::scene::Scene;

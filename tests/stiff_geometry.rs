@@ -34,7 +34,7 @@ use iris::integrator::{Integrator, Method, PhotonSettings};
 use iris::light::env::Environment;
 use iris::material::MaterialDesc;
 use iris::math::{Frame, Ray, Rng};
-use iris::medium::MediumStack;
+use iris::medium_stack::MediumStack;
 use iris::optics::refract;
 use iris::render::RenderSettings;
 use iris::scene::desc::{CameraDesc, LightDesc, MeshDesc, Projection, SceneDesc};

@@ -21,7 +21,7 @@ use glam::{DVec3, Vec2, Vec3};
 use iris::accel::Backend;
 use iris::bsdf::{Bsdf, TransportMode};
 use iris::math::{Frame, Ray};
-use iris::medium::MediumStack;
+use iris::medium_stack::MediumStack;
 use iris::optics::{critical_angle, fresnel_dielectric, refract};
 use iris::scene::desc::{MeshDesc, SceneDesc};
 use iris::scene::Scene;

@@ -36,11 +36,10 @@
 //! [`MIN_CHECK_STEP`] × the units so far ([`next_check`]), so a render stops within about
 //! a quarter more units than the target needs rather than up to twice as many (or at the
 //! end of its time). The rate is not fitted to the estimates: a denoised image's estimate
-//! jumps by tens of per cent between checks (the gallery's round diamond: 0.051 at 32 spp,
-//! 0.052 at 64, 0.040 at 128, 0.022 at 256, and 0.026 at 108), and a slope fitted to two
-//! of them would schedule more checks, where a lucky low one is likelier to stop the render
-//! early. The estimate sees noise, not bias (a denoised
-//! image's blur of a caustic edge or a sparkle is bias: BENCHMARKS.md measures it), and
+//! jumps up and down between checks, and a slope fitted to two of them would schedule more
+//! checks, where a lucky low one is likelier to stop the render early. The estimate sees
+//! noise, not bias (a denoised image's blur of a caustic edge or a sparkle is bias:
+//! BENCHMARKS.md, "Denoised against raw"), and
 //! misses what neither half has found yet (a caustic no sample reached): hence the
 //! minimum count and the time limit as a safety net.
 //!
@@ -74,40 +73,23 @@ pub const FIXED_PASSES: u32 = 64;
 /// The error target of a render given no `--spp`, `--passes`, `--time` or
 /// `--target-error`: an estimated relative RMSE ([`stop_error`]) of 0.03.
 ///
-/// Measured with `iris render SCENE --time T --checkpoint 1 --report R.csv` (auto method;
-/// the estimate at each checkpoint, each checkpoint's image inspected), on the 2-core
-/// machine shared with other jobs (load average about 10, so times are several times a
-/// quiet machine's):
-/// - Suzanne (Khronos) under the soft studio, 400×300, hybrid: 0.082 at 16 spp (grain
-///   everywhere), 0.045 at 64 spp (specks left in the dark metal), 0.032 at 128 spp (rare
-///   specks), 128 spp after 82 s;
-/// - a grey box and floor under a uniform sky (`tests/default_budget.rs`), 32×24, path:
-///   0.047 at 64 spp, 0.033 at 128, 0.023 at 256, 0.016 at 512: it falls as spp^−1/2;
-/// - the McGuire Cornell box (no camera: framed), 300×300, path: 0.052 at 16 spp, 0.039
-///   at 64, 0.034 at 256 (fireflies from its small light keep it up);
-/// - Fig. 7.1's glass spheres (hybrid, 400×225): 0.146 at 64 spp, 0.12 at 97 spp in
-///   120 s; the glass of water (hybrid, 400×300) 0.16 at 20 spp in 90 s; the bare round
-///   diamond (hybrid, spectral, 800×600) 0.89 at 16 spp in 142 s.
-///
-/// On the quiet machine at the default size (800×600), the box-and-floor scene stops at
-/// the target at 256 spp after 49 s (estimated 0.022; 128 spp were above it), Fig. 7.1's
-/// spheres (800×450) at the time limit with 111 spp, estimated 0.11.
-///
-/// So 0.03 is where the grain of a plain scene has gone at normal viewing size, and what
-/// it costs is known (quadrupling the samples halves the estimate); glass, caustics,
-/// dispersion and small lights stay above it for minutes, and [`DEFAULT_TIME_LIMIT`] ends
-/// those when the output is raw. A denoised PNG is judged by its own estimate
-/// ([`StopImage::Denoised`]), which reaches 0.03 far sooner: measured in BENCHMARKS.md
-/// ("The default stop on the denoised image").
+/// Chosen from the estimate at each checkpoint of `iris render SCENE --time T --checkpoint 1
+/// --report R.csv` against the checkpoints' images, on plain, enclosed, glass and
+/// dispersive scenes (the figures: BENCHMARKS.md, "Figures behind choices in the
+/// code"): 0.03 is where the grain of a plain scene has gone at normal viewing size, and
+/// what it costs is known (the estimate falls as spp^−1/2: quadrupling the samples halves
+/// it); glass, caustics, dispersion and small lights stay above it for minutes, and
+/// [`DEFAULT_TIME_LIMIT`] ends those when the output is raw. A denoised PNG is judged by its
+/// own estimate ([`StopImage::Denoised`]), which reaches the target sooner (BENCHMARKS.md,
+/// "The default stop on the denoised image").
 pub const DEFAULT_TARGET: f64 = 0.03;
 
 /// The time limit of a render given no `--spp`, `--passes` or `--time`: 120 s.
 ///
-/// The safety net for scenes that do not reach [`DEFAULT_TARGET`] soon. In its
-/// measurements (under load) about two minutes gave the plain scenes 136–346 spp at 300–400
-/// pixels wide and the glass scenes 20–97 spp: the whole picture, its noise still visible
-/// in the hard cases. A longer render is one flag away (`--time`, `--target-error`); the
-/// default should not keep a preview waiting longer.
+/// The safety net for scenes that do not reach [`DEFAULT_TARGET`] soon: long enough for the
+/// whole picture, its noise still visible in the hard cases (BENCHMARKS.md, "Figures behind
+/// choices in the code"). A longer render is one flag away (`--time`, `--target-error`);
+/// the default should not keep a preview waiting longer.
 pub const DEFAULT_TIME_LIMIT: Duration = Duration::from_secs(120);
 
 /// The stop test is not applied before this many samples per pixel (SPPM: passes): with
@@ -117,9 +99,10 @@ pub const MIN_STOP_UNITS: u64 = 8;
 
 /// [`MIN_STOP_UNITS`] for the hybrid in a scene with scattering media: its volumetric
 /// caustic map starts with a wide gather radius that only passes shrink, and sparse
-/// photons blur into blotches the two denoised halves share; measured on the gallery's
-/// hazy prism, the denoised estimate read 0.0011 at 8 passes over an image of coloured
-/// blotches. 64 passes shrink r² to about a third of the first (α = 0.7). Adaptive
+/// photons blur into blotches the two denoised halves share, so the denoised estimate of
+/// the gallery's hazy prism after [`MIN_STOP_UNITS`] passes is far below the target over an
+/// image of coloured blotches (BENCHMARKS.md, "Figures behind choices in the code").
+/// 64 passes shrink r² to about a third of the first (α = 0.7). Adaptive
 /// sampling is off there under `--adaptive auto` ([`super::adaptive::choose`]), so every
 /// tile has the passes.
 pub const MIN_STOP_UNITS_MEDIA_HYBRID: u64 = 64;

@@ -8,7 +8,8 @@
 //! the caustics belong; the photon mapper draws them. The sun-through-a-slit rainbow
 //! (`scenes/fig5_3_1_rainbow.glb`) is in [`super::rainbow`].
 //!
-//! **`paper/fig4_5_1_caustics.glb`** (the seed paper's Fig. 4.5.1):
+//! **`paper/fig4_5_1_caustics.glb`** (Fig. 4.5.1 of Cropp & Zhang, "Light Refraction with
+//! Dispersion"):
 //! - floor: white (0.8), x from −0.6 to 0.9, z from −0.6 to 0.8, at y = 0;
 //! - sphere: icosphere r = [`SPHERE_RADIUS`] (subdivision 5, 20 480 triangles, radial
 //!   normals), centre [`SPHERE_CENTRE`] (1 mm above the floor), glass IOR 1.5;

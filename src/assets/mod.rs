@@ -2,7 +2,8 @@
 //! small CC0 scenes written as glTF binary (.glb) files, in the library's conventions
 //! (metres, +Y up, linear colours, candela/lux lights).
 //!
-//! - [`paper`]: the seed paper's figure scenes shipped in `assets/paper/`.
+//! - [`paper`]: the figure scenes of Cropp & Zhang, "Light Refraction with Dispersion", shipped in
+//!   `assets/paper/`.
 //! - [`demos`]: the demonstration scenes shipped in `assets/scenes/` (glass of water,
 //!   ruby, prism under the sky, and [`spectral`]: the prism beam of Fig. 5.3.1 and
 //!   a diamond; [`media`]: the milky tank, the hazy prism and the opal; [`birefringence`]:

@@ -1,5 +1,5 @@
-//! `scenes/fig5_3_1_rainbow.glb`: the seed paper's prism rainbow (Fig. 5.3.1) as a caustic
-//! of a delta light: a horizontal sun through a slit and an N-BK7 prism onto a white
+//! `scenes/fig5_3_1_rainbow.glb`: the prism rainbow (Fig. 5.3.1) of Cropp & Zhang, "Light
+//! Refraction with Dispersion", as a caustic of a delta light: a horizontal sun through a slit and an N-BK7 prism onto a white
 //! screen, for the photon mapper (the path tracer cannot reach a directional light
 //! through glass, so it shows the screen dark).
 //!

@@ -1,5 +1,6 @@
-//! Two scenes for spectral rendering, shipped (CC0) in `assets/scenes/`: the seed paper's
-//! Fig. 5.3.1 (a narrow white beam through a 60° prism onto a screen) and a diamond.
+//! Two scenes for spectral rendering, shipped (CC0) in `assets/scenes/`: Fig. 5.3.1 of
+//! Cropp & Zhang, "Light Refraction with Dispersion" (a narrow white beam through a 60°
+//! prism onto a screen) and a diamond.
 //!
 //! Units are metres, +Y up, linear RGB, real-world sizes; emitters are black diffuse quads
 //! with the radiance below, emitting from their front face (as in [`super::demos`]). Every

@@ -95,7 +95,7 @@ pub struct RenderArgs {
     /// Rendering method: auto (the default: from probe photons, the path tracer when no light
     /// reaches a diffuse surface through specular ones, BPT instead in an enclosed room, VCM
     /// for rough glass or where caustics carry 4 % or more of the light, else the hybrid; the
-    /// reason is printed), whitted (recursive ray tracing, seed paper §4), path
+    /// reason is printed), whitted (recursive ray tracing, after Cropp & Zhang's paper §4), path
     /// (path tracing with next-event estimation and MIS), photon (classic photon mapping:
     /// caustic + global maps, final gather), sppm (stochastic progressive photon mapping:
     /// passes, converges), hybrid (the path tracer plus a progressive caustic photon map for
@@ -212,8 +212,9 @@ pub struct RenderArgs {
     /// the checkpoints at most every 2 s.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=10_000_000))]
     pub checkpoint: Option<u32>,
-    /// Photon Russian roulette rule: throughput (survivors keep their power), seed (the seed
-    /// paper's rule: diffuse / reflect / refract by the material's colours).
+    /// Photon Russian roulette rule: throughput (survivors keep their power), lobe (Cropp &
+    /// Zhang's rule: diffuse / reflect / refract by the material's colours; `seed` is the
+    /// former name of lobe).
     #[arg(long, default_value = "throughput", value_parser = Roulette::parse)]
     pub photon_rr: Roulette,
     /// How `--method hybrid` counts its caustics: map (the caustic photon map everywhere),

@@ -35,7 +35,7 @@ use super::AuxImages;
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::camera::Camera;
 use crate::image::ImageRgb;
-use crate::medium::MediumStack;
+use crate::medium_stack::MediumStack;
 use crate::render::{pixel_sampler, primary_ray, RenderSettings};
 use crate::sampler::SampleStream;
 use crate::scene::Scene;

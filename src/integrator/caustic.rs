@@ -81,9 +81,9 @@ pub fn emitter(scene: &Scene) -> PhotonEmitter {
 /// makers' bounding spheres and 1/4 drawn as the light emits ([`Aim::Mixture`]), so a
 /// photon's power is at most 1/(1 − 3/4) = 4× the unaimed one's. Aiming only
 /// ([`Aim::Only`]) spends nothing on directions that cannot start a caustic but has no such
-/// bound: a 0.3° spot beam on a prism gave the rare aimed photon inside the beam ~1000× the
-/// power (p_spot/p_aim), and the hybrid's image single-pixel fireflies worth 100× the
-/// reference after 128 passes (measured; BENCHMARKS.md "Converging faster").
+/// bound: in a narrow spot beam the rare aimed photon carries p_spot/p_aim times the
+/// power, without limit as the beam narrows, and the hybrid's image keeps single-pixel
+/// fireflies (BENCHMARKS.md, "Photons aimed at the caustic makers").
 pub const CAUSTIC_AIM: Aim = Aim::Mixture(0.75);
 
 /// The one place a caustic photon is emitted: number `index` of the seed's digit-permuted
@@ -273,7 +273,7 @@ impl CausticMap {
         max_depth: u32,
         splatter: Option<&Splatter>,
     ) -> Result<(u64, Vec<Vec<Splat>>)> {
-        // Throughput roulette only: the seed rule's "specular" is not the delta split.
+        // Throughput roulette only: the lobe rule's "specular" is not the delta split.
         let settings = TraceSettings {
             max_depth,
             roulette: Roulette::Throughput,

@@ -50,7 +50,7 @@ use crate::camera::Camera;
 use crate::error::Result;
 use crate::polar::Analyzer;
 use crate::render::{
-    drive_passes, pixel_sampler, Film, Observer, RenderSettings, RenderStats, Round, Setup,
+    drive_passes, pixel_sampler, Film, Observer, Prepass, RenderSettings, RenderStats, Round,
 };
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
@@ -103,7 +103,7 @@ fn run<C: Carrier>(
     let emitter = caustic::emitter(scene);
     let schedule =
         crate::render::schedule(u64::from(settings.spp.max(1)), range, 1, false, "hybrid");
-    let mut setup = Setup::now();
+    let mut setup = Prepass::now();
     let (budget, mut map) = caustic_budget::<C>(scene, camera, settings, max_depth, cs, &emitter)?;
     if let Some(b) = &budget {
         setup.rays += b.rays;
@@ -214,7 +214,7 @@ fn caustic_budget<C: Carrier>(
     max_depth: u32,
     cs: &CausticSettings,
     emitter: &crate::photon::emit::PhotonEmitter,
-) -> Result<(Option<photon_budget::Budget>, CausticMap)> {
+) -> Result<(Option<photon_budget::PhotonBudget>, CausticMap)> {
     let polarize = |m: CausticMap| match cs.polarization {
         Some(_) => m.polarized(),
         None => m,

@@ -24,7 +24,7 @@ use crate::image::ImageRgb;
 use crate::math::Ray;
 pub use crate::render::Context;
 use crate::render::{
-    render_batches, render_samples, Film, Observer, RenderSettings, RenderStats, Setup,
+    render_batches, render_samples, Film, Observer, Prepass, RenderSettings, RenderStats,
 };
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
@@ -39,8 +39,8 @@ use std::ops::Range;
 /// The rendering method (`--method`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Method {
-    /// Recursive ray tracing after the seed paper §4: direct light from punctual lights,
-    /// Fresnel-weighted reflection and refraction branches.
+    /// Recursive ray tracing after Cropp & Zhang, "Light Refraction with Dispersion", §4:
+    /// direct light from punctual lights, Fresnel-weighted reflection and refraction branches.
     Whitted,
     /// Unidirectional path tracing with next-event estimation and MIS.
     Path,
@@ -58,9 +58,9 @@ pub enum Method {
     Vcm,
     /// Bidirectional path tracing: [`vcm`] without merging (unbiased).
     Bpt,
-    /// `Path`, `Hybrid` or `Sppm` from the caustic probes: a choice the render plan
-    /// makes ([`crate::plan::resolve_method`]) before an [`Integrator`] exists; [`Integrator::new`]
-    /// rejects it unresolved.
+    /// `Path`, `Bpt`, `Hybrid`, `Vcm` or `Sppm` from the materials and the photon probes: a
+    /// choice the render plan makes ([`crate::plan::resolve_method`]) before an
+    /// [`Integrator`] exists; [`Integrator::new`] rejects it unresolved.
     Auto,
 }
 
@@ -362,7 +362,7 @@ impl Integrator {
                         camera,
                         settings,
                         range,
-                        Setup::now(),
+                        Prepass::now(),
                         observer,
                         |starts, jobs, out| {
                             path::estimate_path(
@@ -383,7 +383,7 @@ impl Integrator {
                         camera,
                         settings,
                         range,
-                        Setup::now(),
+                        Prepass::now(),
                         observer,
                         |ray, u, ctx| {
                             self.per_sample(scene, camera, settings.spectral, ray, u, ctx)

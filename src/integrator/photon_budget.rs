@@ -20,7 +20,7 @@
 //! the scene, seed and size: every shard of a render makes the same one.
 //!
 //! The map's variance grows as its radius shrinks (as 1/r² for a kernel estimate), so the
-//! optimum grows with the pass: pass i traces `n*(r₀)·r₀/rᵢ` photons ([`Budget::per_pass`]),
+//! optimum grows with the pass: pass i traces `n*(r₀)·r₀/rᵢ` photons ([`PhotonBudget::per_pass`]),
 //! a count that never falls from one pass to the next (so pass i's photon numbers,
 //! `i·nᵢ + j`, never overlap an earlier pass's).
 //!
@@ -68,7 +68,7 @@ const PILOT_KEY: u64 = 0x9170_7B0D;
 
 /// The pilot's choice.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Budget {
+pub struct PhotonBudget {
     /// n*/N at the first radius, before the clamp ([`factor`]).
     pub factor: f64,
     /// The first radius (the one given, or chosen from the pilot's photons).
@@ -79,7 +79,7 @@ pub struct Budget {
     pub photons: u64,
 }
 
-impl Budget {
+impl PhotonBudget {
     /// Photons of a pass whose radius is `r`, at `pixels` pixels: N·factor·r₀/r within the
     /// bounds ([`photons_for`]).
     pub fn per_pass(&self, pixels: u64, r: f32) -> u64 {
@@ -147,7 +147,7 @@ pub fn choose<C: Carrier>(
     (max_depth, dispersion): (u32, path::Dispersion),
     emitter: &PhotonEmitter,
     (radius, alpha): (Option<f32>, f32),
-) -> Result<Budget> {
+) -> Result<PhotonBudget> {
     let pixels = u64::from(settings.width) * u64::from(settings.height);
     let half = (pixels.clamp(1, MAX_PHOTONS) / 2).max(1);
     let lambda = C::sample_lambda(pass_wavelength_variate(0, settings.seed));
@@ -184,7 +184,7 @@ pub fn choose<C: Carrier>(
         [&a, &b],
     );
     fig.rays_per_photon = rays as f64 / (2 * half) as f64;
-    Ok(Budget {
+    Ok(PhotonBudget {
         factor: factor(&fig),
         first_radius: r0,
         rays: rays + camera_rays,
@@ -317,7 +317,7 @@ mod tests {
 
     #[test]
     fn the_count_grows_as_the_radius_shrinks_and_never_falls() {
-        let b = Budget {
+        let b = PhotonBudget {
             factor: 0.1,
             first_radius: 0.02,
             rays: 0,

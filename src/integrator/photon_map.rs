@@ -30,10 +30,10 @@
 //!   caustics, already counted).
 //!
 //! Spectral scenes: photons are traced spectrally (4 random wavelengths each, a dispersive
-//! interface keeps the hero, as in the seed paper: one wavelength per photon), and each
-//! stored photon's flux is converted to linear RGB through the film's conversion
-//! ([`Carrier::to_rgb`]) when it is stored; camera paths and gathering are RGB (dispersive
-//! glass seen directly uses n_d). `--method sppm` is fully spectral.
+//! interface keeps the hero, as in Cropp & Zhang, "Light Refraction with Dispersion": one
+//! wavelength per photon), and each stored photon's flux is converted to linear RGB
+//! through the film's conversion ([`Carrier::to_rgb`]) when it is stored; camera paths and
+//! gathering are RGB (dispersive glass seen directly uses n_d). `--method sppm` is fully spectral.
 //!
 //! Flux in the maps is per emitted photon (already divided by their number).
 
@@ -43,12 +43,12 @@ use crate::bsdf::TransportMode;
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::math::{Frame, Ray, Rng};
-use crate::medium::MediumStack;
+use crate::medium_stack::MediumStack;
 use crate::photon::emit::{PhotonEmitter, PhotonNumbers, DEFAULT_AIM};
 use crate::photon::kdtree::PhotonMap;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
-use crate::render::{render_samples, Film, Observer, RenderSettings, RenderStats, Setup};
+use crate::render::{render_samples, Film, Observer, Prepass, RenderSettings, RenderStats};
 use crate::scene::Scene;
 use crate::shading::{self, is_diffuse_like, Event};
 use crate::spectrum::{Carrier, SampledSpectrum};
@@ -324,7 +324,7 @@ pub fn render(
         emitted: n,
     };
     let k = (ps.k_caustic.max(1), ps.k_global.max(1));
-    let setup = Setup {
+    let setup = Prepass {
         start,
         rays: maps.rays,
         photons: maps.emitted,

@@ -54,7 +54,8 @@ pub struct PhotonSettings {
 pub enum CausticMode {
     /// The caustic map, gathered at every camera path's first non-delta vertex D₁ (the
     /// default: on the caustic-sphere and gem scenes it matched or beat the light-traced
-    /// modes in relMSE at equal time and equal passes; BENCHMARKS.md).
+    /// modes in relMSE at equal time and equal passes; BENCHMARKS.md, "Light-traced
+    /// caustics").
     #[default]
     Map,
     /// Where D₁ is seen directly, light tracing of every caustic-origin photon vertex

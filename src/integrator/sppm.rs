@@ -64,7 +64,7 @@ use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
 use crate::render::{
-    drive, guard, pixel_sampler, Film, Observer, RenderSettings, RenderStats, Round, Setup,
+    drive, guard, pixel_sampler, Film, Observer, Prepass, RenderSettings, RenderStats, Round,
     TILE_PIXELS,
 };
 use crate::scene::Scene;
@@ -156,7 +156,7 @@ fn run<C: Carrier>(
         adaptive: false,
         ..crate::render::schedule(u64::from(ps.passes.max(1)), range, 1, true, "sppm passes")
     };
-    let mut setup = Setup::now();
+    let mut setup = Prepass::now();
     if schedule.first > 0 {
         // A shard: the radius of its first pass, as one render reaches it.
         if state.r2.is_none() {

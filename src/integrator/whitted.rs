@@ -1,9 +1,10 @@
-//! Whitted-style recursive ray tracing, as in the seed paper §4: at a dielectric the ray
-//! splits into a reflected and a refracted branch weighted by the exact Fresnel equations
-//! (total internal reflection sends everything to the reflected branch); opaque surfaces
+//! Whitted-style recursive ray tracing, as in Cropp & Zhang, "Light Refraction with
+//! Dispersion", §4: at a dielectric the ray splits into a reflected and a refracted branch
+//! weighted by the exact Fresnel equations (total internal reflection sends everything to
+//! the reflected branch); opaque surfaces
 //! get direct light (punctual, emissive triangles, environment); smooth metals recurse as
 //! mirrors (Schlick from the base colour, or a measured metal's complex Fresnel). Entering vs exiting comes from `front_face`; each branch carries the stack of
-//! media it is inside ([`crate::medium`]), so η is the ratio of the indices on the two
+//! media it is inside ([`crate::medium_stack`]), so η is the ratio of the indices on the two
 //! sides (glass → water is 1.33/1.5, not 1.33/1), and Beer–Lambert absorption applies to
 //! the medium a segment actually crossed.
 //!
@@ -18,7 +19,7 @@
 use super::Context;
 use crate::material::AlphaMode;
 use crate::math::Ray;
-use crate::medium::MediumStack;
+use crate::medium_stack::MediumStack;
 use crate::optics::{fresnel_conductor_c, fresnel_dielectric, fresnel_schlick, reflect, refract};
 use crate::scene::Scene;
 use crate::shading::{self, Arrival};

@@ -19,5 +19,5 @@ pub mod sampler;
 pub mod sky;
 
 pub(crate) use punctual::range_window;
-pub use punctual::{default_lights, Light, LightSample, PunctualLight};
+pub use punctual::{default_lights, Incidence, Light, PunctualLight};
 pub use sampler::{LightChoice, LightId, LightSampler};

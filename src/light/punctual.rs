@@ -59,9 +59,10 @@ pub enum Light {
     },
 }
 
-/// Illumination arriving at a point from one light.
+/// Illumination arriving at a point from one punctual light ([`PunctualLight`]'s
+/// [`Light::sample_li`]).
 #[derive(Debug, Clone, Copy)]
-pub struct LightSample {
+pub struct Incidence {
     /// Unit direction from the point toward the light.
     pub wi: Vec3,
     /// The light's position, or `None` for a directional light (at infinity).
@@ -93,7 +94,7 @@ fn toward(position: Vec3, p: Vec3) -> Option<(Vec3, f32, f32)> {
 impl Light {
     /// Illumination at `p`, or `None` if the light cannot reach it (outside the cone or
     /// range, or at the light's own position).
-    pub fn sample_li(&self, p: Vec3) -> Option<LightSample> {
+    pub fn sample_li(&self, p: Vec3) -> Option<Incidence> {
         match *self {
             Light::Point {
                 position,
@@ -102,7 +103,7 @@ impl Light {
             } => {
                 let (wi, d, d2) = toward(position, p)?;
                 let e = intensity * (range_window(d, range) / d2);
-                Some(LightSample {
+                Some(Incidence {
                     wi,
                     position: Some(position),
                     irradiance: e,
@@ -130,7 +131,7 @@ impl Light {
                 if w <= 0.0 {
                     return None;
                 }
-                Some(LightSample {
+                Some(Incidence {
                     wi,
                     position: Some(position),
                     irradiance: intensity * (w / d2),
@@ -139,7 +140,7 @@ impl Light {
             Light::Directional {
                 direction,
                 illuminance,
-            } => Some(LightSample {
+            } => Some(Incidence {
                 wi: -direction,
                 position: None,
                 irradiance: illuminance,

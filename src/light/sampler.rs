@@ -12,12 +12,11 @@
 //!   light's total power says little about what it gives one receiver (a studio's
 //!   environment carries most of the flux, its key spots most of the light on the stone),
 //!   and with the few lights Iris scenes carry the uniform choice costs at most a factor n.
-//!   Measured against choosing by power for NEE on ten scenes (BENCHMARKS.md, "Light
-//!   choice"): power's relative MSE at equal samples was 0.59–0.83× uniform's on the Cornell
-//!   box, the paper's spheres and an 8-light scene, 0.99–1.02× on the gems, but 1.17–1.40×
-//!   on the glasses of water and 5.1× on the sunglasses under a studio, whose environment
-//!   takes the choices its keys should have; uniform's worst case is bounded, power's is
-//!   not. A many-light tree (pbrt-v4's `BVHLightSampler`) would pay off only with far more
+//!   Against choosing by power for NEE on ten scenes (BENCHMARKS.md, "Light choice for
+//!   next-event estimation: uniform or by power"), power gains a little on the Cornell box,
+//!   the paper's spheres and a many-light scene, is level on the gems, and loses on the
+//!   glasses of water and most on the sunglasses under a studio, whose environment takes
+//!   the choices its keys should have; uniform's worst case is bounded, power's is not. A many-light tree (pbrt-v4's `BVHLightSampler`) would pay off only with far more
 //!   lights than any scene here carries.
 //! - [`Rule::Power`]: in proportion to a weight per light (the luminance of its flux, given
 //!   by the caller). Photon emission uses it so that every photon carries about the same

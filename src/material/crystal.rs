@@ -100,15 +100,15 @@ impl CrystalDesc {
     }
 
     /// The crystal at `nm` for the optics of [`crate::polar::crystal`].
-    pub fn at(&self, nm: f32) -> crate::polar::crystal::Crystal {
-        crate::polar::crystal::Crystal {
+    pub fn at(&self, nm: f32) -> crate::polar::crystal::Indicatrix {
+        crate::polar::crystal::Indicatrix {
             axes: self.axes,
             n: self.indices(nm),
         }
     }
 
     /// The transmittance e^(−σ t) over `t` metres of light at `nm` in the mode whose D field
-    /// is along `d` (σ from the absorption per axis, [`crate::polar::crystal::Crystal::absorption`]);
+    /// is along `d` (σ from the absorption per axis, [`crate::polar::crystal::Indicatrix::absorption`]);
     /// `None` for a crystal without an absorption table (the material's Beer–Lambert volume
     /// applies then).
     pub fn mode_transmittance(&self, nm: f32, d: glam::Vec3, t: f32) -> Option<f32> {

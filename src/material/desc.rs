@@ -31,8 +31,9 @@ pub enum AlphaMode {
 /// It takes precedence over KHR_materials_dispersion; see [`MaterialDesc::spectral_ior`].
 #[derive(Debug, Clone, PartialEq)]
 pub enum ExplicitIor {
-    /// The seed paper's Cauchy form n(λ) = b + c/λ², λ in micrometres (material extras
-    /// `{"cauchy": {"b": 1.5, "c": 0.0042}}`, MTL `cauchy_b`/`cauchy_c`).
+    /// The Cauchy form of Cropp & Zhang, "Light Refraction with Dispersion": n(λ) = b + c/λ²,
+    /// λ in micrometres (material extras `{"cauchy": {"b": 1.5, "c": 0.0042}}`, MTL
+    /// `cauchy_b`/`cauchy_c`).
     Cauchy {
         /// Constant term b.
         b: f32,
@@ -79,7 +80,7 @@ pub struct MaterialDesc {
     pub emission_spectrum: Option<EmissionSpectrum>,
     /// Nested-media priority where volumes overlap (extras / MTL `iris_priority`, default
     /// 0): inside an overlap the path is in the medium of highest priority (Schmidt & Budge
-    /// 2002; see [`crate::medium`]).
+    /// 2002; see [`crate::medium_stack`]).
     pub priority: i32,
     /// Index of refraction (KHR_materials_ior, default 1.5). The value 0 is the spec's
     /// special mode: infinite IOR, Fresnel = 1, no dispersion. Otherwise unused when

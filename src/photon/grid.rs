@@ -33,8 +33,8 @@ const MAX_CELLS: usize = 27;
 /// still count, as a fraction of `r`: the density estimators (SPPM's gather, the hybrid's
 /// caustic map, VCM's merging) count points in a flattened disc, not a ball, so that light
 /// on a nearby parallel surface (a light panel 1 cm under a ceiling, the far side of a thin
-/// wall) does not leak onto the receiver; measured on the Cornell box (`CornellBox-Original`,
-/// `--view front`, 128²), a ball put +25 % on SPPM's image mean. A curved surface of
+/// wall) does not leak onto the receiver (a ball brightens SPPM's image of the Cornell box:
+/// BENCHMARKS.md, "Figures behind choices in the code"). A curved surface of
 /// radius R leaves its tangent plane by r²/2R within the disc: all of it counts while
 /// r ≤ R/2.
 pub const DISC_TOLERANCE: f32 = 0.25;

@@ -12,10 +12,11 @@
 //!
 //! Russian roulette ([`Roulette`]): by default on the throughput (survival = the ratio of
 //! the new to the old throughput's largest channel, capped at 1, so a surviving photon keeps
-//! its power: Jensen 2001 §5.1); or the seed paper's rule, which picks diffuse reflection,
-//! specular reflection or refraction by the magnitudes of the material's colours and
-//! absorbs otherwise (Jensen 2001 §2.4 / the seed's §4.5), ignoring Fresnel's angle
-//! dependence and roughness — kept to reproduce the paper's figures.
+//! its power: Jensen 2001 §5.1); or by lobe (`--photon-rr lobe`), the rule of Cropp &
+//! Zhang, "Light Refraction with Dispersion", the paper Iris grew from, which picks diffuse
+//! reflection, specular reflection or refraction by the magnitudes of the material's
+//! colours and absorbs otherwise (Jensen 2001 §2.4 / Cropp & Zhang §4.5), ignoring
+//! Fresnel's angle dependence and roughness — kept to reproduce the paper's figures.
 //!
 //! Lights are assumed to be outside every volume (the photon starts with an empty medium
 //! stack, like camera rays).
@@ -24,7 +25,7 @@ use super::emit::EmittedPhoton;
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::interaction::{Leave, SurfaceHit};
 use crate::math::Rng;
-use crate::medium::MediumStack;
+use crate::medium_stack::MediumStack;
 use crate::optics::refract;
 use crate::scene::Scene;
 use crate::shading::media::Ends;
@@ -39,17 +40,21 @@ pub enum Roulette {
     /// Survival probability from the throughput change; survivors keep their power.
     #[default]
     Throughput,
-    /// The seed paper's rule: diffuse / reflect / refract / absorb chosen by the magnitudes
-    /// of the material's diffuse, specular and transmission colours.
-    Seed,
+    /// One lobe (diffuse / reflect / refract) or absorption, chosen by the magnitudes of the
+    /// material's diffuse, specular and transmission colours (Cropp & Zhang's rule).
+    Lobe,
 }
 
 impl Roulette {
-    /// Parses `--photon-rr throughput|seed` ([`crate::error::parse_name`]).
+    /// Parses `--photon-rr throughput|lobe` ([`crate::error::parse_name`]); `seed`, the
+    /// value's former name, is still accepted for `lobe`.
     pub fn parse(s: &str) -> crate::error::Result<Roulette> {
+        if s.trim().eq_ignore_ascii_case("seed") {
+            return Ok(Roulette::Lobe);
+        }
         let names = [
             ("throughput", Roulette::Throughput),
-            ("seed", Roulette::Seed),
+            ("lobe", Roulette::Lobe),
         ];
         crate::error::parse_name("--photon-rr", s, &names)
     }
@@ -197,8 +202,8 @@ enum Leaving {
     Meets(SurfaceHit),
 }
 
-/// The lobe colours the seed paper's rule chooses among: (diffuse, specular, transmission).
-fn seed_colours<C: Carrier>(bsdf: &Bsdf<C>) -> (C, C, C) {
+/// The lobe colours [`Roulette::Lobe`] chooses among: (diffuse, specular, transmission).
+fn lobe_colours<C: Carrier>(bsdf: &Bsdf<C>) -> (C, C, C) {
     let f0 = |eta: f32| {
         if eta.is_infinite() {
             1.0
@@ -236,10 +241,10 @@ fn seed_colours<C: Carrier>(bsdf: &Bsdf<C>) -> (C, C, C) {
     }
 }
 
-/// One step of the seed paper's rule at local `wo`: the new local direction and the
+/// One step of [`Roulette::Lobe`] at local `wo`: the new local direction and the
 /// colour factor, `None` when absorbed.
-fn seed_step<C: Carrier>(bsdf: &Bsdf<C>, wo: Vec3, rng: &mut Rng) -> Option<(Vec3, C, bool)> {
-    let (d, s, t) = seed_colours(bsdf);
+fn lobe_step<C: Carrier>(bsdf: &Bsdf<C>, wo: Vec3, rng: &mut Rng) -> Option<(Vec3, C, bool)> {
+    let (d, s, t) = lobe_colours(bsdf);
     let (pd, ps, pt) = (d.average(), s.average(), t.average());
     let xi = rng.next_f32();
     let side = if wo.z >= 0.0 { 1.0 } else { -1.0 };
@@ -283,9 +288,9 @@ pub(super) fn survive<C: Carrier>(old: C, new: C, rng: &mut Rng) -> Option<C> {
 }
 
 /// The photon's next direction at surface `s` under `roulette` (throughput roulette:
-/// survival = the throughput's change, survivors keep their power; or the seed paper's
-/// rule), updating `beta`: (direction, whether it is a transmission, whether the bounce
-/// counts as delta); `None` when the photon ends.
+/// survival = the throughput's change, survivors keep their power; or by lobe), updating
+/// `beta`: (direction, whether it is a transmission, whether the bounce counts as delta);
+/// `None` when the photon ends.
 fn next_direction<C: Carrier>(
     s: &Surface<C>,
     roulette: Roulette,
@@ -300,8 +305,8 @@ fn next_direction<C: Carrier>(
             *beta = survive(*beta, *beta * bs.f * (bs.wi.z.abs() / bs.pdf), rng)?;
             (bs.wi, bs.transmission, bs.delta)
         }
-        Roulette::Seed => {
-            let (wi, colour, transmission) = seed_step(&s.bsdf, s.wo, rng)?;
+        Roulette::Lobe => {
+            let (wi, colour, transmission) = lobe_step(&s.bsdf, s.wo, rng)?;
             *beta *= colour;
             (
                 wi,
@@ -452,4 +457,18 @@ pub fn trace_in_media<C: Carrier>(
         leaving = Leaving::Surface(s.hit);
     }
     rays
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Roulette;
+
+    #[test]
+    fn photon_rr_names_and_the_former_seed_spelling() {
+        assert_eq!(Roulette::parse("throughput").unwrap(), Roulette::Throughput);
+        assert_eq!(Roulette::parse("lobe").unwrap(), Roulette::Lobe);
+        assert_eq!(Roulette::parse("seed").unwrap(), Roulette::Lobe);
+        let err = Roulette::parse("fast").unwrap_err().to_string();
+        assert!(err.contains("throughput, lobe"), "{err}");
+    }
 }

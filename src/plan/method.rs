@@ -36,21 +36,10 @@ use crate::scene::Scene;
 /// VCM and BPT need a pinhole (light subpaths connect to the camera): under an orthographic
 /// camera rules 2 and 4 pick **SPPM** and rules 1 and 3 the path tracer and the hybrid.
 ///
-/// Measured (BENCHMARKS.md "Choosing VCM and BPT", `scripts/auto-evidence.sh`, 10 s per
-/// render, relative RMSE between two seeds, 2-vCPU VM):
-/// - rules 2 and 4, VCM against SPPM: 5–10× lower on CompareDispersion, CompareIor and
-///   TransmissionTest; level (±10 %) on CompareTransmission, CompareVolume and
-///   GlassBrokenWindow; 1.14× higher on gem_caustics. On the point-light caustic sphere
-///   21× lower floor error against a Mitsuba reference; in the Cornell water box 1.35×
-///   higher relative MSE but 3.7× lower RMSE/mean (BENCHMARKS.md "Vertex connection and
-///   merging").
-/// - rule 3, open scenes: the hybrid 1.25–2.5× lower than VCM on the paper's figures 4.5.1,
-///   7.1, 7.2, the rainbow and DispersionTest (BENCHMARKS.md "Converging faster" has the
-///   hybrid against SPPM, whence the 4 %).
-/// - rule 3, enclosed: VCM 1.8× lower than the hybrid in the Cornell box with spheres.
-/// - rule 1: BPT 3.3× lower than the path tracer in the Cornell box; the path tracer 1.8–2.3×
-///   lower than BPT on the open scenes (Khronos Box, clearcoat, sheen, the Sketchfab
-///   diamond).
+/// The evidence for each rule (relative RMSE between two seeds at equal time, per scene,
+/// `scripts/auto-evidence.sh`) is in BENCHMARKS.md, "Choosing VCM and BPT"; VCM against
+/// SPPM on the caustic sphere and the Cornell water box in "Vertex connection and merging";
+/// the hybrid against SPPM, whence the 4 % of rule 3, in "Converging faster".
 pub fn resolve_method(
     method: Method,
     scene: &Scene,

@@ -15,13 +15,15 @@
 //! the wave normal by the walk-off angle ρ with tan(θ + ρ) = (n_o/n_e)² tan θ, θ the angle
 //! from the optic axis. At an interface the tangential part of n·k is conserved (the phase
 //! matching that gives Snell's law), so each mode's wave normal solves |t + ξ n̂| = n(k̂)
-//! for ξ, which [`Crystal::refract`] finds by fixed-point iteration.
+//! for ξ, which [`Indicatrix::refract`] finds by fixed-point iteration.
 
 use glam::{Mat3, Vec3};
 
-/// A crystal at one wavelength: principal axes (world columns) and indices.
+/// A crystal's indicatrix (index ellipsoid) at one wavelength: principal axes (world
+/// columns) and principal indices. The crystal itself, its indices as functions of λ, is
+/// [`crate::spectrum::crystals::Crystal`].
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Crystal {
+pub struct Indicatrix {
     /// Principal axes x, y, z as columns (orthonormal, world space).
     pub axes: Mat3,
     /// Principal indices along x, y, z.
@@ -54,7 +56,7 @@ pub struct Mode {
     pub ray: Vec3,
 }
 
-impl Crystal {
+impl Indicatrix {
     /// η·v: the impermeability tensor applied to `v`.
     fn impermeability(&self, v: Vec3) -> Vec3 {
         let local = self.axes.transpose() * v;
@@ -112,8 +114,8 @@ impl Crystal {
 
     /// The crystal whose principal indices are the reciprocals 1/n_x, 1/n_y, 1/n_z: its
     /// impermeability is this crystal's permittivity ε = R·diag(n_x², n_y², n_z²)·Rᵀ.
-    fn dual(&self) -> Crystal {
-        Crystal {
+    fn dual(&self) -> Indicatrix {
+        Indicatrix {
             axes: self.axes,
             n: self.n.map(|n| 1.0 / n),
         }
@@ -123,7 +125,7 @@ impl Crystal {
     /// walk-off, for light met travelling inside the crystal along a known ray (a camera or
     /// a light inside it). The ray equations are the wave equations with k ↔ s, D ↔ E and
     /// n_i ↔ 1/n_i (Born & Wolf §15.2.2): the E fields a ray direction s admits are the
-    /// D fields of the [`Crystal::dual`] crystal for the wave normal s, and its ray index
+    /// D fields of the [`Indicatrix::dual`] crystal for the wave normal s, and its ray index
     /// n_r = n cos ρ the reciprocal of the dual's index, so the dual's slow mode is this
     /// crystal's fast one. Then D = ε·E, and k is the unit part of s ⊥ D (k, s, D and E lie
     /// in one plane, with D ⊥ k and E ⊥ s).
@@ -182,8 +184,8 @@ impl Crystal {
 /// Calcite at 589 nm, its optic axis along z: n_o = 1.6584, n_e = 1.4864 (the unit tests'
 /// uniaxial crystal).
 #[cfg(test)]
-pub(crate) fn calcite() -> Crystal {
-    Crystal {
+pub(crate) fn calcite() -> Indicatrix {
+    Indicatrix {
         axes: Mat3::IDENTITY,
         n: [1.6584, 1.6584, 1.4864],
     }
@@ -257,7 +259,7 @@ mod tests {
         // index is the mode's index for its wave normal.
         let mut cal = calcite();
         cal.axes = Mat3::from_rotation_y(0.6) * Mat3::from_rotation_x(0.3);
-        let biaxial = Crystal {
+        let biaxial = Indicatrix {
             axes: Mat3::from_rotation_z(0.4),
             n: [1.654, 1.672, 1.690],
         };
@@ -296,7 +298,7 @@ mod tests {
     #[test]
     fn biaxial_indices_lie_between_the_principal_ones() {
         // Peridot-like: n_α 1.654, n_β 1.672, n_γ 1.690.
-        let c = Crystal {
+        let c = Indicatrix {
             axes: Mat3::IDENTITY,
             n: [1.654, 1.672, 1.690],
         };

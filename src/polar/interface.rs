@@ -6,11 +6,11 @@
 //! Frames: world space; `n` is the surface's outward unit normal, `d` the path's unit
 //! direction outside, a mode's wave normal `k` inside. Phase matching across the surface
 //! (the tangential wave vector t is conserved) gives every direction
-//! ([`super::crystal::Crystal::refract`]). The reflectance R̄ is the unpolarized Fresnel
+//! ([`super::crystal::Indicatrix::refract`]). The reflectance R̄ is the unpolarized Fresnel
 //! reflectance with the mean index of the modes that propagate (outside) or the mode's
 //! own index (inside); 1 when nothing propagates beyond (total reflection).
 
-use super::crystal::{Crystal, Mode, BOTH};
+use super::crystal::{Indicatrix, Mode, BOTH};
 use super::modes::InMode;
 use crate::optics::fresnel_dielectric;
 use glam::Vec3;
@@ -59,7 +59,7 @@ pub struct Inside {
 /// `n_out` the index outside, the path in mode `state` inside (`None`: outside). `None`
 /// when the two disagree (a path inside leaving through the surface from outside).
 pub fn meet(
-    c: &Crystal,
+    c: &Indicatrix,
     (n, n_out): (Vec3, f32),
     d: Vec3,
     state: Option<InMode>,
@@ -72,7 +72,7 @@ pub fn meet(
 }
 
 impl Outside {
-    fn new(c: &Crystal, (n, n1): (Vec3, f32), d: Vec3) -> Outside {
+    fn new(c: &Indicatrix, (n, n1): (Vec3, f32), d: Vec3) -> Outside {
         let cos1 = -d.dot(n);
         let t = (d + n * cos1) * n1;
         let modes = BOTH.map(|w| c.refract(t, -n, w));
@@ -92,7 +92,7 @@ impl Outside {
 }
 
 impl Inside {
-    fn new(c: &Crystal, (n, n2): (Vec3, f32), inside: InMode) -> Option<Inside> {
+    fn new(c: &Indicatrix, (n, n2): (Vec3, f32), inside: InMode) -> Option<Inside> {
         let k = inside.k;
         let n_mode = c.mode(k, inside.which).n;
         let cos_k = k.dot(n);

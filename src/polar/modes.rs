@@ -9,7 +9,7 @@
 //! [`super::stokes::linear_polarizer`]`(ψ)`, symmetric, so the row a·P and the column P·S
 //! have the same entries.
 
-use super::crystal::{Crystal, Mode, Which, BOTH};
+use super::crystal::{Indicatrix, Mode, Which, BOTH};
 use glam::Vec3;
 
 /// Relative index difference below which the two modes are one (along an optic axis, or an
@@ -90,14 +90,14 @@ pub fn project(v: &[f32; 4], mode: &Mode, s: Vec3, travel: Travel) -> ([f32; 4],
 /// The mode of light met travelling inside a crystal along the ray direction `ray` in no
 /// known mode — a camera or a light inside the crystal, or a path leaving a surface that
 /// is not the crystal's inside it — chosen with `u` as [`choose`] does: each mode whose
-/// ray runs along `ray` ([`Crystal::mode_along_ray`]) weighted by what its linear
+/// ray runs along `ray` ([`Indicatrix::mode_along_ray`]) weighted by what its linear
 /// polarizer passes of `v` (basis `s` ⊥ `ray`), the polarizer along the mode's E field,
 /// which is ⊥ the ray as `v`'s basis is. Returns the choice with the chosen vector in the
 /// basis of the second value, ⊥ the mode's wave normal: fully polarized along its D field
 /// (E along the ray is D along the wave normal), or `v` unchanged in `s` when the two
 /// modes are one ([`DEGENERATE`]: no walk-off, no split).
 pub fn along_ray(
-    c: &Crystal,
+    c: &Indicatrix,
     ray: Vec3,
     (v, s): (&[f32; 4], Vec3),
     travel: Travel,

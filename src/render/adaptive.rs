@@ -31,8 +31,8 @@
 //!   [`MAX_LAG`] (a tile with fewer than `D/4` units works, whatever its estimate). The halves
 //!   see noise, not bias: a tile's estimate from few units misses rare bright paths (it
 //!   looks clean by luck), and a denoised tile from few units is blurred more, which the
-//!   denoised halves do not show (measured: without the bound the glass of water stopped
-//!   27 % further from the truth than uniform sampling, BENCHMARKS.md).
+//!   denoised halves do not show (without the bound the glass of water stopped further from
+//!   the truth than uniform sampling: BENCHMARKS.md, "Adaptive sampling").
 //! - If every tile would rest, every tile is active: rounds always take units somewhere.
 //!
 //! Invariants: the choice is a function of the film's sums, counts and rays, so the same

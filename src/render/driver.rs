@@ -28,12 +28,12 @@
 //!   shard of one) relies on the time limit or the observer: the progress bar then shows
 //!   elapsed time and the time limit, not a fraction of the units.
 //!
-//! Times are wall-clock from [`Setup::start`] (work before the first unit, such as photon
+//! Times are wall-clock from [`Prepass::start`] (work before the first unit, such as photon
 //! maps, counts).
 
 use super::film::Film;
 use super::progress::{estimate_note, progress_bar, relative_error_estimate};
-use super::{Control, EndReason, Observer, Progress, RenderSettings, RenderStats, Setup};
+use super::{Control, EndReason, Observer, Prepass, Progress, RenderSettings, RenderStats};
 use crate::error::Result;
 use indicatif::ProgressBar;
 use std::time::Instant;
@@ -98,7 +98,7 @@ impl RoundEnv<'_> {
 pub fn drive_passes(
     settings: &RenderSettings,
     schedule: Schedule,
-    setup: Setup,
+    setup: Prepass,
     observer: Option<Observer>,
     mut step: impl FnMut(&mut Film, u32, &RoundEnv) -> Result<Round>,
 ) -> Result<(Film, RenderStats)> {
@@ -124,7 +124,7 @@ pub fn drive_passes(
 pub fn drive(
     settings: &RenderSettings,
     schedule: Schedule,
-    setup: Setup,
+    setup: Prepass,
     mut observer: Option<Observer>,
     stop: &(dyn Fn() -> bool + Sync),
     mut step: impl FnMut(&mut Film, u64, u64, &RoundEnv) -> Result<Round>,
@@ -256,7 +256,7 @@ fn end_reason(interrupted: bool, observer_stopped: bool, reached: bool) -> EndRe
 /// The stats of a render that ended for `end` with `film`, the `(rays, photons, bad
 /// samples)` counted and `passes` (1 for per-sample methods).
 fn end_stats(
-    setup: &Setup,
+    setup: &Prepass,
     film: &Film,
     (rays, photons, bad): (u64, u64, u64),
     passes: u32,
@@ -281,7 +281,7 @@ fn end_stats(
 fn round_size(
     settings: &RenderSettings,
     schedule: &Schedule,
-    (setup, started): (&Setup, Instant),
+    (setup, started): (&Prepass, Instant),
     done: u64,
     next_checkpoint: u64,
 ) -> u64 {

@@ -42,7 +42,7 @@ pub use adaptive::Adaptive;
 pub use driver::{drive, drive_passes, Round, RoundEnv, Schedule};
 pub use film::{Film, FilmTile, TileState, TILE, TILE_PIXELS};
 pub use progress::{
-    estimate_note, progress_bar, relative_error_estimate, Control, Observer, Progress, Setup,
+    estimate_note, progress_bar, relative_error_estimate, Control, Observer, Prepass, Progress,
 };
 pub use samples::{pixel_sampler, primary_ray, render_batches, render_samples, Job, Starts};
 

@@ -1,5 +1,5 @@
 //! What a render shows while it runs: the [`Progress`] an observer sees at checkpoints, its
-//! answer ([`Control`]), the start of the clock ([`Setup`]) and the progress bar with the
+//! answer ([`Control`]), the start of the clock ([`Prepass`]) and the progress bar with the
 //! half-buffer error estimate. Images are linear RGB; times are wall-clock.
 
 use crate::error::Result;
@@ -80,7 +80,7 @@ pub type Observer<'a> = &'a mut (dyn FnMut(&Progress) -> Result<Control> + Send)
 
 /// Work done before the first camera sample (photon maps): its start time and counts.
 #[derive(Debug, Clone, Copy)]
-pub struct Setup {
+pub struct Prepass {
     /// When the render started.
     pub start: Instant,
     /// Rays traced building (photon maps).
@@ -89,10 +89,10 @@ pub struct Setup {
     pub photons: u64,
 }
 
-impl Setup {
+impl Prepass {
     /// Nothing done yet: starts the clock now.
     pub fn now() -> Self {
-        Setup {
+        Prepass {
             start: Instant::now(),
             rays: 0,
             photons: 0,

@@ -7,7 +7,7 @@
 
 use super::driver::{drive, Round, RoundEnv};
 use super::film::Film;
-use super::{guard, Context, Observer, RenderSettings, RenderStats, Setup};
+use super::{guard, Context, Observer, Prepass, RenderSettings, RenderStats};
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::math::Ray;
@@ -119,7 +119,7 @@ pub fn render_samples(
     camera: &Camera,
     settings: &RenderSettings,
     range: Option<std::ops::Range<u64>>,
-    setup: Setup,
+    setup: Prepass,
     observer: Option<Observer>,
     estimate: impl Fn(&Ray, f32, &mut Context) -> Vec3 + Sync,
 ) -> Result<(Film, RenderStats)> {
@@ -142,7 +142,7 @@ pub fn render_batches(
     camera: &Camera,
     settings: &RenderSettings,
     range: Option<std::ops::Range<u64>>,
-    setup: Setup,
+    setup: Prepass,
     observer: Option<Observer>,
     estimate: impl Fn(&Starts, &[Job], &mut [Vec3]) -> u64 + Sync,
 ) -> Result<(Film, RenderStats)> {
@@ -181,7 +181,7 @@ fn sample_rounds(
     camera: &Camera,
     settings: &RenderSettings,
     (range, max_round): (Option<std::ops::Range<u64>>, u64),
-    setup: Setup,
+    setup: Prepass,
     observer: Option<Observer>,
     stop: &(dyn Fn() -> bool + Sync),
     estimate: impl Fn(&Starts, &[Job], &mut [Vec3]) -> u64 + Sync,
@@ -342,7 +342,7 @@ mod tests {
                     &camera,
                     &settings,
                     (range, max_round),
-                    Setup::now(),
+                    Prepass::now(),
                     Some(&mut obs),
                     stop,
                     one_by_one(|ray, u, ctx| {

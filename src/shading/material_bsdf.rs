@@ -9,14 +9,14 @@
 use crate::bsdf::Bsdf;
 use crate::interaction::{CoincidentFaces, SurfaceHit};
 use crate::material::ShadingPoint;
-use crate::medium::{self, MediumStack};
+use crate::medium_stack::{self, MediumStack};
 use crate::scene::Scene;
 use crate::spectrum::Carrier;
 
 /// The BSDF at a hit (one lobe chosen by the transmission weight with `u`) and the media on
 /// the far side of a refraction. At a volume boundary η is the ratio of the indices on the
 /// two sides from the path's medium stack, with the `coincident` volume faces (from
-/// [`super::meet`]) crossed in the same step ([`medium::crossing`]).
+/// [`super::meet`]) crossed in the same step ([`medium_stack::crossing`]).
 ///
 /// Spectral transport: when a medium on either side may be dispersive (a dispersive
 /// material among the surfaces crossed or the media the path is in), the indices are taken
@@ -61,7 +61,7 @@ pub fn bsdf_at<C: Carrier>(
 }
 
 /// The indices on both sides of the volume boundary at `hit` (coincident volume faces
-/// merged, [`medium::crossing`]), the media beyond, and whether the path must keep only its
+/// merged, [`medium_stack::crossing`]), the media beyond, and whether the path must keep only its
 /// hero wavelength: in spectral transport, when a dispersive material is among the surfaces
 /// crossed or the media the path is in, the indices are those at the hero wavelength.
 pub fn interface<C: Carrier>(
@@ -77,7 +77,7 @@ pub fn interface<C: Carrier>(
         && (disp(hit.material)
             || coincident.iter().any(|c| disp(c.material))
             || media.iter().any(disp));
-    let (n_i, n_t, after) = medium::crossing(scene, hit, coincident, media, |m| {
+    let (n_i, n_t, after) = medium_stack::crossing(scene, hit, coincident, media, |m| {
         scene.materials()[m as usize].ior_at(hero, dispersive)
     });
     (n_i, n_t, after, dispersive)
@@ -106,7 +106,7 @@ pub fn lane_etas(
     lanes: [f32; 4],
 ) -> [f32; 4] {
     lanes.map(|nm| {
-        let (n_i, n_t, _) = medium::crossing(scene, hit, coincident, media, |m| {
+        let (n_i, n_t, _) = medium_stack::crossing(scene, hit, coincident, media, |m| {
             scene.materials()[m as usize].ior_at(Some(nm), true)
         });
         bsdf_eta(n_i, n_t, hit.front_face)

@@ -22,7 +22,7 @@ use super::material_bsdf::interface;
 use super::step::meet;
 use crate::interaction::{BandPoint, CoincidentFaces, Leave, SurfaceHit};
 use crate::math::{Ray, Rng};
-use crate::medium::MediumStack;
+use crate::medium_stack::MediumStack;
 use crate::scene::Scene;
 use crate::spectrum::Carrier;
 use crate::volume::coarse::Scale;

@@ -17,7 +17,7 @@
 use super::Arrival;
 use crate::bsdf::{dielectric::half_vector, Bsdf, SMOOTH_ALPHA};
 use crate::material::CrystalDesc;
-use crate::medium::MediumStack;
+use crate::medium_stack::MediumStack;
 use crate::polar::fresnel::{self, MIRROR};
 use crate::polar::stokes::{mat_mul, transverse, Mueller, IDENTITY};
 use crate::scene::Scene;
@@ -122,7 +122,7 @@ pub fn polarizer_sheet<C: Carrier>(at: &Arrival<'_, C>) -> Option<Vec3> {
 /// with an absorption table, with the light in the mode whose D field is `mode_d`,
 /// e^(−σ_m t) ([`CrystalDesc::mode_transmittance`]) at the hero of `lambda`; elsewhere the
 /// arrival's (Beer–Lambert). A path in no medium leaving a volume (it started inside)
-/// travelled in that volume ([`crate::medium::segment_medium`]).
+/// travelled in that volume ([`crate::medium_stack::segment_medium`]).
 pub fn segment_transmittance<C: Carrier>(
     scene: &Scene,
     media: &MediumStack,
@@ -130,7 +130,7 @@ pub fn segment_transmittance<C: Carrier>(
     at: &Arrival<'_, C>,
     lambda: &C::Lambda,
 ) -> C {
-    let crystal = crate::medium::segment_medium(scene, media, &at.hit)
+    let crystal = crate::medium_stack::segment_medium(scene, media, &at.hit)
         .and_then(|m| scene.materials()[m as usize].desc.crystal.as_ref());
     match (crystal, mode_d, C::hero(lambda)) {
         (Some(c), Some(d), Some(nm)) => c

@@ -28,7 +28,7 @@ use crate::interaction::{CoincidentFaces, SurfaceHit};
 use crate::material::AlphaMode;
 use crate::material::{Material, ShadingPoint};
 use crate::math::{Frame, Ray, Rng};
-use crate::medium::MediumStack;
+use crate::medium_stack::MediumStack;
 use crate::sampler::Bounce;
 use crate::scene::{Scene, Triangle};
 use crate::spectrum::Carrier;
@@ -71,7 +71,7 @@ pub struct Arrival<'s, C: Carrier> {
     /// The material at the hit (textures evaluated).
     pub sp: ShadingPoint,
     /// Beer–Lambert transmittance of the segment just travelled, in the medium the ray was
-    /// in ([`crate::medium::segment_medium`]; one outside every medium).
+    /// in ([`crate::medium_stack::segment_medium`]; one outside every medium).
     pub transmittance: C,
 }
 
@@ -100,7 +100,7 @@ pub fn arrival<'s, C: Carrier>(
     lambda: &C::Lambda,
 ) -> Option<Arrival<'s, C>> {
     let hit = hit?;
-    let transmittance = match crate::medium::segment_medium(scene, media, &hit) {
+    let transmittance = match crate::medium_stack::segment_medium(scene, media, &hit) {
         Some(m) => {
             let x = hit.t + ray.skipped;
             scene.materials()[m as usize].transmittance_at::<C>(x, lambda)

@@ -64,8 +64,8 @@ pub fn sample_visible_wavelength(u: f32) -> f32 {
 /// `member` picks which of them is the hero (the one a dispersive path keeps), so with a
 /// (0, m, 2)-net the heroes are stratified over [0, 1) too. A 1D number `u` directly would
 /// stratify the heroes but let two samples whose `u` differ by about a multiple of 1/N carry
-/// the same wavelengths (measured: 4× the colour noise of the golden-ratio lattice on a
-/// uniform environment at 2 spp).
+/// the same wavelengths (more colour noise than the golden-ratio lattice on a uniform
+/// environment at low sample counts: BENCHMARKS.md, "Figures behind choices in the code").
 pub fn hero_number(offset: f32, member: f32) -> f32 {
     let n = N_LAMBDA as f32;
     let m = (member * n).floor().clamp(0.0, n - 1.0);

@@ -66,9 +66,9 @@ pub enum Studio {
 
 /// The preset the drop-in preview uses when `--studio` is not given: `jeweller` for a file
 /// holding a transmissive, dispersive material (a gem: fire needs small bright sources on a
-/// dark field), else `soft`. Evidence (BENCHMARKS.md "Default studio for gems"): on the
-/// four bare diamond cuts, `jeweller` shows 2.2–3× the fire (noise-free median chroma) of
-/// `soft` and 8–14× that of `bright`, and the highest scintillation, at equal brilliance.
+/// dark field), else `soft`. Evidence (BENCHMARKS.md, "Default studio for gems"): on the
+/// four bare diamond cuts, `jeweller` shows the most fire (noise-free median chroma) and
+/// the highest scintillation, at equal brilliance.
 pub fn default_for(desc: &SceneDesc) -> Studio {
     let gem = desc.materials.iter().any(|m| {
         let m = crate::material::Material::new(m.clone());

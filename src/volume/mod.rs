@@ -1,6 +1,6 @@
 //! Scattering media: homogeneous media inside closed meshes and the scene-wide fog, with
 //! their phase functions, coefficients and free-flight sampling. The nested-media stack the
-//! paths carry is [`crate::medium`]; the path tracer's use of media is
+//! paths carry is [`crate::medium_stack`]; the path tracer's use of media is
 //! [`crate::shading::media`].
 //!
 //! - [`phase`]: isotropic, Henyey–Greenstein and Rayleigh phase functions, evaluated and

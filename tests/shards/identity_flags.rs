@@ -27,7 +27,7 @@ const IMAGE: &[(&str, &str)] = &[
     ("photons", "1000"),
     ("radius", "0.1"),
     ("alpha", "0.5"),
-    ("photon-rr", "seed"),
+    ("photon-rr", "lobe"),
     ("caustics", "light"),
     ("view", "top"),
     ("background", "transparent"),

@@ -1,8 +1,8 @@
-//! The gallery's fixed list of images ([`ENTRIES`]): the seed paper's figure scenes, the
-//! gem previews and the bare stone through the drop-in preview, the sky and media scenes,
-//! the birefringent crystals (all in `assets/`), then the Khronos dispersion samples from
-//! the shared third-party folder. Paths are relative
-//! to the project root or to that folder ([`Origin`]).
+//! The gallery's fixed list of images ([`ENTRIES`]): the figure scenes of Cropp & Zhang,
+//! "Light Refraction with Dispersion", the gem previews and the bare stone through the
+//! drop-in preview, the sky and media scenes, the birefringent crystals (all in `assets/`),
+//! then the Khronos dispersion samples from the shared third-party folder. Paths are
+//! relative to the project root or to that folder ([`Origin`]).
 
 /// Where an entry's scene file lives.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -28,8 +28,9 @@ pub struct Entry {
     pub before: Option<&'static str>,
 }
 
-/// The gallery, in page order: the seed paper's figure scenes, the gems, the computed sky,
-/// the scattering media and the birefringent crystals, then the Khronos samples with `KHR_materials_dispersion` (the only two in the shared folder's
+/// The gallery, in page order: the paper's figure scenes (Cropp & Zhang), the gems, the
+/// computed sky, the scattering media and the birefringent crystals, then the Khronos
+/// samples with `KHR_materials_dispersion` (the only two in the shared folder's
 /// `MANIFEST.md`).
 pub const ENTRIES: &[Entry] = &[
     Entry {

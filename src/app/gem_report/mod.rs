@@ -33,7 +33,7 @@ use crate::error::{Error, Result};
 use crate::image::{Coverage, ImageRgb};
 use crate::light::env::Environment;
 use crate::prepare::looks::LookFlag;
-use crate::prepare::stage::{Stage, Table};
+use crate::prepare::stage::{GemStage, Table};
 use crate::studio::instrument::Instrument;
 use glam::Vec3;
 use shots::{Rendered, Settings, Shot};
@@ -196,7 +196,7 @@ pub fn gem_report(opts: &GemReportOptions) -> Result<GemReport> {
     let tilts: Vec<f32> = std::iter::once(0.0)
         .chain(opts.tilts.iter().copied())
         .collect();
-    let stage = Stage::new(&opts.scene, &opts.looks, opts.table, &tilts)?;
+    let stage = GemStage::new(&opts.scene, &opts.looks, opts.table, &tilts)?;
     let stone = StoneInfo {
         meshes: stage.meshes.clone(),
         table: stage.table,
@@ -243,7 +243,7 @@ pub fn gem_report(opts: &GemReportOptions) -> Result<GemReport> {
 /// Renders every shot, building each instrument's lighting once (shots of one instrument
 /// are consecutive after sorting); `None` when a stop request cut a render short.
 fn render_all(
-    stage: &Stage,
+    stage: &GemStage,
     opts: &GemReportOptions,
     settings: &Settings,
     list: &[Shot],

@@ -9,7 +9,7 @@
 //! pixel's camera samples that hit the stone, [`crate::render::coverage`]) is computed
 //! once per tilt with the same samples.
 //!
-//! A birefringent stone ([`Stage::birefringent`]) is rendered once per mode, each as the
+//! A birefringent stone ([`GemStage::birefringent`]) is rendered once per mode, each as the
 //! isotropic stone of that mode's index ([`crate::prepare::stage`]'s module docs), and a
 //! shot's image is the mean of the two: each mode carries half of the unpolarized light.
 
@@ -20,7 +20,7 @@ use crate::integrator::Method;
 use crate::light::env::Environment;
 use crate::plan::SpectralMode;
 use crate::polar::crystal::Which;
-use crate::prepare::stage::{Setup, Stage};
+use crate::prepare::stage::{GemStage, ShotSetup};
 use crate::spectrum::ior::{LAMBDA_C, LAMBDA_D, LAMBDA_F};
 use crate::studio::instrument::Instrument;
 use std::time::Duration;
@@ -137,7 +137,7 @@ fn options(stage_file: &std::path::Path, s: &Settings, spp: u32) -> RenderOption
 /// instrument's): the mean of its two modes' images for a birefringent stone (module
 /// docs), with their summed time.
 pub fn render(
-    stage: &Stage,
+    stage: &GemStage,
     file: &std::path::Path,
     shot: &Shot,
     environment: &Environment,
@@ -166,16 +166,16 @@ pub fn render(
     })
 }
 
-/// Renders `shot` with the stone showing `mode` ([`Setup::mode`]).
+/// Renders `shot` with the stone showing `mode` ([`ShotSetup::mode`]).
 fn render_mode(
-    stage: &Stage,
+    stage: &GemStage,
     file: &std::path::Path,
     shot: &Shot,
     environment: &Environment,
     s: &Settings,
     mode: Which,
 ) -> Result<Rendered> {
-    let setup = Setup {
+    let setup = ShotSetup {
         environment: environment.clone(),
         tilt: shot.tilt,
         lambda_nm: shot.lambda_nm,
@@ -201,12 +201,12 @@ fn render_mode(
 
 /// The coverage of the stone at `tilt` with the report's camera samples.
 pub fn coverage(
-    stage: &Stage,
+    stage: &GemStage,
     file: &std::path::Path,
     tilt: f32,
     s: &Settings,
 ) -> Result<Coverage> {
-    let setup = Setup {
+    let setup = ShotSetup {
         environment: Environment::Uniform {
             radiance: glam::Vec3::ZERO,
         },

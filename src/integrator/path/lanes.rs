@@ -18,7 +18,8 @@
 //! Shading is scalar per lane; vectorising it across the lanes is the next step.
 //!
 //! Width ([`LaneWidth::choose`]): 8 on Embree, whose `rtcIntersect8` beats 16 on partly
-//! filled packets of incoherent rays (BENCHMARKS.md), and single rays on the BVH, which
+//! filled packets of incoherent rays (BENCHMARKS.md, "Lanes: 8 or 16 camera paths per
+//! packet"), and single rays on the BVH, which
 //! answers packets lane by lane (obvhs has no packet traversal). The environment variable
 //! `IRIS_LANES=off|8|16` overrides it for measurements; images do not change.
 

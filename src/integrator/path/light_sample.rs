@@ -12,7 +12,7 @@ use super::vertex::mis;
 use crate::bsdf::TransportMode;
 use crate::interaction::SurfaceHit;
 use crate::math::Ray;
-use crate::medium::MediumStack;
+use crate::medium_stack::MediumStack;
 use crate::sampler::Bounce;
 use crate::scene::Scene;
 use crate::shading::media::Through;
@@ -21,10 +21,12 @@ use crate::spectrum::Carrier;
 use crate::volume::Phase;
 use glam::{Vec2, Vec3};
 
-/// A light sample's contribution and the shadow ray that decides it: `value` counts if
-/// nothing blocks `shadow` (times the shadow ray's transmittance through the media it
-/// starts in, `through`, in a scene with media); with no shadow ray, `value` is zero.
-pub(super) struct LightSample<C: Carrier> {
+/// A vertex's next-event record: the contribution of a light sample (the shading layer's
+/// [`lights::LightSample`], weighted and carried) and the shadow ray that decides it:
+/// `value` counts if nothing blocks `shadow` (times the shadow ray's transmittance through
+/// the media it starts in, `through`, in a scene with media); with no shadow ray, `value`
+/// is zero.
+pub(super) struct NextEvent<C: Carrier> {
     pub shadow: Option<Ray>,
     /// The direction toward the light (world, unit; zero without a sample).
     pub wi: Vec3,
@@ -32,8 +34,8 @@ pub(super) struct LightSample<C: Carrier> {
     pub through: Option<Through>,
 }
 
-impl<C: Carrier> LightSample<C> {
-    const NONE: Self = LightSample {
+impl<C: Carrier> NextEvent<C> {
+    const NONE: Self = NextEvent {
         shadow: None,
         wi: Vec3::ZERO,
         value: C::ZERO,
@@ -109,11 +111,11 @@ pub(super) fn next_event<C: Carrier>(
     use_mis: bool,
     u: &mut Bounce<'_>,
     rays: &mut u64,
-) -> LightSample<C> {
+) -> NextEvent<C> {
     let hit = at.hit();
     let sampler = &scene.light_sampler();
     if sampler.is_empty() {
-        return LightSample::NONE;
+        return NextEvent::NONE;
     }
     // Numbers a light does not use are skipped ([`Bounce::skip_light_choice`]).
     let u_choice = if sampler.lights().len() > 1 {
@@ -123,7 +125,7 @@ pub(super) fn next_event<C: Carrier>(
         0.0
     };
     let Some(choice) = sampler.sample(u_choice) else {
-        return LightSample::NONE;
+        return NextEvent::NONE;
     };
     let p_sel = choice.pmf;
     let (reads_position, reads_member) = lights::numbers_read(choice.light);
@@ -140,7 +142,7 @@ pub(super) fn next_event<C: Carrier>(
         0.0
     };
     let Some(ls) = lights::sample(scene, hit, choice.light, uc, up) else {
-        return LightSample::NONE;
+        return NextEvent::NONE;
     };
     // The light's pdf includes choosing it ([`lights::area_pdf`] and
     // [`lights::environment_pdf`] give the same for a BSDF-sampled direction).
@@ -148,7 +150,7 @@ pub(super) fn next_event<C: Carrier>(
     // Per lane with the hero-marginal pdf at a rough dispersive interface (spectral MIS).
     let (f, cos, pdf) = at.eval(ls.wi, lambda);
     if f == C::ZERO {
-        return LightSample::NONE;
+        return NextEvent::NONE;
     }
     *rays += 1;
     let w = match light_pdf {
@@ -156,7 +158,7 @@ pub(super) fn next_event<C: Carrier>(
         _ => 1.0,
     };
     let incident = C::emitted(ls.incident / p_sel, ls.shape, lambda);
-    LightSample {
+    NextEvent {
         shadow: Some(ls.shadow),
         wi: ls.wi,
         value: f * incident * (cos * w),

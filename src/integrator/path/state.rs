@@ -17,7 +17,7 @@
 use super::CausticSplit;
 use crate::bsdf::{Bsdf, BsdfSample};
 use crate::interaction::SurfaceHit;
-use crate::medium::MediumStack;
+use crate::medium_stack::MediumStack;
 use crate::sampler::Bounce;
 use crate::shading::{Surface, MAX_DELTA_BOUNCES};
 use crate::spectrum::Carrier;

@@ -9,7 +9,7 @@
 //! Units: radiance in the carrier's units (linear RGB or per-wavelength spectral
 //! radiance); frames as in [`crate::shading::step`].
 
-use super::light_sample::{next_event, LightSample, Scatterer};
+use super::light_sample::{next_event, NextEvent, Scatterer};
 use super::own_hero::{self, HeroOf};
 use super::split::Branches;
 use super::state::{PathState, Prev};
@@ -380,7 +380,7 @@ pub(super) fn vertex<C: Carrier>(
 }
 
 /// A light sample at throughput `beta`, with the gather to add after it.
-pub(super) fn pending<C: Carrier>(beta: C, ls: LightSample<C>, gather: Option<C>) -> Pending<C> {
+pub(super) fn pending<C: Carrier>(beta: C, ls: NextEvent<C>, gather: Option<C>) -> Pending<C> {
     Pending {
         shadow: ls.shadow,
         through: ls.through,

@@ -18,7 +18,7 @@ use super::mis::{Partials, Pass};
 use crate::bsdf::TransportMode;
 use crate::camera::Camera;
 use crate::math::Ray;
-use crate::medium::MediumStack;
+use crate::medium_stack::MediumStack;
 use crate::photon::emit::{PhotonEmitter, Source};
 use crate::photon::grid::HashGrid;
 use crate::render::Context;

@@ -23,7 +23,7 @@ use super::mis::{LightEnd, Partials, Pass};
 use crate::bsdf::TransportMode;
 use crate::integrator::light_trace::{Splat, Splatter};
 use crate::math::Rng;
-use crate::medium::MediumStack;
+use crate::medium_stack::MediumStack;
 use crate::photon::emit::{Aim, EmittedPhoton, PhotonEmitter, PhotonNumbers, Source};
 use crate::photon::trace::PhotonVertex;
 use crate::scene::Scene;

@@ -44,8 +44,8 @@ use crate::integrator::light_trace::{self, Splatter};
 use crate::photon::emit::{PhotonEmitter, PhotonNumbers};
 use crate::photon::grid::HashGrid;
 use crate::render::{
-    drive_passes, pixel_sampler, primary_ray, Context, Film, Observer, RenderSettings, RenderStats,
-    Round, Setup,
+    drive_passes, pixel_sampler, primary_ray, Context, Film, Observer, Prepass, RenderSettings,
+    RenderStats, Round,
 };
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
@@ -117,10 +117,9 @@ struct Run<'a> {
 
 /// VCM's first radius over SPPM's ([`first_radius`]: 2 pixel footprints): half a pixel
 /// footprint. With SPPM's radius the merges' share (η = π r² n_light) outweighs light
-/// tracing where a caustic is seen directly and blurs it; measured (BENCHMARKS.md, "Vertex
-/// connection and merging"): at ×1, ×¼, ×⅒ the Cornell box's relative MSE at equal time is
-/// 0.0023, 0.0009, 0.0006 (BPT 0.0003) and its water box's 0.0077, 0.0097, 0.0166 (BPT
-/// 0.020, the path tracer 0.014).
+/// tracing where a caustic is seen directly and blurs it; a smaller radius trades that
+/// against noise where merging carries the light (BENCHMARKS.md, "Vertex connection and
+/// merging", has the error at ×1, ×¼ and ×⅒).
 pub const RADIUS_SCALE: f32 = 0.25;
 
 /// Most light subpaths a pass traces (a light vertex takes about 0.5 kB; a pass keeps
@@ -179,7 +178,7 @@ impl Run<'_> {
         let label = if self.vcm.merge { "vcm" } else { "bpt" };
         let schedule =
             crate::render::schedule(u64::from(settings.spp.max(1)), range, 1, false, label);
-        let mut setup = Setup::now();
+        let mut setup = Prepass::now();
         let n = self.light_paths();
         let r0 = if self.vcm.merge { self.r0::<C>() } else { 0.0 };
         if self.vcm.merge && self.vcm.radius.is_none() {

@@ -16,7 +16,7 @@
 //! Frames: world space; `light.k` is the photon's direction outside and its mode's wave
 //! normal inside, where the photon moves along the mode's ray direction (the walk-off).
 
-use crate::polar::crystal::{Crystal, Mode};
+use crate::polar::crystal::{Indicatrix, Mode};
 use crate::polar::fresnel;
 use crate::polar::interface::{meet, Inside, Meeting, Outside};
 use crate::polar::modes::{along_ray, choose, split, Chosen, InMode, Travel};
@@ -45,7 +45,12 @@ pub(super) struct Step {
 /// light in that mode and the factor on its power (the true power over the choice's
 /// probability: Σw, the light's s₀ = 1 shared between the two orthogonal modes). `None`
 /// when nothing passes.
-pub(super) fn start(c: &Crystal, d: Vec3, light: &Light, u: f32) -> Option<(InMode, Light, f32)> {
+pub(super) fn start(
+    c: &Indicatrix,
+    d: Vec3,
+    light: &Light,
+    u: f32,
+) -> Option<(InMode, Light, f32)> {
     let s = light.x;
     let chosen = along_ray(c, d, (&light.in_basis(s), s), Travel::Along, u)?;
     let ((which, mode, (v, _), total), x) = chosen;
@@ -62,7 +67,7 @@ pub(super) fn start(c: &Crystal, d: Vec3, light: &Light, u: f32) -> Option<(InMo
 /// `n`, `n_out` the index outside, in mode `state` (`None`: arriving from outside), with
 /// `light`, choosing with `u` (reflect or refract; which mode). `None` when it ends.
 pub(super) fn bounce(
-    c: &Crystal,
+    c: &Indicatrix,
     (n, n_out): (Vec3, f32),
     d: Vec3,
     state: Option<InMode>,

@@ -30,7 +30,7 @@ use super::emit::EmittedPhoton;
 use super::trace::PhotonVertex;
 use crate::bsdf::TransportMode;
 use crate::math::{Ray, Rng};
-use crate::medium::MediumStack;
+use crate::medium_stack::MediumStack;
 use crate::polar::modes::InMode;
 use crate::polar::stokes::{linear_polarizer, transverse, Light};
 use crate::scene::Scene;

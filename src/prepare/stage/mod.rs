@@ -23,8 +23,8 @@
 //!   any size the file's f32 coordinates can hold, and the table search and the ray
 //!   tracing never meet products of coordinates beyond f32's range. A stone whose extent
 //!   is outside [`EXTENTS`] is refused with an error naming the file.
-//!   Lengths the stage reports ([`Stage::girdle_radius`], [`Stage::height`],
-//!   [`Stage::half_field`]) are in the file's units.
+//!   Lengths the stage reports ([`GemStage::girdle_radius`], [`GemStage::height`],
+//!   [`GemStage::half_field`]) are in the file's units.
 //! - The stone is turned so the table direction is +Y (the shortest rotation), then moved
 //!   so the centre of its bounding box is the origin. The **girdle radius** is the largest
 //!   distance of a vertex from the Y axis then (half the girdle diameter of a round stone).
@@ -39,15 +39,15 @@
 //!   stone, and the instrument's obscuration is part of its lighting instead.
 //!
 //! ## Wavelength and colour
-//! The renders use RGB transport with the stone's index at one wavelength ([`Setup::lambda_nm`]):
+//! The renders use RGB transport with the stone's index at one wavelength ([`ShotSetup::lambda_nm`]):
 //! every stone material's n(λ) model ([`crate::material::MaterialDesc::spectral_ior`]) is
 //! replaced by the constant n(λ), so a render is deterministic and noise-free in colour,
 //! and two renders at two Fraunhofer lines show the dispersion between them.
 //!
 //! A **birefringent** stone (a crystal material, [`crate::material::CrystalDesc`], that is
-//! not isotropic: [`Stage::birefringent`]) splits unpolarized light into two modes of
+//! not isotropic: [`GemStage::birefringent`]) splits unpolarized light into two modes of
 //! orthogonal polarization, each carrying half of it. The stage shows one mode at a time
-//! ([`Setup::mode`]) as an isotropic stone of that mode's index at the wavelength
+//! ([`ShotSetup::mode`]) as an isotropic stone of that mode's index at the wavelength
 //! ([`mode_index`]): with n₁ ≤ n₂ ≤ n₃ the principal indices at λ, the fast mode's index
 //! runs over [n₁, n₂] with the direction of travel and the slow mode's over [n₂, n₃]
 //! (Born & Wolf §15.3), and each takes the middle of its range. For a uniaxial stone one
@@ -59,7 +59,7 @@
 //! exchange light between the modes), the extraordinary index does not vary with the
 //! direction, and the crystal's absorption per mode gives way to the material's
 //! colour. For the
-//! instruments that code angles in colour channels ([`Setup::grey_body`]: ASET,
+//! instruments that code angles in colour channels ([`ShotSetup::grey_body`]: ASET,
 //! Ideal-Scope, the direction code) a coloured stone's body colour is made grey with the
 //! same luminance-weighted absorption ([`grey`]), so a blue sapphire does not paint
 //! ASET's red band dark; a base colour texture still tints.
@@ -116,14 +116,14 @@ impl Table {
 }
 
 /// The stone on the stage, ready to be prepared under any instrument and tilt.
-pub struct Stage {
+pub struct GemStage {
     /// The stone alone, table +Y, bounding-box centre at the origin, untilted, in stage
-    /// units (the file's times [`Stage::scale`]).
+    /// units (the file's times [`GemStage::scale`]).
     desc: SceneDesc,
     /// Stage units per file unit: a power of two (module docs).
     scale: f32,
     /// Whether a stone material is a crystal that is not isotropic: each shot is then
-    /// rendered once per mode ([`Setup::mode`]).
+    /// rendered once per mode ([`ShotSetup::mode`]).
     pub birefringent: bool,
     /// The stone's mesh names, as the file names them.
     pub meshes: Vec<String>,
@@ -143,7 +143,7 @@ pub struct Stage {
 
 /// One render's set-up on the stage.
 #[derive(Debug, Clone)]
-pub struct Setup {
+pub struct ShotSetup {
     /// The instrument's lighting.
     pub environment: Environment,
     /// Tilt about +X, degrees.
@@ -159,10 +159,10 @@ pub struct Setup {
     pub mode: Which,
 }
 
-impl Stage {
+impl GemStage {
     /// Loads `path`, applies `looks`, keeps the stone and puts it on the axis; `tilts`
     /// (degrees) are every tilt the caller will ask for, so the field fits them all.
-    pub fn new(path: &Path, looks: &[LookFlag], table: Table, tilts: &[f32]) -> Result<Stage> {
+    pub fn new(path: &Path, looks: &[LookFlag], table: Table, tilts: &[f32]) -> Result<GemStage> {
         let start = Instant::now();
         let mut desc = crate::load::load_scene(path)?;
         looks::apply(&mut desc, looks)?;
@@ -215,7 +215,7 @@ impl Stage {
             images: desc.images,
             ..SceneDesc::default()
         };
-        Ok(Stage {
+        Ok(GemStage {
             desc: stage_desc,
             scale,
             birefringent,
@@ -231,7 +231,7 @@ impl Stage {
 
     /// The render scene of `setup`: the stone tilted, its index at the wavelength, under
     /// the instrument, with the viewer's camera.
-    pub fn prepare(&self, setup: &Setup, accel: Backend) -> Result<Prepared> {
+    pub fn prepare(&self, setup: &ShotSetup, accel: Backend) -> Result<Prepared> {
         let start = Instant::now();
         let mut desc = self.desc.clone();
         let tilt = Quat::from_rotation_x(setup.tilt.to_radians());

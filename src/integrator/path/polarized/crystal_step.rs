@@ -19,7 +19,7 @@
 //! exact. Radiance crossing into a mode of index n is scaled by (n_i/n_t)² like any
 //! refraction (pbrt-v4 §9.5.2).
 
-use crate::polar::crystal::{Crystal, Mode};
+use crate::polar::crystal::{Indicatrix, Mode};
 use crate::polar::fresnel;
 use crate::polar::interface::{meet, Inside, Meeting, Outside};
 use crate::polar::modes::{along_ray, choose, split, Chosen, InMode, Travel};
@@ -47,7 +47,7 @@ pub(super) struct CrystalBounce {
 /// by what each mode's polarizer passes of the analyzer ([`along_ray`]), the analyzer
 /// becoming the projected one over the choice's probability. `None` when it passes
 /// nothing.
-pub(super) fn start(c: &Crystal, d: Vec3, pol: &Analyzer, u: f32) -> Option<(InMode, Analyzer)> {
+pub(super) fn start(c: &Indicatrix, d: Vec3, pol: &Analyzer, u: f32) -> Option<(InMode, Analyzer)> {
     let s = pol.x;
     let chosen = along_ray(c, d, (&pol.in_basis(s).a, s), Travel::Against, u)?;
     let ((which, mode, (a, weight), total), x) = chosen;
@@ -70,7 +70,7 @@ pub(super) fn start(c: &Crystal, d: Vec3, pol: &Analyzer, u: f32) -> Option<(InM
 /// `pol` its analyzer, `u` two numbers (reflect or refract; which mode). `None` when no
 /// light can arrive this way.
 pub(super) fn bounce(
-    c: &Crystal,
+    c: &Indicatrix,
     (n, n_out): (Vec3, f32),
     d: Vec3,
     state: Option<InMode>,
