@@ -294,15 +294,7 @@ fn the_page_orbits_switches_and_renders_what_the_command_reproduces() {
     view.child.kill().unwrap();
     let _ = view.child.wait();
     b.wait("window.iris.disconnected === true");
-    let state = b.eval("document.getElementById('state').textContent");
-    assert!(
-        state.as_str().unwrap().starts_with("disconnected"),
-        "{state}"
-    );
-    assert_eq!(
-        b.eval("document.getElementById('spinner').hidden"),
-        json!(true)
-    );
+    assert_disconnected(&mut b);
 }
 
 #[test]
@@ -370,6 +362,19 @@ fn drag(b: &mut Browser, (dx, dy): (f64, f64)) {
         b.mouse("mouseMoved", (c.0 + t * dx, c.1 + t * dy), 1);
     }
     b.mouse("mouseReleased", (c.0 + dx, c.1 + dy), 0);
+}
+
+/// The page says "disconnected" and its spinner is hidden.
+fn assert_disconnected(b: &mut Browser) {
+    let state = b.eval("document.getElementById('state').textContent");
+    assert!(
+        state.as_str().unwrap().starts_with("disconnected"),
+        "{state}"
+    );
+    assert_eq!(
+        b.eval("document.getElementById('spinner').hidden"),
+        json!(true)
+    );
 }
 
 /// Waits for a frame at rest of the server's current generation (denoised, when the build
@@ -477,15 +482,7 @@ fn the_stone_stays_in_frame_through_a_drag_a_preset_and_a_reset_and_ctrl_c_shows
         .unwrap()
         .success());
     b.wait("window.iris.disconnected && document.getElementById('state').textContent");
-    let state = b.eval("document.getElementById('state').textContent");
-    assert!(
-        state.as_str().unwrap().starts_with("disconnected"),
-        "{state}"
-    );
-    assert_eq!(
-        b.eval("document.getElementById('spinner').hidden"),
-        json!(true)
-    );
+    assert_disconnected(&mut b);
     b.screenshot("diamond-disconnected");
     let _ = view.child.wait();
 }

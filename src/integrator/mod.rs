@@ -91,6 +91,20 @@ impl Method {
         }
     }
 
+    /// What a method is good for, in a sentence for someone choosing how to light a gem.
+    pub fn purpose(self) -> &'static str {
+        match self {
+            Method::Whitted => "a quick look: sharp reflections and refractions, no soft light",
+            Method::Path => "all the light, soft and exact; caustics come slowly and noisy",
+            Method::Photon => "caustics fast from a photon map, slightly blurred",
+            Method::Sppm => "sharp caustics through glass, refining pass by pass",
+            Method::Hybrid => "all the light, with the caustics under a stone from photons",
+            Method::Vcm => "the hardest light: caustics seen in mirrors and through glass",
+            Method::Bpt => "small lights and caustics seen directly, without bias",
+            Method::Auto => "chosen from the scene",
+        }
+    }
+
     /// Parses `--method NAME` ([`crate::error::parse_name`]).
     pub fn parse(s: &str) -> Result<Method> {
         let names = Method::ALL.map(|m| (m.name(), m));

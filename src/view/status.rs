@@ -1,26 +1,11 @@
 //! What the live view's page says about a render, in an artist's words first: the method
-//! and what it is for ([`purpose`]), what the stone and metal choices changed, the time the
+//! and what it is for ([`Method::purpose`]), what the stone and metal choices changed, the time the
 //! preview needs to come clean ([`time_to_clean`]); the render plan's stages with their
 //! reasons (the developer's details, folded on the page) after.
 
 use crate::app::RenderJob;
-use crate::integrator::Method;
 use serde_json::{json, Value};
 use std::time::Duration;
-
-/// What a method is good for, in a sentence for someone choosing how to light a gem.
-pub fn purpose(method: Method) -> &'static str {
-    match method {
-        Method::Whitted => "a quick look: sharp reflections and refractions, no soft light",
-        Method::Path => "all the light, soft and exact; caustics come slowly and noisy",
-        Method::Photon => "caustics fast from a photon map, slightly blurred",
-        Method::Sppm => "sharp caustics through glass, refining pass by pass",
-        Method::Hybrid => "all the light, with the caustics under a stone from photons",
-        Method::Vcm => "the hardest light: caustics seen in mirrors and through glass",
-        Method::Bpt => "small lights and caustics seen directly, without bias",
-        Method::Auto => "chosen from the scene",
-    }
-}
 
 /// The status of a preview that has started: the method, its purpose, what each look
 /// changed, the notes, and the plan's stages (`plan`, the details).
@@ -47,7 +32,7 @@ pub fn rendering(job: &RenderJob, prepare_ms: u64) -> Value {
         })
         .collect();
     let method = job.plan.method;
-    json!({"state": "rendering", "method": method.name(), "purpose": purpose(method),
+    json!({"state": "rendering", "method": method.name(), "purpose": method.purpose(),
            "spectral": job.plan.spectral, "plan": plan, "notes": notes, "looks": looks,
            "unit": crate::app::render_options::unit_name(method),
            "prepare_ms": prepare_ms})
@@ -69,6 +54,7 @@ pub fn time_to_clean(error: Option<f64>, elapsed: Duration, target: f64) -> Opti
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::integrator::Method;
 
     #[test]
     fn the_time_to_clean_follows_one_over_the_square_root_of_time() {
@@ -84,7 +70,7 @@ mod tests {
     #[test]
     fn every_method_says_what_it_is_for() {
         for m in Method::ALL {
-            assert!(!purpose(m).is_empty());
+            assert!(!m.purpose().is_empty());
         }
     }
 }
