@@ -85,8 +85,9 @@ fn examples() -> Vec<Bsdf> {
     ]
 }
 
-/// The directional-hemispherical reflectance plus transmittance at `wo` in importance
-/// transport (no η² factor): the mean of f·|cos θi|/pdf over a 64 × 64 grid of direction
+/// The directional-hemispherical reflectance plus transmittance at `wo` (energy: radiance
+/// transport, in which the rough dielectric's compensation conserves energy, with the 1/η'²
+/// of a refraction undone): the mean of f·|cos θi|/pdf over a 64 × 64 grid of direction
 /// numbers, each with a lobe number from the golden-ratio sequence.
 fn rho(b: &Bsdf, wo: Vec3) -> Vec3 {
     let n = 64;
@@ -97,8 +98,15 @@ fn rho(b: &Bsdf, wo: Vec3) -> Vec3 {
             ((k % n) as f32 + 0.5) / n as f32,
             ((k / n) as f32 + 0.5) / n as f32,
         );
-        if let Some(s) = b.sample(wo, uc, u, I) {
-            acc.add(s.f * (s.wi.z.abs() / s.pdf));
+        if let Some(s) = b.sample(wo, uc, u, TransportMode::Radiance) {
+            let undo = match b.interface_eta() {
+                Some(eta) if s.transmission => {
+                    let etap = if wo.z > 0.0 { eta } else { 1.0 / eta };
+                    etap * etap
+                }
+                _ => 1.0,
+            };
+            acc.add(s.f * (s.wi.z.abs() / s.pdf * undo));
         }
     }
     acc.mean(n * n)
@@ -152,18 +160,27 @@ fn lambert_answers_its_albedo() {
 }
 
 /// The Schlick conductor: a perfect mirror for polarization; its reflectance at normal
-/// incidence is f0, its albedo and its photons' specular colour. Rough (α 0.3): GGX
-/// single scattering loses a few percent, asserted within 0.06.
+/// incidence is f0, its albedo and its photons' specular colour. Rough (α 0.3), GGX single
+/// scattering loses the same fraction in every channel (Fresnel ≈ f0 near the normal):
+/// the reflectance is f0 times one factor, asserted within 1 % per channel and in
+/// [0.8, 1].
 #[test]
 fn conductor_answers_its_normal_reflectance() {
     let f0 = Vec3::new(0.95, 0.64, 0.54);
-    for (alpha, tol) in [(0.0, 1e-5), (0.3, 0.06)] {
+    let smooth = Bsdf::Conductor { f0, alpha: 0.0 };
+    assert!(
+        close(rho(&smooth, Vec3::Z), f0, 1e-5),
+        "{}",
+        rho(&smooth, Vec3::Z)
+    );
+    let ratio = rho(&Bsdf::Conductor { f0, alpha: 0.3 }, Vec3::Z) / f0;
+    assert!(ratio.max_element() - ratio.min_element() < 0.01, "{ratio}");
+    assert!(
+        ratio.min_element() >= 0.8 && ratio.max_element() <= 1.0,
+        "{ratio}"
+    );
+    for alpha in [0.0, 0.3] {
         let b = Bsdf::Conductor { f0, alpha };
-        assert!(
-            close(rho(&b, Vec3::Z), f0, tol),
-            "{alpha}: {}",
-            rho(&b, Vec3::Z)
-        );
         assert_eq!(b.albedo(), f0);
         assert_eq!(roulette_total(&b), f0);
         assert_eq!(b.mueller(Vec3::Z, Vec3::Z), Some((MIRROR, Vec3::Z)));
@@ -241,13 +258,13 @@ fn dielectric_mueller_and_photons_agree_with_its_samples() {
     assert!(!b.is_diffuse_like() && glass(0.3).is_diffuse_like());
 }
 
-/// The rough dielectric in importance transport keeps within 0.05 of its white tint at
-/// normal incidence (the multiple-scattering compensation is exact in radiance transport).
+/// The rough dielectric's energy at normal incidence is its white tint within 0.02 (the
+/// multiple-scattering compensation's table, 1 %, and the quadrature's error).
 #[test]
 fn rough_dielectric_albedo_is_its_tint() {
     let b = glass(0.3);
     assert!(
-        close(rho(&b, Vec3::Z), b.albedo(), 0.05),
+        close(rho(&b, Vec3::Z), b.albedo(), 0.02),
         "{}",
         rho(&b, Vec3::Z)
     );
@@ -292,9 +309,7 @@ fn gltf_metal_answers_its_base_colour() {
 /// a delta lobe has eval = pdf = 0 and samples only deltas (so photons are not stored
 /// there), a non-delta lobe samples non-deltas with the pdf its `pdf` gives; a polarizing
 /// lobe's normalized matrix has M₀₀ = 1 and a depolarizing one has none; the albedo is in
-/// [0, 1]; the photons' colours never add to above 1, nor for an opaque lobe to more than
-/// its reflectance at normal incidence plus 0.1 (GGX's single-scattering loss); only
-/// interfaces have an η.
+/// [0, 1]; the photons' colours never add to above 1; only interfaces have an η.
 #[test]
 fn every_lobe_answers_consistently() {
     let ex = examples();
@@ -329,15 +344,7 @@ fn every_lobe_answers_consistently() {
         }
         let a = b.albedo();
         assert!(a.min_element() >= 0.0 && a.max_element() <= 1.0, "{b:?}");
-        let total = roulette_total(b);
-        assert!(total.max_element() <= 1.0 + 1e-6, "{b:?}");
-        let lobes = b.roulette_lobes();
-        if lobes.transmission == Vec3::ZERO {
-            assert!(
-                total.max_element() <= rho(b, Vec3::Z).max_element() + 0.1,
-                "{b:?}"
-            );
-        }
+        assert!(roulette_total(b).max_element() <= 1.0 + 1e-6, "{b:?}");
         let interface = matches!(b, Bsdf::Dielectric { .. });
         assert_eq!(b.interface_eta().is_some(), interface, "{b:?}");
         assert_eq!(b.with_lane(1.4, 0).is_some(), interface, "{b:?}");
