@@ -19,8 +19,9 @@
 //! ever leave surfaces through the intersection layer's spawn rules. At the first
 //! non-specular surface:
 //! - albedo = throughput × the surface's reflectance ([`crate::bsdf::Bsdf::albedo`]: OIDN's
-//!   diffuse colour, a metal's normal-incidence reflectance, the tint of rough glass) plus its emission
-//!   (clamped to [0, 1]: Cycles adds an emitter's contribution to the denoising albedo), and
+//!   diffuse colour, a metal's normal-incidence reflectance, the tint of rough glass) plus
+//!   its emission (clamped to [0, 1]: Cycles adds an emitter's contribution to the
+//!   denoising albedo), and
 //!   normal = its world-space shading normal, turned to face the arriving ray;
 //! - a ray that escapes: albedo = throughput × the environment radiance it sees clamped to
 //!   [0, 1] (what Cycles writes for the background, `film_write_emission_or_background_pass`),
