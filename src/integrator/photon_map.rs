@@ -6,11 +6,12 @@
 //!   only, then a diffuse-like surface);
 //! - the **global map**: every photon at a diffuse-like surface.
 //!
-//! One rule splits the surfaces ([`crate::bsdf::Bsdf::is_diffuse_like`]): photons are stored, and the maps
-//! queried, only at diffuse-like surfaces; every other surface (delta, or glossy below
-//! [`crate::shading::GLOSSY_ALPHA`]) is an S vertex that camera paths, gather rays and the
-//! caustic flag all pass through by BSDF sampling. A glossy mirror is thus never a gather
-//! point: the light it reflects onto a diffuse surface is the caustic map's alone.
+//! One rule splits the surfaces ([`crate::bsdf::Bsdf::is_diffuse_like`]): photons are
+//! stored, and the maps queried, only at diffuse-like surfaces; every other surface (delta,
+//! or glossy below [`crate::shading::GLOSSY_ALPHA`]) is an S vertex that camera paths,
+//! gather rays and the caustic flag all pass through by BSDF sampling. A glossy mirror is
+//! thus never a gather point: the light it reflects onto a diffuse surface is the caustic
+//! map's alone.
 //!
 //! Photon `i` is emitted from Halton point `i` (digit-permuted by the seed,
 //! [`crate::photon::emit::PhotonNumbers`]), aimed at the
