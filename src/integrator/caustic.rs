@@ -60,7 +60,7 @@ use crate::photon::store::Photon;
 use crate::photon::trace::{self, MediumVertex, Roulette, TraceSettings};
 use crate::polar::stokes::{angle_between, rotate, Analyzer, Light};
 use crate::scene::Scene;
-use crate::shading::polarized::{depolarizes, mueller, s_basis};
+use crate::shading::polarized::s_basis;
 use crate::shading::Surface;
 use crate::spectrum::Carrier;
 use rayon::prelude::*;
@@ -392,14 +392,14 @@ impl CausticMap {
             return C::ZERO;
         }
         // A depolarizing surface reads every photon as unpolarized light.
-        if depolarizes(&s.bsdf) {
+        if s.bsdf.depolarizes() {
             return self.density(s, lambda, false) * analyzer.unpolarized();
         }
         let lanes = super::sppm::GatherLanes::of::<C>(lambda);
         self.sum_within(s, |i, ph| {
             let f = super::sppm::photon_term(&s.bsdf, &s.frame, s.wo, lanes, ph);
             let wi = ph.wi();
-            let read = match mueller(&s.bsdf, s.wo, s.frame.to_local(wi)) {
+            let read = match s.bsdf.mueller(s.wo, s.frame.to_local(wi)) {
                 None => analyzer.unpolarized(),
                 Some((n, m)) => {
                     let k_in = -wi;

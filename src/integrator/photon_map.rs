@@ -6,11 +6,12 @@
 //!   only, then a diffuse-like surface);
 //! - the **global map**: every photon at a diffuse-like surface.
 //!
-//! One rule splits the surfaces ([`is_diffuse_like`]): photons are stored, and the maps
-//! queried, only at diffuse-like surfaces; every other surface (delta, or glossy below
-//! [`crate::shading::GLOSSY_ALPHA`]) is an S vertex that camera paths, gather rays and the
-//! caustic flag all pass through by BSDF sampling. A glossy mirror is thus never a gather
-//! point: the light it reflects onto a diffuse surface is the caustic map's alone.
+//! One rule splits the surfaces ([`crate::bsdf::Bsdf::is_diffuse_like`]): photons are
+//! stored, and the maps queried, only at diffuse-like surfaces; every other surface (delta,
+//! or glossy below [`crate::shading::GLOSSY_ALPHA`]) is an S vertex that camera paths,
+//! gather rays and the caustic flag all pass through by BSDF sampling. A glossy mirror is
+//! thus never a gather point: the light it reflects onto a diffuse surface is the caustic
+//! map's alone.
 //!
 //! Photon `i` is emitted from Halton point `i` (digit-permuted by the seed,
 //! [`crate::photon::emit::PhotonNumbers`]), aimed at the
@@ -50,7 +51,7 @@ use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
 use crate::render::{render_samples, Film, Observer, Prepass, RenderSettings, RenderStats};
 use crate::scene::Scene;
-use crate::shading::{self, is_diffuse_like, Event};
+use crate::shading::{self, Event};
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -129,14 +130,14 @@ pub fn build_maps(
                         settings,
                         &mut rng,
                         |v, l| {
-                            if is_diffuse_like(&v.surface.bsdf) {
+                            if v.surface.bsdf.is_diffuse_like() {
                                 keep(v.p, v.wi, v.power.to_rgb(l), v.caustic)
                             }
                         },
                     )
                 } else {
                     trace::trace::<Vec3>(scene, &ph, (), settings, &mut rng, |v, _| {
-                        if is_diffuse_like(&v.surface.bsdf) {
+                        if v.surface.bsdf.is_diffuse_like() {
                             keep(v.p, v.wi, v.power, v.caustic)
                         }
                     })
@@ -258,7 +259,7 @@ impl PhotonMaps {
                     Event::Scatter(s) => break s,
                 }
             };
-            if is_diffuse_like(&s.bsdf) {
+            if s.bsdf.is_diffuse_like() {
                 let at = GatherPoint {
                     p: s.hit.p,
                     frame: s.frame,

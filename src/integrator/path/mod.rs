@@ -76,9 +76,9 @@ use vertex::{Next, Rules, Walk};
 pub enum StopAt {
     /// The plain path tracer: continue until Russian roulette or the depth limit.
     Never,
-    /// Stop at the first diffuse-like hit ([`is_diffuse_like`]) and return it as a
-    /// [`VisiblePoint`]; its direct light is still estimated here (with full weight, as
-    /// BSDF sampling does not continue).
+    /// Stop at the first diffuse-like hit ([`crate::bsdf::Bsdf::is_diffuse_like`]) and
+    /// return it as a [`VisiblePoint`]; its direct light is still estimated here (with full
+    /// weight, as BSDF sampling does not continue).
     Diffuse,
 }
 

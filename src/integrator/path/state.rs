@@ -15,7 +15,7 @@
 //! rough glass's compensated weights never turn into a few heavy survivors.
 
 use super::CausticSplit;
-use crate::bsdf::{Bsdf, BsdfSample};
+use crate::bsdf::BsdfSample;
 use crate::interaction::SurfaceHit;
 use crate::medium_stack::MediumStack;
 use crate::sampler::Bounce;
@@ -122,7 +122,7 @@ impl<C: Carrier> PathState<C> {
         u: &mut Bounce<'_>,
     ) -> bool {
         self.beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
-        if let (Bsdf::Dielectric { eta, .. }, true) = (s.bsdf, bs.transmission) {
+        if let (Some(eta), true) = (s.bsdf.interface_eta(), bs.transmission) {
             let etap = if s.wo.z > 0.0 { eta } else { 1.0 / eta };
             if etap.is_finite() && etap > 0.0 {
                 self.eta_scale *= etap * etap;

@@ -19,7 +19,7 @@ use crate::math::Ray;
 use crate::render::Context;
 use crate::scene::Scene;
 use crate::shading::media::Through;
-use crate::shading::{is_diffuse_like, lights, media, Arrival, Event};
+use crate::shading::{lights, media, Arrival, Event};
 use crate::spectrum::Carrier;
 use glam::Vec3;
 
@@ -317,7 +317,7 @@ pub(super) fn vertex<C: Carrier>(
         walk.branches.split(&mut walk.l, st, (walk.ray, met), split);
     }
     let lambda = &walk.lambda;
-    if rules.stop == StopAt::Diffuse && is_diffuse_like(&s.bsdf) {
+    if rules.stop == StopAt::Diffuse && s.bsdf.is_diffuse_like() {
         let ls = next_event(
             scene,
             &Scatterer::Surface(s),

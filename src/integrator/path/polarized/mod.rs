@@ -4,7 +4,7 @@
 //! ([`crate::polar::stokes`]). One analyzer serves the sample's 4 wavelengths while the
 //! Mueller matrices met do not depend on them; at a crystal (dispersive indices, modes
 //! whose paths differ by wavelength), a dispersive interface or a measured metal
-//! ([`crate::shading::polarized::hero_polarizes`]) the path keeps its hero alone.
+//! ([`crate::bsdf::Bsdf::hero_polarizes`]) the path keeps its hero alone.
 //!
 //! At each vertex: emission and the environment (unpolarized) count with a₀; next-event
 //! estimation with a·N(light direction)₀, N the surface's normalized Mueller matrix
@@ -37,9 +37,7 @@ use crate::polar::stokes::{linear_polarizer, transverse};
 use crate::polar::Analyzer;
 use crate::render::Context;
 use crate::scene::Scene;
-use crate::shading::polarized::{
-    hero_polarizes, polarizer_sheet, segment_transmittance, smooth_crystal,
-};
+use crate::shading::polarized::{polarizer_sheet, segment_transmittance, smooth_crystal};
 use crate::shading::{self, media, Arrival, Event, Surface};
 use crate::spectrum::Carrier;
 
@@ -181,7 +179,7 @@ fn vertex<C: Carrier>(
         }
         Event::Scatter(s) => s,
     };
-    if hero_polarizes(&s.bsdf) {
+    if s.bsdf.hero_polarizes() {
         st.beta = st.beta.keep_hero(lambda);
     }
     let lambda = &*lambda;
