@@ -14,7 +14,7 @@
 //! q and is divided by it; a path with q ≥ 1 always continues, so a white medium's walk or
 //! rough glass's compensated weights never turn into a few heavy survivors.
 
-use super::CausticSplit;
+use super::strategy::History;
 use crate::bsdf::{Bsdf, BsdfSample};
 use crate::interaction::SurfaceHit;
 use crate::medium_stack::MediumStack;
@@ -64,7 +64,7 @@ pub(super) struct PathState<C: Carrier> {
     /// The last non-delta vertex was a scattering event in a medium.
     pub last_in_medium: bool,
     /// No scattering event in a medium yet: a light end closing at a surface may still be
-    /// the surface map's ([`PathState::closes_caustic`]).
+    /// the surface map's ([`History::clear`]).
     pub clear: bool,
     /// The surface the path's ray was spawned from (its origin offset from it by
     /// [`crate::math::Ray::skipped`]), for the band behind the origin; `None` for the
@@ -101,14 +101,15 @@ impl<C: Carrier> PathState<C> {
         }
     }
 
-    /// Whether the light end found now closes a D S+ L chain: the caustic map's (or light
-    /// tracing's) share when the path is split. With media: an M S+ L chain is always the
-    /// volume map's, a D S+ L chain the surface map's only while the path has not scattered
-    /// in a medium ([`crate::integrator::volume_map`] gives the split).
-    pub fn closes_caustic(&self, split: &CausticSplit<'_, C>) -> bool {
-        !matches!(split, CausticSplit::None)
-            && self.since_diffuse.unwrap_or(0) > 0
-            && (self.last_in_medium || self.clear)
+    /// The bounces so far as a strategy reads them ([`History`]), under `max_depth`.
+    pub fn history(&self, max_depth: u32) -> History {
+        History {
+            since_diffuse: self.since_diffuse,
+            last_in_medium: self.last_in_medium,
+            clear: self.clear,
+            direct: self.direct,
+            continues: self.depth + 1 < max_depth,
+        }
     }
 
     /// Follows the BSDF sample `bs` taken at `s`: throughput, η scale, media and the MIS
