@@ -75,7 +75,7 @@ impl<'a, C: Carrier> CausticPaths<'a, C> {
                 }
             }
         };
-        gather.filter(|_| h.since_diffuse.is_none() && h.continues)
+        gather.filter(|_| h.first_diffuse())
     }
 }
 
@@ -91,7 +91,7 @@ impl<C: Carrier> Strategy<C> for CausticPaths<'_, C> {
     /// Light closing a D S+ L chain is the map's (module docs; with media, see
     /// [`CausticSplit::Volume`]).
     fn leaves_light(&self, h: &History) -> bool {
-        h.since_diffuse.unwrap_or(0) > 0 && (h.last_in_medium || h.clear)
+        h.closes_caustic()
     }
 
     fn gather(&self, s: &Surface<C>, lambda: &C::Lambda, h: &History) -> Option<C> {
@@ -200,7 +200,7 @@ mod tests {
         );
         assert!(Strategy::<Vec3>::splits(&paths(Dispersion::SPLIT)));
         assert!(!Strategy::<Vec3>::splits(&paths(Dispersion::HERO)));
-        assert!(!<CausticPaths<Vec3> as Strategy<Vec3>>::STOPS);
+        const { assert!(!<CausticPaths<Vec3> as Strategy<Vec3>>::STOPS) };
         assert!(Strategy::<Vec3>::beam(&paths(Dispersion::SPLIT)).is_none());
     }
 }

@@ -145,6 +145,20 @@ impl<C: Carrier> PathState<C> {
         self.count(kind, max_depth, u)
     }
 
+    /// Counts a delta bounce at `p` that no light sample can see through and that samples
+    /// no BSDF (a crystal surface, a polarizer sheet): no MIS for what the path finds next,
+    /// one more delta bounce since the last non-delta one. `false` past the delta bounce
+    /// limit.
+    pub fn delta_bounce(&mut self, p: Vec3) -> bool {
+        self.prev = Prev {
+            delta: true,
+            pdf: 0.0,
+            p,
+        };
+        self.since_diffuse = self.since_diffuse.map(|n| n + 1);
+        self.count_delta()
+    }
+
     /// The path met a surface: a new run of scattering events starts at the fine scale.
     pub fn met_surface(&mut self) {
         self.run = 0;
@@ -183,14 +197,17 @@ impl<C: Carrier> PathState<C> {
         self.count(Kind::Medium, max_depth, u)
     }
 
+    /// One more delta bounce; `false` past [`MAX_DELTA_BOUNCES`].
+    fn count_delta(&mut self) -> bool {
+        self.delta_depth += 1;
+        self.delta_depth <= MAX_DELTA_BOUNCES
+    }
+
     /// The bounce limits for a vertex of `kind` (module docs) and, after three non-delta
     /// vertices, Russian roulette on `u`. `false` when the path ends here.
     fn count(&mut self, kind: Kind, max_depth: u32, u: &mut Bounce<'_>) -> bool {
         match kind {
-            Kind::Delta => {
-                self.delta_depth += 1;
-                return self.delta_depth <= MAX_DELTA_BOUNCES;
-            }
+            Kind::Delta => return self.count_delta(),
             Kind::Surface => self.depth += 1,
             Kind::Medium => {
                 if self.run == 0 {

@@ -46,6 +46,22 @@ pub struct History {
     pub continues: bool,
 }
 
+impl History {
+    /// Light found now closes a chain a caustic map owns: ≥ 1 delta bounce since the last
+    /// non-delta vertex, which was a scattering event in a medium (an M S+ L chain, the
+    /// volume map's) or a surface before any (a D S+ L chain, the surface map's;
+    /// [`crate::integrator::volume_map`] gives the split).
+    pub fn closes_caustic(&self) -> bool {
+        self.since_diffuse.unwrap_or(0) > 0 && (self.last_in_medium || self.clear)
+    }
+
+    /// The vertex is the path's first non-delta one, D₁, and the bounce from it would be
+    /// followed: where a caustic map is gathered.
+    pub fn first_diffuse(&self) -> bool {
+        self.since_diffuse.is_none() && self.continues
+    }
+}
+
 /// What a method asks of its camera paths (module docs). Every hook has the plain path
 /// tracer's answer by default.
 pub trait Strategy<C: Carrier>: Sync {
@@ -123,6 +139,6 @@ mod tests {
             continues: true,
         };
         assert!(!Strategy::<Vec3>::leaves_light(&Dispersion::ALL, &h));
-        assert!(!<Dispersion as Strategy<Vec3>>::STOPS);
+        const { assert!(!<Dispersion as Strategy<Vec3>>::STOPS) };
     }
 }

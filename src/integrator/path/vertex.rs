@@ -16,7 +16,7 @@ use super::light_sample::{next_event, NextEvent, Scatterer};
 use super::own_hero::{self, HeroOf};
 use super::split::Branches;
 use super::state::{PathState, Prev};
-use super::strategy::{RoughLanes, Strategy};
+use super::strategy::{History, RoughLanes, Strategy};
 use super::VisiblePoint;
 use crate::bsdf::TransportMode;
 use crate::interaction::SurfaceHit;
@@ -133,12 +133,18 @@ impl<C: Carrier> Pending<C> {
     /// Traces the shadow ray (through its media, [`media::shadow`]) and adds the vertex's
     /// light to `l`.
     pub fn resolve_traced(self, scene: &Scene, lambda: &C::Lambda, rays: &mut u64, l: &mut C) {
-        let v = match (self.shadow, self.through) {
+        let v = self.transmitted(scene, lambda, rays);
+        self.add(v, l);
+    }
+
+    /// Traces the shadow ray (through its media, [`media::shadow`]): the light sample's
+    /// value past it, per unit throughput (zero if blocked or without a shadow ray).
+    pub fn transmitted(&self, scene: &Scene, lambda: &C::Lambda, rays: &mut u64) -> C {
+        match (self.shadow, self.through) {
             (Some(r), Some(t)) => self.value * media::shadow::<C>(scene, &r, t, lambda, rays),
             (Some(r), None) if !scene.occluded(&r) => self.value,
             _ => C::ZERO,
-        };
-        self.add(v, l);
+        }
     }
 
     #[inline]
@@ -220,10 +226,8 @@ pub(super) fn vertex<C: Carrier, S: Strategy<C>>(
 ) -> (Option<Pending<C>>, Next) {
     // A sub-path redoing its split vertex: what arrived there is counted.
     let resume = std::mem::take(&mut walk.branches.resume);
-    let leaves = resume
-        || rules
-            .strategy
-            .leaves_light(&walk.st.history(rules.max_depth));
+    let h = walk.st.history(rules.max_depth);
+    let leaves = resume || rules.strategy.leaves_light(&h);
     let met = walk.st.meet.take();
     if scene.has_media() && !resume {
         let at = (arrival.as_ref(), met.is_some());
@@ -262,7 +266,8 @@ pub(super) fn vertex<C: Carrier, S: Strategy<C>>(
         })
         .flatten();
     let s = own.as_ref().unwrap_or(s);
-    let nee = (!s.bsdf.is_delta()).then(|| light(scene, rules, walk, s, &mut u, &mut ctx.rays));
+    let (strategy, rays) = (rules.strategy, &mut ctx.rays);
+    let nee = (!s.bsdf.is_delta()).then(|| light(scene, strategy, walk, (s, &h), &mut u, rays));
     (nee, bounce(rules.max_depth, walk, s, &mut u))
 }
 
@@ -322,21 +327,20 @@ fn stop<C: Carrier>(
     (Some(pending(st.beta, ls, None)), Next::End)
 }
 
-/// Next-event estimation at the non-delta vertex `s`, with the strategy's gather there
-/// to add after it.
+/// Next-event estimation at the non-delta vertex `s` reached after the bounces `h`, with
+/// the strategy's gather there to add after it.
 #[inline(always)]
 fn light<C: Carrier, S: Strategy<C>>(
     scene: &Scene,
-    rules: &Rules<'_, S>,
+    strategy: &S,
     walk: &Walk<C>,
-    s: &Surface<C>,
+    (s, h): (&Surface<C>, &History),
     u: &mut Bounce<'_>,
     rays: &mut u64,
 ) -> Pending<C> {
     let (st, lambda) = (&walk.st, &walk.lambda);
     let ls = next_event(scene, &Scatterer::Surface(s), lambda, true, u, rays);
-    let h = st.history(rules.max_depth);
-    let gather = rules.strategy.gather(s, lambda, &h).map(|g| st.beta * g);
+    let gather = strategy.gather(s, lambda, h).map(|g| st.beta * g);
     pending(st.beta, ls, gather)
 }
 

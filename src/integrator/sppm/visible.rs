@@ -55,6 +55,6 @@ mod tests {
         assert_eq!(Strategy::<S>::rough(&on), RoughLanes::OwnHero);
         assert_eq!(Strategy::<S>::rough(&off), RoughLanes::Hero);
         assert!(!Strategy::<S>::splits(&on));
-        assert!(<VisiblePoints as Strategy<S>>::STOPS);
+        const { assert!(<VisiblePoints as Strategy<S>>::STOPS) };
     }
 }
