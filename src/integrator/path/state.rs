@@ -302,6 +302,25 @@ mod tests {
         assert!((p - 0.5).abs() < 0.016, "survival {p}");
     }
 
+    /// A delta bounce that samples no BSDF (a crystal surface, a polarizer sheet): no MIS
+    /// for what the path finds next, one more delta bounce since the last non-delta vertex
+    /// (none before the first), and the path ends past the delta bounce limit.
+    #[test]
+    fn delta_bounces_count_to_their_limit() {
+        let mut st = PathState::<Vec3>::new(Vec3::ZERO);
+        assert!(st.delta_bounce(Vec3::X));
+        assert_eq!(st.since_diffuse, None);
+        st.since_diffuse = Some(0);
+        assert!(st.delta_bounce(Vec3::Y));
+        let prev = (st.prev.delta, st.prev.pdf, st.prev.p);
+        assert_eq!((st.since_diffuse, prev), (Some(1), (true, 0.0, Vec3::Y)));
+        for _ in 2..MAX_DELTA_BOUNCES {
+            assert!(st.delta_bounce(Vec3::Y));
+        }
+        assert!(!st.delta_bounce(Vec3::Y));
+        assert_eq!(st.depth, 0);
+    }
+
     /// The first event of a run counts against `max_depth` (so max depth 1 is single
     /// scattering), the rest against the run's own bound; meeting a surface starts a new
     /// run, which counts again; the walk coarsens after the fine events.
