@@ -22,7 +22,7 @@
 //!   (≥ 1 delta bounce before its first non-delta vertex) — a *caustic-origin* photon — is
 //!   stored at that vertex (flagged [`Photon::CAUSTIC`]) and at every later non-delta vertex as it goes on bouncing
 //!   (throughput roulette, the integrator's depth); other photons are not stored.
-//! - **Camera paths** ([`super::path::camera_path`] with [`super::path::CausticSplit::Map`]):
+//! - **Camera paths** ([`super::path::camera_path`] with [`super::hybrid::CausticSplit::Map`]):
 //!   at the camera path's FIRST non-delta vertex D₁ only (if its bounce would be followed),
 //!   the map's reflected radiance L = Σ f(wo, wiₚ) Φₚ / (N π r²) (constant kernel) times the
 //!   throughput; at every vertex, emission found by BSDF sampling after a non-delta bounce

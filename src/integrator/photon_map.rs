@@ -38,7 +38,8 @@
 //!
 //! Flux in the maps is per emitted photon (already divided by their number).
 
-use super::path::{self, StopAt, VisiblePoint};
+use super::path::{self, VisiblePoint};
+use super::sppm::VisiblePoints;
 use super::{Context, PhotonMapSettings, StoreBudget};
 use crate::bsdf::TransportMode;
 use crate::camera::Camera;
@@ -337,15 +338,10 @@ pub fn render(
         setup,
         observer,
         |ray, _u_lambda, ctx| {
-            let (ld, vp) = path::camera_path::<Vec3>(
-                scene,
-                ray,
-                (max_depth, path::Dispersion::HERO),
-                (),
-                StopAt::Diffuse,
-                path::CausticSplit::None,
-                ctx,
-            );
+            let stop = VisiblePoints {
+                spectral_mis: false,
+            };
+            let (ld, vp) = path::camera_path::<Vec3, _>(scene, ray, (max_depth, &stop), (), ctx);
             let Some(vp) = vp else {
                 return ld;
             };

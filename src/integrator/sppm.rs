@@ -50,11 +50,13 @@
 //! after emission draws from `Rng::new(&[seed, pass, i, 0x9E07])`.
 
 mod gather;
+mod visible;
 
 pub(super) use gather::{photon_term, GatherLanes};
+pub use visible::VisiblePoints;
 
 use super::pass_paths::PassPaths;
-use super::path::{self, LaneWidth, StopAt, VisiblePoint};
+use super::path::{LaneWidth, VisiblePoint};
 use super::{SppmSettings, StoreBudget, MAX_PHOTONS};
 use crate::camera::Camera;
 use crate::error::Result;
@@ -253,12 +255,7 @@ fn camera_pass<C: Carrier>(
         sampler: pixel_sampler(settings, u64::from(passes)),
         max_depth,
         lambda,
-        stop: StopAt::Diffuse,
-        split: path::CausticSplit::None,
-        dispersion: path::Dispersion {
-            spectral_mis,
-            split: false,
-        },
+        strategy: VisiblePoints { spectral_mis },
         lanes: LaneWidth::Scalar,
         polarized: None,
         cancel: &settings.cancel,
