@@ -8,7 +8,8 @@
 //! - [`direct`]: direct light with shadow rays (the Whitted tracer's light step);
 //! - [`lights`]: one light sample toward a hit (punctual, emissive triangles, environment);
 //! - [`media`]: scattering media along a path's rays (free flight, medium-only boundaries,
-//!   shadow-ray transmittance).
+//!   shadow-ray transmittance);
+//! - [`termination`]: how every path ends (Russian roulette, the delta-bounce cap).
 //!
 //! Units and frames are stated in each module: directions are unit vectors, world space
 //! unless said to be in the local frame of the outward shading normal.
@@ -21,7 +22,9 @@ pub mod media;
 pub mod polarized;
 pub mod spectral_mis;
 pub mod step;
+pub mod termination;
 
 pub use direct::direct_light;
 pub use material_bsdf::{bsdf_at, interface, is_diffuse_like, lane_etas, GLOSSY_ALPHA};
-pub use step::{arrival, arrive, meet, sample_bsdf, Arrival, Event, Surface, MAX_DELTA_BOUNCES};
+pub use step::{arrival, arrive, meet, sample_bsdf, Arrival, Event, Surface};
+pub use termination::MAX_DELTA_BOUNCES;

@@ -24,6 +24,7 @@ use crate::photon::grid::HashGrid;
 use crate::render::Context;
 use crate::sampler::Bounce;
 use crate::scene::Scene;
+use crate::shading::termination::{delta_bounce, roulette, Draw};
 use crate::shading::{self, lights, Arrival, Event, Surface};
 use crate::spectrum::Carrier;
 use glam::Vec3;
@@ -126,15 +127,15 @@ impl<C: Carrier> CameraKit<'_, C> {
             w.beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
             if w.depth >= ROULETTE_DEPTH && !bs.delta {
                 let q = w.beta.max_element().min(1.0);
-                if q.is_nan() || q <= 0.0 || u.roulette() >= q {
+                let Some(q) = roulette(q, Draw::UnlessDead, || u.roulette()) else {
                     break;
-                }
+                };
                 w.beta *= C::splat(1.0 / q);
             }
             if !w.beta.is_finite() || w.beta == C::ZERO {
                 break;
             }
-            if super::too_many_deltas(&mut deltas, bs.delta) {
+            if bs.delta && !delta_bounce(&mut deltas) {
                 break;
             }
             media = s.media_after(bs.transmission);

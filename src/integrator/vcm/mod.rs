@@ -227,13 +227,6 @@ impl Run<'_> {
     }
 }
 
-/// Counts a bounce on a subpath (`delta` or not) and says whether its delta bounces now
-/// exceed [`crate::shading::MAX_DELTA_BOUNCES`] (the subpath then ends).
-fn too_many_deltas(deltas: &mut u32, delta: bool) -> bool {
-    *deltas += u32::from(delta);
-    *deltas > crate::shading::MAX_DELTA_BOUNCES
-}
-
 /// One camera subpath per pixel of the active tiles (each tile's next unit), plus the
 /// pixel's splats, added to the film. Returns the rays and bad samples.
 fn camera_pass<C: Carrier>(

@@ -115,8 +115,7 @@ fn delta_bounce<C: Carrier>(st: &mut PathState<C>, p: glam::Vec3) -> bool {
         p,
     };
     st.since_diffuse = st.since_diffuse.map(|n| n + 1);
-    st.delta_depth += 1;
-    st.delta_depth <= shading::MAX_DELTA_BOUNCES
+    shading::termination::delta_bounce(&mut st.delta_depth)
 }
 
 /// One vertex; `false` when the path ends.
