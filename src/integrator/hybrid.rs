@@ -144,8 +144,12 @@ fn run<C: Carrier>(
         map.begin_gather(|ph| initial_radius(scene, camera, settings, ph));
         map.replay(schedule.first);
     }
-    let (film, mut stats) =
-        photon_pass::passes::<C>(settings, schedule, setup, observer, |film, pass, lambda, env| {
+    let (film, mut stats) = photon_pass::passes::<C>(
+        settings,
+        schedule,
+        setup,
+        observer,
+        |film, pass, lambda, env| {
             // 1. The pass's wavelengths are `lambda` (the photon pass's).
             // 2. The caustic map.
             let mut round = Round::default();
@@ -194,7 +198,8 @@ fn run<C: Carrier>(
                 round.note += &format!(", volume r {rv:.3e}, {} volume photons", v.photons.len());
             }
             Ok(round)
-        })?;
+        },
+    )?;
     stats.photons_per_pass = last_n;
     Ok((film, stats))
 }

@@ -7,6 +7,8 @@
 //! - [`frame`]: the shading frame at a hit (the tangent frame anisotropy uses);
 //! - [`direct`]: direct light with shadow rays (the Whitted tracer's light step);
 //! - [`lights`]: one light sample toward a hit (punctual, emissive triangles, environment);
+//! - [`next_event`]: next-event estimation written once (light choice, sample, weight,
+//!   shadow ray), each tracer's differences in its [`next_event::Receiver`];
 //! - [`media`]: scattering media along a path's rays (free flight, medium-only boundaries,
 //!   shadow-ray transmittance);
 //! - [`termination`]: how every path ends (Russian roulette, the delta-bounce cap).
@@ -19,6 +21,7 @@ pub mod frame;
 pub mod lights;
 pub mod material_bsdf;
 pub mod media;
+pub mod next_event;
 pub mod polarized;
 pub mod spectral_mis;
 pub mod step;

@@ -121,7 +121,10 @@ mod tests {
             }
         }
         let mean = sum / 200_000.0;
-        assert!((mean / new - Vec3::ONE).abs().max_element() < 0.02, "{mean}");
+        assert!(
+            (mean / new - Vec3::ONE).abs().max_element() < 0.02,
+            "{mean}"
+        );
     }
 
     /// Which numbers each rule reads: `UnlessDead` none at p ≤ 0 and one at p ≥ 1,
@@ -157,6 +160,12 @@ mod tests {
         assert!(!b.bounce(true, 2));
         assert!(b.bounce(false, 3));
         assert!(!b.bounce(false, 3));
-        assert_eq!(b, Bounces { depth: 2, deltas: MAX_DELTA_BOUNCES + 1 });
+        assert_eq!(
+            b,
+            Bounces {
+                depth: 2,
+                deltas: MAX_DELTA_BOUNCES + 1
+            }
+        );
     }
 }

@@ -135,7 +135,10 @@ mod tests {
             let den: f64 = (1..=p).map(|i| f64::from(i) + 1.0).product();
             let want = f64::from(r0) * f64::from(r0) * num / den;
             let got = RadiusSequence::new(Some(r0), alpha).at_pass(p).r2();
-            assert!((got / want - 1.0).abs() < 1e-12, "pass {p}: {got} vs {want}");
+            assert!(
+                (got / want - 1.0).abs() < 1e-12,
+                "pass {p}: {got} vs {want}"
+            );
         }
         // Asymptotically r² ∝ p^(α−1) (Knaus & Zwicker 2011, §4.3).
         let a = RadiusSequence::new(Some(1.0), alpha).at_pass(10_000).r2();

@@ -189,41 +189,47 @@ impl Run<'_> {
         let kit = self.light_kit();
         let sampler = pixel_sampler(settings, u64::from(settings.spp.max(1)));
         let mut grid = HashGrid::new();
-        photon_pass::passes::<C>(settings, schedule, setup, observer, |film, pass, lambda, env| {
-            let r = RadiusSequence::new(Some(r0), self.vcm.alpha)
-                .at_pass(pass)
-                .radius();
-            let weights = mis::Pass::new(r, n as f32, self.vcm.merge);
-            let lights: LightPaths<C> = kit.trace(pass, n, lambda, &weights);
-            // The vertices merging reads by the grid's index (8 bytes each, beside their 0.5 kB).
-            let mut merged: Vec<&LightVertex<C>> = Vec::new();
-            if weights.merges() {
-                merged.extend(lights.vertices());
-                grid.rebuild_with(merged.len(), |i| light_paths::position(merged[i]), r);
-            }
-            let pixels = settings.width as usize * settings.height as usize;
-            let splats = light_trace::splat_image(&lights.splats(), pixels);
-            let cam = CameraKit {
-                scene: self.scene,
-                camera: self.camera,
-                emitter: &self.emitter,
-                lights: &lights,
-                merged: &merged,
-                grid: &grid,
-                radius: r,
-                mis: weights,
-                max_depth: self.max_depth,
-                width: settings.width as usize,
-            };
-            let (rays, bad) = camera_pass(&cam, &sampler, lambda, &splats, film);
-            env.bar.inc(film.tiles() as u64);
-            Ok(Round {
-                rays: rays + lights.rays,
-                bad,
-                photons: n as u64,
-                note: format!(", r {r:.3e}, {} light vertices", lights.len()),
-            })
-        })
+        photon_pass::passes::<C>(
+            settings,
+            schedule,
+            setup,
+            observer,
+            |film, pass, lambda, env| {
+                let r = RadiusSequence::new(Some(r0), self.vcm.alpha)
+                    .at_pass(pass)
+                    .radius();
+                let weights = mis::Pass::new(r, n as f32, self.vcm.merge);
+                let lights: LightPaths<C> = kit.trace(pass, n, lambda, &weights);
+                // The vertices merging reads by the grid's index (8 bytes each, beside their 0.5 kB).
+                let mut merged: Vec<&LightVertex<C>> = Vec::new();
+                if weights.merges() {
+                    merged.extend(lights.vertices());
+                    grid.rebuild_with(merged.len(), |i| light_paths::position(merged[i]), r);
+                }
+                let pixels = settings.width as usize * settings.height as usize;
+                let splats = light_trace::splat_image(&lights.splats(), pixels);
+                let cam = CameraKit {
+                    scene: self.scene,
+                    camera: self.camera,
+                    emitter: &self.emitter,
+                    lights: &lights,
+                    merged: &merged,
+                    grid: &grid,
+                    radius: r,
+                    mis: weights,
+                    max_depth: self.max_depth,
+                    width: settings.width as usize,
+                };
+                let (rays, bad) = camera_pass(&cam, &sampler, lambda, &splats, film);
+                env.bar.inc(film.tiles() as u64);
+                Ok(Round {
+                    rays: rays + lights.rays,
+                    bad,
+                    photons: n as u64,
+                    note: format!(", r {r:.3e}, {} light vertices", lights.len()),
+                })
+            },
+        )
     }
 }
 
