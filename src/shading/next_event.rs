@@ -314,7 +314,7 @@ mod tests {
         let scene = scene();
         assert_eq!(scene.light_sampler().lights().len(), 3);
         let r = Floor {
-            hit: floor_at(&scene, 0.3, -0.2),
+            hit: floor_at(&scene, 1.3, -0.9),
             weight: Some(1.0),
             throughput: None,
         };

@@ -159,11 +159,12 @@ mod tests {
         }
         assert!(!b.bounce(true, 2));
         assert!(b.bounce(false, 3));
+        assert!(b.bounce(false, 3));
         assert!(!b.bounce(false, 3));
         assert_eq!(
             b,
             Bounces {
-                depth: 2,
+                depth: 3,
                 deltas: MAX_DELTA_BOUNCES + 1
             }
         );

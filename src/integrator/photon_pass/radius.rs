@@ -130,7 +130,7 @@ mod tests {
         let r0 = 0.05f32;
         let alpha = 2.0 / 3.0;
         assert_eq!(RadiusSequence::new(Some(r0), 1.0).at_pass(500).radius(), r0);
-        for p in [0u32, 1, 2, 7, 100, 1000] {
+        for p in [0u32, 1, 2, 7, 100, 150] {
             let num: f64 = (1..=p).map(|i| f64::from(i) + f64::from(alpha)).product();
             let den: f64 = (1..=p).map(|i| f64::from(i) + 1.0).product();
             let want = f64::from(r0) * f64::from(r0) * num / den;
