@@ -67,7 +67,7 @@ pub enum Draw {
 /// survives when p ≥ 1. A NaN or non-positive `p` never survives.
 pub fn roulette(p: f32, draw: Draw, u: impl FnOnce() -> f32) -> Option<f32> {
     let drawn = match draw {
-        Draw::UnlessDead => !(p <= 0.0),
+        Draw::UnlessDead => p > 0.0 || p.is_nan(),
         Draw::UnlessSure => p < 1.0,
     };
     let survives = if drawn { u() < p } else { p >= 1.0 };
