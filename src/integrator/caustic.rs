@@ -49,6 +49,7 @@
 //! the thread count.
 
 use super::light_trace::{Splat, Splatter};
+use super::photon_pass::{photon_term, GatherLanes, RadiusSequence};
 use super::volume_map::VolumeMap;
 use super::{StoreBudget, MAX_PHOTONS};
 use crate::error::Result;
@@ -225,9 +226,8 @@ pub struct CausticMap {
     /// The pass's stored photons (power already divided by the photons emitted).
     pub photons: Vec<Photon>,
     grid: HashGrid,
-    /// r² of the current pass (`None` until the first radius is chosen).
-    r2: Option<f64>,
-    alpha: f32,
+    /// The radius of the current pass (none until the first is chosen).
+    radius: RadiusSequence,
     /// In a scene with media: the volume photons of the same pass ([`VolumeMap`]).
     pub volume: Option<VolumeMap>,
     /// Photons traced with polarization (the polarized hybrid, [`Self::polarized`]).
@@ -241,8 +241,7 @@ impl CausticMap {
     /// An empty map with an initial radius (`None`: chosen on the first pass) and α.
     pub fn new(radius: Option<f32>, alpha: f32) -> CausticMap {
         CausticMap {
-            r2: radius.map(|r| f64::from(r) * f64::from(r)),
-            alpha,
+            radius: RadiusSequence::new(radius, alpha),
             ..CausticMap::default()
         }
     }
@@ -331,12 +330,8 @@ impl CausticMap {
     /// The current pass's radius, choosing the first with `initial(photons)` when none was
     /// given (it must be finite and positive, else 1 mm), and builds the grid for it.
     pub fn begin_gather(&mut self, initial: impl Fn(&[Photon]) -> f32) -> f32 {
-        if self.r2.is_none() {
-            let r = initial(&self.photons);
-            let r = if r.is_finite() && r > 0.0 { r } else { 1e-3 };
-            self.r2 = Some(f64::from(r) * f64::from(r));
-        }
-        let r = self.radius();
+        let photons = &self.photons;
+        let r = self.radius.or_first(|| initial(photons));
         self.grid.rebuild(&self.photons, r);
         // The volume map likewise, its first radius from its own photons.
         if let Some(v) = &mut self.volume {
@@ -347,17 +342,24 @@ impl CausticMap {
 
     /// The current radius (0 before the first is chosen).
     pub fn radius(&self) -> f32 {
-        self.r2.map_or(0.0, f64::sqrt) as f32
+        self.radius.radius()
     }
 
-    /// Ends pass `pass` (0-based): r² ← r² · (i + α)/(i + 1) with i = pass + 1.
+    /// Ends pass `pass` (0-based): r² ← r² · (i + α)/(i + 1) with i = pass + 1
+    /// ([`RadiusSequence::end_pass`]), for the volume map's radius too.
     pub fn end_pass(&mut self, pass: u32) {
-        let factor = super::sppm::radius2_factor(pass + 1, self.alpha);
-        self.r2 = self.r2.map(|r2| r2 * factor);
-        // The volume map's radius follows the same pass sequence (a shard that starts
-        // later replays it from pass 0, as for the surface map).
+        self.radius.end_pass(pass);
         if let Some(v) = &mut self.volume {
             v.end_pass(pass);
+        }
+    }
+
+    /// Ends passes 0..`first` in order (a shard starting at pass `first`,
+    /// [`RadiusSequence::replay`]), for the volume map's radius too.
+    pub fn replay(&mut self, first: u64) {
+        self.radius.replay(first);
+        if let Some(v) = &mut self.volume {
+            v.replay(first);
         }
     }
 
@@ -366,14 +368,14 @@ impl CausticMap {
     /// constant kernel); with `later_only`, over the photons stored after a diffuse bounce
     /// only (not at a photon's first vertex, flagged [`Photon::CAUSTIC`]: light tracing's in
     /// mixed mode, [`super::light_trace`]). Hero-wavelength bookkeeping and split camera
-    /// samples as in SPPM ([`super::sppm::photon_term`]).
+    /// samples as in SPPM ([`photon_term`]).
     pub fn density<C: Carrier>(&self, s: &Surface<C>, lambda: &C::Lambda, later_only: bool) -> C {
-        let lanes = super::sppm::GatherLanes::of::<C>(lambda);
+        let lanes = GatherLanes::of::<C>(lambda);
         self.sum_within(s, |_, ph| {
             if later_only && ph.flags() & Photon::CAUSTIC != 0 {
                 return C::ZERO;
             }
-            super::sppm::photon_term(&s.bsdf, &s.frame, s.wo, lanes, ph)
+            photon_term(&s.bsdf, &s.frame, s.wo, lanes, ph)
         })
     }
 
@@ -395,9 +397,9 @@ impl CausticMap {
         if s.bsdf.depolarizes() {
             return self.density(s, lambda, false) * analyzer.unpolarized();
         }
-        let lanes = super::sppm::GatherLanes::of::<C>(lambda);
+        let lanes = GatherLanes::of::<C>(lambda);
         self.sum_within(s, |i, ph| {
-            let f = super::sppm::photon_term(&s.bsdf, &s.frame, s.wo, lanes, ph);
+            let f = photon_term(&s.bsdf, &s.frame, s.wo, lanes, ph);
             let wi = ph.wi();
             let read = match s.bsdf.mueller(s.wo, s.frame.to_local(wi)) {
                 None => analyzer.unpolarized(),
@@ -423,7 +425,7 @@ impl CausticMap {
         s: &Surface<C>,
         mut term: impl FnMut(usize, &Photon) -> C,
     ) -> C {
-        let r2 = self.r2.unwrap_or(0.0);
+        let r2 = self.radius.r2();
         if self.photons.is_empty() || r2 <= 0.0 {
             return C::ZERO;
         }

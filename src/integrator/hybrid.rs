@@ -33,9 +33,10 @@
 //! fixed chunks), whatever the thread count or the split into rounds.
 //!
 //! Shards (`range`, [`crate::app::shard`]): as in SPPM, pass p needs from earlier passes
-//! only the radius r₀² · Πᵢ₌₁..ₚ (i + α)/(i + 1). A shard starting at p₀ > 0 traces pass 0's
-//! caustic photons (not its camera samples) for r₀, then applies the p₀ factors in order:
-//! its passes are bit for bit those of one render.
+//! only the radius ([`super::photon_pass`]). A shard starting at p₀ > 0 traces pass 0's
+//! caustic photons (not its camera samples) for r₀, then replays the p₀ factors
+//! ([`super::photon_pass::RadiusSequence::replay`]): its passes are bit for bit those of
+//! one render.
 
 use super::caustic::{self, CausticMap};
 use super::light_trace::{self, Splatter};
@@ -43,14 +44,12 @@ use super::pass_paths::PassPaths;
 use super::path::polarized::{Polarization, PolarizedGather};
 use super::path::{Dispersion, LaneWidth};
 use super::photon_budget;
-use super::sppm::{first_radius, pass_wavelength_variate};
+use super::photon_pass::{self, first_radius, pass_lambda};
 use super::{CausticMode, CausticSettings};
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::polar::Analyzer;
-use crate::render::{
-    drive_passes, pixel_sampler, Film, Observer, Prepass, RenderSettings, RenderStats, Round,
-};
+use crate::render::{pixel_sampler, Film, Observer, Prepass, RenderSettings, RenderStats, Round};
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::Vec3;
@@ -131,7 +130,7 @@ fn run<C: Carrier>(
         let volume_unset = map.volume.as_ref().is_some_and(|v| v.radius() == 0.0);
         if !emitter.is_empty() && (map.radius() == 0.0 || volume_unset) {
             let n0 = budget.map_or(n_photons, |b| b.per_pass(pixels, map.radius()));
-            let lambda = C::sample_lambda(pass_wavelength_variate(0, settings.seed));
+            let lambda = pass_lambda::<C>(0, settings.seed);
             let (rays, _) = map.trace_pass::<C>(
                 scene,
                 &emitter,
@@ -146,14 +145,15 @@ fn run<C: Carrier>(
             setup.photons += n0;
         }
         map.begin_gather(|ph| initial_radius(scene, camera, settings, ph));
-        for p in 0..schedule.first {
-            map.end_pass(p as u32);
-        }
+        map.replay(schedule.first);
     }
-    let (film, mut stats) =
-        drive_passes(settings, schedule, setup, observer, |film, pass, env| {
-            // 1. The pass's wavelengths (SPPM's golden-ratio sequence over passes).
-            let lambda = C::sample_lambda(pass_wavelength_variate(pass, settings.seed));
+    let (film, mut stats) = photon_pass::passes::<C>(
+        settings,
+        schedule,
+        setup,
+        observer,
+        |film, pass, lambda, env| {
+            // 1. The pass's wavelengths are `lambda` (the photon pass's).
             // 2. The caustic map.
             let mut round = Round::default();
             let mut splats = Vec::new();
@@ -201,7 +201,8 @@ fn run<C: Carrier>(
                 round.note += &format!(", volume r {rv:.3e}, {} volume photons", v.photons.len());
             }
             Ok(round)
-        })?;
+        },
+    )?;
     stats.photons_per_pass = last_n;
     Ok((film, stats))
 }

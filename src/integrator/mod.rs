@@ -12,6 +12,7 @@ pub use memory::{bytes_per_pixel, check_memory};
 pub mod path;
 pub mod photon_budget;
 pub mod photon_map;
+pub mod photon_pass;
 mod settings;
 pub mod sppm;
 pub mod vcm;

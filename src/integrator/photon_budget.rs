@@ -41,7 +41,7 @@
 use super::caustic::CausticMap;
 use super::hybrid::{CausticPaths, CausticSplit, Gather};
 use super::path;
-use super::sppm::{first_radius, pass_wavelength_variate};
+use super::photon_pass::{first_radius, pass_lambda};
 use super::{Context, MAX_PHOTONS};
 use crate::camera::Camera;
 use crate::error::Result;
@@ -151,7 +151,7 @@ pub fn choose<C: Carrier>(
 ) -> Result<PhotonBudget> {
     let pixels = u64::from(settings.width) * u64::from(settings.height);
     let half = (pixels.clamp(1, MAX_PHOTONS) / 2).max(1);
-    let lambda = C::sample_lambda(pass_wavelength_variate(0, settings.seed));
+    let lambda = pass_lambda::<C>(0, settings.seed);
     let (mut a, mut b) = (
         CausticMap::new(radius, alpha),
         CausticMap::new(radius, alpha),
@@ -335,7 +335,7 @@ mod tests {
             let n = b.per_pass(10_000, r2.sqrt() as f32);
             assert!(n >= last, "pass {i}: {n} < {last}");
             last = n;
-            r2 *= crate::integrator::sppm::radius2_factor(i, 2.0 / 3.0);
+            r2 *= crate::integrator::photon_pass::radius2_factor(i, 2.0 / 3.0);
         }
         assert!(last > 3000 && last <= 40_000, "{last}");
     }

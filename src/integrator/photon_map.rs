@@ -316,7 +316,7 @@ pub fn render(
         let o = camera
             .generate_ray(Vec2::new(settings.width as f32, settings.height as f32) * 0.5)
             .origin;
-        16.0 * super::sppm::pixel_footprint(camera, settings, o.distance(c))
+        16.0 * super::photon_pass::pixel_footprint(camera, settings, o.distance(c))
     });
     let maps = PhotonMaps {
         caustic: PhotonMap::build(caustic),

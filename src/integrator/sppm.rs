@@ -29,17 +29,18 @@
 //! The initial radius, unless given, is 2 pixel footprints at the median visible point of
 //! the first pass.
 //!
-//! Shards (`range`, [`crate::app::shard`]): pass p depends on nothing from earlier passes
-//! but the radius (visible points, photons and the grid are rebuilt every pass; the
-//! wavelengths, camera samples and photon numbers are functions of p), and the radius of
-//! pass p is r₀² · Πᵢ₌₁..ₚ (i + α)/(i + 1). A shard starting at p₀ > 0 computes r₀ as pass 0
-//! does (pass 0's camera paths only, not added to its film: one path per pixel) and
-//! applies the same p₀ factors in the same order, so its passes are bit for bit those of
-//! one render, and the merge of the shards is exact.
+//! The pass's wavelengths, the radius sequence, the shard replay and the pass loop are the
+//! photon pass's ([`crate::integrator::photon_pass`]). Shards (`range`,
+//! [`crate::app::shard`]): pass p depends on nothing from earlier passes but the radius
+//! (visible points, photons and the grid are rebuilt every pass; the wavelengths, camera
+//! samples and photon numbers are functions of p). A shard starting at p₀ > 0 computes r₀
+//! as pass 0 does (pass 0's camera paths only, not added to its film: one path per pixel)
+//! and replays the p₀ factors ([`RadiusSequence::replay`]), so its passes are bit for bit
+//! those of one render, and the merge of the shards is exact.
 //!
 //! Progress: each pass adds its per-pixel estimate (direct + photons) to the one film
-//! ([`crate::render::Film`], pass p in half p mod 2) through the one progressive driver
-//! ([`crate::render::drive`], one pass per round): checkpoints after 1, 2, 4, … passes, the
+//! ([`crate::render::Film`], pass p in half p mod 2), one pass per round of the progressive
+//! driver ([`photon_pass::passes`]): checkpoints after 1, 2, 4, … passes, the
 //! observer, the time limit and stop requests between passes are the driver's. Camera rays
 //! are the per-sample methods' [`crate::render::primary_ray`] (jittered; stream
 //! `Rng::new(&[seed, pass, x, y])`). Visible points are kept per film slot.
@@ -52,11 +53,11 @@
 mod gather;
 mod visible;
 
-pub(super) use gather::{photon_term, GatherLanes};
 pub use visible::VisiblePoints;
 
 use super::pass_paths::PassPaths;
 use super::path::{LaneWidth, VisiblePoint};
+use super::photon_pass::{self, first_radius, pass_lambda, RadiusSequence};
 use super::{SppmSettings, StoreBudget, MAX_PHOTONS};
 use crate::camera::Camera;
 use crate::error::Result;
@@ -66,12 +67,11 @@ use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
 use crate::render::{
-    drive, guard, pixel_sampler, Film, Observer, Prepass, RenderSettings, RenderStats, Round,
-    TILE_PIXELS,
+    pixel_sampler, Film, Observer, Prepass, RenderSettings, RenderStats, Round, TILE_PIXELS,
 };
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use rayon::prelude::*;
 
 /// Photons traced per parallel work item (the split is fixed, so results are deterministic).
@@ -95,35 +95,13 @@ pub fn render(
     }
 }
 
-/// The hero variate of pass `pass`'s shared wavelengths: a golden-ratio sequence over
-/// passes, offset by the seed (SPPM and the hybrid).
-pub fn pass_wavelength_variate(pass: u32, seed: u64) -> f32 {
-    let u = (0.5 + pass as f64 * 0.618_033_988_749_895 + (seed % 1024) as f64 * 0.1).fract();
-    (u as f32).min(1.0 - f32::EPSILON)
-}
-
-/// The radius-sequence factor of pass `i` (1-based): r²ᵢ₊₁ / r²ᵢ = (i + α)/(i + 1).
-pub fn radius2_factor(i: u32, alpha: f32) -> f64 {
-    (i as f64 + alpha as f64) / (i as f64 + 1.0)
-}
-
-/// The pixel footprint (world size of one pixel) at distance `d` from the camera, from two
-/// neighbouring rays at the image centre.
-pub fn pixel_footprint(camera: &Camera, settings: &RenderSettings, d: f32) -> f32 {
-    let c = Vec2::new(settings.width as f32, settings.height as f32) * 0.5;
-    let a = camera.generate_ray(c);
-    let b = camera.generate_ray(c + Vec2::X);
-    let (da, db) = (a.dir.normalize(), b.dir.normalize());
-    (a.origin + da * d).distance(b.origin + db * d)
-}
-
 /// The state SPPM keeps across passes: per film slot the visible point of the current
-/// pass, the pass's photons and their grid, and the radius² of the next pass.
+/// pass, the pass's photons and their grid, and the radius sequence.
 struct Passes<C: Carrier> {
     vps: Vec<Option<VisiblePoint<C>>>,
     photons: Vec<Photon>,
     grid: HashGrid,
-    r2: Option<f64>,
+    radius: RadiusSequence,
 }
 
 fn run<C: Carrier>(
@@ -150,7 +128,7 @@ fn run<C: Carrier>(
         vps: Vec::new(),
         photons: Vec::new(),
         grid: HashGrid::new(),
-        r2: ps.radius.map(|r| (r as f64) * (r as f64)),
+        radius: RadiusSequence::new(ps.radius, ps.alpha),
     };
     // Every pixel's visible point takes part in every pass (its radius and flux statistics
     // are per pass), so SPPM never rests tiles.
@@ -161,10 +139,10 @@ fn run<C: Carrier>(
     let mut setup = Prepass::now();
     if schedule.first > 0 {
         // A shard: the radius of its first pass, as one render reaches it.
-        if state.r2.is_none() {
+        if !state.radius.is_chosen() {
             let mut scratch = Film::new(settings.width, settings.height, 0);
             state.vps.resize(scratch.slots(), None);
-            let lambda = C::sample_lambda(pass_wavelength_variate(0, settings.seed));
+            let lambda = pass_lambda::<C>(0, settings.seed);
             let (rays, _) = camera_pass(
                 scene,
                 camera,
@@ -178,25 +156,16 @@ fn run<C: Carrier>(
             setup.rays += rays;
             state.radius(scene, camera, settings);
         }
-        for p in 0..schedule.first {
-            state.r2 = state.r2.map(|x| x * radius2_factor(p as u32 + 1, ps.alpha));
-        }
+        state.radius.replay(schedule.first);
     }
-    let stop = &guard::stop_requested;
-    drive(
+    photon_pass::passes::<C>(
         settings,
         schedule,
         setup,
         observer,
-        stop,
-        |film, k0, _k1, env| {
-            if env.skip(k0) {
-                return Ok(Round::default());
-            }
-            let pass = k0 as u32;
+        |film, pass, lambda, env| {
             let mut round = Round::default();
-            // 1. The pass's wavelengths.
-            let lambda = C::sample_lambda(pass_wavelength_variate(pass, settings.seed));
+            // 1. The pass's wavelengths are `lambda`.
             // 2. Camera paths: direct light into the film, visible points per slot.
             state.vps.resize(film.slots(), None);
             let direct = camera_pass(
@@ -226,7 +195,7 @@ fn run<C: Carrier>(
             round.photons = n_photons;
             // 4. Gather into the same film half.
             round.bad += state.gather_pass(film, pass, r);
-            state.r2 = state.r2.map(|x| x * radius2_factor(pass + 1, ps.alpha));
+            state.radius.end_pass(pass);
             env.bar.inc(film.tiles() as u64);
             round.note = format!(", r {r:.3e}, {} photons stored", state.photons.len());
             Ok(round)
@@ -264,25 +233,6 @@ fn camera_pass<C: Carrier>(
         *slot = vp;
         l.to_rgb(&lambda)
     })
-}
-
-/// The first radius of a progressive pass sequence: 2 pixel footprints at the median
-/// distance of `points` from the camera (1 % of the scene's diagonal without any).
-pub(super) fn first_radius(
-    scene: &Scene,
-    camera: &Camera,
-    settings: &RenderSettings,
-    points: impl Iterator<Item = Vec3>,
-) -> f32 {
-    let (w, h) = (settings.width as f32, settings.height as f32);
-    let o = camera.generate_ray(Vec2::new(w, h) * 0.5).origin;
-    let mut d: Vec<f32> = points.map(|p| p.distance(o)).collect();
-    if d.is_empty() {
-        return 0.01 * (scene.bounds().1 - scene.bounds().0).length();
-    }
-    let mid = d.len() / 2;
-    let (_, m, _) = d.select_nth_unstable_by(mid, f32::total_cmp);
-    2.0 * pixel_footprint(camera, settings, *m)
 }
 
 /// Traces `n_photons` photons of pass `pass` in fixed chunks of [`CHUNK`] and keeps, in
@@ -351,13 +301,11 @@ impl<C: Carrier> Passes<C> {
     /// footprints at the median visible point (1 % of the scene's diagonal when no pixel
     /// has one).
     fn radius(&mut self, scene: &Scene, camera: &Camera, settings: &RenderSettings) -> f32 {
-        if self.r2.is_none() {
-            let points = self.vps.iter().flatten().map(|v| v.p);
-            let r = first_radius(scene, camera, settings, points);
-            let r = if r.is_finite() && r > 0.0 { r } else { 1e-3 };
-            self.r2 = Some((r as f64) * (r as f64));
-        }
-        self.r2.map_or(0.0, f64::sqrt) as f32
+        let vps = &self.vps;
+        self.radius.or_first(|| {
+            let points = vps.iter().flatten().map(|v| v.p);
+            first_radius(scene, camera, settings, points)
+        })
     }
 
     /// Gathers the pass's photons within `r` at every visible point into the film's half
@@ -365,7 +313,7 @@ impl<C: Carrier> Passes<C> {
     /// the bad samples.
     fn gather_pass(&mut self, film: &mut Film, pass: u32, r: f32) -> u64 {
         self.grid.rebuild(&self.photons, r);
-        let area = std::f64::consts::PI * self.r2.unwrap_or(0.0);
+        let area = std::f64::consts::PI * self.radius.r2();
         let (photons, grid) = (&self.photons, &self.grid);
         film.par_tiles_mut()
             .zip(self.vps.par_chunks(TILE_PIXELS))

@@ -37,7 +37,7 @@
 //! radiance as the film's. Determinism: photons come from the surface map's pass
 //! ([`super::caustic::CausticMap::trace_pass`]), in chunk order.
 
-use super::sppm::GatherLanes;
+use super::photon_pass::{GatherLanes, RadiusSequence};
 use crate::math::Ray;
 use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
@@ -59,15 +59,14 @@ pub struct VolumeMap {
     /// The photons' bounding box grown by the radius: a segment is gathered only where it
     /// crosses it.
     bounds: Option<(Vec3, Vec3)>,
-    r2: Option<f64>,
-    alpha: f32,
+    radius: RadiusSequence,
 }
 
 impl VolumeMap {
     /// An empty map with the surface map's α; the first radius is chosen on the first pass.
     pub fn new(alpha: f32) -> VolumeMap {
         VolumeMap {
-            alpha,
+            radius: RadiusSequence::new(None, alpha),
             ..VolumeMap::default()
         }
     }
@@ -75,12 +74,8 @@ impl VolumeMap {
     /// The current radius, choosing the first with `initial(photons)` (finite and positive,
     /// else 1 mm), and the grid for the pass's gathers.
     pub fn begin_gather(&mut self, initial: impl FnOnce(&[Photon]) -> f32) -> f32 {
-        if self.r2.is_none() {
-            let r = initial(&self.photons);
-            let r = if r.is_finite() && r > 0.0 { r } else { 1e-3 };
-            self.r2 = Some(f64::from(r) * f64::from(r));
-        }
-        let r = self.radius();
+        let photons = &self.photons;
+        let r = self.radius.or_first(|| initial(photons));
         // Queries are spheres of radius r√2 around steps of 2r (see `beam`).
         self.grid
             .rebuild(&self.photons, r * std::f32::consts::SQRT_2);
@@ -98,20 +93,24 @@ impl VolumeMap {
 
     /// The current radius (0 before the first is chosen).
     pub fn radius(&self) -> f32 {
-        self.r2.map_or(0.0, f64::sqrt) as f32
+        self.radius.radius()
     }
 
-    /// Ends pass `pass` (0-based): r² ← r² · (i + α)/(i + 1) with i = pass + 1.
+    /// Ends pass `pass` ([`RadiusSequence::end_pass`]).
     pub fn end_pass(&mut self, pass: u32) {
-        let factor = super::sppm::radius2_factor(pass + 1, self.alpha);
-        self.r2 = self.r2.map(|r2| r2 * factor);
+        self.radius.end_pass(pass);
+    }
+
+    /// Ends passes 0..`first` ([`RadiusSequence::replay`]).
+    pub fn replay(&mut self, first: u64) {
+        self.radius.replay(first);
     }
 
     /// The beam radiance estimate (module docs) along `seg` of the unit-direction `ray`, at
     /// the camera path's wavelengths `lambda` (the photons' lanes paired as the surface
     /// gather pairs them, [`GatherLanes`]). Zero for an empty map or an unbounded segment.
     pub fn beam<C: Carrier>(&self, ray: &Ray, seg: &Segment<'_>, lambda: &C::Lambda) -> C {
-        let r2 = self.r2.unwrap_or(0.0) as f32;
+        let r2 = self.radius.r2() as f32;
         if self.photons.is_empty() || r2 <= 0.0 || !seg.end.is_finite() {
             return C::ZERO;
         }

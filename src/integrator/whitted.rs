@@ -30,6 +30,7 @@ use crate::math::Ray;
 use crate::medium_stack::MediumStack;
 use crate::optics::{fresnel_conductor_c, fresnel_dielectric, fresnel_schlick, reflect, refract};
 use crate::scene::Scene;
+use crate::shading::termination::{roulette, Draw};
 use crate::shading::{self, Arrival};
 use crate::spectrum::Carrier;
 
@@ -67,14 +68,11 @@ pub fn radiance<C: Carrier>(
 /// multiply its radiance by, or `None` if Russian roulette ends it.
 fn survive<C: Carrier>(w: C, ctx: &mut Context) -> Option<f32> {
     let m = w.max_element();
-    if m <= 0.0 {
-        return None;
-    }
     if m >= RR_WEIGHT {
         return Some(1.0);
     }
     let p = m / RR_WEIGHT;
-    (ctx.sample.rng.next_f32() < p).then_some(1.0 / p)
+    roulette(p, Draw::UnlessDead, || ctx.sample.rng.next_f32()).map(|p| 1.0 / p)
 }
 
 fn trace<C: Carrier>(scene: &Scene, ray: &Ray, path: Path<C>, w: C, ctx: &mut Context) -> C {

@@ -28,7 +28,8 @@ use crate::math::Rng;
 use crate::medium_stack::MediumStack;
 use crate::scene::Scene;
 use crate::shading::media::Ends;
-use crate::shading::{self, media, Arrival, Event, Surface, MAX_DELTA_BOUNCES};
+use crate::shading::termination::{roulette, throughput_roulette, Bounces, Draw};
+use crate::shading::{self, media, Arrival, Event, Surface};
 use crate::spectrum::Carrier;
 use crate::volume::coarse::Scale;
 use glam::{Vec2, Vec3};
@@ -62,7 +63,8 @@ impl Roulette {
 /// Photon tracing limits.
 #[derive(Debug, Clone, Copy)]
 pub struct TraceSettings {
-    /// Most non-delta bounces (delta bounces are limited by [`MAX_DELTA_BOUNCES`]).
+    /// Most non-delta bounces (delta bounces are limited by
+    /// [`MAX_DELTA_BOUNCES`](crate::shading::MAX_DELTA_BOUNCES)).
     pub max_depth: u32,
     /// Termination rule.
     pub roulette: Roulette,
@@ -161,7 +163,10 @@ fn scatter_in_medium<C: Carrier>(
         caustic: false,
     };
     store(v, *beta, lambda);
-    if survive <= 0.0 || rng.next_f32() >= survive || !beta.is_finite() {
+    let Some(survive) = roulette(survive, Draw::UnlessDead, || rng.next_f32()) else {
+        return Flight::Absorbed;
+    };
+    if !beta.is_finite() {
         return Flight::Absorbed;
     }
     *beta /= survive;
@@ -225,22 +230,6 @@ fn lobe_step<C: Carrier>(bsdf: &Bsdf<C>, wo: Vec3, rng: &mut Rng) -> Option<(Vec
     }
 }
 
-/// Throughput Russian roulette from `old` to `new` (Jensen 2001 §5.1): the photon survives
-/// with probability min(1, max(new)/max(old)), one number of `rng`, and keeps its power,
-/// `new / p`; `None` when it ends.
-pub(super) fn survive<C: Carrier>(old: C, new: C, rng: &mut Rng) -> Option<C> {
-    let before = old.max_element();
-    let p = if before > 0.0 {
-        (new.max_element() / before).min(1.0)
-    } else {
-        0.0
-    };
-    if p <= 0.0 || rng.next_f32() >= p {
-        return None;
-    }
-    Some(new / p)
-}
-
 /// The photon's next direction at surface `s` under `roulette` (throughput roulette:
 /// survival = the throughput's change, survivors keep their power; or by lobe), updating
 /// `beta`: (direction, whether it is a transmission, whether the bounce counts as delta);
@@ -256,7 +245,8 @@ fn next_direction<C: Carrier>(
             let uc = rng.next_f32();
             let u = Vec2::new(rng.next_f32(), rng.next_f32());
             let bs = s.sample(uc, u, TransportMode::Importance)?;
-            *beta = survive(*beta, *beta * bs.f * (bs.wi.z.abs() / bs.pdf), rng)?;
+            let new = *beta * bs.f * (bs.wi.z.abs() / bs.pdf);
+            *beta = throughput_roulette(*beta, new, || rng.next_f32())?;
             (bs.wi, bs.transmission, bs.delta)
         }
         Roulette::Lobe => {
@@ -307,7 +297,7 @@ pub fn trace_in_media<C: Carrier>(
     let mut beta = C::emitted(photon.power, photon.shape, &lambda);
     let mut ray = photon.ray;
     let mut media = MediumStack::new();
-    let (mut bounces, mut depth, mut delta_depth) = (0u32, 0u32, 0u32);
+    let (mut bounces, mut counts) = (0u32, Bounces::default());
     let mut all_specular = true;
     let mut rays = 0u64;
     let mut leaving = Leaving::Light;
@@ -337,8 +327,7 @@ pub fn trace_in_media<C: Carrier>(
                 Flight::Scattered => {
                     all_specular = false;
                     bounces += 1;
-                    depth += 1;
-                    if depth >= settings.max_depth {
+                    if !counts.bounce(false, settings.max_depth) {
                         break;
                     }
                     continue;
@@ -396,16 +385,8 @@ pub fn trace_in_media<C: Carrier>(
         all_specular &= !s.bsdf.is_diffuse_like();
         media = s.media_after(transmission);
         bounces += 1;
-        if delta {
-            delta_depth += 1;
-            if delta_depth > MAX_DELTA_BOUNCES {
-                break;
-            }
-        } else {
-            depth += 1;
-            if depth >= settings.max_depth {
-                break;
-            }
+        if !counts.bounce(delta, settings.max_depth) {
+            break;
         }
         ray = s.spawn(wi);
         leaving = Leaving::Surface(s.hit);

@@ -7,8 +7,11 @@
 //! - [`frame`]: the shading frame at a hit (the tangent frame anisotropy uses);
 //! - [`direct`]: direct light with shadow rays (the Whitted tracer's light step);
 //! - [`lights`]: one light sample toward a hit (punctual, emissive triangles, environment);
+//! - [`next_event`]: next-event estimation written once (light choice, sample, weight,
+//!   shadow ray), each tracer's differences in its [`next_event::Receiver`];
 //! - [`media`]: scattering media along a path's rays (free flight, medium-only boundaries,
-//!   shadow-ray transmittance).
+//!   shadow-ray transmittance);
+//! - [`termination`]: how every path ends (Russian roulette, the delta-bounce cap).
 //!
 //! Units and frames are stated in each module: directions are unit vectors, world space
 //! unless said to be in the local frame of the outward shading normal.
@@ -18,11 +21,14 @@ pub mod frame;
 pub mod lights;
 pub mod material_bsdf;
 pub mod media;
+pub mod next_event;
 pub mod polarized;
 pub mod spectral_mis;
 pub mod step;
+pub mod termination;
 
 pub use crate::bsdf::GLOSSY_ALPHA;
 pub use direct::direct_light;
 pub use material_bsdf::{bsdf_at, interface, lane_etas};
-pub use step::{arrival, arrive, meet, sample_bsdf, Arrival, Event, Surface, MAX_DELTA_BOUNCES};
+pub use step::{arrival, arrive, meet, sample_bsdf, Arrival, Event, Surface};
+pub use termination::MAX_DELTA_BOUNCES;

@@ -34,11 +34,6 @@ use crate::scene::{Scene, Triangle};
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
 
-/// Most delta (specular) bounces on one camera or photon path; they do not use up the
-/// `max_depth` budget of non-delta bounces, so a gem's internal reflections are not cut
-/// short.
-pub const MAX_DELTA_BOUNCES: u32 = 1024;
-
 /// The surface a path really meets at `hit`, for touching objects (the intersection layer's
 /// [`Scene::coincident`], probed only at volume boundaries): a non-volumetric face lying
 /// on the boundary wins — water filling an opaque mug meets the mug's wall, still in the

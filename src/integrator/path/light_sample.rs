@@ -1,5 +1,6 @@
-//! Next-event estimation of a camera path's vertex ([`next_event`]): one light chosen by
-//! the scene's light sampler, from a surface (its BSDF, per lane at a rough dispersive
+//! Next-event estimation of a camera path's vertex ([`next_event`], the shared estimator
+//! [`crate::shading::next_event`] with the path's [`Receiver`]): one light chosen by the
+//! scene's light sampler, from a surface (its BSDF, per lane at a rough dispersive
 //! interface) or from a scattering event in a medium (its phase function), MIS-weighted
 //! against the vertex's own sampling (power heuristic). The shadow ray is left to the
 //! caller ([`super::vertex::Pending`]), with the media it starts in when the scene has
@@ -16,13 +17,14 @@ use crate::medium_stack::MediumStack;
 use crate::sampler::Bounce;
 use crate::scene::Scene;
 use crate::shading::media::Through;
-use crate::shading::{lights, Surface};
+use crate::shading::next_event::{self, Chosen, Eval, Receiver};
+use crate::shading::Surface;
 use crate::spectrum::Carrier;
 use crate::volume::Phase;
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 /// A vertex's next-event record: the contribution of a light sample (the shading layer's
-/// [`lights::LightSample`], weighted and carried) and the shadow ray that decides it:
+/// [`crate::shading::lights::LightSample`], weighted and carried) and the shadow ray that decides it:
 /// `value` counts if nothing blocks `shadow` (times the shadow ray's transmittance through
 /// the media it starts in, `through`, in a scene with media); with no shadow ray, `value`
 /// is zero.
@@ -99,11 +101,37 @@ impl<C: Carrier> Scatterer<'_, C> {
     }
 }
 
-/// Next-event estimation at `at`: one light, chosen by the scene's light sampler
-/// ([`Scene::light_sampler`](crate::scene::Scene)), with the shadow ray left to the caller
-/// (counted in `rays` here). With `use_mis` false the light sample gets the full weight (the
-/// path stops here, so BSDF sampling will not find the light). In a scene with media the
-/// shadow ray carries the media it starts in, for its transmittance.
+/// The path's side of the shared estimator ([`shading::next_event`]): the scatterer's f,
+/// |cos| and density, and the power heuristic against the vertex's own sampling (weight 1
+/// without MIS or for a delta light).
+struct PathReceiver<'a, 'b, C: Carrier> {
+    at: &'a Scatterer<'b, C>,
+    use_mis: bool,
+}
+
+impl<C: Carrier> Receiver<C> for PathReceiver<'_, '_, C> {
+    fn hit(&self) -> &SurfaceHit {
+        self.at.hit()
+    }
+
+    fn eval(&self, wi: Vec3, lambda: &C::Lambda) -> Option<Eval<C>> {
+        let (f, cos, pdf) = self.at.eval(wi, lambda);
+        Some(Eval { f, cos, pdf })
+    }
+
+    fn weight(&self, chosen: &Chosen<'_>, eval: &Eval<C>) -> Option<f32> {
+        Some(match chosen.pdf() {
+            Some(lp) if self.use_mis => mis(lp, eval.pdf),
+            _ => 1.0,
+        })
+    }
+}
+
+/// Next-event estimation at `at` ([`next_event::one`]): one light, chosen by the scene's
+/// light sampler ([`Scene::light_sampler`](crate::scene::Scene)), with the shadow ray left
+/// to the caller (counted in `rays` here). With `use_mis` false the light sample gets the
+/// full weight (the path stops here, so BSDF sampling will not find the light). In a scene
+/// with media the shadow ray carries the media it starts in, for its transmittance.
 pub(super) fn next_event<C: Carrier>(
     scene: &Scene,
     at: &Scatterer<'_, C>,
@@ -112,56 +140,14 @@ pub(super) fn next_event<C: Carrier>(
     u: &mut Bounce<'_>,
     rays: &mut u64,
 ) -> NextEvent<C> {
-    let hit = at.hit();
-    let sampler = &scene.light_sampler();
-    if sampler.is_empty() {
-        return NextEvent::NONE;
-    }
-    // Numbers a light does not use are skipped ([`Bounce::skip_light_choice`]).
-    let u_choice = if sampler.lights().len() > 1 {
-        u.light_choice()
-    } else {
-        u.skip_light_choice();
-        0.0
-    };
-    let Some(choice) = sampler.sample(u_choice) else {
+    let r = PathReceiver { at, use_mis };
+    let Some(e) = next_event::one(scene, &r, lambda, u, rays) else {
         return NextEvent::NONE;
     };
-    let p_sel = choice.pmf;
-    let (reads_position, reads_member) = lights::numbers_read(choice.light);
-    let up = if reads_position {
-        u.light_position()
-    } else {
-        u.skip_light_position();
-        Vec2::ZERO
-    };
-    let uc = if reads_member {
-        u.light_member()
-    } else {
-        u.skip_light_member();
-        0.0
-    };
-    let Some(ls) = lights::sample(scene, hit, choice.light, uc, up) else {
-        return NextEvent::NONE;
-    };
-    // The light's pdf includes choosing it ([`lights::area_pdf`] and
-    // [`lights::environment_pdf`] give the same for a BSDF-sampled direction).
-    let light_pdf = ls.pdf.map(|p| p * p_sel);
-    // Per lane with the hero-marginal pdf at a rough dispersive interface (spectral MIS).
-    let (f, cos, pdf) = at.eval(ls.wi, lambda);
-    if f == C::ZERO {
-        return NextEvent::NONE;
-    }
-    *rays += 1;
-    let w = match light_pdf {
-        Some(lp) if use_mis => mis(lp, pdf),
-        _ => 1.0,
-    };
-    let incident = C::emitted(ls.incident / p_sel, ls.shape, lambda);
     NextEvent {
-        shadow: Some(ls.shadow),
-        wi: ls.wi,
-        value: f * incident * (cos * w),
-        through: scene.has_media().then(|| at.through(ls.wi)),
+        shadow: Some(e.shadow),
+        wi: e.wi,
+        value: e.value,
+        through: scene.has_media().then(|| at.through(e.wi)),
     }
 }

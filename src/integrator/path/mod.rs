@@ -107,7 +107,7 @@ pub struct VisiblePoint<C: Carrier> {
     pub etas: Option<[f32; 4]>,
     /// Whose hero orders the lanes: the gather rotates a photon's power (in the sample's
     /// order) into the path's, and divides by 4 only for a path coupled to the sample's
-    /// hero (`crate::integrator::sppm`'s `GatherLanes`).
+    /// hero (`crate::integrator::photon_pass`'s `GatherLanes`).
     pub hero: HeroOf,
 }
 

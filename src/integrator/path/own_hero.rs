@@ -45,7 +45,7 @@
 //! the surface's η and tint ([`crate::shading::Surface::with_hero_lane`]) rotate together.
 //! The radiance rotates back at the end ([`HeroOf::to_sample`]); a visible point keeps
 //! path order with its (rotated) wavelengths, and the gather rotates each photon's power
-//! into it (`crate::integrator::sppm`'s `GatherLanes::OwnHero`, which also leaves out the
+//! into it (`crate::integrator::photon_pass`'s `GatherLanes::OwnHero`, which also leaves out the
 //! coupled case's ÷4): the film's conversion is symmetric in lane order, so converting
 //! with the rotated wavelengths is exact.
 //!

@@ -44,7 +44,7 @@
 //! tracer's and the hybrid's, when [`super::Dispersion::split`] is on, the default; off
 //! for comparisons). The hybrid's sub-paths gather its caustic map in their own lane
 //! order with the photons' lanes rotated to match, and without the collapse's ÷4
-//! (`crate::integrator::sppm::photon_term` gives the argument). SPPM's and the photon map's
+//! (`crate::integrator::photon_pass::photon_term` gives the argument). SPPM's and the photon map's
 //! visible points keep the collapse: a pass stores one visible point per pixel.
 
 use super::state::PathState;

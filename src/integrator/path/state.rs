@@ -19,7 +19,8 @@ use crate::bsdf::BsdfSample;
 use crate::interaction::SurfaceHit;
 use crate::medium_stack::MediumStack;
 use crate::sampler::Bounce;
-use crate::shading::{Surface, MAX_DELTA_BOUNCES};
+use crate::shading::termination::{delta_bounce, roulette, Draw};
+use crate::shading::Surface;
 use crate::spectrum::Carrier;
 use crate::volume::coarse::{Scale, MAX_RUN};
 use glam::Vec3;
@@ -199,8 +200,7 @@ impl<C: Carrier> PathState<C> {
 
     /// One more delta bounce; `false` past [`MAX_DELTA_BOUNCES`].
     fn count_delta(&mut self) -> bool {
-        self.delta_depth += 1;
-        self.delta_depth <= MAX_DELTA_BOUNCES
+        delta_bounce(&mut self.delta_depth)
     }
 
     /// The bounce limits for a vertex of `kind` (module docs) and, after three non-delta
@@ -224,14 +224,12 @@ impl<C: Carrier> PathState<C> {
         }
         // Non-delta vertices so far (a run's first event is in both counts).
         if self.depth + self.run.saturating_sub(1) >= 3 {
-            // q NaN or ≤ 0 ends the path; q ≥ 1 always continues.
+            // q NaN or ≤ 0 ends the path; q ≥ 1 always continues (divided by 1).
             let q = (self.beta * self.eta_scale).max_element();
-            if q.is_nan() || q < 1.0 {
-                if q.is_nan() || u.roulette() >= q {
-                    return false;
-                }
-                self.beta /= q;
-            }
+            let Some(q) = roulette(q, Draw::UnlessSure, || u.roulette()) else {
+                return false;
+            };
+            self.beta /= q;
         }
         true
     }

@@ -11,12 +11,14 @@
 //! the two vertices occludes them): the segment takes that medium's Beer–Lambert
 //! transmittance. Where both subpaths kept only the hero wavelength (a dispersive
 //! interface on each side), their product carries 4× twice and is divided by 4 once
-//! (as SPPM's gather, [`crate::integrator::sppm`]).
+//! (as the photon gather's, [`crate::integrator::photon_pass::GatherLanes`]).
 
 use super::light_paths::{LightPaths, LightVertex, AIM};
 use super::mis::{Partials, Pass};
 use crate::bsdf::TransportMode;
 use crate::camera::Camera;
+use crate::interaction::SurfaceHit;
+use crate::light::LightId;
 use crate::math::Ray;
 use crate::medium_stack::MediumStack;
 use crate::photon::emit::{PhotonEmitter, Source};
@@ -24,7 +26,9 @@ use crate::photon::grid::HashGrid;
 use crate::render::Context;
 use crate::sampler::Bounce;
 use crate::scene::Scene;
-use crate::shading::{self, lights, Arrival, Event, Surface};
+use crate::shading::next_event::{self, Chosen, Eval, Receiver};
+use crate::shading::termination::{delta_bounce, roulette, Draw};
+use crate::shading::{self, Arrival, Event, Surface};
 use crate::spectrum::Carrier;
 use glam::Vec3;
 
@@ -126,15 +130,15 @@ impl<C: Carrier> CameraKit<'_, C> {
             w.beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
             if w.depth >= ROULETTE_DEPTH && !bs.delta {
                 let q = w.beta.max_element().min(1.0);
-                if q.is_nan() || q <= 0.0 || u.roulette() >= q {
+                let Some(q) = roulette(q, Draw::UnlessDead, || u.roulette()) else {
                     break;
-                }
+                };
                 w.beta *= C::splat(1.0 / q);
             }
             if !w.beta.is_finite() || w.beta == C::ZERO {
                 break;
             }
-            if super::too_many_deltas(&mut deltas, bs.delta) {
+            if bs.delta && !delta_bounce(&mut deltas) {
                 break;
             }
             media = s.media_after(bs.transmission);
@@ -179,53 +183,18 @@ impl<C: Carrier> CameraKit<'_, C> {
         le * part.hit_light(&dens)
     }
 
-    /// Next-event estimation at `s`: one light of the scene's light sampler, weighted
-    /// against the camera subpath reaching it and light subpaths starting there.
+    /// Next-event estimation at `s` ([`next_event::one`] with [`Nee`]): one light of the
+    /// scene's light sampler, weighted against the camera subpath reaching it and light
+    /// subpaths starting there.
     fn next_event(&self, s: &Surface<C>, w: &Walk<C>, u: &mut Bounce<'_>, rays: &mut u64) -> C {
-        let scene = self.scene;
-        let sampler = scene.light_sampler();
-        let (uc, up, um) = (u.light_choice(), u.light_position(), u.light_member());
-        let Some(choice) = sampler.sample(uc) else {
-            return C::ZERO;
-        };
-        let Some(ls) = lights::sample(scene, &s.hit, choice.light, um, up) else {
-            return C::ZERO;
-        };
-        let wi = s.frame.to_local(ls.wi);
-        let f = s.bsdf.eval(s.wo, wi, TransportMode::Radiance);
-        if f == C::ZERO {
+        if self.scene.light_sampler().is_empty() {
+            // Without lights the subpath still draws the light numbers of its vertex.
+            let _ = (u.light_choice(), u.light_position(), u.light_member());
             return C::ZERO;
         }
-        let source = match (choice.light, ls.prim) {
-            (crate::light::LightId::Punctual(k), _) => Source::Punctual(k),
-            (crate::light::LightId::Area, Some(prim)) => Source::Area(prim),
-            (crate::light::LightId::Area, None) => return C::ZERO,
-            (crate::light::LightId::Environment, _) => Source::Environment,
-        };
-        let point = ls.position.unwrap_or(s.hit.p);
-        let e = self.emitter.densities(scene, source, point, -ls.wi, AIM);
-        // Next-event estimation's solid-angle density (with its light choice).
-        let light_pdf = if e.finite {
-            e.direct * point.distance_squared(s.hit.p) / e.cos
-        } else {
-            e.direct
-        };
-        let pdfs = (
-            s.bsdf.pdf(s.wo, wi, TransportMode::Radiance),
-            s.bsdf.pdf(wi, s.wo, TransportMode::Radiance),
-        );
-        let weight = w
-            .part
-            .next_event(&e, light_pdf, pdfs, wi.z.abs(), &self.mis);
-        if !(weight > 0.0 && weight.is_finite()) {
-            return C::ZERO;
-        }
-        *rays += 1;
-        if scene.occluded(&ls.shadow) {
-            return C::ZERO;
-        }
-        let incident = C::emitted(ls.incident / choice.pmf, ls.shape, &w.lambda);
-        w.beta * f * incident * (wi.z.abs() * weight)
+        let r = Nee { kit: self, s, w };
+        next_event::one(self.scene, &r, &w.lambda, u, rays)
+            .map_or(C::ZERO, |e| e.resolve(self.scene))
     }
 
     /// Connections of `s` to the vertices of its paired light subpath.
@@ -296,6 +265,68 @@ impl<C: Carrier> CameraKit<'_, C> {
             sum += hero_product(f, &w.lambda, v.beta, &v.lambda) * weight;
         });
         w.beta * sum * self.mis.merge_norm
+    }
+}
+
+/// VCM's side of the shared next-event estimator: the BSDF toward the light, the weight
+/// over all of VCM's strategies ([`Partials::next_event`], the light's densities from the
+/// photon emitter), the camera subpath's throughput.
+struct Nee<'a, 'k, C: Carrier> {
+    kit: &'a CameraKit<'k, C>,
+    s: &'a Surface<C>,
+    w: &'a Walk<C>,
+}
+
+impl<C: Carrier> Receiver<C> for Nee<'_, '_, C> {
+    fn hit(&self) -> &SurfaceHit {
+        &self.s.hit
+    }
+
+    fn eval(&self, wi: Vec3, _: &C::Lambda) -> Option<Eval<C>> {
+        let wi = self.s.frame.to_local(wi);
+        let f = self.s.bsdf.eval(self.s.wo, wi, TransportMode::Radiance);
+        Some(Eval {
+            f,
+            cos: wi.z.abs(),
+            pdf: 0.0,
+        })
+    }
+
+    /// `None` for an emissive-group sample without its triangle, or a weight that is not
+    /// finite and positive.
+    fn weight(&self, chosen: &Chosen<'_>, eval: &Eval<C>) -> Option<f32> {
+        let (s, ls) = (self.s, &chosen.sample);
+        let source = match (chosen.light, ls.prim) {
+            (LightId::Punctual(k), _) => Source::Punctual(k),
+            (LightId::Area, Some(prim)) => Source::Area(prim),
+            (LightId::Area, None) => return None,
+            (LightId::Environment, _) => Source::Environment,
+        };
+        let point = ls.position.unwrap_or(s.hit.p);
+        let e = self
+            .kit
+            .emitter
+            .densities(self.kit.scene, source, point, -ls.wi, AIM);
+        // Next-event estimation's solid-angle density (with its light choice).
+        let light_pdf = if e.finite {
+            e.direct * point.distance_squared(s.hit.p) / e.cos
+        } else {
+            e.direct
+        };
+        let wi = s.frame.to_local(ls.wi);
+        let pdfs = (
+            s.bsdf.pdf(s.wo, wi, TransportMode::Radiance),
+            s.bsdf.pdf(wi, s.wo, TransportMode::Radiance),
+        );
+        let weight = self
+            .w
+            .part
+            .next_event(&e, light_pdf, pdfs, eval.cos, &self.kit.mis);
+        (weight > 0.0 && weight.is_finite()).then_some(weight)
+    }
+
+    fn throughput(&self) -> Option<C> {
+        Some(self.w.beta)
     }
 }
 

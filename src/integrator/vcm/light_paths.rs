@@ -27,6 +27,7 @@ use crate::medium_stack::MediumStack;
 use crate::photon::emit::{Aim, EmittedPhoton, PhotonEmitter, PhotonNumbers, Source};
 use crate::photon::trace::PhotonVertex;
 use crate::scene::Scene;
+use crate::shading::termination::{delta_bounce, throughput_roulette};
 use crate::shading::{self, Event, Surface};
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
@@ -237,20 +238,14 @@ impl LightKit<'_> {
             part.scatter(bs.delta, bs.wi.z.abs(), bs.pdf, pdf_rev, mis);
             // Roulette on the throughput's change; survivors keep their flux (as photons).
             let next = beta * bs.f * (bs.wi.z.abs() / bs.pdf);
-            let old = beta.max_element();
-            let q = if old > 0.0 {
-                (next.max_element() / old).min(1.0)
-            } else {
-                0.0
-            };
-            if q.is_nan() || q <= 0.0 || rng.next_f32() >= q {
+            let Some(next) = throughput_roulette(beta, next, || rng.next_f32()) else {
                 break;
-            }
-            beta = next / q;
+            };
+            beta = next;
             if !beta.is_finite() {
                 break;
             }
-            if super::too_many_deltas(&mut deltas, bs.delta) {
+            if bs.delta && !delta_bounce(&mut deltas) {
                 break;
             }
             media = s.media_after(bs.transmission);

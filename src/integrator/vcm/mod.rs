@@ -21,12 +21,14 @@
 //! radius shrinks).
 //!
 //! Radius: the first is `--radius` or half a pixel footprint at the median camera distance
-//! of the first pass's light vertices ([`RADIUS_SCALE`] × SPPM's rule); pass p's is r₀² · Πᵢ₌₁..ₚ (i + α)/(i + 1)
-//! (Knaus & Zwicker 2011, the sequence SPPM and the hybrid use).
+//! of the first pass's light vertices ([`RADIUS_SCALE`] × the photon pass's rule); pass
+//! p's follows the photon pass's sequence ([`super::photon_pass::RadiusSequence`], Knaus &
+//! Zwicker 2011), as do the wavelengths and the pass loop.
 //!
 //! Shards: pass p needs from earlier passes only the radius, a pure function of r₀ and p. A
-//! shard starting later traces pass 0's light subpaths for r₀ (unless `--radius` gave it):
-//! its passes are bit for bit those of one render, whatever the thread count.
+//! shard starting later traces pass 0's light subpaths for r₀ (unless `--radius` gave it)
+//! and replays the sequence to its pass: its passes are bit for bit those of one render,
+//! whatever the thread count.
 //!
 //! Limits: connections and light tracing need a pinhole: an orthographic camera is
 //! refused. Connections treat a BLEND surface as opaque (as next-event estimation does
@@ -37,15 +39,15 @@ mod camera;
 mod light_paths;
 pub mod mis;
 
-use super::sppm::{first_radius, pass_wavelength_variate, radius2_factor};
+use super::photon_pass::{self, first_radius, pass_lambda, RadiusSequence};
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::integrator::light_trace::{self, Splatter};
 use crate::photon::emit::{PhotonEmitter, PhotonNumbers};
 use crate::photon::grid::HashGrid;
 use crate::render::{
-    drive_passes, pixel_sampler, primary_ray, Context, Film, Observer, Prepass, RenderSettings,
-    RenderStats, Round,
+    pixel_sampler, primary_ray, Context, Film, Observer, Prepass, RenderSettings, RenderStats,
+    Round,
 };
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
@@ -115,7 +117,7 @@ struct Run<'a> {
     numbers: PhotonNumbers,
 }
 
-/// VCM's first radius over SPPM's ([`first_radius`]: 2 pixel footprints): half a pixel
+/// VCM's first radius over the photon pass's ([`first_radius`]: 2 pixel footprints): half a pixel
 /// footprint. With SPPM's radius the merges' share (η = π r² n_light) outweighs light
 /// tracing where a caustic is seen directly and blurs it; a smaller radius trades that
 /// against noise where merging carries the light (BENCHMARKS.md, "Vertex connection and
@@ -153,7 +155,7 @@ impl Run<'_> {
         if let Some(r) = self.vcm.radius {
             return r;
         }
-        let lambda = C::sample_lambda(pass_wavelength_variate(0, self.settings.seed));
+        let lambda = pass_lambda::<C>(0, self.settings.seed);
         let n = self.light_paths();
         let kit = LightKit {
             splatter: None,
@@ -187,57 +189,48 @@ impl Run<'_> {
         let kit = self.light_kit();
         let sampler = pixel_sampler(settings, u64::from(settings.spp.max(1)));
         let mut grid = HashGrid::new();
-        drive_passes(settings, schedule, setup, observer, |film, pass, env| {
-            let lambda = C::sample_lambda(pass_wavelength_variate(pass, settings.seed));
-            let r = radius(r0, self.vcm.alpha, pass);
-            let weights = mis::Pass::new(r, n as f32, self.vcm.merge);
-            let lights: LightPaths<C> = kit.trace(pass, n, lambda, &weights);
-            // The vertices merging reads by the grid's index (8 bytes each, beside their 0.5 kB).
-            let mut merged: Vec<&LightVertex<C>> = Vec::new();
-            if weights.merges() {
-                merged.extend(lights.vertices());
-                grid.rebuild_with(merged.len(), |i| light_paths::position(merged[i]), r);
-            }
-            let pixels = settings.width as usize * settings.height as usize;
-            let splats = light_trace::splat_image(&lights.splats(), pixels);
-            let cam = CameraKit {
-                scene: self.scene,
-                camera: self.camera,
-                emitter: &self.emitter,
-                lights: &lights,
-                merged: &merged,
-                grid: &grid,
-                radius: r,
-                mis: weights,
-                max_depth: self.max_depth,
-                width: settings.width as usize,
-            };
-            let (rays, bad) = camera_pass(&cam, &sampler, lambda, &splats, film);
-            env.bar.inc(film.tiles() as u64);
-            Ok(Round {
-                rays: rays + lights.rays,
-                bad,
-                photons: n as u64,
-                note: format!(", r {r:.3e}, {} light vertices", lights.len()),
-            })
-        })
+        photon_pass::passes::<C>(
+            settings,
+            schedule,
+            setup,
+            observer,
+            |film, pass, lambda, env| {
+                let r = RadiusSequence::new(Some(r0), self.vcm.alpha)
+                    .at_pass(pass)
+                    .radius();
+                let weights = mis::Pass::new(r, n as f32, self.vcm.merge);
+                let lights: LightPaths<C> = kit.trace(pass, n, lambda, &weights);
+                // The vertices merging reads by the grid's index (8 bytes each, beside their 0.5 kB).
+                let mut merged: Vec<&LightVertex<C>> = Vec::new();
+                if weights.merges() {
+                    merged.extend(lights.vertices());
+                    grid.rebuild_with(merged.len(), |i| light_paths::position(merged[i]), r);
+                }
+                let pixels = settings.width as usize * settings.height as usize;
+                let splats = light_trace::splat_image(&lights.splats(), pixels);
+                let cam = CameraKit {
+                    scene: self.scene,
+                    camera: self.camera,
+                    emitter: &self.emitter,
+                    lights: &lights,
+                    merged: &merged,
+                    grid: &grid,
+                    radius: r,
+                    mis: weights,
+                    max_depth: self.max_depth,
+                    width: settings.width as usize,
+                };
+                let (rays, bad) = camera_pass(&cam, &sampler, lambda, &splats, film);
+                env.bar.inc(film.tiles() as u64);
+                Ok(Round {
+                    rays: rays + lights.rays,
+                    bad,
+                    photons: n as u64,
+                    note: format!(", r {r:.3e}, {} light vertices", lights.len()),
+                })
+            },
+        )
     }
-}
-
-/// Counts a bounce on a subpath (`delta` or not) and says whether its delta bounces now
-/// exceed [`crate::shading::MAX_DELTA_BOUNCES`] (the subpath then ends).
-fn too_many_deltas(deltas: &mut u32, delta: bool) -> bool {
-    *deltas += u32::from(delta);
-    *deltas > crate::shading::MAX_DELTA_BOUNCES
-}
-
-/// Pass `pass`'s merging radius from the first, `r0` (module docs).
-fn radius(r0: f32, alpha: f32, pass: u32) -> f32 {
-    let mut r2 = f64::from(r0) * f64::from(r0);
-    for i in 1..=pass {
-        r2 *= radius2_factor(i, alpha);
-    }
-    r2.sqrt() as f32
 }
 
 /// One camera subpath per pixel of the active tiles (each tile's next unit), plus the

@@ -35,7 +35,8 @@ use crate::polar::modes::InMode;
 use crate::polar::stokes::{linear_polarizer, transverse, Light};
 use crate::scene::Scene;
 use crate::shading::polarized::{polarizer_sheet, s_basis, segment_transmittance, smooth_crystal};
-use crate::shading::{self, Arrival, Event, MAX_DELTA_BOUNCES};
+use crate::shading::termination::{throughput_roulette, Bounces};
+use crate::shading::{self, Arrival, Event};
 use crate::spectrum::Carrier;
 use glam::Vec2;
 
@@ -78,7 +79,7 @@ pub fn trace<C: Carrier>(
         media: MediumStack::new(),
         mode: None,
     };
-    let (mut bounces, mut depth, mut delta_depth) = (0u32, 0u32, 0u32);
+    let (mut bounces, mut counts) = (0u32, Bounces::default());
     let mut all_specular = true;
     let mut rays = 0u64;
     while let Some(at) = shading::arrive::<C>(scene, &f.ray, &f.media, &f.lambda, &mut rays) {
@@ -104,22 +105,14 @@ pub fn trace<C: Carrier>(
         if !new_beta.is_finite() {
             break;
         }
-        let Some(beta) = super::trace::survive(f.beta, new_beta, rng) else {
+        let Some(beta) = throughput_roulette(f.beta, new_beta, || rng.next_f32()) else {
             break;
         };
         f.beta = beta;
         all_specular &= !b.diffuse;
         bounces += 1;
-        if b.delta {
-            delta_depth += 1;
-            if delta_depth > MAX_DELTA_BOUNCES {
-                break;
-            }
-        } else {
-            depth += 1;
-            if depth >= max_depth {
-                break;
-            }
+        if !counts.bounce(b.delta, max_depth) {
+            break;
         }
     }
     rays
