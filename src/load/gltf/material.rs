@@ -283,8 +283,36 @@ fn factors(
         double_sided: m.double_sided(),
         alpha_mode,
         name: element.to_string(),
+        stated: stated(m),
+        extras: m
+            .extras()
+            .as_ref()
+            .and_then(|x| serde_json::from_str(x.get()).ok()),
         ..defaults
     })
+}
+
+/// The KHR material extensions a writer writes back when stated with default values
+/// ([`MaterialDesc::stated`]), those present on `m`.
+fn stated(m: &gltf::Material<'_>) -> std::collections::BTreeSet<&'static str> {
+    let typed = [
+        ("KHR_materials_ior", m.ior().is_some()),
+        ("KHR_materials_transmission", m.transmission().is_some()),
+        ("KHR_materials_volume", m.volume().is_some()),
+        ("KHR_materials_specular", m.specular().is_some()),
+    ];
+    let raw = [
+        "KHR_materials_dispersion",
+        "KHR_materials_clearcoat",
+        "KHR_materials_sheen",
+        "KHR_materials_diffuse_transmission",
+    ]
+    .map(|name| (name, m.extension_value(name).is_some()));
+    typed
+        .into_iter()
+        .chain(raw)
+        .filter_map(|(name, present)| present.then_some(name))
+        .collect()
 }
 
 /// `KHR_materials_dispersion.dispersion` (default 0).
