@@ -105,9 +105,10 @@ fn axis_json(v: DVec3) -> serde_json::Value {
 fn crystal_material(stone: Stone, title: &str, thickness: f32, axis: DVec3) -> MaterialDesc {
     let mut m = stone.material(thickness);
     m.name = title.into();
-    m.extras = Some(serde_json::json!({
-        "iris_crystal": {"stone": stone.name(), "optic_axis": axis_json(axis)}
-    }));
+    let crystal = serde_json::json!({"stone": stone.name(), "optic_axis": axis_json(axis)});
+    // The typed crystal is the loader's reading of the key written.
+    m.crystal = crate::load::gltf::crystal::crystal(&crystal).ok();
+    m.extras = Some(serde_json::json!({ "iris_crystal": crystal }));
     m
 }
 

@@ -113,7 +113,7 @@ pub fn clearcoat() -> GenScene {
         m.roughness = 0.6;
         m.layers.clearcoat = factor;
         m.layers.clearcoat_roughness = roughness;
-        m.stated.insert("KHR_materials_clearcoat");
+        m.stated.insert("KHR_materials_clearcoat".into());
         add_sphere(&mut s, &format!("Sphere {}", i + 1), m, at);
     }
     add_facing_panel(&mut s, "Key panel", 400.0, (0.15, 0.15), CLEARCOAT_LIGHT);
@@ -133,7 +133,7 @@ pub fn sheen() -> GenScene {
         if let Some((color, roughness)) = *sheen {
             m.layers.sheen_color = color;
             m.layers.sheen_roughness = roughness;
-            m.stated.insert("KHR_materials_sheen");
+            m.stated.insert("KHR_materials_sheen".into());
         }
         add_sphere(&mut s, &format!("Sphere {}", i + 1), m, at);
     }
@@ -160,7 +160,7 @@ pub fn diffuse_transmission() -> GenScene {
         m.double_sided = true;
         m.layers.diffuse_transmission = factor;
         m.layers.diffuse_transmission_color = TRANSMISSION_COLOR;
-        m.stated.insert("KHR_materials_diffuse_transmission");
+        m.stated.insert("KHR_materials_diffuse_transmission".into());
         add_mesh(
             &mut s,
             &format!("Sheet {}", i + 1),

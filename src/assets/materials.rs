@@ -62,7 +62,7 @@ pub fn iridescence_sphere() -> GenScene {
     let mut m = MaterialDesc::diffuse("iridescent dielectric", Vec3::splat(0.05));
     m.roughness = 0.15;
     m.ior = 1.5;
-    m.stated.insert("KHR_materials_ior");
+    m.stated.insert("KHR_materials_ior".into());
     m.iridescence = Some(IridescenceDesc {
         factor: 1.0,
         ior: 1.3,

@@ -99,7 +99,7 @@ pub fn encode_glb(scene: &GenScene) -> Result<Vec<u8>> {
         root.insert("buffers".into(), json!([{"byteLength": w.bin.len()}]));
     }
     if !lights.is_empty() {
-        w.used.insert("KHR_lights_punctual");
+        w.used.insert("KHR_lights_punctual".into());
         root.insert(
             "extensions".into(),
             json!({"KHR_lights_punctual": {"lights": lights}}),
@@ -129,7 +129,7 @@ struct Writer {
     nodes: Vec<Value>,
     /// Primitive attributes/indices of each mesh written so far, for sharing.
     attributes: Vec<(Value, usize)>,
-    used: BTreeSet<&'static str>,
+    used: BTreeSet<String>,
 }
 
 impl Writer {

@@ -56,7 +56,7 @@ pub fn check(l: &LayerDesc) -> Result<(), &'static str> {
 }
 
 /// Inserts the layers to write (module docs) into a material's `extensions` object.
-pub(super) fn write(l: &LayerDesc, stated: &BTreeSet<&'static str>, ext: &mut Map<String, Value>) {
+pub(super) fn write(l: &LayerDesc, stated: &BTreeSet<String>, ext: &mut Map<String, Value>) {
     let mut put = |name: &'static str, differs: bool, value: Value| {
         if differs || stated.contains(name) {
             ext.insert(name.into(), value);
@@ -117,7 +117,7 @@ mod tests {
         assert!(ext.is_empty());
         write(
             &LayerDesc::default(),
-            &BTreeSet::from(["KHR_materials_clearcoat"]),
+            &BTreeSet::from(["KHR_materials_clearcoat".to_string()]),
             &mut ext,
         );
         assert_eq!(ext["KHR_materials_clearcoat"]["clearcoatFactor"], 0.0);

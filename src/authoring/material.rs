@@ -58,14 +58,18 @@ impl MaterialDesc {
             ior,
             transmission: 1.0,
             thickness,
-            stated: BTreeSet::from([
-                "KHR_materials_ior",
-                "KHR_materials_transmission",
-                "KHR_materials_volume",
-            ]),
+            stated: glass_extensions(),
             ..MaterialDesc::default()
         }
     }
+}
+
+/// The extensions a written glass states: IOR, transmission and volume (written even at
+/// their default values, so that other viewers see a solid refracting volume).
+pub fn glass_extensions() -> BTreeSet<String> {
+    ["ior", "transmission", "volume"]
+        .map(|x| format!("KHR_materials_{x}"))
+        .into()
 }
 
 fn in_unit(x: f32) -> bool {
@@ -133,7 +137,7 @@ fn written(m: &MaterialDesc, name: &str, differs: bool) -> bool {
 }
 
 /// The material's glTF JSON (module docs); the extensions written are added to `used`.
-pub(super) fn material(m: &MaterialDesc, used: &mut BTreeSet<&'static str>) -> Value {
+pub(super) fn material(m: &MaterialDesc, used: &mut BTreeSet<String>) -> Value {
     let mut out = Map::new();
     out.insert("name".into(), json!(m.name));
     out.insert(
@@ -181,7 +185,7 @@ pub(super) fn material(m: &MaterialDesc, used: &mut BTreeSet<&'static str>) -> V
     }
     thin_film_and_anisotropy(m, &mut ext);
     super::layers::write(&m.layers, &m.stated, &mut ext);
-    used.extend(ext.keys().filter_map(|k| extension_name(k)));
+    used.extend(ext.keys().cloned());
     if !ext.is_empty() {
         out.insert("extensions".into(), Value::Object(ext));
     }
@@ -202,26 +206,6 @@ pub(super) fn material(m: &MaterialDesc, used: &mut BTreeSet<&'static str>) -> V
         out.insert("extras".into(), x.clone());
     }
     Value::Object(out)
-}
-
-/// The extension names this writer writes, as `'static` strings for `extensionsUsed`.
-const EXTENSIONS: [&str; 12] = [
-    "KHR_materials_anisotropy",
-    "KHR_materials_clearcoat",
-    "KHR_materials_diffuse_transmission",
-    "KHR_materials_dispersion",
-    "KHR_materials_emissive_strength",
-    "KHR_materials_ior",
-    "KHR_materials_iridescence",
-    "KHR_materials_sheen",
-    "KHR_materials_specular",
-    "KHR_materials_transmission",
-    "KHR_materials_volume",
-    "KHR_materials_volume_scatter",
-];
-
-fn extension_name(key: &str) -> Option<&'static str> {
-    EXTENSIONS.iter().copied().find(|&n| n == key)
 }
 
 /// KHR_materials_volume and, for albedo scattering, KHR_materials_volume_scatter.

@@ -221,11 +221,7 @@ impl Stone {
     pub fn material(self, thickness: f32) -> MaterialDesc {
         MaterialDesc {
             thickness,
-            stated: std::collections::BTreeSet::from([
-                "KHR_materials_ior",
-                "KHR_materials_transmission",
-                "KHR_materials_volume",
-            ]),
+            stated: super::material::glass_extensions(),
             extras: self
                 .crystal()
                 .map(|_| serde_json::json!({"iris_crystal": {"stone": self.name()}})),
@@ -324,7 +320,8 @@ mod tests {
             let m = st.material(0.004);
             assert_eq!(m.crystal.is_some(), st.crystal().is_some(), "{}", st.name());
             assert_eq!(
-                m.extras.is_some_and(|x| x["iris_crystal"]["stone"] == st.name()),
+                m.extras
+                    .is_some_and(|x| x["iris_crystal"]["stone"] == st.name()),
                 st.crystal().is_some()
             );
         }

@@ -136,11 +136,11 @@ pub struct MaterialDesc {
     /// as loaded, world space once built) under polarized transport, and everything
     /// without it.
     pub polarizer: Option<Vec3>,
-    /// The KHR material extensions the file states (`"KHR_materials_ior"`, …), listed so
-    /// that one stated with its default values is written back
-    /// ([`crate::authoring::glb`] writes these and every extension whose values differ
-    /// from the defaults). The glTF loader fills it; other loaders leave it empty.
-    pub stated: BTreeSet<&'static str>,
+    /// The names of the glTF material extensions the file states (`"KHR_materials_ior"`,
+    /// …), so that one stated with its default values is written back
+    /// ([`crate::authoring::glb`] writes the ones it knows that are stated or whose values
+    /// differ from the defaults). The glTF loader fills it; other loaders leave it empty.
+    pub stated: BTreeSet<String>,
     /// The material's glTF `extras` as the file gives them, written back unchanged. Iris's
     /// own keys in them (`iris_crystal`, `iris_glass`, `cauchy`, `sellmeier`,
     /// `iris_medium`, `iris_priority`, `iris_spectrum`, `iris_polarizer`) are read into

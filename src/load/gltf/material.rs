@@ -292,26 +292,24 @@ fn factors(
     })
 }
 
-/// The KHR material extensions a writer writes back when stated with default values
-/// ([`MaterialDesc::stated`]), those present on `m`.
-fn stated(m: &gltf::Material<'_>) -> std::collections::BTreeSet<&'static str> {
+/// The names of the extensions on `m` ([`MaterialDesc::stated`]): those the `gltf` crate
+/// types, then the rest as the file names them.
+fn stated(m: &gltf::Material<'_>) -> std::collections::BTreeSet<String> {
     let typed = [
         ("KHR_materials_ior", m.ior().is_some()),
         ("KHR_materials_transmission", m.transmission().is_some()),
         ("KHR_materials_volume", m.volume().is_some()),
         ("KHR_materials_specular", m.specular().is_some()),
+        (
+            "KHR_materials_emissive_strength",
+            m.emissive_strength().is_some(),
+        ),
     ];
-    let raw = [
-        "KHR_materials_dispersion",
-        "KHR_materials_clearcoat",
-        "KHR_materials_sheen",
-        "KHR_materials_diffuse_transmission",
-    ]
-    .map(|name| (name, m.extension_value(name).is_some()));
+    let typed = typed.into_iter().filter(|(_, present)| *present);
+    let others = m.extensions().into_iter().flat_map(|x| x.keys());
     typed
-        .into_iter()
-        .chain(raw)
-        .filter_map(|(name, present)| present.then_some(name))
+        .map(|(name, _)| name.to_string())
+        .chain(others.cloned())
         .collect()
 }
 
