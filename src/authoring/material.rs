@@ -3,15 +3,20 @@
 //! writer relies on, and its glTF JSON (the inverse of `load::gltf::material` for factor
 //! materials).
 //!
-//! What is written: `pbrMetallicRoughness` factors; `emissive` (linear radiance, may exceed
-//! 1) as `emissiveFactor` = colour / max component with `KHR_materials_emissive_strength`
-//! = max component; each KHR extension the material states ([`MaterialDesc::stated`]) or
-//! whose values differ from the spec defaults (ior 1.5, transmission 0, volume thickness 0
-//! with white attenuation at +∞, dispersion 0, specular 1 and white, the layers'
-//! defaults); KHR_materials_volume_scatter for albedo scattering (Rayleigh scattering is
-//! Iris's `extras.iris_medium`); `alphaMode`, `doubleSided` when not the defaults; and the
-//! `extras` unchanged, which carry Iris's own keys. Textures and a measured metal
-//! (`conductor`, a render override) have no file form here and are refused.
+//! What is written:
+//! - the `pbrMetallicRoughness` factors;
+//! - `emissive` (linear radiance, may exceed one) as `emissiveFactor`, the colour over its
+//!   largest component, with that component as `KHR_materials_emissive_strength`;
+//! - each KHR extension the material states ([`MaterialDesc::stated`]) or whose values
+//!   differ from the spec defaults (ior 1.5, transmission 0, volume thickness 0 with white
+//!   attenuation at +∞, dispersion 0, specular 1 and white, the layers' defaults);
+//!   KHR_materials_volume_scatter for albedo scattering (Rayleigh scattering is Iris's
+//!   `extras.iris_medium`);
+//! - `alphaMode` and `doubleSided` when not the defaults, and the `extras` unchanged, which
+//!   carry Iris's own keys.
+//!
+//! Textures and a measured metal (`conductor`, a render override) have no file form here
+//! and are refused.
 //!
 //! Units: colours linear RGB; lengths metres; the volume's thickness is the typical
 //! thickness rasterisers read.
