@@ -56,7 +56,9 @@ pub struct GenMesh {
     pub translation: Option<Vec3>,
 }
 
-/// A perspective camera given by a look-at frame.
+/// A perspective camera given by a look-at frame. It stays a look-at rather than a
+/// [`crate::scene::desc::CameraDesc`]: the writer computes the node rotation from it in
+/// `f64`, which the description's `f32` world matrix would round differently.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GenCamera {
     /// Name.
