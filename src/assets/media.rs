@@ -18,6 +18,7 @@ use crate::authoring::scene::GenScene;
 use crate::authoring::shapes::{cuboid, ground_plane, icosphere, TriMesh};
 use crate::material::MaterialDesc;
 use crate::scene::desc::LightDesc;
+use crate::volume::{Phase, Scattering, VolumeScatter};
 use glam::{Mat3, Vec3};
 
 /// A smooth, fully transmissive volume of index `ior` holding Rayleigh scattering of
@@ -26,6 +27,11 @@ use glam::{Mat3, Vec3};
 fn rayleigh_medium(name: &str, ior: f32, thickness: f32, rayleigh: f32) -> MaterialDesc {
     let mut m = MaterialDesc::clear_glass(name, ior, thickness);
     m.extras = Some(serde_json::json!({"iris_medium": {"rayleigh": rayleigh}}));
+    // The key's reading (load::gltf::scatter).
+    m.scatter = Some(VolumeScatter {
+        scattering: Scattering::Rayleigh { at_550: rayleigh },
+        phase: Phase::Rayleigh,
+    });
     m
 }
 

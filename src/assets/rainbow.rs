@@ -186,8 +186,7 @@ pub fn fig5_3_1_rainbow() -> GenScene {
     let floor_material = MaterialDesc::diffuse("Floor", Vec3::splat(0.8));
     add_mesh(&mut s, "Floor", floor, floor_material, None);
 
-    let mut glass = MaterialDesc::clear_glass("Prism N-BK7", N_D_BK7 as f32, 0.1);
-    glass.extras = Some(serde_json::json!({"iris_glass": "N-BK7"}));
+    let glass = MaterialDesc::named_glass("Prism N-BK7", "N-BK7", N_D_BK7 as f32, 0.1);
     let prism = upright_prism(PRISM_SIDE, RAINBOW_Y - 0.05, 0.1);
     add_mesh(&mut s, "Prism", prism, glass, None);
 

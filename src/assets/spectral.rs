@@ -180,8 +180,7 @@ pub fn fig5_3_1_prism_beam() -> GenScene {
     let stand = cuboid(Vec3::new(0.06, 0.15, 0.06))
         .transformed(glam::Mat3::IDENTITY, Vec3::new(0.0, 0.15, 0.0));
     mesh_with(&mut s, "Stand", stand, black);
-    let mut glass = MaterialDesc::clear_glass("Prism N-BK7", N_D_BK7 as f32, 0.1);
-    glass.extras = Some(serde_json::json!({"iris_glass": "N-BK7"}));
+    let glass = MaterialDesc::named_glass("Prism N-BK7", "N-BK7", N_D_BK7 as f32, 0.1);
     mesh(
         &mut s,
         "Prism",

@@ -24,7 +24,7 @@
 use super::gltf_json::{num, vec3};
 use super::scene::bad;
 use crate::error::Result;
-use crate::material::{AlphaMode, MaterialDesc};
+use crate::material::{AlphaMode, ExplicitIor, MaterialDesc};
 use crate::volume::{Phase, Scattering};
 use glam::{Vec3, Vec4};
 use serde_json::{json, Map, Value};
@@ -65,6 +65,19 @@ impl MaterialDesc {
             thickness,
             stated: glass_extensions(),
             ..MaterialDesc::default()
+        }
+    }
+}
+
+impl MaterialDesc {
+    /// [`MaterialDesc::clear_glass`] of the named Sellmeier glass `glass` (Iris's
+    /// `extras.iris_glass`, read as [`ExplicitIor::Glass`]), with `n_d` as the
+    /// KHR_materials_ior other viewers use.
+    pub fn named_glass(name: &str, glass: &str, n_d: f32, thickness: f32) -> Self {
+        MaterialDesc {
+            ior_model: Some(ExplicitIor::Glass(glass.into())),
+            extras: Some(json!({ "iris_glass": glass })),
+            ..MaterialDesc::clear_glass(name, n_d, thickness)
         }
     }
 }
