@@ -16,7 +16,8 @@ use glam::{Mat3, Vec2, Vec3};
 use iris::accel::Backend;
 use iris::app::{PreviewOptions, RenderOptions};
 use iris::authoring::shapes::{self, TriMesh};
-use iris::authoring::{GenCamera, GenMaterial, GenMesh, GenScene};
+use iris::authoring::{GenCamera, GenMesh, GenScene};
+use iris::material::MaterialDesc;
 use iris::prepare::{prepare, Authored, Note, Prepared};
 use iris::studio::ground::{Floor, GROUND_MESH};
 use iris::studio::{GroundMode, Studio};
@@ -65,9 +66,9 @@ fn prism_and_slit(dir: &Path) -> PathBuf {
     let ang_out = ang_in - dev;
     let d_out = Vec3::new(ang_out.cos(), 0.0, ang_out.sin());
     let exit = at((apex + right) / 2.0);
-    let glass = GenMaterial {
-        dispersion: Some(1.0),
-        ..GenMaterial::clear_glass("DispersiveGlass", ior, 0.5)
+    let glass = MaterialDesc {
+        dispersion: 1.0,
+        ..MaterialDesc::clear_glass("DispersiveGlass", ior, 0.5)
     };
     let scene = GenScene {
         name: "prism and slit".into(),
@@ -85,7 +86,7 @@ fn prism_and_slit(dir: &Path) -> PathBuf {
                 translation: None,
             },
         ],
-        materials: vec![glass, GenMaterial::emitter("Slit", Vec3::splat(4.0))],
+        materials: vec![glass, MaterialDesc::emitter("Slit", Vec3::splat(4.0))],
         camera: Some(GenCamera {
             name: "view".into(),
             eye: exit + 1.2 * d_out,

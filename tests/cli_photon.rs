@@ -170,15 +170,17 @@ fn auto_picks_hybrid_vcm_or_path() {
         material: 0,
         translation: None,
     });
-    scene.materials.push(iris::authoring::GenMaterial::diffuse(
+    scene.materials.push(iris::material::MaterialDesc::diffuse(
         "white",
         glam::Vec3::splat(0.8),
     ));
-    scene.lights.push(iris::authoring::GenLight::Point {
+    scene.lights.push(iris::scene::desc::LightDesc::Point {
         name: "bulb".into(),
         position: glam::Vec3::new(0.0, 1.0, 0.0),
         color: glam::Vec3::ONE,
         intensity: 1.0,
+        range: None,
+        spectrum: None,
     });
     let plain = dir.join("plain.glb");
     iris::authoring::write_glb(&plain, &scene).unwrap();

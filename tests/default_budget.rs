@@ -11,8 +11,9 @@ use glam::{Vec3, Vec4};
 use iris::app::budget::{next_check, BudgetFlags, DEFAULT_TARGET, MIN_STOP_UNITS};
 use iris::app::{render_command, RenderOptions, RenderSummary};
 use iris::authoring::shapes;
-use iris::authoring::{GenCamera, GenMaterial, GenMesh, GenScene};
+use iris::authoring::{GenCamera, GenMesh, GenScene};
 use iris::integrator::Method;
+use iris::material::MaterialDesc;
 use iris::measure::relative_rmse;
 use iris::render::EndReason;
 use std::path::{Path, PathBuf};
@@ -43,10 +44,10 @@ fn easy_scene(dir: &Path) -> PathBuf {
             },
         ],
         materials: vec![
-            GenMaterial::diffuse("grey", Vec3::splat(0.5)),
-            GenMaterial {
+            MaterialDesc::diffuse("grey", Vec3::splat(0.5)),
+            MaterialDesc {
                 base_color: Vec4::new(0.8, 0.8, 0.8, 1.0),
-                ..GenMaterial::diffuse("white", Vec3::ONE)
+                ..MaterialDesc::diffuse("white", Vec3::ONE)
             },
         ],
         camera: Some(GenCamera {

@@ -7,17 +7,18 @@
 mod common;
 
 use glam::Vec3;
-use iris::authoring::scene::{GenCamera, GenMaterial, GenMesh, GenScene};
+use iris::authoring::scene::{GenCamera, GenMesh, GenScene};
 use iris::authoring::shapes::{cuboid, ground_plane};
+use iris::material::MaterialDesc;
 use serde_json::json;
 use std::path::{Path, PathBuf};
 
 /// A slab with material `extras`, over a lit floor, with a camera.
 fn slab_file(dir: &Path, name: &str, extras: serde_json::Value) -> PathBuf {
-    let mut slab = GenMaterial::clear_glass("Crystal", 1.6, 0.01);
+    let mut slab = MaterialDesc::clear_glass("Crystal", 1.6, 0.01);
     slab.extras = Some(extras);
-    let mut lamp = GenMaterial::diffuse("Lamp", Vec3::ZERO);
-    lamp.emissive = Some(Vec3::splat(4.0));
+    let mut lamp = MaterialDesc::diffuse("Lamp", Vec3::ZERO);
+    lamp.emissive = Vec3::splat(4.0);
     let mesh = |name: &str, geometry, material, y: f32| GenMesh {
         name: name.into(),
         geometry,
@@ -31,7 +32,7 @@ fn slab_file(dir: &Path, name: &str, extras: serde_json::Value) -> PathBuf {
             mesh("Floor", ground_plane(0.1, 0.1), 1, 0.0),
             mesh("Lamp", ground_plane(0.05, 0.05), 2, 0.2),
         ],
-        materials: vec![slab, GenMaterial::diffuse("Floor", Vec3::splat(0.7)), lamp],
+        materials: vec![slab, MaterialDesc::diffuse("Floor", Vec3::splat(0.7)), lamp],
         lights: vec![],
         camera: Some(GenCamera {
             name: "Camera".into(),
@@ -42,7 +43,6 @@ fn slab_file(dir: &Path, name: &str, extras: serde_json::Value) -> PathBuf {
             aspect: None,
         }),
         extras: None,
-        light_extras: vec![],
         mesh_uvs: vec![],
     };
     let path = dir.join(format!("{name}.glb"));

@@ -38,8 +38,9 @@ mod common;
 
 use iris::authoring::gem::Brilliant;
 use iris::authoring::glb::write_glb;
-use iris::authoring::scene::{GenMaterial, GenMesh, GenScene};
+use iris::authoring::scene::{GenMesh, GenScene};
 use iris::authoring::stones::Stone;
+use iris::material::MaterialDesc;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -296,7 +297,7 @@ fn bad_input_fails_clearly_and_writes_nothing() {
             material: 0,
             translation: None,
         }],
-        materials: vec![GenMaterial::diffuse("White", glam::Vec3::ONE)],
+        materials: vec![MaterialDesc::diffuse("White", glam::Vec3::ONE)],
         ..GenScene::default()
     };
     write_glb(&dir.join("box.glb"), &scene).unwrap();

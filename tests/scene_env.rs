@@ -11,10 +11,11 @@ use iris::accel::Backend;
 use iris::app::{render_command, resolve_environment, RenderOptions};
 use iris::assets::sky::encode_hdr;
 use iris::authoring::shapes::cuboid;
-use iris::authoring::{encode_glb, GenCamera, GenMaterial, GenMesh, GenScene};
+use iris::authoring::{encode_glb, GenCamera, GenMesh, GenScene};
 use iris::error::Error;
 use iris::integrator::Method;
 use iris::light::env::Environment;
+use iris::material::MaterialDesc;
 use iris::output::{read_exr, DisplayOptions};
 use iris::scene::desc::EnvironmentDesc;
 use serde_json::{json, Value};
@@ -30,7 +31,7 @@ fn scene(extras: Option<Value>) -> GenScene {
             material: 0,
             translation: Some(Vec3::new(0.0, 0.0, 5.0)),
         }],
-        materials: vec![GenMaterial::diffuse("Grey", Vec3::splat(0.5))],
+        materials: vec![MaterialDesc::diffuse("Grey", Vec3::splat(0.5))],
         lights: vec![],
         camera: Some(GenCamera {
             name: "Cam".into(),
@@ -41,7 +42,6 @@ fn scene(extras: Option<Value>) -> GenScene {
             aspect: Some(1.0),
         }),
         extras,
-        light_extras: Vec::new(),
         mesh_uvs: Vec::new(),
     }
 }

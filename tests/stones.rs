@@ -11,9 +11,10 @@
 mod common;
 
 use glam::{Vec3, Vec4};
-use iris::authoring::scene::{GenMaterial, GenMesh, GenScene};
+use iris::authoring::scene::{GenMesh, GenScene};
 use iris::authoring::shapes::{cuboid, icosphere};
 use iris::integrator::Method;
+use iris::material::MaterialDesc;
 use iris::plan::{Plan, SpectralMode};
 use iris::prepare::looks::{apply, Applied, LookFlag};
 use iris::prepare::{prepare, PrepareOptions};
@@ -29,12 +30,12 @@ fn ring_file(dir: &Path) -> PathBuf {
         material,
         translation: Some(Vec3::new(x, 0.0, 0.0)),
     };
-    let mut placeholder = GenMaterial::diffuse("Placeholder", Vec3::new(0.0, 0.67, 0.8));
+    let mut placeholder = MaterialDesc::diffuse("Placeholder", Vec3::new(0.0, 0.67, 0.8));
     placeholder.roughness = 0.0;
-    let mut setting = GenMaterial::diffuse("Setting", Vec3::splat(0.7));
+    let mut setting = MaterialDesc::diffuse("Setting", Vec3::splat(0.7));
     setting.metallic = 1.0;
-    let mut lamp = GenMaterial::diffuse("Lamp", Vec3::ZERO);
-    lamp.emissive = Some(Vec3::splat(5.0));
+    let mut lamp = MaterialDesc::diffuse("Lamp", Vec3::ZERO);
+    lamp.emissive = Vec3::splat(5.0);
     let scene = GenScene {
         name: "ring".into(),
         // The gem is 6.5 mm across (the size of `iris gem`'s stone); the rest is larger.
@@ -48,13 +49,12 @@ fn ring_file(dir: &Path) -> PathBuf {
         materials: vec![
             placeholder,
             setting,
-            GenMaterial::diffuse("Floor", Vec3::splat(0.8)),
+            MaterialDesc::diffuse("Floor", Vec3::splat(0.8)),
             lamp,
         ],
         lights: vec![],
         camera: None,
         extras: None,
-        light_extras: vec![],
         mesh_uvs: vec![],
     };
     let path = dir.join("ring.glb");
@@ -398,14 +398,13 @@ fn a_bare_stone_flag_changes_the_stones_and_star_every_material() {
             mesh("Panel", cuboid(Vec3::new(0.01, 0.0005, 0.01)), 2),
         ],
         materials: vec![
-            GenMaterial::clear_glass("Glass", 1.5, 0.0065),
-            GenMaterial::diffuse("Floor", Vec3::splat(0.8)),
-            GenMaterial::emitter("Lamp", Vec3::splat(5.0)),
+            MaterialDesc::clear_glass("Glass", 1.5, 0.0065),
+            MaterialDesc::diffuse("Floor", Vec3::splat(0.8)),
+            MaterialDesc::emitter("Lamp", Vec3::splat(5.0)),
         ],
         lights: vec![],
         camera: None,
         extras: None,
-        light_extras: vec![],
         mesh_uvs: vec![],
     };
     let path = dir.join("gem_on_floor.glb");

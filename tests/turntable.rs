@@ -12,8 +12,10 @@ use common::{entries, iris, stderr};
 use glam::{DVec2, Vec3};
 use iris::authoring::lathe::{Lathe, ProfilePoint};
 use iris::authoring::shapes::{cuboid, TriMesh};
-use iris::authoring::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
+use iris::authoring::{GenCamera, GenMesh, GenScene};
 use iris::image::ImageRgb;
+use iris::material::MaterialDesc;
+use iris::scene::desc::LightDesc;
 use std::path::{Path, PathBuf};
 
 const SIZE: &str = "48x36";
@@ -48,21 +50,23 @@ fn write_scene(dir: &Path, name: &str, meshes: Vec<GenMesh>, camera: bool) -> Pa
         name: name.into(),
         meshes,
         materials: vec![
-            GenMaterial::diffuse("Red", Vec3::new(0.8, 0.1, 0.1)),
-            GenMaterial::diffuse("Green", Vec3::new(0.1, 0.7, 0.2)),
+            MaterialDesc::diffuse("Red", Vec3::new(0.8, 0.1, 0.1)),
+            MaterialDesc::diffuse("Green", Vec3::new(0.1, 0.7, 0.2)),
         ],
         lights: vec![
-            GenLight::Directional {
+            LightDesc::Directional {
                 name: "Down".into(),
                 direction: Vec3::NEG_Y,
                 color: Vec3::ONE,
                 intensity: 3.0,
+                spectrum: None,
             },
-            GenLight::Directional {
+            LightDesc::Directional {
                 name: "Front".into(),
                 direction: Vec3::new(0.0, -1.0, -1.0),
                 color: Vec3::ONE,
                 intensity: 2.0,
+                spectrum: None,
             },
         ],
         camera: camera.then(|| GenCamera {

@@ -27,9 +27,10 @@ use crate::authoring::cuts::preview::{add_setting, direction, preview_camera};
 use crate::authoring::cuts::{polyhedron, Cut};
 use crate::authoring::gem::newell;
 use crate::authoring::lathe::sin_cos;
-use crate::authoring::scene::{GenMaterial, GenMesh, GenScene};
+use crate::authoring::scene::{GenMesh, GenScene};
 use crate::authoring::shapes::{cuboid, ground_plane, push_flat_facing_away, TriMesh};
 use crate::authoring::stones::Stone;
+use crate::material::MaterialDesc;
 use glam::{DVec3, Mat3, Quat, Vec3};
 
 /// A rhombohedron with edges of equal length meeting at its two blunt vertices at
@@ -101,12 +102,13 @@ fn axis_json(v: DVec3) -> serde_json::Value {
 }
 
 /// A crystal stone's material with its optic axis along `axis` (world space).
-fn crystal_material(stone: Stone, title: &str, thickness: f32, axis: DVec3) -> GenMaterial {
+fn crystal_material(stone: Stone, title: &str, thickness: f32, axis: DVec3) -> MaterialDesc {
     let mut m = stone.material(thickness);
     m.name = title.into();
-    m.extras = Some(serde_json::json!({
-        "iris_crystal": {"stone": stone.name(), "optic_axis": axis_json(axis)}
-    }));
+    let crystal = serde_json::json!({"stone": stone.name(), "optic_axis": axis_json(axis)});
+    // The typed crystal is the loader's reading of the key written.
+    m.crystal = crate::load::gltf::crystal::crystal(&crystal).ok();
+    m.extras = Some(serde_json::json!({ "iris_crystal": crystal }));
     m
 }
 
@@ -198,10 +200,10 @@ pub fn calcite_rhomb() -> GenScene {
         ..GenScene::default()
     };
     let (card_y, ink_y, lift) = (0.0003, 0.00035, 0.0006);
-    let table = GenMaterial::diffuse("Table", Vec3::splat(0.3));
+    let table = MaterialDesc::diffuse("Table", Vec3::splat(0.3));
     add_mesh(&mut s, "Table", ground_plane(0.3, 0.3), table, None);
     let card = ground_plane(0.045, 0.032);
-    let white = GenMaterial::diffuse("Card", Vec3::splat(0.85));
+    let white = MaterialDesc::diffuse("Card", Vec3::splat(0.85));
     add_mesh(
         &mut s,
         "Card",
@@ -217,7 +219,7 @@ pub fn calcite_rhomb() -> GenScene {
         dot(&mut ink, at, 0.001);
     }
     push_patch(&mut ink, (-0.02, 0.02), (0.0057, 0.0063), ink_y);
-    let black = GenMaterial::diffuse("Ink", Vec3::splat(0.03));
+    let black = MaterialDesc::diffuse("Ink", Vec3::splat(0.03));
     add_mesh(&mut s, "Ink", ink, black, None);
     let rhomb = CALCITE;
     let e = rhomb.edges();
@@ -315,9 +317,9 @@ pub fn pleochroic_tourmaline() -> GenScene {
         extras: Some(serde_json::json!({"iris_environment": 0.08})),
         ..GenScene::default()
     };
-    let table = GenMaterial::diffuse("Table", Vec3::splat(0.05));
+    let table = MaterialDesc::diffuse("Table", Vec3::splat(0.05));
     add_mesh(&mut s, "Table", ground_plane(0.2, 0.2), table, None);
-    let light = GenMaterial::emitter("Light table", Vec3::ONE);
+    let light = MaterialDesc::emitter("Light table", Vec3::ONE);
     let panel = ground_plane(0.027, 0.02);
     add_mesh(
         &mut s,

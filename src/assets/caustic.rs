@@ -2,7 +2,7 @@
 //! shipped (CC0) in `assets/`.
 //!
 //! Units are metres, +Y up, linear RGB, candela (point, spot) and lux (directional).
-//! Glass is [`GenMaterial::clear_glass`] (smooth, transmission 1, clear volume). No scene
+//! Glass is [`MaterialDesc::clear_glass`] (smooth, transmission 1, clear volume). No scene
 //! has an environment (black). The ball-lens test scene is [`super::focus_bench`]. The path tracer cannot carry light from a delta light
 //! through glass to a diffuse floor, so it renders these scenes with black shadows where
 //! the caustics belong; the photon mapper draws them. The sun-through-a-slit rainbow
@@ -51,8 +51,10 @@ use super::parts::{add_mesh, camera};
 use super::spectral::upright_prism;
 use crate::authoring::gem::Brilliant;
 use crate::authoring::lathe::sin_cos;
-use crate::authoring::scene::{GenLight, GenMaterial, GenScene};
+use crate::authoring::scene::GenScene;
 use crate::authoring::shapes::{ground_plane, icosphere, TriMesh};
+use crate::material::MaterialDesc;
+use crate::scene::desc::LightDesc;
 use glam::{DVec3, Vec3};
 
 /// The ball-lens test scene, also reachable from here (see [`super::focus_bench`]).
@@ -80,14 +82,14 @@ pub fn fig4_5_1_caustics() -> GenScene {
         name: "Fig. 4.5.1: caustics of a glass sphere and a prism".into(),
         ..GenScene::default()
     };
-    let floor = GenMaterial::diffuse("Floor", Vec3::splat(0.8));
+    let floor = MaterialDesc::diffuse("Floor", Vec3::splat(0.8));
     let floor_at = Some(Vec3::new(0.15, 0.0, 0.1));
     add_mesh(&mut s, "Floor", ground_plane(0.75, 0.7), floor, floor_at);
     let r = SPHERE_RADIUS;
-    let glass = GenMaterial::clear_glass("Glass sphere IOR 1.5", 1.5, 2.0 * r);
+    let glass = MaterialDesc::clear_glass("Glass sphere IOR 1.5", 1.5, 2.0 * r);
     let sphere = icosphere(r, 5);
     add_mesh(&mut s, "Glass sphere", sphere, glass, Some(SPHERE_CENTRE));
-    let glass = GenMaterial::clear_glass("Glass prism IOR 1.5", 1.5, 0.1);
+    let glass = MaterialDesc::clear_glass("Glass prism IOR 1.5", 1.5, 0.1);
     let prism = upright_prism(0.1, 0.001, 0.12);
     add_mesh(
         &mut s,
@@ -96,11 +98,13 @@ pub fn fig4_5_1_caustics() -> GenScene {
         glass,
         Some(Vec3::new(0.05, 0.0, 0.18)),
     );
-    s.lights.push(GenLight::Point {
+    s.lights.push(LightDesc::Point {
         name: "Light".into(),
         position: CAUSTICS_LIGHT,
         color: Vec3::ONE,
         intensity: CAUSTICS_CANDELA,
+        range: None,
+        spectrum: None,
     });
     s.camera = Some(camera(
         Vec3::new(1.25, 0.75, 0.1),
@@ -133,14 +137,14 @@ pub fn gem_caustics() -> GenScene {
         name: "Diamond caustics under a spot light".into(),
         ..GenScene::default()
     };
-    let floor = GenMaterial::diffuse("Floor", Vec3::splat(0.8));
+    let floor = MaterialDesc::diffuse("Floor", Vec3::splat(0.8));
     add_mesh(&mut s, "Floor", ground_plane(0.1, 0.1), floor, None);
     let (stone, centre) = gem_resting();
-    let mut diamond = GenMaterial::clear_glass("Diamond IOR 2.42", 2.42, 0.01);
-    diamond.dispersion = Some(0.36);
+    let mut diamond = MaterialDesc::clear_glass("Diamond IOR 2.42", 2.42, 0.01);
+    diamond.dispersion = 0.36;
     add_mesh(&mut s, "Diamond", stone, diamond, None);
     let to_light = gem_light_direction();
-    s.lights.push(GenLight::Spot {
+    s.lights.push(LightDesc::Spot {
         name: "Spot".into(),
         position: (centre + 0.2 * to_light).as_vec3(),
         direction: (-to_light).as_vec3(),
@@ -148,6 +152,8 @@ pub fn gem_caustics() -> GenScene {
         intensity: GEM_CANDELA,
         inner_cone: 2f32.to_radians(),
         outer_cone: 3f32.to_radians(),
+        range: None,
+        spectrum: None,
     });
     let (s50, c50) = sin_cos(50f64.to_radians());
     let eye = centre + 0.15 * DVec3::new(c50, s50, 0.0);

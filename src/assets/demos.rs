@@ -33,9 +33,10 @@ use super::spectral::{diamond, fig5_3_1_prism_beam};
 use crate::authoring::gem::Brilliant;
 use crate::authoring::glb::write_glb;
 use crate::authoring::lathe::{append, Tumbler};
-use crate::authoring::scene::{GenMaterial, GenScene, GenVolume};
+use crate::authoring::scene::GenScene;
 use crate::authoring::shapes::{checkerboard, ground_plane, prism, quarter_turn_x, TriMesh};
 use crate::error::{Error, Result};
+use crate::material::MaterialDesc;
 use glam::{Mat3, Vec3};
 use std::path::{Path, PathBuf};
 
@@ -117,14 +118,10 @@ pub fn glass_of_water() -> GenScene {
     );
     let parts = TUMBLER.build();
     let lift = Some(Vec3::new(0.0, 0.0005, 0.0));
-    let glass = GenMaterial::clear_glass("Glass IOR 1.5", 1.5, TUMBLER.wall as f32);
-    let mut water = GenMaterial::clear_glass("Water IOR 1.33", 1.33, 0.06);
-    water.volume = Some(GenVolume {
-        thickness: 0.06,
-        attenuation_color: Vec3::new(0.8, 0.93, 0.96),
-        attenuation_distance: Some(0.25),
-        scatter: None,
-    });
+    let glass = MaterialDesc::clear_glass("Glass IOR 1.5", 1.5, TUMBLER.wall as f32);
+    let mut water = MaterialDesc::clear_glass("Water IOR 1.33", 1.33, 0.06);
+    water.attenuation_color = Vec3::new(0.8, 0.93, 0.96);
+    water.attenuation_distance = 0.25;
     for (name, geometry, material) in [("Glass", parts.glass, glass), ("Water", parts.water, water)]
     {
         add_mesh(&mut s, name, geometry, material, lift);
@@ -163,16 +160,12 @@ pub fn ruby() -> GenScene {
         extras: Some(serde_json::json!({"iris_environment": 0.15})),
         ..GenScene::default()
     };
-    let floor = GenMaterial::diffuse("Floor", Vec3::splat(0.85));
+    let floor = MaterialDesc::diffuse("Floor", Vec3::splat(0.85));
     add_mesh(&mut s, "Floor", ground_plane(0.3, 0.3), floor, None);
-    let mut ruby = GenMaterial::clear_glass("Ruby IOR 1.77", 1.77, 0.012);
-    ruby.dispersion = Some(0.28);
-    ruby.volume = Some(GenVolume {
-        thickness: 0.012,
-        attenuation_color: Vec3::new(0.9, 0.1, 0.18),
-        attenuation_distance: Some(0.02),
-        scatter: None,
-    });
+    let mut ruby = MaterialDesc::clear_glass("Ruby IOR 1.77", 1.77, 0.012);
+    ruby.dispersion = 0.28;
+    ruby.attenuation_color = Vec3::new(0.9, 0.1, 0.18);
+    ruby.attenuation_distance = 0.02;
     let stone = Brilliant::ideal(0.02).resting(0.0002);
     add_mesh(&mut s, "Ruby", stone, ruby, None);
     let down = Mat3::from_cols(Vec3::X, Vec3::NEG_Y, Vec3::NEG_Z);
@@ -209,7 +202,7 @@ pub fn sunset_sphere() -> GenScene {
         ..GenScene::default()
     };
     add_floor_to_the_horizon(&mut s);
-    let glass = GenMaterial::clear_glass("Glass IOR 1.5", 1.5, 0.2);
+    let glass = MaterialDesc::clear_glass("Glass IOR 1.5", 1.5, 0.2);
     let sphere = crate::authoring::shapes::icosphere(0.1, 4);
     add_mesh(
         &mut s,
@@ -251,7 +244,7 @@ fn add_floor_to_the_horizon(s: &mut GenScene) {
         let quad = ground_plane(hx, hz).transformed(Mat3::IDENTITY, Vec3::new(x, 0.0, z));
         append(&mut frame, &quad);
     }
-    let floor = GenMaterial::diffuse("Floor plain", Vec3::splat(0.7));
+    let floor = MaterialDesc::diffuse("Floor plain", Vec3::splat(0.7));
     add_mesh(s, "Floor plain", frame, floor, None);
 }
 
@@ -263,8 +256,8 @@ pub fn prism_sky() -> GenScene {
         ..GenScene::default()
     };
     add_floor_to_the_horizon(&mut s);
-    let mut glass = GenMaterial::clear_glass("Prism glass IOR 1.5", 1.5, 0.25);
-    glass.dispersion = Some(1.0);
+    let mut glass = MaterialDesc::clear_glass("Prism glass IOR 1.5", 1.5, 0.25);
+    glass.dispersion = 1.0;
     // Axis vertical: the prism's Z axis turns to −Y, its apex (+Y) to +Z.
     let upright = prism(0.25, 0.4).transformed(quarter_turn_x(), Vec3::ZERO);
     let at = Some(Vec3::new(0.0, 0.201, 0.0));

@@ -13,8 +13,10 @@
 
 use super::parts::{add_mesh, camera};
 use crate::authoring::lathe::sin_cos;
-use crate::authoring::scene::{GenCamera, GenLight, GenMaterial, GenScene};
+use crate::authoring::scene::{GenCamera, GenScene};
 use crate::authoring::shapes::{ground_plane, icosphere, quarter_turn_x, TriMesh};
+use crate::material::MaterialDesc;
+use crate::scene::desc::LightDesc;
 use glam::{DVec3, Vec3};
 
 /// Smallest number of segments of [`focus_bench`]'s aperture plate.
@@ -96,7 +98,7 @@ pub fn focus_bench(
         name: format!("Focus bench: ball lens n = {n}, R = {radius} m"),
         ..GenScene::default()
     };
-    let glass = GenMaterial::clear_glass(&format!("Glass IOR {n}"), n, 2.0 * radius);
+    let glass = MaterialDesc::clear_glass(&format!("Glass IOR {n}"), n, 2.0 * radius);
     add_mesh(
         &mut s,
         "Sphere",
@@ -105,18 +107,19 @@ pub fn focus_bench(
         None,
     );
     let plate = aperture_plate(hole, 3.0 * r, APERTURE_SEGMENTS);
-    let black = GenMaterial::diffuse("Plate", Vec3::ZERO);
+    let black = MaterialDesc::diffuse("Plate", Vec3::ZERO);
     let at = Some(Vec3::new(0.0, 0.0, 2.0 * radius));
     add_mesh(&mut s, "Aperture plate", plate, black, at);
     let screen = ground_plane(2.5 * radius, 2.5 * radius).transformed(quarter_turn_x(), Vec3::ZERO);
-    let white = GenMaterial::diffuse("Screen", Vec3::splat(0.8));
+    let white = MaterialDesc::diffuse("Screen", Vec3::splat(0.8));
     let at = Some(Vec3::new(0.0, 0.0, -screen_distance));
     add_mesh(&mut s, "Screen", screen, white, at);
-    s.lights.push(GenLight::Directional {
+    s.lights.push(LightDesc::Directional {
         name: "Sun".into(),
         direction: Vec3::NEG_Z,
         color: Vec3::ONE,
         intensity: 1.0,
+        spectrum: None,
     });
     s
 }
@@ -179,7 +182,7 @@ pub(crate) mod tests {
         let wide = screen.positions.iter().map(|p| p.x.abs().max(p.y.abs()));
         assert!(wide.fold(0.0, f32::max) < 0.03);
         assert!(
-            matches!(s.lights[0], GenLight::Directional { direction, .. } if direction == Vec3::NEG_Z)
+            matches!(s.lights[0], LightDesc::Directional { direction, .. } if direction == Vec3::NEG_Z)
         );
         // Bad input is rejected by validation, not a panic.
         assert!(focus_bench(1.5, f32::NAN, 0.002, 0.02, 5)

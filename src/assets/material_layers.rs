@@ -18,10 +18,11 @@
 use super::paper::SceneBuilder;
 use super::parts::{add_mesh, add_panel, camera};
 use crate::authoring::glb::write_glb;
-use crate::authoring::scene::{GenCamera, GenLight, GenMaterial, GenScene};
+use crate::authoring::scene::{GenCamera, GenScene};
 use crate::authoring::shapes::{ground_plane, icosphere, quarter_turn_x};
-use crate::authoring::{GenClearcoat, GenDiffuseTransmission, GenSheen};
 use crate::error::{Error, Result};
+use crate::material::MaterialDesc;
+use crate::scene::desc::LightDesc;
 use glam::{Mat3, Quat, Vec3};
 use std::path::{Path, PathBuf};
 
@@ -105,12 +106,14 @@ pub fn clearcoat() -> GenScene {
     let mut s = scene_with_floor("Clearcoat test");
     let spheres = CLEARCOATS.iter().zip(row(CLEARCOATS.len()));
     for (i, (&(factor, roughness), at)) in spheres.enumerate() {
-        let mut m = GenMaterial::diffuse(
+        let mut m = MaterialDesc::diffuse(
             &format!("Clearcoat {factor} roughness {roughness}"),
             Vec3::new(0.6, 0.08, 0.05),
         );
         m.roughness = 0.6;
-        m.layers.clearcoat = Some(GenClearcoat { factor, roughness });
+        m.layers.clearcoat = factor;
+        m.layers.clearcoat_roughness = roughness;
+        m.stated.insert("KHR_materials_clearcoat".into());
         add_sphere(&mut s, &format!("Sphere {}", i + 1), m, at);
     }
     add_facing_panel(&mut s, "Key panel", 400.0, (0.15, 0.15), CLEARCOAT_LIGHT);
@@ -126,16 +129,22 @@ pub fn sheen() -> GenScene {
             None => "No sheen".to_string(),
             Some((c, r)) => format!("Sheen ({}, {}, {}) roughness {r}", c.x, c.y, c.z),
         };
-        let mut m = GenMaterial::diffuse(&name, Vec3::splat(0.03));
-        m.layers.sheen = sheen.map(|(color, roughness)| GenSheen { color, roughness });
+        let mut m = MaterialDesc::diffuse(&name, Vec3::splat(0.03));
+        if let Some((color, roughness)) = *sheen {
+            m.layers.sheen_color = color;
+            m.layers.sheen_roughness = roughness;
+            m.stated.insert("KHR_materials_sheen".into());
+        }
         add_sphere(&mut s, &format!("Sphere {}", i + 1), m, at);
     }
     add_facing_panel(&mut s, "Back panel", 20.0, (2.0, 0.3), SHEEN_BACK_LIGHT);
-    s.lights.push(GenLight::Point {
+    s.lights.push(LightDesc::Point {
         name: "Front fill".into(),
         position: Vec3::new(0.0, 2.0, 4.0),
         color: Vec3::ONE,
         intensity: 20.0,
+        range: None,
+        spectrum: None,
     });
     s.camera = Some(sphere_camera());
     s
@@ -147,12 +156,11 @@ pub fn diffuse_transmission() -> GenScene {
     let sheet = ground_plane(SHEET_HALF, SHEET_HALF).transformed(quarter_turn_x(), Vec3::ZERO);
     for (i, (&factor, &at)) in DIFFUSE_TRANSMISSION.iter().zip(&SHEET_CENTRES).enumerate() {
         let mut m =
-            GenMaterial::diffuse(&format!("Diffuse transmission {factor}"), Vec3::splat(0.8));
+            MaterialDesc::diffuse(&format!("Diffuse transmission {factor}"), Vec3::splat(0.8));
         m.double_sided = true;
-        m.layers.diffuse_transmission = Some(GenDiffuseTransmission {
-            factor,
-            color: TRANSMISSION_COLOR,
-        });
+        m.layers.diffuse_transmission = factor;
+        m.layers.diffuse_transmission_color = TRANSMISSION_COLOR;
+        m.stated.insert("KHR_materials_diffuse_transmission".into());
         add_mesh(
             &mut s,
             &format!("Sheet {}", i + 1),
@@ -160,7 +168,7 @@ pub fn diffuse_transmission() -> GenScene {
             m,
             Some(at),
         );
-        s.lights.push(GenLight::Spot {
+        s.lights.push(LightDesc::Spot {
             name: format!("Back spot {}", i + 1),
             position: at - Vec3::new(0.0, 0.0, 0.9),
             direction: Vec3::Z,
@@ -168,13 +176,17 @@ pub fn diffuse_transmission() -> GenScene {
             intensity: 2.0,
             inner_cone: 0.3,
             outer_cone: 0.42,
+            range: None,
+            spectrum: None,
         });
     }
-    s.lights.push(GenLight::Point {
+    s.lights.push(LightDesc::Point {
         name: "Front fill".into(),
         position: Vec3::new(0.0, 2.5, 2.5),
         color: Vec3::ONE,
         intensity: 1.5,
+        range: None,
+        spectrum: None,
     });
     s.camera = Some(camera(
         Vec3::new(0.0, 1.0, 4.0),
@@ -191,13 +203,13 @@ fn scene_with_floor(name: &str) -> GenScene {
         name: name.into(),
         ..GenScene::default()
     };
-    let floor = GenMaterial::diffuse("Floor", Vec3::splat(0.5));
+    let floor = MaterialDesc::diffuse("Floor", Vec3::splat(0.5));
     add_mesh(&mut s, "Floor", ground_plane(6.0, 6.0), floor, None);
     s
 }
 
 /// Adds a sphere of radius [`SPHERE_RADIUS`] centred at `at` (all spheres share geometry).
-fn add_sphere(s: &mut GenScene, name: &str, m: GenMaterial, at: Vec3) {
+fn add_sphere(s: &mut GenScene, name: &str, m: MaterialDesc, at: Vec3) {
     add_mesh(s, name, icosphere(SPHERE_RADIUS, 3), m, Some(at));
 }
 

@@ -17,10 +17,12 @@
 //! x for rotation 0; world Z, image y for π/2): the tests measure that.
 
 use crate::authoring::glb::write_glb;
-use crate::authoring::scene::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
+use crate::authoring::scene::{GenCamera, GenMesh, GenScene};
 use crate::authoring::shapes::{ground_plane, icosphere};
 use crate::error::Result;
+use crate::material::MaterialDesc;
 use crate::material::{AnisotropyDesc, IridescenceDesc};
+use crate::scene::desc::LightDesc;
 use glam::{Vec2, Vec3, Vec4};
 use std::path::{Path, PathBuf};
 
@@ -32,7 +34,7 @@ pub const FILES: [&str; 4] = [
     "anisotropy_rotation.glb",
 ];
 
-fn sphere_scene(name: &str, material: GenMaterial) -> GenScene {
+fn sphere_scene(name: &str, material: MaterialDesc) -> GenScene {
     GenScene {
         name: name.into(),
         meshes: vec![GenMesh {
@@ -57,9 +59,10 @@ fn sphere_scene(name: &str, material: GenMaterial) -> GenScene {
 
 /// The iridescent dark dielectric sphere (IridescenceSuzanne's material on a sphere).
 pub fn iridescence_sphere() -> GenScene {
-    let mut m = GenMaterial::diffuse("iridescent dielectric", Vec3::splat(0.05));
+    let mut m = MaterialDesc::diffuse("iridescent dielectric", Vec3::splat(0.05));
     m.roughness = 0.15;
-    m.ior = Some(1.5);
+    m.ior = 1.5;
+    m.stated.insert("KHR_materials_ior".into());
     m.iridescence = Some(IridescenceDesc {
         factor: 1.0,
         ior: 1.3,
@@ -70,7 +73,7 @@ pub fn iridescence_sphere() -> GenScene {
 
 /// The iridescent metal sphere (a thin oxide on grey metal, as IridescenceLamp's shade).
 pub fn iridescence_metal() -> GenScene {
-    let mut m = GenMaterial::diffuse("iridescent metal", Vec3::splat(0.6));
+    let mut m = MaterialDesc::diffuse("iridescent metal", Vec3::splat(0.6));
     m.metallic = 1.0;
     m.roughness = 0.2;
     m.iridescence = Some(IridescenceDesc {
@@ -91,7 +94,7 @@ pub fn anisotropy_plate(rotation: f32) -> GenScene {
         .iter()
         .map(|p| Vec2::new(p.x + 0.5, p.z + 0.5))
         .collect();
-    let material = GenMaterial {
+    let material = MaterialDesc {
         base_color: Vec4::new(0.9, 0.9, 0.9, 1.0),
         metallic: 1.0,
         roughness: 0.3,
@@ -100,7 +103,7 @@ pub fn anisotropy_plate(rotation: f32) -> GenScene {
             rotation,
             texture: None,
         }),
-        ..GenMaterial::diffuse("brushed metal", Vec3::ONE)
+        ..MaterialDesc::diffuse("brushed metal", Vec3::ONE)
     };
     GenScene {
         name: "anisotropy plate".into(),
@@ -111,11 +114,13 @@ pub fn anisotropy_plate(rotation: f32) -> GenScene {
             translation: None,
         }],
         materials: vec![material],
-        lights: vec![GenLight::Point {
+        lights: vec![LightDesc::Point {
             name: "lamp".into(),
             position: Vec3::new(0.05, 1.5, 0.0),
             color: Vec3::ONE,
             intensity: 20.0,
+            range: None,
+            spectrum: None,
         }],
         camera: Some(GenCamera {
             name: "camera".into(),

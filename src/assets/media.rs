@@ -14,22 +14,24 @@
 
 use super::parts::{add_mesh, add_panel, camera};
 use super::spectral::fig5_3_1_prism_beam;
-use crate::authoring::scene::{GenLight, GenMaterial, GenScene, GenVolume};
+use crate::authoring::scene::GenScene;
 use crate::authoring::shapes::{cuboid, ground_plane, icosphere, TriMesh};
+use crate::material::MaterialDesc;
+use crate::scene::desc::LightDesc;
+use crate::volume::{Phase, Scattering, VolumeScatter};
 use glam::{Mat3, Vec3};
 
 /// A smooth, fully transmissive volume of index `ior` holding Rayleigh scattering of
 /// σ_s(550 nm) = `rayleigh` per metre (`extras.iris_medium`; other viewers see clear
 /// glass).
-fn rayleigh_medium(name: &str, ior: f32, thickness: f32, rayleigh: f32) -> GenMaterial {
-    let mut m = GenMaterial::clear_glass(name, ior, thickness);
-    m.volume = Some(GenVolume {
-        thickness,
-        attenuation_color: Vec3::ONE,
-        attenuation_distance: None,
-        scatter: None,
-    });
+fn rayleigh_medium(name: &str, ior: f32, thickness: f32, rayleigh: f32) -> MaterialDesc {
+    let mut m = MaterialDesc::clear_glass(name, ior, thickness);
     m.extras = Some(serde_json::json!({"iris_medium": {"rayleigh": rayleigh}}));
+    // The key's reading (load::gltf::scatter).
+    m.scatter = Some(VolumeScatter {
+        scattering: Scattering::Rayleigh { at_550: rayleigh },
+        phase: Phase::Rayleigh,
+    });
     m
 }
 
@@ -40,7 +42,7 @@ pub fn milky_tank() -> GenScene {
         extras: Some(serde_json::json!({"iris_environment": 0.05})),
         ..GenScene::default()
     };
-    let table = GenMaterial::diffuse("Table", Vec3::splat(0.12));
+    let table = MaterialDesc::diffuse("Table", Vec3::splat(0.12));
     add_mesh(&mut s, "Table", ground_plane(0.9, 0.5), table, None);
     let water = rayleigh_medium("Milky water", 1.33, 0.16, 1.2);
     let tank = cuboid(Vec3::new(0.2, 0.08, 0.08));
@@ -54,7 +56,7 @@ pub fn milky_tank() -> GenScene {
     // The card beyond the far end, facing −X (ground_plane's +Y turned to −X).
     let card =
         ground_plane(0.15, 0.12).transformed(Mat3::from_rotation_z(90f32.to_radians()), Vec3::ZERO);
-    let white = GenMaterial::diffuse("Card", Vec3::splat(0.2));
+    let white = MaterialDesc::diffuse("Card", Vec3::splat(0.2));
     add_mesh(
         &mut s,
         "Card",
@@ -62,7 +64,7 @@ pub fn milky_tank() -> GenScene {
         white,
         Some(Vec3::new(0.45, 0.12, 0.0)),
     );
-    s.lights.push(GenLight::Spot {
+    s.lights.push(LightDesc::Spot {
         name: "Beam".into(),
         position: Vec3::new(-0.6, 0.081, 0.0),
         direction: Vec3::X,
@@ -70,6 +72,8 @@ pub fn milky_tank() -> GenScene {
         intensity: 12.0,
         inner_cone: 1f32.to_radians(),
         outer_cone: 1.6f32.to_radians(),
+        range: None,
+        spectrum: None,
     });
     s.camera = Some(camera(
         Vec3::new(0.12, 0.32, 0.95),
@@ -87,7 +91,6 @@ pub fn hazy_prism() -> GenScene {
     // In a dark room: the fill light would light the whole haze, and a light floor would
     // show the glow the haze sends down, which only many passes make smooth.
     s.lights.clear();
-    s.light_extras.clear();
     for m in s.materials.iter_mut().filter(|m| m.name == "Floor") {
         m.base_color = glam::Vec4::new(0.03, 0.03, 0.03, 1.0);
     }
@@ -116,7 +119,7 @@ pub fn opal() -> GenScene {
         name: "Opal: Rayleigh scattering in a stone".into(),
         ..GenScene::default()
     };
-    let velvet = GenMaterial::diffuse("Velvet", Vec3::splat(0.02));
+    let velvet = MaterialDesc::diffuse("Velvet", Vec3::splat(0.02));
     add_mesh(&mut s, "Velvet", ground_plane(0.1, 0.1), velvet, None);
     let semi = Vec3::new(0.009, 0.006, 0.007);
     let stone = rayleigh_medium("Opal", 1.45, 0.012, 40.0);

@@ -33,6 +33,8 @@ pub mod media;
 pub mod paper;
 mod parts;
 pub mod rainbow;
+#[cfg(test)]
+mod round_trip;
 pub mod sky;
 pub mod spectral;
 

@@ -25,11 +25,13 @@
 use super::caustic::fig4_5_1_caustics;
 use super::parts::{add_mesh, camera};
 use crate::authoring::glb::write_glb;
-use crate::authoring::scene::{GenLight, GenMaterial, GenScene};
+use crate::authoring::scene::GenScene;
 use crate::authoring::shapes::{
     checkerboard, ground_plane, icosphere, prism, quarter_turn_x, TriMesh,
 };
 use crate::error::{Error, Result};
+use crate::material::MaterialDesc;
+use crate::scene::desc::LightDesc;
 use glam::{Mat3, Vec3};
 use std::path::{Path, PathBuf};
 
@@ -95,7 +97,7 @@ pub fn fig7_1_spheres() -> GenScene {
     let sphere = icosphere(r, SPHERE_SUBDIVISIONS);
     for (x, ior) in [(-0.8, 1.2), (0.0, 1.4), (0.8, 1.6)] {
         let name = format!("Glass sphere IOR {ior}");
-        let glass = GenMaterial::clear_glass(&name, ior, 2.0 * r);
+        let glass = MaterialDesc::clear_glass(&name, ior, 2.0 * r);
         let at = Some(Vec3::new(x, r, 0.0));
         add_mesh(&mut s, &name, sphere.clone(), glass, at);
     }
@@ -129,11 +131,11 @@ pub fn fig7_2_bubble() -> GenScene {
         quarter_turn_x(),
         wall_at,
     );
-    let floor = GenMaterial::diffuse("Floor", Vec3::splat(0.5));
+    let floor = MaterialDesc::diffuse("Floor", Vec3::splat(0.5));
     let floor_at = Some(Vec3::new(0.0, 0.0, 1.0));
     add_mesh(&mut s, "Floor", ground_plane(2.0, 2.0), floor, floor_at);
     let name = "Air bubble IOR 0.8";
-    let bubble = GenMaterial::clear_glass(name, 0.8, 2.0 * r);
+    let bubble = MaterialDesc::clear_glass(name, 0.8, 2.0 * r);
     let sphere = icosphere(r, SPHERE_SUBDIVISIONS);
     add_mesh(&mut s, name, sphere, bubble, Some(Vec3::new(0.0, 1.0, 0.0)));
     add_lights(
@@ -184,7 +186,7 @@ pub fn fig4_4_1_prism() -> GenScene {
         Mat3::from_rotation_y(std::f32::consts::FRAC_PI_2) * quarter_turn_x(),
         Vec3::new(-2.0, 1.0, 0.0),
     );
-    let glass = GenMaterial::clear_glass("Prism glass IOR 1.5", 1.5, side);
+    let glass = MaterialDesc::clear_glass("Prism glass IOR 1.5", 1.5, side);
     // The centroid sits h/3 above the base (h = side·√3/2); 1 mm more keeps the base off the
     // floor plane so the two never coincide.
     let lift = f64::from(side) * 3.0f64.sqrt() / 6.0 + 0.001;
@@ -222,24 +224,27 @@ pub(super) fn add_checker(
     for (geometry, shade, color) in [(even, "light", light), (odd, "dark", dark)] {
         let label = format!("{name} {shade}");
         let geometry = geometry.transformed(rotation, Vec3::ZERO);
-        let m = GenMaterial::diffuse(&label, color);
+        let m = MaterialDesc::diffuse(&label, color);
         add_mesh(s, &label, geometry, m, Some(offset));
     }
 }
 
 /// The key point light and the dim directional fill.
 fn add_lights(s: &mut GenScene, key_at: Vec3, fill_towards: Vec3) {
-    s.lights.push(GenLight::Point {
+    s.lights.push(LightDesc::Point {
         name: "Key".into(),
         position: key_at,
         color: Vec3::ONE,
         intensity: KEY_CANDELA,
+        range: None,
+        spectrum: None,
     });
-    s.lights.push(GenLight::Directional {
+    s.lights.push(LightDesc::Directional {
         name: "Fill".into(),
         direction: fill_towards,
         color: Vec3::ONE,
         intensity: FILL_LUX,
+        spectrum: None,
     });
 }
 

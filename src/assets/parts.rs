@@ -5,12 +5,13 @@
 //! (which made `paper` ↔ `caustic` ↔ `spectral` an import cycle). Units:
 //! metres; frames: world space, +Y up.
 
-use crate::authoring::scene::{GenCamera, GenMaterial, GenMesh, GenScene};
+use crate::authoring::scene::{GenCamera, GenMesh, GenScene};
 use crate::authoring::shapes::{ground_plane, TriMesh};
+use crate::material::MaterialDesc;
 use glam::{Mat3, Vec3};
 
 /// Appends `m` to the scene's materials and returns its index.
-pub(super) fn push_material(s: &mut GenScene, m: GenMaterial) -> usize {
+pub(super) fn push_material(s: &mut GenScene, m: MaterialDesc) -> usize {
     s.materials.push(m);
     s.materials.len() - 1
 }
@@ -21,7 +22,7 @@ pub(super) fn add_mesh(
     s: &mut GenScene,
     name: &str,
     geometry: TriMesh,
-    m: GenMaterial,
+    m: MaterialDesc,
     at: Option<Vec3>,
 ) {
     let material = push_material(s, m);
@@ -45,7 +46,7 @@ pub(super) fn add_panel(
     at: Vec3,
 ) {
     let geometry = ground_plane(half.0, half.1).transformed(rotation, Vec3::ZERO);
-    let m = GenMaterial::emitter(name, Vec3::splat(radiance));
+    let m = MaterialDesc::emitter(name, Vec3::splat(radiance));
     add_mesh(s, name, geometry, m, Some(at));
 }
 

@@ -53,8 +53,11 @@
 
 use super::parts::{add_mesh, camera};
 use super::spectral::{upright_prism, BeamLayout, N_D_BK7};
-use crate::authoring::scene::{GenLight, GenMaterial, GenScene};
+use crate::authoring::scene::GenScene;
 use crate::authoring::shapes::TriMesh;
+use crate::material::MaterialDesc;
+use crate::scene::desc::LightDesc;
+use crate::spectrum::EmissionSpectrum;
 use glam::{DVec3, Vec3};
 
 /// Side of the prism's equilateral cross-section, metres.
@@ -180,11 +183,10 @@ pub fn fig5_3_1_rainbow() -> GenScene {
     let mut floor = TriMesh::default();
     let (fc, fx, fz) = (DVec3::new(0.475, 0.0, -0.45), 0.875, 0.7);
     rect(&mut floor, fc, fz * DVec3::Z, fx * DVec3::X);
-    let floor_material = GenMaterial::diffuse("Floor", Vec3::splat(0.8));
+    let floor_material = MaterialDesc::diffuse("Floor", Vec3::splat(0.8));
     add_mesh(&mut s, "Floor", floor, floor_material, None);
 
-    let mut glass = GenMaterial::clear_glass("Prism N-BK7", N_D_BK7 as f32, 0.1);
-    glass.extras = Some(serde_json::json!({"iris_glass": "N-BK7"}));
+    let glass = MaterialDesc::named_glass("Prism N-BK7", "N-BK7", N_D_BK7 as f32, 0.1);
     let prism = upright_prism(PRISM_SIDE, RAINBOW_Y - 0.05, 0.1);
     add_mesh(&mut s, "Prism", prism, glass, None);
 
@@ -210,17 +212,17 @@ pub fn fig5_3_1_rainbow() -> GenScene {
             (b - a) / 2.0 * u,
         );
     }
-    let black = GenMaterial::diffuse("Baffle", Vec3::splat(0.02));
+    let black = MaterialDesc::diffuse("Baffle", Vec3::splat(0.02));
     add_mesh(&mut s, "Slit baffle", baffle, black, None);
 
     // Screen facing −dir_out: Y × (Y × dir_out) = −dir_out (dir_out is horizontal).
     let mut screen = TriMesh::default();
     let c = DVec3::new(l.screen_centre.x, 0.125, l.screen_centre.z);
     rect(&mut screen, c, 0.125 * DVec3::Y, 0.2 * l.dispersion);
-    let white = GenMaterial::diffuse("Screen", Vec3::splat(0.85));
+    let white = MaterialDesc::diffuse("Screen", Vec3::splat(0.85));
     add_mesh(&mut s, "Screen", screen, white, None);
 
-    s.lights.push(GenLight::Spot {
+    s.lights.push(LightDesc::Spot {
         name: "Sun".into(),
         position: (l.slit - SUN_DISTANCE * l.dir_in).as_vec3(),
         direction: l.dir_in.as_vec3(),
@@ -229,13 +231,15 @@ pub fn fig5_3_1_rainbow() -> GenScene {
         intensity: SUN_LUX * (SUN_DISTANCE * SUN_DISTANCE) as f32,
         inner_cone: (SUN_CONE_DEG * 0.875).to_radians(),
         outer_cone: SUN_CONE_DEG.to_radians(),
+        range: None,
+        spectrum: Some(EmissionSpectrum::Sun),
     });
-    s.light_extras = vec![Some(serde_json::json!({"iris_spectrum": "sun"}))];
-    s.lights.push(GenLight::Directional {
+    s.lights.push(LightDesc::Directional {
         name: "Fill".into(),
         direction: Vec3::new(0.3, -1.0, 0.2),
         color: Vec3::ONE,
         intensity: FILL_LUX,
+        spectrum: None,
     });
 
     // From the side opposite the dispersion, across from the middle of the beam's path.

@@ -44,8 +44,10 @@
 use super::parts::push_material;
 use crate::authoring::gem::Brilliant;
 use crate::authoring::lathe::sin_cos;
-use crate::authoring::scene::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene};
+use crate::authoring::scene::{GenCamera, GenMesh, GenScene};
 use crate::authoring::shapes::{cuboid, ground_plane, push_flat_facing_away, TriMesh};
+use crate::material::MaterialDesc;
+use crate::scene::desc::LightDesc;
 use glam::{DVec3, Vec3};
 
 /// Side of the prism's equilateral cross-section, metres.
@@ -145,7 +147,7 @@ impl BeamLayout {
 }
 
 /// Adds a mesh with a new material.
-fn mesh(s: &mut GenScene, name: &str, geometry: TriMesh, material: GenMaterial) {
+fn mesh(s: &mut GenScene, name: &str, geometry: TriMesh, material: MaterialDesc) {
     let material = push_material(s, material);
     mesh_with(s, name, geometry, material);
 }
@@ -168,18 +170,17 @@ pub fn fig5_3_1_prism_beam() -> GenScene {
         ..GenScene::default()
     };
     let beam = BeamLayout::minimum_deviation();
-    let black = push_material(&mut s, GenMaterial::diffuse("Black", Vec3::splat(0.05)));
+    let black = push_material(&mut s, MaterialDesc::diffuse("Black", Vec3::splat(0.05)));
     mesh(
         &mut s,
         "Floor",
         ground_plane(4.0, 4.0).transformed(glam::Mat3::IDENTITY, Vec3::new(1.0, 0.0, -0.5)),
-        GenMaterial::diffuse("Floor", Vec3::splat(0.3)),
+        MaterialDesc::diffuse("Floor", Vec3::splat(0.3)),
     );
     let stand = cuboid(Vec3::new(0.06, 0.15, 0.06))
         .transformed(glam::Mat3::IDENTITY, Vec3::new(0.0, 0.15, 0.0));
     mesh_with(&mut s, "Stand", stand, black);
-    let mut glass = GenMaterial::clear_glass("Prism N-BK7", N_D_BK7 as f32, 0.1);
-    glass.extras = Some(serde_json::json!({"iris_glass": "N-BK7"}));
+    let glass = MaterialDesc::named_glass("Prism N-BK7", "N-BK7", N_D_BK7 as f32, 0.1);
     mesh(
         &mut s,
         "Prism",
@@ -195,7 +196,7 @@ pub fn fig5_3_1_prism_beam() -> GenScene {
     let lamp = slit - 1.0 * w;
     let mut emitter = TriMesh::default();
     push_rect(&mut emitter, lamp, 0.001 * u, 0.02 * v);
-    let emitter_material = GenMaterial::emitter("Beam emitter", Vec3::splat(BEAM_RADIANCE));
+    let emitter_material = MaterialDesc::emitter("Beam emitter", Vec3::splat(BEAM_RADIANCE));
     mesh(&mut s, "Beam emitter", emitter, emitter_material);
     // Baffle: a 20 × 20 cm plate around a 2 × 40 mm slit (four strips, symmetric about the
     // slit centre), facing the lamp and the prism alike (opaque both ways).
@@ -245,16 +246,17 @@ pub fn fig5_3_1_prism_beam() -> GenScene {
         &mut s,
         "Screen",
         screen,
-        GenMaterial::diffuse("Screen", Vec3::splat(0.85)),
+        MaterialDesc::diffuse("Screen", Vec3::splat(0.85)),
     );
 
     // A punctual fill: the path tracer gives each punctual light its own share of the
     // light samples, while emitters share theirs by power (the beam's would take 99 %).
-    s.lights.push(GenLight::Directional {
+    s.lights.push(LightDesc::Directional {
         name: "Fill".into(),
         direction: Vec3::new(0.5, -1.0, -0.2),
         color: Vec3::ONE,
         intensity: FILL_LUX,
+        spectrum: None,
     });
 
     let side = DVec3::new(beam.dir_out.z, 0.0, -beam.dir_out.x);
@@ -289,13 +291,13 @@ pub fn diamond() -> GenScene {
         &mut s,
         "Floor",
         ground_plane(0.15, 0.15),
-        GenMaterial::diffuse("Floor", Vec3::splat(0.1)),
+        MaterialDesc::diffuse("Floor", Vec3::splat(0.1)),
     );
     let stone = diamond_cut().resting(0.0001);
     let n = stone.positions.len() as f64;
     let centre = stone.positions.iter().map(|p| p.as_dvec3()).sum::<DVec3>() / n;
-    let mut material = GenMaterial::clear_glass("Diamond IOR 2.42", 2.42, 0.004);
-    material.dispersion = Some(0.36);
+    let mut material = MaterialDesc::clear_glass("Diamond IOR 2.42", 2.42, 0.004);
+    material.dispersion = 0.36;
     mesh(&mut s, "Diamond", stone, material);
 
     // Table normal after resting: n = (0, cos 40.75°, sin 40.75°); e = the unit vector
@@ -327,7 +329,7 @@ pub fn diamond() -> GenScene {
         let mut quad = TriMesh::default();
         push_rect(&mut quad, at, 0.005 * v, 0.005 * u);
         let name = format!("Light {}", i + 1);
-        let light = GenMaterial::emitter(&name, Vec3::splat(GEM_LIGHT_RADIANCE));
+        let light = MaterialDesc::emitter(&name, Vec3::splat(GEM_LIGHT_RADIANCE));
         mesh(&mut s, &name, quad, light);
     }
 

@@ -1,7 +1,6 @@
-//! glTF JSON for the non-geometry parts of a [`GenScene`](super::scene::GenScene):
-//! materials (with their KHR extensions; the layer extensions' JSON is
-//! [`super::layers`]'s), KHR_lights_punctual lights and the camera, plus the number
-//! formatting shared with [`super::glb`].
+//! glTF JSON for the lights and the camera of a [`GenScene`](super::scene::GenScene)
+//! (KHR_lights_punctual; a light's spectral shape as its `extras.iris_spectrum`), plus the
+//! number formatting shared with [`super::glb`] and [`super::material`].
 //!
 //! Frames: lights and cameras look down their node's local −Z with +Y up (glTF 2.0 §3.10
 //! "Cameras", KHR_lights_punctual "Adding Light Instances to Nodes"), so their nodes carry
@@ -9,11 +8,12 @@
 //! `+ − × ÷ √` only and rounded once, so files are bit-identical on every platform.
 //! Numbers print as the shortest decimal that reads back as the same `f32`.
 
-use super::scene::{GenCamera, GenLight, GenMaterial};
+use super::scene::GenCamera;
 use crate::error::{Error, Result};
+use crate::scene::desc::LightDesc;
+use crate::spectrum::EmissionSpectrum;
 use glam::{DMat3, DQuat, DVec3, Vec3};
 use serde_json::{json, Map, Value};
-use std::collections::BTreeSet;
 
 /// Near clipping distance written for the perspective camera (metres).
 pub const ZNEAR: f32 = 0.01;
@@ -32,109 +32,6 @@ pub(super) fn num(x: f32) -> Value {
 
 pub(super) fn vec3(v: Vec3) -> Value {
     Value::Array(v.to_array().map(num).to_vec())
-}
-
-pub(super) fn material(m: &GenMaterial, used: &mut BTreeSet<&'static str>) -> Value {
-    let mut out = Map::new();
-    out.insert("name".into(), json!(m.name));
-    out.insert(
-        "pbrMetallicRoughness".into(),
-        json!({
-            "baseColorFactor": m.base_color.to_array().map(num),
-            "metallicFactor": num(m.metallic),
-            "roughnessFactor": num(m.roughness),
-        }),
-    );
-    let mut ext = Map::new();
-    if let Some(e) = m.emissive.filter(|e| e.max_element() > 0.0) {
-        // emissiveFactor is limited to [0, 1]; the strength carries the magnitude.
-        let strength = e.max_element();
-        out.insert("emissiveFactor".into(), vec3(e / strength));
-        if strength != 1.0 {
-            ext.insert(
-                "KHR_materials_emissive_strength".into(),
-                json!({"emissiveStrength": num(strength)}),
-            );
-        }
-    }
-    if let Some(ior) = m.ior {
-        ext.insert("KHR_materials_ior".into(), json!({"ior": num(ior)}));
-    }
-    if let Some(t) = m.transmission {
-        ext.insert(
-            "KHR_materials_transmission".into(),
-            json!({"transmissionFactor": num(t)}),
-        );
-    }
-    if let Some(v) = m.volume {
-        let mut vol = Map::new();
-        vol.insert("thicknessFactor".into(), num(v.thickness));
-        vol.insert("attenuationColor".into(), vec3(v.attenuation_color));
-        if let Some(d) = v.attenuation_distance {
-            vol.insert("attenuationDistance".into(), num(d));
-        }
-        ext.insert("KHR_materials_volume".into(), Value::Object(vol));
-        if let Some(sc) = v.scatter {
-            ext.insert(
-                "KHR_materials_volume_scatter".into(),
-                json!({
-                    "multiscatterColor": vec3(sc.multiscatter),
-                    "scatterAnisotropy": num(sc.anisotropy),
-                }),
-            );
-        }
-    }
-    if let Some(d) = m.dispersion {
-        ext.insert(
-            "KHR_materials_dispersion".into(),
-            json!({"dispersion": num(d)}),
-        );
-    }
-    if let Some(i) = &m.iridescence {
-        ext.insert(
-            "KHR_materials_iridescence".into(),
-            json!({
-                "iridescenceFactor": num(i.factor),
-                "iridescenceIor": num(i.ior),
-                "iridescenceThicknessMinimum": num(i.thickness_min),
-                "iridescenceThicknessMaximum": num(i.thickness_max),
-            }),
-        );
-    }
-    if let Some(a) = &m.anisotropy {
-        ext.insert(
-            "KHR_materials_anisotropy".into(),
-            json!({
-                "anisotropyStrength": num(a.strength),
-                "anisotropyRotation": num(a.rotation),
-            }),
-        );
-    }
-    for name in [
-        "KHR_materials_iridescence",
-        "KHR_materials_anisotropy",
-        "KHR_materials_emissive_strength",
-        "KHR_materials_ior",
-        "KHR_materials_transmission",
-        "KHR_materials_volume",
-        "KHR_materials_volume_scatter",
-        "KHR_materials_dispersion",
-    ] {
-        if ext.contains_key(name) {
-            used.insert(name);
-        }
-    }
-    m.layers.write(&mut ext, used);
-    if !ext.is_empty() {
-        out.insert("extensions".into(), Value::Object(ext));
-    }
-    if m.double_sided {
-        out.insert("doubleSided".into(), json!(true));
-    }
-    if let Some(x) = &m.extras {
-        out.insert("extras".into(), x.clone());
-    }
-    Value::Object(out)
 }
 
 /// The unit quaternion (x, y, z, w) rotating −Z to `forward` and +Y towards `up`, or
@@ -163,54 +60,73 @@ fn light_rotation(dir: Vec3) -> Option<[f32; 4]> {
     look_rotation(d, up)
 }
 
-pub(super) fn light(l: &GenLight, index: usize) -> Result<(Value, Value)> {
+/// `extras.iris_spectrum` as the loader reads it (`load::gltf::material::iris_spectrum`).
+fn spectrum_json(s: EmissionSpectrum) -> Value {
+    match s {
+        EmissionSpectrum::D65 => json!("D65"),
+        EmissionSpectrum::Sun => json!("sun"),
+        EmissionSpectrum::Blackbody { kelvin } => json!({"blackbody": num(kelvin)}),
+    }
+}
+
+/// Light `index`'s KHR_lights_punctual JSON and its node.
+pub(super) fn light(l: &LightDesc, index: usize) -> Result<(Value, Value)> {
     let node_ext = json!({"KHR_lights_punctual": {"light": index}});
-    let degenerate = |name: &str| {
+    let name = l.name();
+    let degenerate = || {
         Error::Usage(format!(
             "scene generator: light {index} \"{name}\": zero direction"
         ))
     };
-    let (light, node) = match l {
-        GenLight::Point {
-            name,
-            position,
-            color,
-            intensity,
+    let mut light = Map::new();
+    light.insert("name".into(), json!(name));
+    light.insert("color".into(), vec3(l.color()));
+    light.insert("intensity".into(), num(l.intensity()));
+    let (kind, node, range) = match l {
+        LightDesc::Point {
+            position, range, ..
         } => (
-            json!({"name": name, "type": "point", "color": vec3(*color), "intensity": num(*intensity)}),
+            "point",
             json!({"name": name, "translation": vec3(*position), "extensions": node_ext}),
+            *range,
         ),
-        GenLight::Spot {
-            name,
+        LightDesc::Spot {
             position,
             direction,
-            color,
-            intensity,
             inner_cone,
             outer_cone,
+            range,
+            ..
         } => {
-            let q = light_rotation(*direction).ok_or_else(|| degenerate(name))?;
+            let q = light_rotation(*direction).ok_or_else(degenerate)?;
+            light.insert(
+                "spot".into(),
+                json!({"innerConeAngle": num(*inner_cone), "outerConeAngle": num(*outer_cone)}),
+            );
             (
-                json!({"name": name, "type": "spot", "color": vec3(*color), "intensity": num(*intensity),
-                       "spot": {"innerConeAngle": num(*inner_cone), "outerConeAngle": num(*outer_cone)}}),
+                "spot",
                 json!({"name": name, "translation": vec3(*position), "rotation": q.map(num),
                        "extensions": node_ext}),
+                *range,
             )
         }
-        GenLight::Directional {
-            name,
-            direction,
-            color,
-            intensity,
-        } => {
-            let q = light_rotation(*direction).ok_or_else(|| degenerate(name))?;
+        LightDesc::Directional { direction, .. } => {
+            let q = light_rotation(*direction).ok_or_else(degenerate)?;
             (
-                json!({"name": name, "type": "directional", "color": vec3(*color), "intensity": num(*intensity)}),
+                "directional",
                 json!({"name": name, "rotation": q.map(num), "extensions": node_ext}),
+                None,
             )
         }
     };
-    Ok((light, node))
+    light.insert("type".into(), json!(kind));
+    if let Some(r) = range {
+        light.insert("range".into(), num(r));
+    }
+    if let Some(s) = l.spectrum() {
+        light.insert("extras".into(), json!({"iris_spectrum": spectrum_json(s)}));
+    }
+    Ok((Value::Object(light), node))
 }
 
 pub(super) fn camera(c: &GenCamera) -> Result<(Value, Value)> {

@@ -1,56 +1,20 @@
-//! The KHR material layer extensions a generated material may carry
-//! (KHR_materials_clearcoat, KHR_materials_sheen, KHR_materials_diffuse_transmission): their
-//! parameters ([`GenLayers`]), their validation and their glTF JSON, with the property names
-//! exactly as the Khronos specifications spell them (the names Iris's loader,
+//! The KHR material layer extensions of a written material ([`LayerDesc`], the description's
+//! own type): KHR_materials_clearcoat, KHR_materials_sheen and
+//! KHR_materials_diffuse_transmission, their checks and their glTF JSON, with the property
+//! names exactly as the Khronos specifications spell them (the names Iris's loader,
 //! `load::gltf::material_layers`, reads).
 //!
 //! Units: factors and roughnesses are unitless in [0, 1]; colours are linear RGB in [0, 1].
-//! Only factors are written (no textures). A layer that is `None` is not written at all; a
-//! layer that is `Some` is written even when its factor is 0 (the clearcoat test scene
-//! shows that a coat of factor 0 renders like no coat).
+//! Only factors are written (no textures). A layer is written when the material states its
+//! extension ([`crate::material::MaterialDesc::stated`]) or when its values differ from the
+//! spec defaults; a stated layer is written even when its factor is 0 (the clearcoat test
+//! scene shows that a coat of factor 0 renders like no coat).
 
 use super::gltf_json::{num, vec3};
+use crate::material::LayerDesc;
 use glam::Vec3;
 use serde_json::{json, Map, Value};
 use std::collections::BTreeSet;
-
-/// KHR_materials_clearcoat: a smooth or rough dielectric coat (F0 0.04) over the material.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GenClearcoat {
-    /// `clearcoatFactor` in [0, 1].
-    pub factor: f32,
-    /// `clearcoatRoughnessFactor` in [0, 1].
-    pub roughness: f32,
-}
-
-/// KHR_materials_sheen: a microfibre (Charlie) lobe over the base, strongest at grazing angles.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GenSheen {
-    /// `sheenColorFactor`, linear RGB in [0, 1].
-    pub color: Vec3,
-    /// `sheenRoughnessFactor` in [0, 1].
-    pub roughness: f32,
-}
-
-/// KHR_materials_diffuse_transmission: part of the diffuse lobe goes through a thin wall.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GenDiffuseTransmission {
-    /// `diffuseTransmissionFactor` in [0, 1].
-    pub factor: f32,
-    /// `diffuseTransmissionColorFactor`, linear RGB in [0, 1].
-    pub color: Vec3,
-}
-
-/// The layer extensions of one material; all `None` (the default) writes none of them.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct GenLayers {
-    /// KHR_materials_clearcoat.
-    pub clearcoat: Option<GenClearcoat>,
-    /// KHR_materials_sheen.
-    pub sheen: Option<GenSheen>,
-    /// KHR_materials_diffuse_transmission.
-    pub diffuse_transmission: Option<GenDiffuseTransmission>,
-}
 
 fn unit(x: f32) -> bool {
     (0.0..=1.0).contains(&x)
@@ -60,63 +24,60 @@ fn unit_rgb(c: Vec3) -> bool {
     c.is_finite() && c.min_element() >= 0.0 && c.max_element() <= 1.0
 }
 
-impl GenLayers {
-    /// `Err(property)` naming the first value outside its range (`extension.property`).
-    pub fn check(&self) -> Result<(), &'static str> {
-        if let Some(c) = self.clearcoat {
-            if !unit(c.factor) {
-                return Err("KHR_materials_clearcoat.clearcoatFactor");
-            }
-            if !unit(c.roughness) {
-                return Err("KHR_materials_clearcoat.clearcoatRoughnessFactor");
-            }
-        }
-        if let Some(s) = self.sheen {
-            if !unit_rgb(s.color) {
-                return Err("KHR_materials_sheen.sheenColorFactor");
-            }
-            if !unit(s.roughness) {
-                return Err("KHR_materials_sheen.sheenRoughnessFactor");
-            }
-        }
-        if let Some(d) = self.diffuse_transmission {
-            if !unit(d.factor) {
-                return Err("KHR_materials_diffuse_transmission.diffuseTransmissionFactor");
-            }
-            if !unit_rgb(d.color) {
-                return Err("KHR_materials_diffuse_transmission.diffuseTransmissionColorFactor");
-            }
-        }
-        Ok(())
+/// `Err(property)` naming the first value outside its range (`extension.property`).
+pub fn check(l: &LayerDesc) -> Result<(), &'static str> {
+    let checks = [
+        (unit(l.clearcoat), "KHR_materials_clearcoat.clearcoatFactor"),
+        (
+            unit(l.clearcoat_roughness),
+            "KHR_materials_clearcoat.clearcoatRoughnessFactor",
+        ),
+        (
+            unit_rgb(l.sheen_color),
+            "KHR_materials_sheen.sheenColorFactor",
+        ),
+        (
+            unit(l.sheen_roughness),
+            "KHR_materials_sheen.sheenRoughnessFactor",
+        ),
+        (
+            unit(l.diffuse_transmission),
+            "KHR_materials_diffuse_transmission.diffuseTransmissionFactor",
+        ),
+        (
+            unit_rgb(l.diffuse_transmission_color),
+            "KHR_materials_diffuse_transmission.diffuseTransmissionColorFactor",
+        ),
+    ];
+    match checks.iter().find(|(ok, _)| !ok) {
+        Some((_, property)) => Err(property),
+        None => Ok(()),
     }
+}
 
-    /// Inserts the present layers into a material's `extensions` object and records their
-    /// names in `used` (for `extensionsUsed`).
-    pub(super) fn write(&self, ext: &mut Map<String, Value>, used: &mut BTreeSet<&'static str>) {
-        let mut put = |name: &'static str, value: Value| {
+/// Inserts the layers to write (module docs) into a material's `extensions` object.
+pub(super) fn write(l: &LayerDesc, stated: &BTreeSet<String>, ext: &mut Map<String, Value>) {
+    let mut put = |name: &'static str, differs: bool, value: Value| {
+        if differs || stated.contains(name) {
             ext.insert(name.into(), value);
-            used.insert(name);
-        };
-        if let Some(c) = self.clearcoat {
-            put(
-                "KHR_materials_clearcoat",
-                json!({"clearcoatFactor": num(c.factor), "clearcoatRoughnessFactor": num(c.roughness)}),
-            );
         }
-        if let Some(s) = self.sheen {
-            put(
-                "KHR_materials_sheen",
-                json!({"sheenColorFactor": vec3(s.color), "sheenRoughnessFactor": num(s.roughness)}),
-            );
-        }
-        if let Some(d) = self.diffuse_transmission {
-            put(
-                "KHR_materials_diffuse_transmission",
-                json!({"diffuseTransmissionFactor": num(d.factor),
-                       "diffuseTransmissionColorFactor": vec3(d.color)}),
-            );
-        }
-    }
+    };
+    put(
+        "KHR_materials_clearcoat",
+        l.clearcoat != 0.0 || l.clearcoat_roughness != 0.0,
+        json!({"clearcoatFactor": num(l.clearcoat), "clearcoatRoughnessFactor": num(l.clearcoat_roughness)}),
+    );
+    put(
+        "KHR_materials_sheen",
+        l.sheen_color != Vec3::ZERO || l.sheen_roughness != 0.0,
+        json!({"sheenColorFactor": vec3(l.sheen_color), "sheenRoughnessFactor": num(l.sheen_roughness)}),
+    );
+    put(
+        "KHR_materials_diffuse_transmission",
+        l.diffuse_transmission != 0.0 || l.diffuse_transmission_color != Vec3::ONE,
+        json!({"diffuseTransmissionFactor": num(l.diffuse_transmission),
+               "diffuseTransmissionColorFactor": vec3(l.diffuse_transmission_color)}),
+    );
 }
 
 #[cfg(test)]
@@ -125,24 +86,19 @@ mod tests {
 
     #[test]
     fn writes_spec_property_names_and_rejects_out_of_range() {
-        let layers = GenLayers {
-            clearcoat: Some(GenClearcoat {
-                factor: 0.0,
-                roughness: 0.5,
-            }),
-            sheen: Some(GenSheen {
-                color: Vec3::new(1.0, 0.5, 0.25),
-                roughness: 0.3,
-            }),
-            diffuse_transmission: Some(GenDiffuseTransmission {
-                factor: 0.5,
-                color: Vec3::new(1.0, 0.4, 0.1),
-            }),
+        let layers = LayerDesc {
+            clearcoat: 0.0,
+            clearcoat_roughness: 0.5,
+            sheen_color: Vec3::new(1.0, 0.5, 0.25),
+            sheen_roughness: 0.3,
+            diffuse_transmission: 0.5,
+            diffuse_transmission_color: Vec3::new(1.0, 0.4, 0.1),
+            ..LayerDesc::default()
         };
-        assert_eq!(layers.check(), Ok(()));
-        let (mut ext, mut used) = (Map::new(), BTreeSet::new());
-        layers.write(&mut ext, &mut used);
-        assert_eq!(used.len(), 3);
+        assert_eq!(check(&layers), Ok(()));
+        let mut ext = Map::new();
+        write(&layers, &BTreeSet::new(), &mut ext);
+        assert_eq!(ext.len(), 3);
         let v = Value::Object(ext);
         assert_eq!(v["KHR_materials_clearcoat"]["clearcoatFactor"], 0.0);
         assert_eq!(
@@ -155,18 +111,27 @@ mod tests {
         assert_eq!(dt["diffuseTransmissionFactor"], 0.5);
         assert_eq!(dt["diffuseTransmissionColorFactor"][2], 0.1);
 
-        let mut bad = layers;
-        bad.sheen = Some(GenSheen {
-            color: Vec3::new(1.5, 0.0, 0.0),
-            roughness: 0.3,
-        });
-        assert_eq!(bad.check(), Err("KHR_materials_sheen.sheenColorFactor"));
-        let mut bad = layers;
-        bad.clearcoat = Some(GenClearcoat {
-            factor: f32::NAN,
-            roughness: 0.0,
-        });
-        assert_eq!(bad.check(), Err("KHR_materials_clearcoat.clearcoatFactor"));
-        assert_eq!(GenLayers::default().check(), Ok(()));
+        // Defaults are written only when stated.
+        let mut ext = Map::new();
+        write(&LayerDesc::default(), &BTreeSet::new(), &mut ext);
+        assert!(ext.is_empty());
+        write(
+            &LayerDesc::default(),
+            &BTreeSet::from(["KHR_materials_clearcoat".to_string()]),
+            &mut ext,
+        );
+        assert_eq!(ext["KHR_materials_clearcoat"]["clearcoatFactor"], 0.0);
+
+        let bad = LayerDesc {
+            sheen_color: Vec3::new(1.5, 0.0, 0.0),
+            ..layers
+        };
+        assert_eq!(check(&bad), Err("KHR_materials_sheen.sheenColorFactor"));
+        let bad = LayerDesc {
+            clearcoat: f32::NAN,
+            ..layers
+        };
+        assert_eq!(check(&bad), Err("KHR_materials_clearcoat.clearcoatFactor"));
+        assert_eq!(check(&LayerDesc::default()), Ok(()));
     }
 }

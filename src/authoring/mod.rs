@@ -11,10 +11,13 @@
 //!   interface vertices exactly).
 //! - [`gem`]: the round brilliant cut; [`cuts`]: the cuts of `iris gem` (round
 //!   brilliant, emerald, oval, pear) and their preview scene; [`stones`]: named gem materials.
-//! - [`scene`]: the in-memory scene model ([`GenScene`]) in Iris's conventions;
-//!   [`layers`]: its materials' clearcoat, sheen and diffuse-transmission layers.
-//! - [`glb`]: the deterministic GLB writer (its glTF JSON for cameras, lights and
-//!   materials in `gltf_json`).
+//! - [`scene`]: the file the generator writes ([`GenScene`]): the scene description's own
+//!   materials and lights ([`crate::material::MaterialDesc`],
+//!   [`crate::scene::desc::LightDesc`], the types the loaders fill), placed meshes and a
+//!   look-at camera; [`material`]: the materials' constructors, checks and glTF JSON;
+//!   [`layers`]: their clearcoat, sheen and diffuse-transmission extensions.
+//! - [`glb`]: the deterministic GLB writer, the inverse of the glTF loader for these
+//!   scenes (its glTF JSON for cameras and lights in `gltf_json`).
 
 pub mod cuts;
 pub mod gem;
@@ -22,10 +25,10 @@ pub mod glb;
 mod gltf_json;
 pub mod lathe;
 pub mod layers;
+pub mod material;
 pub mod scene;
 pub mod shapes;
 pub mod stones;
 
 pub use glb::{encode_glb, write_glb};
-pub use layers::{GenClearcoat, GenDiffuseTransmission, GenLayers, GenSheen};
-pub use scene::{GenCamera, GenLight, GenMaterial, GenMesh, GenScene, GenVolume};
+pub use scene::{GenCamera, GenMesh, GenScene};

@@ -29,7 +29,6 @@
 //! The same table makes any model a stone (`iris render --stone NAME`,
 //! [`crate::prepare::looks`]): [`Stone::material_desc`].
 
-use super::scene::{GenMaterial, GenVolume};
 use crate::error::{Error, Result};
 use crate::material::{CrystalDesc, CrystalOptics, MaterialDesc};
 use crate::spectrum::cie;
@@ -216,21 +215,18 @@ impl Stone {
 
     /// The glTF material for a stone whose typical thickness (KHR_materials_volume
     /// `thicknessFactor`, used by rasterisers only) is `thickness` metres.
-    pub fn material(self, thickness: f32) -> GenMaterial {
-        let mut m = GenMaterial::clear_glass(&self.title(), self.n_d(), thickness);
-        m.dispersion = Some(self.dispersion());
-        if self.crystal().is_some() {
-            m.extras = Some(serde_json::json!({"iris_crystal": {"stone": self.name()}}));
+    /// It is [`Stone::material_desc`] named [`Stone::title`] with its colour reached after
+    /// [`COLOUR_DISTANCE`], its IOR, transmission and volume extensions stated, and a
+    /// crystal's `extras.iris_crystal` naming the stone (the key its `crystal` is read from).
+    pub fn material(self, thickness: f32) -> MaterialDesc {
+        MaterialDesc {
+            thickness,
+            stated: super::material::glass_extensions(),
+            extras: self
+                .crystal()
+                .map(|_| serde_json::json!({"iris_crystal": {"stone": self.name()}})),
+            ..self.material_desc(self.title(), COLOUR_DISTANCE)
         }
-        if let Some(colour) = self.attenuation() {
-            m.volume = Some(GenVolume {
-                thickness,
-                attenuation_color: colour,
-                attenuation_distance: Some(COLOUR_DISTANCE),
-                scatter: None,
-            });
-        }
-        m
     }
 }
 
@@ -303,38 +299,31 @@ mod tests {
     #[test]
     fn materials_carry_ior_dispersion_and_colour() {
         let d = Stone::Diamond.material(0.004);
-        assert_eq!(d.ior, Some(2.417));
+        assert_eq!(d.ior, 2.417);
         // 20/55 = 0.363636…, exact to f32 rounding.
-        assert!((d.dispersion.unwrap_or(0.0) - 20.0 / 55.0).abs() < 1e-7);
-        assert_eq!(d.transmission, Some(1.0));
-        assert_eq!(d.volume.and_then(|v| v.attenuation_distance), None);
+        assert!((d.dispersion - 20.0 / 55.0).abs() < 1e-7);
+        assert_eq!((d.transmission, d.thickness), (1.0, 0.004));
+        assert!(d.attenuation_distance.is_infinite());
         let r = Stone::Ruby.material(0.004);
-        let v = r.volume.expect("volume");
-        assert!(v.attenuation_color.x > v.attenuation_color.y);
-        assert_eq!(v.attenuation_distance, Some(COLOUR_DISTANCE));
-        let s = Stone::Sapphire.material(0.004).volume.expect("volume");
-        assert!(s.attenuation_color.z > s.attenuation_color.x);
-        let e = Stone::Emerald.material(0.004).volume.expect("volume");
-        assert!(e.attenuation_color.y > e.attenuation_color.x.max(e.attenuation_color.z));
+        assert!(r.attenuation_color.x > r.attenuation_color.y);
+        assert_eq!(r.attenuation_distance, COLOUR_DISTANCE);
+        let s = Stone::Sapphire.material(0.004).attenuation_color;
+        assert!(s.z > s.x);
+        let e = Stone::Emerald.material(0.004).attenuation_color;
+        assert!(e.y > e.x.max(e.z));
     }
 
-    /// `--stone` materials carry the same numbers as the glTF `iris gem` writes.
+    /// A crystal's written material names it in `extras` and carries its reading.
     #[test]
-    fn render_materials_match_the_gem_materials() {
+    fn crystal_materials_name_their_stone() {
         for st in STONES {
-            let (g, d) = (st.material(0.004), st.material_desc("m".into(), 0.002));
-            assert_eq!(Some(d.ior), g.ior);
-            assert_eq!(Some(d.dispersion), g.dispersion);
-            assert_eq!(Some(d.transmission), g.transmission);
-            assert_eq!((d.roughness, d.metallic), (g.roughness, g.metallic));
-            let colour = g
-                .volume
-                .and_then(|v| v.attenuation_distance.map(|_| v.attenuation_color));
-            match colour {
-                Some(c) => assert_eq!((d.attenuation_color, d.attenuation_distance), (c, 0.002)),
-                None => assert!(d.attenuation_distance.is_infinite()),
-            }
-            assert!(d.thickness > 0.0 && d.conductor.is_none());
+            let m = st.material(0.004);
+            assert_eq!(m.crystal.is_some(), st.crystal().is_some(), "{}", st.name());
+            assert_eq!(
+                m.extras
+                    .is_some_and(|x| x["iris_crystal"]["stone"] == st.name()),
+                st.crystal().is_some()
+            );
         }
     }
 }

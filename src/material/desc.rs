@@ -14,6 +14,7 @@ use crate::spectrum::ior::KNOWN_NAMES;
 use crate::spectrum::{EmissionSpectrum, IorModel as SpectralIor, Metal, UnknownIorName};
 use crate::volume::VolumeScatter;
 use glam::{Vec3, Vec4};
+use std::collections::BTreeSet;
 
 /// How the base colour's alpha is used (glTF `alphaMode`).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -135,6 +136,16 @@ pub struct MaterialDesc {
     /// as loaded, world space once built) under polarized transport, and everything
     /// without it.
     pub polarizer: Option<Vec3>,
+    /// The names of the glTF material extensions the file states (`"KHR_materials_ior"`,
+    /// …), so that one stated with its default values is written back
+    /// ([`crate::authoring::glb`] writes the ones it knows that are stated or whose values
+    /// differ from the defaults). The glTF loader fills it; other loaders leave it empty.
+    pub stated: BTreeSet<String>,
+    /// The material's glTF `extras` as the file gives them, written back unchanged. Iris's
+    /// own keys in them (`iris_crystal`, `iris_glass`, `cauchy`, `sellmeier`,
+    /// `iris_medium`, `iris_priority`, `iris_spectrum`, `iris_polarizer`) are read into
+    /// the typed fields above; Iris keys live here, the typed fields are their reading.
+    pub extras: Option<serde_json::Value>,
 }
 
 impl Default for MaterialDesc {
@@ -171,6 +182,8 @@ impl Default for MaterialDesc {
             anisotropy: None,
             crystal: None,
             polarizer: None,
+            stated: BTreeSet::new(),
+            extras: None,
         }
     }
 }

@@ -18,11 +18,12 @@
 
 use super::super::glb::write_glb;
 use super::super::lathe::sin_cos;
-use super::super::scene::{GenCamera, GenMaterial, GenMesh, GenScene};
+use super::super::scene::{GenCamera, GenMesh, GenScene};
 use super::super::shapes::{ground_plane, TriMesh};
 use super::super::stones::Stone;
 use super::{size_metres, Cut};
 use crate::error::{Error, Result};
+use crate::material::MaterialDesc;
 use glam::{DVec3, Vec3};
 use std::path::Path;
 
@@ -101,7 +102,7 @@ pub fn gem_scene(spec: &GemSpec) -> Result<GenScene> {
 pub fn add_setting(s: &mut GenScene, centre: DVec3, size: f64) {
     s.extras = Some(serde_json::json!({ "iris_environment": AMBIENT }));
     s.materials
-        .push(GenMaterial::diffuse("Floor", Vec3::splat(0.85)));
+        .push(MaterialDesc::diffuse("Floor", Vec3::splat(0.85)));
     let half = (10.0 * size) as f32;
     s.meshes.push(GenMesh {
         name: "Floor".into(),
@@ -183,7 +184,7 @@ fn add_panel(s: &mut GenScene, name: &str, radiance: f32, at: DVec3, dir: DVec3,
     }
     quad.indices = vec![[0, 1, 2], [0, 2, 3]];
     s.materials
-        .push(GenMaterial::emitter(name, Vec3::splat(radiance)));
+        .push(MaterialDesc::emitter(name, Vec3::splat(radiance)));
     s.meshes.push(GenMesh {
         name: name.into(),
         geometry: quad,

@@ -283,8 +283,34 @@ fn factors(
         double_sided: m.double_sided(),
         alpha_mode,
         name: element.to_string(),
+        stated: stated(m),
+        extras: m
+            .extras()
+            .as_ref()
+            .and_then(|x| serde_json::from_str(x.get()).ok()),
         ..defaults
     })
+}
+
+/// The names of the extensions on `m` ([`MaterialDesc::stated`]): those the `gltf` crate
+/// types, then the rest as the file names them.
+fn stated(m: &gltf::Material<'_>) -> std::collections::BTreeSet<String> {
+    let typed = [
+        ("KHR_materials_ior", m.ior().is_some()),
+        ("KHR_materials_transmission", m.transmission().is_some()),
+        ("KHR_materials_volume", m.volume().is_some()),
+        ("KHR_materials_specular", m.specular().is_some()),
+        (
+            "KHR_materials_emissive_strength",
+            m.emissive_strength().is_some(),
+        ),
+    ];
+    let typed = typed.into_iter().filter(|(_, present)| *present);
+    let others = m.extensions().into_iter().flat_map(|x| x.keys());
+    typed
+        .map(|(name, _)| name.to_string())
+        .chain(others.cloned())
+        .collect()
 }
 
 /// `KHR_materials_dispersion.dispersion` (default 0).
