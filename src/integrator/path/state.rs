@@ -249,6 +249,7 @@ enum Kind {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shading::MAX_DELTA_BOUNCES;
     use crate::sampler::{PixelSampler, SamplerKind};
     use crate::volume::coarse::FINE_EVENTS;
 
