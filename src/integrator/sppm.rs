@@ -53,6 +53,9 @@ mod gather;
 
 pub(super) use gather::{photon_term, GatherLanes};
 
+use super::capability::{
+    Capabilities, Photons, Support, Units, NO_MEDIA, NO_POLARIZATION, SINGLE_RAYS,
+};
 use super::pass_paths::PassPaths;
 use super::path::{self, LaneWidth, StopAt, VisiblePoint};
 use super::{SppmSettings, StoreBudget, MAX_PHOTONS};
@@ -71,6 +74,24 @@ use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
+
+/// What `--method sppm` renders and how ([`crate::integrator::Method::caps`]).
+pub const CAPABILITIES: Capabilities = Capabilities {
+    name: "sppm",
+    purpose: "sharp caustics through glass, refining pass by pass",
+    units: Units::Passes,
+    photons: Photons::Passes,
+    media: NO_MEDIA,
+    orthographic: Support::Yes,
+    polarization: NO_POLARIZATION,
+    rayleigh_spectral: Support::Yes,
+    lanes: SINGLE_RAYS,
+    shards: Support::Yes,
+    adaptive: Support::No("every pixel's visible point takes part in every pass"),
+    estimate_in_media: Support::Yes,
+    progressive: Support::Yes,
+    pixel_bytes: std::mem::size_of::<Option<path::VisiblePoint<SampledSpectrum>>>(),
+};
 
 /// Photons traced per parallel work item (the split is fixed, so results are deterministic).
 const CHUNK: u64 = 4096;

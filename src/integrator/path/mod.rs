@@ -17,6 +17,7 @@
 //! path splits into its 4 wavelengths,
 //! each traced on as its own sub-path ([`split`], which gives the unbiasedness argument).
 
+mod capabilities;
 mod in_medium;
 mod lanes;
 mod light_sample;
@@ -26,6 +27,7 @@ mod split;
 mod state;
 mod vertex;
 
+pub use capabilities::CAPABILITIES;
 pub use lanes::{estimate_lanes, estimate_path, LaneWidth};
 pub use own_hero::HeroOf;
 

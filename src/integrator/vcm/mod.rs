@@ -40,6 +40,9 @@ pub mod mis;
 use super::sppm::{first_radius, pass_wavelength_variate, radius2_factor};
 use crate::camera::Camera;
 use crate::error::Result;
+use crate::integrator::capability::{
+    Capabilities, Photons, Support, Units, NO_MEDIA, NO_POLARIZATION, SINGLE_RAYS,
+};
 use crate::integrator::light_trace::{self, Splatter};
 use crate::photon::emit::{PhotonEmitter, PhotonNumbers};
 use crate::photon::grid::HashGrid;
@@ -53,6 +56,46 @@ use camera::CameraKit;
 use glam::Vec3;
 use light_paths::{LightKit, LightPaths, LightVertex};
 use rayon::prelude::*;
+
+/// What `--method vcm` renders and how ([`crate::integrator::Method::caps`]).
+pub const CAPABILITIES: Capabilities = Capabilities {
+    name: "vcm",
+    purpose: "the hardest light: caustics seen in mirrors and through glass",
+    units: Units::Samples,
+    photons: Photons::LightSubpaths,
+    media: NO_MEDIA,
+    orthographic: PINHOLE,
+    polarization: NO_POLARIZATION,
+    rayleigh_spectral: Support::Yes,
+    lanes: SINGLE_RAYS,
+    shards: Support::Yes,
+    adaptive: Support::Yes,
+    estimate_in_media: Support::Yes,
+    progressive: Support::Yes,
+    pixel_bytes: 0,
+};
+
+/// What `--method bpt` renders and how ([`crate::integrator::Method::caps`]).
+pub const BPT_CAPABILITIES: Capabilities = Capabilities {
+    name: "bpt",
+    purpose: "small lights and caustics seen directly, without bias",
+    units: Units::Samples,
+    photons: Photons::LightSubpaths,
+    media: NO_MEDIA,
+    orthographic: PINHOLE,
+    polarization: NO_POLARIZATION,
+    rayleigh_spectral: Support::Yes,
+    lanes: SINGLE_RAYS,
+    shards: Support::Yes,
+    adaptive: Support::Yes,
+    estimate_in_media: Support::Yes,
+    progressive: Support::Yes,
+    pixel_bytes: 0,
+};
+
+/// Why VCM and BPT refuse an orthographic camera.
+const PINHOLE: Support =
+    Support::No("connecting light paths to the camera needs a perspective camera");
 
 /// What `--method vcm` and `--method bpt` use.
 #[derive(Debug, Clone, Copy, PartialEq)]
