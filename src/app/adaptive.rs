@@ -183,4 +183,37 @@ mod tests {
         assert!(AdaptiveMode::parse("sometimes").is_err());
         assert_eq!(AdaptiveMode::parse("on").unwrap(), AdaptiveMode::On);
     }
+
+    /// Adaptive sampling is on exactly for the methods whose declaration says so, and off
+    /// with the declared reason otherwise; in media under `auto`, the same for the error
+    /// estimate's declaration.
+    #[test]
+    fn the_declarations_decide() {
+        for m in Method::ALL {
+            let caps = m.caps();
+            let c = choose(flags(AdaptiveMode::On, true, false), m).unwrap();
+            assert_eq!(
+                c.adaptive.is_some(),
+                caps.adaptive.is_yes(),
+                "{}",
+                caps.name
+            );
+            if let Some(why) = caps.adaptive.why_not() {
+                assert!(c.reason.contains(why), "{}", c.reason);
+            }
+            let media = AdaptiveFlags {
+                media: true,
+                ..flags(AdaptiveMode::Auto, true, false)
+            };
+            let c = choose(media, m).unwrap();
+            let expected = caps.adaptive.is_yes() && caps.estimate_in_media.is_yes();
+            assert_eq!(
+                c.adaptive.is_some(),
+                expected,
+                "{}: {}",
+                caps.name,
+                c.reason
+            );
+        }
+    }
 }

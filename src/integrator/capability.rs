@@ -309,3 +309,6 @@ fn check_caustic_modes(scene: &Scene, mode: CausticMode, polarized: bool) -> Res
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests;

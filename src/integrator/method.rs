@@ -153,20 +153,4 @@ mod tests {
             }
         }
     }
-
-    #[test]
-    fn refusals_name_the_methods_that_can() {
-        use crate::integrator::capability::alternatives;
-        assert_eq!(alternatives(|c| c.media), "path, hybrid or auto");
-        assert_eq!(alternatives(|c| c.polarization), "path, hybrid or auto");
-        assert_eq!(alternatives(|c| c.adaptive), {
-            let names: Vec<&str> = Method::ALL
-                .iter()
-                .filter(|m| **m != Method::Sppm)
-                .map(|m| m.name())
-                .collect();
-            let (last, rest) = names.split_last().unwrap();
-            format!("{} or {last}", rest.join(", "))
-        });
-    }
 }

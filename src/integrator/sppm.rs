@@ -172,9 +172,9 @@ fn run<C: Carrier>(
         r2: ps.radius.map(|r| (r as f64) * (r as f64)),
     };
     // Every pixel's visible point takes part in every pass (its radius and flux statistics
-    // are per pass), so SPPM never rests tiles.
+    // are per pass), so SPPM never rests tiles: its declaration says no.
     let schedule = crate::render::Schedule {
-        adaptive: false,
+        adaptive: CAPABILITIES.adaptive.is_yes(),
         ..crate::render::schedule(u64::from(ps.passes.max(1)), range, 1, true, "sppm passes")
     };
     let mut setup = Prepass::now();
