@@ -82,37 +82,21 @@ pub const CAPABILITIES: Capabilities = Capabilities {
 
 /// Renders with the hybrid: `settings.spp` passes of one sample per pixel (a shard: the
 /// passes `range`, absolute indices), fewer if the time limit or the observer stops it;
-/// `max_depth` bounces a camera path, and polarized photons and camera paths when
-/// `polarization` is on.
+/// `paths` is (the bounces a camera path takes, polarized transport): polarized photons and
+/// camera paths when it is on.
 pub fn render(
     scene: &Scene,
     camera: &Camera,
-    depth_and_polarization: (u32, Option<Polarization>),
+    paths: (u32, Option<Polarization>),
     cs: &CausticSettings,
     settings: &RenderSettings,
     range: Option<std::ops::Range<u64>>,
     observer: Option<Observer>,
 ) -> Result<(Film, RenderStats)> {
     if settings.spectral {
-        run::<SampledSpectrum>(
-            scene,
-            camera,
-            depth_and_polarization,
-            cs,
-            settings,
-            range,
-            observer,
-        )
+        run::<SampledSpectrum>(scene, camera, paths, cs, settings, range, observer)
     } else {
-        run::<Vec3>(
-            scene,
-            camera,
-            depth_and_polarization,
-            cs,
-            settings,
-            range,
-            observer,
-        )
+        run::<Vec3>(scene, camera, paths, cs, settings, range, observer)
     }
 }
 

@@ -75,22 +75,12 @@ pub const CAPABILITIES: Capabilities = Capabilities {
     pixel_bytes: 0,
 };
 
-/// What `--method bpt` renders and how ([`crate::integrator::Method::caps`]).
+/// What `--method bpt` renders and how ([`crate::integrator::Method::caps`]): VCM's
+/// declaration, the same code without merging.
 pub const BPT_CAPABILITIES: Capabilities = Capabilities {
     name: "bpt",
     purpose: "small lights and caustics seen directly, without bias",
-    units: Units::Samples,
-    photons: Photons::LightSubpaths,
-    media: NO_MEDIA,
-    orthographic: PINHOLE,
-    polarization: NO_POLARIZATION,
-    rayleigh_spectral: Support::Yes,
-    lanes: SINGLE_RAYS,
-    shards: Support::Yes,
-    adaptive: Support::Yes,
-    estimate_in_media: Support::Yes,
-    progressive: Support::Yes,
-    pixel_bytes: 0,
+    ..CAPABILITIES
 };
 
 /// Why VCM and BPT refuse an orthographic camera.
