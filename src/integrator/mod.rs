@@ -262,10 +262,9 @@ impl Integrator {
         }
         let pool = crate::render::thread_pool(settings)?;
         let width = LaneWidth::choose(scene)?;
-        let job = (scene, camera, settings);
         pool.install(|| match *self {
             Integrator::Whitted { max_depth } => {
-                PerSample::Whitted { max_depth }.render(job, range, observer)
+                PerSample::Whitted { max_depth }.render(scene, camera, settings, range, observer)
             }
             Integrator::Path {
                 max_depth,
@@ -275,7 +274,7 @@ impl Integrator {
                 max_depth,
                 polarization,
             }
-            .render(job, range, observer),
+            .render(scene, camera, settings, range, observer),
             Integrator::Path {
                 max_depth,
                 dispersion,
@@ -305,7 +304,7 @@ impl Integrator {
                 max_depth,
                 dispersion,
             }
-            .render(job, range, observer),
+            .render(scene, camera, settings, range, observer),
             Integrator::PhotonMap {
                 max_depth,
                 ref photons,
@@ -357,7 +356,9 @@ impl PerSample {
     /// ([`render_samples`]), each sample in spectral or RGB transport as the settings say.
     fn render(
         self,
-        (scene, camera, settings): (&Scene, &Camera, &RenderSettings),
+        scene: &Scene,
+        camera: &Camera,
+        settings: &RenderSettings,
         range: Option<Range<u64>>,
         observer: Option<Observer>,
     ) -> Result<(Film, RenderStats)> {
