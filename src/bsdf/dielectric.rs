@@ -1,5 +1,5 @@
-//! Dielectric interfaces: smooth (delta) and rough GGX (Walter et al. 2007) reflection +
-//! transmission, and the thin-walled slab (straight-through transmission).
+//! The dielectric interface lobe ([`Dielectric`]): smooth (delta) and rough GGX (Walter et
+//! al. 2007) reflection + transmission. The thin-walled slab is [`super::thin`].
 //!
 //! Frame: local shading frame, z = OUTWARD normal; `wo.z < 0` means the path is inside the
 //! object. `eta` = n_inside / n_outside (may be < 1, may be +∞ for a perfect mirror).
@@ -11,13 +11,15 @@
 //! [`super::energy`] (a factor 1/E_ss(wo) in Radiance mode, 1/E_ss(wi) in Importance mode,
 //! its adjoint; pdf unchanged); [`Rough::eval_ss`] is the single-scatter, reciprocal part.
 
-use super::{reflect_z, same_hemisphere, BsdfSample, TransportMode};
+use super::energy;
+use super::lobe::{normal_reflectance, Lobe, RouletteLobes, GLOSSY_ALPHA};
+use super::microfacet::{Distribution, Ggx};
+use super::{reflect_z, same_hemisphere, Bsdf, BsdfSample, TransportMode, SMOOTH_ALPHA};
 use crate::optics::{fresnel_either_side as fresnel, reflect, refract};
+use crate::polar::fresnel::dielectric as fresnel_mueller;
+use crate::polar::stokes::{Mueller, IDENTITY};
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
-
-use super::energy;
-use super::microfacet::{Distribution, Ggx};
 
 /// Refraction of `w` through a (micro)surface with normal `n` on either side, reusing
 /// [`crate::optics::refract`] after orienting the interface (pbrt-v4 `Refract`). Returns the
@@ -70,7 +72,7 @@ pub(crate) fn smooth_sample<C: Carrier>(
 /// The delta reflection of a smooth interface chosen with probability `r`, its Fresnel
 /// reflectance: f = r/|cos θi|.
 #[inline]
-fn specular_reflection<C: Carrier>(wo: Vec3, r: f32) -> BsdfSample<C> {
+pub(super) fn specular_reflection<C: Carrier>(wo: Vec3, r: f32) -> BsdfSample<C> {
     let wi = reflect_z(wo);
     BsdfSample::delta(wi, C::splat(r / wi.z.abs()), r, false)
 }
@@ -218,29 +220,113 @@ impl<C: Carrier> Rough<C> {
     }
 }
 
-/// Thin-walled slab (pbrt-v4 `ThinDielectricBxDF`, §9.5.3): the geometric series of
-/// inter-reflections between the two parallel interfaces gives R' = R + T²R/(1 − R²),
-/// T' = 1 − R'; transmission goes straight through (`wi = −wo`, no bending, no η² factor
-/// since both sides are the same medium), tinted by `tint`.
-pub(crate) fn thin_sample<C: Carrier>(
-    eta: f32,
-    tint: C,
-    wo: Vec3,
-    uc: f32,
-) -> Option<BsdfSample<C>> {
-    if wo.z == 0.0 {
-        return None;
+/// [`Bsdf::Dielectric`]: index ratio `eta` (n_inside / n_outside), GGX `alpha`, transmission
+/// `tint`; smooth (delta) when α < [`SMOOTH_ALPHA`] or η = 1.
+///
+/// Polarization: the Fresnel reflection or transmission matrix at the surface (smooth) or
+/// at the generalised half vector (rough), for the light's own η (from `wi`'s side); η = 1
+/// changes nothing. Photons under lobe roulette reflect with the normal-incidence
+/// reflectance and refract (about the surface normal) with the rest, tinted. The
+/// denoiser's albedo is the tint.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Dielectric<C> {
+    pub eta: f32,
+    pub alpha: f32,
+    pub tint: C,
+}
+
+impl<C: Carrier> Dielectric<C> {
+    fn rough(&self) -> Rough<C> {
+        Rough {
+            eta: self.eta,
+            alpha: self.alpha,
+            tint: self.tint,
+        }
     }
-    let mut r = fresnel(wo.z.abs(), eta);
-    let mut t = 1.0 - r;
-    if r < 1.0 {
-        r += t * t * r / (1.0 - r * r);
-        t = 1.0 - r;
-    }
-    if uc < r {
-        Some(specular_reflection(wo, r))
+}
+
+/// η = n_t/n_i for light arriving from `wi`'s side of an interface with η = n_inside /
+/// n_outside (outside = +z).
+fn light_eta(eta: f32, wi: Vec3) -> f32 {
+    if wi.z > 0.0 {
+        eta
     } else {
-        let wi = -wo;
-        Some(BsdfSample::delta(wi, tint * (t / wi.z.abs()), t, true))
+        1.0 / eta
+    }
+}
+
+impl<C: Carrier> Lobe<C> for Dielectric<C> {
+    fn is_delta(&self) -> bool {
+        self.alpha < SMOOTH_ALPHA || self.eta == 1.0
+    }
+    fn samples_direction(&self) -> bool {
+        !self.is_delta()
+    }
+    fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> C {
+        self.rough().eval(wo, wi, mode)
+    }
+    fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        self.rough().pdf(wo, wi)
+    }
+    fn sample(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample<C>> {
+        if self.is_delta() {
+            smooth_sample(self.eta, self.tint, wo, uc, mode)
+        } else {
+            self.rough().sample(wo, uc, u, mode)
+        }
+    }
+    fn mueller(&self, wo: Vec3, wi: Vec3) -> Option<(Mueller, Vec3)> {
+        if self.eta == 1.0 {
+            return Some((IDENTITY, Vec3::Z));
+        }
+        let reflect = wo.z * wi.z > 0.0;
+        let m = if self.alpha < SMOOTH_ALPHA {
+            Vec3::Z
+        } else {
+            half_vector(self.eta, wo, wi)?.0
+        };
+        let (r, t) = fresnel_mueller(wi.dot(m).abs(), light_eta(self.eta, wi));
+        Some((if reflect { r } else { t }, m))
+    }
+    fn depolarizes(&self) -> bool {
+        false
+    }
+    fn hero_polarizes(&self) -> bool {
+        false
+    }
+    fn is_diffuse_like(&self) -> bool {
+        !self.is_delta() && self.alpha >= GLOSSY_ALPHA
+    }
+    fn roulette_lobes(&self) -> RouletteLobes<C> {
+        let r = normal_reflectance(self.eta);
+        RouletteLobes {
+            diffuse: C::ZERO,
+            specular: C::splat(r),
+            transmission: self.tint * (1.0 - r),
+        }
+    }
+    /// Refraction about the surface normal, the mirror direction under total internal
+    /// reflection.
+    fn roulette_transmission(&self, wo: Vec3) -> Vec3 {
+        let side = if wo.z >= 0.0 { 1.0 } else { -1.0 };
+        let etap = if wo.z >= 0.0 {
+            self.eta
+        } else {
+            1.0 / self.eta
+        };
+        refract(wo, Vec3::new(0.0, 0.0, side), etap).unwrap_or(Vec3::new(-wo.x, -wo.y, wo.z))
+    }
+    fn albedo(&self) -> C {
+        self.tint
+    }
+    fn interface_eta(&self) -> Option<f32> {
+        Some(self.eta)
+    }
+    fn with_lane(&self, eta: f32, k: usize) -> Option<Bsdf<C>> {
+        Some(Bsdf::Dielectric {
+            eta,
+            alpha: self.alpha,
+            tint: self.tint.rotated(k),
+        })
     }
 }

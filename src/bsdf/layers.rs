@@ -46,10 +46,10 @@
 //! probabilities proportional to each lobe's weight estimated at |cos θo|, each present lobe
 //! at least [`MIN_LOBE_P`] before renormalising; the pdf is the mixture.
 
+use super::lambert::{cosine_hemisphere, lambert_pdf};
 use super::microfacet::Ggx;
 use super::pbr::{
-    cosine_hemisphere, ggx_reflect_pdf, ggx_reflect_sample, ggx_spec, half_reflect, lambert_pdf,
-    Gltf, GLTF_MIN_ALPHA,
+    ggx_reflect_pdf, ggx_reflect_sample, ggx_spec, half_reflect, Gltf, GLTF_MIN_ALPHA,
 };
 use super::{same_hemisphere, sheen, BsdfSample, TransportMode};
 use crate::optics::fresnel_schlick;

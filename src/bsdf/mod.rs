@@ -1,6 +1,14 @@
-//! Scattering functions (BSDFs) for path tracing: Lambert, GGX conductor (Schlick from a
-//! colour, or a measured metal's complex index), smooth/rough dielectric, thin dielectric
-//! and the glTF metallic-roughness mix. A closed enum, no trait objects.
+//! Scattering functions (BSDFs): Lambert, GGX conductor (Schlick from a colour, or a
+//! measured metal's complex index), smooth/rough dielectric, thin dielectric and the glTF
+//! metallic-roughness mix. A closed enum, no trait objects.
+//!
+//! A lobe is one module ([`lambert`], [`conductor`], [`dielectric`], [`thin`], [`pbr`]):
+//! each answers every question of [`lobe::Lobe`] — sample, eval, pdf, its Mueller matrix,
+//! what a photon does at it, the denoiser's albedo, whether it is delta, diffuse-like or
+//! an interface whose η follows the wavelength — and [`Bsdf`] forwards each question through
+//! one exhaustive match. Code outside this module asks the [`Bsdf`], never its variants
+//! (the materials build them, [`crate::material`]). Adding a lobe: its module, its variant,
+//! its arm of the match, its example in `lobe_tests`.
 //!
 //! Frame: every direction is in the **local shading frame**, z = the surface's OUTWARD
 //! normal (outside of the object is z > 0); unit vectors point AWAY from the surface.
@@ -11,27 +19,35 @@
 
 mod albedo_table;
 pub mod anisotropic;
+mod conductor;
 pub(crate) mod dielectric;
 mod energy;
 #[cfg(test)]
 mod energy_tests;
 pub mod interference;
 pub mod iridescence;
+mod lambert;
 mod layers;
 #[cfg(test)]
 mod layers_tests;
+mod lobe;
+#[cfg(test)]
+mod lobe_tests;
 pub mod microfacet;
 mod pbr;
 pub mod sheen;
 #[cfg(test)]
 mod tests;
+mod thin;
 
+use crate::polar::stokes::Mueller;
 use crate::spectrum::Carrier;
-use anisotropic::Microfacet;
 use glam::{Vec2, Vec3};
 pub use iridescence::{Iridescence, LobeExtensions};
+pub use lambert::cosine_direction;
 pub use layers::{coat_fresnel, Layers};
-use pbr::ConductorFresnel;
+use lobe::Lobe;
+pub use lobe::{RouletteLobes, GLOSSY_ALPHA};
 
 /// GGX α below which a lobe is treated as perfectly smooth (delta).
 pub const SMOOTH_ALPHA: f32 = 1e-3;
@@ -181,68 +197,79 @@ pub(crate) fn same_hemisphere(a: Vec3, b: Vec3) -> bool {
     a.z * b.z > 0.0
 }
 
-impl<C: Carrier> Bsdf<C> {
-    fn gltf(&self) -> Option<pbr::Gltf<C>> {
-        pbr::Gltf::of(self)
-    }
-
-    /// The conductor lobe of [`Bsdf::Conductor`] and [`Bsdf::ComplexConductor`].
-    fn conductor(&self) -> Option<pbr::Conductor<C>> {
-        let (fresnel, alpha, anisotropy) = match *self {
-            Bsdf::Conductor { f0, alpha } => (ConductorFresnel::Schlick(f0), alpha, 0.0),
+/// Binds `$l` to the lobe of `$bsdf` (its module's struct, [`lobe::Lobe`]) and evaluates
+/// `$body`: the one match over the variants, without a wildcard, so a new variant must name
+/// its lobe here and that lobe must answer every question of [`lobe::Lobe`].
+macro_rules! with_lobe {
+    ($bsdf:expr, |$l:ident| $body:expr) => {
+        match *$bsdf {
+            Bsdf::Lambert { albedo } => {
+                let $l = lambert::Lambert { albedo };
+                $body
+            }
+            Bsdf::Conductor { f0, alpha } => {
+                let $l = conductor::Conductor { f0, alpha };
+                $body
+            }
             Bsdf::ComplexConductor {
                 eta,
                 k,
                 alpha,
                 extensions,
-            } => (
-                ConductorFresnel::Complex { eta, k, extensions },
-                alpha,
-                extensions.anisotropy,
-            ),
-            _ => return None,
-        };
-        Some(pbr::Conductor {
-            fresnel,
-            ggx: Microfacet::khr(alpha, anisotropy),
-            smooth: self.is_delta(),
-        })
-    }
-
-    /// The layered glTF BSDF when any KHR layer is present (`None` otherwise: the plain
-    /// glTF BRDF, unchanged).
-    fn layered(&self) -> Option<layers::Layered<C>> {
-        match self {
-            Bsdf::GltfPbr { layers, .. } if !layers.is_none() => {
-                Some(layers::Layered::new(self.gltf()?, layers))
+            } => {
+                let $l = conductor::ComplexConductor {
+                    eta,
+                    k,
+                    alpha,
+                    extensions,
+                };
+                $body
             }
-            _ => None,
+            Bsdf::Dielectric { eta, alpha, tint } => {
+                let $l = dielectric::Dielectric { eta, alpha, tint };
+                $body
+            }
+            Bsdf::ThinDielectric { eta, tint } => {
+                let $l = thin::ThinDielectric { eta, tint };
+                $body
+            }
+            Bsdf::GltfPbr {
+                base,
+                metallic,
+                alpha,
+                ior,
+                specular,
+                specular_color,
+                layers,
+                extensions,
+            } => {
+                let $l = pbr::GltfPbr {
+                    base,
+                    metallic,
+                    alpha,
+                    ior,
+                    specular,
+                    specular_color,
+                    layers,
+                    extensions,
+                };
+                $body
+            }
         }
-    }
+    };
+}
 
+impl<C: Carrier> Bsdf<C> {
     /// Whether every lobe is a delta (eval and pdf are then always 0).
     pub fn is_delta(&self) -> bool {
-        match *self {
-            Bsdf::Lambert { .. } | Bsdf::GltfPbr { .. } => false,
-            Bsdf::Conductor { alpha, .. } => alpha < SMOOTH_ALPHA,
-            // Anisotropy widens the lobe along x (α_x = mix(α, 1, s²)): never a delta.
-            Bsdf::ComplexConductor {
-                alpha, extensions, ..
-            } => alpha < SMOOTH_ALPHA && extensions.anisotropy <= 0.0,
-            Bsdf::Dielectric { eta, alpha, .. } => alpha < SMOOTH_ALPHA || eta == 1.0,
-            Bsdf::ThinDielectric { .. } => true,
-        }
+        with_lobe!(self, |l| l.is_delta())
     }
 
     /// Whether [`Bsdf::sample`] reads its 2D number `u`: not for the smooth and thin
     /// dielectrics, which choose reflection or transmission with `uc` alone (the path
     /// tracer then skips that number).
     pub fn samples_direction(&self) -> bool {
-        match *self {
-            Bsdf::Dielectric { .. } => !self.is_delta(),
-            Bsdf::ThinDielectric { .. } => false,
-            _ => true,
-        }
+        with_lobe!(self, |l| l.samples_direction())
     }
 
     /// f(wo, wi); 0 for delta lobes.
@@ -250,20 +277,7 @@ impl<C: Carrier> Bsdf<C> {
         if self.is_delta() {
             return C::ZERO;
         }
-        match *self {
-            Bsdf::Lambert { albedo } => pbr::lambert_eval(albedo, wo, wi),
-            Bsdf::Conductor { .. } | Bsdf::ComplexConductor { .. } => {
-                self.conductor().map_or(C::ZERO, |c| c.eval(wo, wi))
-            }
-            Bsdf::Dielectric { eta, alpha, tint } => {
-                dielectric::Rough { eta, alpha, tint }.eval(wo, wi, mode)
-            }
-            Bsdf::ThinDielectric { .. } => C::ZERO,
-            Bsdf::GltfPbr { .. } => match self.layered() {
-                Some(l) => l.eval(wo, wi, mode),
-                None => self.gltf().map_or(C::ZERO, |g| g.eval(wo, wi)),
-            },
-        }
+        with_lobe!(self, |l| l.eval(wo, wi, mode))
     }
 
     /// Solid-angle pdf of [`Bsdf::sample`] producing `wi`; 0 for delta lobes.
@@ -271,43 +285,75 @@ impl<C: Carrier> Bsdf<C> {
         if self.is_delta() {
             return 0.0;
         }
-        match *self {
-            Bsdf::Lambert { .. } => pbr::lambert_pdf(wo, wi),
-            Bsdf::Conductor { .. } | Bsdf::ComplexConductor { .. } => {
-                self.conductor().map_or(0.0, |c| c.pdf(wo, wi))
-            }
-            Bsdf::Dielectric { eta, alpha, tint } => {
-                dielectric::Rough { eta, alpha, tint }.pdf(wo, wi)
-            }
-            Bsdf::ThinDielectric { .. } => 0.0,
-            Bsdf::GltfPbr { .. } => match self.layered() {
-                Some(l) => l.pdf(wo, wi),
-                None => self.gltf().map_or(0.0, |g| g.pdf(wo, wi)),
-            },
-        }
+        with_lobe!(self, |l| l.pdf(wo, wi))
     }
 
     /// Samples wi given wo; `uc` picks a lobe, `u` the direction (all in [0,1)).
     /// `None` when no valid direction results (e.g. a microfacet reflection below the
     /// horizon, or grazing `wo`).
     pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample<C>> {
-        match *self {
-            Bsdf::Lambert { albedo } => pbr::lambert_sample(albedo, wo, u),
-            Bsdf::Conductor { .. } | Bsdf::ComplexConductor { .. } => {
-                self.conductor()?.sample(wo, u)
-            }
-            Bsdf::Dielectric { eta, alpha, tint } => {
-                if alpha < SMOOTH_ALPHA || eta == 1.0 {
-                    dielectric::smooth_sample(eta, tint, wo, uc, mode)
-                } else {
-                    dielectric::Rough { eta, alpha, tint }.sample(wo, uc, u, mode)
-                }
-            }
-            Bsdf::ThinDielectric { eta, tint } => dielectric::thin_sample(eta, tint, wo, uc),
-            Bsdf::GltfPbr { .. } => match self.layered() {
-                Some(l) => l.sample(wo, uc, u, mode),
-                None => self.gltf()?.sample(wo, uc, u),
-            },
-        }
+        with_lobe!(self, |l| l.sample(wo, uc, u, mode))
+    }
+
+    /// The normalized Mueller matrix N = M / M₀₀ of the light the BSDF scatters from −`wi`
+    /// to `wo` (its scalar value already carries M₀₀) and the local normal (surface or
+    /// microfacet) its s/p bases refer to ([`crate::shading::polarized::s_basis`]); `None`
+    /// for a depolarizing BSDF ([`Bsdf::depolarizes`]) or a degenerate pair.
+    pub fn mueller(&self, wo: Vec3, wi: Vec3) -> Option<(Mueller, Vec3)> {
+        let (m, normal) = with_lobe!(self, |l| l.mueller(wo, wi))?;
+        let d = m[0][0];
+        (d > 0.0 && d.is_finite()).then(|| (m.map(|row| row.map(|v| v / d)), normal))
+    }
+
+    /// Whether the BSDF depolarizes whatever the directions (Lambert, the glTF PBR mix):
+    /// the light it scatters is read as unpolarized, [`Bsdf::mueller`] is `None`.
+    pub fn depolarizes(&self) -> bool {
+        with_lobe!(self, |l| l.depolarizes())
+    }
+
+    /// Whether the BSDF's polarization depends on the wavelength beyond what the shared
+    /// step already reduces to the hero (a measured conductor, whose complex index is taken
+    /// at the hero in [`Bsdf::mueller`]). One Stokes vector or analyzer serves all the lanes
+    /// of a path until a crystal or such a surface; then the hero alone.
+    pub fn hero_polarizes(&self) -> bool {
+        with_lobe!(self, |l| l.hero_polarizes())
+    }
+
+    /// Whether photons should be gathered at the BSDF rather than continuing the camera
+    /// path: anything with a diffuse lobe, or a glossy lobe at least [`GLOSSY_ALPHA`] rough.
+    pub fn is_diffuse_like(&self) -> bool {
+        with_lobe!(self, |l| l.is_diffuse_like())
+    }
+
+    /// The colours a photon chooses among under lobe roulette ([`RouletteLobes`]).
+    pub fn roulette_lobes(&self) -> RouletteLobes<C> {
+        with_lobe!(self, |l| l.roulette_lobes())
+    }
+
+    /// The direction a photon takes from `wo` when lobe roulette chooses transmission: the
+    /// refraction about the normal at a dielectric interface, straight through elsewhere.
+    pub fn roulette_transmission(&self, wo: Vec3) -> Vec3 {
+        with_lobe!(self, |l| l.roulette_transmission(wo))
+    }
+
+    /// The reflectance of the denoiser's albedo feature ([`crate::denoise`]): the diffuse
+    /// colour for the glTF model, the normal-incidence reflectance of a conductor, the
+    /// transmission tint of a dielectric.
+    pub fn albedo(&self) -> C {
+        with_lobe!(self, |l| l.albedo())
+    }
+
+    /// The η (n_inside / n_outside) of a dielectric interface, which bends light by an index
+    /// the path's wavelengths may change; `None` for the other BSDFs (the thin wall does
+    /// not bend light).
+    pub fn interface_eta(&self) -> Option<f32> {
+        with_lobe!(self, |l| l.interface_eta())
+    }
+
+    /// The BSDF as lane `k` of a spectral path sees it: the interface η replaced by `eta`,
+    /// the colours' lanes rotated by `k` ([`Carrier::rotated`]); `None` for a BSDF without
+    /// an interface η ([`Bsdf::interface_eta`]).
+    pub fn with_lane(&self, eta: f32, k: usize) -> Option<Bsdf<C>> {
+        with_lobe!(self, |l| l.with_lane(eta, k))
     }
 }

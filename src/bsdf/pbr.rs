@@ -1,58 +1,28 @@
-//! Opaque reflection lobes: Lambert, the GGX conductor (Schlick from a colour, or the exact
-//! complex Fresnel term of a measured metal), and the glTF metallic-roughness
-//! mix (glTF 2.0 spec Appendix B + KHR_materials_specular).
+//! The glTF metallic-roughness lobe ([`GltfPbr`]): Lambert diffuse + GGX specular mixed with
+//! a metal lobe (glTF 2.0 spec Appendix B + KHR_materials_specular), with the KHR layers
+//! ([`super::layers`]) when present; and the GGX reflection helpers the conductor and the
+//! layers share.
 //!
-//! Frame: local shading frame, z = normal. All lobes here are two-sided reflection: they are
-//! non-zero only when `wo` and `wi` lie in the same hemisphere and use |cos θ|. Densities
-//! are per unit solid angle.
+//! Frame: local shading frame, z = normal. The lobes here are two-sided reflection: they are
+//! non-zero only when `wo` and `wi` lie in the same hemisphere and use |cos θ| (the diffuse
+//! transmission layer excepted). Densities are per unit solid angle.
 
 use super::anisotropic::Microfacet;
 use super::iridescence::{ior_from_f0, LobeExtensions};
+use super::lambert::{cosine_hemisphere, lambert_pdf};
+use super::layers::{Layered, Layers};
+use super::lobe::{normal_reflectance, Lobe, RouletteLobes, GLOSSY_ALPHA};
 use super::microfacet::Distribution;
-use super::{reflect_z, same_hemisphere, Bsdf, BsdfSample};
-use crate::optics::{fresnel_conductor_c, fresnel_schlick, reflect};
+use super::{same_hemisphere, Bsdf, BsdfSample, TransportMode};
+use crate::optics::{fresnel_schlick, reflect};
+use crate::polar::stokes::Mueller;
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
-use std::f32::consts::{FRAC_1_PI, PI};
+use std::f32::consts::FRAC_1_PI;
 
 /// Smallest GGX α of the glTF lobe (the same floor as `crate::shading`): the glTF
 /// material has no delta lobe.
 pub const GLTF_MIN_ALPHA: f32 = 1e-2;
-
-/// Cosine-weighted hemisphere direction on `wo`'s side (Malley's method, pbrt-v4 §A.5.3,
-/// with the concentric map replaced by the polar one), pdf |cos θ|/π.
-#[inline]
-pub(super) fn cosine_hemisphere(wo: Vec3, u: Vec2) -> Vec3 {
-    let r = u.x.sqrt();
-    let phi = 2.0 * PI * u.y;
-    let z = (1.0 - u.x).max(0.0).sqrt();
-    let z = if wo.z < 0.0 { -z } else { z };
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
-}
-
-/// Lambert f = albedo/π.
-pub(crate) fn lambert_eval<C: Carrier>(albedo: C, wo: Vec3, wi: Vec3) -> C {
-    if same_hemisphere(wo, wi) {
-        albedo * FRAC_1_PI
-    } else {
-        C::ZERO
-    }
-}
-
-/// Cosine-weighted pdf |cos θi|/π.
-pub(crate) fn lambert_pdf(wo: Vec3, wi: Vec3) -> f32 {
-    if same_hemisphere(wo, wi) {
-        wi.z.abs() * FRAC_1_PI
-    } else {
-        0.0
-    }
-}
-
-/// Cosine-weighted sample of the Lambert lobe.
-pub(crate) fn lambert_sample<C: Carrier>(albedo: C, wo: Vec3, u: Vec2) -> Option<BsdfSample<C>> {
-    let wi = cosine_hemisphere(wo, u);
-    BsdfSample::lobe(wi, lambert_pdf(wo, wi), false, || albedo * FRAC_1_PI)
-}
 
 /// Half vector of a reflection pair, faced to +z (`None` when degenerate or not a
 /// reflection).
@@ -100,76 +70,6 @@ pub(super) fn ggx_reflect_sample(ggx: impl Into<Microfacet>, wo: Vec3, u: Vec2) 
     same_hemisphere(wo, wi).then_some(wi)
 }
 
-/// The Fresnel reflectance of a conductor lobe.
-#[derive(Debug, Clone, Copy)]
-pub(crate) enum ConductorFresnel<C: Carrier> {
-    /// Schlick from the normal-incidence reflectance (a glTF metal's base colour).
-    Schlick(C),
-    /// The exact reflectance of the complex index η + ik of a measured metal, mixed with a
-    /// thin film's on that metal when the material is iridescent.
-    Complex {
-        eta: C,
-        k: C,
-        extensions: LobeExtensions,
-    },
-}
-
-impl<C: Carrier> ConductorFresnel<C> {
-    /// The reflectance at the cosine `cos` of the angle of incidence.
-    #[inline]
-    fn at(&self, cos: f32) -> C {
-        match *self {
-            ConductorFresnel::Schlick(f0) => fresnel_schlick(f0, cos),
-            ConductorFresnel::Complex { eta, k, extensions } => {
-                let plain = fresnel_conductor_c(cos, eta, k);
-                match extensions.iridescence {
-                    Some(ir) => ir.mix(plain, cos, eta, k),
-                    None => plain,
-                }
-            }
-        }
-    }
-}
-
-/// A GGX conductor: reflection only, f = D·G2·F(|wo·wm|)/(4|cos θo||cos θi|), sampled by
-/// reflecting a visible normal; `smooth` (α below the delta threshold) makes it a delta
-/// mirror.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Conductor<C: Carrier> {
-    pub fresnel: ConductorFresnel<C>,
-    pub ggx: Microfacet,
-    pub smooth: bool,
-}
-
-impl<C: Carrier> Conductor<C> {
-    /// f(wo, wi) of the rough lobe.
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> C {
-        match ggx_spec(self.ggx, wo, wi) {
-            Some((s, cos_h)) => self.fresnel.at(cos_h) * s,
-            None => C::ZERO,
-        }
-    }
-
-    /// Solid-angle pdf of the rough lobe (VNDF reflection).
-    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        ggx_reflect_pdf(self.ggx, wo, wi)
-    }
-
-    /// A VNDF reflection; when smooth, the mirror direction with f = F/|cos θi|, pdf 1.
-    pub fn sample(&self, wo: Vec3, u: Vec2) -> Option<BsdfSample<C>> {
-        if wo.z == 0.0 {
-            return None;
-        }
-        if self.smooth {
-            let wi = reflect_z(wo);
-            let f = self.fresnel.at(wo.z.abs()) / wi.z.abs();
-            return Some(BsdfSample::delta(wi, f, 1.0, false));
-        }
-        let wi = ggx_reflect_sample(self.ggx, wo, u)?;
-        BsdfSample::lobe(wi, self.pdf(wo, wi), false, || self.eval(wo, wi))
-    }
-}
-
 /// The glTF metallic-roughness BRDF with KHR_materials_specular, already resolved.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Gltf<C: Carrier> {
@@ -185,9 +85,9 @@ pub(crate) struct Gltf<C: Carrier> {
 }
 
 impl<C: Carrier> Gltf<C> {
-    /// The BRDF of a [`Bsdf::GltfPbr`] (`None` for another BSDF).
-    pub fn of(bsdf: &Bsdf<C>) -> Option<Self> {
-        let Bsdf::GltfPbr {
+    /// The BRDF of a [`GltfPbr`] lobe, its layers aside.
+    pub fn of(lobe: &GltfPbr<C>) -> Self {
+        let GltfPbr {
             base,
             metallic,
             alpha,
@@ -196,23 +96,20 @@ impl<C: Carrier> Gltf<C> {
             specular_color,
             extensions,
             ..
-        } = *bsdf
-        else {
-            return None;
-        };
+        } = *lobe;
         let f0_ior = if ior.is_finite() {
             ((ior - 1.0) / (ior + 1.0)).powi(2)
         } else {
             1.0
         };
-        Some(Gltf {
+        Gltf {
             base,
             metallic: metallic.clamp(0.0, 1.0),
             ggx: Microfacet::khr(alpha.max(GLTF_MIN_ALPHA), extensions.anisotropy),
             f0: (specular_color * f0_ior).min(C::ONE) * specular,
             f90: specular,
             extensions,
-        })
+        }
     }
 
     /// Schlick with f90 (KHR_materials_specular): F0 + (F90 − F0)(1 − cos)^5.
@@ -292,5 +189,95 @@ impl<C: Carrier> Gltf<C> {
             cosine_hemisphere(wo, u)
         };
         BsdfSample::lobe(wi, self.pdf(wo, wi), false, || self.eval(wo, wi))
+    }
+}
+
+/// [`Bsdf::GltfPbr`]: the glTF metallic-roughness parameters, its KHR layers and extensions.
+///
+/// Polarization: it depolarizes (the diffuse, specular and layer lobes mixed are treated as
+/// the ideal depolarizer). Photons under lobe roulette: diffuse with (1 − metallic)·base,
+/// specular with metallic·base + (1 − metallic)·the dielectric F0. The denoiser's albedo
+/// is the base colour (the specular layer is a non-absorbing coat; for a metal the base
+/// colour is the normal-incidence reflectance).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct GltfPbr<C: Carrier> {
+    pub base: C,
+    pub metallic: f32,
+    pub alpha: f32,
+    pub ior: f32,
+    pub specular: f32,
+    pub specular_color: C,
+    pub layers: Layers<C>,
+    pub extensions: LobeExtensions,
+}
+
+impl<C: Carrier> GltfPbr<C> {
+    /// The layered BSDF when any KHR layer is present (`None` otherwise: the plain glTF
+    /// BRDF, unchanged).
+    pub(super) fn layered(&self) -> Option<Layered<C>> {
+        (!self.layers.is_none()).then(|| Layered::new(Gltf::of(self), &self.layers))
+    }
+}
+
+impl<C: Carrier> Lobe<C> for GltfPbr<C> {
+    fn is_delta(&self) -> bool {
+        false
+    }
+    fn samples_direction(&self) -> bool {
+        true
+    }
+    fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> C {
+        match self.layered() {
+            Some(l) => l.eval(wo, wi, mode),
+            None => Gltf::of(self).eval(wo, wi),
+        }
+    }
+    fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        match self.layered() {
+            Some(l) => l.pdf(wo, wi),
+            None => Gltf::of(self).pdf(wo, wi),
+        }
+    }
+    fn sample(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample<C>> {
+        match self.layered() {
+            Some(l) => l.sample(wo, uc, u, mode),
+            None => Gltf::of(self).sample(wo, uc, u),
+        }
+    }
+    fn mueller(&self, _wo: Vec3, _wi: Vec3) -> Option<(Mueller, Vec3)> {
+        None
+    }
+    fn depolarizes(&self) -> bool {
+        true
+    }
+    fn hero_polarizes(&self) -> bool {
+        false
+    }
+    /// A coat over a diffuse base is still gathered on; a sheen is a diffuse-like lobe.
+    fn is_diffuse_like(&self) -> bool {
+        self.metallic < 1.0
+            || self.alpha >= GLOSSY_ALPHA
+            || self.layers.sheen_color.max_element() > 0.0
+    }
+    fn roulette_lobes(&self) -> RouletteLobes<C> {
+        let dielectric_f0 =
+            (self.specular_color * (normal_reflectance(self.ior) * self.specular)).min(C::ONE);
+        RouletteLobes {
+            diffuse: self.base * (1.0 - self.metallic),
+            specular: self.base * self.metallic + dielectric_f0 * (1.0 - self.metallic),
+            transmission: C::ZERO,
+        }
+    }
+    fn roulette_transmission(&self, wo: Vec3) -> Vec3 {
+        -wo
+    }
+    fn albedo(&self) -> C {
+        self.base
+    }
+    fn interface_eta(&self) -> Option<f32> {
+        None
+    }
+    fn with_lane(&self, _eta: f32, _k: usize) -> Option<Bsdf<C>> {
+        None
     }
 }

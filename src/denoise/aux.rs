@@ -18,8 +18,10 @@
 //! and by Beer–Lambert transmittance, for at most [`AUX_MAX_DELTA`] delta bounces. Rays only
 //! ever leave surfaces through the intersection layer's spawn rules. At the first
 //! non-specular surface:
-//! - albedo = throughput × the surface's reflectance ([`surface_albedo`]) plus its emission
-//!   (clamped to [0, 1]: Cycles adds an emitter's contribution to the denoising albedo), and
+//! - albedo = throughput × the surface's reflectance ([`crate::bsdf::Bsdf::albedo`]: OIDN's
+//!   diffuse colour, a metal's normal-incidence reflectance, the tint of rough glass) plus
+//!   its emission (clamped to [0, 1]: Cycles adds an emitter's contribution to the
+//!   denoising albedo), and
 //!   normal = its world-space shading normal, turned to face the arriving ray;
 //! - a ray that escapes: albedo = throughput × the environment radiance it sees clamped to
 //!   [0, 1] (what Cycles writes for the background, `film_write_emission_or_background_pass`),
@@ -32,7 +34,7 @@
 //! in [0, 1]; normals world-space, length ≤ 1.
 
 use super::AuxImages;
-use crate::bsdf::{Bsdf, TransportMode};
+use crate::bsdf::TransportMode;
 use crate::camera::Camera;
 use crate::image::ImageRgb;
 use crate::medium_stack::MediumStack;
@@ -64,26 +66,6 @@ pub fn aux_samples(spp: u32) -> u64 {
 /// Most delta bounces followed per ray (a gem's facets: a ray inside a brilliant reflects
 /// a few times before leaving).
 pub const AUX_MAX_DELTA: u32 = 16;
-
-/// The reflectance the denoiser's albedo uses for a non-delta BSDF (OIDN's docs): the
-/// diffuse colour for the glTF model (its specular layer is a non-absorbing coat; for a
-/// metal the base colour is the normal-incidence reflectance), f0 for a conductor, the
-/// transmission tint for rough glass (OIDN: 1, or the tint).
-pub fn surface_albedo(bsdf: &Bsdf<Vec3>) -> Vec3 {
-    match *bsdf {
-        Bsdf::Lambert { albedo } => albedo,
-        Bsdf::GltfPbr { base, .. } => base,
-        Bsdf::Conductor { f0, .. } => f0,
-        // Normal incidence of the exact conductor Fresnel: ((n−1)²+k²)/((n+1)²+k²)
-        // (Born & Wolf §14.2; `crate::optics::fresnel_conductor` at cos θ = 1).
-        Bsdf::ComplexConductor { eta, k, .. } => {
-            let k2 = k * k;
-            ((eta - Vec3::ONE) * (eta - Vec3::ONE) + k2)
-                / ((eta + Vec3::ONE) * (eta + Vec3::ONE) + k2)
-        }
-        Bsdf::Dielectric { tint, .. } | Bsdf::ThinDielectric { tint, .. } => tint,
-    }
-}
 
 /// The (albedo, normal) one camera ray sees (see the module docs); `sample` supplies the
 /// Fresnel and layer choices.
@@ -120,7 +102,7 @@ fn features(scene: &Scene, ray: &crate::math::Ray, sample: &mut SampleStream) ->
             let own = if s.bsdf.is_delta() {
                 Vec3::ONE
             } else {
-                surface_albedo(&s.bsdf) + emission
+                s.bsdf.albedo() + emission
             };
             return (clamp01(beta * clamp01(own)), facing);
         }

@@ -22,7 +22,7 @@
 //!   (≥ 1 delta bounce before its first non-delta vertex) — a *caustic-origin* photon — is
 //!   stored at that vertex (flagged [`Photon::CAUSTIC`]) and at every later non-delta vertex as it goes on bouncing
 //!   (throughput roulette, the integrator's depth); other photons are not stored.
-//! - **Camera paths** ([`super::path::camera_path`] with [`super::path::CausticSplit::Map`]):
+//! - **Camera paths** ([`super::path::camera_path`] with [`super::hybrid::CausticSplit::Map`]):
 //!   at the camera path's FIRST non-delta vertex D₁ only (if its bounce would be followed),
 //!   the map's reflected radiance L = Σ f(wo, wiₚ) Φₚ / (N π r²) (constant kernel) times the
 //!   throughput; at every vertex, emission found by BSDF sampling after a non-delta bounce
@@ -60,7 +60,7 @@ use crate::photon::store::Photon;
 use crate::photon::trace::{self, MediumVertex, Roulette, TraceSettings};
 use crate::polar::stokes::{angle_between, rotate, Analyzer, Light};
 use crate::scene::Scene;
-use crate::shading::polarized::{depolarizes, mueller, s_basis};
+use crate::shading::polarized::s_basis;
 use crate::shading::Surface;
 use crate::spectrum::Carrier;
 use rayon::prelude::*;
@@ -392,14 +392,14 @@ impl CausticMap {
             return C::ZERO;
         }
         // A depolarizing surface reads every photon as unpolarized light.
-        if depolarizes(&s.bsdf) {
+        if s.bsdf.depolarizes() {
             return self.density(s, lambda, false) * analyzer.unpolarized();
         }
         let lanes = super::sppm::GatherLanes::of::<C>(lambda);
         self.sum_within(s, |i, ph| {
             let f = super::sppm::photon_term(&s.bsdf, &s.frame, s.wo, lanes, ph);
             let wi = ph.wi();
-            let read = match mueller(&s.bsdf, s.wo, s.frame.to_local(wi)) {
+            let read = match s.bsdf.mueller(s.wo, s.frame.to_local(wi)) {
                 None => analyzer.unpolarized(),
                 Some((n, m)) => {
                     let k_in = -wi;

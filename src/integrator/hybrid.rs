@@ -3,8 +3,8 @@
 //! exactly the light paths it cannot, L S+ D (light → delta chain → first non-delta
 //! surface), optionally light-traced where the camera sees them directly
 //! ([`super::light_trace`]). The split, the caustic lights and the radius sequence are
-//! [`super::caustic`]'s; the camera side is [`path::camera_path`] with
-//! [`CausticSplit::Map`].
+//! [`super::caustic`]'s; the camera side is [`path::camera_path`] with the strategy
+//! [`CausticPaths`] ([`split`]).
 //!
 //! Under polarized transport (the `polarization` of [`super::Integrator::Hybrid`], docs/gem-optics.md) the
 //! same passes run with polarized photons ([`crate::photon::polarized`], the map keeping
@@ -42,8 +42,7 @@ use super::caustic::{self, CausticMap};
 use super::light_trace::{self, Splatter};
 use super::pass_paths::PassPaths;
 use super::path::polarized::{Polarization, PolarizedGather};
-use super::path::LaneWidth;
-use super::path::{CausticSplit, Dispersion, StopAt};
+use super::path::{Dispersion, LaneWidth};
 use super::photon_budget;
 use super::sppm::{first_radius, pass_wavelength_variate};
 use super::{CausticMode, CausticSettings};
@@ -56,6 +55,10 @@ use crate::render::{
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::Vec3;
+
+mod split;
+
+pub use split::{CausticPaths, CausticSplit, Gather};
 
 /// What `--method hybrid` renders and how ([`crate::integrator::Method::caps`]).
 pub const CAPABILITIES: Capabilities = Capabilities {
@@ -314,9 +317,7 @@ fn camera_pass<C: Carrier>(
         sampler: pixel_sampler(settings, u64::from(settings.spp.max(1))),
         max_depth,
         lambda,
-        stop: StopAt::Never,
-        split,
-        dispersion,
+        strategy: CausticPaths { split, dispersion },
         lanes,
         polarized: polarization.map(|p| (p, &polarized as PolarizedGather<C>)),
         cancel: &settings.cancel,

@@ -10,7 +10,7 @@
 //! Units: linear RGB radiance on the film; the carrier `C` along the paths.
 
 use super::path::polarized::PolarizedGather;
-use super::path::{self, LaneWidth, StopAt, VisiblePoint};
+use super::path::{self, LaneWidth, Strategy, VisiblePoint};
 use super::Context;
 use crate::camera::Camera;
 use crate::render::{primary_ray, Film, FilmTile, Job, Starts, TILE_PIXELS};
@@ -22,45 +22,40 @@ use rayon::prelude::*;
 
 /// The camera side of one pass of a progressive photon method (SPPM, the hybrid): one path
 /// per pixel, from the pixel's sample `pass` of `sampler` through [`primary_ray`] and
-/// [`path::camera_path`] with `stop` and `split`, at the pass's wavelengths `lambda`.
-pub(super) struct PassPaths<'a, C: Carrier> {
+/// [`path::camera_path`] under the method's `strategy`, at the pass's wavelengths `lambda`.
+pub(super) struct PassPaths<'a, C: Carrier, S: Strategy<C>> {
     pub scene: &'a Scene,
     pub camera: &'a Camera,
     pub sampler: PixelSampler,
     pub max_depth: u32,
     pub lambda: C::Lambda,
-    pub stop: StopAt,
-    pub split: path::CausticSplit<'a, C>,
-    /// What the paths keep of their wavelengths at dispersive interfaces (where each part
-    /// applies: [`path::camera_path`]).
-    pub dispersion: path::Dispersion,
-    /// Lanes for paths that do not stop at a visible point ([`StopAt::Never`]).
+    /// What the method asks of its camera paths.
+    pub strategy: S,
+    /// Lanes for paths that do not stop at a visible point ([`Strategy::STOPS`]).
     pub lanes: LaneWidth,
     /// Polarized camera paths (the polarized hybrid): what the camera looks through and
-    /// the caustic map's polarized gather ([`path::polarized::radiance`]; `split` and
-    /// `dispersion` then unused, single rays).
+    /// the caustic map's polarized gather ([`path::polarized::radiance`]; `strategy` then
+    /// unused, single rays).
     pub polarized: Option<(path::polarized::Polarization, PolarizedGather<'a, C>)>,
     /// The render's cancellation ([`crate::render::guard::Cancel`]): once set, the tiles
     /// not yet started are skipped (the pass is then incomplete, to be thrown away).
     pub cancel: &'a crate::render::guard::Cancel,
 }
 
-impl<C: Carrier> PassPaths<'_, C> {
+impl<C: Carrier, S: Strategy<C>> PassPaths<'_, C, S> {
     /// Traces every pixel's path of the active tiles, tiles in parallel, and adds `keep((x,
     /// y), L, visible point, slot)` (the pixel's RGB) to the film's half `k mod 2` (see the
     /// module docs). `slots` has one entry per film slot, handed to `keep` (a zero-sized
     /// type when it keeps nothing); with `done`, each traced tile then counts one unit
     /// more. Returns the rays and bad samples.
-    pub fn trace<S: Send>(
+    pub fn trace<T: Send>(
         &self,
         film: &mut Film,
-        slots: &mut [S],
+        slots: &mut [T],
         done: bool,
-        keep: impl Fn((u32, u32), C, Option<VisiblePoint<C>>, &mut S) -> Vec3 + Sync,
+        keep: impl Fn((u32, u32), C, Option<VisiblePoint<C>>, &mut T) -> Vec3 + Sync,
     ) -> (u64, u64) {
-        let lanes = self.stop == StopAt::Never
-            && self.lanes != LaneWidth::Scalar
-            && self.polarized.is_none();
+        let lanes = !S::STOPS && self.lanes != LaneWidth::Scalar && self.polarized.is_none();
         film.par_tiles_mut()
             .zip(slots.par_chunks_mut(TILE_PIXELS))
             .map(|(mut tile, tile_slots)| {
@@ -82,11 +77,11 @@ impl<C: Carrier> PassPaths<'_, C> {
 }
 
 /// What a pass adds per pixel: `keep((x, y), L, visible point, slot)` as RGB.
-type Keep<'k, C, S> = &'k (dyn Fn((u32, u32), C, Option<VisiblePoint<C>>, &mut S) -> Vec3 + Sync);
+type Keep<'k, C, T> = &'k (dyn Fn((u32, u32), C, Option<VisiblePoint<C>>, &mut T) -> Vec3 + Sync);
 
-impl<C: Carrier> PassPaths<'_, C> {
+impl<C: Carrier, S: Strategy<C>> PassPaths<'_, C, S> {
     /// One tile's paths one after the other; returns the rays and bad samples.
-    fn tile_scalar<S>(&self, tile: &mut FilmTile, slots: &mut [S], keep: Keep<C, S>) -> (u64, u64) {
+    fn tile_scalar<T>(&self, tile: &mut FilmTile, slots: &mut [T], keep: Keep<C, T>) -> (u64, u64) {
         let k = tile.next_unit();
         let (mut rays, mut bad) = (0, 0);
         for (i, slot) in slots.iter_mut().enumerate() {
@@ -112,13 +107,11 @@ impl<C: Carrier> PassPaths<'_, C> {
                     );
                     (l, None)
                 }
-                None => path::camera_path::<C>(
+                None => path::camera_path::<C, S>(
                     self.scene,
                     &ray,
-                    (self.max_depth, self.dispersion),
+                    (self.max_depth, &self.strategy),
                     self.lambda,
-                    self.stop,
-                    self.split,
                     &mut ctx,
                 ),
             };
@@ -130,7 +123,7 @@ impl<C: Carrier> PassPaths<'_, C> {
 
     /// One tile's paths in lanes ([`path::estimate_lanes`] with the pass's wavelengths, as
     /// [`path::camera_path`]); returns the rays and bad samples.
-    fn tile_lanes<S>(&self, tile: &mut FilmTile, slots: &mut [S], keep: Keep<C, S>) -> (u64, u64) {
+    fn tile_lanes<T>(&self, tile: &mut FilmTile, slots: &mut [T], keep: Keep<C, T>) -> (u64, u64) {
         let k = tile.next_unit();
         let starts = Starts::new(self.camera, &self.sampler, false, false);
         let pixels: Vec<(usize, Job)> = (0..slots.len())
@@ -138,12 +131,12 @@ impl<C: Carrier> PassPaths<'_, C> {
             .collect();
         let jobs: Vec<Job> = pixels.iter().map(|&(_, j)| j).collect();
         let mut out = vec![C::ZERO; jobs.len()];
-        let rules = (self.max_depth, self.dispersion);
+        let rules = (self.max_depth, &self.strategy);
         let estimate = |i: usize, l: C, _: &C::Lambda| out[i] = l;
         let rays = path::estimate_lanes(
             self.scene,
             self.lanes,
-            (rules, self.split),
+            rules,
             (&starts, &jobs),
             Some(self.lambda),
             estimate,

@@ -39,7 +39,8 @@
 //! render's figures. Units: radiance as linear RGB, work as rays, radii in scene units.
 
 use super::caustic::CausticMap;
-use super::path::{self, CausticSplit, StopAt};
+use super::hybrid::{CausticPaths, CausticSplit, Gather};
+use super::path;
 use super::sppm::{first_radius, pass_wavelength_variate};
 use super::{Context, MAX_PHOTONS};
 use crate::camera::Camera;
@@ -216,7 +217,7 @@ fn measure<C: Carrier>(
                 .map(move |x| (x, y))
         })
         .collect();
-    let gathers: [path::Gather<'_, C>; 2] = [
+    let gathers: [Gather<'_, C>; 2] = [
         &|s: &Surface<C>, l: &C::Lambda| maps[0].density(s, l, false),
         &|s: &Surface<C>, l: &C::Lambda| maps[1].density(s, l, false),
     ];
@@ -233,14 +234,15 @@ fn measure<C: Carrier>(
                         rays: 0,
                     };
                     let ray = primary_ray(camera, x, y, false, &mut ctx.sample);
-                    let split = CausticSplit::Map(gathers[g]);
-                    let (l, _) = path::camera_path::<C>(
+                    let split = CausticPaths {
+                        split: CausticSplit::Map(gathers[g]),
+                        dispersion,
+                    };
+                    let (l, _) = path::camera_path::<C, _>(
                         scene,
                         &ray,
-                        (max_depth, dispersion),
+                        (max_depth, &split),
                         lambda,
-                        StopAt::Never,
-                        split,
                         &mut ctx,
                     );
                     *out = l.to_rgb(&lambda).as_dvec3();

@@ -6,11 +6,12 @@
 //!   only, then a diffuse-like surface);
 //! - the **global map**: every photon at a diffuse-like surface.
 //!
-//! One rule splits the surfaces ([`is_diffuse_like`]): photons are stored, and the maps
-//! queried, only at diffuse-like surfaces; every other surface (delta, or glossy below
-//! [`crate::shading::GLOSSY_ALPHA`]) is an S vertex that camera paths, gather rays and the
-//! caustic flag all pass through by BSDF sampling. A glossy mirror is thus never a gather
-//! point: the light it reflects onto a diffuse surface is the caustic map's alone.
+//! One rule splits the surfaces ([`crate::bsdf::Bsdf::is_diffuse_like`]): photons are
+//! stored, and the maps queried, only at diffuse-like surfaces; every other surface (delta,
+//! or glossy below [`crate::shading::GLOSSY_ALPHA`]) is an S vertex that camera paths,
+//! gather rays and the caustic flag all pass through by BSDF sampling. A glossy mirror is
+//! thus never a gather point: the light it reflects onto a diffuse surface is the caustic
+//! map's alone.
 //!
 //! Photon `i` is emitted from Halton point `i` (digit-permuted by the seed,
 //! [`crate::photon::emit::PhotonNumbers`]), aimed at the
@@ -40,7 +41,8 @@
 use super::capability::{
     Capabilities, Photons, Support, Units, NO_MEDIA, NO_POLARIZATION, SINGLE_RAYS,
 };
-use super::path::{self, StopAt, VisiblePoint};
+use super::path::{self, VisiblePoint};
+use super::sppm::VisiblePoints;
 use super::{Context, PhotonMapSettings, StoreBudget};
 use crate::bsdf::TransportMode;
 use crate::camera::Camera;
@@ -53,7 +55,7 @@ use crate::photon::store::Photon;
 use crate::photon::trace::{self, TraceSettings};
 use crate::render::{render_samples, Film, Observer, Prepass, RenderSettings, RenderStats};
 use crate::scene::Scene;
-use crate::shading::{self, is_diffuse_like, Event};
+use crate::shading::{self, Event};
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -150,14 +152,14 @@ pub fn build_maps(
                         settings,
                         &mut rng,
                         |v, l| {
-                            if is_diffuse_like(&v.surface.bsdf) {
+                            if v.surface.bsdf.is_diffuse_like() {
                                 keep(v.p, v.wi, v.power.to_rgb(l), v.caustic)
                             }
                         },
                     )
                 } else {
                     trace::trace::<Vec3>(scene, &ph, (), settings, &mut rng, |v, _| {
-                        if is_diffuse_like(&v.surface.bsdf) {
+                        if v.surface.bsdf.is_diffuse_like() {
                             keep(v.p, v.wi, v.power, v.caustic)
                         }
                     })
@@ -279,7 +281,7 @@ impl PhotonMaps {
                     Event::Scatter(s) => break s,
                 }
             };
-            if is_diffuse_like(&s.bsdf) {
+            if s.bsdf.is_diffuse_like() {
                 let at = GatherPoint {
                     p: s.hit.p,
                     frame: s.frame,
@@ -357,15 +359,10 @@ pub fn render(
         setup,
         observer,
         |ray, _u_lambda, ctx| {
-            let (ld, vp) = path::camera_path::<Vec3>(
-                scene,
-                ray,
-                (max_depth, path::Dispersion::HERO),
-                (),
-                StopAt::Diffuse,
-                path::CausticSplit::None,
-                ctx,
-            );
+            let stop = VisiblePoints {
+                spectral_mis: false,
+            };
+            let (ld, vp) = path::camera_path::<Vec3, _>(scene, ray, (max_depth, &stop), (), ctx);
             let Some(vp) = vp else {
                 return ld;
             };

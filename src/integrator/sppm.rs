@@ -50,14 +50,16 @@
 //! after emission draws from `Rng::new(&[seed, pass, i, 0x9E07])`.
 
 mod gather;
+mod visible;
 
 pub(super) use gather::{photon_term, GatherLanes};
+pub use visible::VisiblePoints;
 
 use super::capability::{
     Capabilities, Photons, Support, Units, NO_MEDIA, NO_POLARIZATION, SINGLE_RAYS,
 };
 use super::pass_paths::PassPaths;
-use super::path::{self, LaneWidth, StopAt, VisiblePoint};
+use super::path::{LaneWidth, VisiblePoint};
 use super::{SppmSettings, StoreBudget, MAX_PHOTONS};
 use crate::camera::Camera;
 use crate::error::Result;
@@ -90,7 +92,7 @@ pub const CAPABILITIES: Capabilities = Capabilities {
     adaptive: Support::No("every pixel's visible point takes part in every pass"),
     estimate_in_media: Support::Yes,
     progressive: Support::Yes,
-    pixel_bytes: std::mem::size_of::<Option<path::VisiblePoint<SampledSpectrum>>>(),
+    pixel_bytes: std::mem::size_of::<Option<VisiblePoint<SampledSpectrum>>>(),
 };
 
 /// Photons traced per parallel work item (the split is fixed, so results are deterministic).
@@ -274,12 +276,7 @@ fn camera_pass<C: Carrier>(
         sampler: pixel_sampler(settings, u64::from(passes)),
         max_depth,
         lambda,
-        stop: StopAt::Diffuse,
-        split: path::CausticSplit::None,
-        dispersion: path::Dispersion {
-            spectral_mis,
-            split: false,
-        },
+        strategy: VisiblePoints { spectral_mis },
         lanes: LaneWidth::Scalar,
         polarized: None,
         cancel: &settings.cancel,

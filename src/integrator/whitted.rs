@@ -13,6 +13,14 @@
 //! branching, alpha-BLEND coverage included (a deterministic α / 1 − α split where the
 //! other loops choose stochastically).
 //!
+//! What it does with each lobe of [`crate::bsdf::Bsdf`]: it samples none. A material's
+//! opaque lobe ([`crate::material::Material::opaque_bsdf`]: the glTF mix or a measured
+//! conductor) is asked only for its value under each light ([`crate::bsdf::Bsdf::eval`]
+//! in [`crate::shading::direct_light`]; a delta lobe, [`crate::bsdf::Bsdf::is_delta`],
+//! answers 0 there); the reflections and refractions are the deterministic Fresnel
+//! branches above, from the material's parameters, so the transmitting lobes (dielectric,
+//! thin wall) are never built and smooth metals (roughness < 0.1) recurse as mirrors.
+//!
 //! Branches whose weight falls below [`RR_WEIGHT`] continue by Russian roulette (unbiased),
 //! so a gem's branching stays bounded; `max_depth` bounds the recursion.
 

@@ -336,6 +336,30 @@ impl Material {
             layers: sp.layers.lobes::<C>(l),
         }
     }
+
+    /// The BSDF of a transmitting point with parameters `sp`, tinted by its base colour: a
+    /// thin wall's straight-through slab of the material's index when `eta` is `None`, a
+    /// volume boundary's smooth or rough dielectric (GGX α = roughness²) with the ratio
+    /// `eta` = n_inside / n_outside the path's media give.
+    pub fn transmission_bsdf<C: Carrier>(
+        &self,
+        sp: &ShadingPoint,
+        eta: Option<f32>,
+        l: &C::Lambda,
+    ) -> Bsdf<C> {
+        let tint = C::reflectance(sp.base_color, l);
+        match eta {
+            None => Bsdf::ThinDielectric {
+                eta: self.ior(),
+                tint,
+            },
+            Some(eta) => Bsdf::Dielectric {
+                eta,
+                alpha: sp.roughness * sp.roughness,
+                tint,
+            },
+        }
+    }
 }
 
 impl ShadingPoint {

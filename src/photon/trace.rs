@@ -22,14 +22,13 @@
 //! stack, like camera rays).
 
 use super::emit::EmittedPhoton;
-use crate::bsdf::{Bsdf, TransportMode};
+use crate::bsdf::{cosine_direction, Bsdf, RouletteLobes, TransportMode};
 use crate::interaction::{Leave, SurfaceHit};
 use crate::math::Rng;
 use crate::medium_stack::MediumStack;
-use crate::optics::refract;
 use crate::scene::Scene;
 use crate::shading::media::Ends;
-use crate::shading::{self, is_diffuse_like, media, Arrival, Event, Surface, MAX_DELTA_BOUNCES};
+use crate::shading::{self, media, Arrival, Event, Surface, MAX_DELTA_BOUNCES};
 use crate::spectrum::Carrier;
 use crate::volume::coarse::Scale;
 use glam::{Vec2, Vec3};
@@ -202,69 +201,24 @@ enum Leaving {
     Meets(SurfaceHit),
 }
 
-/// The lobe colours [`Roulette::Lobe`] chooses among: (diffuse, specular, transmission).
-fn lobe_colours<C: Carrier>(bsdf: &Bsdf<C>) -> (C, C, C) {
-    let f0 = |eta: f32| {
-        if eta.is_infinite() {
-            1.0
-        } else {
-            ((eta - 1.0) / (eta + 1.0)).powi(2)
-        }
-    };
-    match *bsdf {
-        Bsdf::Lambert { albedo } => (albedo, C::ZERO, C::ZERO),
-        Bsdf::Conductor { f0, .. } => (C::ZERO, f0, C::ZERO),
-        Bsdf::ComplexConductor { eta, k, .. } => (
-            C::ZERO,
-            crate::optics::fresnel_conductor_c(1.0, eta, k),
-            C::ZERO,
-        ),
-        Bsdf::GltfPbr {
-            base,
-            metallic,
-            ior,
-            specular,
-            specular_color,
-            ..
-        } => {
-            let dielectric_f0 = (specular_color * (f0(ior) * specular)).min(C::ONE);
-            (
-                base * (1.0 - metallic),
-                base * metallic + dielectric_f0 * (1.0 - metallic),
-                C::ZERO,
-            )
-        }
-        Bsdf::Dielectric { eta, tint, .. } | Bsdf::ThinDielectric { eta, tint } => {
-            let r = f0(eta);
-            (C::ZERO, C::splat(r), tint * (1.0 - r))
-        }
-    }
-}
-
 /// One step of [`Roulette::Lobe`] at local `wo`: the new local direction and the
 /// colour factor, `None` when absorbed.
 fn lobe_step<C: Carrier>(bsdf: &Bsdf<C>, wo: Vec3, rng: &mut Rng) -> Option<(Vec3, C, bool)> {
-    let (d, s, t) = lobe_colours(bsdf);
+    let RouletteLobes {
+        diffuse: d,
+        specular: s,
+        transmission: t,
+    } = bsdf.roulette_lobes();
     let (pd, ps, pt) = (d.average(), s.average(), t.average());
     let xi = rng.next_f32();
-    let side = if wo.z >= 0.0 { 1.0 } else { -1.0 };
     if xi < pd {
         let u = Vec2::new(rng.next_f32(), rng.next_f32());
-        let wi = Bsdf::<C>::Lambert { albedo: C::ONE }
-            .sample(wo, 0.5, u, TransportMode::Importance)?
-            .wi;
+        let wi = cosine_direction(wo, u)?;
         Some((wi, d / pd, false))
     } else if xi < pd + ps {
         Some((Vec3::new(-wo.x, -wo.y, wo.z), s / ps, false))
     } else if xi < pd + ps + pt {
-        let wi = match *bsdf {
-            Bsdf::Dielectric { eta, .. } => {
-                let etap = if wo.z >= 0.0 { eta } else { 1.0 / eta };
-                refract(wo, Vec3::new(0.0, 0.0, side), etap)
-                    .unwrap_or(Vec3::new(-wo.x, -wo.y, wo.z))
-            }
-            _ => -wo,
-        };
+        let wi = bsdf.roulette_transmission(wo);
         Some((wi, t / pt, wi.z * wo.z < 0.0))
     } else {
         None
@@ -311,7 +265,7 @@ fn next_direction<C: Carrier>(
             (
                 wi,
                 transmission,
-                !is_diffuse_like(&s.bsdf) || s.bsdf.is_delta(),
+                !s.bsdf.is_diffuse_like() || s.bsdf.is_delta(),
             )
         }
     })
@@ -439,7 +393,7 @@ pub fn trace_in_media<C: Carrier>(
         if !beta.is_finite() {
             break;
         }
-        all_specular &= !is_diffuse_like(&s.bsdf);
+        all_specular &= !s.bsdf.is_diffuse_like();
         media = s.media_after(transmission);
         bounces += 1;
         if delta {

@@ -1,7 +1,6 @@
 //! The BSDF a material has at a hit ([`crate::bsdf`]): the material's opaque BSDF
-//! ([`crate::material::Material::opaque_bsdf`]), a smooth or rough dielectric with η from
-//! the path's media, a thin-walled transmission; and which BSDFs the photon methods treat
-//! as diffuse (where photons are gathered and caustic paths end).
+//! ([`crate::material::Material::opaque_bsdf`]), or its transmission
+//! ([`crate::material::Material::transmission_bsdf`]) with η from the path's media.
 //!
 //! Directions are unit vectors in the local frame of the outward shading normal; η is the
 //! ratio n_inside / n_outside, the outside being the normal's side.
@@ -34,28 +33,12 @@ pub fn bsdf_at<C: Carrier>(
 ) -> (Bsdf<C>, MediumStack, bool) {
     let mat = &scene.materials()[hit.material as usize];
     if sp.transmission > 0.0 && u < sp.transmission {
-        let tint = C::reflectance(sp.base_color, l);
         if !mat.is_volume() {
-            return (
-                Bsdf::ThinDielectric {
-                    eta: mat.ior(),
-                    tint,
-                },
-                media,
-                false,
-            );
+            return (mat.transmission_bsdf(sp, None, l), media, false);
         }
         let (n_i, n_t, after, dispersive) = interface::<C>(scene, hit, coincident, media, l);
         let eta = bsdf_eta(n_i, n_t, hit.front_face);
-        return (
-            Bsdf::Dielectric {
-                eta,
-                alpha: sp.roughness * sp.roughness,
-                tint,
-            },
-            after,
-            dispersive,
-        );
+        return (mat.transmission_bsdf(sp, Some(eta), l), after, dispersive);
     }
     (mat.opaque_bsdf(sp, l), media, false)
 }
@@ -111,27 +94,4 @@ pub fn lane_etas(
         });
         bsdf_eta(n_i, n_t, hit.front_face)
     })
-}
-
-/// GGX α from which a glossy lobe is treated like a diffuse one (a visible point); below
-/// it camera paths continue by BSDF sampling.
-pub const GLOSSY_ALPHA: f32 = 0.25;
-
-/// Whether photons should be gathered at a BSDF rather than continuing the camera path:
-/// anything with a diffuse lobe, or a glossy lobe at least [`GLOSSY_ALPHA`] rough.
-pub fn is_diffuse_like<C: Carrier>(b: &Bsdf<C>) -> bool {
-    match *b {
-        Bsdf::Lambert { .. } => true,
-        // A coat over a diffuse base is still gathered on; a sheen is a diffuse-like lobe.
-        Bsdf::GltfPbr {
-            metallic,
-            alpha,
-            layers,
-            ..
-        } => metallic < 1.0 || alpha >= GLOSSY_ALPHA || layers.sheen_color.max_element() > 0.0,
-        Bsdf::Conductor { alpha, .. }
-        | Bsdf::ComplexConductor { alpha, .. }
-        | Bsdf::Dielectric { alpha, .. } => !b.is_delta() && alpha >= GLOSSY_ALPHA,
-        Bsdf::ThinDielectric { .. } => false,
-    }
 }

@@ -22,6 +22,7 @@ pub mod polarized;
 pub mod spectral_mis;
 pub mod step;
 
+pub use crate::bsdf::GLOSSY_ALPHA;
 pub use direct::direct_light;
-pub use material_bsdf::{bsdf_at, interface, is_diffuse_like, lane_etas, GLOSSY_ALPHA};
+pub use material_bsdf::{bsdf_at, interface, lane_etas};
 pub use step::{arrival, arrive, meet, sample_bsdf, Arrival, Event, Surface, MAX_DELTA_BOUNCES};

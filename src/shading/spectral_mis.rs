@@ -29,14 +29,6 @@ use crate::bsdf::{Bsdf, BsdfSample, TransportMode};
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};
 
-/// The BSDF with lane `eta` in place of the hero's (only dielectrics carry an η here).
-fn with_eta<C: Carrier>(bsdf: &Bsdf<C>, eta: f32) -> Bsdf<C> {
-    match *bsdf {
-        Bsdf::Dielectric { alpha, tint, .. } => Bsdf::Dielectric { eta, alpha, tint },
-        b => b,
-    }
-}
-
 /// Per lane j: f_j(wo, wi) (lane j of the BSDF with η = `etas[j]`) and p_j(wo, wi).
 pub fn eval_lanes<C: Carrier>(
     bsdf: &Bsdf<C>,
@@ -48,7 +40,8 @@ pub fn eval_lanes<C: Carrier>(
     let mut f = [0.0; 4];
     let mut p = [0.0; 4];
     for j in 0..4 {
-        let b = with_eta(bsdf, etas[j]);
+        // The BSDF with lane j's η in place of the hero's (only interfaces carry an η).
+        let b = bsdf.with_lane(etas[j], 0).unwrap_or(*bsdf);
         f[j] = b.eval(wo, wi, mode).to_lanes()[j];
         p[j] = b.pdf(wo, wi, mode);
     }

@@ -216,7 +216,7 @@ impl<C: Carrier> Arrival<'_, C> {
         );
         let mut lanes = None;
         if dispersive {
-            let rough = matches!(bsdf, Bsdf::Dielectric { .. }) && !bsdf.is_delta();
+            let rough = bsdf.interface_eta().is_some() && !bsdf.is_delta();
             match C::lanes_nm(lambda) {
                 Some(nm) if keep_lanes && rough && !C::is_hero_only(lambda) => {
                     lanes = Some(lane_etas(scene, &self.hit, &self.coincident, media, nm));
@@ -320,16 +320,15 @@ impl<C: Carrier> Surface<C> {
     /// tint and the per-lane η rotate with the lanes (each lane's value depends on its own
     /// wavelength only, so the rotation is exact); elsewhere the surface is returned as is.
     pub fn with_hero_lane(&self, k: usize) -> Surface<C> {
-        let (Some(etas), Bsdf::Dielectric { alpha, tint, .. }) = (self.lanes, self.bsdf) else {
+        let Some(etas) = self.lanes else {
             return *self;
         };
         let etas = crate::spectrum::rotate_lanes(etas, k);
+        let Some(bsdf) = self.bsdf.with_lane(etas[0], k) else {
+            return *self;
+        };
         Surface {
-            bsdf: Bsdf::Dielectric {
-                eta: etas[0],
-                alpha,
-                tint: tint.rotated(k),
-            },
+            bsdf,
             lanes: Some(etas),
             ..*self
         }

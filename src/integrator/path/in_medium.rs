@@ -12,6 +12,7 @@
 //! ray too ([`media::shadow_from`]). Directions are unit vectors in world space.
 
 use super::light_sample::{next_event, Scatterer};
+use super::strategy::Strategy;
 use super::vertex::{pending, Next, Pending, Rules, Walk};
 use crate::interaction::{Leave, SurfaceHit};
 use crate::math::Ray;
@@ -24,12 +25,12 @@ use crate::spectrum::Carrier;
 /// Before the surface `at` its ray reached (`None` if it escaped; `met`: reached untraced,
 /// [`super::state::PathState::meet`]): the media checked where the ray leaves a point of a
 /// medium ([`media::starting`]), the volume caustic map's beam estimate along the segment
-/// ([`super::CausticSplit::Volume`], in a chromatic medium after keeping the hero only),
+/// ([`super::Strategy::beam`], in a chromatic medium after keeping the hero only),
 /// then free flight ([`media::fly`]); `Some` with the vertex's outcome if the path scatters
 /// in the medium, else the path has met the surface (a new run).
-pub(super) fn fly<C: Carrier>(
+pub(super) fn fly<C: Carrier, S: Strategy<C>>(
     scene: &Scene,
-    rules: &Rules<'_, C>,
+    rules: &Rules<'_, S>,
     walk: &mut Walk<C>,
     (at, met): (Option<&Arrival<'_, C>>, bool),
     ctx: &mut Context,
@@ -39,7 +40,7 @@ pub(super) fn fly<C: Carrier>(
     if st.run > 0 && st.from.is_none() && !met {
         st.media = media::starting(scene, st.media, at.map(|a| (&a.hit, &a.coincident)));
     }
-    if let Some(beam) = rules.split.beam() {
+    if let Some(beam) = rules.strategy.beam() {
         let values = (&mut st.beta, &mut walk.lambda);
         media::keep_hero_in(scene, &walk.ray, t_hit, &st.media, values);
         if let Some(seg) = media::segment(scene, &walk.ray, t_hit, &st.media) {
@@ -58,7 +59,7 @@ pub(super) fn fly<C: Carrier>(
         st.met_surface();
         return None;
     };
-    Some(scatter(scene, rules, walk, sc, ctx))
+    Some(scatter(scene, rules.max_depth, walk, sc, ctx))
 }
 
 /// At the surface `at`: if it only changes the medium ([`media::cross_matched`]), the walk
@@ -81,7 +82,7 @@ pub(super) fn cross<C: Carrier>(scene: &Scene, walk: &mut Walk<C>, at: &Arrival<
 /// pending contribution and sets the walk's next ray (module docs).
 fn scatter<C: Carrier>(
     scene: &Scene,
-    rules: &Rules<'_, C>,
+    max_depth: u32,
     walk: &mut Walk<C>,
     sc: Scattered,
     ctx: &mut Context,
@@ -109,7 +110,7 @@ fn scatter<C: Carrier>(
         return (Some(nee), Next::End);
     }
     let (wi, pdf) = sc.phase.sample(wo, u.bsdf_direction());
-    if pdf.is_nan() || pdf <= 0.0 || !st.advance_in_medium(sc.p, pdf, rules.max_depth, &mut u) {
+    if pdf.is_nan() || pdf <= 0.0 || !st.advance_in_medium(sc.p, pdf, max_depth, &mut u) {
         return (Some(nee), Next::End);
     }
     match sc.leave(wi) {

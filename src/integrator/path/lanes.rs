@@ -23,8 +23,9 @@
 //! answers packets lane by lane (obvhs has no packet traversal). The environment variable
 //! `IRIS_LANES=off|8|16` overrides it for measurements; images do not change.
 
+use super::strategy::Strategy;
 use super::vertex::{self, Next, Pending, Rules, Walk};
-use super::{CausticSplit, Dispersion, StopAt};
+use super::Dispersion;
 use crate::accel::packet::{lanes, Coherence, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
 use crate::accel::Accel;
 use crate::error::{Error, Result};
@@ -78,8 +79,8 @@ impl LaneWidth {
     }
 }
 
-/// The plain path tracer's estimate of `jobs` ([`estimate_lanes`] without a caustic
-/// split, linear RGB into `out`) at `width`, in spectral or RGB transport.
+/// The plain path tracer's estimate of `jobs` ([`estimate_lanes`] with its [`Dispersion`]
+/// as the strategy, linear RGB into `out`) at `width`, in spectral or RGB transport.
 pub fn estimate_path(
     scene: &Scene,
     (rules, width): ((u32, Dispersion), LaneWidth),
@@ -95,7 +96,8 @@ pub fn estimate_path(
         out: &mut [Vec3],
     ) -> u64 {
         let rgb = |i: usize, l: C, lambda: &C::Lambda| out[i] = l.to_rgb(lambda);
-        estimate_lanes(scene, width, (rules, CausticSplit::None), run, None, rgb)
+        let (max_depth, dispersion) = rules;
+        estimate_lanes(scene, width, (max_depth, &dispersion), run, None, rgb)
     }
     if spectral {
         at::<SampledSpectrum>(scene, (rules, width), (starts, jobs), out)
@@ -118,32 +120,33 @@ struct Lane<C: Carrier> {
     ctx: Context,
 }
 
-/// Estimates `jobs` (begun by `starts`) with the path tracer ([`super::radiance`] with
-/// `max_depth` and its [`Dispersion`]; `split` as in [`super::camera_path`]) on `width` lanes
+/// Estimates `jobs` (begun by `starts`) with the path tracer under `strategy`
+/// ([`super::camera_path`] with `max_depth`; one that may stop at a visible point is not
+/// for lanes, [`Strategy::STOPS`]) on `width` lanes
 /// ([`LaneWidth::Scalar`] runs 8: a caller wanting single rays runs the scalar loop), at
 /// the wavelengths `lambda` (the pass's of a photon method) or, with `None`, at wavelengths
 /// drawn from each job's hero variate; `emit(i, L, wavelengths)` receives job `i`'s
 /// radiance and the wavelengths it started with, in the order the paths end. Returns the
 /// rays traced.
-pub fn estimate_lanes<C: Carrier>(
+pub fn estimate_lanes<C: Carrier, S: Strategy<C>>(
     scene: &Scene,
     width: LaneWidth,
-    (rules, split): ((u32, Dispersion), CausticSplit<'_, C>),
+    (max_depth, strategy): (u32, &S),
     (starts, jobs): (&Starts, &[Job]),
     lambda: Option<C::Lambda>,
     emit: impl FnMut(usize, C, &C::Lambda),
 ) -> u64 {
-    let run = (starts, jobs);
+    let (run, rules) = ((starts, jobs), (max_depth, strategy));
     match width {
-        LaneWidth::Sixteen => run_lanes::<C, 16>(scene, (rules, split), run, lambda, emit),
-        _ => run_lanes::<C, 8>(scene, (rules, split), run, lambda, emit),
+        LaneWidth::Sixteen => run_lanes::<C, S, 16>(scene, rules, run, lambda, emit),
+        _ => run_lanes::<C, S, 8>(scene, rules, run, lambda, emit),
     }
 }
 
 /// [`estimate_lanes`] on `N` lanes.
-fn run_lanes<C: Carrier, const N: usize>(
+fn run_lanes<C: Carrier, S: Strategy<C>, const N: usize>(
     scene: &Scene,
-    ((max_depth, dispersion), split): ((u32, Dispersion), CausticSplit<'_, C>),
+    (max_depth, strategy): (u32, &S),
     (starts, jobs): (&Starts, &[Job]),
     lambda: Option<C::Lambda>,
     mut emit: impl FnMut(usize, C, &C::Lambda),
@@ -151,7 +154,10 @@ fn run_lanes<C: Carrier, const N: usize>(
 where
     Lanes<N>: PacketWidth,
 {
-    let rules = Rules::new(max_depth, dispersion, StopAt::Never, split);
+    let rules = Rules {
+        max_depth,
+        strategy,
+    };
     let mut lanes_: [Lane<C>; N] = std::array::from_fn(|_| Lane {
         job: 0,
         lambda: C::sample_lambda(0.0),

@@ -16,6 +16,10 @@
 //! MIS sides use is the hero-marginal one. At its first smooth dispersive interface the
 //! path splits into its 4 wavelengths,
 //! each traced on as its own sub-path ([`split`], which gives the unbiasedness argument).
+//!
+//! The photon methods' camera paths are this loop too ([`camera_path`]): what a method asks
+//! of them (where they stop, what another estimator gathers along them or owns of their
+//! light, which hero orders their lanes) is its [`Strategy`], which the vertex calls.
 
 mod capabilities;
 mod in_medium;
@@ -25,11 +29,13 @@ mod own_hero;
 pub mod polarized;
 mod split;
 mod state;
+mod strategy;
 mod vertex;
 
 pub use capabilities::CAPABILITIES;
 pub use lanes::{estimate_lanes, estimate_path, LaneWidth};
 pub use own_hero::HeroOf;
+pub use strategy::{History, RoughLanes, Strategy};
 
 /// What the path tracer's camera paths keep of their 4 wavelengths at dispersive
 /// interfaces in spectral transport (nothing changes in RGB). Each off choice falls back to
@@ -68,76 +74,15 @@ use crate::bsdf::Bsdf;
 use crate::interaction::SurfaceHit;
 use crate::math::{Frame, Ray};
 use crate::scene::Scene;
-use crate::shading::{self, Surface};
+use crate::shading;
 use crate::spectrum::Carrier;
 use glam::Vec3;
 use vertex::{Next, Rules, Walk};
-
-/// Where a camera path ends (`--method photon` and `sppm` hand the rest to photons).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum StopAt {
-    /// The plain path tracer: continue until Russian roulette or the depth limit.
-    Never,
-    /// Stop at the first diffuse-like hit ([`is_diffuse_like`]) and return it as a
-    /// [`VisiblePoint`]; its direct light is still estimated here (with full weight, as
-    /// BSDF sampling does not continue).
-    Diffuse,
-}
-
-/// A caustic map's gather at a camera vertex: reflected radiance toward its `wo`
-/// ([`super::caustic::CausticMap::density`]).
-pub type Gather<'a, C> = &'a (dyn Fn(&Surface<C>, &<C as Carrier>::Lambda) -> C + Sync);
 
 /// A volumetric caustic map's beam radiance estimate along a camera ray's segment through
 /// a medium ([`super::volume_map::VolumeMap::beam`]), per unit throughput.
 pub type Beam<'a, C> =
     &'a (dyn Fn(&Ray, &crate::shading::media::Segment<'_>, &<C as Carrier>::Lambda) -> C + Sync);
-
-/// How the path tracer shares light transport with a caustic photon map (`--method hybrid`,
-/// [`super::caustic`]); the split is Jensen's caustic map in Heckbert's notation.
-#[derive(Clone, Copy)]
-pub enum CausticSplit<'a, C: Carrier> {
-    /// The plain path tracer: every path is counted here.
-    None,
-    /// Paths whose light end starts L S+ D (a caustic light, at least one delta bounce, a
-    /// non-delta vertex) belong to the caustic map ([`super::caustic`]): at the path's
-    /// first non-delta vertex, if its BSDF-sampled bounce would be followed,
-    /// `gather(surface, lambda)` adds the map's reflected radiance (times the path
-    /// throughput), and emission found by BSDF sampling after any non-delta bounce followed
-    /// by ≥ 1 delta bounces is dropped (exactly the paths the map counts), the environment's
-    /// radiance seen by a ray escaping after D S+ included (the environment is a caustic
-    /// light).
-    Map(Gather<'a, C>),
-    /// As `Map`, but D₁ gathers with `through` if the camera reached it through ≥ 1 delta
-    /// bounce or BLEND pass-through, with `direct` if it is seen directly (`None`: nothing);
-    /// light tracing counts the rest ([`super::light_trace`], which proves the split).
-    Mixed {
-        /// The gather at a D₁ seen through delta bounces (the whole map).
-        through: Gather<'a, C>,
-        /// The gather at a D₁ seen directly (the photons light tracing does not splat).
-        direct: Option<Gather<'a, C>>,
-    },
-    /// As `Map` in a scene with media, where a path's first non-delta vertex may be a
-    /// scattering event: `surface` gathers at a surface D₁, and `beam` adds the volumetric
-    /// caustic map's estimate along every segment through a medium before the first
-    /// non-delta vertex ([`super::volume_map`] proves the split).
-    Volume {
-        /// The surface map's gather at D₁.
-        surface: Gather<'a, C>,
-        /// The volume map's beam estimate.
-        beam: Beam<'a, C>,
-    },
-}
-
-impl<'a, C: Carrier> CausticSplit<'a, C> {
-    /// The beam estimate of [`CausticSplit::Volume`].
-    pub fn beam(&self) -> Option<Beam<'a, C>> {
-        match self {
-            CausticSplit::Volume { beam, .. } => Some(*beam),
-            _ => None,
-        }
-    }
-}
 
 /// The first diffuse-like hit of a camera path: where photons are gathered.
 #[derive(Debug, Clone, Copy)]
@@ -169,7 +114,8 @@ pub struct VisiblePoint<C: Carrier> {
 }
 
 /// Radiance along `ray` (the camera is in air) at the sample's wavelengths `lambda`
-/// (nothing in RGB transport), keeping them at dispersive interfaces as `dispersion` says.
+/// (nothing in RGB transport), keeping them at dispersive interfaces as `dispersion` says:
+/// the plain path tracer, [`camera_path`] with its [`Dispersion`] as the strategy.
 pub fn radiance<C: Carrier>(
     scene: &Scene,
     ray: &Ray,
@@ -177,41 +123,24 @@ pub fn radiance<C: Carrier>(
     lambda: C::Lambda,
     ctx: &mut Context,
 ) -> C {
-    let rules = Rules::new(max_depth, dispersion, StopAt::Never, CausticSplit::None);
-    trace(scene, ray, lambda, &rules, ctx).0
+    camera_path(scene, ray, (max_depth, &dispersion), lambda, ctx).0
 }
 
-/// The path tracer's loop: radiance gathered along the path and, with [`StopAt::Diffuse`],
-/// the visible point where it stopped (none if it escaped, was absorbed or hit the depth
-/// limit first). Each hit is the shared step ([`shading::arrive`], [`Arrival::event`]);
-/// emission is counted on arrival, before BLEND coverage is decided. `split` hands the
-/// caustic paths to a caustic map ([`CausticSplit`]); `dispersion` says what the path
-/// keeps of its wavelengths at dispersive interfaces ([`Rules::new`] decides where it
-/// applies: spectral MIS not with a caustic map, and with [`StopAt::Diffuse`] under the
-/// path's own hero, [`own_hero`]; the split only with [`StopAt::Never`]).
-#[allow(clippy::too_many_arguments)]
-pub fn camera_path<C: Carrier>(
+/// The path tracer's loop under the caller's `strategy` ([`Strategy`]): radiance gathered
+/// along the path and the visible point where the strategy stopped it (none if it escaped,
+/// was absorbed or hit the depth limit first). One vertex ([`vertex::vertex`]) after the
+/// other, each shadow ray traced at once.
+pub fn camera_path<C: Carrier, S: Strategy<C>>(
     scene: &Scene,
     ray: &Ray,
-    (max_depth, dispersion): (u32, Dispersion),
+    (max_depth, strategy): (u32, &S),
     lambda: C::Lambda,
-    stop: StopAt,
-    split: CausticSplit<'_, C>,
     ctx: &mut Context,
 ) -> (C, Option<VisiblePoint<C>>) {
-    let rules = Rules::new(max_depth, dispersion, stop, split);
-    trace(scene, ray, lambda, &rules, ctx)
-}
-
-/// The scalar loop under `rules`: one vertex ([`vertex::vertex`]) after the other, each
-/// shadow ray traced at once.
-fn trace<C: Carrier>(
-    scene: &Scene,
-    ray: &Ray,
-    lambda: C::Lambda,
-    rules: &Rules<'_, C>,
-    ctx: &mut Context,
-) -> (C, Option<VisiblePoint<C>>) {
+    let rules = Rules {
+        max_depth,
+        strategy,
+    };
     let mut walk = Walk::new(*ray, lambda);
     let mut visible = None;
     loop {
@@ -220,7 +149,7 @@ fn trace<C: Carrier>(
             Some(h) => shading::arrival::<C>(scene, &walk.ray, Some(h), media, lambda),
             None => shading::arrive::<C>(scene, &walk.ray, media, lambda, &mut ctx.rays),
         };
-        let (nee, next) = vertex::vertex(scene, rules, &mut walk, arrival, ctx, &mut visible);
+        let (nee, next) = vertex::vertex(scene, &rules, &mut walk, arrival, ctx, &mut visible);
         if let Some(nee) = nee {
             nee.resolve_traced(scene, &walk.lambda, &mut ctx.rays, &mut walk.l);
         }

@@ -40,25 +40,18 @@
 //! the split). A lane whose throughput is 0 is not traced. The scalar loop and the lanes
 //! run the same sequence per sample, so their estimates agree bit for bit.
 //!
-//! Where: camera paths that do not stop at a visible point ([`StopAt::Never`]: the path
-//! tracer's and the hybrid's), when [`super::Dispersion::split`] is on (the default; off
+//! Where: camera paths whose strategy splits ([`super::Strategy::splits`]: the path
+//! tracer's and the hybrid's, when [`super::Dispersion::split`] is on, the default; off
 //! for comparisons). The hybrid's sub-paths gather its caustic map in their own lane
 //! order with the photons' lanes rotated to match, and without the collapse's ÷4
 //! (`crate::integrator::sppm::photon_term` gives the argument). SPPM's and the photon map's
 //! visible points keep the collapse: a pass stores one visible point per pixel.
 
 use super::state::PathState;
-use super::StopAt;
 use crate::interaction::SurfaceHit;
 use crate::math::Ray;
 use crate::spectrum::{Carrier, N_LAMBDA};
 use glam::Vec3;
-
-/// Whether camera paths under `stop` split into their wavelengths, `on` being
-/// [`super::Dispersion::split`] (see the module docs).
-pub(super) fn applies<C: Carrier>(on: bool, stop: StopAt) -> bool {
-    on && C::SPECTRAL && stop == StopAt::Never
-}
 
 /// A lane waiting for its sub-path.
 #[derive(Clone, Copy)]

@@ -14,8 +14,8 @@
 //! q and is divided by it; a path with q ≥ 1 always continues, so a white medium's walk or
 //! rough glass's compensated weights never turn into a few heavy survivors.
 
-use super::CausticSplit;
-use crate::bsdf::{Bsdf, BsdfSample};
+use super::strategy::History;
+use crate::bsdf::BsdfSample;
 use crate::interaction::SurfaceHit;
 use crate::medium_stack::MediumStack;
 use crate::sampler::Bounce;
@@ -64,7 +64,7 @@ pub(super) struct PathState<C: Carrier> {
     /// The last non-delta vertex was a scattering event in a medium.
     pub last_in_medium: bool,
     /// No scattering event in a medium yet: a light end closing at a surface may still be
-    /// the surface map's ([`PathState::closes_caustic`]).
+    /// the surface map's ([`History::clear`]).
     pub clear: bool,
     /// The surface the path's ray was spawned from (its origin offset from it by
     /// [`crate::math::Ray::skipped`]), for the band behind the origin; `None` for the
@@ -101,14 +101,15 @@ impl<C: Carrier> PathState<C> {
         }
     }
 
-    /// Whether the light end found now closes a D S+ L chain: the caustic map's (or light
-    /// tracing's) share when the path is split. With media: an M S+ L chain is always the
-    /// volume map's, a D S+ L chain the surface map's only while the path has not scattered
-    /// in a medium ([`crate::integrator::volume_map`] gives the split).
-    pub fn closes_caustic(&self, split: &CausticSplit<'_, C>) -> bool {
-        !matches!(split, CausticSplit::None)
-            && self.since_diffuse.unwrap_or(0) > 0
-            && (self.last_in_medium || self.clear)
+    /// The bounces so far as a strategy reads them ([`History`]), under `max_depth`.
+    pub fn history(&self, max_depth: u32) -> History {
+        History {
+            since_diffuse: self.since_diffuse,
+            last_in_medium: self.last_in_medium,
+            clear: self.clear,
+            direct: self.direct,
+            continues: self.depth + 1 < max_depth,
+        }
     }
 
     /// Follows the BSDF sample `bs` taken at `s`: throughput, η scale, media and the MIS
@@ -122,7 +123,7 @@ impl<C: Carrier> PathState<C> {
         u: &mut Bounce<'_>,
     ) -> bool {
         self.beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
-        if let (Bsdf::Dielectric { eta, .. }, true) = (s.bsdf, bs.transmission) {
+        if let (Some(eta), true) = (s.bsdf.interface_eta(), bs.transmission) {
             let etap = if s.wo.z > 0.0 { eta } else { 1.0 / eta };
             if etap.is_finite() && etap > 0.0 {
                 self.eta_scale *= etap * etap;
@@ -142,6 +143,20 @@ impl<C: Carrier> PathState<C> {
         };
         let kind = if bs.delta { Kind::Delta } else { Kind::Surface };
         self.count(kind, max_depth, u)
+    }
+
+    /// Counts a delta bounce at `p` that no light sample can see through and that samples
+    /// no BSDF (a crystal surface, a polarizer sheet): no MIS for what the path finds next,
+    /// one more delta bounce since the last non-delta one. `false` past the delta bounce
+    /// limit.
+    pub fn delta_bounce(&mut self, p: Vec3) -> bool {
+        self.prev = Prev {
+            delta: true,
+            pdf: 0.0,
+            p,
+        };
+        self.since_diffuse = self.since_diffuse.map(|n| n + 1);
+        self.count_delta()
     }
 
     /// The path met a surface: a new run of scattering events starts at the fine scale.
@@ -182,14 +197,17 @@ impl<C: Carrier> PathState<C> {
         self.count(Kind::Medium, max_depth, u)
     }
 
+    /// One more delta bounce; `false` past [`MAX_DELTA_BOUNCES`].
+    fn count_delta(&mut self) -> bool {
+        self.delta_depth += 1;
+        self.delta_depth <= MAX_DELTA_BOUNCES
+    }
+
     /// The bounce limits for a vertex of `kind` (module docs) and, after three non-delta
     /// vertices, Russian roulette on `u`. `false` when the path ends here.
     fn count(&mut self, kind: Kind, max_depth: u32, u: &mut Bounce<'_>) -> bool {
         match kind {
-            Kind::Delta => {
-                self.delta_depth += 1;
-                return self.delta_depth <= MAX_DELTA_BOUNCES;
-            }
+            Kind::Delta => return self.count_delta(),
             Kind::Surface => self.depth += 1,
             Kind::Medium => {
                 if self.run == 0 {
@@ -282,6 +300,25 @@ mod tests {
         }
         let p = survived as f64 / n as f64;
         assert!((p - 0.5).abs() < 0.016, "survival {p}");
+    }
+
+    /// A delta bounce that samples no BSDF (a crystal surface, a polarizer sheet): no MIS
+    /// for what the path finds next, one more delta bounce since the last non-delta vertex
+    /// (none before the first), and the path ends past the delta bounce limit.
+    #[test]
+    fn delta_bounces_count_to_their_limit() {
+        let mut st = PathState::<Vec3>::new(Vec3::ZERO);
+        assert!(st.delta_bounce(Vec3::X));
+        assert_eq!(st.since_diffuse, None);
+        st.since_diffuse = Some(0);
+        assert!(st.delta_bounce(Vec3::Y));
+        let prev = (st.prev.delta, st.prev.pdf, st.prev.p);
+        assert_eq!((st.since_diffuse, prev), (Some(1), (true, 0.0, Vec3::Y)));
+        for _ in 2..MAX_DELTA_BOUNCES {
+            assert!(st.delta_bounce(Vec3::Y));
+        }
+        assert!(!st.delta_bounce(Vec3::Y));
+        assert_eq!(st.depth, 0);
     }
 
     /// The first event of a run counts against `max_depth` (so max depth 1 is single

@@ -1,10 +1,13 @@
 //! One vertex of a camera path ([`vertex`]), written once for the scalar loop
-//! ([`super::trace`]) and the lanes ([`super::lanes`]): what arrived along the path's ray
-//! (emission with MIS, the environment on escape), next-event estimation, the caustic
-//! map's gather, the BSDF sample and the bounce rules. The shadow ray of next-event
-//! estimation is not traced here: the vertex returns it as [`Pending`], so the lanes can
-//! trace all their shadow rays as one packet; [`Pending::resolve`] then adds to the
-//! radiance exactly what the scalar loop adds, in the same order.
+//! ([`super::trace`]) and the lanes ([`super::lanes`]), in the order light meets it: the
+//! medium before the hit ([`super::in_medium`]), the light arriving (emission with MIS, the
+//! environment on escape), the surface's event, next-event estimation, the BSDF sample and
+//! the bounce rules. What differs between methods (where a path stops, what another
+//! estimator gathers or owns of its light, which hero orders its lanes, whether it splits
+//! into its wavelengths) is asked of the caller's [`Strategy`]. The shadow ray of
+//! next-event estimation is not traced here: the vertex returns it as [`Pending`], so the
+//! lanes can trace all their shadow rays as one packet; [`Pending::resolve`] then adds to
+//! the radiance exactly what the scalar loop adds, in the same order.
 //!
 //! Units: radiance in the carrier's units (linear RGB or per-wavelength spectral
 //! radiance); frames as in [`crate::shading::step`].
@@ -13,13 +16,16 @@ use super::light_sample::{next_event, NextEvent, Scatterer};
 use super::own_hero::{self, HeroOf};
 use super::split::Branches;
 use super::state::{PathState, Prev};
-use super::{CausticSplit, Gather, StopAt, VisiblePoint};
+use super::strategy::{History, RoughLanes, Strategy};
+use super::VisiblePoint;
 use crate::bsdf::TransportMode;
+use crate::interaction::SurfaceHit;
 use crate::math::Ray;
 use crate::render::Context;
+use crate::sampler::Bounce;
 use crate::scene::Scene;
 use crate::shading::media::Through;
-use crate::shading::{is_diffuse_like, lights, media, Arrival, Event};
+use crate::shading::{lights, media, Arrival, Event, Surface};
 use crate::spectrum::Carrier;
 use glam::Vec3;
 
@@ -33,67 +39,12 @@ pub(super) fn mis(a: f32, b: f32) -> f32 {
     }
 }
 
-/// How a render's camera paths run: the depth limit, where they stop, how they share
-/// transport with a caustic map, and spectral MIS at rough dispersive interfaces.
-#[derive(Clone, Copy)]
-pub(super) struct Rules<'a, C: Carrier> {
+/// How a render's camera paths run: the depth limit and what the method asks of them.
+pub(super) struct Rules<'s, S> {
     /// Non-delta bounces per path.
     pub max_depth: u32,
-    /// Where a path ends ([`StopAt`]).
-    pub stop: StopAt,
-    /// The share of a caustic map ([`CausticSplit`]).
-    pub split: CausticSplit<'a, C>,
-    /// What the path keeps at rough dispersive interfaces ([`RoughLanes`]).
-    pub rough: RoughLanes,
-    /// Split the path into its wavelengths at its first smooth dispersive interface
-    /// ([`super::split`]).
-    pub wavelength_split: bool,
-}
-
-impl<'a, C: Carrier> Rules<'a, C> {
-    /// The rules for `max_depth`, `stop` and `split`, keeping wavelengths as `dispersion`
-    /// says where it applies: spectral MIS without a caustic map (whose gather pairs the
-    /// path's hero with its photons'), with the path's own hero when it stops at a visible
-    /// point ([`RoughLanes::OwnHero`]); the split only with [`StopAt::Never`]
-    /// ([`super::split::applies`]).
-    pub fn new(
-        max_depth: u32,
-        dispersion: super::Dispersion,
-        stop: StopAt,
-        split: CausticSplit<'a, C>,
-    ) -> Self {
-        Rules {
-            max_depth,
-            stop,
-            split,
-            rough: match (dispersion.spectral_mis, stop, &split) {
-                (false, _, _)
-                | (
-                    _,
-                    _,
-                    CausticSplit::Map(_) | CausticSplit::Mixed { .. } | CausticSplit::Volume { .. },
-                ) => RoughLanes::Hero,
-                (true, StopAt::Never, CausticSplit::None) => RoughLanes::Mis,
-                (true, StopAt::Diffuse, CausticSplit::None) => RoughLanes::OwnHero,
-            },
-            wavelength_split: super::split::applies::<C>(dispersion.split, stop),
-        }
-    }
-}
-
-/// What a camera path keeps at a rough dispersive interface in spectral transport.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum RoughLanes {
-    /// The hero only ([`crate::spectrum::Carrier::keep_hero`]).
-    Hero,
-    /// The 4 lanes with spectral MIS, the sample's lane 0 the hero
-    /// ([`crate::shading::spectral_mis`]).
-    Mis,
-    /// The 4 lanes with spectral MIS, the hero the path's own, drawn at its first rough
-    /// dispersive vertex ([`super::own_hero`]: SPPM's camera paths, whose photons share the
-    /// sample's hero); a visible point there keeps the lanes, the gather evaluating f per
-    /// lane.
-    OwnHero,
+    /// The method's decisions ([`Strategy`]).
+    pub strategy: &'s S,
 }
 
 /// A camera path between two vertices: the radiance so far, the ray to trace next and
@@ -138,6 +89,23 @@ impl<C: Carrier> Walk<C> {
     pub fn radiance(&self) -> C {
         self.hero.to_sample(self.branches.radiance(self.l))
     }
+
+    /// Adds light `e` found along the path unless it is another estimator's (`leaves`).
+    #[inline]
+    fn add_unless(&mut self, e: Option<C>, leaves: bool) {
+        if let (Some(e), false) = (e, leaves) {
+            self.l += e;
+        }
+    }
+
+    /// Passes through the uncovered part of a BLEND surface at `hit` along `next`.
+    #[inline]
+    fn pass_through(&mut self, next: Ray, hit: SurfaceHit) -> (Option<Pending<C>>, Next) {
+        self.ray = next;
+        self.st.from = Some(hit);
+        self.st.direct = false;
+        (None, Next::Trace)
+    }
 }
 
 /// What a vertex adds once its shadow ray is answered: `beta × value` (zero if blocked),
@@ -165,12 +133,18 @@ impl<C: Carrier> Pending<C> {
     /// Traces the shadow ray (through its media, [`media::shadow`]) and adds the vertex's
     /// light to `l`.
     pub fn resolve_traced(self, scene: &Scene, lambda: &C::Lambda, rays: &mut u64, l: &mut C) {
-        let v = match (self.shadow, self.through) {
+        let v = self.transmitted(scene, lambda, rays);
+        self.add(v, l);
+    }
+
+    /// Traces the shadow ray (through its media, [`media::shadow`]): the light sample's
+    /// value past it, per unit throughput (zero if blocked or without a shadow ray).
+    pub fn transmitted(&self, scene: &Scene, lambda: &C::Lambda, rays: &mut u64) -> C {
+        match (self.shadow, self.through) {
             (Some(r), Some(t)) => self.value * media::shadow::<C>(scene, &r, t, lambda, rays),
             (Some(r), None) if !scene.occluded(&r) => self.value,
             _ => C::ZERO,
-        };
-        self.add(v, l);
+        }
     }
 
     #[inline]
@@ -187,7 +161,7 @@ impl<C: Carrier> Pending<C> {
 pub(super) enum Next {
     /// Trace the walk's (new) ray.
     Trace,
-    /// The path is over (with [`StopAt::Diffuse`], perhaps at a visible point).
+    /// The path is over (perhaps at a visible point, [`Strategy::stops_at`]).
     End,
 }
 
@@ -233,34 +207,18 @@ pub(super) fn emitted<C: Carrier>(
     Some(beta * C::emitted(at.sp.emissive, mat.emitter_shape(), lambda) * w)
 }
 
-/// The caustic map's gather at a path's first non-delta vertex under `split`: the whole
-/// map, or with [`CausticSplit::Mixed`] the part for a vertex seen `direct`ly or through
-/// delta bounces.
-fn split_gather<'a, C: Carrier>(split: CausticSplit<'a, C>, direct: bool) -> Option<Gather<'a, C>> {
-    match split {
-        CausticSplit::None => None,
-        CausticSplit::Map(g) | CausticSplit::Volume { surface: g, .. } => Some(g),
-        CausticSplit::Mixed { through, direct: d } => {
-            if direct {
-                d
-            } else {
-                Some(through)
-            }
-        }
-    }
-}
-
-/// The vertex of `walk` at `arrival` (its ray's hit; `None` if the ray escaped): adds what
-/// arrives there to `walk.l`, samples the next direction into `walk.ray`, and returns the
-/// next-event estimate waiting for its shadow ray, and what follows; a path that stops at
-/// its first diffuse-like vertex ([`StopAt::Diffuse`]) writes it to `visible` and ends. Each hit is the shared
-/// step ([`crate::shading::arrive`], [`Arrival::event`]); emission is counted on arrival,
-/// before BLEND coverage is decided; `rules.split` hands the caustic paths to a caustic
-/// map ([`CausticSplit`]).
+/// The vertex of `walk` at `arrival` (its ray's hit; `None` if it escaped), in the order
+/// light meets it: the medium before the hit, the light arriving (the environment on
+/// escape, emission with MIS on arrival, before BLEND coverage is decided), the surface's
+/// event ([`crate::shading::arrive`], [`Arrival::event`]), next-event estimation and the
+/// strategy's gather, then the BSDF sample and the bounce rules. Adds what arrives to
+/// `walk.l`, sets `walk.ray` to the next ray, and returns the next-event estimate waiting
+/// for its shadow ray and what follows; a path the strategy stops
+/// ([`Strategy::stops_at`]) writes its visible point to `visible` and ends.
 #[inline(always)]
-pub(super) fn vertex<C: Carrier>(
+pub(super) fn vertex<C: Carrier, S: Strategy<C>>(
     scene: &Scene,
-    rules: &Rules<'_, C>,
+    rules: &Rules<'_, S>,
     walk: &mut Walk<C>,
     arrival: Option<Arrival<'_, C>>,
     ctx: &mut Context,
@@ -268,7 +226,8 @@ pub(super) fn vertex<C: Carrier>(
 ) -> (Option<Pending<C>>, Next) {
     // A sub-path redoing its split vertex: what arrived there is counted.
     let resume = std::mem::take(&mut walk.branches.resume);
-    let caustic = walk.st.closes_caustic(&rules.split) || resume;
+    let h = walk.st.history(rules.max_depth);
+    let leaves = resume || rules.strategy.leaves_light(&h);
     let met = walk.st.meet.take();
     if scene.has_media() && !resume {
         let at = (arrival.as_ref(), met.is_some());
@@ -276,107 +235,138 @@ pub(super) fn vertex<C: Carrier>(
             return scattered;
         }
     }
-    let st = &mut walk.st;
     let Some(at) = &arrival else {
-        let e = escaped(scene, &walk.ray, &st.prev, st.beta, &walk.lambda);
-        if let (Some(e), false) = (e, caustic) {
-            walk.l += e;
-        }
+        let e = escaped(scene, &walk.ray, &walk.st.prev, walk.st.beta, &walk.lambda);
+        walk.add_unless(e, leaves);
         return (None, Next::End);
     };
     if !resume {
-        st.beta *= at.transmittance;
+        walk.st.beta *= at.transmittance;
     }
-    if let (Some(e), false) = (emitted(scene, at, &st.prev, st.beta, &walk.lambda), caustic) {
-        walk.l += e;
-    }
+    let e = emitted(scene, at, &walk.st.prev, walk.st.beta, &walk.lambda);
+    walk.add_unless(e, leaves);
     if scene.has_media() && super::in_medium::cross(scene, walk, at) {
         return (None, Next::Trace);
     }
-    let st = &mut walk.st;
-    let mut u = ctx.sample.bounce(st.vertex);
-    let before = (rules.wavelength_split && !C::is_hero_only(&walk.lambda)).then_some(st.beta);
-    let ev = if rules.rough != RoughLanes::Hero {
-        at.event_lanes(scene, st.media, &mut st.beta, &mut walk.lambda, &mut u)
-    } else {
-        at.event(scene, st.media, &mut st.beta, &mut walk.lambda, &mut u)
-    };
+    let mut u = ctx.sample.bounce(walk.st.vertex);
+    let rough = rules.strategy.rough();
+    let ev = event(scene, rules, walk, (at, met), rough, &mut u);
     // By reference: the surface stays where `event` built it.
     let s = match &ev {
-        Event::PassThrough(next) => {
-            walk.ray = *next;
-            st.from = Some(at.hit);
-            st.direct = false;
-            return (None, Next::Trace);
-        }
+        Event::PassThrough(next) => return walk.pass_through(*next, at.hit),
         Event::Scatter(s) => s,
     };
-    // The event kept the hero only at a smooth dispersive interface: split instead.
-    if let (Some(beta), true) = (before, C::is_hero_only(&walk.lambda) && s.bsdf.is_delta()) {
-        let split = (beta, &mut walk.lambda);
-        walk.branches.split(&mut walk.l, st, (walk.ray, met), split);
+    if rules.strategy.stops_at(s) {
+        return stop(scene, walk, s, (&mut u, &mut ctx.rays), visible);
     }
-    let lambda = &walk.lambda;
-    if rules.stop == StopAt::Diffuse && is_diffuse_like(&s.bsdf) {
-        let ls = next_event(
-            scene,
-            &Scatterer::Surface(s),
-            lambda,
-            false,
-            &mut u,
-            &mut ctx.rays,
-        );
-        *visible = Some(VisiblePoint {
-            p: s.hit.p,
-            ng: s.hit.ng,
-            frame: s.frame,
-            wo: s.wo,
-            bsdf: s.bsdf,
-            beta: st.beta,
-            lambda: *lambda,
-            hit: s.hit,
-            etas: s.lane_etas(),
-            hero: walk.hero,
-        });
-        return (Some(pending(st.beta, ls, None)), Next::End);
-    }
-    let own = (rules.rough == RoughLanes::OwnHero)
+    let own = (rough == RoughLanes::OwnHero)
         .then(|| {
-            let values = [&mut st.beta, &mut walk.l];
+            let values = [&mut walk.st.beta, &mut walk.l];
             own_hero::draw(s, &mut walk.hero, &mut walk.lambda, values, &mut u)
         })
         .flatten();
     let s = own.as_ref().unwrap_or(s);
-    let lambda = &walk.lambda;
-    let mut nee = None;
-    if !s.bsdf.is_delta() {
-        let ls = next_event(
-            scene,
-            &Scatterer::Surface(s),
-            lambda,
-            true,
-            &mut u,
-            &mut ctx.rays,
-        );
-        let first = st.since_diffuse.is_none();
-        let gather = split_gather(rules.split, st.direct)
-            .filter(|_| first && st.depth + 1 < rules.max_depth)
-            .map(|gather| st.beta * gather(s, lambda));
-        nee = Some(pending(st.beta, ls, gather));
+    let (strategy, rays) = (rules.strategy, &mut ctx.rays);
+    let nee = (!s.bsdf.is_delta()).then(|| light(scene, strategy, walk, (s, &h), &mut u, rays));
+    (nee, bounce(rules.max_depth, walk, s, &mut u))
+}
+
+/// The surface's event at `at` (reached along the walk's ray, untraced if `met`) for a path
+/// keeping `rough` at rough dispersive interfaces; where the event kept the hero only at a
+/// smooth dispersive interface and the strategy splits, the path splits into its
+/// wavelengths instead ([`super::split`]).
+#[inline(always)]
+fn event<C: Carrier, S: Strategy<C>>(
+    scene: &Scene,
+    rules: &Rules<'_, S>,
+    walk: &mut Walk<C>,
+    (at, met): (&Arrival<'_, C>, Option<SurfaceHit>),
+    rough: RoughLanes,
+    u: &mut Bounce<'_>,
+) -> Event<C> {
+    let st = &mut walk.st;
+    let splits = C::SPECTRAL && rules.strategy.splits();
+    let before = (splits && !C::is_hero_only(&walk.lambda)).then_some(st.beta);
+    let ev = if rough != RoughLanes::Hero {
+        at.event_lanes(scene, st.media, &mut st.beta, &mut walk.lambda, u)
+    } else {
+        at.event(scene, st.media, &mut st.beta, &mut walk.lambda, u)
+    };
+    if let (Some(beta), Event::Scatter(s)) = (before, &ev) {
+        if C::is_hero_only(&walk.lambda) && s.bsdf.is_delta() {
+            let split = (beta, &mut walk.lambda);
+            walk.branches.split(&mut walk.l, st, (walk.ray, met), split);
+        }
     }
+    ev
+}
+
+/// The path ends at the visible point `s`: its direct light is estimated with full weight
+/// (BSDF sampling does not continue) and the point is written to `visible`.
+fn stop<C: Carrier>(
+    scene: &Scene,
+    walk: &Walk<C>,
+    s: &Surface<C>,
+    (u, rays): (&mut Bounce<'_>, &mut u64),
+    visible: &mut Option<VisiblePoint<C>>,
+) -> (Option<Pending<C>>, Next) {
+    let (st, lambda) = (&walk.st, &walk.lambda);
+    let ls = next_event(scene, &Scatterer::Surface(s), lambda, false, u, rays);
+    *visible = Some(VisiblePoint {
+        p: s.hit.p,
+        ng: s.hit.ng,
+        frame: s.frame,
+        wo: s.wo,
+        bsdf: s.bsdf,
+        beta: st.beta,
+        lambda: *lambda,
+        hit: s.hit,
+        etas: s.lane_etas(),
+        hero: walk.hero,
+    });
+    (Some(pending(st.beta, ls, None)), Next::End)
+}
+
+/// Next-event estimation at the non-delta vertex `s` reached after the bounces `h`, with
+/// the strategy's gather there to add after it.
+#[inline(always)]
+fn light<C: Carrier, S: Strategy<C>>(
+    scene: &Scene,
+    strategy: &S,
+    walk: &Walk<C>,
+    (s, h): (&Surface<C>, &History),
+    u: &mut Bounce<'_>,
+    rays: &mut u64,
+) -> Pending<C> {
+    let (st, lambda) = (&walk.st, &walk.lambda);
+    let ls = next_event(scene, &Scatterer::Surface(s), lambda, true, u, rays);
+    let gather = strategy.gather(s, lambda, h).map(|g| st.beta * g);
+    pending(st.beta, ls, gather)
+}
+
+/// Samples the BSDF at `s` and follows the sample: the walk's next ray, or the end of the
+/// path (no sample, the bounce limits, Russian roulette).
+#[inline(always)]
+fn bounce<C: Carrier>(
+    max_depth: u32,
+    walk: &mut Walk<C>,
+    s: &Surface<C>,
+    u: &mut Bounce<'_>,
+) -> Next {
+    let st = &mut walk.st;
     let uc = u.bsdf_lobe();
     let ud = u.bsdf_direction_if(s.bsdf.samples_direction());
     let Some(bs) = s.sample_mis(uc, ud, TransportMode::Radiance, &mut walk.lambda) else {
-        return (nee, Next::End);
+        return Next::End;
     };
-    if !st.advance(s, &bs, rules.max_depth, &mut u) {
-        return (nee, Next::End);
+    if !st.advance(s, &bs, max_depth, u) {
+        return Next::End;
     }
     walk.ray = s.spawn(bs.wi);
     st.from = Some(s.hit);
     st.vertex += 1;
     st.direct = false;
-    (nee, Next::Trace)
+    Next::Trace
 }
 
 /// A light sample at throughput `beta`, with the gather to add after it.

@@ -3,7 +3,7 @@
 //! ([`Light`]: s₀ = 1, the scalar power per wavelength in the carrier) through the same
 //! per-hit step as [`super::trace`]. Its 4 wavelengths share the Stokes vector until a
 //! crystal (whose indices and modes depend on the wavelength), a dispersive interface or a
-//! measured metal ([`hero_polarizes`]); from there on it carries the hero alone.
+//! measured metal ([`crate::bsdf::Bsdf::hero_polarizes`]); from there on it carries the hero alone.
 //!
 //! At each hit, with the light arriving along its direction k:
 //! - an ideal polarizer sheet (`extras.iris_polarizer`) passes P·S straight through;
@@ -34,10 +34,8 @@ use crate::medium_stack::MediumStack;
 use crate::polar::modes::InMode;
 use crate::polar::stokes::{linear_polarizer, transverse, Light};
 use crate::scene::Scene;
-use crate::shading::polarized::{
-    hero_polarizes, mueller, polarizer_sheet, s_basis, segment_transmittance, smooth_crystal,
-};
-use crate::shading::{self, is_diffuse_like, Arrival, Event, MAX_DELTA_BOUNCES};
+use crate::shading::polarized::{polarizer_sheet, s_basis, segment_transmittance, smooth_crystal};
+use crate::shading::{self, Arrival, Event, MAX_DELTA_BOUNCES};
 use crate::spectrum::Carrier;
 use glam::Vec2;
 
@@ -208,7 +206,7 @@ fn hit<C: Carrier>(
         }
         Event::Scatter(s) => s,
     };
-    if hero_polarizes(&s.bsdf) {
+    if s.bsdf.hero_polarizes() {
         f.beta = f.beta.keep_hero(&mut f.lambda);
     }
     if !s.bsdf.is_delta() {
@@ -226,7 +224,7 @@ fn hit<C: Carrier>(
     let u = Vec2::new(rng.next_f32(), rng.next_f32());
     let bs = s.sample(uc, u, TransportMode::Importance)?;
     let wi = s.frame.to_world(bs.wi);
-    let (light, factor) = match mueller(&s.bsdf, bs.wi, s.wo) {
+    let (light, factor) = match s.bsdf.mueller(bs.wi, s.wo) {
         Some((n, m)) => {
             let x = s_basis(f.light.k, s.frame.to_world(m), f.light.x);
             f.light.after(&n, x, x, wi)?
@@ -239,6 +237,6 @@ fn hit<C: Carrier>(
     Some(Some(Bounce {
         weight: bs.f * (bs.wi.z.abs() / bs.pdf * factor),
         delta: bs.delta,
-        diffuse: is_diffuse_like(&s.bsdf),
+        diffuse: s.bsdf.is_diffuse_like(),
     }))
 }

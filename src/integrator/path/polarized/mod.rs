@@ -4,7 +4,7 @@
 //! ([`crate::polar::stokes`]). One analyzer serves the sample's 4 wavelengths while the
 //! Mueller matrices met do not depend on them; at a crystal (dispersive indices, modes
 //! whose paths differ by wavelength), a dispersive interface or a measured metal
-//! ([`crate::shading::polarized::hero_polarizes`]) the path keeps its hero alone.
+//! ([`crate::bsdf::Bsdf::hero_polarizes`]) the path keeps its hero alone.
 //!
 //! At each vertex: emission and the environment (unpolarized) count with a₀; next-event
 //! estimation with a·N(light direction)₀, N the surface's normalized Mueller matrix
@@ -17,18 +17,36 @@
 //! "Polarised light in computer graphics", SIGGRAPH Asia course).
 //!
 //! With a caustic map (the polarized hybrid, [`crate::integrator::hybrid`]) the split is
-//! the unpolarized one ([`super::CausticSplit::Map`]): at the first non-delta vertex D₁ the
-//! map's polarized photons are gathered through the analyzer ([`PolarizedGather`]), and
-//! light found after D S+ (crystal surfaces and polarizer sheets count as delta bounces) is
-//! dropped. Not handled: scattering media (the plan refuses them with polarization). Rough
-//! crystals scatter as isotropic dielectrics with their mean index.
+//! the unpolarized one ([`crate::integrator::hybrid::CausticSplit::Map`], through the same
+//! tests [`super::History::closes_caustic`] and [`super::History::first_diffuse`]): at the
+//! first non-delta vertex D₁ the map's polarized photons are gathered through the analyzer
+//! ([`PolarizedGather`]), and light found after D S+ (crystal surfaces and polarizer sheets
+//! count as delta bounces) is dropped. Rough crystals scatter as isotropic dielectrics with
+//! their mean index.
+//!
+//! Shared with the path tracer's vertex ([`super::vertex`]): the path state, its bounce
+//! limits, delta counter and Russian roulette ([`super::state::PathState`]), emission and
+//! the environment with MIS, next-event estimation and its shadow ray
+//! ([`super::vertex::Pending::transmitted`]), the caustic tests. Not shared, so not had:
+//! - scattering media: a phase function here is a scalar (Henyey–Greenstein), with no
+//!   Mueller matrix to carry the analyzer through a scattering event; the plan refuses
+//!   them with polarization (absorbing volumes are traced: Beer–Lambert, and per crystal
+//!   mode);
+//! - the wavelength split: a smooth dispersive interface keeps the hero alone, as the path
+//!   did before the split existed; splitting would change the images of polarized scenes
+//!   with dispersive glass;
+//! - lanes: the vertex's order differs (a crystal's numbers are drawn before emission is
+//!   counted, the analyzer weighs emission, light samples and the gather), so polarized
+//!   paths run on single rays; sharing the vertex means a second generic axis on it, the
+//!   state a path carries besides its throughput (nothing, or the analyzer and crystal
+//!   mode).
 
 mod crystal_step;
 mod surface;
 
 use super::light_sample::{next_event, Scatterer};
 use super::state::PathState;
-use super::vertex::{emitted, escaped};
+use super::vertex::{emitted, escaped, pending};
 use crate::bsdf::TransportMode;
 use crate::material::CrystalDesc;
 use crate::math::Ray;
@@ -37,10 +55,8 @@ use crate::polar::stokes::{linear_polarizer, transverse};
 use crate::polar::Analyzer;
 use crate::render::Context;
 use crate::scene::Scene;
-use crate::shading::polarized::{
-    hero_polarizes, polarizer_sheet, segment_transmittance, smooth_crystal,
-};
-use crate::shading::{self, media, Arrival, Event, Surface};
+use crate::shading::polarized::{polarizer_sheet, segment_transmittance, smooth_crystal};
+use crate::shading::{self, Arrival, Event, Surface};
 use crate::spectrum::Carrier;
 
 /// What the camera of a polarized render looks through.
@@ -105,20 +121,6 @@ struct Polarized<C: Carrier> {
     l: C,
 }
 
-/// Counts a delta bounce at `p` that no light sample can see through (a crystal surface, a
-/// polarizer sheet): no MIS for what the path finds next, one more delta bounce since the
-/// last non-delta one. `false` past the delta bounce limit.
-fn delta_bounce<C: Carrier>(st: &mut PathState<C>, p: glam::Vec3) -> bool {
-    st.prev = super::state::Prev {
-        delta: true,
-        pdf: 0.0,
-        p,
-    };
-    st.since_diffuse = st.since_diffuse.map(|n| n + 1);
-    st.delta_depth += 1;
-    st.delta_depth <= shading::MAX_DELTA_BOUNCES
-}
-
 /// One vertex; `false` when the path ends.
 fn vertex<C: Carrier>(
     scene: &Scene,
@@ -129,8 +131,9 @@ fn vertex<C: Carrier>(
     lambda: &mut C::Lambda,
     ctx: &mut Context,
 ) -> bool {
-    // Light found after D S+ is the caustic map's.
-    let caustic = gather.is_some() && st.since_diffuse.unwrap_or(0) > 0;
+    // Light closing a caustic chain is the map's (the hybrid's split, `CausticPaths`).
+    let h = st.history(max_depth);
+    let caustic = gather.is_some() && h.closes_caustic();
     let Some(at) = arrival else {
         if let (Some(e), false) = (escaped(scene, &w.ray, &st.prev, st.beta, lambda), caustic) {
             w.l += e * w.pol.unpolarized();
@@ -168,7 +171,7 @@ fn vertex<C: Carrier>(
         let x = transverse(axis, k);
         w.pol = w.pol.through(&linear_polarizer(0.0), x, x, k, 1.0);
         w.ray = at.hit.spawn_ray(w.ray.dir);
-        return delta_bounce(st, at.hit.p);
+        return st.delta_bounce(at.hit.p);
     }
     if let (Some((c, nm)), Some((lobe, ud))) = (crystal, uc) {
         return crystal_vertex(scene, (c, nm), w, st, &at, lambda, (lobe, ud.x));
@@ -181,7 +184,7 @@ fn vertex<C: Carrier>(
         }
         Event::Scatter(s) => s,
     };
-    if hero_polarizes(&s.bsdf) {
+    if s.bsdf.hero_polarizes() {
         st.beta = st.beta.keep_hero(lambda);
     }
     let lambda = &*lambda;
@@ -195,16 +198,12 @@ fn vertex<C: Carrier>(
             &mut u,
             &mut ctx.rays,
         );
-        if let Some(shadow) = ls.shadow {
+        if ls.shadow.is_some() {
             let a = surface::through(&w.pol, &s.bsdf, &s.frame, (k_out, ls.wi));
-            let v = match ls.through {
-                Some(m) => ls.value * media::shadow::<C>(scene, &shadow, m, lambda, &mut ctx.rays),
-                None if !scene.occluded(&shadow) => ls.value,
-                None => C::ZERO,
-            };
+            let v = pending(st.beta, ls, None).transmitted(scene, lambda, &mut ctx.rays);
             w.l += st.beta * v * a.unpolarized();
         }
-        if let Some(g) = gather.filter(|_| st.since_diffuse.is_none() && st.depth + 1 < max_depth) {
+        if let Some(g) = gather.filter(|_| h.first_diffuse()) {
             w.l += st.beta * g(&s, lambda, &w.pol);
         }
     }
@@ -250,7 +249,7 @@ fn crystal_vertex<C: Carrier>(
     if b.crossed {
         st.media = beyond;
     }
-    if !delta_bounce(st, at.hit.p) {
+    if !st.delta_bounce(at.hit.p) {
         return false;
     }
     w.pol = b.analyzer;

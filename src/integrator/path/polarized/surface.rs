@@ -8,7 +8,7 @@
 use crate::bsdf::Bsdf;
 use crate::math::Frame;
 use crate::polar::stokes::{Analyzer, DEPOLARIZER};
-use crate::shading::polarized::{mueller, s_basis};
+use crate::shading::polarized::s_basis;
 use crate::spectrum::Carrier;
 use glam::Vec3;
 
@@ -22,7 +22,7 @@ pub(super) fn through<C: Carrier>(
     (wo, wi): (Vec3, Vec3),
 ) -> Analyzer {
     let k_in = -wi;
-    let (n, m) = match mueller(b, frame.to_local(wo), frame.to_local(wi)) {
+    let (n, m) = match b.mueller(frame.to_local(wo), frame.to_local(wi)) {
         Some(x) => x,
         None => (DEPOLARIZER, Vec3::Z),
     };
