@@ -38,6 +38,7 @@ fn integrator(hybrid: bool, split: bool) -> Integrator {
                 spectral_mis: true,
                 split,
             },
+            polarization: None,
         },
         true => Integrator::Hybrid {
             max_depth: 64,
@@ -45,6 +46,7 @@ fn integrator(hybrid: bool, split: bool) -> Integrator {
                 split,
                 ..PhotonSettings::default().caustics()
             },
+            polarization: None,
         },
     }
 }

@@ -1,5 +1,6 @@
 //! Moissanite's pavilion seen through the table is doubled, diamond's is not (issue 34),
-//! rendered end to end with the polarized path tracer ([`Integrator::Polarized`]).
+//! rendered end to end with the polarized path tracer ([`Integrator::Path`] with a
+//! `polarization`).
 //!
 //! Scene: a round brilliant (Tolkowsky proportions, girdle diameter 1, table up) under an
 //! environment of 15° checks (radiance 1 and 0.1), so neighbouring pavilion facets, which
@@ -146,11 +147,12 @@ fn render(scene: &Scene, cam: &CameraDesc, polarizer_deg: f32, seed: u64) -> Ima
         spectral: true,
         ..common::render_settings((PIXELS, PIXELS), SPP, seed, 0)
     };
-    let integrator = Integrator::Polarized {
+    let integrator = Integrator::Path {
         max_depth: 32,
-        polarization: Polarization {
+        dispersion: iris::integrator::path::Dispersion::ALL,
+        polarization: Some(Polarization {
             polarizer: Some(polarizer_deg.to_radians()),
-        },
+        }),
     };
     integrator
         .render(scene, &Camera::new(cam, PIXELS, PIXELS), &settings)

@@ -1,5 +1,5 @@
 //! Polarized transport against closed forms (issue 34), rendered end to end with the
-//! polarized path tracer ([`Integrator::Polarized`]):
+//! polarized path tracer ([`Integrator::Path`] with a `polarization`):
 //!
 //! - Malus's law: unpolarized light through a polarizer sheet and the camera's polarizer at
 //!   θ gives ½ cos²θ of the light. Both renders use the same seed, so they share every

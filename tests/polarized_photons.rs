@@ -41,9 +41,9 @@ fn hybrid(photons: u64) -> Integrator {
         max_depth: 32,
         caustics: CausticSettings {
             photons,
-            polarization: Some(Polarization { polarizer: None }),
             ..PhotonSettings::default().caustics()
         },
+        polarization: Some(Polarization { polarizer: None }),
     }
 }
 
@@ -168,9 +168,10 @@ fn a_calcite_retarder_between_crossed_sheets_agrees_with_the_path_tracer() {
     let d = Vec3::new(3.0, 1.0, 0.0).normalize();
     let cam = ortho(d * 8.0, Vec3::ZERO, Vec3::Y, 0.2);
     let size = 24;
-    let path = Integrator::Polarized {
+    let path = Integrator::Path {
         max_depth: 32,
-        polarization: Polarization { polarizer: None },
+        dispersion: iris::integrator::path::Dispersion::ALL,
+        polarization: Some(Polarization { polarizer: None }),
     };
     let (path_spp, passes) = (1024, 256);
     let diagonal = Some(Vec3::new(1.0, 0.0, 1.0).normalize());
@@ -272,17 +273,18 @@ fn polarized_photons_reflect_off_rough_glass_as_camera_paths_see_it() {
             let polarization = Polarization {
                 polarizer: camera.map(f32::to_radians),
             };
-            let path = Integrator::Polarized {
+            let path = Integrator::Path {
                 max_depth: 8,
-                polarization,
+                dispersion: iris::integrator::path::Dispersion::ALL,
+                polarization: Some(polarization),
             };
             let hybrid = Integrator::Hybrid {
                 max_depth: 8,
                 caustics: CausticSettings {
                     photons: 50_000,
-                    polarization: Some(polarization),
                     ..PhotonSettings::default().caustics()
                 },
+                polarization: Some(polarization),
             };
             let p = render(&path, &scene, &cam, size, 512);
             let h = render(&hybrid, &scene, &cam, size, 128);

@@ -121,6 +121,30 @@ fn assert_options_merge_exactly(base: &RenderOptions, n: u32, dir: &Path) {
     );
 }
 
+/// The methods whose merges the tests below check: every method whose declaration takes
+/// shards must be one of them (a new method comes with its merge test).
+#[test]
+fn every_method_declaring_shards_has_a_merge_test() {
+    let merged = [
+        Method::Path,
+        Method::Whitted,
+        Method::Sppm,
+        Method::Hybrid,
+        Method::Vcm,
+        Method::Bpt,
+        Method::Photon,
+    ];
+    for m in Method::ALL {
+        if m != Method::Auto && m.caps().shards.is_yes() {
+            assert!(
+                merged.contains(&m),
+                "--method {} has no merge test",
+                m.name()
+            );
+        }
+    }
+}
+
 #[test]
 fn path_and_whitted_merges_are_bit_identical_to_one_render() {
     let scene = asset("paper/fig4_4_1_prism.glb");

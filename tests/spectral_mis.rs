@@ -41,6 +41,7 @@ fn renders(scene: &Scene, size: u32, spp: u32, k: u64, spectral_mis: bool) -> Ve
             spectral_mis,
             split: false,
         },
+        polarization: None,
     };
     (1..=k)
         .map(|seed| {

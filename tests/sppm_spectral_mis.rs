@@ -165,6 +165,7 @@ fn sppm_agrees_with_the_path_tracer_through_rough_dispersive_glass() {
     let path = Integrator::Path {
         max_depth: 32,
         dispersion: Dispersion::ALL,
+        polarization: None,
     };
     let k = 4;
     let paths: Vec<ImageRgb> = (1..=k)

@@ -48,6 +48,7 @@ fn integrator(split: bool) -> Integrator {
             spectral_mis: true,
             split,
         },
+        polarization: None,
     }
 }
 
@@ -60,6 +61,7 @@ fn hybrid(split: bool) -> Integrator {
             split,
             ..photons.caustics()
         },
+        polarization: None,
     }
 }
 

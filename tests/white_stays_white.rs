@@ -91,6 +91,7 @@ fn render_spectral(scene: &Scene, cam: &CameraDesc, size: u32, spp: u32, split: 
             spectral_mis: true,
             split,
         },
+        polarization: None,
     };
     integrator
         .render(scene, &Camera::new(cam, size, size), &settings)

@@ -85,10 +85,9 @@ pub fn choose(flags: AdaptiveFlags, method: Method) -> Result<AdaptiveChoice> {
     if flags.mode == AdaptiveMode::Off {
         return Ok(off("off (--adaptive off): every pixel takes every sample"));
     }
-    if method == Method::Sppm {
-        return Ok(off(
-            "off for SPPM: every pixel's visible point takes part in every pass",
-        ));
+    let caps = method.caps();
+    if let Some(why) = caps.adaptive.why_not() {
+        return Ok(off(&format!("off for --method {}: {why}", caps.name)));
     }
     if flags.shard {
         return Ok(off(
@@ -96,12 +95,14 @@ pub fn choose(flags: AdaptiveFlags, method: Method) -> Result<AdaptiveChoice> {
              into one render bit for bit",
         ));
     }
-    if flags.mode == AdaptiveMode::Auto && flags.media && method == Method::Hybrid {
-        return Ok(off(
-            "off for the hybrid with scattering media: its volumetric caustic map's blotches \
-             look alike in both halves of a tile, so tiles would rest too soon (--adaptive on \
-             to let them)",
-        ));
+    if let (AdaptiveMode::Auto, true, Some(why)) =
+        (flags.mode, flags.media, caps.estimate_in_media.why_not())
+    {
+        return Ok(off(&format!(
+            "off for --method {} with scattering media: {why}, so tiles would rest too soon \
+             (--adaptive on to let them)",
+            caps.name
+        )));
     }
     if flags.mode == AdaptiveMode::Auto && !flags.open {
         return Ok(off(
@@ -181,5 +182,38 @@ mod tests {
         assert!(err.to_string().contains("--shard"), "{err}");
         assert!(AdaptiveMode::parse("sometimes").is_err());
         assert_eq!(AdaptiveMode::parse("on").unwrap(), AdaptiveMode::On);
+    }
+
+    /// Adaptive sampling is on exactly for the methods whose declaration says so, and off
+    /// with the declared reason otherwise; in media under `auto`, the same for the error
+    /// estimate's declaration.
+    #[test]
+    fn the_declarations_decide() {
+        for m in Method::ALL {
+            let caps = m.caps();
+            let c = choose(flags(AdaptiveMode::On, true, false), m).unwrap();
+            assert_eq!(
+                c.adaptive.is_some(),
+                caps.adaptive.is_yes(),
+                "{}",
+                caps.name
+            );
+            if let Some(why) = caps.adaptive.why_not() {
+                assert!(c.reason.contains(why), "{}", c.reason);
+            }
+            let media = AdaptiveFlags {
+                media: true,
+                ..flags(AdaptiveMode::Auto, true, false)
+            };
+            let c = choose(media, m).unwrap();
+            let expected = caps.adaptive.is_yes() && caps.estimate_in_media.is_yes();
+            assert_eq!(
+                c.adaptive.is_some(),
+                expected,
+                "{}: {}",
+                caps.name,
+                c.reason
+            );
+        }
     }
 }

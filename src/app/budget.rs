@@ -243,11 +243,13 @@ impl TargetStop {
         }
     }
 
-    /// The stop for `method` on `scene`: from [`MIN_STOP_UNITS_MEDIA_HYBRID`] passes for the
-    /// hybrid in a scene with media.
+    /// The stop for `method` on `scene`: from [`MIN_STOP_UNITS_MEDIA_HYBRID`] units for a
+    /// method whose error estimate is not to be trusted early in a scene with media (its
+    /// declaration, [`crate::integrator::capability::Capabilities::estimate_in_media`]: the
+    /// hybrid).
     pub fn for_render(target: Option<f64>, scene: &crate::scene::Scene, method: Method) -> Self {
         let mut stop = TargetStop::new(target);
-        if scene.has_media() && method == Method::Hybrid {
+        if scene.has_media() && !method.caps().estimate_in_media.is_yes() {
             stop.min_units = MIN_STOP_UNITS_MEDIA_HYBRID;
         }
         stop

@@ -63,7 +63,7 @@ impl RenderJob<'_> {
         let (scene, (w, h)) = (&self.prepared.scene, self.prepared.size);
         let camera = Camera::new(&self.prepared.camera, w, h);
         let integrator = Integrator::new(self.plan.method, self.opts.max_depth, &self.opts.photon)?
-            .polarized(self.plan.polarization);
+            .with_polarization(self.plan.polarization);
         let mut settings = self.settings();
         settings.quiet = true;
         settings.time_limit = None;

@@ -158,7 +158,7 @@ impl<'a> RenderJob<'a> {
         plan.stages.push(adaptive.stage());
         // What the method cannot render is refused now, before any pass runs.
         Integrator::new(plan.method, opts.max_depth, &opts.photon)?
-            .polarized(plan.polarization)
+            .with_polarization(plan.polarization)
             .check_scene(
                 &prepared.scene,
                 &Camera::new(&prepared.camera, w, h),
@@ -229,7 +229,7 @@ impl<'a> RenderJob<'a> {
         let camera = Camera::new(&self.prepared.camera, w, h);
         let method = self.plan.method;
         let integrator = Integrator::new(method, opts.max_depth, &opts.photon)?
-            .polarized(self.plan.polarization);
+            .with_polarization(self.plan.polarization);
         let settings = RenderSettings {
             cancel,
             ..self.settings()

@@ -5,6 +5,7 @@
 use super::budget::Budget;
 use crate::accel::Backend;
 use crate::denoise::DenoiseMode;
+use crate::integrator::capability::Units;
 use crate::integrator::Method;
 use crate::measure::MeasureOptions;
 use crate::output::DisplayOptions;
@@ -195,21 +196,16 @@ impl RenderOptions {
         check_distinct(&outputs, &inputs)
     }
 
-    /// The most units `method` takes: samples per pixel, or passes for SPPM.
+    /// The most units `method` takes ([`Units`]): samples per pixel, or passes.
     pub(super) fn units(&self, method: Method) -> u32 {
-        if method == Method::Sppm {
-            self.photon.passes
-        } else {
-            self.spp
+        match method.caps().units {
+            Units::Passes => self.photon.passes,
+            Units::Samples => self.spp,
         }
     }
 }
 
 /// "samples" or "passes": what `method` counts in units.
 pub fn unit_name(method: Method) -> &'static str {
-    if method == Method::Sppm {
-        "passes"
-    } else {
-        "samples"
-    }
+    method.caps().units.name()
 }

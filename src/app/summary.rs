@@ -5,6 +5,7 @@
 
 use crate::image::metrics::ErrorMetrics;
 use crate::image::ImageRgb;
+use crate::integrator::capability::{Photons, Units};
 use crate::integrator::Method;
 use crate::measure::report::ReportRow;
 use crate::render::{EndReason, RenderStats};
@@ -68,17 +69,17 @@ impl RenderSummary {
         } else {
             (self.stats.samples / pixels.max(1)).to_string()
         };
-        match self.method {
-            Method::Sppm => format!(
+        match self.method.caps().photons {
+            Photons::Passes => format!(
                 "{} passes, {} photons",
                 self.stats.passes, self.stats.photons
             ),
-            Method::Photon => format!("{spp} spp, {} photons", self.stats.photons),
-            Method::Hybrid => format!(
+            Photons::Map => format!("{spp} spp, {} photons", self.stats.photons),
+            Photons::Caustic => format!(
                 "{spp} spp, {} caustic photons ({} in the last pass)",
                 self.stats.photons, self.stats.photons_per_pass
             ),
-            _ => format!("{spp} spp"),
+            Photons::None | Photons::LightSubpaths => format!("{spp} spp"),
         }
     }
 
@@ -122,7 +123,7 @@ impl RenderSummary {
             }
             EndReason::Interrupted => "interrupted (Ctrl-C or SIGTERM): the image so far".into(),
             EndReason::Samples => {
-                let unit = if self.method == Method::Sppm {
+                let unit = if self.method.caps().units == Units::Passes {
                     format!("{} passes", self.stats.passes)
                 } else {
                     let pixels = u64::from(self.image.width) * u64::from(self.image.height);

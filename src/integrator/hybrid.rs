@@ -6,7 +6,7 @@
 //! [`super::caustic`]'s; the camera side is [`path::camera_path`] with the strategy
 //! [`CausticPaths`] ([`split`]).
 //!
-//! Under polarized transport ([`CausticSettings::polarization`], docs/gem-optics.md) the
+//! Under polarized transport (the `polarization` of [`super::Integrator::Hybrid`], docs/gem-optics.md) the
 //! same passes run with polarized photons ([`crate::photon::polarized`], the map keeping
 //! each photon's Stokes vector) and polarized camera paths ([`path::polarized::radiance`]
 //! gathering through their analyzer), single rays, map mode only.
@@ -38,6 +38,7 @@
 //! ([`super::photon_pass::RadiusSequence::replay`]): its passes are bit for bit those of
 //! one render.
 
+use super::capability::{Capabilities, Photons, Support, Units};
 use super::caustic::{self, CausticMap};
 use super::light_trace::{self, Splatter};
 use super::pass_paths::PassPaths;
@@ -58,21 +59,46 @@ mod split;
 
 pub use split::{CausticPaths, CausticSplit, Gather};
 
+/// What `--method hybrid` renders and how ([`crate::integrator::Method::caps`]).
+pub const CAPABILITIES: Capabilities = Capabilities {
+    name: "hybrid",
+    purpose: "all the light, with the caustics under a stone from photons",
+    units: Units::Samples,
+    photons: Photons::Caustic,
+    media: Support::Yes,
+    orthographic: Support::Yes,
+    polarization: Support::Yes,
+    rayleigh_spectral: Support::No(
+        "carries in RGB at the channels' dominant wavelengths (spectrally its photons would \
+         keep one wavelength each)",
+    ),
+    lanes: Support::Yes,
+    shards: Support::Yes,
+    adaptive: Support::Yes,
+    estimate_in_media: Support::No(
+        "its volumetric caustic map's blotches look alike in both halves of a tile",
+    ),
+    progressive: Support::Yes,
+    pixel_bytes: 0,
+};
+
 /// Renders with the hybrid: `settings.spp` passes of one sample per pixel (a shard: the
-/// passes `range`, absolute indices), fewer if the time limit or the observer stops it.
+/// passes `range`, absolute indices), fewer if the time limit or the observer stops it;
+/// `paths` is (the bounces a camera path takes, polarized transport): polarized photons and
+/// camera paths when it is on.
 pub fn render(
     scene: &Scene,
     camera: &Camera,
-    max_depth: u32,
+    paths: (u32, Option<Polarization>),
     cs: &CausticSettings,
     settings: &RenderSettings,
     range: Option<std::ops::Range<u64>>,
     observer: Option<Observer>,
 ) -> Result<(Film, RenderStats)> {
     if settings.spectral {
-        run::<SampledSpectrum>(scene, camera, max_depth, cs, settings, range, observer)
+        run::<SampledSpectrum>(scene, camera, paths, cs, settings, range, observer)
     } else {
-        run::<Vec3>(scene, camera, max_depth, cs, settings, range, observer)
+        run::<Vec3>(scene, camera, paths, cs, settings, range, observer)
     }
 }
 
@@ -94,7 +120,7 @@ fn initial_radius(
 fn run<C: Carrier>(
     scene: &Scene,
     camera: &Camera,
-    max_depth: u32,
+    (max_depth, polarization): (u32, Option<Polarization>),
     cs: &CausticSettings,
     settings: &RenderSettings,
     range: Option<std::ops::Range<u64>>,
@@ -106,7 +132,14 @@ fn run<C: Carrier>(
     let schedule =
         crate::render::schedule(u64::from(settings.spp.max(1)), range, 1, false, "hybrid");
     let mut setup = Prepass::now();
-    let (budget, mut map) = caustic_budget::<C>(scene, camera, settings, max_depth, cs, &emitter)?;
+    let (budget, mut map) = caustic_budget::<C>(
+        scene,
+        camera,
+        settings,
+        (max_depth, polarization),
+        cs,
+        &emitter,
+    )?;
     if let Some(b) = &budget {
         setup.rays += b.rays;
         setup.photons += b.photons;
@@ -186,7 +219,7 @@ fn run<C: Carrier>(
             let (rays, bad) = camera_pass::<C>(
                 scene,
                 camera,
-                (max_depth, cs.dispersion(), cs.polarization),
+                (max_depth, cs.dispersion(), polarization),
                 (settings, lanes),
                 lambda,
                 (&map, image.as_deref(), cs.mode),
@@ -215,11 +248,11 @@ fn caustic_budget<C: Carrier>(
     scene: &Scene,
     camera: &Camera,
     settings: &RenderSettings,
-    max_depth: u32,
+    (max_depth, polarization): (u32, Option<Polarization>),
     cs: &CausticSettings,
     emitter: &crate::photon::emit::PhotonEmitter,
 ) -> Result<(Option<photon_budget::PhotonBudget>, CausticMap)> {
-    let polarize = |m: CausticMap| match cs.polarization {
+    let polarize = |m: CausticMap| match polarization {
         Some(_) => m.polarized(),
         None => m,
     };

@@ -2,22 +2,17 @@
 //! [`crate::render::PIXEL_MEMORY_BUDGET`] before anything is allocated.
 //! Units: bytes.
 
-use super::{path, Method};
+use super::Method;
 use crate::error::{Error, Result};
-use crate::spectrum::SampledSpectrum;
 use glam::Vec3;
 
-/// Bytes each pixel costs `method` (the accumulation buffers, the images handed to
-/// observers and writers, coverage and the output's encoding; SPPM adds its per-pixel
-/// visible point).
+/// Bytes each pixel costs `method`: the accumulation buffers, the images handed to
+/// observers and writers, coverage and the output's encoding, and what its declaration
+/// adds ([`super::capability::Capabilities::pixel_bytes`]: SPPM's per-pixel visible point).
 pub fn bytes_per_pixel(method: Method) -> u64 {
     use std::mem::size_of;
     let common = size_of::<crate::image::fixed::PixelSums>() + 3 * size_of::<Vec3>() + 16 + 8;
-    let extra = match method {
-        Method::Sppm => size_of::<Option<path::VisiblePoint<SampledSpectrum>>>(),
-        _ => 0,
-    };
-    (common + extra) as u64
+    (common + method.caps().pixel_bytes) as u64
 }
 
 /// Rejects a `width × height` image whose per-pixel buffers for `method` would exceed

@@ -7,8 +7,10 @@ pub mod caustic;
 pub mod hybrid;
 pub mod light_trace;
 mod memory;
+mod method;
 mod pass_paths;
 pub use memory::{bytes_per_pixel, check_memory};
+pub use method::Method;
 pub mod path;
 pub mod photon_budget;
 pub mod photon_map;
@@ -30,6 +32,7 @@ use crate::render::{
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::Vec3;
+use path::polarized::Polarization;
 use path::LaneWidth;
 pub use settings::{
     check_depth, CausticMode, CausticSettings, PhotonMapSettings, PhotonSettings, SppmSettings,
@@ -37,84 +40,10 @@ pub use settings::{
 };
 use std::ops::Range;
 
-/// The rendering method (`--method`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Method {
-    /// Recursive ray tracing after Cropp & Zhang, "Light Refraction with Dispersion", §4:
-    /// direct light from punctual lights, Fresnel-weighted reflection and refraction branches.
-    Whitted,
-    /// Unidirectional path tracing with next-event estimation and MIS.
-    Path,
-    /// Classic photon mapping (Jensen): direct light by shadow rays, a caustic map gathered
-    /// at the first diffuse hit, a global map reached by final gathering.
-    Photon,
-    /// Stochastic progressive photon mapping in passes (Hachisuka & Jensen 2009, radius
-    /// sequence of Knaus & Zwicker 2011).
-    Sppm,
-    /// The path tracer with a progressive caustic photon map for exactly the light paths it
-    /// cannot sample (light → delta chain → first non-delta surface): [`hybrid`].
-    Hybrid,
-    /// Vertex connection and merging: bidirectional connections and photon merging under
-    /// one multiple importance sampling ([`vcm`]).
-    Vcm,
-    /// Bidirectional path tracing: [`vcm`] without merging (unbiased).
-    Bpt,
-    /// `Path`, `Bpt`, `Hybrid`, `Vcm` or `Sppm` from the materials and the photon probes: a
-    /// choice the render plan makes ([`crate::plan::resolve_method`]) before an
-    /// [`Integrator`] exists; [`Integrator::new`] rejects it unresolved.
-    Auto,
-}
-
-impl Method {
-    /// Every method, in the order `--method` lists them.
-    pub const ALL: [Method; 8] = [
-        Method::Whitted,
-        Method::Path,
-        Method::Photon,
-        Method::Sppm,
-        Method::Hybrid,
-        Method::Vcm,
-        Method::Bpt,
-        Method::Auto,
-    ];
-
-    /// The method's command-line name, also the run name in reports and file names.
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::Whitted => "whitted",
-            Method::Path => "path",
-            Method::Photon => "photon",
-            Method::Sppm => "sppm",
-            Method::Hybrid => "hybrid",
-            Method::Vcm => "vcm",
-            Method::Bpt => "bpt",
-            Method::Auto => "auto",
-        }
-    }
-
-    /// What a method is good for, in a sentence for someone choosing how to light a gem.
-    pub fn purpose(self) -> &'static str {
-        match self {
-            Method::Whitted => "a quick look: sharp reflections and refractions, no soft light",
-            Method::Path => "all the light, soft and exact; caustics come slowly and noisy",
-            Method::Photon => "caustics fast from a photon map, slightly blurred",
-            Method::Sppm => "sharp caustics through glass, refining pass by pass",
-            Method::Hybrid => "all the light, with the caustics under a stone from photons",
-            Method::Vcm => "the hardest light: caustics seen in mirrors and through glass",
-            Method::Bpt => "small lights and caustics seen directly, without bias",
-            Method::Auto => "chosen from the scene",
-        }
-    }
-
-    /// Parses `--method NAME` ([`crate::error::parse_name`]).
-    pub fn parse(s: &str) -> Result<Method> {
-        let names = Method::ALL.map(|m| (m.name(), m));
-        crate::error::parse_name("--method", s, &names)
-    }
-}
-
 /// An integrator: the method and the settings it uses, and its own render. A closed enum;
-/// `auto` is not a variant (the plan resolves it first).
+/// `auto` is not a variant (the plan resolves it first). What each method can render is
+/// its declaration ([`Method::caps`]); polarized transport is one setting,
+/// `polarization`, in the variants of the methods that declare it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Integrator {
     /// Recursive ray tracing ([`whitted`]).
@@ -127,16 +56,12 @@ pub enum Integrator {
         /// Bounces per path, at most [`MAX_DEPTH`].
         max_depth: u32,
         /// Spectral transport: what camera paths keep of their wavelengths at dispersive
-        /// interfaces ([`path::Dispersion::ALL`] by default; less for comparisons).
+        /// interfaces ([`path::Dispersion::ALL`] by default; less for comparisons). Polarized
+        /// paths keep their hero alone from a crystal on, whatever this says.
         dispersion: path::Dispersion,
-    },
-    /// The path tracer with polarized transport ([`path::polarized`]): Stokes vectors, one
-    /// wavelength a path, birefringent crystals, a polarizer on the camera.
-    Polarized {
-        /// Bounces per path, at most [`MAX_DEPTH`].
-        max_depth: u32,
-        /// What the camera looks through.
-        polarization: path::polarized::Polarization,
+        /// Polarized transport ([`path::polarized`]): Stokes vectors, one wavelength a
+        /// path, birefringent crystals, a polarizer on the camera; `None`: off.
+        polarization: Option<Polarization>,
     },
     /// Classic photon mapping with a final gather ([`photon_map`]).
     PhotonMap {
@@ -158,6 +83,8 @@ pub enum Integrator {
         max_depth: u32,
         /// Caustic photons per pass, initial radius and α.
         caustics: CausticSettings,
+        /// Polarized transport: polarized caustic photons and camera paths; `None`: off.
+        polarization: Option<Polarization>,
     },
     /// Vertex connection and merging, or bidirectional path tracing ([`vcm`]).
     Vcm {
@@ -178,6 +105,7 @@ impl Integrator {
             Method::Path => Integrator::Path {
                 max_depth,
                 dispersion: path::Dispersion::ALL,
+                polarization: None,
             },
             Method::Photon => Integrator::PhotonMap {
                 max_depth,
@@ -190,6 +118,7 @@ impl Integrator {
             Method::Hybrid => Integrator::Hybrid {
                 max_depth,
                 caustics: photon.caustics(),
+                polarization: None,
             },
             Method::Vcm | Method::Bpt => Integrator::Vcm {
                 max_depth,
@@ -207,7 +136,7 @@ impl Integrator {
     pub fn method(&self) -> Method {
         match self {
             Integrator::Whitted { .. } => Method::Whitted,
-            Integrator::Path { .. } | Integrator::Polarized { .. } => Method::Path,
+            Integrator::Path { .. } => Method::Path,
             Integrator::PhotonMap { .. } => Method::Photon,
             Integrator::Sppm { .. } => Method::Sppm,
             Integrator::Hybrid { .. } => Method::Hybrid,
@@ -221,12 +150,38 @@ impl Integrator {
         match *self {
             Integrator::Whitted { max_depth }
             | Integrator::Path { max_depth, .. }
-            | Integrator::Polarized { max_depth, .. }
             | Integrator::PhotonMap { max_depth, .. }
             | Integrator::Sppm { max_depth, .. }
             | Integrator::Hybrid { max_depth, .. }
             | Integrator::Vcm { max_depth, .. } => max_depth,
         }
+    }
+
+    /// Polarized transport, where the method has it and it is on.
+    pub fn polarization(&self) -> Option<Polarization> {
+        match *self {
+            Integrator::Path { polarization, .. } | Integrator::Hybrid { polarization, .. } => {
+                polarization
+            }
+            _ => None,
+        }
+    }
+
+    /// This integrator with polarized transport set to `polarization` (the plan's
+    /// [`crate::plan::Plan::decide_polarization`]) where its method declares it
+    /// ([`capability::Capabilities::polarization`]); other methods are returned unchanged
+    /// (the plan has already refused them).
+    pub fn with_polarization(mut self, polarization: Option<Polarization>) -> Integrator {
+        if let Integrator::Path {
+            polarization: p, ..
+        }
+        | Integrator::Hybrid {
+            polarization: p, ..
+        } = &mut self
+        {
+            *p = polarization;
+        }
+        self
     }
 
     /// Rejects settings outside the CLI's bounds (`--max-depth` in 1..=[`MAX_DEPTH`], the
@@ -235,72 +190,11 @@ impl Integrator {
     pub fn check(&self) -> Result<()> {
         check_depth(self.max_depth())?;
         match self {
-            Integrator::Whitted { .. } | Integrator::Path { .. } | Integrator::Polarized { .. } => {
-                Ok(())
-            }
+            Integrator::Whitted { .. } | Integrator::Path { .. } => Ok(()),
             Integrator::PhotonMap { photons, .. } => photons.check(),
             Integrator::Sppm { sppm, .. } => sppm.check(),
             Integrator::Hybrid { caustics, .. } => caustics.check(),
             Integrator::Vcm { vcm, .. } => vcm.check(),
-        }
-    }
-
-    /// Radiance arriving along `ray` at the sample's wavelengths `lambda` (linear RGB when
-    /// `C` is [`Vec3`]) for the per-sample methods; `None` for the photon methods and the
-    /// hybrid, whose estimates need their maps or passes.
-    pub fn radiance<C: Carrier>(
-        &self,
-        scene: &Scene,
-        ray: &Ray,
-        lambda: C::Lambda,
-        ctx: &mut Context,
-    ) -> Option<C> {
-        match *self {
-            Integrator::Whitted { max_depth } => {
-                Some(whitted::radiance(scene, ray, max_depth, lambda, ctx))
-            }
-            Integrator::Path {
-                max_depth,
-                dispersion,
-            } => Some(path::radiance(
-                scene,
-                ray,
-                (max_depth, dispersion),
-                lambda,
-                ctx,
-            )),
-            Integrator::PhotonMap { .. }
-            | Integrator::Polarized { .. }
-            | Integrator::Sppm { .. }
-            | Integrator::Hybrid { .. }
-            | Integrator::Vcm { .. } => None,
-        }
-    }
-
-    /// This integrator with polarized transport when `polarization` says so (the plan's
-    /// [`crate::plan::Plan::decide_polarization`]): the path tracer becomes
-    /// [`Integrator::Polarized`], the hybrid traces polarized photons and camera paths;
-    /// other methods are returned unchanged (the plan has already refused them).
-    pub fn polarized(self, polarization: Option<path::polarized::Polarization>) -> Integrator {
-        match (self, polarization) {
-            (Integrator::Path { max_depth, .. }, Some(polarization)) => Integrator::Polarized {
-                max_depth,
-                polarization,
-            },
-            (
-                Integrator::Hybrid {
-                    max_depth,
-                    mut caustics,
-                },
-                p @ Some(_),
-            ) => {
-                caustics.polarization = p;
-                Integrator::Hybrid {
-                    max_depth,
-                    caustics,
-                }
-            }
-            (other, _) => other,
         }
     }
 
@@ -330,8 +224,8 @@ impl Integrator {
         Ok((film.mean(), stats))
     }
 
-    /// The units a whole render takes: SPPM's passes, else `settings.spp` (samples per
-    /// pixel; the hybrid's passes).
+    /// The units a whole render takes ([`capability::Units`]): SPPM's passes, else
+    /// `settings.spp` (samples per pixel; the hybrid's passes).
     pub fn total_units(&self, settings: &RenderSettings) -> u64 {
         match self {
             Integrator::Sppm { sppm, .. } => u64::from(sppm.passes.max(1)),
@@ -344,7 +238,8 @@ impl Integrator {
     /// unit k of the whole render (the sampler's blocks are the whole render's; SPPM and
     /// the hybrid compute the whole render's radius sequence up to the shard's first
     /// pass), so the shards' exact sums add up to the whole render's
-    /// ([`crate::image::ExactImage::add`]). Returns the film.
+    /// ([`crate::image::ExactImage::add`]). Returns the film. The one `match` from a
+    /// method to its render.
     pub fn render_units(
         &self,
         scene: &Scene,
@@ -354,7 +249,9 @@ impl Integrator {
         observer: Option<Observer>,
     ) -> Result<(Film, RenderStats)> {
         self.check_scene(scene, camera, settings.spectral)?;
-        check_memory(settings.width, settings.height, self.method())?;
+        let method = self.method();
+        capability::check_schedule(method, range.is_some(), settings.time_limit.is_some())?;
+        check_memory(settings.width, settings.height, method)?;
         let total = self.total_units(settings);
         if let Some(r) = &range {
             if r.start >= r.end || r.end > total {
@@ -366,112 +263,147 @@ impl Integrator {
         }
         let pool = crate::render::thread_pool(settings)?;
         let width = LaneWidth::choose(scene)?;
-        match self {
+        pool.install(|| match *self {
+            Integrator::Whitted { max_depth } => {
+                PerSample::Whitted { max_depth }.render(scene, camera, settings, range, observer)
+            }
+            Integrator::Path {
+                max_depth,
+                polarization: Some(polarization),
+                ..
+            } => PerSample::Polarized {
+                max_depth,
+                polarization,
+            }
+            .render(scene, camera, settings, range, observer),
             Integrator::Path {
                 max_depth,
                 dispersion,
-            } if width != LaneWidth::Scalar => {
-                let rules = (*max_depth, *dispersion);
-                pool.install(|| {
-                    render_batches(
-                        camera,
-                        settings,
-                        range,
-                        Prepass::now(),
-                        observer,
-                        |starts, jobs, out| {
-                            path::estimate_path(
-                                scene,
-                                (rules, width),
-                                settings.spectral,
-                                starts,
-                                jobs,
-                                out,
-                            )
-                        },
+                ..
+            } if width != LaneWidth::Scalar => render_batches(
+                camera,
+                settings,
+                range,
+                Prepass::now(),
+                observer,
+                |starts, jobs, out| {
+                    path::estimate_path(
+                        scene,
+                        ((max_depth, dispersion), width),
+                        settings.spectral,
+                        starts,
+                        jobs,
+                        out,
                     )
-                })
+                },
+            ),
+            Integrator::Path {
+                max_depth,
+                dispersion,
+                ..
+            } => PerSample::Path {
+                max_depth,
+                dispersion,
             }
-            Integrator::Whitted { .. } | Integrator::Path { .. } | Integrator::Polarized { .. } => {
-                pool.install(|| {
-                    render_samples(
-                        camera,
-                        settings,
-                        range,
-                        Prepass::now(),
-                        observer,
-                        |ray, u, ctx| {
-                            self.per_sample(scene, camera, settings.spectral, ray, u, ctx)
-                        },
-                    )
-                })
-            }
-            Integrator::PhotonMap { max_depth, photons } => pool.install(|| {
-                photon_map::render(
-                    scene, camera, *max_depth, photons, settings, range, observer,
-                )
-            }),
-            Integrator::Sppm { max_depth, sppm } => pool.install(|| {
-                sppm::render(scene, camera, *max_depth, sppm, settings, range, observer)
-            }),
+            .render(scene, camera, settings, range, observer),
+            Integrator::PhotonMap {
+                max_depth,
+                ref photons,
+            } => photon_map::render(scene, camera, max_depth, photons, settings, range, observer),
+            Integrator::Sppm {
+                max_depth,
+                ref sppm,
+            } => sppm::render(scene, camera, max_depth, sppm, settings, range, observer),
             Integrator::Hybrid {
                 max_depth,
+                ref caustics,
+                polarization,
+            } => hybrid::render(
+                scene,
+                camera,
+                (max_depth, polarization),
                 caustics,
-            } => pool.install(|| {
-                hybrid::render(
-                    scene, camera, *max_depth, caustics, settings, range, observer,
-                )
-            }),
-            Integrator::Vcm { max_depth, vcm } => pool
-                .install(|| vcm::render(scene, camera, *max_depth, vcm, settings, range, observer)),
-        }
+                settings,
+                range,
+                observer,
+            ),
+            Integrator::Vcm { max_depth, ref vcm } => {
+                vcm::render(scene, camera, max_depth, vcm, settings, range, observer)
+            }
+        })
     }
+}
 
-    /// One camera sample of a per-sample method: the polarized path tracer with its
-    /// camera's analyzer, or [`Integrator::sample`] in spectral or RGB transport.
-    fn per_sample(
-        &self,
+/// The methods that estimate each camera sample alone, with the settings their estimate
+/// reads: radiance along one camera ray at the sample's wavelengths.
+#[derive(Debug, Clone, Copy)]
+enum PerSample {
+    /// [`whitted::radiance`].
+    Whitted { max_depth: u32 },
+    /// [`path::radiance`].
+    Path {
+        max_depth: u32,
+        dispersion: path::Dispersion,
+    },
+    /// [`path::polarized::radiance`] through the camera's analyzer.
+    Polarized {
+        max_depth: u32,
+        polarization: Polarization,
+    },
+}
+
+impl PerSample {
+    /// Renders the units `range` of camera samples through the sampler driver
+    /// ([`render_samples`]), each sample in spectral or RGB transport as the settings say.
+    fn render(
+        self,
         scene: &Scene,
         camera: &Camera,
-        spectral: bool,
-        ray: &Ray,
-        u: f32,
-        ctx: &mut Context,
-    ) -> Vec3 {
-        match self {
-            Integrator::Polarized {
-                max_depth,
-                polarization,
-            } => {
-                let a = polarization.analyzer(camera.basis(), ray.dir);
-                let lambda = SampledSpectrum::sample_lambda(u);
-                path::polarized::radiance::<SampledSpectrum>(
-                    scene,
-                    ray,
-                    (*max_depth, None),
-                    lambda,
-                    a,
-                    ctx,
-                )
-                .to_rgb(&lambda)
-            }
-            _ if spectral => self.sample::<SampledSpectrum>(scene, ray, u, ctx),
-            _ => self.sample::<Vec3>(scene, ray, u, ctx),
-        }
+        settings: &RenderSettings,
+        range: Option<Range<u64>>,
+        observer: Option<Observer>,
+    ) -> Result<(Film, RenderStats)> {
+        render_samples(
+            camera,
+            settings,
+            range,
+            Prepass::now(),
+            observer,
+            |ray, u, ctx| match settings.spectral {
+                true => self.sample::<SampledSpectrum>(scene, camera, ray, u, ctx),
+                false => self.sample::<Vec3>(scene, camera, ray, u, ctx),
+            },
+        )
     }
 
     /// One camera sample's radiance as linear RGB: wavelengths drawn for spectral transport
     /// from the hero variate `u_lambda` ∈ [0, 1), and the film's conversion
     /// ([`Carrier::to_rgb`], spectrum → XYZ → sRGB).
     fn sample<C: Carrier>(
-        &self,
+        self,
         scene: &Scene,
+        camera: &Camera,
         ray: &Ray,
         u_lambda: f32,
         ctx: &mut Context,
     ) -> Vec3 {
         let lambda = C::sample_lambda(if C::SPECTRAL { u_lambda } else { 0.0 });
-        self.radiance::<C>(scene, ray, lambda, ctx)
-            .map_or(Vec3::ZERO, |l| l.to_rgb(&lambda))
+        let l: C = match self {
+            PerSample::Whitted { max_depth } => {
+                whitted::radiance(scene, ray, max_depth, lambda, ctx)
+            }
+            PerSample::Path {
+                max_depth,
+                dispersion,
+            } => path::radiance(scene, ray, (max_depth, dispersion), lambda, ctx),
+            PerSample::Polarized {
+                max_depth,
+                polarization,
+            } => {
+                let a = polarization.analyzer(camera.basis(), ray.dir);
+                path::polarized::radiance::<C>(scene, ray, (max_depth, None), lambda, a, ctx)
+            }
+        };
+        l.to_rgb(&lambda)
     }
 }

@@ -38,6 +38,9 @@
 //!
 //! Flux in the maps is per emitted photon (already divided by their number).
 
+use super::capability::{
+    Capabilities, Photons, Support, Units, NO_MEDIA, NO_POLARIZATION, SINGLE_RAYS,
+};
 use super::path::{self, VisiblePoint};
 use super::sppm::VisiblePoints;
 use super::{Context, PhotonMapSettings, StoreBudget};
@@ -57,6 +60,24 @@ use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use std::time::Instant;
+
+/// What `--method photon` renders and how ([`crate::integrator::Method::caps`]).
+pub const CAPABILITIES: Capabilities = Capabilities {
+    name: "photon",
+    purpose: "caustics fast from a photon map, slightly blurred",
+    units: Units::Samples,
+    photons: Photons::Map,
+    media: NO_MEDIA,
+    orthographic: Support::Yes,
+    polarization: NO_POLARIZATION,
+    rayleigh_spectral: Support::Yes,
+    lanes: SINGLE_RAYS,
+    shards: Support::Yes,
+    adaptive: Support::Yes,
+    estimate_in_media: Support::Yes,
+    progressive: Support::Yes,
+    pixel_bytes: 0,
+};
 
 /// Photons when `--photons` is not given.
 pub const DEFAULT_PHOTONS: u64 = 500_000;

@@ -211,9 +211,6 @@ pub struct CausticSettings {
     /// first smooth dispersive interface ([`super::path::Dispersion::SPLIT`]; on by
     /// default), rather than keeping the hero only (for comparisons).
     pub split: bool,
-    /// Polarized transport (the plan's [`crate::plan::Plan::decide_polarization`]): polarized
-    /// photons and camera paths ([`super::hybrid`]); `None`: off.
-    pub polarization: Option<super::path::polarized::Polarization>,
 }
 
 impl CausticSettings {
@@ -246,7 +243,6 @@ impl PhotonSettings {
             alpha: self.alpha,
             mode: self.caustic_mode,
             split: true,
-            polarization: None,
         }
     }
 

@@ -55,6 +55,9 @@ mod visible;
 
 pub use visible::VisiblePoints;
 
+use super::capability::{
+    Capabilities, Photons, Support, Units, NO_MEDIA, NO_POLARIZATION, SINGLE_RAYS,
+};
 use super::pass_paths::PassPaths;
 use super::path::{LaneWidth, VisiblePoint};
 use super::photon_pass::{self, first_radius, pass_lambda, RadiusSequence};
@@ -73,6 +76,24 @@ use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::Vec3;
 use rayon::prelude::*;
+
+/// What `--method sppm` renders and how ([`crate::integrator::Method::caps`]).
+pub const CAPABILITIES: Capabilities = Capabilities {
+    name: "sppm",
+    purpose: "sharp caustics through glass, refining pass by pass",
+    units: Units::Passes,
+    photons: Photons::Passes,
+    media: NO_MEDIA,
+    orthographic: Support::Yes,
+    polarization: NO_POLARIZATION,
+    rayleigh_spectral: Support::Yes,
+    lanes: SINGLE_RAYS,
+    shards: Support::Yes,
+    adaptive: Support::No("every pixel's visible point takes part in every pass"),
+    estimate_in_media: Support::Yes,
+    progressive: Support::Yes,
+    pixel_bytes: std::mem::size_of::<Option<VisiblePoint<SampledSpectrum>>>(),
+};
 
 /// Photons traced per parallel work item (the split is fixed, so results are deterministic).
 const CHUNK: u64 = 4096;
@@ -131,9 +152,9 @@ fn run<C: Carrier>(
         radius: RadiusSequence::new(ps.radius, ps.alpha),
     };
     // Every pixel's visible point takes part in every pass (its radius and flux statistics
-    // are per pass), so SPPM never rests tiles.
+    // are per pass), so SPPM never rests tiles: its declaration says no.
     let schedule = crate::render::Schedule {
-        adaptive: false,
+        adaptive: CAPABILITIES.adaptive.is_yes(),
         ..crate::render::schedule(u64::from(ps.passes.max(1)), range, 1, true, "sppm passes")
     };
     let mut setup = Prepass::now();

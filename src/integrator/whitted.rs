@@ -24,6 +24,9 @@
 //! Branches whose weight falls below [`RR_WEIGHT`] continue by Russian roulette (unbiased),
 //! so a gem's branching stays bounded; `max_depth` bounds the recursion.
 
+use super::capability::{
+    Capabilities, Photons, Support, Units, NO_MEDIA, NO_POLARIZATION, SINGLE_RAYS,
+};
 use super::Context;
 use crate::material::AlphaMode;
 use crate::math::Ray;
@@ -33,6 +36,24 @@ use crate::scene::Scene;
 use crate::shading::termination::{roulette, Draw};
 use crate::shading::{self, Arrival};
 use crate::spectrum::Carrier;
+
+/// What `--method whitted` renders and how ([`crate::integrator::Method::caps`]).
+pub const CAPABILITIES: Capabilities = Capabilities {
+    name: "whitted",
+    purpose: "a quick look: sharp reflections and refractions, no soft light",
+    units: Units::Samples,
+    photons: Photons::None,
+    media: NO_MEDIA,
+    orthographic: Support::Yes,
+    polarization: NO_POLARIZATION,
+    rayleigh_spectral: Support::Yes,
+    lanes: SINGLE_RAYS,
+    shards: Support::Yes,
+    adaptive: Support::Yes,
+    estimate_in_media: Support::Yes,
+    progressive: Support::Yes,
+    pixel_bytes: 0,
+};
 
 /// Branch weight (max RGB component) below which Russian roulette decides survival.
 pub const RR_WEIGHT: f32 = 0.01;

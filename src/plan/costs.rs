@@ -7,6 +7,7 @@
 use super::Plan;
 use crate::camera::Camera;
 use crate::error::Result;
+use crate::integrator::capability::Photons;
 use crate::integrator::{Integrator, Method};
 use crate::photon::emit::PhotonEmitter;
 use crate::photon::trace::{trace, Roulette, TraceSettings};
@@ -43,14 +44,13 @@ impl Plan {
     }
 
     /// Measures (or quotes, with the source) what each stage costs on this scene: a 32×24,
-    /// 1 spp probe render with RGB and with spectral transport (path tracer, or the plan's
-    /// method when it is Whitted; fastest of [`PROBE_REPEATS`] each), and 10 000 traced
+    /// 1 spp probe render with RGB and with spectral transport (the plan's method when it
+    /// traces no photons, else the path tracer; fastest of [`PROBE_REPEATS`] each), and 10 000 traced
     /// photons.
     pub fn measure_costs(&mut self, scene: &Scene, camera: &Camera, threads: usize) -> Result<()> {
-        let method = if self.method == Method::Whitted {
-            Method::Whitted
-        } else {
-            Method::Path
+        let method = match self.method.caps().photons {
+            Photons::None => self.method,
+            _ => Method::Path,
         };
         let probe = |spectral: bool| -> Result<f64> {
             let (w, h) = PROBE_SIZE;

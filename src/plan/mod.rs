@@ -73,10 +73,11 @@ impl SpectralMode {
     }
 
     /// Whether to render `scene` spectrally with `method`. A Rayleigh medium asks for
-    /// spectral transport except under the hybrid, whose paths and photons would then keep
-    /// one wavelength each in it (colour noise, [`crate::shading::media::keep_hero_in`]):
-    /// there RGB's three channels carry the λ⁻⁴ law at their dominant wavelengths, unless
-    /// something else needs spectra.
+    /// spectral transport except under a method whose declaration says no
+    /// ([`crate::integrator::capability::Capabilities::rayleigh_spectral`]: the hybrid,
+    /// whose paths and photons would then keep one wavelength each in it, colour noise,
+    /// [`crate::shading::media::keep_hero_in`]): there RGB's three channels carry the λ⁻⁴
+    /// law at their dominant wavelengths, unless something else needs spectra.
     pub fn resolve(self, scene: &Scene, method: Method) -> bool {
         match self {
             SpectralMode::On => true,
@@ -88,7 +89,7 @@ impl SpectralMode {
                         || m.conductor().is_some()
                         || m.desc.is_iridescent()
                 }) || scene.lights().iter().any(|l| l.shape.is_some())
-                    || (chromatic_media(scene) && method != Method::Hybrid)
+                    || (chromatic_media(scene) && method.caps().rayleigh_spectral.is_yes())
             }
         }
     }

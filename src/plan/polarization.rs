@@ -8,6 +8,7 @@
 
 use super::{Plan, SpectralMode, Stage};
 use crate::error::{Error, Result};
+use crate::integrator::capability::check_polarization;
 use crate::integrator::Method;
 use crate::scene::Scene;
 
@@ -63,9 +64,9 @@ pub fn needs_polarization(scene: &Scene) -> bool {
 impl Plan {
     /// Decides the polarization stage under `--polarization mode` and `--polarizer`
     /// (degrees), given the `--method` and `--spectral` flags the plan was made with:
-    /// polarized transport needs the path tracer and spectral transport, which it takes
-    /// when those were `auto`, and refuses scattering media. A usage error names the
-    /// flags that conflict.
+    /// polarized transport needs a method that declares it and spectral transport, which it
+    /// takes when those were `auto`, and refuses scattering media
+    /// ([`check_polarization`]). A usage error names the flags that conflict.
     pub fn decide_polarization(
         &mut self,
         scene: &Scene,
@@ -78,9 +79,9 @@ impl Plan {
             ([], Some(a)) => Some(format!("--polarizer {a}°")),
             (n, _) => Some(n.join(", ")),
         };
-        // An explicit method other than the path tracer and the hybrid keeps automatic
+        // A method whose declaration has no polarized transport keeps automatic
         // polarization off (a polarizer on the camera still needs it).
-        let other_method = !matches!(method, Method::Auto | Method::Path | Method::Hybrid);
+        let other_method = !method.caps().polarization.is_yes();
         let on = match (mode, &why) {
             (PolarizationMode::Off, _) if polarizer_deg.is_some() => {
                 return Err(Error::Usage(
@@ -101,8 +102,13 @@ impl Plan {
                 format!("off (--polarization off): {w} rendered with one index")
             }
             (false, _, Some(w)) => format!(
-                "off: --method {} does not trace polarized light ({w} rendered with one index)",
-                method.name()
+                "off: --method {} {} ({w} rendered with one index)",
+                method.name(),
+                method
+                    .caps()
+                    .polarization
+                    .why_not()
+                    .unwrap_or("is not polarized")
             ),
             _ => "no birefringent material, no polarizer".to_string(),
         };
@@ -115,24 +121,7 @@ impl Plan {
         if !on {
             return Ok(());
         }
-        if other_method {
-            return Err(Error::Usage(format!(
-                "--method {} does not trace polarized light; use --method path, hybrid or auto, or --polarization off",
-                method.name()
-            )));
-        }
-        if spectral == SpectralMode::Off {
-            return Err(Error::Usage(
-                "polarized transport is spectral: drop --spectral off, or use --polarization off"
-                    .into(),
-            ));
-        }
-        if scene.has_media() {
-            let what = crate::shading::media::summary(scene);
-            return Err(Error::Usage(format!(
-                "polarized transport does not trace scattering media ({what}); use --polarization off"
-            )));
-        }
+        check_polarization(method, scene, spectral != SpectralMode::Off)?;
         self.polarized_method();
         let pleochroic: Vec<String> = scene
             .materials()

@@ -3,6 +3,7 @@
 //! order and meaning of the stages are the parent module's.
 
 use super::{SpectralMode, Stage, CAUSTIC_PROBE_PHOTONS};
+use crate::integrator::capability::Photons;
 use crate::integrator::path::LaneWidth;
 use crate::integrator::Method;
 use crate::light::env::Environment;
@@ -84,13 +85,12 @@ pub(super) fn transport(
         evidence.push(format!("{spectral_lights} lights naming a spectrum"));
     }
     if super::chromatic_media(scene) {
-        evidence.push(if method == Method::Hybrid {
-            "a medium scattering by Rayleigh's λ⁻⁴ law, which the hybrid carries in RGB at \
-             the channels' dominant wavelengths (spectrally its photons would keep one \
-             wavelength each)"
-                .into()
-        } else {
-            "a medium scattering by Rayleigh's λ⁻⁴ law".into()
+        evidence.push(match method.caps().rayleigh_spectral.why_not() {
+            Some(why) => format!(
+                "a medium scattering by Rayleigh's λ⁻⁴ law, which --method {} {why}",
+                method.name()
+            ),
+            None => "a medium scattering by Rayleigh's λ⁻⁴ law".into(),
         });
     }
     let evidence = if evidence.is_empty() {
@@ -146,10 +146,7 @@ pub(super) fn photons(ev: &Evidence, method: Method, resolved: Method, why: Opti
             names(specular)
         )
     };
-    let photons_used = matches!(
-        resolved,
-        Method::Sppm | Method::Photon | Method::Hybrid | Method::Vcm | Method::Bpt
-    );
+    let photons_used = resolved.caps().photons != Photons::None;
     let how = if method == Method::Auto {
         format!("--method auto -> {}", resolved.name())
     } else {
@@ -282,28 +279,29 @@ pub(super) fn acceleration(scene: &Scene) -> Stage {
     }
 }
 
-/// Lanes: whether the path tracer (or the hybrid's camera side) runs its camera paths in
-/// packets
-/// ([`crate::integrator::path::LaneWidth`]) and why not otherwise.
+/// Lanes: whether the method's camera paths run in packets
+/// ([`crate::integrator::path::LaneWidth`], where its declaration says so,
+/// [`crate::integrator::capability::Capabilities::lanes`]) and why not otherwise.
 pub(super) fn lanes(scene: &Scene, method: Method) -> Stage {
     let width = LaneWidth::choose(scene);
-    let (used, reason) = match (method, width) {
+    let caps = method.caps();
+    let (used, reason) = match (caps.lanes.why_not(), width) {
         (_, Err(e)) => (false, format!("single rays ({e})")),
-        (Method::Path | Method::Hybrid, Ok(LaneWidth::Scalar)) => (
+        (None, Ok(LaneWidth::Scalar)) => (
             false,
             format!(
                 "single rays: {} has no packet traversal (or IRIS_LANES=off)",
                 scene.backend_name()
             ),
         ),
-        (Method::Path | Method::Hybrid, Ok(w)) => {
+        (None, Ok(w)) => {
             let n = w.lanes();
             let queries = match scene.accel() {
                 crate::accel::Accel::Bvh(_) => "the BVH answers lane by lane".to_string(),
                 #[allow(unreachable_patterns)]
                 _ => format!("rtcIntersect{n} / rtcOccluded{n}"),
             };
-            let photons = if method == Method::Hybrid {
+            let photons = if caps.photons != Photons::None {
                 "; its photons on single rays (packets do not pay on them: BENCHMARKS.md, \
                  \"Photon passes in lanes\")"
             } else {
@@ -317,12 +315,12 @@ pub(super) fn lanes(scene: &Scene, method: Method) -> Stage {
                 ),
             )
         }
-        (m, Ok(_)) => (
+        (Some(why), Ok(_)) => (
             false,
             format!(
-                "single rays: --method {} traces one ray at a time (the path tracer and the \
-                 hybrid's camera paths run in lanes)",
-                m.name()
+                "single rays: --method {} {why} (the path tracer and the hybrid's camera \
+                 paths run in lanes)",
+                method.name()
             ),
         ),
     };

@@ -449,11 +449,7 @@ impl Shared {
         let probe = crate::cli::parse_render(&controls.args(&self.setup.scene, &[]))
             .and_then(|o| RenderJob::new(&o).map(|j| j.plan.method))
             .map_err(|e| e.to_string())?;
-        let budget = if probe == crate::integrator::Method::Sppm {
-            "--passes"
-        } else {
-            "--spp"
-        };
+        let budget = probe.caps().units.flag();
         let mut extra = vec![
             "--size".to_string(),
             format!("{}x{}", size.0, size.1),

@@ -30,11 +30,12 @@ pub fn polarized(
     size: u32,
     spp: u32,
 ) -> ImageRgb {
-    let integrator = Integrator::Polarized {
+    let integrator = Integrator::Path {
         max_depth: 32,
-        polarization: Polarization {
+        dispersion: iris::integrator::path::Dispersion::ALL,
+        polarization: Some(Polarization {
             polarizer: polarizer.map(f32::to_radians),
-        },
+        }),
     };
     integrator
         .render(scene, &Camera::new(cam, size, size), &settings(size, spp))

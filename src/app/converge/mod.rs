@@ -26,24 +26,22 @@ use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-/// Parses `--methods path,photon,sppm`: names from whitted, path, photon, sppm, hybrid, vcm,
-/// bpt, each at most once, at least one.
+/// Parses `--methods path,photon,sppm`: names of the methods of the registry
+/// ([`Method::ALL`] but `auto`), each at most once, at least one.
 pub fn parse_methods(list: &str) -> Result<Vec<Method>> {
+    let accepted: Vec<Method> = Method::ALL
+        .into_iter()
+        .filter(|m| *m != Method::Auto)
+        .collect();
     let mut methods = Vec::new();
     for name in list.split(',').map(str::trim) {
-        let m = match name.to_ascii_lowercase().as_str() {
-            "whitted" => Method::Whitted,
-            "path" => Method::Path,
-            "photon" => Method::Photon,
-            "sppm" => Method::Sppm,
-            "hybrid" => Method::Hybrid,
-            "vcm" => Method::Vcm,
-            "bpt" => Method::Bpt,
-            _ => {
-                return Err(Error::Usage(format!(
-                "--methods {list}: unknown method {name:?} (accepted: whitted, path, photon, sppm, hybrid, vcm, bpt)"
-            )))
-            }
+        let lower = name.to_ascii_lowercase();
+        let Some(&m) = accepted.iter().find(|m| m.name() == lower) else {
+            let names: Vec<&str> = accepted.iter().map(|m| m.name()).collect();
+            return Err(Error::Usage(format!(
+                "--methods {list}: unknown method {name:?} (accepted: {})",
+                names.join(", ")
+            )));
         };
         if methods.contains(&m) {
             return Err(Error::Usage(format!(
@@ -429,7 +427,7 @@ impl<'a> Job<'a> {
             spectral: settings.spectral || polarized.is_some(),
             ..settings.clone()
         };
-        let integrator = Integrator::new(method, 64, &photon)?.polarized(polarized);
+        let integrator = Integrator::new(method, 64, &photon)?.with_polarization(polarized);
         Ok((integrator, settings))
     }
 

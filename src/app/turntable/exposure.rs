@@ -59,12 +59,7 @@ pub fn locked(opts: &TurntableOptions, method: Method) -> Result<(Exposure, Opti
         let pw = w.min(PROBE_WIDTH);
         let ph = ((f64::from(h) * f64::from(pw) / f64::from(w)).round() as u32).max(1);
         probe_size = (pw, ph);
-        let units = if method == Method::Sppm {
-            r.photon.passes
-        } else {
-            r.spp
-        }
-        .min(PROBE_SAMPLES);
+        let units = r.units(method).min(PROBE_SAMPLES);
         let mut photon = r.photon;
         photon.passes = units;
         let settings = RenderSettings {

@@ -21,6 +21,7 @@
 //! of them (where they stop, what another estimator gathers along them or owns of their
 //! light, which hero orders their lanes) is its [`Strategy`], which the vertex calls.
 
+mod capabilities;
 mod in_medium;
 mod lanes;
 mod light_sample;
@@ -31,6 +32,7 @@ mod state;
 mod strategy;
 mod vertex;
 
+pub use capabilities::CAPABILITIES;
 pub use lanes::{estimate_lanes, estimate_path, LaneWidth};
 pub use own_hero::HeroOf;
 pub use strategy::{History, RoughLanes, Strategy};

@@ -42,6 +42,9 @@ pub mod mis;
 use super::photon_pass::{self, first_radius, pass_lambda, RadiusSequence};
 use crate::camera::Camera;
 use crate::error::Result;
+use crate::integrator::capability::{
+    Capabilities, Photons, Support, Units, NO_MEDIA, NO_POLARIZATION, SINGLE_RAYS,
+};
 use crate::integrator::light_trace::{self, Splatter};
 use crate::photon::emit::{PhotonEmitter, PhotonNumbers};
 use crate::photon::grid::HashGrid;
@@ -55,6 +58,36 @@ use camera::CameraKit;
 use glam::Vec3;
 use light_paths::{LightKit, LightPaths, LightVertex};
 use rayon::prelude::*;
+
+/// What `--method vcm` renders and how ([`crate::integrator::Method::caps`]).
+pub const CAPABILITIES: Capabilities = Capabilities {
+    name: "vcm",
+    purpose: "the hardest light: caustics seen in mirrors and through glass",
+    units: Units::Samples,
+    photons: Photons::LightSubpaths,
+    media: NO_MEDIA,
+    orthographic: PINHOLE,
+    polarization: NO_POLARIZATION,
+    rayleigh_spectral: Support::Yes,
+    lanes: SINGLE_RAYS,
+    shards: Support::Yes,
+    adaptive: Support::Yes,
+    estimate_in_media: Support::Yes,
+    progressive: Support::Yes,
+    pixel_bytes: 0,
+};
+
+/// What `--method bpt` renders and how ([`crate::integrator::Method::caps`]): VCM's
+/// declaration, the same code without merging.
+pub const BPT_CAPABILITIES: Capabilities = Capabilities {
+    name: "bpt",
+    purpose: "small lights and caustics seen directly, without bias",
+    ..CAPABILITIES
+};
+
+/// Why VCM and BPT refuse an orthographic camera.
+const PINHOLE: Support =
+    Support::No("connecting light paths to the camera needs a perspective camera");
 
 /// What `--method vcm` and `--method bpt` use.
 #[derive(Debug, Clone, Copy, PartialEq)]
