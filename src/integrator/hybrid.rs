@@ -157,28 +157,12 @@ fn run<C: Carrier>(
         ),
     };
     if schedule.first > 0 {
-        // A shard: the radius of its first pass, as one render reaches it (pass 0's
-        // photons choose r₀ unless --radius or the pilot gave it; the volume map's always
-        // comes from pass 0's photons, traced as many as one render's pass 0 traces).
-        let volume_unset = map.volume.as_ref().is_some_and(|v| v.radius() == 0.0);
-        if !emitter.is_empty() && (map.radius() == 0.0 || volume_unset) {
-            let n0 = budget.map_or(n_photons, |b| b.per_pass(pixels, map.radius()));
-            let lambda = pass_lambda::<C>(0, settings.seed);
-            let (rays, _) = map.trace_pass::<C>(
-                scene,
-                &emitter,
-                settings.seed,
-                0,
-                n0,
-                lambda,
-                max_depth,
-                None,
-            )?;
-            setup.rays += rays;
-            setup.photons += n0;
-        }
-        map.begin_gather(|ph| initial_radius(scene, camera, settings, ph));
-        map.replay(schedule.first);
+        let n0 = budget.map_or(n_photons, |b| b.per_pass(pixels, map.radius()));
+        let shard = (schedule.first, n0, max_depth);
+        let (rays, photons) =
+            replay_to_shard::<C>(scene, camera, settings, &mut map, &emitter, shard)?;
+        setup.rays += rays;
+        setup.photons += photons;
     }
     let (film, mut stats) = photon_pass::passes::<C>(
         settings,
@@ -238,6 +222,39 @@ fn run<C: Carrier>(
     )?;
     stats.photons_per_pass = last_n;
     Ok((film, stats))
+}
+
+/// A shard starting at pass `first`: the radius of its first pass, as one render reaches it
+/// (pass 0's `n0` photons choose r₀ unless --radius or the pilot gave it; the volume map's
+/// always comes from pass 0's photons, traced as many as one render's pass 0 traces).
+/// Returns the rays and photons traced for it.
+fn replay_to_shard<C: Carrier>(
+    scene: &Scene,
+    camera: &Camera,
+    settings: &RenderSettings,
+    map: &mut CausticMap,
+    emitter: &crate::photon::emit::PhotonEmitter,
+    (first, n0, max_depth): (u64, u64, u32),
+) -> Result<(u64, u64)> {
+    let mut traced = (0, 0);
+    let volume_unset = map.volume.as_ref().is_some_and(|v| v.radius() == 0.0);
+    if !emitter.is_empty() && (map.radius() == 0.0 || volume_unset) {
+        let lambda = pass_lambda::<C>(0, settings.seed);
+        let (rays, _) = map.trace_pass::<C>(
+            scene,
+            emitter,
+            settings.seed,
+            0,
+            n0,
+            lambda,
+            max_depth,
+            None,
+        )?;
+        traced = (rays, n0);
+    }
+    map.begin_gather(|ph| initial_radius(scene, camera, settings, ph));
+    map.replay(first);
+    Ok(traced)
 }
 
 /// Without `--photons` in map mode, the pilot's budget ([`photon_budget`]: the photons a

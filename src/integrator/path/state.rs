@@ -249,8 +249,8 @@ enum Kind {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shading::MAX_DELTA_BOUNCES;
     use crate::sampler::{PixelSampler, SamplerKind};
+    use crate::shading::MAX_DELTA_BOUNCES;
     use crate::volume::coarse::FINE_EVENTS;
 
     /// `n` scattering events in a medium from a path of throughput `beta` at max depth
