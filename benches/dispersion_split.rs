@@ -5,7 +5,7 @@
 //! for seeds 1 and 2 (alternating, so both see the same machine load), and the table gives
 //! samples per pixel and the seed-to-seed relative RMSE (mean over channels and pixels of
 //! |a − b| / (|a| + |b|)/2 in the RMS sense, over √2: one render's error against the
-//! converged image, as `tests/wavelength_split.rs`).
+//! converged image, as `tests/render/wavelength_split.rs`).
 //!
 //! Stones, spectral transport, 160 × 90, 2 threads, `max_depth` 64, each as `iris render`
 //! prepares it by default (studio, floor, framing):

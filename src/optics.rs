@@ -74,7 +74,7 @@ pub fn fresnel_either_side(cos: f32, eta: f32) -> f32 {
 /// internal reflection. `eta` = +∞ (the glTF `ior: 0` mode) gives 1; `eta` = 1 (no
 /// interface) gives 0 at every angle. Evaluated in f64 with cos θ_t as in [`refract`], so
 /// 1 − R keeps its digits at grazing incidence (→ 2 cos θ_i (η²+1)/√(η²−1), see
-/// `tests/stiff_optics.rs`) and no η in (0, ∞) yields NaN.
+/// `tests/optics/stiff_optics.rs`) and no η in (0, ∞) yields NaN.
 #[inline]
 pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
     if eta.is_infinite() || eta.is_nan() || eta <= 0.0 {

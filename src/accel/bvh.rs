@@ -20,7 +20,7 @@
 //! would cull it; rounding likewise culls boxes that a ray touches only at a corner or an
 //! edge (a ray through a shared vertex). Every triangle's box is therefore padded by
 //! [`BOX_PAD`] before the build (pbrt-v4 widens its slab test's far distance by 1 + 2γ₃ for
-//! the same reason), which makes such faces strictly enclose the ray. tests/accel_parity.rs
+//! the same reason), which makes such faces strictly enclose the ray. tests/accel/accel_parity.rs
 //! casts rays along the axes and coordinate-plane diagonals through rows of shared vertices
 //! lying exactly on box faces, at scales 1e-4, 1 and 1e4, and compares with brute force.
 

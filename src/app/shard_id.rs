@@ -24,7 +24,7 @@
 //! destructures [`RenderOptions`] and [`render_entries`] destructures
 //! [`RenderSettings`] exhaustively, so a new field does not compile until it is either
 //! part of the identity or named as one that does not change the image, and
-//! `tests/shards/identity_flags.rs` fails for an `iris render` flag that is not classified.
+//! `tests/farm/shards/identity_flags.rs` fails for an `iris render` flag that is not classified.
 //! Not part of it:
 //! threads, `--time`, `--target-error`, `--checkpoint` (they change how many units a shard
 //! takes, which its counts record), display, denoising and output flags (a partial image

@@ -19,7 +19,7 @@
 //! or the extraordinary one at 90° to it); `pleochroic_tourmaline.glb --polarizer 0`
 //! (along the near bar's c) shows that bar in its E ∥ c colour, light yellowish green,
 //! `--polarizer 90` in its E ⊥ c colour, the far bar's. The moissanite's doubling (0.3 %
-//! of the depth seen through the table, tests/moissanite_doubling.rs) is under a pixel at
+//! of the depth seen through the table, tests/gems/moissanite_doubling.rs) is under a pixel at
 //! the gallery's size.
 
 use super::parts::{add_mesh, add_panel, camera};

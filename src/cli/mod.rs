@@ -1,5 +1,5 @@
 //! The `iris` command line as clap definitions: [`Cli`] with one [`Command`] per subcommand
-//! (the binary `src/main.rs` parses it and dispatches to [`crate::app`]; `tests/docs.rs`
+//! (the binary `src/main.rs` parses it and dispatches to [`crate::app`]; `tests/cli/docs/mod.rs`
 //! parses every command shown in the documentation with it). The flags, by command:
 //! [`render_args`] (`iris render`, and the overrides shared with converge and info),
 //! [`other_args`] (merge, turntable, gallery, gem, converge), [`gem_report_args`]

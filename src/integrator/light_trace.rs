@@ -47,7 +47,7 @@
 //! per-pixel estimate of the caustic paths' share of I_j, added to the pass's camera
 //! sample. The splat is that pixel's box and nothing wider (no reconstruction filter
 //! spreads it to the neighbours): the footprint of the camera's jittered rays, so a sharp
-//! caustic seen directly keeps its peak (tests/light_trace_pixels.rs checks every pixel
+//! caustic seen directly keeps its peak (tests/photon/light_trace_pixels.rs checks every pixel
 //! against an analytic caustic).
 //!
 //! Spectral: the photons carry the pass's shared wavelengths; a photon that kept only its

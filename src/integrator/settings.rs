@@ -22,7 +22,7 @@ pub const MAX_STORED_PHOTONS: u64 = 1 << 26;
 /// camera and photon paths ([`crate::shading::MAX_DELTA_BOUNCES`]). The old bound, 100 000,
 /// crashed the Whitted tracer with a stack overflow in a closed mirror box (so did 2048 on
 /// a 2 MiB stack); the render workers' stacks ([`crate::render::WORKER_STACK`]) hold 4×
-/// this depth (`tests/stiff_renders.rs`).
+/// this depth (`tests/optics/stiff_renders.rs`).
 pub const MAX_DEPTH: u32 = 1024;
 
 /// Photon-mapping settings (`--method photon` and `sppm`).

@@ -31,7 +31,7 @@
 //! - Packets ([`Scene::intersect_packet`], [`Scene::occluded_packet`]): up to 16 rays in
 //!   one backend query (Embree `rtcIntersect8/16`, `rtcOccluded8/16`) give lane by lane
 //!   exactly the answers of [`Scene::intersect`] and [`Scene::occluded`]: the backends'
-//!   packet hits equal their single-ray hits bit for bit (`tests/accel_packets.rs`), the
+//!   packet hits equal their single-ray hits bit for bit (`tests/accel/accel_packets.rs`), the
 //!   hit record is built by the same code ([`Scene::lane_hit`]), and a lane whose first
 //!   hit is an alpha cut-out is traced again alone.
 

@@ -1,5 +1,5 @@
 //! Entry points that run the real loaders on bytes in memory, for the cargo-fuzz targets
-//! in `fuzz/` and the replay test `tests/fuzz_replay.rs`.
+//! in `fuzz/` and the replay test `tests/heap/fuzz_replay/mod.rs`.
 //!
 //! Each function goes through the same code as loading a file from disk (the loaders'
 //! `*_bytes` functions, then [`crate::scene::validate`]), except that referenced files come

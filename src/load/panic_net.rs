@@ -78,7 +78,7 @@ impl Caught {
 }
 
 /// Set (to anything) in the environment, every [`catch`] panics inside the net before it
-/// runs its work. For the command-line tests of the net (tests/cli_panic_net.rs): no
+/// runs its work. For the command-line tests of the net (tests/cli/cli_panic_net.rs): no
 /// known input makes a decoder panic any more, so they need another way in.
 pub const FORCE_PANIC_ENV: &str = "IRIS_TEST_FORCE_DECODER_PANIC";
 

@@ -7,7 +7,7 @@
 //! `extras.iris_environment`). What `--env` gives does not count: it is the user's, not the
 //! file's. For an authored file:
 //! - `--ground auto` adds no floor (a floor under a lit scene changes its light: under the
-//!   peers' prism seen against an emissive slit, `tests/authored.rs`, it made the image
+//!   peers' prism seen against an emissive slit, `tests/load/authored.rs`, it made the image
 //!   3.5 % brighter (path tracer, 256 spp, 160×120) and moved `--method auto` from the path
 //!   tracer to the hybrid);
 //! - the default `--studio` adds no studio (the file is lit);

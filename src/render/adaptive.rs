@@ -42,7 +42,7 @@
 //! The estimate that stops the render comes from the same halves as the choice. A tile that
 //! rests on an estimate low by chance keeps that estimate, so the image's estimate can read
 //! low by the resting tiles' share. Tiles pool 256 pixels' terms, which keeps that small;
-//! `tests/adaptive.rs` measures the estimate against a reference.
+//! `tests/render/adaptive.rs` measures the estimate against a reference.
 
 use super::film::{Film, TILE};
 use crate::image::metrics::half_pair_terms;

@@ -193,7 +193,7 @@ pub const PIXEL_MEMORY_BUDGET: u64 = 8 << 30;
 /// Stack of each render worker: 8 MiB. The Whitted tracer recurses once per bounce, about
 /// 1–2 KiB a level in release: `--max-depth` 1024 ([`crate::integrator::MAX_DEPTH`]) fits
 /// the default 2 MiB with no margin, and 2048 overflowed it (measured in a closed mirror box,
-/// `tests/stiff_renders.rs`). 8 MiB gives 4× headroom; it is address space, committed only
+/// `tests/optics/stiff_renders.rs`). 8 MiB gives 4× headroom; it is address space, committed only
 /// as it is touched.
 pub const WORKER_STACK: usize = 8 << 20;
 

@@ -169,7 +169,7 @@ fn morton_order(tris: &[Triangle]) -> Vec<usize> {
 }
 
 /// The range of scene scales ([`scale`]) in which f32 geometry renders as at unit scale
-/// (`tests/stiff_geometry.rs` renders one diamond across it); outside it the scene is
+/// (`tests/accel/stiff_geometry.rs` renders one diamond across it); outside it the scene is
 /// rendered with a warning.
 pub const SCALE_RANGE: (f32, f32) = (1e-6, 1e10);
 

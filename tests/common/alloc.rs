@@ -1,10 +1,16 @@
 //! A counting global allocator for the tests that bound heap use (huge counts, fuzz replay,
-//! SPPM's constant memory). A test binary opts in with
+//! SPPM's constant memory: the `heap` test binary). A test binary opts in with
 //! `#[global_allocator] static ALLOC: common::alloc::Counting = common::alloc::Counting;`.
-//! Counts are process-wide: a binary that measures peaks runs its measured work serially.
+//! Counts are process-wide (the measured work runs on rayon's threads too): each test of
+//! such a binary holds [`SERIAL`] while it runs, and the binary holds no other tests.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+
+/// Held by each test of a counting binary for its whole run: one test's allocations never
+/// fall into another's count.
+pub static SERIAL: Mutex<()> = Mutex::new(());
 
 /// Heap held right now and the most held since the last [`start_peak`], in bytes.
 static CURRENT: AtomicUsize = AtomicUsize::new(0);

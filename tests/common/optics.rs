@@ -1,5 +1,5 @@
-//! Scene pieces and renders shared by the polarization tests (`tests/polarization.rs`,
-//! `tests/polarized_photons.rs`): polarizer sheets, emitters, glass and crystal materials,
+//! Scene pieces and renders shared by the polarization tests (`tests/optics/polarization.rs`,
+//! `tests/photon/polarized_photons.rs`): polarizer sheets, emitters, glass and crystal materials,
 //! orthographic cameras, the polarized path tracer at a fixed seed.
 
 use glam::Vec3;

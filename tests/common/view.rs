@@ -1,4 +1,4 @@
-//! An `iris view` process for the tests (tests/view.rs, tests/view_browser.rs), and a
+//! An `iris view` process for the tests (tests/view/view.rs, tests/view/view_browser.rs), and a
 //! minimal HTTP/1.0 client for it: each request closes its connection, so a body (an
 //! event stream too) is read to its end without chunked decoding.
 

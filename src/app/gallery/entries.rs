@@ -149,7 +149,7 @@ pub const ENTRIES: &[Entry] = &[
         name: "moissanite_and_diamond",
         path: "assets/scenes/moissanite_and_diamond.glb",
         origin: Origin::Project,
-        about: "A 6.5 mm round brilliant moissanite (right; its optic axis in the girdle plane, across the view) beside a diamond of the same cut, seen 40° off the table normal: the moissanite shows more colour (Abbe 26 against 55). Its doubled pavilion facets lie 0.3 % of the depth apart (about 0.013 mm), under a pixel here; `tests/moissanite_doubling.rs` measures the doubling at a loupe's magnification.",
+        about: "A 6.5 mm round brilliant moissanite (right; its optic axis in the girdle plane, across the view) beside a diamond of the same cut, seen 40° off the table normal: the moissanite shows more colour (Abbe 26 against 55). Its doubled pavilion facets lie 0.3 % of the depth apart (about 0.013 mm), under a pixel here; `tests/gems/moissanite_doubling.rs` measures the doubling at a loupe's magnification.",
         before: None,
     },
     Entry {

@@ -13,7 +13,7 @@
 //! (restarted per job, [`Starts::start`]), the packet queries answer lane by lane exactly
 //! as the single-ray queries do, and [`vertex::Pending::resolve`] adds in the scalar
 //! loop's order. So each estimate equals [`super::radiance`]'s bit for bit, whatever the
-//! width, and images do not change with it (`tests/path_lanes.rs`).
+//! width, and images do not change with it (`tests/render/path_lanes.rs`).
 //!
 //! Shading is scalar per lane; vectorising it across the lanes is the next step.
 //!

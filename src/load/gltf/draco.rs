@@ -23,7 +23,7 @@
 //! cache into its own source directory, marked work in progress) and `draco-rs`
 //! (autocxx + cmake, needs libclang and cmake at build time): the pure-Rust decoder needs
 //! no C++ toolchain or cmake in CI, adds no `unsafe` to Iris, and decodes Blender's
-//! exports (tests/load_compressed.rs compares them with their uncompressed twins). Its
+//! exports (tests/load/load_compressed.rs compares them with their uncompressed twins). Its
 //! caveats: it is an alpha, and it does use `unsafe` internally (unchecked indexing in
 //! its attribute traversal). Iris builds a patched copy (`vendor/draco-oxide-decoder`,
 //! wired by `[patch.crates-io]`; the changes are listed in its `IRIS-PATCHES.md`): fuzzing

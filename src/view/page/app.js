@@ -3,7 +3,7 @@
 // The camera orbits, zooms and pans about a pivot the server chose (the scene's subject,
 // src/view/aim.rs) or a double-click picked; Reset asks the server for the first camera.
 // `window.iris` holds what the page last saw, for people debugging it and for the browser
-// test (tests/view_browser.rs).
+// test (tests/view/view_browser.rs).
 "use strict";
 
 const TOKEN = new URLSearchParams(location.search).get("token") || "";
