@@ -55,7 +55,7 @@ use crate::scene::Scene;
 use crate::spectrum::{Carrier, SampledSpectrum};
 use glam::Vec3;
 
-mod split;
+pub mod split;
 
 pub use split::{CausticPaths, CausticSplit, Gather};
 

@@ -39,7 +39,7 @@
 //! render's figures. Units: radiance as linear RGB, work as rays, radii in scene units.
 
 use super::caustic::CausticMap;
-use super::hybrid::{CausticPaths, CausticSplit, Gather};
+use super::hybrid::split::{CausticPaths, CausticSplit, Gather};
 use super::path;
 use super::photon_pass::{first_radius, pass_lambda};
 use super::{Context, MAX_PHOTONS};
