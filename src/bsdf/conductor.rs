@@ -13,9 +13,9 @@
 //! Frame: local shading frame, z = normal; reflection only, two-sided (|cos θ|).
 
 use super::anisotropic::Microfacet;
+use super::ggx_reflect::{ggx_reflect_pdf, ggx_reflect_sample, ggx_spec};
 use super::iridescence::LobeExtensions;
 use super::lobe::{Lobe, RouletteLobes, GLOSSY_ALPHA};
-use super::pbr::{ggx_reflect_pdf, ggx_reflect_sample, ggx_spec};
 use super::{reflect_z, Bsdf, BsdfSample, TransportMode, SMOOTH_ALPHA};
 use crate::optics::{fresnel_conductor_c, fresnel_schlick};
 use crate::polar::fresnel::{self, MIRROR};

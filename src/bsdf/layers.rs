@@ -1,4 +1,4 @@
-//! The glTF metallic-roughness BRDF ([`super::pbr::Gltf`]) with the KHR layer extensions:
+//! The glTF metallic-roughness BRDF ([`super::gltf_brdf::Gltf`]) with the KHR layer extensions:
 //! KHR_materials_diffuse_transmission (the diffuse lobe becomes a mix of reflection and a
 //! Lambertian transmission into the opposite hemisphere), KHR_materials_sheen (a Charlie
 //! microfibre lobe, [`super::sheen`], over the base by albedo scaling) and
@@ -46,11 +46,10 @@
 //! probabilities proportional to each lobe's weight estimated at |cos θo|, each present lobe
 //! at least [`MIN_LOBE_P`] before renormalising; the pdf is the mixture.
 
+use super::ggx_reflect::{ggx_reflect_pdf, ggx_reflect_sample, ggx_spec, half_reflect};
+use super::gltf_brdf::{Gltf, GLTF_MIN_ALPHA};
 use super::lambert::{cosine_hemisphere, lambert_pdf};
 use super::microfacet::Ggx;
-use super::pbr::{
-    ggx_reflect_pdf, ggx_reflect_sample, ggx_spec, half_reflect, Gltf, GLTF_MIN_ALPHA,
-};
 use super::{same_hemisphere, sheen, BsdfSample, TransportMode};
 use crate::optics::fresnel_schlick;
 use crate::spectrum::Carrier;

@@ -422,7 +422,7 @@ fn zero_factors_equal_no_extension() {
         diffuse_transmission_color: Vec3::new(0.2, 0.3, 0.4),
     };
     assert!(zero.is_none());
-    let g = pbr::Gltf::of(&pbr::GltfPbr {
+    let g = pbr::GltfPbr {
         base: Vec3::splat(0.6),
         metallic: 0.3,
         alpha: 0.5 * 0.5,
@@ -431,7 +431,8 @@ fn zero_factors_equal_no_extension() {
         specular_color: Vec3::ONE,
         layers: Layers::none(),
         extensions: crate::bsdf::LobeExtensions::NONE,
-    });
+    }
+    .brdf();
     let l = Layered::new(g, &zero);
     let mut rng = Rng::new(&[3, 0x2e0]);
     for _ in 0..5000 {

@@ -24,6 +24,8 @@ pub(crate) mod dielectric;
 mod energy;
 #[cfg(test)]
 mod energy_tests;
+mod ggx_reflect;
+mod gltf_brdf;
 pub mod interference;
 pub mod iridescence;
 mod lambert;

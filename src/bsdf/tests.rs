@@ -64,7 +64,7 @@ fn bins(b: &Bsdf, wo: Vec3) -> Bins {
         Bsdf::Dielectric { eta, alpha, .. } => {
             (&[Lobe::Reflect, Lobe::Transmit(eta as f64)], alpha)
         }
-        Bsdf::GltfPbr { alpha, .. } => (&[Lobe::Reflect], alpha.max(pbr::GLTF_MIN_ALPHA)),
+        Bsdf::GltfPbr { alpha, .. } => (&[Lobe::Reflect], alpha.max(gltf_brdf::GLTF_MIN_ALPHA)),
         Bsdf::ThinDielectric { .. } => (&[], 1.0),
     };
     Bins::new(wo, lobes, alpha_w as f64)
