@@ -238,7 +238,8 @@ pub fn check_polarization(method: Method, scene: &Scene, spectral: bool) -> Resu
     if scene.has_media() {
         let what = crate::shading::media::summary(scene);
         return Err(Error::Usage(format!(
-            "polarized transport does not trace scattering media ({what}); use --polarization off"
+            "polarized transport does not trace scattering media ({what}): {}; use --polarization off",
+            crate::integrator::path::polarized::WHY_NO_MEDIA
         )));
     }
     Ok(())

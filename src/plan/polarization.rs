@@ -37,6 +37,7 @@ impl PolarizationMode {
 }
 
 pub use crate::integrator::path::polarized::Polarization;
+use crate::integrator::path::polarized::{WHY_NO_SPLIT, WHY_SINGLE_RAYS};
 
 /// What in the scene needs polarized transport: its crystal materials and polarizer
 /// sheets, named (each material once, however many orientations it has).
@@ -94,10 +95,10 @@ impl Plan {
             (PolarizationMode::Auto, w) => w.is_some(),
         };
         let reason = match (on, mode, &why) {
-            (true, PolarizationMode::On, None) => "on (--polarization on)".to_string(),
-            (true, _, Some(w)) => format!(
-                "on: {w} (Stokes vectors; a path keeps its hero wavelength alone from a crystal on)"
-            ),
+            (true, PolarizationMode::On, None) => {
+                format!("on (--polarization on): Stokes vectors; {WHY_NO_SPLIT}")
+            }
+            (true, _, Some(w)) => format!("on: {w}: Stokes vectors; {WHY_NO_SPLIT}"),
             (false, PolarizationMode::Off, Some(w)) => {
                 format!("off (--polarization off): {w} rendered with one index")
             }
@@ -146,7 +147,7 @@ impl Plan {
         }
         if let Some(lanes) = self.stages.iter_mut().find(|s| s.name == "lanes") {
             lanes.used = false;
-            lanes.reason = "polarized camera paths are single rays".into();
+            lanes.reason = format!("polarized camera paths are single rays: {WHY_SINGLE_RAYS}");
         }
         self.spectral = true;
         self.polarization = Some(Polarization {

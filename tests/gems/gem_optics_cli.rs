@@ -157,6 +157,17 @@ fn polarization_flags_are_checked() {
         info.contains("polarization  used      on: birefringent"),
         "{info}"
     );
+    // What polarized paths do not have, and why, is in the plan.
+    use iris::integrator::path::polarized::{WHY_NO_SPLIT, WHY_SINGLE_RAYS};
+    let flat = info.split_whitespace().collect::<Vec<_>>().join(" ");
+    for why in [WHY_NO_SPLIT, WHY_SINGLE_RAYS] {
+        let why = why.split_whitespace().collect::<Vec<_>>().join(" ");
+        assert!(flat.contains(&why), "{why}: {info}");
+    }
+    assert!(
+        flat.contains("lanes left out polarized camera paths are single rays: the lanes step"),
+        "{info}"
+    );
 }
 
 #[test]

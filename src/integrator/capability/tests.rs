@@ -131,7 +131,12 @@ fn polarization_is_kept_where_declared_and_refused_in_rgb_and_media() {
                 let rgb = integrator.check_scene(&ruby, &cam, false).unwrap_err();
                 assert!(rgb.to_string().contains("spectral"), "{rgb}");
                 let media = integrator.check_scene(&tank, &cam, true).unwrap_err();
-                assert!(media.to_string().contains("scattering media"), "{media}");
+                let why = crate::integrator::path::polarized::WHY_NO_MEDIA;
+                assert!(
+                    media.to_string().contains("scattering media")
+                        && media.to_string().contains(why),
+                    "{media}"
+                );
             }
         }
     }

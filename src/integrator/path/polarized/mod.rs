@@ -59,6 +59,21 @@ use crate::shading::polarized::{polarizer_sheet, segment_transmittance, smooth_c
 use crate::shading::{self, Arrival, Event, Surface};
 use crate::spectrum::Carrier;
 
+/// Why polarized transport refuses scattering media (the plan's and the render's refusal).
+pub const WHY_NO_MEDIA: &str = "a scattering event's phase function (Henyey–Greenstein, \
+Rayleigh) is a scalar here, with no Mueller matrix to carry a path's analyzer through it";
+
+/// Why polarized camera paths are not traced in lanes (the plan's "lanes" stage).
+pub const WHY_SINGLE_RAYS: &str = "the lanes step 8 or 16 paths through the path tracer's \
+vertex, which carries a throughput alone; a polarized path also carries its analyzer and \
+crystal mode through its own vertex, one ray at a time";
+
+/// Why a polarized path keeps its hero at a dispersive interface (the plan's "polarization"
+/// stage).
+pub const WHY_NO_SPLIT: &str = "no wavelength split: from a crystal, a smooth dispersive \
+interface or a measured metal on a polarized path keeps its hero wavelength alone; the split \
+into 4 sub-paths belongs to the path tracer's vertex, which polarized paths do not use";
+
 /// What the camera of a polarized render looks through.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Polarization {
