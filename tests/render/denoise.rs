@@ -142,36 +142,51 @@ fn embree_and_oidn_share_one_process() {
     }
 }
 
-/// The build fails clearly when the `denoise` feature cannot find OIDN: a nested `cargo
-/// check --lib` of this crate (without Embree, so only the denoiser is looked for) with
-/// `OIDN_DIR` pointing nowhere, in its own target directory under `target/` so its
-/// dependencies stay checked between runs (the first run checks them, about a minute on
-/// 2 cores; later runs only rerun the build script: a few seconds). `--offline`: every
-/// dependency is already in cargo's cache from building this test.
+/// The build fails clearly when the `denoise` feature cannot find OIDN: this crate's build
+/// script, as cargo compiled it for this test build (the newest
+/// `target/<profile>/build/iris-*/build-script-build`), run as cargo runs it for a build
+/// with the `denoise` feature and without Embree (so only the denoiser is looked for), with
+/// `OIDN_DIR` pointing nowhere: it must exit non-zero (cargo then stops the build) naming the
+/// three ways.
 #[test]
 fn a_missing_oidn_fails_the_build_naming_the_three_ways() {
-    let target = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("missing-oidn-target");
-    let manifest = Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.toml");
-    let start = std::time::Instant::now();
-    let out = std::process::Command::new(env!("CARGO"))
-        .args([
-            "check",
-            "--lib",
-            "--offline",
-            "--no-default-features",
-            "--features",
-            "denoise",
-        ])
-        .arg("--manifest-path")
-        .arg(&manifest)
-        .env("CARGO_TARGET_DIR", &target)
+    let exe = std::env::current_exe().expect("test executable");
+    let profile = exe
+        .parent()
+        .and_then(Path::parent)
+        .expect("target/<profile>");
+    let script = std::fs::read_dir(profile.join("build"))
+        .expect("target/<profile>/build")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|d| {
+            d.file_name()
+                .is_some_and(|n| n.to_string_lossy().starts_with("iris-"))
+        })
+        .map(|d| d.join("build-script-build"))
+        .filter(|f| f.is_file())
+        .max_by_key(|f| std::fs::metadata(f).and_then(|m| m.modified()).ok())
+        .expect("iris's compiled build script");
+    let scratch = common::scratch_dir("missing_oidn_build_script");
+    let mut run = std::process::Command::new(&script);
+    for (key, _) in std::env::vars_os() {
+        if key.to_string_lossy().starts_with("CARGO_FEATURE_") {
+            run.env_remove(key);
+        }
+    }
+    let out = run
+        .env("CARGO_FEATURE_DENOISE", "1")
+        .env("CARGO_MANIFEST_DIR", env!("CARGO_MANIFEST_DIR"))
+        .env("OUT_DIR", &scratch)
         .env("OIDN_DIR", "/nonexistent/oidn")
         .env_remove("IRIS_OIDN_CACHE")
         .output()
-        .expect("run cargo");
+        .expect("run the build script");
     let err = common::stderr(&out);
-    eprintln!("nested cargo check: {:.1} s", start.elapsed().as_secs_f64());
-    assert!(!out.status.success(), "the build must fail:\n{err}");
+    assert!(
+        !out.status.success(),
+        "{}: the build must fail:\n{err}",
+        script.display()
+    );
     for needle in [
         "the `denoise` feature needs Intel Open Image Denoise 2",
         "OIDN_DIR=/nonexistent/oidn has no libOpenImageDenoise.so",
