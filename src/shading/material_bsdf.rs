@@ -1,16 +1,18 @@
 //! The BSDF a material has at a hit ([`crate::bsdf`]): the material's opaque BSDF
 //! ([`crate::material::Material::opaque_bsdf`]), or its transmission
-//! ([`crate::material::Material::transmission_bsdf`]) with η from the path's media.
+//! ([`crate::material::Material::transmission_bsdf`]) with η from the path's media; and a
+//! sample of a BSDF that a path can use ([`sample_bsdf`]).
 //!
 //! Directions are unit vectors in the local frame of the outward shading normal; η is the
 //! ratio n_inside / n_outside, the outside being the normal's side.
 
-use crate::bsdf::Bsdf;
+use crate::bsdf::{Bsdf, BsdfSample, TransportMode};
 use crate::interaction::{CoincidentFaces, SurfaceHit};
 use crate::material::ShadingPoint;
 use crate::medium_stack::{self, MediumStack};
 use crate::scene::Scene;
 use crate::spectrum::Carrier;
+use glam::{Vec2, Vec3};
 
 /// The BSDF at a hit (one lobe chosen by the transmission weight with `u`) and the media on
 /// the far side of a refraction. At a volume boundary η is the ratio of the indices on the
@@ -94,4 +96,20 @@ pub fn lane_etas(
         });
         bsdf_eta(n_i, n_t, hit.front_face)
     })
+}
+
+/// Samples `bsdf` at the local `wo`; `None` when there is no sample or it cannot be used
+/// (a pdf that is not positive, a non-finite value): the path ends there.
+pub fn sample_bsdf<C: Carrier>(
+    bsdf: &Bsdf<C>,
+    wo: Vec3,
+    uc: f32,
+    u: Vec2,
+    mode: TransportMode,
+) -> Option<BsdfSample<C>> {
+    let bs = bsdf.sample(wo, uc, u, mode)?;
+    if bs.pdf.is_nan() || bs.pdf <= 0.0 || !bs.f.is_finite() {
+        return None;
+    }
+    Some(bs)
 }

@@ -29,6 +29,6 @@ pub mod termination;
 
 pub use crate::bsdf::GLOSSY_ALPHA;
 pub use direct::direct_light;
-pub use material_bsdf::{bsdf_at, interface, lane_etas};
-pub use step::{arrival, arrive, meet, sample_bsdf, Arrival, Event, Surface};
+pub use material_bsdf::{bsdf_at, interface, lane_etas, sample_bsdf};
+pub use step::{arrival, arrive, meet, Arrival, Event, Surface};
 pub use termination::MAX_DELTA_BOUNCES;

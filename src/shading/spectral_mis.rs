@@ -24,7 +24,7 @@
 //! ([`Carrier::keep_hero`]). Spectral transport only: RGB paths never get lane indices.
 //! Directions are in the local shading frame ([`crate::bsdf`]).
 
-use super::step::sample_bsdf;
+use super::material_bsdf::sample_bsdf;
 use crate::bsdf::{Bsdf, BsdfSample, TransportMode};
 use crate::spectrum::Carrier;
 use glam::{Vec2, Vec3};

@@ -21,7 +21,7 @@
 //! the outward shading normal (the BSDF's frame). Transmittance is per unit radiance or
 //! flux (dimensionless).
 
-use super::material_bsdf::{bsdf_at, lane_etas};
+use super::material_bsdf::{bsdf_at, lane_etas, sample_bsdf};
 use super::spectral_mis;
 use crate::bsdf::{Bsdf, BsdfSample, TransportMode};
 use crate::interaction::{CoincidentFaces, SurfaceHit};
@@ -343,20 +343,4 @@ impl<C: Carrier> Surface<C> {
     pub fn spawn(&self, wi: Vec3) -> Ray {
         self.hit.spawn_ray(self.frame.to_world(wi))
     }
-}
-
-/// Samples `bsdf` at the local `wo`; `None` when there is no sample or it cannot be used
-/// (a pdf that is not positive, a non-finite value): the path ends there.
-pub fn sample_bsdf<C: Carrier>(
-    bsdf: &Bsdf<C>,
-    wo: Vec3,
-    uc: f32,
-    u: Vec2,
-    mode: TransportMode,
-) -> Option<BsdfSample<C>> {
-    let bs = bsdf.sample(wo, uc, u, mode)?;
-    if bs.pdf.is_nan() || bs.pdf <= 0.0 || !bs.f.is_finite() {
-        return None;
-    }
-    Some(bs)
 }

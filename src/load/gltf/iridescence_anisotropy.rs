@@ -13,8 +13,8 @@
 //! property. Textures go through the material reader's one texture resolver (WebP/KTX2
 //! sources, `KHR_texture_transform`, texCoord warnings).
 
-use super::material_layers::TextureFn;
 use super::texture_info::texture_info;
+use super::texture_info::TextureFn;
 use super::{Ctx, Warnings};
 use crate::error::{LoadError, LoadErrorKind};
 use crate::material::{AnisotropyDesc, IridescenceDesc, TextureRef};

@@ -17,7 +17,7 @@
 //! colour that is not 3 numbers in [0, 1], a texture that is not `{"index": i}` with a
 //! texture `i` of the file (`IndexOutOfRange` when there is no such texture).
 
-use super::texture_info::texture_info;
+use super::texture_info::{texture_info, TextureFn};
 use super::{Ctx, Warnings};
 use crate::error::{LoadError, LoadErrorKind};
 use crate::material::{LayerDesc, TextureRef};
@@ -30,12 +30,6 @@ pub(super) const LAYER_EXTENSIONS: &[&str] = &[
     "KHR_materials_sheen",
     "KHR_materials_diffuse_transmission",
 ];
-
-/// Resolves a texture reference: (slot name, glTF texture, texCoord, KHR_texture_transform)
-/// → the material's
-/// texture (or `None` when the material's textures are not decoded).
-pub(super) type TextureFn<'a> = dyn FnMut(&str, &gltf::Texture<'_>, u32, glam::Affine2) -> Result<Option<TextureRef>, LoadError>
-    + 'a;
 
 /// One extension's JSON object, with the material's name for errors.
 struct Ext<'a, 'c> {

@@ -5,11 +5,16 @@
 //! materials). Errors name the material and the property (`slot`, e.g.
 //! `KHR_materials_sheen.sheenColorTexture`).
 
-use super::material_layers::TextureFn;
 use super::{texture_transform, Ctx};
 use crate::error::{LoadError, LoadErrorKind};
 use crate::material::TextureRef;
 use serde_json::Value;
+
+/// Resolves a texture reference: (slot name, glTF texture, texCoord, KHR_texture_transform)
+/// → the material's
+/// texture (or `None` when the material's textures are not decoded).
+pub(super) type TextureFn<'a> = dyn FnMut(&str, &gltf::Texture<'_>, u32, glam::Affine2) -> Result<Option<TextureRef>, LoadError>
+    + 'a;
 
 /// Resolves the textureInfo `v` of property `slot` of material `element`.
 pub(super) fn texture_info(
