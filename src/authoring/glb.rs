@@ -21,7 +21,8 @@
 //! are computed in `f64` with `+ − × ÷ √` only.
 
 pub use super::gltf_json::ZNEAR;
-use super::gltf_json::{camera, light, vec3};
+use super::gltf_json::{camera, light};
+use super::json_number::vec3;
 use super::material::material;
 use super::scene::GenScene;
 use super::shapes::TriMesh;

@@ -1,13 +1,13 @@
 //! glTF JSON for the lights and the camera of a [`GenScene`](super::scene::GenScene)
-//! (KHR_lights_punctual; a light's spectral shape as its `extras.iris_spectrum`), plus the
-//! number formatting shared with [`super::glb`] and [`super::material`].
+//! (KHR_lights_punctual; a light's spectral shape as its `extras.iris_spectrum`), numbers
+//! written by [`super::json_number`].
 //!
 //! Frames: lights and cameras look down their node's local −Z with +Y up (glTF 2.0 §3.10
 //! "Cameras", KHR_lights_punctual "Adding Light Instances to Nodes"), so their nodes carry
 //! the rotation taking −Z to the light/view direction. Rotations are computed in `f64` with
 //! `+ − × ÷ √` only and rounded once, so files are bit-identical on every platform.
-//! Numbers print as the shortest decimal that reads back as the same `f32`.
 
+use super::json_number::{num, vec3};
 use super::scene::GenCamera;
 use crate::error::{Error, Result};
 use crate::scene::desc::LightDesc;
@@ -17,22 +17,6 @@ use serde_json::{json, Map, Value};
 
 /// Near clipping distance written for the perspective camera (metres).
 pub const ZNEAR: f32 = 0.01;
-
-/// A JSON number that prints as the shortest decimal reading back as the same `f32`.
-pub(super) fn num(x: f32) -> Value {
-    let short: f64 = format!("{x}").parse().unwrap_or(f64::from(x));
-    // Double rounding (decimal → f64 → f32) could in principle differ; fall back if so.
-    let v = if short as f32 == x {
-        short
-    } else {
-        f64::from(x)
-    };
-    serde_json::Number::from_f64(v).map_or(Value::Null, Value::Number)
-}
-
-pub(super) fn vec3(v: Vec3) -> Value {
-    Value::Array(v.to_array().map(num).to_vec())
-}
 
 /// The unit quaternion (x, y, z, w) rotating −Z to `forward` and +Y towards `up`, or
 /// `None` if `forward` is zero or parallel to `up`. Columns of the rotation are

@@ -10,7 +10,7 @@
 //! spec defaults; a stated layer is written even when its factor is 0 (the clearcoat test
 //! scene shows that a coat of factor 0 renders like no coat).
 
-use super::gltf_json::{num, vec3};
+use super::json_number::{num, vec3};
 use crate::material::LayerDesc;
 use glam::Vec3;
 use serde_json::{json, Map, Value};

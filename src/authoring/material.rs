@@ -21,8 +21,8 @@
 //! Units: colours linear RGB; lengths metres; the volume's thickness is the typical
 //! thickness rasterisers read.
 
-use super::gltf_json::{num, vec3};
-use super::scene::bad;
+use super::invalid::bad;
+use super::json_number::{num, vec3};
 use crate::error::Result;
 use crate::material::{AlphaMode, ExplicitIor, MaterialDesc};
 use crate::volume::{Phase, Scattering};

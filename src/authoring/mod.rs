@@ -23,6 +23,8 @@ pub mod cuts;
 pub mod gem;
 pub mod glb;
 mod gltf_json;
+mod invalid;
+mod json_number;
 pub mod lathe;
 pub mod layers;
 pub mod material;

@@ -12,11 +12,12 @@
 //! world-space geometry is its local geometry shifted.
 //!
 //! [`GenScene::validate`] rejects anything that would give an invalid or lossy file
-//! (non-finite numbers, out-of-range indices, degenerate cameras) with [`Error::Usage`].
+//! (non-finite numbers, out-of-range indices, degenerate cameras) with [`crate::error::Error::Usage`].
 
+use super::invalid::bad;
 use super::material::check_material;
 use super::shapes::TriMesh;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::material::MaterialDesc;
 use crate::scene::desc::LightDesc;
 use glam::{Vec2, Vec3};
@@ -73,10 +74,6 @@ pub struct GenCamera {
     pub yfov: f32,
     /// Width / height, if fixed.
     pub aspect: Option<f32>,
-}
-
-pub(super) fn bad(element: &str, what: impl std::fmt::Display) -> Error {
-    Error::Usage(format!("scene generator: {element}: {what}"))
 }
 
 fn finite3(v: Vec3) -> bool {
