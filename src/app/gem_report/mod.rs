@@ -23,6 +23,7 @@
 
 pub mod figures;
 mod json;
+mod outputs;
 mod page;
 mod pictures;
 pub mod shots;
@@ -234,7 +235,7 @@ pub fn gem_report(opts: &GemReportOptions) -> Result<GemReport> {
     };
     let set = pictures::Images::new(&list, &images, &tilts);
     let figs = figures::measure(&set, &covers, layout);
-    report.written = pictures::write_outputs(opts, &set, &report, &figs)?;
+    report.written = outputs::write_outputs(opts, &set, &report, &figs)?;
     report.figures = Some(figs);
     report.time = start.elapsed();
     Ok(report)

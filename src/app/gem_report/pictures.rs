@@ -1,16 +1,10 @@
-//! The gem report's images: the rendered shots by role ([`Images`]), the pictures made
+//! The gem report's images: the rendered shots by role ([`Images`]) and the pictures made
 //! from them (the fire picture: the spot dome's C, d and F renders as red, green and blue;
-//! the direction map), and the writing of every file into the output directory, each
-//! atomically, after everything is rendered and measured. PNGs are written without tone
-//! mapping (exposure 0, clamped), so an instrument's colours stay its colours.
+//! the direction map), written by [`super::outputs`].
 
 use super::shots::Shot;
-use super::{json, page, Figures, GemReport, GemReportOptions};
-use crate::error::{Error, Result};
 use crate::image::ImageRgb;
-use crate::output::{DisplayOptions, Exposure, ToneMap};
 use glam::Vec3;
-use std::path::PathBuf;
 
 /// The rendered images by role.
 pub(super) struct Images<'a> {
@@ -42,67 +36,11 @@ impl<'a> Images<'a> {
     }
 }
 
-/// Writes the images and pages into the output directory; returns the paths written.
-pub(super) fn write_outputs(
-    opts: &GemReportOptions,
-    set: &Images,
-    report: &GemReport,
-    figs: &Figures,
-) -> Result<Vec<PathBuf>> {
-    let dir = &opts.out_dir;
-    std::fs::create_dir_all(dir).map_err(|e| Error::Output {
-        path: dir.clone(),
-        reason: e.to_string(),
-    })?;
-    let display = DisplayOptions {
-        exposure: Exposure::Ev(0.0),
-        tonemap: ToneMap::Clamp,
-    };
-    let mut pictures: Vec<(String, ImageRgb)> = Vec::new();
-    for &(t, a, s) in &set.tilts {
-        let (aset, scope) = if t == 0.0 {
-            ("aset.png".to_string(), "ideal-scope.png".to_string())
-        } else {
-            (
-                format!("tilt-{}.png", tilt_name(t)),
-                format!("tilt-{}-ideal-scope.png", tilt_name(t)),
-            )
-        };
-        pictures.push((aset, a.clone()));
-        pictures.push((scope, s.clone()));
-    }
-    pictures.push(("face-up.png".into(), set.overcast.clone()));
-    pictures.push(("fire.png".into(), fire_picture(&set.spots)));
-    pictures.push(("directions.png".into(), direction_picture(set.code[1])));
-    let mut written = Vec::new();
-    for (name, image) in &pictures {
-        let path = dir.join(name);
-        crate::output::write_image(&path, image, &display)?;
-        written.push(path);
-    }
-    let names: Vec<&str> = pictures.iter().map(|(n, _)| n.as_str()).collect();
-    for (name, text) in [
-        ("report.md", page::markdown(opts, report, figs, &names)),
-        ("report.html", page::html(opts, report, figs, &names)),
-        ("report.json", json::json(opts, report, figs)?),
-    ] {
-        let path = dir.join(name);
-        crate::output::atomic::write_file_atomic(&path, text.as_bytes())?;
-        written.push(path);
-    }
-    Ok(written)
-}
-
-/// A tilt in a file name: `10`, `-5`, `12.5`.
-fn tilt_name(t: f32) -> String {
-    format!("{t}")
-}
-
 /// The direction map at the d line, contrast stretched: red and blue (0.5 + d.x, 0.5 +
 /// d.z) tell the azimuth, green d.y = sin e the elevation (0 at the horizon, 1 overhead),
 /// for a pixel whose light all comes from one direction d above the girdle plane (code
 /// (d + 1)/2); mixtures and leakage are darker.
-fn direction_picture(code: &ImageRgb) -> ImageRgb {
+pub(super) fn direction_picture(code: &ImageRgb) -> ImageRgb {
     ImageRgb {
         width: code.width,
         height: code.height,
@@ -118,7 +56,7 @@ fn direction_picture(code: &ImageRgb) -> ImageRgb {
 }
 
 /// The fire picture: the spot-lit face at the C, d and F lines as red, green and blue.
-fn fire_picture(spots: &[&ImageRgb; 3]) -> ImageRgb {
+pub(super) fn fire_picture(spots: &[&ImageRgb; 3]) -> ImageRgb {
     let [c, d, f] = spots;
     ImageRgb {
         width: c.width,

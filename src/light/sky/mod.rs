@@ -27,7 +27,8 @@ pub mod atmosphere;
 
 use crate::error::Result;
 use crate::image::ImageRgb;
-use crate::light::env::{uv_to_dir, EnvMap};
+use crate::light::env::map::EnvMap;
+use crate::light::env::mapping::uv_to_dir;
 use crate::spectrum::cie;
 use atmosphere::Atmosphere;
 use glam::{DVec3, Vec3};
