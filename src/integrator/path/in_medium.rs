@@ -13,7 +13,7 @@
 
 use super::light_sample::{next_event, Scatterer};
 use super::strategy::Strategy;
-use super::vertex::{pending, Next, Pending, Rules, Walk};
+use super::walk::{pending, Next, Pending, Rules, Walk};
 use crate::interaction::{Leave, SurfaceHit};
 use crate::math::Ray;
 use crate::render::Context;

@@ -11,7 +11,7 @@
 //!
 //! Nothing about a sample depends on its lane or its neighbours: its numbers are its own
 //! (restarted per job, [`Starts::start`]), the packet queries answer lane by lane exactly
-//! as the single-ray queries do, and [`vertex::Pending::resolve`] adds in the scalar
+//! as the single-ray queries do, and [`super::walk::Pending::resolve`] adds in the scalar
 //! loop's order. So each estimate equals [`super::radiance`]'s bit for bit, whatever the
 //! width, and images do not change with it (`tests/render/path_lanes.rs`).
 //!
@@ -24,7 +24,8 @@
 //! `IRIS_LANES=off|8|16` overrides it for measurements; images do not change.
 
 use super::strategy::Strategy;
-use super::vertex::{self, Next, Pending, Rules, Walk};
+use super::vertex;
+use super::walk::{Next, Pending, Rules, Walk};
 use super::Dispersion;
 use crate::accel::packet::{lanes, Coherence, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
 use crate::accel::Accel;

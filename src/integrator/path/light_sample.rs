@@ -3,13 +3,12 @@
 //! scene's light sampler, from a surface (its BSDF, per lane at a rough dispersive
 //! interface) or from a scattering event in a medium (its phase function), MIS-weighted
 //! against the vertex's own sampling (power heuristic). The shadow ray is left to the
-//! caller ([`super::vertex::Pending`]), with the media it starts in when the scene has
+//! caller ([`super::walk::Pending`]), with the media it starts in when the scene has
 //! media, for its transmittance.
 //!
 //! Units: the light sample's value is f · incident · |cos| (radiance per unit throughput);
 //! directions in world space unless said local.
 
-use super::vertex::mis;
 use crate::bsdf::TransportMode;
 use crate::interaction::SurfaceHit;
 use crate::math::Ray;
@@ -149,5 +148,15 @@ pub(super) fn next_event<C: Carrier>(
         wi: e.wi,
         value: e.value,
         through: scene.has_media().then(|| at.through(e.wi)),
+    }
+}
+
+/// Power heuristic with β = 2.
+pub(super) fn mis(a: f32, b: f32) -> f32 {
+    let (a2, b2) = (a * a, b * b);
+    if a2 + b2 > 0.0 {
+        a2 / (a2 + b2)
+    } else {
+        0.0
     }
 }

@@ -31,6 +31,7 @@ mod split;
 mod state;
 mod strategy;
 mod vertex;
+mod walk;
 
 pub use capabilities::CAPABILITIES;
 pub use lanes::{estimate_lanes, estimate_path, LaneWidth};
@@ -77,7 +78,7 @@ use crate::scene::Scene;
 use crate::shading;
 use crate::spectrum::Carrier;
 use glam::Vec3;
-use vertex::{Next, Rules, Walk};
+use walk::{Next, Rules, Walk};
 
 /// A volumetric caustic map's beam radiance estimate along a camera ray's segment through
 /// a medium ([`super::volume_map::VolumeMap::beam`]), per unit throughput.

@@ -5,18 +5,18 @@
 //! the bounce rules. What differs between methods (where a path stops, what another
 //! estimator gathers or owns of its light, which hero orders its lanes, whether it splits
 //! into its wavelengths) is asked of the caller's [`Strategy`]. The shadow ray of
-//! next-event estimation is not traced here: the vertex returns it as [`Pending`], so the
+//! next-event estimation is not traced here: the vertex returns it as [`Pending`] ([`super::walk`]), so the
 //! lanes can trace all their shadow rays as one packet; [`Pending::resolve`] then adds to
 //! the radiance exactly what the scalar loop adds, in the same order.
 //!
 //! Units: radiance in the carrier's units (linear RGB or per-wavelength spectral
 //! radiance); frames as in [`crate::shading::step`].
 
-use super::light_sample::{next_event, NextEvent, Scatterer};
-use super::own_hero::{self, HeroOf};
-use super::split::Branches;
-use super::state::{PathState, Prev};
+use super::light_sample::{mis, next_event, Scatterer};
+use super::own_hero;
+use super::state::Prev;
 use super::strategy::{History, RoughLanes, Strategy};
+use super::walk::{pending, Next, Pending, Rules, Walk};
 use super::VisiblePoint;
 use crate::bsdf::TransportMode;
 use crate::interaction::SurfaceHit;
@@ -24,146 +24,9 @@ use crate::math::Ray;
 use crate::render::Context;
 use crate::sampler::Bounce;
 use crate::scene::Scene;
-use crate::shading::media::Through;
-use crate::shading::{lights, media, Arrival, Event, Surface};
+use crate::shading::{lights, Arrival, Event, Surface};
 use crate::spectrum::Carrier;
 use glam::Vec3;
-
-/// Power heuristic with β = 2.
-pub(super) fn mis(a: f32, b: f32) -> f32 {
-    let (a2, b2) = (a * a, b * b);
-    if a2 + b2 > 0.0 {
-        a2 / (a2 + b2)
-    } else {
-        0.0
-    }
-}
-
-/// How a render's camera paths run: the depth limit and what the method asks of them.
-pub(super) struct Rules<'s, S> {
-    /// Non-delta bounces per path.
-    pub max_depth: u32,
-    /// The method's decisions ([`Strategy`]).
-    pub strategy: &'s S,
-}
-
-/// A camera path between two vertices: the radiance so far, the ray to trace next and
-/// the state the bounce rules read.
-pub(super) struct Walk<C: Carrier> {
-    /// Radiance gathered so far.
-    pub l: C,
-    /// The ray to trace next.
-    pub ray: Ray,
-    /// The path's wavelengths (the hero only past a smooth dispersive interface).
-    pub lambda: C::Lambda,
-    /// Throughput, media, bounce counts.
-    pub st: PathState<C>,
-    /// The sub-paths of a path split into its wavelengths ([`super::split`]).
-    branches: Branches<C>,
-    /// Whose hero orders the lanes of `l`, `lambda` and `st.beta` ([`super::own_hero`]).
-    hero: HeroOf,
-}
-
-impl<C: Carrier> Walk<C> {
-    /// A path leaving the camera along `ray` at the wavelengths `lambda`.
-    pub fn new(ray: Ray, lambda: C::Lambda) -> Self {
-        Walk {
-            l: C::ZERO,
-            ray,
-            lambda,
-            st: PathState::new(ray.origin),
-            branches: Branches::new(),
-            hero: HeroOf::Sample,
-        }
-    }
-
-    /// Ends the current (sub-)path and, if the path was split and a lane waits, sets the
-    /// walk to that lane's sub-path and returns true ([`super::split`]).
-    pub fn next_branch(&mut self) -> bool {
-        let (l, ray, lambda) = (&mut self.l, &mut self.ray, &mut self.lambda);
-        self.branches.next(l, ray, lambda, &mut self.st)
-    }
-
-    /// The sample's radiance (in the sample's lane order) once [`Self::next_branch`]
-    /// returned false.
-    pub fn radiance(&self) -> C {
-        self.hero.to_sample(self.branches.radiance(self.l))
-    }
-
-    /// Adds light `e` found along the path unless it is another estimator's (`leaves`).
-    #[inline]
-    fn add_unless(&mut self, e: Option<C>, leaves: bool) {
-        if let (Some(e), false) = (e, leaves) {
-            self.l += e;
-        }
-    }
-
-    /// Passes through the uncovered part of a BLEND surface at `hit` along `next`.
-    #[inline]
-    fn pass_through(&mut self, next: Ray, hit: SurfaceHit) -> (Option<Pending<C>>, Next) {
-        self.ray = next;
-        self.st.from = Some(hit);
-        self.st.direct = false;
-        (None, Next::Trace)
-    }
-}
-
-/// What a vertex adds once its shadow ray is answered: `beta × value` (zero if blocked),
-/// then the caustic map's gather.
-pub(super) struct Pending<C: Carrier> {
-    /// The shadow ray of next-event estimation (`None`: nothing to trace, `value` is zero).
-    pub shadow: Option<Ray>,
-    /// In a scene with media: where the shadow ray starts; it is then traced alone for its
-    /// transmittance ([`Pending::resolve_traced`]), not in a packet.
-    pub through: Option<Through>,
-    beta: C,
-    value: C,
-    gather: Option<C>,
-}
-
-impl<C: Carrier> Pending<C> {
-    /// Adds the vertex's light to `l`, `blocked` being the shadow ray's answer (a scene
-    /// without media).
-    #[inline]
-    pub fn resolve(self, blocked: bool, l: &mut C) {
-        let v = if blocked { C::ZERO } else { self.value };
-        self.add(v, l);
-    }
-
-    /// Traces the shadow ray (through its media, [`media::shadow`]) and adds the vertex's
-    /// light to `l`.
-    pub fn resolve_traced(self, scene: &Scene, lambda: &C::Lambda, rays: &mut u64, l: &mut C) {
-        let v = self.transmitted(scene, lambda, rays);
-        self.add(v, l);
-    }
-
-    /// Traces the shadow ray (through its media, [`media::shadow`]): the light sample's
-    /// value past it, per unit throughput (zero if blocked or without a shadow ray).
-    pub fn transmitted(&self, scene: &Scene, lambda: &C::Lambda, rays: &mut u64) -> C {
-        match (self.shadow, self.through) {
-            (Some(r), Some(t)) => self.value * media::shadow::<C>(scene, &r, t, lambda, rays),
-            (Some(r), None) if !scene.occluded(&r) => self.value,
-            _ => C::ZERO,
-        }
-    }
-
-    #[inline]
-    fn add(&self, v: C, l: &mut C) {
-        *l += self.beta * v;
-        if let Some(g) = self.gather {
-            *l += g;
-        }
-    }
-}
-
-/// What follows a vertex.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Next {
-    /// Trace the walk's (new) ray.
-    Trace,
-    /// The path is over (perhaps at a visible point, [`Strategy::stops_at`]).
-    End,
-}
 
 /// The environment seen along an escaped ray, times `beta`, MIS-weighted against the light
 /// sampling of the previous bounce (the light sampler's probability of the environment);
@@ -367,15 +230,4 @@ fn bounce<C: Carrier>(
     st.vertex += 1;
     st.direct = false;
     Next::Trace
-}
-
-/// A light sample at throughput `beta`, with the gather to add after it.
-pub(super) fn pending<C: Carrier>(beta: C, ls: NextEvent<C>, gather: Option<C>) -> Pending<C> {
-    Pending {
-        shadow: ls.shadow,
-        through: ls.through,
-        beta,
-        value: ls.value,
-        gather,
-    }
 }

@@ -27,7 +27,7 @@
 //! Shared with the path tracer's vertex ([`super::vertex`]): the path state, its bounce
 //! limits, delta counter and Russian roulette ([`super::state::PathState`]), emission and
 //! the environment with MIS, next-event estimation and its shadow ray
-//! ([`super::vertex::Pending::transmitted`]), the caustic tests. Not shared, so not had:
+//! ([`super::walk::Pending::transmitted`]), the caustic tests. Not shared, so not had:
 //! - scattering media: a phase function here is a scalar (Henyey–Greenstein), with no
 //!   Mueller matrix to carry the analyzer through a scattering event; the plan refuses
 //!   them with polarization (absorbing volumes are traced: Beer–Lambert, and per crystal
@@ -46,7 +46,8 @@ mod surface;
 
 use super::light_sample::{next_event, Scatterer};
 use super::state::PathState;
-use super::vertex::{emitted, escaped, pending};
+use super::vertex::{emitted, escaped};
+use super::walk::pending;
 use crate::bsdf::TransportMode;
 use crate::material::CrystalDesc;
 use crate::math::Ray;
