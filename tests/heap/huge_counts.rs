@@ -378,7 +378,7 @@ fn cli_rejects_huge_requests_with_no_output() {
         &["huge.hdr", "header", "100000×100000"],
     );
     let exr = dir.join("huge.exr");
-    std::fs::write(&exr, exr_claiming(99_999, 99_999)).unwrap();
+    std::fs::write(&exr, exr_claiming(&dir, 99_999, 99_999)).unwrap();
     assert_cli_fails(
         &dir,
         &["render", ok, "--env", "huge.exr", "-o", "out.png"],
@@ -388,9 +388,8 @@ fn cli_rejects_huge_requests_with_no_output() {
 
 /// A small EXR written by Iris, with its data and display windows patched to declare
 /// `(w+1)×(h+1)` pixels (OpenEXR file layout: `box2i` attributes are four little-endian
-/// i32 `xMin yMin xMax yMax`).
-fn exr_claiming(w: i32, h: i32) -> Vec<u8> {
-    let dir = common::scratch_dir("huge_counts_exr_src");
+/// i32 `xMin yMin xMax yMax`); the small file is written in the calling test's `dir`.
+fn exr_claiming(dir: &Path, w: i32, h: i32) -> Vec<u8> {
     let path = dir.join("small.exr");
     let mut img = iris::image::ImageRgb::new(4, 2);
     img.data.iter_mut().for_each(|p| *p = glam::Vec3::ONE);
@@ -420,7 +419,7 @@ fn huge_environment_maps_are_rejected_before_allocating() {
     )
     .unwrap();
     let exr = dir.join("huge.exr");
-    std::fs::write(&exr, exr_claiming(99_999, 99_999)).unwrap();
+    std::fs::write(&exr, exr_claiming(&dir, 99_999, 99_999)).unwrap();
     for path in [hdr, exr] {
         let (result, peak) = peak_during(|| iris::light::env::load(&path));
         let err = result.expect_err("huge map loaded");

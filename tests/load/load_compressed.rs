@@ -312,7 +312,7 @@ fn write_glb(path: &Path, json: &Value, bin: &[u8]) {
 fn assert_hostile(source: &str, name: &str, edit: impl Fn(&mut Value), expect: &[&str]) {
     let (mut json, bin) = read_glb(&data(source));
     edit(&mut json);
-    let path = common::scratch_dir("load_compressed").join(format!("{name}.glb"));
+    let path = common::scratch_dir(&format!("load_compressed_{name}")).join(format!("{name}.glb"));
     write_glb(&path, &json, &bin);
     let err = match iris::load::read_scene(&path) {
         Ok(_) => panic!("{name}: loaded"),

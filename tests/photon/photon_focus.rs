@@ -36,7 +36,7 @@ fn screen_photons(aperture: f32, screen: f32, photons: u64, tag: &str) -> Vec<(V
     let gen = iris::assets::caustic::focus_bench(N, R, aperture, screen, 6);
     // The light shines exactly along −Z: every photon direction has two zero components
     // (the BVH backend's finite-inverse slab test keeps this fast: src/accel/bvh.rs).
-    let dir = common::scratch_dir("photon_focus");
+    let dir = common::scratch_dir(&format!("photon_focus_{tag}"));
     let path = dir.join(format!("{tag}.glb"));
     iris::authoring::write_glb(&path, &gen).expect("write focus bench");
     let (scene, _) = iris::app::load(&path, iris::accel::Backend::Auto).expect("load");
