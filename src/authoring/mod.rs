@@ -21,6 +21,8 @@
 pub mod cuts;
 pub mod gem;
 pub mod glb;
+#[cfg(test)]
+mod glb_read_back;
 mod gltf_json;
 mod invalid;
 mod json_number;

@@ -52,8 +52,9 @@ pub fn placed(name: &str, geometry: TriMesh, material: usize, at: Option<Vec3>) 
 ///
 /// The rotation is found in `f64` and rounded once to a quaternion
 /// ([`super::gltf_json::look_rotation`]); `world_from_camera` is that quaternion and `eye`
-/// as the glTF loader turns a node's translation and rotation into a matrix, so a file
-/// holding the matrix reads back as this camera bit for bit. A degenerate frame (eye at
+/// as the glTF loader turns a node's translation and rotation into a matrix, so a node
+/// holding this matrix loads exactly as a node holding that translation and rotation
+/// would (the loader then makes the axes orthonormal in `f64`). A degenerate frame (eye at
 /// the target, `up` along the view, non-finite values) gives a non-finite matrix, which
 /// [`validate`] refuses naming the camera.
 pub fn look_at(
