@@ -27,10 +27,11 @@ use crate::authoring::cuts::preview::{add_setting, direction, preview_camera};
 use crate::authoring::cuts::{polyhedron, Cut};
 use crate::authoring::gem::newell;
 use crate::authoring::lathe::sin_cos;
-use crate::authoring::scene::{GenMesh, GenScene};
+use crate::authoring::scene::placed;
 use crate::authoring::shapes::{cuboid, ground_plane, push_flat_facing_away, TriMesh};
 use crate::authoring::stones::Stone;
 use crate::material::MaterialDesc;
+use crate::scene::desc::{EnvironmentDesc, SceneDesc};
 use glam::{DVec3, Mat3, Quat, Vec3};
 
 /// A rhombohedron with edges of equal length meeting at its two blunt vertices at
@@ -193,11 +194,11 @@ pub const CALCITE: Rhomb = Rhomb {
 };
 
 /// A calcite rhomb on a printed card: the print seen through it doubled (module docs).
-pub fn calcite_rhomb() -> GenScene {
-    let mut s = GenScene {
+pub fn calcite_rhomb() -> SceneDesc {
+    let mut s = SceneDesc {
         name: "Calcite rhomb on a printed card (double refraction)".into(),
-        extras: Some(serde_json::json!({"iris_environment": 0.5})),
-        ..GenScene::default()
+        environment: Some(EnvironmentDesc::Uniform(Vec3::splat(0.5))),
+        ..SceneDesc::default()
     };
     let (card_y, ink_y, lift) = (0.0003, 0.00035, 0.0006);
     let table = MaterialDesc::diffuse("Table", Vec3::splat(0.3));
@@ -250,7 +251,7 @@ pub fn calcite_rhomb() -> GenScene {
     );
     let target = Vec3::new(0.006, 0.012, -0.002);
     let eye = target + (0.28 * direction(72.0, 0.0)).as_vec3();
-    s.camera = Some(camera(eye, target, 12.0, 16.0 / 9.0));
+    s.cameras.push(camera(eye, target, 12.0, 16.0 / 9.0));
     s
 }
 
@@ -267,7 +268,7 @@ pub const BRILLIANT_SIZE: f64 = 0.0065;
 
 /// A moissanite beside a diamond, both 6.5 mm round brilliants, in the preview's setting
 /// (module docs).
-pub fn moissanite_and_diamond() -> GenScene {
+pub fn moissanite_and_diamond() -> SceneDesc {
     let size = BRILLIANT_SIZE;
     let stone = Cut::Round.mesh(size);
     let (lo, hi) = stone.positions.iter().fold(
@@ -275,9 +276,9 @@ pub fn moissanite_and_diamond() -> GenScene {
         |(lo, hi), p| (lo.min(p.as_dvec3()), hi.max(p.as_dvec3())),
     );
     let depth = (hi.y - lo.y) as f32;
-    let mut s = GenScene {
+    let mut s = SceneDesc {
         name: "Round brilliants: moissanite and diamond, 6.5 mm".into(),
-        ..GenScene::default()
+        ..SceneDesc::default()
     };
     let lift = 0.02 * size - lo.y;
     let half_gap = 0.68 * size;
@@ -296,26 +297,25 @@ pub fn moissanite_and_diamond() -> GenScene {
         ),
     ] {
         s.materials.push(m);
-        s.meshes.push(GenMesh {
-            name: name.into(),
-            geometry: stone.clone(),
-            material: s.materials.len() - 1,
-            translation: Some(DVec3::new(x, lift, 0.0).as_vec3()),
-        });
+        let at = DVec3::new(x, lift, 0.0).as_vec3();
+        let material = s.materials.len() - 1;
+        s.meshes
+            .push(placed(name, stone.clone(), material, Some(at)));
     }
     let centre = DVec3::new(0.0, lift + 0.5 * (lo.y + hi.y), 0.0);
     add_setting(&mut s, centre, size);
-    s.camera = Some(preview_camera(centre, 0.75 * size, (50.0, 0.0), 16.0 / 9.0));
+    s.cameras
+        .push(preview_camera(centre, 0.75 * size, (50.0, 0.0), 16.0 / 9.0));
     s
 }
 
 /// Two tourmaline bars on a light table, one with its optic axis along the view and one
 /// across it (module docs).
-pub fn pleochroic_tourmaline() -> GenScene {
-    let mut s = GenScene {
+pub fn pleochroic_tourmaline() -> SceneDesc {
+    let mut s = SceneDesc {
         name: "Tourmaline bars on a light table (pleochroism)".into(),
-        extras: Some(serde_json::json!({"iris_environment": 0.08})),
-        ..GenScene::default()
+        environment: Some(EnvironmentDesc::Uniform(Vec3::splat(0.08))),
+        ..SceneDesc::default()
     };
     let table = MaterialDesc::diffuse("Table", Vec3::splat(0.05));
     add_mesh(&mut s, "Table", ground_plane(0.2, 0.2), table, None);
@@ -340,7 +340,7 @@ pub fn pleochroic_tourmaline() -> GenScene {
     }
     let target = Vec3::new(0.0, 0.002, 0.0);
     let eye = target + (0.06 * direction(65.0, 0.0)).as_vec3();
-    s.camera = Some(camera(eye, target, 30.0, 16.0 / 9.0));
+    s.cameras.push(camera(eye, target, 30.0, 16.0 / 9.0));
     s
 }
 

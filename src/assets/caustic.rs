@@ -51,10 +51,10 @@ use super::parts::{add_mesh, camera};
 use super::spectral::upright_prism;
 use crate::authoring::gem::Brilliant;
 use crate::authoring::lathe::sin_cos;
-use crate::authoring::scene::GenScene;
 use crate::authoring::shapes::{ground_plane, icosphere, TriMesh};
 use crate::material::MaterialDesc;
 use crate::scene::desc::LightDesc;
+use crate::scene::desc::SceneDesc;
 use glam::{DVec3, Vec3};
 
 /// The ball-lens test scene, also reachable from here (see [`super::focus_bench`]).
@@ -77,10 +77,10 @@ pub const GEM_DIAMETER: f64 = 0.015;
 pub const GEM_CANDELA: f32 = 20.0;
 
 /// Fig. 4.5.1: a glass sphere and a glass prism on a white floor under one point light.
-pub fn fig4_5_1_caustics() -> GenScene {
-    let mut s = GenScene {
+pub fn fig4_5_1_caustics() -> SceneDesc {
+    let mut s = SceneDesc {
         name: "Fig. 4.5.1: caustics of a glass sphere and a prism".into(),
-        ..GenScene::default()
+        ..SceneDesc::default()
     };
     let floor = MaterialDesc::diffuse("Floor", Vec3::splat(0.8));
     let floor_at = Some(Vec3::new(0.15, 0.0, 0.1));
@@ -106,7 +106,7 @@ pub fn fig4_5_1_caustics() -> GenScene {
         range: None,
         spectrum: None,
     });
-    s.camera = Some(camera(
+    s.cameras.push(camera(
         Vec3::new(1.25, 0.75, 0.1),
         Vec3::new(0.3, 0.0, 0.05),
         35.0,
@@ -132,10 +132,10 @@ pub fn gem_light_direction() -> DVec3 {
 }
 
 /// A 15 mm round brilliant diamond on a white floor under a narrow spot light.
-pub fn gem_caustics() -> GenScene {
-    let mut s = GenScene {
+pub fn gem_caustics() -> SceneDesc {
+    let mut s = SceneDesc {
         name: "Diamond caustics under a spot light".into(),
-        ..GenScene::default()
+        ..SceneDesc::default()
     };
     let floor = MaterialDesc::diffuse("Floor", Vec3::splat(0.8));
     add_mesh(&mut s, "Floor", ground_plane(0.1, 0.1), floor, None);
@@ -157,7 +157,8 @@ pub fn gem_caustics() -> GenScene {
     });
     let (s50, c50) = sin_cos(50f64.to_radians());
     let eye = centre + 0.15 * DVec3::new(c50, s50, 0.0);
-    s.camera = Some(camera(eye.as_vec3(), centre.as_vec3(), 35.0, 1.0));
+    s.cameras
+        .push(camera(eye.as_vec3(), centre.as_vec3(), 35.0, 1.0));
     s
 }
 
@@ -220,7 +221,7 @@ mod tests {
     #[test]
     fn caustic_scenes_validate() {
         for s in [fig4_5_1_caustics(), gem_caustics()] {
-            s.validate().expect("valid");
+            crate::authoring::scene::validate(&s).expect("valid");
         }
     }
 }

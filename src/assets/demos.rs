@@ -33,10 +33,11 @@ use super::spectral::{diamond, fig5_3_1_prism_beam};
 use crate::authoring::gem::Brilliant;
 use crate::authoring::glb::write_glb;
 use crate::authoring::lathe::{append, Tumbler};
-use crate::authoring::scene::GenScene;
 use crate::authoring::shapes::{checkerboard, ground_plane, prism, quarter_turn_x, TriMesh};
 use crate::error::{Error, Result};
+use crate::light::sky::SkyParams;
 use crate::material::MaterialDesc;
+use crate::scene::desc::{EnvironmentDesc, SceneDesc};
 use glam::{Mat3, Vec3};
 use std::path::{Path, PathBuf};
 
@@ -94,10 +95,10 @@ pub fn write_scene_assets(dir: &Path) -> Result<Vec<PathBuf>> {
 }
 
 /// A glass of water on a checker table.
-pub fn glass_of_water() -> GenScene {
-    let mut s = GenScene {
+pub fn glass_of_water() -> SceneDesc {
+    let mut s = SceneDesc {
         name: "Glass of water".into(),
-        ..GenScene::default()
+        ..SceneDesc::default()
     };
     add_checker(
         &mut s,
@@ -144,7 +145,7 @@ pub fn glass_of_water() -> GenScene {
         towards_minus_z,
         Vec3::new(0.0, 0.2, 0.6),
     );
-    s.camera = Some(camera(
+    s.cameras.push(camera(
         Vec3::new(0.0, 0.12, 0.38),
         Vec3::new(0.0, 0.055, 0.0),
         28.0,
@@ -154,11 +155,11 @@ pub fn glass_of_water() -> GenScene {
 }
 
 /// A ruby brilliant lying on a light floor.
-pub fn ruby() -> GenScene {
-    let mut s = GenScene {
+pub fn ruby() -> SceneDesc {
+    let mut s = SceneDesc {
         name: "Ruby, round brilliant".into(),
-        extras: Some(serde_json::json!({"iris_environment": 0.15})),
-        ..GenScene::default()
+        environment: Some(EnvironmentDesc::Uniform(Vec3::splat(0.15))),
+        ..SceneDesc::default()
     };
     let floor = MaterialDesc::diffuse("Floor", Vec3::splat(0.85));
     add_mesh(&mut s, "Floor", ground_plane(0.3, 0.3), floor, None);
@@ -185,7 +186,7 @@ pub fn ruby() -> GenScene {
         down,
         Vec3::new(0.05, 0.1, -0.05),
     );
-    s.camera = Some(camera(
+    s.cameras.push(camera(
         Vec3::new(0.015, 0.038, 0.075),
         Vec3::new(0.0, 0.006, 0.0),
         30.0,
@@ -195,11 +196,15 @@ pub fn ruby() -> GenScene {
 }
 
 /// A glass sphere on a checker floor at sunset (a computed sky, [`crate::light::sky`]).
-pub fn sunset_sphere() -> GenScene {
-    let mut s = GenScene {
+pub fn sunset_sphere() -> SceneDesc {
+    let mut s = SceneDesc {
         name: "Glass sphere at sunset".into(),
-        extras: Some(serde_json::json!({"iris_environment": "sky:elevation=4,azimuth=20"})),
-        ..GenScene::default()
+        environment: Some(EnvironmentDesc::Sky(SkyParams {
+            elevation: 4.0,
+            azimuth: 20.0,
+            turbidity: 2.0,
+        })),
+        ..SceneDesc::default()
     };
     add_floor_to_the_horizon(&mut s);
     let glass = MaterialDesc::clear_glass("Glass IOR 1.5", 1.5, 0.2);
@@ -211,7 +216,7 @@ pub fn sunset_sphere() -> GenScene {
         glass,
         Some(Vec3::new(0.0, 0.101, 0.0)),
     );
-    s.camera = Some(camera(
+    s.cameras.push(camera(
         Vec3::new(0.15, 0.22, 0.75),
         Vec3::new(0.0, 0.1, 0.0),
         40.0,
@@ -222,7 +227,7 @@ pub fn sunset_sphere() -> GenScene {
 
 /// A 3×3 m checker of 0.15 m tiles around the origin, framed by plain floor out to ±60 m
 /// (four quads that meet the checker's edges, no overlap).
-fn add_floor_to_the_horizon(s: &mut GenScene) {
+fn add_floor_to_the_horizon(s: &mut SceneDesc) {
     add_checker(
         s,
         "Floor",
@@ -249,11 +254,11 @@ fn add_floor_to_the_horizon(s: &mut GenScene) {
 }
 
 /// A dispersive prism standing on a floor under the generated sky.
-pub fn prism_sky() -> GenScene {
-    let mut s = GenScene {
+pub fn prism_sky() -> SceneDesc {
+    let mut s = SceneDesc {
         name: "Prism under the sky".into(),
-        extras: Some(serde_json::json!({"iris_environment": SKY_FILE})),
-        ..GenScene::default()
+        environment: Some(EnvironmentDesc::Map(SKY_FILE.into())),
+        ..SceneDesc::default()
     };
     add_floor_to_the_horizon(&mut s);
     let mut glass = MaterialDesc::clear_glass("Prism glass IOR 1.5", 1.5, 0.25);
@@ -262,7 +267,7 @@ pub fn prism_sky() -> GenScene {
     let upright = prism(0.25, 0.4).transformed(quarter_turn_x(), Vec3::ZERO);
     let at = Some(Vec3::new(0.0, 0.201, 0.0));
     add_mesh(&mut s, "Prism", upright, glass, at);
-    s.camera = Some(camera(
+    s.cameras.push(camera(
         Vec3::new(0.55, 0.3, 0.8),
         Vec3::new(-0.05, 0.12, 0.1),
         45.0,

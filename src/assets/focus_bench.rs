@@ -13,10 +13,10 @@
 
 use super::parts::{add_mesh, camera};
 use crate::authoring::lathe::sin_cos;
-use crate::authoring::scene::{GenCamera, GenScene};
 use crate::authoring::shapes::{ground_plane, icosphere, quarter_turn_x, TriMesh};
 use crate::material::MaterialDesc;
 use crate::scene::desc::LightDesc;
+use crate::scene::desc::{CameraDesc, SceneDesc};
 use glam::{DVec3, Vec3};
 
 /// Smallest number of segments of [`focus_bench`]'s aperture plate.
@@ -83,20 +83,20 @@ pub fn aperture_plate(hole: f64, half: f64, segments: u32) -> TriMesh {
 /// at 0.1R and 0.3R cross the axis within 2.3·10⁻⁴·f of the exact sphere's crossing at
 /// s = 5 and 6.3·10⁻⁵·f at s = 6 (unit test below, n = 1.5). Use s ≥ 5.
 /// Invalid `n`, `radius` or `screen_distance` (non-finite, ≤ 0) give non-finite or
-/// degenerate geometry that [`GenScene::validate`] rejects.
+/// degenerate geometry that [`SceneDesc::validate`] rejects.
 pub fn focus_bench(
     n: f32,
     radius: f32,
     aperture: f32,
     screen_distance: f32,
     subdivisions: u32,
-) -> GenScene {
+) -> SceneDesc {
     let r = f64::from(radius);
     // max/min, not clamp: clamp panics when the bounds are NaN (radius NaN).
     let hole = f64::from(aperture).max(r / 1000.0).min(2.5 * r);
-    let mut s = GenScene {
+    let mut s = SceneDesc {
         name: format!("Focus bench: ball lens n = {n}, R = {radius} m"),
-        ..GenScene::default()
+        ..SceneDesc::default()
     };
     let glass = MaterialDesc::clear_glass(&format!("Glass IOR {n}"), n, 2.0 * radius);
     add_mesh(
@@ -127,7 +127,7 @@ pub fn focus_bench(
 /// A camera for [`focus_bench`] scenes: looks at the screen's centre from `distance` in
 /// front of it, 30° off the axis (above); it sees past the plate when `distance`/2 exceeds
 /// 3·radius.
-pub fn focus_bench_camera(screen_distance: f32, distance: f32) -> GenCamera {
+pub fn focus_bench_camera(screen_distance: f32, distance: f32) -> CameraDesc {
     let target = Vec3::new(0.0, 0.0, -screen_distance);
     let eye = target + distance * Vec3::new(0.0, 0.5, 0.75f32.sqrt());
     camera(eye, target, 30.0, 1.0)
@@ -161,22 +161,26 @@ pub(crate) mod tests {
     #[test]
     fn focus_bench_places_plate_sphere_and_screen() {
         let s = focus_bench(1.5, 0.01, 0.002, 0.02, 5);
-        s.validate().expect("valid");
+        crate::authoring::scene::validate(&s).expect("valid");
         let z = |name: &str| {
             let m = s.meshes.iter().find(|m| m.name == name).expect(name);
-            m.translation.unwrap_or(Vec3::ZERO).z
+            let z = m.positions.iter().map(|p| p.z);
+            let (lo, hi) = z.fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), z| {
+                (a.min(z), b.max(z))
+            });
+            0.5 * (lo + hi)
         };
         assert_eq!(
             (z("Sphere"), z("Aperture plate"), z("Screen")),
             (0.0, 0.02, -0.02)
         );
         // The sphere's vertices all lie on the sphere (f32: 1e-6 relative).
-        let sphere = &s.meshes[0].geometry;
+        let sphere = &s.meshes[0];
         for p in &sphere.positions {
             assert!((p.length() / 0.01 - 1.0).abs() < 1e-6);
         }
         // The screen faces +Z and is no wider than the plate, so the plate shades it.
-        let screen = &s.meshes[2].geometry;
+        let screen = &s.meshes[2];
         let [a, b, c] = screen.indices[0].map(|i| screen.positions[i as usize]);
         assert!((b - a).cross(c - a).z > 0.0);
         let wide = screen.positions.iter().map(|p| p.x.abs().max(p.y.abs()));
@@ -185,9 +189,8 @@ pub(crate) mod tests {
             matches!(s.lights[0], LightDesc::Directional { direction, .. } if direction == Vec3::NEG_Z)
         );
         // Bad input is rejected by validation, not a panic.
-        assert!(focus_bench(1.5, f32::NAN, 0.002, 0.02, 5)
-            .validate()
-            .is_err());
+        let bad = focus_bench(1.5, f32::NAN, 0.002, 0.02, 5);
+        assert!(crate::authoring::scene::validate(&bad).is_err());
     }
 
     /// Vector Snell's law (pbrt-v4 §9.3): `n` faces against `d`, `eta` = n_i / n_t.

@@ -6,8 +6,8 @@
 //! black diffuse quads whose `emissiveFactor` × `KHR_materials_emissive_strength` is the
 //! radiance below, emitting from their front face. Every scene has its camera and its own
 //! lights and NO environment, no dispersion and no Iris-only extras, so that Blender Cycles
-//! can render the same file for a cross-check. Each file is < 50 KB: the spheres share one
-//! icosphere (3 subdivisions, 1280 triangles, smooth normals), placed by node translations.
+//! can render the same file for a cross-check. Each file is < 200 KB: every sphere is an
+//! icosphere (3 subdivisions, 1280 triangles, smooth normals) in world space.
 //!
 //! | file | objects | materials | lights | camera |
 //! |---|---|---|---|---|
@@ -18,11 +18,11 @@
 use super::paper::SceneBuilder;
 use super::parts::{add_mesh, add_panel, camera};
 use crate::authoring::glb::write_glb;
-use crate::authoring::scene::{GenCamera, GenScene};
 use crate::authoring::shapes::{ground_plane, icosphere, quarter_turn_x};
 use crate::error::{Error, Result};
 use crate::material::MaterialDesc;
 use crate::scene::desc::LightDesc;
+use crate::scene::desc::{CameraDesc, SceneDesc};
 use glam::{Mat3, Quat, Vec3};
 use std::path::{Path, PathBuf};
 
@@ -76,7 +76,7 @@ pub fn row(n: usize) -> Vec<Vec3> {
 }
 
 /// The camera of the sphere rows: eye (0, 1, 5) → (0, 0.4, 0), yfov 40°, 4:3.
-pub fn sphere_camera() -> GenCamera {
+pub fn sphere_camera() -> CameraDesc {
     camera(
         Vec3::new(0.0, 1.0, 5.0),
         Vec3::new(0.0, SPHERE_Y, 0.0),
@@ -102,7 +102,7 @@ pub fn write_material_assets(dir: &Path) -> Result<Vec<PathBuf>> {
 }
 
 /// ≈ ClearCoatTest: a rough red base under clearcoats of increasing factor and one rough coat.
-pub fn clearcoat() -> GenScene {
+pub fn clearcoat() -> SceneDesc {
     let mut s = scene_with_floor("Clearcoat test");
     let spheres = CLEARCOATS.iter().zip(row(CLEARCOATS.len()));
     for (i, (&(factor, roughness), at)) in spheres.enumerate() {
@@ -117,12 +117,12 @@ pub fn clearcoat() -> GenScene {
         add_sphere(&mut s, &format!("Sphere {}", i + 1), m, at);
     }
     add_facing_panel(&mut s, "Key panel", 400.0, (0.15, 0.15), CLEARCOAT_LIGHT);
-    s.camera = Some(sphere_camera());
+    s.cameras.push(sphere_camera());
     s
 }
 
 /// ≈ SheenCloth / SheenChair: dark cloth-like spheres with and without sheen, back-lit.
-pub fn sheen() -> GenScene {
+pub fn sheen() -> SceneDesc {
     let mut s = scene_with_floor("Sheen test");
     for (i, (sheen, at)) in SHEENS.iter().zip(row(SHEENS.len())).enumerate() {
         let name = match sheen {
@@ -146,12 +146,12 @@ pub fn sheen() -> GenScene {
         range: None,
         spectrum: None,
     });
-    s.camera = Some(sphere_camera());
+    s.cameras.push(sphere_camera());
     s
 }
 
 /// ≈ DiffuseTransmissionTest: thin sheets lit from behind, seen from the front.
-pub fn diffuse_transmission() -> GenScene {
+pub fn diffuse_transmission() -> SceneDesc {
     let mut s = scene_with_floor("Diffuse transmission test");
     let sheet = ground_plane(SHEET_HALF, SHEET_HALF).transformed(quarter_turn_x(), Vec3::ZERO);
     for (i, (&factor, &at)) in DIFFUSE_TRANSMISSION.iter().zip(&SHEET_CENTRES).enumerate() {
@@ -188,7 +188,7 @@ pub fn diffuse_transmission() -> GenScene {
         range: None,
         spectrum: None,
     });
-    s.camera = Some(camera(
+    s.cameras.push(camera(
         Vec3::new(0.0, 1.0, 4.0),
         Vec3::new(0.0, 0.5, 0.0),
         35.0,
@@ -198,10 +198,10 @@ pub fn diffuse_transmission() -> GenScene {
 }
 
 /// A scene holding only a 12 × 12 m grey (0.5) floor at y = 0.
-fn scene_with_floor(name: &str) -> GenScene {
-    let mut s = GenScene {
+fn scene_with_floor(name: &str) -> SceneDesc {
+    let mut s = SceneDesc {
         name: name.into(),
-        ..GenScene::default()
+        ..SceneDesc::default()
     };
     let floor = MaterialDesc::diffuse("Floor", Vec3::splat(0.5));
     add_mesh(&mut s, "Floor", ground_plane(6.0, 6.0), floor, None);
@@ -209,13 +209,13 @@ fn scene_with_floor(name: &str) -> GenScene {
 }
 
 /// Adds a sphere of radius [`SPHERE_RADIUS`] centred at `at` (all spheres share geometry).
-fn add_sphere(s: &mut GenScene, name: &str, m: MaterialDesc, at: Vec3) {
+fn add_sphere(s: &mut SceneDesc, name: &str, m: MaterialDesc, at: Vec3) {
     add_mesh(s, name, icosphere(SPHERE_RADIUS, 3), m, Some(at));
 }
 
 /// Adds a white emitter of radiance `radiance` and half extents `half`, centred at `at`,
 /// facing the row's centre (0, [`SPHERE_Y`], 0).
-fn add_facing_panel(s: &mut GenScene, name: &str, radiance: f32, half: (f32, f32), at: Vec3) {
+fn add_facing_panel(s: &mut SceneDesc, name: &str, radiance: f32, half: (f32, f32), at: Vec3) {
     let facing = (Vec3::new(0.0, SPHERE_Y, 0.0) - at).normalize();
     let turn = Mat3::from_quat(Quat::from_rotation_arc(Vec3::Y, facing));
     add_panel(s, name, radiance, half, turn, at);
@@ -229,10 +229,10 @@ mod tests {
     fn scenes_encode_deterministically_small_and_without_environment() {
         for (name, build) in MATERIAL_SCENES {
             let scene = build();
-            assert!(scene.extras.is_none(), "{name}: no environment or extras");
+            assert!(scene.environment.is_none(), "{name}: no environment");
             let a = crate::authoring::glb::encode_glb(&scene).expect(name);
             assert_eq!(a, crate::authoring::glb::encode_glb(&build()).expect(name));
-            assert!(a.len() < 50_000, "{name} is {} bytes", a.len());
+            assert!(a.len() < 200_000, "{name} is {} bytes", a.len());
         }
     }
 
@@ -240,7 +240,7 @@ mod tests {
     fn panels_face_the_row() {
         let s = clearcoat();
         let panel = s.meshes.last().expect("panel");
-        let n = panel.geometry.normals[0];
+        let n = panel.normals[0];
         let to_row = (Vec3::new(0.0, SPHERE_Y, 0.0) - CLEARCOAT_LIGHT).normalize();
         assert!(n.dot(to_row) > 0.999, "{n} vs {to_row}");
         let row = row(4);

@@ -17,12 +17,13 @@
 //! x for rotation 0; world Z, image y for π/2): the tests measure that.
 
 use crate::authoring::glb::write_glb;
-use crate::authoring::scene::{GenCamera, GenMesh, GenScene};
+use crate::authoring::scene::{look_at, placed};
 use crate::authoring::shapes::{ground_plane, icosphere};
 use crate::error::Result;
 use crate::material::MaterialDesc;
 use crate::material::{AnisotropyDesc, IridescenceDesc};
 use crate::scene::desc::LightDesc;
+use crate::scene::desc::{EnvironmentDesc, MeshDesc, SceneDesc};
 use glam::{Vec2, Vec3, Vec4};
 use std::path::{Path, PathBuf};
 
@@ -34,31 +35,26 @@ pub const FILES: [&str; 4] = [
     "anisotropy_rotation.glb",
 ];
 
-fn sphere_scene(name: &str, material: MaterialDesc) -> GenScene {
-    GenScene {
+fn sphere_scene(name: &str, material: MaterialDesc) -> SceneDesc {
+    SceneDesc {
         name: name.into(),
-        meshes: vec![GenMesh {
-            name: "sphere".into(),
-            geometry: icosphere(0.5, 3),
-            material: 0,
-            translation: None,
-        }],
+        meshes: vec![placed("sphere", icosphere(0.5, 3), 0, None)],
         materials: vec![material],
-        camera: Some(GenCamera {
-            name: "camera".into(),
-            eye: Vec3::new(0.0, 0.0, 2.2),
-            target: Vec3::ZERO,
-            up: Vec3::Y,
-            yfov: 30f32.to_radians(),
-            aspect: Some(1.0),
-        }),
-        extras: Some(serde_json::json!({"iris_environment": 1.0})),
+        cameras: vec![look_at(
+            "camera",
+            Vec3::new(0.0, 0.0, 2.2),
+            Vec3::ZERO,
+            Vec3::Y,
+            30f32.to_radians(),
+            Some(1.0),
+        )],
+        environment: Some(EnvironmentDesc::Uniform(Vec3::splat(1.0))),
         ..Default::default()
     }
 }
 
 /// The iridescent dark dielectric sphere (IridescenceSuzanne's material on a sphere).
-pub fn iridescence_sphere() -> GenScene {
+pub fn iridescence_sphere() -> SceneDesc {
     let mut m = MaterialDesc::diffuse("iridescent dielectric", Vec3::splat(0.05));
     m.roughness = 0.15;
     m.ior = 1.5;
@@ -72,7 +68,7 @@ pub fn iridescence_sphere() -> GenScene {
 }
 
 /// The iridescent metal sphere (a thin oxide on grey metal, as IridescenceLamp's shade).
-pub fn iridescence_metal() -> GenScene {
+pub fn iridescence_metal() -> SceneDesc {
     let mut m = MaterialDesc::diffuse("iridescent metal", Vec3::splat(0.6));
     m.metallic = 1.0;
     m.roughness = 0.2;
@@ -87,7 +83,7 @@ pub fn iridescence_metal() -> GenScene {
 }
 
 /// The brushed plate under a point light, brushing rotated by `rotation` (radians).
-pub fn anisotropy_plate(rotation: f32) -> GenScene {
+pub fn anisotropy_plate(rotation: f32) -> SceneDesc {
     let plate = ground_plane(0.5, 0.5);
     let uvs: Vec<Vec2> = plate
         .positions
@@ -105,13 +101,11 @@ pub fn anisotropy_plate(rotation: f32) -> GenScene {
         }),
         ..MaterialDesc::diffuse("brushed metal", Vec3::ONE)
     };
-    GenScene {
+    SceneDesc {
         name: "anisotropy plate".into(),
-        meshes: vec![GenMesh {
-            name: "plate".into(),
-            geometry: plate,
-            material: 0,
-            translation: None,
+        meshes: vec![MeshDesc {
+            uvs,
+            ..placed("plate", plate, 0, None)
         }],
         materials: vec![material],
         lights: vec![LightDesc::Point {
@@ -122,21 +116,20 @@ pub fn anisotropy_plate(rotation: f32) -> GenScene {
             range: None,
             spectrum: None,
         }],
-        camera: Some(GenCamera {
-            name: "camera".into(),
-            eye: Vec3::new(0.0, 1.5, 0.0),
-            target: Vec3::ZERO,
-            up: Vec3::NEG_Z,
-            yfov: 40f32.to_radians(),
-            aspect: Some(1.0),
-        }),
-        mesh_uvs: vec![Some(uvs)],
+        cameras: vec![look_at(
+            "camera",
+            Vec3::new(0.0, 1.5, 0.0),
+            Vec3::ZERO,
+            Vec3::NEG_Z,
+            40f32.to_radians(),
+            Some(1.0),
+        )],
         ..Default::default()
     }
 }
 
 /// The four scenes of the module doc, in [`FILES`] order.
-pub fn material_scenes() -> [GenScene; 4] {
+pub fn material_scenes() -> [SceneDesc; 4] {
     [
         iridescence_sphere(),
         iridescence_metal(),

@@ -14,10 +14,10 @@
 
 use super::parts::{add_mesh, add_panel, camera};
 use super::spectral::fig5_3_1_prism_beam;
-use crate::authoring::scene::GenScene;
 use crate::authoring::shapes::{cuboid, ground_plane, icosphere, TriMesh};
 use crate::material::MaterialDesc;
 use crate::scene::desc::LightDesc;
+use crate::scene::desc::{EnvironmentDesc, SceneDesc};
 use crate::volume::{Phase, Scattering, VolumeScatter};
 use glam::{Mat3, Vec3};
 
@@ -36,11 +36,11 @@ fn rayleigh_medium(name: &str, ior: f32, thickness: f32, rayleigh: f32) -> Mater
 }
 
 /// A block of milky water lit along its axis by a narrow white spot.
-pub fn milky_tank() -> GenScene {
-    let mut s = GenScene {
+pub fn milky_tank() -> SceneDesc {
+    let mut s = SceneDesc {
         name: "Milky water in a white beam (Tyndall effect)".into(),
-        extras: Some(serde_json::json!({"iris_environment": 0.05})),
-        ..GenScene::default()
+        environment: Some(EnvironmentDesc::Uniform(Vec3::splat(0.05))),
+        ..SceneDesc::default()
     };
     let table = MaterialDesc::diffuse("Table", Vec3::splat(0.12));
     add_mesh(&mut s, "Table", ground_plane(0.9, 0.5), table, None);
@@ -75,7 +75,7 @@ pub fn milky_tank() -> GenScene {
         range: None,
         spectrum: None,
     });
-    s.camera = Some(camera(
+    s.cameras.push(camera(
         Vec3::new(0.12, 0.32, 0.95),
         Vec3::new(0.04, 0.07, 0.0),
         32.0,
@@ -85,7 +85,7 @@ pub fn milky_tank() -> GenScene {
 }
 
 /// The paper's prism beam in haze: the dispersed fan visible in the air.
-pub fn hazy_prism() -> GenScene {
+pub fn hazy_prism() -> SceneDesc {
     let mut s = fig5_3_1_prism_beam();
     s.name = "A white beam through a prism in haze".into();
     // In a dark room: the fill light would light the whole haze, and a light floor would
@@ -94,7 +94,7 @@ pub fn hazy_prism() -> GenScene {
     for m in s.materials.iter_mut().filter(|m| m.name == "Floor") {
         m.base_color = glam::Vec4::new(0.03, 0.03, 0.03, 1.0);
     }
-    s.extras = Some(serde_json::json!({"iris_fog": "density=0.3,g=0.3"}));
+    s.fog = crate::volume::fog::parse("density=0.3,g=0.3").ok();
     s
 }
 
@@ -114,10 +114,10 @@ fn ellipsoid(a: Vec3) -> TriMesh {
 }
 
 /// An opalescent cabochon on black velvet, lit from the front and from behind.
-pub fn opal() -> GenScene {
-    let mut s = GenScene {
+pub fn opal() -> SceneDesc {
+    let mut s = SceneDesc {
         name: "Opal: Rayleigh scattering in a stone".into(),
-        ..GenScene::default()
+        ..SceneDesc::default()
     };
     let velvet = MaterialDesc::diffuse("Velvet", Vec3::splat(0.02));
     add_mesh(&mut s, "Velvet", ground_plane(0.1, 0.1), velvet, None);
@@ -150,7 +150,7 @@ pub fn opal() -> GenScene {
         back_turn,
         back_at,
     );
-    s.camera = Some(camera(
+    s.cameras.push(camera(
         Vec3::new(0.0, 0.015, 0.06),
         Vec3::new(0.0, 0.006, 0.0),
         30.0,

@@ -5,13 +5,14 @@
 //! (which made `paper` ↔ `caustic` ↔ `spectral` an import cycle). Units:
 //! metres; frames: world space, +Y up.
 
-use crate::authoring::scene::{GenCamera, GenMesh, GenScene};
+use crate::authoring::scene::{look_at, placed};
 use crate::authoring::shapes::{ground_plane, TriMesh};
 use crate::material::MaterialDesc;
+use crate::scene::desc::{CameraDesc, SceneDesc};
 use glam::{Mat3, Vec3};
 
 /// Appends `m` to the scene's materials and returns its index.
-pub(super) fn push_material(s: &mut GenScene, m: MaterialDesc) -> usize {
+pub(super) fn push_material(s: &mut SceneDesc, m: MaterialDesc) -> usize {
     s.materials.push(m);
     s.materials.len() - 1
 }
@@ -19,26 +20,21 @@ pub(super) fn push_material(s: &mut GenScene, m: MaterialDesc) -> usize {
 /// Adds a mesh `name` of `geometry` with its own material `m`, translated by `at` (`None`:
 /// the geometry is in world space).
 pub(super) fn add_mesh(
-    s: &mut GenScene,
+    s: &mut SceneDesc,
     name: &str,
     geometry: TriMesh,
     m: MaterialDesc,
     at: Option<Vec3>,
 ) {
     let material = push_material(s, m);
-    s.meshes.push(GenMesh {
-        name: name.into(),
-        geometry,
-        material,
-        translation: at,
-    });
+    s.meshes.push(placed(name, geometry, material, at));
 }
 
 /// Adds a white emitter `name` of radiance `radiance`, a rectangle of half extents `half`
 /// (x, z before `rotation`) centred at `at`, emitting from the face that `rotation` turns +Y
 /// into.
 pub(super) fn add_panel(
-    s: &mut GenScene,
+    s: &mut SceneDesc,
     name: &str,
     radiance: f32,
     half: (f32, f32),
@@ -52,13 +48,7 @@ pub(super) fn add_panel(
 
 /// A camera named "Camera" at `eye` looking at `target`, +Y up, with a vertical field of
 /// view of `yfov_degrees` and the given aspect ratio (width / height).
-pub(super) fn camera(eye: Vec3, target: Vec3, yfov_degrees: f64, aspect: f32) -> GenCamera {
-    GenCamera {
-        name: "Camera".into(),
-        eye,
-        target,
-        up: Vec3::Y,
-        yfov: yfov_degrees.to_radians() as f32,
-        aspect: Some(aspect),
-    }
+pub(super) fn camera(eye: Vec3, target: Vec3, yfov_degrees: f64, aspect: f32) -> CameraDesc {
+    let yfov = yfov_degrees.to_radians() as f32;
+    look_at("Camera", eye, target, Vec3::Y, yfov, Some(aspect))
 }

@@ -53,10 +53,10 @@
 
 use super::parts::{add_mesh, camera};
 use super::spectral::{upright_prism, BeamLayout, N_D_BK7};
-use crate::authoring::scene::GenScene;
 use crate::authoring::shapes::TriMesh;
 use crate::material::MaterialDesc;
 use crate::scene::desc::LightDesc;
+use crate::scene::desc::SceneDesc;
 use crate::spectrum::EmissionSpectrum;
 use glam::{DVec3, Vec3};
 
@@ -174,10 +174,10 @@ fn rect(mesh: &mut TriMesh, c: DVec3, a: DVec3, b: DVec3) {
 
 /// Fig. 5.3.1 as a caustic: a horizontal sun through a slit and an N-BK7 prism throws a
 /// rainbow on a white screen 1.2 m away.
-pub fn fig5_3_1_rainbow() -> GenScene {
-    let mut s = GenScene {
+pub fn fig5_3_1_rainbow() -> SceneDesc {
+    let mut s = SceneDesc {
         name: "Fig. 5.3.1: sunlight through a slit and a prism, rainbow on a screen".into(),
-        ..GenScene::default()
+        ..SceneDesc::default()
     };
     let l = rainbow_layout();
     let mut floor = TriMesh::default();
@@ -246,7 +246,8 @@ pub fn fig5_3_1_rainbow() -> GenScene {
     let middle = l.exit + 0.6 * l.dir_out;
     let eye = middle - 1.3 * l.dispersion + DVec3::new(0.0, 0.5, 0.0);
     let target = DVec3::new(middle.x, 0.02, middle.z);
-    s.camera = Some(camera(eye.as_vec3(), target.as_vec3(), 40.0, 16.0 / 9.0));
+    s.cameras
+        .push(camera(eye.as_vec3(), target.as_vec3(), 40.0, 16.0 / 9.0));
     s
 }
 
@@ -281,11 +282,11 @@ mod tests {
     #[test]
     fn screen_faces_the_prism_and_baffle_faces_the_sun() {
         let s = fig5_3_1_rainbow();
-        s.validate().expect("valid");
+        crate::authoring::scene::validate(&s).expect("valid");
         let l = rainbow_layout();
         let normal = |name: &str| {
             let m = s.meshes.iter().find(|m| m.name == name).expect(name);
-            let g = &m.geometry;
+            let g = m;
             let [a, b, c] = g.indices[0].map(|i| g.positions[i as usize].as_dvec3());
             (b - a).cross(c - a).normalize()
         };

@@ -44,10 +44,11 @@
 use super::parts::push_material;
 use crate::authoring::gem::Brilliant;
 use crate::authoring::lathe::sin_cos;
-use crate::authoring::scene::{GenCamera, GenMesh, GenScene};
+use crate::authoring::scene::placed;
 use crate::authoring::shapes::{cuboid, ground_plane, push_flat_facing_away, TriMesh};
 use crate::material::MaterialDesc;
 use crate::scene::desc::LightDesc;
+use crate::scene::desc::{CameraDesc, EnvironmentDesc, SceneDesc};
 use glam::{DVec3, Vec3};
 
 /// Side of the prism's equilateral cross-section, metres.
@@ -147,27 +148,22 @@ impl BeamLayout {
 }
 
 /// Adds a mesh with a new material.
-fn mesh(s: &mut GenScene, name: &str, geometry: TriMesh, material: MaterialDesc) {
+fn mesh(s: &mut SceneDesc, name: &str, geometry: TriMesh, material: MaterialDesc) {
     let material = push_material(s, material);
     mesh_with(s, name, geometry, material);
 }
 
 /// Adds a mesh using material index `material`.
-fn mesh_with(s: &mut GenScene, name: &str, geometry: TriMesh, material: usize) {
-    s.meshes.push(GenMesh {
-        name: name.into(),
-        geometry,
-        material,
-        translation: None,
-    });
+fn mesh_with(s: &mut SceneDesc, name: &str, geometry: TriMesh, material: usize) {
+    s.meshes.push(placed(name, geometry, material, None));
 }
 
 /// Fig. 5.3.1: a narrow white beam through a 60° N-BK7 prism at minimum deviation onto a
 /// white screen 3 m away.
-pub fn fig5_3_1_prism_beam() -> GenScene {
-    let mut s = GenScene {
+pub fn fig5_3_1_prism_beam() -> SceneDesc {
+    let mut s = SceneDesc {
         name: "Fig. 5.3.1: white beam through a 60° prism onto a screen".into(),
-        ..GenScene::default()
+        ..SceneDesc::default()
     };
     let beam = BeamLayout::minimum_deviation();
     let black = push_material(&mut s, MaterialDesc::diffuse("Black", Vec3::splat(0.05)));
@@ -262,12 +258,12 @@ pub fn fig5_3_1_prism_beam() -> GenScene {
     let side = DVec3::new(beam.dir_out.z, 0.0, -beam.dir_out.x);
     let eye = beam.exit - 0.9 * beam.dir_out - 0.3 * side + DVec3::new(0.0, 0.35, 0.0);
     let target = beam.exit + 0.6 * beam.dir_out + DVec3::new(0.0, -0.1, 0.0);
-    s.camera = Some(look(eye, target, 40.0, 16.0 / 9.0));
+    s.cameras.push(look(eye, target, 40.0, 16.0 / 9.0));
     s
 }
 
 /// A camera from `eye` to `target` (f64), vertical field `yfov` degrees.
-fn look(eye: DVec3, target: DVec3, yfov: f64, aspect: f32) -> GenCamera {
+fn look(eye: DVec3, target: DVec3, yfov: f64, aspect: f32) -> CameraDesc {
     super::parts::camera(eye.as_vec3(), target.as_vec3(), yfov, aspect)
 }
 
@@ -281,11 +277,11 @@ pub fn diamond_cut() -> Brilliant {
 
 /// A round brilliant diamond (IOR 2.42, dispersion 0.36) on a dark floor under four
 /// small lights.
-pub fn diamond() -> GenScene {
-    let mut s = GenScene {
+pub fn diamond() -> SceneDesc {
+    let mut s = SceneDesc {
         name: "Diamond, round brilliant".into(),
-        extras: Some(serde_json::json!({"iris_environment": 0.02})),
-        ..GenScene::default()
+        environment: Some(EnvironmentDesc::Uniform(Vec3::splat(0.02))),
+        ..SceneDesc::default()
     };
     mesh(
         &mut s,
@@ -336,6 +332,6 @@ pub fn diamond() -> GenScene {
     // The camera sits 30° from the table normal, towards +Y (elevation 49.25° + 30° =
     // 79.25°, towards +Z).
     let eye = centre + 0.06 * (sin_cos(30f64.to_radians()).1 * n + 0.5 * e);
-    s.camera = Some(look(eye, centre, 10.0, 1.0));
+    s.cameras.push(look(eye, centre, 10.0, 1.0));
     s
 }

@@ -1,27 +1,33 @@
-//! glTF JSON for the lights and the camera of a [`GenScene`](super::scene::GenScene)
+//! glTF JSON for the lights, the cameras and the environment of a generated scene
 //! (KHR_lights_punctual; a light's spectral shape as its `extras.iris_spectrum`), numbers
 //! written by [`super::json_number`].
 //!
 //! Frames: lights and cameras look down their node's local −Z with +Y up (glTF 2.0 §3.10
-//! "Cameras", KHR_lights_punctual "Adding Light Instances to Nodes"), so their nodes carry
-//! the rotation taking −Z to the light/view direction. Rotations are computed in `f64` with
-//! `+ − × ÷ √` only and rounded once, so files are bit-identical on every platform.
+//! "Cameras", KHR_lights_punctual "Adding Light Instances to Nodes"). A light's node
+//! carries the rotation taking −Z to its direction, and [`super::scene::look_at`] a
+//! camera's: computed in `f64` with `+ − × ÷ √` only and rounded once, so files are
+//! bit-identical on every platform. A camera's node carries its description's
+//! `world_from_camera` as its `matrix`.
 
 use super::json_number::{num, vec3};
-use super::scene::GenCamera;
 use crate::error::{Error, Result};
-use crate::scene::desc::LightDesc;
+use crate::light::sky::SkyParams;
+use crate::scene::desc::{CameraDesc, EnvironmentDesc, LightDesc, Projection};
 use crate::spectrum::EmissionSpectrum;
 use glam::{DMat3, DQuat, DVec3, Vec3};
 use serde_json::{json, Map, Value};
 
-/// Near clipping distance written for the perspective camera (metres).
+/// Near clipping distance written for cameras (metres); Iris does not clip.
 pub const ZNEAR: f32 = 0.01;
+
+/// Far clipping distance written for orthographic cameras, which glTF requires (metres);
+/// Iris does not clip.
+pub const ZFAR_ORTHOGRAPHIC: f32 = 1.0e4;
 
 /// The unit quaternion (x, y, z, w) rotating −Z to `forward` and +Y towards `up`, or
 /// `None` if `forward` is zero or parallel to `up`. Columns of the rotation are
 /// (right, up', −forward) with right = forward × up (right-handed).
-fn look_rotation(forward: DVec3, up: DVec3) -> Option<[f32; 4]> {
+pub(super) fn look_rotation(forward: DVec3, up: DVec3) -> Option<[f32; 4]> {
     let f = forward.try_normalize()?;
     let r = f.cross(up);
     if r.length_squared() < 1e-18 {
@@ -113,24 +119,61 @@ pub(super) fn light(l: &LightDesc, index: usize) -> Result<(Value, Value)> {
     Ok((Value::Object(light), node))
 }
 
-pub(super) fn camera(c: &GenCamera) -> Result<(Value, Value)> {
-    let forward = c.target.as_dvec3() - c.eye.as_dvec3();
-    let q = look_rotation(forward, c.up.as_dvec3()).ok_or_else(|| {
-        Error::Usage(format!(
-            "scene generator: camera \"{}\": eye equals target or up is parallel to the view",
-            c.name
-        ))
-    })?;
-    let mut persp = Map::new();
-    persp.insert("yfov".into(), num(c.yfov));
-    persp.insert("znear".into(), num(ZNEAR));
-    if let Some(a) = c.aspect {
-        persp.insert("aspectRatio".into(), num(a));
+/// Camera `index`'s glTF JSON and its node, which holds `world_from_camera` as its
+/// `matrix` (column-major, each number the shortest decimal of its `f32`), so the loader
+/// reads the description's matrix exactly.
+pub(super) fn camera(c: &CameraDesc, index: usize) -> (Value, Value) {
+    let mut cam = Map::new();
+    cam.insert("name".into(), json!(c.name));
+    match c.projection {
+        Projection::Perspective { yfov, aspect } => {
+            let mut persp = Map::new();
+            persp.insert("yfov".into(), num(yfov));
+            persp.insert("znear".into(), num(ZNEAR));
+            if let Some(a) = aspect {
+                persp.insert("aspectRatio".into(), num(a));
+            }
+            cam.insert("type".into(), json!("perspective"));
+            cam.insert("perspective".into(), Value::Object(persp));
+        }
+        Projection::Orthographic { xmag, ymag } => {
+            cam.insert("type".into(), json!("orthographic"));
+            cam.insert(
+                "orthographic".into(),
+                json!({"xmag": num(xmag), "ymag": num(ymag), "znear": num(ZNEAR),
+                       "zfar": num(ZFAR_ORTHOGRAPHIC)}),
+            );
+        }
     }
-    Ok((
-        json!({"name": c.name, "type": "perspective", "perspective": persp}),
-        json!({"name": c.name, "camera": 0, "translation": vec3(c.eye), "rotation": q.map(num)}),
-    ))
+    let matrix: Vec<Value> = c
+        .world_from_camera
+        .to_cols_array()
+        .into_iter()
+        .map(num)
+        .collect();
+    (
+        Value::Object(cam),
+        json!({"name": c.name, "camera": index, "matrix": matrix}),
+    )
+}
+
+/// The environment as `extras.iris_environment` holds it: a grey radiance as one number,
+/// a coloured one as `[r, g, b]`, a sky as its `sky:` text, a map as its relative path.
+pub(super) fn environment(env: &EnvironmentDesc) -> Value {
+    match env {
+        EnvironmentDesc::Uniform(rgb) if rgb.x == rgb.y && rgb.y == rgb.z => num(rgb.x),
+        EnvironmentDesc::Uniform(rgb) => vec3(*rgb),
+        EnvironmentDesc::Sky(p) => json!(sky_text(p)),
+        EnvironmentDesc::Map(path) => json!(path.to_string_lossy()),
+    }
+}
+
+/// A sky as `--env` and `extras.iris_environment` take it, every parameter written.
+pub(super) fn sky_text(p: &SkyParams) -> String {
+    format!(
+        "sky:elevation={},azimuth={},turbidity={}",
+        p.elevation, p.azimuth, p.turbidity
+    )
 }
 
 #[cfg(test)]

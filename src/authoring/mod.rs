@@ -11,10 +11,9 @@
 //!   interface vertices exactly).
 //! - [`gem`]: the round brilliant cut; [`cuts`]: the cuts of `iris gem` (round
 //!   brilliant, emerald, oval, pear) and their preview scene; [`stones`]: named gem materials.
-//! - [`scene`]: the file the generator writes ([`GenScene`]): the scene description's own
-//!   materials and lights ([`crate::material::MaterialDesc`],
-//!   [`crate::scene::desc::LightDesc`], the types the loaders fill), placed meshes and a
-//!   look-at camera; [`material`]: the materials' constructors, checks and glTF JSON;
+//! - [`scene`]: the generator's scenes are the description the loaders fill
+//!   ([`crate::scene::desc::SceneDesc`]); this places meshes and look-at cameras in one and
+//!   checks one for the writer; [`material`]: the materials' constructors, checks and glTF JSON;
 //!   [`layers`]: their clearcoat, sheen and diffuse-transmission extensions.
 //! - [`glb`]: the deterministic GLB writer, the inverse of the glTF loader for these
 //!   scenes (its glTF JSON for cameras and lights in `gltf_json`).
@@ -22,6 +21,8 @@
 pub mod cuts;
 pub mod gem;
 pub mod glb;
+#[cfg(test)]
+mod glb_read_back;
 mod gltf_json;
 mod invalid;
 mod json_number;
@@ -33,4 +34,4 @@ pub mod shapes;
 pub mod stones;
 
 pub use glb::{encode_glb, write_glb};
-pub use scene::{GenCamera, GenMesh, GenScene};
+pub use scene::{look_at, placed};

@@ -1,144 +1,153 @@
-//! The file the generator writes ([`super::glb`]): the scene description's own materials
-//! and lights ([`MaterialDesc`], [`LightDesc`], the types the loaders fill), placed
-//! geometry ([`GenMesh`]: a mesh in its node's frame and the node's translation, which the
-//! world-space [`crate::scene::desc::MeshDesc`] has no place for), a look-at camera
-//! ([`GenCamera`]) and the scene's `extras` (Iris's keys as written, e.g.
-//! `iris_environment`).
+//! The generator's scenes are [`SceneDesc`]s, the description the loaders fill: this
+//! module places geometry and cameras in one ([`placed`], [`look_at`]) and checks one for
+//! the GLB writer ([`validate`]).
 //!
 //! Same conventions as the rest of Iris: world space is metres, right-handed, +Y up;
 //! meshes wind counter-clockwise seen from outside; colours are **linear** RGB; point and
 //! spot intensities are in candela, directional ones in lux (KHR_lights_punctual).
-//! A mesh is placed by an optional node translation (no rotation or scale), so its
-//! world-space geometry is its local geometry shifted.
 //!
-//! [`GenScene::validate`] rejects anything that would give an invalid or lossy file
-//! (non-finite numbers, out-of-range indices, degenerate cameras) with [`crate::error::Error::Usage`].
+//! What the writer writes: the scene's name, its meshes (world-space positions, normals,
+//! TEXCOORD_0, a material or none), materials (glTF names, no textures, no `conductor`,
+//! Iris's keys in `extras`: [`super::material`]), punctual lights, cameras, the environment
+//! and the fog. What loaders and preparation add for the renderer (the source path,
+//! warnings, decoded images, the resolved environment light, added lights, subject bounds)
+//! is not part of a file and is ignored; mesh data a file could hold but the writer does
+//! not (TEXCOORD_1, tangents, a mesh frame other than world space) is refused.
+//!
+//! [`validate`] rejects anything that would give an invalid or lossy file (non-finite
+//! numbers, out-of-range indices, degenerate cameras) with [`crate::error::Error::Usage`],
+//! naming the element.
 
 use super::invalid::bad;
 use super::material::check_material;
 use super::shapes::TriMesh;
 use crate::error::Result;
-use crate::material::MaterialDesc;
-use crate::scene::desc::LightDesc;
-use glam::{Vec2, Vec3};
+use crate::scene::desc::{CameraDesc, EnvironmentDesc, LightDesc, MeshDesc, Projection, SceneDesc};
+use glam::{Mat3, Mat4, Vec3};
 
-/// A whole generated scene.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct GenScene {
-    /// Scene name (glTF `scenes[0].name`).
-    pub name: String,
-    /// Meshes, one glTF node each.
-    pub meshes: Vec<GenMesh>,
-    /// Materials referenced by `GenMesh::material`: glTF names, no textures, no `conductor`
-    /// (a render-time override), Iris's keys in `extras` ([`super::material`]).
-    pub materials: Vec<MaterialDesc>,
-    /// Punctual lights; a spot's or directional light's direction need not be unit (the
-    /// writer normalises it).
-    pub lights: Vec<LightDesc>,
-    /// The camera, if any.
-    pub camera: Option<GenCamera>,
-    /// Scene `extras` (glTF `scenes[0].extras`), e.g. `{"iris_environment": "sky.hdr"}`.
-    pub extras: Option<serde_json::Value>,
-    /// TEXCOORD_0 of `meshes[i]` (one per position; glTF's v-down convention); missing
-    /// entries = none. Must not be longer than `meshes`.
-    pub mesh_uvs: Vec<Option<Vec<Vec2>>>,
-}
-
-/// A mesh instance: geometry, material and placement.
-#[derive(Debug, Clone, PartialEq)]
-pub struct GenMesh {
-    /// Name of the mesh and its node.
-    pub name: String,
-    /// Geometry in the node's frame.
-    pub geometry: TriMesh,
-    /// Index into `GenScene::materials`.
-    pub material: usize,
-    /// Node translation (metres), if any.
-    pub translation: Option<Vec3>,
-}
-
-/// A perspective camera given by a look-at frame. It stays a look-at rather than a
-/// [`crate::scene::desc::CameraDesc`]: the writer computes the node rotation from it in
-/// `f64`, which the description's `f32` world matrix would round differently.
-#[derive(Debug, Clone, PartialEq)]
-pub struct GenCamera {
-    /// Name.
-    pub name: String,
-    /// Eye position, metres.
-    pub eye: Vec3,
-    /// The point looked at.
-    pub target: Vec3,
-    /// Approximate up direction (not parallel to `target − eye`).
-    pub up: Vec3,
-    /// Vertical field of view, radians, in (0, π).
-    pub yfov: f32,
-    /// Width / height, if fixed.
-    pub aspect: Option<f32>,
-}
-
-fn finite3(v: Vec3) -> bool {
-    v.is_finite()
-}
-
-impl GenScene {
-    /// Checks every value the GLB writer relies on; the error names the element. Elements
-    /// are checked in file order: meshes, materials, lights, camera.
-    pub fn validate(&self) -> Result<()> {
-        for (i, m) in self.meshes.iter().enumerate() {
-            check_mesh(i, m, self.materials.len())?;
-        }
-        for (i, m) in self.materials.iter().enumerate() {
-            check_material(i, m)?;
-        }
-        for (i, l) in self.lights.iter().enumerate() {
-            check_light(i, l)?;
-        }
-        if self.mesh_uvs.len() > self.meshes.len() {
-            return Err(bad("mesh uvs", "more entries than meshes"));
-        }
-        for (i, uvs) in self.mesh_uvs.iter().enumerate() {
-            let Some(uvs) = uvs else { continue };
-            let el = format!("mesh {i} uvs");
-            if uvs.len() != self.meshes[i].geometry.positions.len() {
-                return Err(bad(&el, "not one per position"));
-            }
-            if !uvs.iter().all(|uv| uv.is_finite()) {
-                return Err(bad(&el, "non-finite texture coordinate"));
-            }
-        }
-        if let Some(c) = &self.camera {
-            check_camera(c)?;
-        }
-        Ok(())
+/// A mesh `name` of `geometry` with material `material`, shifted by `at` into world space
+/// (`None`: the geometry is in world space already). Positions are `p + at` in `f32`,
+/// which is what the loader computes for a node translated by `at`.
+pub fn placed(name: &str, geometry: TriMesh, material: usize, at: Option<Vec3>) -> MeshDesc {
+    let TriMesh {
+        mut positions,
+        normals,
+        indices,
+    } = geometry;
+    if let Some(at) = at {
+        positions.iter_mut().for_each(|p| *p += at);
+    }
+    MeshDesc {
+        name: name.into(),
+        positions,
+        normals,
+        indices,
+        material: Some(material),
+        ..MeshDesc::default()
     }
 }
 
-/// Mesh `i`: triangles present and within u32 counts, normals matching positions, finite
-/// values, indices in range, material `< materials`, finite translation.
-fn check_mesh(i: usize, m: &GenMesh, materials: usize) -> Result<()> {
+/// A perspective camera `name` at `eye` looking at `target`, rolled so that `up` points
+/// up, with vertical field of view `yfov` (radians) and `aspect` (width / height) if fixed.
+///
+/// The rotation is found in `f64` and rounded once to a quaternion
+/// ([`super::gltf_json::look_rotation`]); `world_from_camera` is that quaternion and `eye`
+/// as the glTF loader turns a node's translation and rotation into a matrix, so a node
+/// holding this matrix loads exactly as a node holding that translation and rotation
+/// would (the loader then makes the axes orthonormal in `f64`). A degenerate frame (eye at
+/// the target, `up` along the view, non-finite values) gives a non-finite matrix, which
+/// [`validate`] refuses naming the camera.
+pub fn look_at(
+    name: &str,
+    eye: Vec3,
+    target: Vec3,
+    up: Vec3,
+    yfov: f32,
+    aspect: Option<f32>,
+) -> CameraDesc {
+    let forward = target.as_dvec3() - eye.as_dvec3();
+    let world_from_camera = match super::gltf_json::look_rotation(forward, up.as_dvec3()) {
+        Some(rotation) if eye.is_finite() => {
+            let trs = gltf::scene::Transform::Decomposed {
+                translation: eye.to_array(),
+                rotation,
+                scale: [1.0; 3],
+            };
+            Mat4::from_cols_array_2d(&trs.matrix())
+        }
+        _ => Mat4::NAN,
+    };
+    CameraDesc {
+        name: name.into(),
+        projection: Projection::Perspective { yfov, aspect },
+        world_from_camera,
+    }
+}
+
+/// Checks every value the GLB writer relies on; the error names the element. Elements
+/// are checked in file order: meshes, materials, lights, cameras, environment, fog.
+pub fn validate(scene: &SceneDesc) -> Result<()> {
+    for (i, m) in scene.meshes.iter().enumerate() {
+        check_mesh(i, m, scene.materials.len())?;
+    }
+    for (i, m) in scene.materials.iter().enumerate() {
+        check_material(i, m)?;
+    }
+    for (i, l) in scene.lights.iter().enumerate() {
+        check_light(i, l)?;
+    }
+    for c in &scene.cameras {
+        check_camera(c)?;
+    }
+    if let Some(env) = &scene.environment {
+        check_environment(env)?;
+    }
+    if let Some(fog) = &scene.fog {
+        if crate::volume::fog::spec(fog).is_none() {
+            return Err(bad("fog", "no fog specification gives this medium"));
+        }
+    }
+    Ok(())
+}
+
+/// Mesh `i`: triangles present and within u32 counts, per-vertex arrays matching
+/// positions, finite values, indices in range, material `< materials`, nothing the writer
+/// leaves out.
+fn check_mesh(i: usize, m: &MeshDesc, materials: usize) -> Result<()> {
     let el = format!("mesh {i} \"{}\"", m.name);
-    let g = &m.geometry;
-    if g.positions.is_empty() || g.indices.is_empty() {
+    if m.positions.is_empty() || m.indices.is_empty() {
         return Err(bad(&el, "no triangles"));
     }
-    if u32::try_from(g.positions.len()).is_err() || g.indices.len() > (u32::MAX / 3) as usize {
+    if u32::try_from(m.positions.len()).is_err() || m.indices.len() > (u32::MAX / 3) as usize {
         return Err(bad(&el, "too many vertices or triangles"));
     }
-    if !g.normals.is_empty() && g.normals.len() != g.positions.len() {
+    if !m.normals.is_empty() && m.normals.len() != m.positions.len() {
         return Err(bad(&el, "normals and positions differ in length"));
     }
-    if !g.positions.iter().chain(&g.normals).all(|&p| finite3(p)) {
+    if !m.uvs.is_empty() && m.uvs.len() != m.positions.len() {
+        return Err(bad(&el, "texture coordinates are not one per position"));
+    }
+    if !m.positions.iter().chain(&m.normals).all(|p| p.is_finite()) {
         return Err(bad(&el, "non-finite position or normal"));
     }
-    let n = g.positions.len() as u64;
-    if g.indices.iter().flatten().any(|&k| u64::from(k) >= n) {
+    if !m.uvs.iter().all(|uv| uv.is_finite()) {
+        return Err(bad(&el, "non-finite texture coordinate"));
+    }
+    let n = m.positions.len() as u64;
+    if m.indices.iter().flatten().any(|&k| u64::from(k) >= n) {
         return Err(bad(&el, "vertex index out of range"));
     }
-    if m.material >= materials {
-        return Err(bad(&el, format!("material {} out of range", m.material)));
+    if let Some(k) = m.material.filter(|&k| k >= materials) {
+        return Err(bad(&el, format!("material {k} out of range")));
     }
-    if m.translation.is_some_and(|t| !finite3(t)) {
-        return Err(bad(&el, "non-finite translation"));
+    if !m.uvs1.is_empty() || !m.tangents.is_empty() {
+        return Err(bad(&el, "TEXCOORD_1 and tangents are not written"));
+    }
+    if m.orientation != Mat3::IDENTITY {
+        return Err(bad(
+            &el,
+            "the writer places meshes in world space (orientation must be the identity)",
+        ));
     }
     Ok(())
 }
@@ -179,10 +188,10 @@ fn check_light(i: usize, l: &LightDesc) -> Result<()> {
     if !(intensity.is_finite() && intensity >= 0.0) {
         return Err(bad(&el, "intensity must be finite and ≥ 0"));
     }
-    if position.is_some_and(|p| !finite3(*p)) {
+    if position.is_some_and(|p| !p.is_finite()) {
         return Err(bad(&el, "non-finite position"));
     }
-    if direction.is_some_and(|d| !(finite3(*d) && d.length_squared() > 0.0)) {
+    if direction.is_some_and(|d| !(d.is_finite() && d.length_squared() > 0.0)) {
         return Err(bad(&el, "direction must be finite and non-zero"));
     }
     if !range.is_none_or(|r| r.is_finite() && r > 0.0) {
@@ -194,17 +203,78 @@ fn check_light(i: usize, l: &LightDesc) -> Result<()> {
     Ok(())
 }
 
-/// The camera: finite look-at frame, `yfov` in (0, π), finite positive aspect.
-fn check_camera(c: &GenCamera) -> Result<()> {
+/// A camera: a finite rigid frame (unit, orthogonal, right-handed axes to 1e-4, so the
+/// loader keeps it), `yfov` in (0, π) and a finite positive aspect, or positive finite
+/// orthographic half-extents.
+fn check_camera(c: &CameraDesc) -> Result<()> {
     let el = format!("camera \"{}\"", c.name);
-    if !(finite3(c.eye) && finite3(c.target) && finite3(c.up)) {
-        return Err(bad(&el, "non-finite eye, target or up"));
+    let m = c.world_from_camera;
+    if !m.is_finite() {
+        return Err(bad(
+            &el,
+            "degenerate frame: eye at the target, up along the view, or a non-finite value",
+        ));
     }
-    if !(c.yfov.is_finite() && c.yfov > 0.0 && c.yfov < std::f32::consts::PI) {
-        return Err(bad(&el, "yfov must be in (0, π)"));
+    let linear = Mat3::from_mat4(m);
+    let rigid = (linear.transpose() * linear).abs_diff_eq(Mat3::IDENTITY, 1e-4)
+        && (linear.determinant() - 1.0).abs() < 1e-4
+        && m.row(3) == glam::Vec4::W;
+    if !rigid {
+        return Err(bad(
+            &el,
+            "world_from_camera is not a rotation and a translation",
+        ));
     }
-    if !c.aspect.is_none_or(|a| a.is_finite() && a > 0.0) {
-        return Err(bad(&el, "aspect must be finite and > 0"));
+    match c.projection {
+        Projection::Perspective { yfov, aspect } => {
+            if !(yfov.is_finite() && yfov > 0.0 && yfov < std::f32::consts::PI) {
+                return Err(bad(&el, "yfov must be in (0, π)"));
+            }
+            if !aspect.is_none_or(|a| a.is_finite() && a > 0.0) {
+                return Err(bad(&el, "aspect must be finite and > 0"));
+            }
+        }
+        Projection::Orthographic { xmag, ymag } => {
+            if ![xmag, ymag].iter().all(|v| v.is_finite() && *v > 0.0) {
+                return Err(bad(&el, "xmag and ymag must be finite and > 0"));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The environment: a finite non-negative radiance, a sky in range, or a relative UTF-8
+/// path to an `.exr`/`.hdr` map (written as given, read against the file's directory).
+fn check_environment(env: &EnvironmentDesc) -> Result<()> {
+    let el = "environment";
+    match env {
+        EnvironmentDesc::Uniform(rgb) => {
+            if !(rgb.is_finite() && rgb.min_element() >= 0.0) {
+                return Err(bad(el, "radiance must be finite and ≥ 0"));
+            }
+        }
+        EnvironmentDesc::Sky(p) => {
+            let text = super::gltf_json::sky_text(p);
+            crate::light::sky::SkyParams::parse(&text["sky:".len()..])
+                .map_err(|why| bad(el, format!("{text}: {why}")))?;
+        }
+        EnvironmentDesc::Map(path) => {
+            let ok = path.is_relative()
+                && path.to_str().is_some()
+                && path
+                    .extension()
+                    .and_then(|e| e.to_str())
+                    .is_some_and(|e| matches!(e.to_ascii_lowercase().as_str(), "exr" | "hdr"));
+            if !ok {
+                return Err(bad(
+                    el,
+                    format!(
+                        "{}: a map is a relative UTF-8 path to an .exr or .hdr file",
+                        path.display()
+                    ),
+                ));
+            }
+        }
     }
     Ok(())
 }

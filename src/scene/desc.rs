@@ -37,6 +37,8 @@ use std::path::PathBuf;
 pub struct SceneDesc {
     /// The file it came from (used in error messages).
     pub source: PathBuf,
+    /// The scene's own name (glTF: the chosen scene's `name`); empty when the file gives none.
+    pub name: String,
     /// Triangle meshes, one per glTF primitive instance / OBJ model, in world space.
     pub meshes: Vec<MeshDesc>,
     /// Materials referenced by `MeshDesc::material`.

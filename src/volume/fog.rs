@@ -127,6 +127,53 @@ pub fn parse(spec: &str) -> Result<Medium, String> {
     Ok(medium)
 }
 
+/// The specification [`parse`] reads back as `m`, or `None` for a medium no specification
+/// gives (an attenuation colour other than the one `density` sets, a scattering albedo with
+/// Rayleigh, a phase function the keys cannot name). The density is the shortest number
+/// whose reciprocal is `m`'s attenuation distance, so the medium comes back bit for bit.
+pub fn spec(m: &Medium) -> Option<String> {
+    let g = match (m.phase, m.scattering) {
+        (Phase::HenyeyGreenstein { g }, _) if g != 0.0 => Some(g),
+        (Phase::Isotropic, Scattering::Albedo { .. }) => None,
+        (Phase::Rayleigh, Scattering::Rayleigh { .. }) => None,
+        _ => return None,
+    };
+    let mut parts = match m.scattering {
+        Scattering::Albedo { multiscatter } => {
+            if m.attenuation_color != Vec3::splat((-1.0f32).exp()) {
+                return None;
+            }
+            let mut parts = vec![format!("density={}", density_of(m.attenuation_distance)?)];
+            if multiscatter != Vec3::ONE {
+                let c = multiscatter;
+                parts.push(format!("color={}:{}:{}", c.x, c.y, c.z));
+            }
+            parts
+        }
+        Scattering::Rayleigh { at_550 } => {
+            if m.attenuation_color != Vec3::ONE || m.attenuation_distance != f32::INFINITY {
+                return None;
+            }
+            vec![format!("rayleigh={at_550}")]
+        }
+    };
+    if let Some(g) = g {
+        parts.push(format!("g={g}"));
+    }
+    Some(parts.join(","))
+}
+
+/// The density `d` with `1/d` = `distance` in `f32` (0 for an infinite distance), or `None`.
+fn density_of(distance: f32) -> Option<f32> {
+    if distance == f32::INFINITY {
+        return Some(0.0);
+    }
+    let d = 1.0 / distance;
+    [d, d.next_up(), d.next_down()]
+        .into_iter()
+        .find(|&c| c.is_finite() && c > 0.0 && 1.0 / c == distance)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -172,6 +219,26 @@ mod tests {
             let e = parse(spec).unwrap_err();
             assert!(e.contains(key) && e.contains("twice"), "{spec}: {e}");
         }
+    }
+
+    /// Every medium a specification gives comes back from its written specification.
+    #[test]
+    fn specs_are_written_back_exactly() {
+        for text in [
+            "density=0.3,g=0.3",
+            "0.7",
+            "density=0",
+            "density=3,color=0.2:0.5:0.9",
+            "rayleigh=0.05",
+            "rayleigh=0.05,g=-0.4",
+        ] {
+            let m = parse(text).unwrap();
+            let written = spec(&m).unwrap_or_default();
+            assert_eq!(parse(&written), Ok(m), "{text} → {written}");
+        }
+        let mut odd = parse("1").unwrap();
+        odd.attenuation_color = Vec3::new(0.5, 0.6, 0.7);
+        assert_eq!(spec(&odd), None);
     }
 
     #[test]

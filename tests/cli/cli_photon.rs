@@ -160,16 +160,16 @@ fn auto_picks_hybrid_vcm_or_path() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("): VCM"), "{}", stderr(&o));
     // A scene with no transmissive or mirror material: the path tracer.
-    let mut scene = iris::authoring::GenScene {
+    let mut scene = iris::scene::desc::SceneDesc {
         name: "diffuse only".into(),
         ..Default::default()
     };
-    scene.meshes.push(iris::authoring::GenMesh {
-        name: "floor".into(),
-        geometry: iris::authoring::shapes::ground_plane(1.0, 1.0),
-        material: 0,
-        translation: None,
-    });
+    scene.meshes.push(iris::authoring::placed(
+        "floor",
+        iris::authoring::shapes::ground_plane(1.0, 1.0),
+        0,
+        None,
+    ));
     scene.materials.push(iris::material::MaterialDesc::diffuse(
         "white",
         glam::Vec3::splat(0.8),

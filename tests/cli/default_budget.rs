@@ -11,11 +11,12 @@ use glam::{Vec3, Vec4};
 use iris::app::budget::{next_check, BudgetFlags, DEFAULT_TARGET, MIN_STOP_UNITS};
 use iris::app::{render_command, RenderOptions, RenderSummary};
 use iris::authoring::shapes;
-use iris::authoring::{GenCamera, GenMesh, GenScene};
+use iris::authoring::{look_at, placed};
 use iris::integrator::Method;
 use iris::material::MaterialDesc;
 use iris::measure::relative_rmse;
 use iris::render::EndReason;
+use iris::scene::desc::SceneDesc;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -27,21 +28,16 @@ const HANG_GUARD: Duration = Duration::from_secs(600);
 /// environment (radiance 1), with its camera. Path traced (`--method auto` finds no caustic
 /// paths), smooth everywhere: its noise falls as samples^−1/2 with no rare paths.
 fn easy_scene(dir: &Path) -> PathBuf {
-    let scene = GenScene {
+    let scene = SceneDesc {
         name: "easy".into(),
         meshes: vec![
-            GenMesh {
-                name: "floor".into(),
-                geometry: shapes::ground_plane(2.0, 2.0),
-                material: 0,
-                translation: None,
-            },
-            GenMesh {
-                name: "box".into(),
-                geometry: shapes::cuboid(Vec3::splat(0.3)),
-                material: 1,
-                translation: Some(Vec3::new(0.0, 0.3, 0.0)),
-            },
+            placed("floor", shapes::ground_plane(2.0, 2.0), 0, None),
+            placed(
+                "box",
+                shapes::cuboid(Vec3::splat(0.3)),
+                1,
+                Some(Vec3::new(0.0, 0.3, 0.0)),
+            ),
         ],
         materials: vec![
             MaterialDesc::diffuse("grey", Vec3::splat(0.5)),
@@ -50,15 +46,17 @@ fn easy_scene(dir: &Path) -> PathBuf {
                 ..MaterialDesc::diffuse("white", Vec3::ONE)
             },
         ],
-        camera: Some(GenCamera {
-            name: "view".into(),
-            eye: Vec3::new(1.2, 1.0, 1.6),
-            target: Vec3::new(0.0, 0.3, 0.0),
-            up: Vec3::Y,
-            yfov: 40f32.to_radians(),
-            aspect: Some(4.0 / 3.0),
-        }),
-        extras: Some(serde_json::json!({ "iris_environment": 1.0 })),
+        cameras: vec![look_at(
+            "view",
+            Vec3::new(1.2, 1.0, 1.6),
+            Vec3::new(0.0, 0.3, 0.0),
+            Vec3::Y,
+            40f32.to_radians(),
+            Some(4.0 / 3.0),
+        )],
+        environment: Some(iris::scene::desc::EnvironmentDesc::Uniform(Vec3::splat(
+            1.0,
+        ))),
         ..Default::default()
     };
     let path = dir.join("easy.glb");

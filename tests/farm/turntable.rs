@@ -12,10 +12,10 @@ use common::{entries, iris, stderr};
 use glam::{DVec2, Vec3};
 use iris::authoring::lathe::{Lathe, ProfilePoint};
 use iris::authoring::shapes::{cuboid, TriMesh};
-use iris::authoring::{GenCamera, GenMesh, GenScene};
+use iris::authoring::{look_at, placed};
 use iris::image::ImageRgb;
 use iris::material::MaterialDesc;
-use iris::scene::desc::LightDesc;
+use iris::scene::desc::{LightDesc, MeshDesc, SceneDesc};
 use std::path::{Path, PathBuf};
 
 const SIZE: &str = "48x36";
@@ -34,19 +34,14 @@ const FLAGS: [&str; 10] = [
     "on",
 ];
 
-fn part(name: &str, geometry: TriMesh, material: usize, at: Vec3) -> GenMesh {
-    GenMesh {
-        name: name.into(),
-        geometry,
-        material,
-        translation: Some(at),
-    }
+fn part(name: &str, geometry: TriMesh, material: usize, at: Vec3) -> MeshDesc {
+    placed(name, geometry, material, Some(at))
 }
 
 /// Writes `dir/<name>.glb`: `meshes` standing on y = 0 under the two lights, seen by the
 /// file's camera (or none).
-fn write_scene(dir: &Path, name: &str, meshes: Vec<GenMesh>, camera: bool) -> PathBuf {
-    let scene = GenScene {
+fn write_scene(dir: &Path, name: &str, meshes: Vec<MeshDesc>, camera: bool) -> PathBuf {
+    let scene = SceneDesc {
         name: name.into(),
         meshes,
         materials: vec![
@@ -69,14 +64,19 @@ fn write_scene(dir: &Path, name: &str, meshes: Vec<GenMesh>, camera: bool) -> Pa
                 spectrum: None,
             },
         ],
-        camera: camera.then(|| GenCamera {
-            name: "Cam".into(),
-            eye: Vec3::new(0.0, 1.6, 3.2),
-            target: Vec3::new(0.0, 0.3, 0.0),
-            up: Vec3::Y,
-            yfov: 0.7,
-            aspect: Some(4.0 / 3.0),
-        }),
+        cameras: camera
+            .then(|| {
+                look_at(
+                    "Cam",
+                    Vec3::new(0.0, 1.6, 3.2),
+                    Vec3::new(0.0, 0.3, 0.0),
+                    Vec3::Y,
+                    0.7,
+                    Some(4.0 / 3.0),
+                )
+            })
+            .into_iter()
+            .collect(),
         ..Default::default()
     };
     let path = dir.join(format!("{name}.glb"));

@@ -7,9 +7,10 @@
 use crate::common;
 
 use glam::Vec3;
-use iris::authoring::scene::{GenCamera, GenMesh, GenScene};
 use iris::authoring::shapes::{cuboid, ground_plane};
+use iris::authoring::{look_at, placed};
 use iris::material::MaterialDesc;
+use iris::scene::desc::SceneDesc;
 use serde_json::json;
 use std::path::{Path, PathBuf};
 
@@ -19,13 +20,10 @@ fn slab_file(dir: &Path, name: &str, extras: serde_json::Value) -> PathBuf {
     slab.extras = Some(extras);
     let mut lamp = MaterialDesc::diffuse("Lamp", Vec3::ZERO);
     lamp.emissive = Vec3::splat(4.0);
-    let mesh = |name: &str, geometry, material, y: f32| GenMesh {
-        name: name.into(),
-        geometry,
-        material,
-        translation: Some(Vec3::new(0.0, y, 0.0)),
+    let mesh = |name: &str, geometry, material, y: f32| {
+        placed(name, geometry, material, Some(Vec3::new(0.0, y, 0.0)))
     };
-    let scene = GenScene {
+    let scene = SceneDesc {
         name: name.into(),
         meshes: vec![
             mesh("Slab", cuboid(Vec3::new(0.02, 0.005, 0.02)), 0, 0.005),
@@ -34,16 +32,15 @@ fn slab_file(dir: &Path, name: &str, extras: serde_json::Value) -> PathBuf {
         ],
         materials: vec![slab, MaterialDesc::diffuse("Floor", Vec3::splat(0.7)), lamp],
         lights: vec![],
-        camera: Some(GenCamera {
-            name: "Camera".into(),
-            eye: Vec3::new(0.0, 0.12, 0.08),
-            target: Vec3::ZERO,
-            up: Vec3::Y,
-            yfov: 0.6,
-            aspect: None,
-        }),
-        extras: None,
-        mesh_uvs: vec![],
+        cameras: vec![look_at(
+            "Camera",
+            Vec3::new(0.0, 0.12, 0.08),
+            Vec3::ZERO,
+            Vec3::Y,
+            0.6,
+            None,
+        )],
+        ..SceneDesc::default()
     };
     let path = dir.join(format!("{name}.glb"));
     iris::authoring::glb::write_glb(&path, &scene).expect("write glb");

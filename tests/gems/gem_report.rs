@@ -38,9 +38,10 @@ use crate::common;
 
 use iris::authoring::gem::Brilliant;
 use iris::authoring::glb::write_glb;
-use iris::authoring::scene::{GenMesh, GenScene};
+use iris::authoring::placed;
 use iris::authoring::stones::Stone;
 use iris::material::MaterialDesc;
+use iris::scene::desc::SceneDesc;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -51,16 +52,11 @@ fn brilliant(dir: &Path, name: &str, pavilion_angle: f64) -> PathBuf {
         ..Brilliant::tolkowsky(0.0065)
     };
     let mesh = cut.build();
-    let scene = GenScene {
+    let scene = SceneDesc {
         name: name.into(),
-        meshes: vec![GenMesh {
-            name: name.into(),
-            geometry: mesh,
-            material: 0,
-            translation: None,
-        }],
+        meshes: vec![placed(name, mesh, 0, None)],
         materials: vec![Stone::Diamond.material(0.004)],
-        ..GenScene::default()
+        ..SceneDesc::default()
     };
     let path = dir.join(format!("{name}.glb"));
     write_glb(&path, &scene).unwrap();
@@ -289,16 +285,11 @@ fn bad_input_fails_clearly_and_writes_nothing() {
     );
     // A file with no transmissive stone: a white box, named with its mesh.
     let geometry = iris::authoring::shapes::cuboid(glam::Vec3::splat(0.003));
-    let scene = GenScene {
+    let scene = SceneDesc {
         name: "box".into(),
-        meshes: vec![GenMesh {
-            name: "White box".into(),
-            geometry,
-            material: 0,
-            translation: None,
-        }],
+        meshes: vec![placed("White box", geometry, 0, None)],
         materials: vec![MaterialDesc::diffuse("White", glam::Vec3::ONE)],
-        ..GenScene::default()
+        ..SceneDesc::default()
     };
     write_glb(&dir.join("box.glb"), &scene).unwrap();
     fails(
@@ -419,16 +410,11 @@ fn ctrl_c_stops_and_writes_nothing() {
 fn stone_file(dir: &Path, name: &str, stone: Stone, scale: f32) -> PathBuf {
     let mut geometry = Brilliant::tolkowsky(0.0065).build();
     geometry.positions.iter_mut().for_each(|p| *p *= scale);
-    let scene = GenScene {
+    let scene = SceneDesc {
         name: name.into(),
-        meshes: vec![GenMesh {
-            name: name.into(),
-            geometry,
-            material: 0,
-            translation: None,
-        }],
+        meshes: vec![placed(name, geometry, 0, None)],
         materials: vec![stone.material(0.004 * scale)],
-        ..GenScene::default()
+        ..SceneDesc::default()
     };
     let path = dir.join(format!("{name}.glb"));
     write_glb(&path, &scene).unwrap();

@@ -11,7 +11,7 @@
 use crate::common;
 
 use glam::{Vec3, Vec4};
-use iris::authoring::scene::{GenMesh, GenScene};
+use iris::authoring::placed;
 use iris::authoring::shapes::{cuboid, icosphere};
 use iris::integrator::Method;
 use iris::material::MaterialDesc;
@@ -24,11 +24,8 @@ use std::path::{Path, PathBuf};
 
 /// Writes the test file (see the module docs) into `dir`.
 fn ring_file(dir: &Path) -> PathBuf {
-    let mesh = |name: &str, geometry, material, x: f32| GenMesh {
-        name: name.into(),
-        geometry,
-        material,
-        translation: Some(Vec3::new(x, 0.0, 0.0)),
+    let mesh = |name: &str, geometry, material, x: f32| {
+        placed(name, geometry, material, Some(Vec3::new(x, 0.0, 0.0)))
     };
     let mut placeholder = MaterialDesc::diffuse("Placeholder", Vec3::new(0.0, 0.67, 0.8));
     placeholder.roughness = 0.0;
@@ -36,7 +33,7 @@ fn ring_file(dir: &Path) -> PathBuf {
     setting.metallic = 1.0;
     let mut lamp = MaterialDesc::diffuse("Lamp", Vec3::ZERO);
     lamp.emissive = Vec3::splat(5.0);
-    let scene = GenScene {
+    let scene = SceneDesc {
         name: "ring".into(),
         // The gem is 6.5 mm across (the size of `iris gem`'s stone); the rest is larger.
         meshes: vec![
@@ -53,9 +50,7 @@ fn ring_file(dir: &Path) -> PathBuf {
             lamp,
         ],
         lights: vec![],
-        camera: None,
-        extras: None,
-        mesh_uvs: vec![],
+        ..SceneDesc::default()
     };
     let path = dir.join("ring.glb");
     iris::authoring::glb::write_glb(&path, &scene).expect("write ring.glb");
@@ -380,13 +375,8 @@ fn the_sketchfab_diamond_becomes_a_diamond() {
 #[test]
 fn a_bare_stone_flag_changes_the_stones_and_star_every_material() {
     let dir = common::scratch_dir("looks_stones");
-    let mesh = |name: &str, geometry, material| GenMesh {
-        name: name.into(),
-        geometry,
-        material,
-        translation: None,
-    };
-    let scene = GenScene {
+    let mesh = |name: &str, geometry, material| placed(name, geometry, material, None);
+    let scene = SceneDesc {
         name: "gem on a floor".into(),
         meshes: vec![
             mesh("Gem", icosphere(0.00325, 2), 0),
@@ -403,9 +393,7 @@ fn a_bare_stone_flag_changes_the_stones_and_star_every_material() {
             MaterialDesc::emitter("Lamp", Vec3::splat(5.0)),
         ],
         lights: vec![],
-        camera: None,
-        extras: None,
-        mesh_uvs: vec![],
+        ..SceneDesc::default()
     };
     let path = dir.join("gem_on_floor.glb");
     iris::authoring::glb::write_glb(&path, &scene).expect("write");

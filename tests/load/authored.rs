@@ -16,9 +16,10 @@ use glam::{Mat3, Vec2, Vec3};
 use iris::accel::Backend;
 use iris::app::{PreviewOptions, RenderOptions};
 use iris::authoring::shapes::{self, TriMesh};
-use iris::authoring::{GenCamera, GenMesh, GenScene};
+use iris::authoring::{look_at, placed};
 use iris::material::MaterialDesc;
 use iris::prepare::{prepare, Authored, Note, Prepared};
+use iris::scene::desc::SceneDesc;
 use iris::studio::ground::{Floor, GROUND_MESH};
 use iris::studio::{GroundMode, Studio};
 use std::path::{Path, PathBuf};
@@ -70,31 +71,21 @@ fn prism_and_slit(dir: &Path) -> PathBuf {
         dispersion: 1.0,
         ..MaterialDesc::clear_glass("DispersiveGlass", ior, 0.5)
     };
-    let scene = GenScene {
+    let scene = SceneDesc {
         name: "prism and slit".into(),
         meshes: vec![
-            GenMesh {
-                name: "Prism".into(),
-                geometry: prism,
-                material: 0,
-                translation: None,
-            },
-            GenMesh {
-                name: "Slit".into(),
-                geometry: slit,
-                material: 1,
-                translation: None,
-            },
+            placed("Prism", prism, 0, None),
+            placed("Slit", slit, 1, None),
         ],
         materials: vec![glass, MaterialDesc::emitter("Slit", Vec3::splat(4.0))],
-        camera: Some(GenCamera {
-            name: "view".into(),
-            eye: exit + 1.2 * d_out,
-            target: exit,
-            up: Vec3::Y,
-            yfov: 24f32.to_radians(),
-            aspect: None,
-        }),
+        cameras: vec![look_at(
+            "view",
+            exit + 1.2 * d_out,
+            exit,
+            Vec3::Y,
+            24f32.to_radians(),
+            None,
+        )],
         ..Default::default()
     };
     let path = dir.join("prism_slit.glb");

@@ -8,7 +8,7 @@
 //! their delta lights where their docs say, the rainbow's baffle must shade all but the
 //! slit, and violet must land beyond red along the exported dispersion direction. The
 //! material-layer test scenes (`assets/materials/`) must equal a regeneration, stay under
-//! 50 KB and carry their layer extensions, a camera and their own lights, no environment.
+//! 200 KB and carry their layer extensions, a camera and their own lights, no environment.
 //!
 //! To regenerate the committed files after changing the generator:
 //! `IRIS_BLESS_ASSETS=1 cargo test --release --no-default-features --test load -- gen_assets::`
@@ -144,7 +144,7 @@ fn assets_parse_with_expected_materials_camera_and_lights() {
             "{name}: no light"
         );
         assert_eq!(doc.cameras().count(), 1, "{name}");
-        assert!(bytes.len() < 1_500_000, "{name}: {} bytes", bytes.len());
+        assert!(bytes.len() < 2_000_000, "{name}: {} bytes", bytes.len());
 
         check_camera_sees_glass(&name, &doc, &buffers);
     }
@@ -806,7 +806,7 @@ fn caustics_figure_has_one_point_light_over_a_white_floor() {
         "floor {to_floor} m, focus {v} m"
     );
     // A fine sphere with radial normals (cos > 0.99999: vertex normals are the normalised
-    // f64 positions, rounded to f32).
+    // f64 positions about the centre, rounded to f32; positions are in world space).
     let sphere = doc
         .meshes()
         .find(|m| m.name() == Some("Glass sphere"))
@@ -825,7 +825,7 @@ fn caustics_figure_has_one_point_light_over_a_white_floor() {
         .collect();
     assert!(positions.len() > 10_000);
     for (p, n) in positions.iter().zip(&normals) {
-        assert!(p.normalize().dot(*n) > 0.99999);
+        assert!((*p - SPHERE_CENTRE).normalize().dot(*n) > 0.99999);
     }
     check_closed_manifold("sphere", &read_triangles(&prim, &buffers));
     check_closed_manifold("prism", &mesh_triangles(&doc, &buffers, "Prism"));
@@ -1026,7 +1026,7 @@ fn committed_material_scenes_match_regeneration() {
             "assets/materials/{name} differs from a regeneration; regenerate with IRIS_BLESS_ASSETS=1"
         );
         assert!(
-            committed.len() < 50_000,
+            committed.len() < 200_000,
             "{name}: {} bytes",
             committed.len()
         );

@@ -11,45 +11,52 @@ use iris::accel::Backend;
 use iris::app::{render_command, resolve_environment, RenderOptions};
 use iris::assets::sky::encode_hdr;
 use iris::authoring::shapes::cuboid;
-use iris::authoring::{encode_glb, GenCamera, GenMesh, GenScene};
+use iris::authoring::{encode_glb, look_at, placed};
 use iris::error::Error;
 use iris::integrator::Method;
 use iris::light::env::Environment;
 use iris::material::MaterialDesc;
 use iris::output::{read_exr, DisplayOptions};
-use iris::scene::desc::EnvironmentDesc;
+use iris::scene::desc::{EnvironmentDesc, SceneDesc};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 
-/// A box behind a camera that looks at the empty sky, with `extras` on the scene.
-fn scene(extras: Option<Value>) -> GenScene {
-    GenScene {
+/// A box behind a camera that looks at the empty sky.
+fn scene() -> SceneDesc {
+    SceneDesc {
         name: "env test".into(),
-        meshes: vec![GenMesh {
-            name: "Box".into(),
-            geometry: cuboid(Vec3::splat(0.1)),
-            material: 0,
-            translation: Some(Vec3::new(0.0, 0.0, 5.0)),
-        }],
+        meshes: vec![placed(
+            "Box",
+            cuboid(Vec3::splat(0.1)),
+            0,
+            Some(Vec3::new(0.0, 0.0, 5.0)),
+        )],
         materials: vec![MaterialDesc::diffuse("Grey", Vec3::splat(0.5))],
         lights: vec![],
-        camera: Some(GenCamera {
-            name: "Cam".into(),
-            eye: Vec3::ZERO,
-            target: Vec3::NEG_Z,
-            up: Vec3::Y,
-            yfov: 0.5,
-            aspect: Some(1.0),
-        }),
-        extras,
-        mesh_uvs: Vec::new(),
+        cameras: vec![look_at(
+            "Cam",
+            Vec3::ZERO,
+            Vec3::NEG_Z,
+            Vec3::Y,
+            0.5,
+            Some(1.0),
+        )],
+        ..SceneDesc::default()
     }
 }
 
-/// Writes `scene(extras)` as `dir/name` and returns its path.
+/// Writes `scene()` as `dir/name` with `extras` (any JSON, also what no description
+/// holds) set on its glTF scene, and returns its path.
 fn write(dir: &Path, name: &str, extras: Option<Value>) -> PathBuf {
+    let bytes = encode_glb(&scene()).expect("encode");
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().expect("length")) as usize;
+    let mut doc: Value = serde_json::from_slice(&bytes[20..20 + json_len]).expect("json");
+    let bin = &bytes[20 + json_len + 8..];
+    if let Some(extras) = extras {
+        doc["scenes"][0]["extras"] = extras;
+    }
     let path = dir.join(name);
-    std::fs::write(&path, encode_glb(&scene(extras)).expect("encode")).expect("write");
+    std::fs::write(&path, common::glb(&doc, bin)).expect("write");
     path
 }
 

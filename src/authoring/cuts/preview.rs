@@ -18,12 +18,13 @@
 
 use super::super::glb::write_glb;
 use super::super::lathe::sin_cos;
-use super::super::scene::{GenCamera, GenMesh, GenScene};
+use super::super::scene::{look_at, placed};
 use super::super::shapes::{ground_plane, TriMesh};
 use super::super::stones::Stone;
 use super::{size_metres, Cut};
 use crate::error::{Error, Result};
 use crate::material::MaterialDesc;
+use crate::scene::desc::{CameraDesc, EnvironmentDesc, SceneDesc};
 use glam::{DVec3, Vec3};
 use std::path::Path;
 
@@ -57,41 +58,33 @@ fn cut_title(cut: Cut) -> &'static str {
 }
 
 /// The scene of `spec` (see the module docs); `--size` out of range is a usage error.
-pub fn gem_scene(spec: &GemSpec) -> Result<GenScene> {
+pub fn gem_scene(spec: &GemSpec) -> Result<SceneDesc> {
     let size = size_metres(spec.size_mm)?;
     let stone = spec.cut.mesh(size);
     let (lo, hi) = bounds(&stone);
-    let mut s = GenScene {
+    let mut s = SceneDesc {
         name: format!(
             "{}, {}, {} mm",
             cut_title(spec.cut),
             spec.stone.title(),
             spec.size_mm
         ),
-        ..GenScene::default()
+        ..SceneDesc::default()
     };
     s.materials.push(spec.stone.material((hi.y - lo.y) as f32));
     let name = format!("{} {}", cut_title(spec.cut), spec.stone.name());
     if spec.bare {
-        s.meshes.push(GenMesh {
-            name,
-            geometry: stone,
-            material: 0,
-            translation: None,
-        });
+        s.meshes.push(placed(&name, stone, 0, None));
         return Ok(s);
     }
     let lift = 0.02 * size - lo.y;
-    s.meshes.push(GenMesh {
-        name,
-        geometry: stone,
-        material: 0,
-        translation: Some(DVec3::new(0.0, lift, 0.0).as_vec3()),
-    });
+    let at = DVec3::new(0.0, lift, 0.0).as_vec3();
+    s.meshes.push(placed(&name, stone, 0, Some(at)));
     let centre = 0.5 * (lo + hi) + DVec3::new(0.0, lift, 0.0);
     add_setting(&mut s, centre, size);
     let radius = 0.5 * (hi - lo).length();
-    s.camera = Some(preview_camera(centre, radius, (35.0, 25.0), 4.0 / 3.0));
+    s.cameras
+        .push(preview_camera(centre, radius, (35.0, 25.0), 4.0 / 3.0));
     Ok(s)
 }
 
@@ -99,17 +92,14 @@ pub fn gem_scene(spec: &GemSpec) -> Result<GenScene> {
 /// (girdle diameter or length) is `size` metres, as the module docs give it: the faint
 /// uniform environment (scene extras), the white floor at y = 0, the key and the rim
 /// panels. Appends its materials and meshes after those already in `s`.
-pub fn add_setting(s: &mut GenScene, centre: DVec3, size: f64) {
-    s.extras = Some(serde_json::json!({ "iris_environment": AMBIENT }));
+pub fn add_setting(s: &mut SceneDesc, centre: DVec3, size: f64) {
+    s.environment = Some(EnvironmentDesc::Uniform(Vec3::splat(AMBIENT)));
     s.materials
         .push(MaterialDesc::diffuse("Floor", Vec3::splat(0.85)));
     let half = (10.0 * size) as f32;
-    s.meshes.push(GenMesh {
-        name: "Floor".into(),
-        geometry: ground_plane(half, half),
-        material: s.materials.len() - 1,
-        translation: None,
-    });
+    let floor = s.materials.len() - 1;
+    s.meshes
+        .push(placed("Floor", ground_plane(half, half), floor, None));
     let key = direction(55.0, -40.0);
     let rim = direction(40.0, 150.0);
     add_panel(
@@ -139,18 +129,19 @@ pub fn preview_camera(
     radius: f64,
     (elevation, azimuth): (f64, f64),
     aspect: f32,
-) -> GenCamera {
+) -> CameraDesc {
     let yfov = 25.0f64;
     let (half_sin, _) = sin_cos((0.5 * yfov).to_radians());
     let eye = centre + 1.1 * radius / half_sin * direction(elevation, azimuth);
-    GenCamera {
-        name: "Preview".into(),
-        eye: eye.as_vec3(),
-        target: centre.as_vec3(),
-        up: Vec3::Y,
-        yfov: yfov.to_radians() as f32,
-        aspect: Some(aspect),
-    }
+    let fov = yfov.to_radians() as f32;
+    look_at(
+        "Preview",
+        eye.as_vec3(),
+        centre.as_vec3(),
+        Vec3::Y,
+        fov,
+        Some(aspect),
+    )
 }
 
 /// Unit vector `elevation` degrees above the horizon, `azimuth` degrees round from +Z
@@ -171,7 +162,7 @@ fn bounds(m: &TriMesh) -> (DVec3, DVec3) {
 
 /// Adds a square emitter of half side `half` centred at `at`, facing −`dir` (towards
 /// the stone when `dir` points from the stone to `at`).
-fn add_panel(s: &mut GenScene, name: &str, radiance: f32, at: DVec3, dir: DVec3, half: f64) {
+fn add_panel(s: &mut SceneDesc, name: &str, radiance: f32, at: DVec3, dir: DVec3, half: f64) {
     let u = DVec3::Y.cross(dir).normalize() * half;
     // u × v = −dir, so the corners below run counter-clockwise seen from the stone.
     let v = u.cross(dir);
@@ -185,12 +176,8 @@ fn add_panel(s: &mut GenScene, name: &str, radiance: f32, at: DVec3, dir: DVec3,
     quad.indices = vec![[0, 1, 2], [0, 2, 3]];
     s.materials
         .push(MaterialDesc::emitter(name, Vec3::splat(radiance)));
-    s.meshes.push(GenMesh {
-        name: name.into(),
-        geometry: quad,
-        material: s.materials.len() - 1,
-        translation: None,
-    });
+    let material = s.materials.len() - 1;
+    s.meshes.push(placed(name, quad, material, None));
 }
 
 /// `iris gem`: checks the output name (must end in `.glb`) and `--size`, builds the scene
@@ -223,18 +210,16 @@ mod tests {
         };
         let s = gem_scene(&spec).expect("scene");
         assert_eq!(s.meshes.len(), 4);
-        assert!(s.camera.is_some() && s.extras.is_some());
-        let lift = s.meshes[0].translation.expect("lift").y;
+        assert!(s.cameras.len() == 1 && s.environment.is_some());
         let lowest = s.meshes[0]
-            .geometry
             .positions
             .iter()
-            .map(|p| p.y + lift)
+            .map(|p| p.y)
             .fold(f32::MAX, f32::min);
         // 2 % of 8 mm = 0.16 mm above the floor (f32 rounding ~1e-9 m).
         assert!((lowest - 0.00016).abs() < 1e-8, "{lowest}");
         let bare = gem_scene(&GemSpec { bare: true, ..spec }).expect("bare");
         assert_eq!(bare.meshes.len(), 1);
-        assert!(bare.camera.is_none() && bare.lights.is_empty() && bare.extras.is_none());
+        assert!(bare.cameras.is_empty() && bare.lights.is_empty() && bare.environment.is_none());
     }
 }

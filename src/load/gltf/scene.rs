@@ -42,6 +42,9 @@ pub(super) fn read_scene_graph(
     desc: &mut SceneDesc,
     warnings: &mut Warnings,
 ) -> Result<(), LoadError> {
+    desc.name = chosen_scene(ctx)
+        .and_then(|s| s.name().map(str::to_owned))
+        .unwrap_or_default();
     desc.environment = read_environment(ctx)?;
     desc.fog = read_fog(ctx)?;
     let node_count = ctx.doc.nodes().len();
@@ -163,10 +166,15 @@ fn root_nodes(doc: &gltf::Document) -> Vec<gltf::Node<'_>> {
         .collect()
 }
 
+/// The scene the file asks for (`scene`), else its first; `None` if it has none.
+fn chosen_scene<'a>(ctx: &Ctx<'a>) -> Option<gltf::Scene<'a>> {
+    ctx.doc.default_scene().or_else(|| ctx.doc.scenes().next())
+}
+
 /// The chosen scene's label and the value of its extras key `key`
 /// ([`super::extras::extras_key`]), if it has one.
 fn scene_key(ctx: &Ctx<'_>, key: &str) -> Result<Option<(String, serde_json::Value)>, LoadError> {
-    let Some(scene) = ctx.doc.default_scene().or_else(|| ctx.doc.scenes().next()) else {
+    let Some(scene) = chosen_scene(ctx) else {
         return Ok(None);
     };
     let name = label("scene", scene.index(), scene.name());
