@@ -297,11 +297,21 @@ impl Material {
     /// holding a scattering medium, whose extinction the path's free-flight sampling takes
     /// ([`crate::volume::track`]).
     pub fn transmittance_at<C: Carrier>(&self, x: f32, l: &C::Lambda) -> C {
-        let d = self.desc.attenuation_distance;
-        if !d.is_finite() || self.medium.is_some() {
+        if !self.absorbs() {
             return C::ONE;
         }
+        let d = self.desc.attenuation_distance;
         C::reflectance(self.desc.attenuation_color, l).powf(x / d)
+    }
+
+    /// Whether [`Material::transmittance_at`] can be below 1: a finite attenuation
+    /// distance, no scattering medium (whose free-flight sampling takes the extinction), and
+    /// an attenuation colour other than white (white gives exactly 1 at any distance: both
+    /// carriers take a grey colour as that grey, and 1^y = 1 in IEEE 754 `pow`).
+    pub fn absorbs(&self) -> bool {
+        self.desc.attenuation_distance.is_finite()
+            && self.medium.is_none()
+            && self.desc.attenuation_color != Vec3::ONE
     }
 
     /// The index of refraction a path at the given wavelengths sees: n(hero λ) from the IOR

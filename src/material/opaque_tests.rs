@@ -1,6 +1,6 @@
 //! [`super::Material::opaque_bsdf`] leaves out what a point does not need: a glTF BRDF
 //! without a specular part is the Lambert lobe, and that lobe answers exactly as the glTF
-//! mix it replaces.
+//! mix it replaces; Beer–Lambert only where it absorbs.
 
 use super::{Material, MaterialDesc, TextureContext};
 use crate::bsdf::{Bsdf, TransportMode};
@@ -89,4 +89,29 @@ fn the_lambert_lobe_answers_as_the_zero_specular_mix() {
             assert_eq!(key(a), key(b), "{wo} {u}");
         }
     }
+}
+
+/// Beer–Lambert is computed only where it can take light away: a white attenuation colour
+/// transmits exactly 1 at any distance, as does an infinite distance.
+#[test]
+fn only_a_coloured_finite_attenuation_absorbs() {
+    let glass = |color: Vec3, distance: f32| {
+        let mut d = MaterialDesc::clear_glass("Glass", 1.5, 0.01);
+        d.attenuation_color = color;
+        d.attenuation_distance = distance;
+        Material::new(d)
+    };
+    let white = glass(Vec3::ONE, 1.0);
+    assert!(!white.absorbs());
+    assert_eq!(white.transmittance_at::<Vec3>(3.0, &()), Vec3::ONE);
+    assert!(!glass(Vec3::new(0.5, 0.8, 0.9), f32::INFINITY).absorbs());
+    let tinted = glass(Vec3::new(0.5, 0.8, 0.9), 2.0);
+    assert!(tinted.absorbs());
+    // c^(x/d) at x = d is c.
+    assert_eq!(
+        tinted.transmittance_at::<Vec3>(2.0, &()),
+        Vec3::new(0.5, 0.8, 0.9)
+    );
+    // The same through the carrier's own pow: 1^y is exactly 1 for the white glass.
+    assert_eq!(Vec3::ONE.powf(1.7), Vec3::ONE);
 }

@@ -9,8 +9,9 @@
 //!   subpaths) or not — [`resolve_method`] (`method.rs`), whose `auto` choice among path,
 //!   BPT, hybrid, VCM and SPPM rests on fixed-seed photon probes (the same seeds here, so
 //!   the plan and the render always agree).
-//! - **volumes**: Beer–Lambert attenuation, evaluated only for materials on triangles with a
-//!   finite attenuation distance ([`crate::material::Material::transmittance_at`] returns 1
+//! - **volumes**: Beer–Lambert attenuation, evaluated only for materials on triangles that
+//!   absorb ([`crate::material::Material::absorbs`]: a finite attenuation distance and a
+//!   colour other than white; [`crate::material::Material::transmittance_at`] returns 1
 //!   otherwise).
 //! - **textures**: images decoded by the loader vs images referenced by materials that
 //!   triangles use (and, for glTF, images in the file).

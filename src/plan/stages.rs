@@ -167,23 +167,23 @@ pub(super) fn photons(ev: &Evidence, method: Method, resolved: Method, why: Opti
     }
 }
 
-/// Volumes: the materials on triangles with Beer–Lambert attenuation.
+/// Volumes: the materials on triangles with Beer–Lambert attenuation ([`Material::absorbs`]).
 pub(super) fn volumes(ev: &Evidence) -> Stage {
     let mats = |f: &dyn Fn(&Material) -> bool| ev.mats(f);
     let attenuating: Vec<String> = ev
         .materials()
-        .filter(|m| m.desc.attenuation_distance.is_finite())
+        .filter(|m| m.absorbs())
         .map(|m| format!("{} over {}", m.desc.name, m.desc.attenuation_distance))
         .collect();
-    let clear =
-        mats(&|m: &Material| m.is_volume() && !m.desc.attenuation_distance.is_finite()).len();
+    let clear = mats(&|m: &Material| m.is_volume() && !m.absorbs()).len();
     Stage {
         name: "volumes",
         used: !attenuating.is_empty(),
         reason: if attenuating.is_empty() {
             format!(
-                "Beer-Lambert never evaluated: no material on a triangle has a finite \
-                         attenuation distance ({clear} clear volumetric materials)"
+                "Beer-Lambert never evaluated: no material on a triangle absorbs (a finite \
+                         attenuation distance with a colour other than white; {clear} clear \
+                         volumetric materials)"
             )
         } else {
             let n = attenuating.len();
