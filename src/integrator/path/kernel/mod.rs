@@ -79,10 +79,27 @@ pub fn estimate(
     (seed, max_depth): (u64, u32),
     out: &mut [Vec3],
 ) -> u64 {
+    estimate_at(
+        width(),
+        tables,
+        scene,
+        (starts, jobs),
+        (seed, max_depth),
+        out,
+    )
+}
+
+/// [`estimate`] on `width` lanes (8, or 16 for any other value).
+fn estimate_at(
+    width: usize,
+    tables: &Tables,
+    scene: &Scene,
+    run: (&Starts, &[Job]),
+    rules: (u64, u32),
+    out: &mut [Vec3],
+) -> u64 {
     let arch = pulp::Arch::new();
-    let run = (starts, jobs);
-    let rules = (seed, max_depth);
-    if width() == 8 {
+    if width == 8 {
         arch.dispatch(|| paths::run::<8>(tables, scene, run, rules, out))
     } else {
         arch.dispatch(|| paths::run::<16>(tables, scene, run, rules, out))
