@@ -18,6 +18,7 @@
 //! renders the scene instead.
 
 use crate::camera::Camera;
+use crate::light::sampler::Rule;
 use crate::light::Light;
 use crate::material::{AlphaMode, Material};
 use crate::scene::Scene;
@@ -90,6 +91,9 @@ pub fn qualify(scene: &Scene, camera: &Camera, spectral: bool) -> Result<Tables,
     }
     if scene.touching_triangles() > 0 {
         return Err("touching (coincident) faces".into());
+    }
+    if scene.light_sampler().rule() != Rule::Uniform {
+        return Err("lights chosen by power for next-event estimation".into());
     }
     let mut used = vec![false; scene.materials().len()];
     for t in scene.triangles() {

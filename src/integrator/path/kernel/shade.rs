@@ -20,7 +20,7 @@
 
 use super::features::Punctual;
 use super::hits::{dot, Hits, V3};
-use crate::interaction::SHADOW_EPSILON;
+use crate::interaction::{offset_point, SHADOW_EPSILON};
 use crate::shading::MAX_DELTA_BOUNCES;
 use std::f32::consts::{FRAC_1_PI, TAU};
 
@@ -57,16 +57,13 @@ impl<const N: usize> Rays<N> {
     }
 }
 
-/// The origin of a ray leaving hit lane `i` toward `dir`: offset along `ng` to that side.
+/// The origin of a ray leaving hit lane `i` toward `dir`: the intersection layer's offset
+/// rule ([`offset_point`]).
 #[inline(always)]
 fn origin<const N: usize>(h: &Hits<N>, i: usize, dir: [f32; 3]) -> [f32; 3] {
-    let side = dir[0] * h.ng[0][i] + dir[1] * h.ng[1][i] + dir[2] * h.ng[2][i];
-    let s = if side >= 0.0 {
-        h.offset[i]
-    } else {
-        -h.offset[i]
-    };
-    [0, 1, 2].map(|c| h.p[c][i] + h.ng[c][i] * s)
+    let p = [h.p[0][i], h.p[1][i], h.p[2][i]];
+    let ng = [h.ng[0][i], h.ng[1][i], h.ng[2][i]];
+    offset_point(p, ng, h.offset[i], dir)
 }
 
 /// Where `on`, sets lane `i` of `out` to the ray leaving hit lane `i` along the unit `dir`
