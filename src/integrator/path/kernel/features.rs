@@ -119,7 +119,12 @@ pub fn qualify(scene: &Scene, camera: &Camera, spectral: bool) -> Result<Tables,
 /// How the kernel shades `m`, or why it cannot.
 fn shade(m: &Material) -> Result<Shade, String> {
     let d = &m.desc;
-    let name = &d.name;
+    // Loaded materials are named as elements already (`material 0 "Floor"`).
+    let name = if d.name.starts_with("material ") {
+        d.name.clone()
+    } else {
+        format!("material \"{}\"", d.name)
+    };
     let l = &d.layers;
     let why = if d.textures().iter().any(|(_, t)| t.is_some()) {
         Some("is textured")
@@ -139,7 +144,7 @@ fn shade(m: &Material) -> Result<Shade, String> {
         None
     };
     if let Some(why) = why {
-        return Err(format!("material \"{name}\" {why}"));
+        return Err(format!("{name} {why}"));
     }
     let base = d
         .base_color
@@ -149,7 +154,7 @@ fn shade(m: &Material) -> Result<Shade, String> {
     if transmission == 0.0 {
         if d.metallic != 0.0 || d.specular != 0.0 {
             return Err(format!(
-                "material \"{name}\" has a specular or metal lobe (the kernel shades a pure \
+                "{name} has a specular or metal lobe (the kernel shades a pure \
                  Lambert lobe: metallic 0, specular 0)"
             ));
         }
@@ -170,7 +175,7 @@ fn shade(m: &Material) -> Result<Shade, String> {
         None
     };
     match why {
-        Some(why) => Err(format!("material \"{name}\" {why}")),
+        Some(why) => Err(format!("{name} {why}")),
         None => Ok(Shade::Glass {
             eta,
             tint: base.to_array(),
