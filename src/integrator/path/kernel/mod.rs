@@ -39,6 +39,7 @@ mod tests;
 
 pub use features::{qualify, Tables};
 
+use crate::accel::packet::{Lanes, PacketWidth};
 use crate::camera::Camera;
 use crate::render::{Job, Starts};
 use crate::scene::Scene;
@@ -100,8 +101,45 @@ fn estimate_at(
 ) -> u64 {
     let arch = pulp::Arch::new();
     if width == 8 {
-        arch.dispatch(|| paths::run::<8>(tables, scene, run, rules, out))
+        arch.dispatch(Run::<8> {
+            tables,
+            scene,
+            run,
+            rules,
+            out,
+        })
     } else {
-        arch.dispatch(|| paths::run::<16>(tables, scene, run, rules, out))
+        arch.dispatch(Run::<16> {
+            tables,
+            scene,
+            run,
+            rules,
+            out,
+        })
+    }
+}
+
+/// The bounce loop on `N` lanes as `pulp`'s operation: [`pulp::WithSimd::with_simd`] is
+/// instantiated per instruction set and inlined, with [`paths::run`] and the lane loops
+/// under it (all `#[inline(always)]`), into `pulp`'s `#[target_feature]` function for that
+/// set, so LLVM vectorises them for AVX-512 or AVX2. (A closure is not inlined there: its
+/// body would be compiled once, for the crate's baseline.)
+struct Run<'a, const N: usize> {
+    tables: &'a Tables,
+    scene: &'a Scene,
+    run: (&'a Starts<'a>, &'a [Job]),
+    rules: (u64, u32),
+    out: &'a mut [Vec3],
+}
+
+impl<const N: usize> pulp::WithSimd for Run<'_, N>
+where
+    Lanes<N>: PacketWidth,
+{
+    type Output = u64;
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> u64 {
+        paths::run::<N>(self.tables, self.scene, self.run, self.rules, self.out)
     }
 }
