@@ -123,6 +123,13 @@ fn kernel_image(scene: &Scene, s: &RenderSettings, width: usize) -> (ImageRgb, I
 
 /// The scalar path tracer's image and halves.
 fn scalar_image(scene: &Scene, s: &RenderSettings) -> (ImageRgb, ImageRgb, ImageRgb) {
+    // `render_units` takes the kernel when IRIS_KERNEL=soa: the reference would be the
+    // kernel itself, so the test refuses to run that way rather than pass.
+    assert_ne!(
+        std::env::var("IRIS_KERNEL").ok().as_deref(),
+        Some("soa"),
+        "unset IRIS_KERNEL: the scalar reference would be the kernel"
+    );
     let path = Integrator::new(Method::Path, MAX_DEPTH, &PhotonSettings::default()).unwrap();
     let (film, _) = path
         .render_units(scene, &camera(), s, None, None)
