@@ -263,6 +263,12 @@ impl Integrator {
         }
         let pool = crate::render::thread_pool(settings)?;
         let width = LaneWidth::choose(scene)?;
+        let soa = match self {
+            Integrator::Path {
+                polarization: None, ..
+            } => path::kernel::choose(scene, camera, settings.spectral),
+            _ => None,
+        };
         pool.install(|| match *self {
             Integrator::Whitted { max_depth } => {
                 PerSample::Whitted { max_depth }.render(scene, camera, settings, range, observer)
@@ -276,6 +282,18 @@ impl Integrator {
                 polarization,
             }
             .render(scene, camera, settings, range, observer),
+            Integrator::Path { max_depth, .. } if soa.is_some() => render_batches(
+                camera,
+                settings,
+                range,
+                Prepass::now(),
+                observer,
+                |starts, jobs, out| {
+                    let tables = soa.as_ref().expect("checked by the guard");
+                    let rules = (settings.seed, max_depth);
+                    path::kernel::estimate(tables, scene, (starts, jobs), rules, out)
+                },
+            ),
             Integrator::Path {
                 max_depth,
                 dispersion,

@@ -159,12 +159,26 @@ pub struct SurfaceHit {
     offset: f32,
 }
 
+/// The offset rule on plain coordinates (what [`SurfaceHit::spawn_ray`] applies): the
+/// origin of a ray leaving the point `p` of a surface with unit geometric normal `ng` toward
+/// `dir`, moved by `offset` along `ng` to the side `dir` leaves to. For callers that hold
+/// their hits as arrays over lanes (the SoA path kernel); the same operations in the same
+/// order as the hit's own, so both give the same origin bit for bit.
+#[inline(always)]
+pub fn offset_point(p: [f32; 3], ng: [f32; 3], offset: f32, dir: [f32; 3]) -> [f32; 3] {
+    let along = dir[0] * ng[0] + dir[1] * ng[1] + dir[2] * ng[2];
+    let side = if along >= 0.0 { 1.0 } else { -1.0 };
+    let s = side * offset;
+    [p[0] + ng[0] * s, p[1] + ng[1] * s, p[2] + ng[2] * s]
+}
+
 impl SurfaceHit {
-    /// The origin for a ray leaving toward `dir`: offset along `ng` to that side.
+    /// The origin for a ray leaving toward `dir`: offset along `ng` to that side
+    /// ([`offset_point`]).
     #[inline]
     fn offset_origin(&self, dir: Vec3) -> Vec3 {
-        let side = if dir.dot(self.ng) >= 0.0 { 1.0 } else { -1.0 };
-        self.p + self.ng * (side * self.offset)
+        let (p, ng) = (self.p.to_array(), self.ng.to_array());
+        Vec3::from_array(offset_point(p, ng, self.offset, dir.to_array()))
     }
 
     /// A point inside a medium where a path scatters off no surface, seen along `wo` (unit,

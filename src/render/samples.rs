@@ -91,6 +91,19 @@ impl<'a> Starts<'a> {
         }
     }
 
+    /// The camera ray of `job` jittered by `jitter` ∈ [0, 1)² within its pixel (the pixel
+    /// centre for a render of one sample per pixel, as [`primary_ray`]): for estimators
+    /// that draw their own numbers (the SoA path kernel).
+    pub fn camera_ray(&self, job: Job, jitter: Vec2) -> Ray {
+        let jitter = if self.centre {
+            Vec2::splat(0.5)
+        } else {
+            jitter
+        };
+        let px = Vec2::new(job.x as f32, job.y as f32) + jitter;
+        self.camera.generate_ray(px)
+    }
+
     /// Starts `job` in `ctx` (its ray count reset): the camera ray and the hero variate.
     pub fn start(&self, job: Job, ctx: &mut Context) -> (Ray, f32) {
         self.sampler.restart(&mut ctx.sample, job.x, job.y, job.k);

@@ -23,6 +23,7 @@
 
 mod capabilities;
 mod in_medium;
+pub mod kernel;
 mod lanes;
 mod light_sample;
 mod own_hero;

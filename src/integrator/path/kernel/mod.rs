@@ -1,0 +1,145 @@
+//! A structure-of-arrays path kernel for the simplest scene class (issue 51, first slice):
+//! `--method path` in RGB on a clear-glass scene under punctual lights
+//! ([`features`] decides, and says why not), opt-in with the environment variable
+//! `IRIS_KERNEL=soa`. Anything else, or a scene outside the class (a `note:` line on
+//! stderr says why), renders with the scalar path tracer, unchanged.
+//!
+//! Design: 16 camera paths (8 with `IRIS_LANES=8`) run through one bounce loop
+//! ([`paths::run`]) with their whole state in structure-of-arrays form, lane `i` at index
+//! `i` of each array: the next rays, throughput, radiance, η scale, bounce counts, job,
+//! random stream and alive mask. Rays go to the backend as one
+//! [`crate::accel::packet::RayPacket`] and the hits come back as one
+//! [`crate::accel::packet::HitPacket`]; the hit records are built over the lanes
+//! ([`hits`]), with only the triangle's vertices, vertex normals and material gathered per
+//! lane. Shading runs over all lanes with masks per material group ([`shade`]): next-event
+//! estimation at Lambert lanes toward one punctual light chosen as the scalar path tracer
+//! chooses it, the cosine-sampled bounce and Russian roulette; the smooth dielectric's
+//! Fresnel-weighted reflection or refraction. Shadow rays go out as one packet. A lane whose
+//! path ends writes its job's radiance and takes the next job (refill), so glass paths do
+//! not leave the packet empty. The film receives the estimates in job order, as the
+//! scalar path's ([`crate::render::render_batches`]).
+//!
+//! SIMD: the per-lane arithmetic is plain loops over fixed-size arrays that LLVM
+//! vectorises; the whole loop is compiled for AVX-512, AVX2 and scalar x86-64 and chosen at
+//! run time by `pulp` ([`estimate`]), which holds the only `unsafe` (its
+//! `#[target_feature]` calls). On the pure-Rust BVH the packets are answered lane by lane.
+//!
+//! Random numbers: an independent stream per camera sample keyed by (seed, pixel, sample
+//! index) ([`rng`]), not the scalar path's Z-order Sobol' points: deterministic for a seed
+//! (the same image whatever the threads, rounds or packet width), and equal to the scalar
+//! path tracer's image in expectation, not bit for bit.
+
+mod features;
+mod hits;
+mod paths;
+mod rng;
+mod shade;
+#[cfg(test)]
+mod tests;
+
+pub use features::{qualify, Tables};
+
+use crate::accel::packet::{Lanes, PacketWidth};
+use crate::camera::Camera;
+use crate::render::{Job, Starts};
+use crate::scene::Scene;
+use glam::Vec3;
+
+/// The kernel's tables for `scene` when `IRIS_KERNEL=soa` asks for it and the scene
+/// qualifies ([`qualify`]); otherwise `None`, and when it was asked for, a `note:` line on
+/// stderr with the reason.
+pub fn choose(scene: &Scene, camera: &Camera, spectral: bool) -> Option<Tables> {
+    if std::env::var("IRIS_KERNEL").ok().as_deref() != Some("soa") {
+        return None;
+    }
+    match qualify(scene, camera, spectral) {
+        Ok(tables) => Some(tables),
+        Err(why) => {
+            eprintln!("note: IRIS_KERNEL=soa not used ({why}): the scalar path tracer renders");
+            None
+        }
+    }
+}
+
+/// Paths per packet: 16, or 8 when `IRIS_LANES=8`.
+fn width() -> usize {
+    match std::env::var("IRIS_LANES").ok().as_deref() {
+        Some("8") => 8,
+        _ => 16,
+    }
+}
+
+/// The kernel's estimate of `jobs` (begun by `starts`, numbers keyed by `seed`, at most
+/// `max_depth` non-delta bounces): job `i`'s linear RGB radiance into `out[i]`. Returns
+/// the rays traced. The loop runs compiled for the widest vector instructions this CPU has
+/// (`pulp`'s run-time dispatch).
+pub fn estimate(
+    tables: &Tables,
+    scene: &Scene,
+    (starts, jobs): (&Starts, &[Job]),
+    (seed, max_depth): (u64, u32),
+    out: &mut [Vec3],
+) -> u64 {
+    estimate_at(
+        width(),
+        tables,
+        scene,
+        (starts, jobs),
+        (seed, max_depth),
+        out,
+    )
+}
+
+/// [`estimate`] on `width` lanes (8, or 16 for any other value).
+fn estimate_at(
+    width: usize,
+    tables: &Tables,
+    scene: &Scene,
+    run: (&Starts, &[Job]),
+    rules: (u64, u32),
+    out: &mut [Vec3],
+) -> u64 {
+    let arch = pulp::Arch::new();
+    if width == 8 {
+        arch.dispatch(Run::<8> {
+            tables,
+            scene,
+            run,
+            rules,
+            out,
+        })
+    } else {
+        arch.dispatch(Run::<16> {
+            tables,
+            scene,
+            run,
+            rules,
+            out,
+        })
+    }
+}
+
+/// The bounce loop on `N` lanes as `pulp`'s operation: [`pulp::WithSimd::with_simd`] is
+/// instantiated per instruction set and inlined, with [`paths::run`] and the lane loops
+/// under it (all `#[inline(always)]`), into `pulp`'s `#[target_feature]` function for that
+/// set, so LLVM vectorises them for AVX-512 or AVX2. (A closure is not inlined there: its
+/// body would be compiled once, for the crate's baseline.)
+struct Run<'a, const N: usize> {
+    tables: &'a Tables,
+    scene: &'a Scene,
+    run: (&'a Starts<'a>, &'a [Job]),
+    rules: (u64, u32),
+    out: &'a mut [Vec3],
+}
+
+impl<const N: usize> pulp::WithSimd for Run<'_, N>
+where
+    Lanes<N>: PacketWidth,
+{
+    type Output = u64;
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> u64 {
+        paths::run::<N>(self.tables, self.scene, self.run, self.rules, self.out)
+    }
+}
