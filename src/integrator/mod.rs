@@ -263,12 +263,26 @@ impl Integrator {
         }
         let pool = crate::render::thread_pool(settings)?;
         let width = LaneWidth::choose(scene)?;
-        let soa = match self {
-            Integrator::Path {
-                polarization: None, ..
-            } => path::kernel::choose(scene, camera, settings.spectral),
-            _ => None,
-        };
+        if let Integrator::Path {
+            max_depth,
+            polarization: None,
+            ..
+        } = *self
+        {
+            if let Some(tables) = path::kernel::choose(scene, camera, settings.spectral) {
+                let rules = (settings.seed, max_depth);
+                return pool.install(|| {
+                    render_batches(
+                        camera,
+                        settings,
+                        range,
+                        Prepass::now(),
+                        observer,
+                        |s, j, o| path::kernel::estimate(&tables, scene, (s, j), rules, o),
+                    )
+                });
+            }
+        }
         pool.install(|| match *self {
             Integrator::Whitted { max_depth } => {
                 PerSample::Whitted { max_depth }.render(scene, camera, settings, range, observer)
@@ -282,18 +296,6 @@ impl Integrator {
                 polarization,
             }
             .render(scene, camera, settings, range, observer),
-            Integrator::Path { max_depth, .. } if soa.is_some() => render_batches(
-                camera,
-                settings,
-                range,
-                Prepass::now(),
-                observer,
-                |starts, jobs, out| {
-                    let tables = soa.as_ref().expect("checked by the guard");
-                    let rules = (settings.seed, max_depth);
-                    path::kernel::estimate(tables, scene, (starts, jobs), rules, out)
-                },
-            ),
             Integrator::Path {
                 max_depth,
                 dispersion,
