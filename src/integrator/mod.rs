@@ -269,7 +269,9 @@ impl Integrator {
             ..
         } = *self
         {
-            if let Some(tables) = path::kernel::choose(scene, camera, settings.spectral) {
+            if let Some(tables) =
+                path::kernel::choose(scene, camera, (settings.spectral, settings.quiet))
+            {
                 let rules = (settings.seed, max_depth);
                 return pool.install(|| {
                     render_batches(

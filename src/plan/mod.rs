@@ -19,7 +19,8 @@
 //!   a node are loaded).
 //! - **lanes**: whether the path tracer and the hybrid trace their camera paths in packets
 //!   of 8 or 16 ([`crate::integrator::path::LaneWidth`]); other methods and the BVH trace
-//!   single rays.
+//!   single rays. With `IRIS_KERNEL=soa`, which kernel renders the path tracer's camera
+//!   paths and why ([`crate::integrator::path::kernel`]).
 //! - **environment**: none, uniform (uniform sphere sampling) or a map (importance-sampled).
 //! - **nested media**: contact probes at hits on triangles marked
 //!   [`crate::scene::Triangle::TOUCHES`] by `scene/contact.rs` (and `scene/thin.rs`).
@@ -155,7 +156,14 @@ impl Plan {
                 stages::media(scene),
                 stages::textures(&ev),
                 stages::acceleration(scene),
-                stages::lanes(scene, resolved),
+                stages::lanes(
+                    scene,
+                    resolved,
+                    (
+                        matches!(projection, Projection::Perspective { .. }),
+                        spectral_on,
+                    ),
+                ),
                 stages::environment(scene),
                 stages::nested_media(&ev),
             ],

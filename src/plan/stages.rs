@@ -282,7 +282,26 @@ pub(super) fn acceleration(scene: &Scene) -> Stage {
 /// Lanes: whether the method's camera paths run in packets
 /// ([`crate::integrator::path::LaneWidth`], where its declaration says so,
 /// [`crate::integrator::capability::Capabilities::lanes`]) and why not otherwise.
-pub(super) fn lanes(scene: &Scene, method: Method) -> Stage {
+pub(super) fn lanes(scene: &Scene, method: Method, (perspective, spectral): (bool, bool)) -> Stage {
+    let plain = plain_lanes(scene, method);
+    if method != Method::Path || !crate::integrator::path::kernel::requested() {
+        return plain;
+    }
+    match crate::integrator::path::kernel::plan_text(scene, perspective, spectral) {
+        Ok(reason) => Stage {
+            used: true,
+            reason,
+            ..plain
+        },
+        Err(why) => Stage {
+            reason: format!("{}; IRIS_KERNEL=soa not used: {why}", plain.reason),
+            ..plain
+        },
+    }
+}
+
+/// The lanes stage of the scalar vertex (what renders without `IRIS_KERNEL=soa`).
+fn plain_lanes(scene: &Scene, method: Method) -> Stage {
     let width = LaneWidth::choose(scene);
     let caps = method.caps();
     let (used, reason) = match (caps.lanes.why_not(), width) {

@@ -17,7 +17,6 @@
 //! outside the class is refused with the reason (one line), and the scalar path tracer
 //! renders the scene instead.
 
-use crate::camera::Camera;
 use crate::light::sampler::Rule;
 use crate::light::Light;
 use crate::material::{AlphaMode, Material};
@@ -71,13 +70,13 @@ pub struct Tables {
     pub lights: Vec<Punctual>,
 }
 
-/// The tables of `scene` seen through `camera` in RGB (`spectral` false), or why the
-/// kernel does not render it.
-pub fn qualify(scene: &Scene, camera: &Camera, spectral: bool) -> Result<Tables, String> {
+/// The tables of `scene` seen through a perspective camera (`perspective`) in RGB
+/// (`spectral` false), or why the kernel does not render it.
+pub fn qualify(scene: &Scene, perspective: bool, spectral: bool) -> Result<Tables, String> {
     if spectral {
         return Err("spectral transport (the kernel carries RGB: --spectral off)".into());
     }
-    if !camera.is_perspective() {
+    if !perspective {
         return Err("an orthographic camera".into());
     }
     if scene.has_media() {

@@ -46,19 +46,41 @@ use crate::scene::Scene;
 use glam::Vec3;
 
 /// The kernel's tables for `scene` when `IRIS_KERNEL=soa` asks for it and the scene
-/// qualifies ([`qualify`]); otherwise `None`, and when it was asked for, a `note:` line on
-/// stderr with the reason.
-pub fn choose(scene: &Scene, camera: &Camera, spectral: bool) -> Option<Tables> {
-    if std::env::var("IRIS_KERNEL").ok().as_deref() != Some("soa") {
+/// qualifies ([`qualify`]); otherwise `None`, and when it was asked for by a render that
+/// is not `quiet`, a `note:` line on stderr with the reason.
+pub fn choose(scene: &Scene, camera: &Camera, (spectral, quiet): (bool, bool)) -> Option<Tables> {
+    if !requested() {
         return None;
     }
-    match qualify(scene, camera, spectral) {
+    match qualify(scene, camera.is_perspective(), spectral) {
         Ok(tables) => Some(tables),
         Err(why) => {
-            eprintln!("note: IRIS_KERNEL=soa not used ({why}): the scalar path tracer renders");
+            if !quiet {
+                eprintln!("note: IRIS_KERNEL=soa not used ({why}): the scalar path tracer renders");
+            }
             None
         }
     }
+}
+
+/// Whether `IRIS_KERNEL=soa` asks for the kernel.
+pub fn requested() -> bool {
+    std::env::var("IRIS_KERNEL").ok().as_deref() == Some("soa")
+}
+
+/// What the render plan says of the kernel for `scene` when it is asked for: which
+/// kernel renders the path tracer's camera paths, and why (`Ok`: the kernel, with its
+/// width; `Err`: the reason it does not take the scene).
+pub fn plan_text(scene: &Scene, perspective: bool, spectral: bool) -> Result<String, String> {
+    qualify(scene, perspective, spectral).map(|_| {
+        format!(
+            "structure-of-arrays kernel (IRIS_KERNEL=soa): {} camera paths with their whole \
+             state in arrays, hit records and shading across the lanes (AVX-512, AVX2 or \
+             scalar code chosen at run time), each camera sample with its own random \
+             stream: the image equals the single-ray image in expectation, not bit for bit",
+            width()
+        )
+    })
 }
 
 /// Paths per packet: 16, or 8 when `IRIS_LANES=8`.

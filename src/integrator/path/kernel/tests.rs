@@ -104,7 +104,7 @@ fn settings(spp: u32, seed: u64) -> RenderSettings {
 /// The kernel's image at `width` lanes and its two halves (even and odd samples).
 fn kernel_image(scene: &Scene, s: &RenderSettings, width: usize) -> (ImageRgb, ImageRgb, ImageRgb) {
     let cam = camera();
-    let tables = qualify(scene, &cam, false).expect("the test scene qualifies");
+    let tables = qualify(scene, cam.is_perspective(), false).expect("the test scene qualifies");
     let estimate = |starts: &Starts, jobs: &[Job], out: &mut [Vec3]| {
         estimate_at(
             width,
@@ -224,7 +224,8 @@ fn the_same_seed_gives_the_same_image() {
 #[test]
 fn scenes_outside_the_class_are_refused_with_the_reason() {
     let cam = camera();
-    let refused = |d: SceneDesc| qualify(&build(d, Backend::Bvh), &cam, false).unwrap_err();
+    let refused =
+        |d: SceneDesc| qualify(&build(d, Backend::Bvh), cam.is_perspective(), false).unwrap_err();
     let lamp = MaterialDesc::emitter("lamp", Vec3::splat(5.0));
     let e = refused(desc(MaterialDesc {
         name: "floor".into(),
@@ -265,8 +266,20 @@ fn scenes_outside_the_class_are_refused_with_the_reason() {
     rough.materials[1].roughness = 0.2;
     assert!(refused(rough).contains("rough glass"));
     let scene = build(desc(lambert_floor()), Backend::Bvh);
-    assert!(qualify(&scene, &cam, true)
+    assert!(qualify(&scene, cam.is_perspective(), true)
         .unwrap_err()
         .contains("spectral"));
-    assert!(qualify(&scene, &cam, false).is_ok());
+    assert!(qualify(&scene, cam.is_perspective(), false).is_ok());
+}
+
+/// The render plan's words for the kernel: which kernel renders and why, or why not.
+#[test]
+fn the_plan_names_the_kernel_or_the_reason() {
+    let scene = build(desc(lambert_floor()), Backend::Bvh);
+    let ran = super::plan_text(&scene, true, false).expect("the test scene qualifies");
+    assert!(ran.contains("structure-of-arrays kernel") && ran.contains("in expectation"));
+    let orthographic = super::plan_text(&scene, false, false).unwrap_err();
+    assert!(orthographic.contains("orthographic"), "{orthographic}");
+    let spectral = super::plan_text(&scene, true, true).unwrap_err();
+    assert!(spectral.contains("spectral"), "{spectral}");
 }
