@@ -144,7 +144,7 @@ fn embree_and_oidn_share_one_process() {
 
 /// The build fails clearly when the `denoise` feature cannot find OIDN: this crate's build
 /// script, as cargo compiled it for this test build (the newest
-/// `target/<profile>/build/iris-*/build-script-build`), run as cargo runs it for a build
+/// `target/<profile>/build/iris-<hash>/build-script-build`), run as cargo runs it for a build
 /// with the `denoise` feature and without Embree (so only the denoiser is looked for), with
 /// `OIDN_DIR` pointing nowhere: it must exit non-zero (cargo then stops the build) naming the
 /// three ways.
@@ -159,8 +159,12 @@ fn a_missing_oidn_fails_the_build_naming_the_three_ways() {
         .expect("target/<profile>/build")
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|d| {
-            d.file_name()
-                .is_some_and(|n| n.to_string_lossy().starts_with("iris-"))
+            // `iris-<hash>`, not another package of the workspace (`iris-python-<hash>`).
+            d.file_name().is_some_and(|n| {
+                n.to_string_lossy()
+                    .strip_prefix("iris-")
+                    .is_some_and(|h| h.chars().all(|c| c.is_ascii_hexdigit()))
+            })
         })
         .map(|d| d.join("build-script-build"))
         .filter(|f| f.is_file())
