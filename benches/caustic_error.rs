@@ -27,19 +27,7 @@ const W: u32 = 128;
 const H: u32 = 96;
 
 fn settings(spp: u32, seed: u64) -> RenderSettings {
-    RenderSettings {
-        width: W,
-        height: H,
-        spp,
-        seed,
-        threads: 0,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
-    }
+    RenderSettings::quiet_rgb((W, H), spp, seed, 0)
 }
 
 fn integrator(method: Method, photons: u64, passes: u32) -> Integrator {

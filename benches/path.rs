@@ -62,19 +62,7 @@ fn path_tracer(c: &mut Criterion) {
     ];
     let integrator =
         Integrator::new(Method::Path, 8, &PhotonSettings::default()).expect("a resolved method");
-    let settings = RenderSettings {
-        width: SIZE,
-        height: SIZE,
-        spp: 1,
-        seed: 1,
-        threads: 2,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
-    };
+    let settings = RenderSettings::quiet_rgb((SIZE, SIZE), 1, 1, 2);
     let mut group = c.benchmark_group("path_tracer_512");
     group.sample_size(10);
     group.warm_up_time(Duration::from_secs(2));

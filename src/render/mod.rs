@@ -75,6 +75,27 @@ pub struct RenderSettings {
     pub cancel: guard::Cancel,
 }
 
+impl RenderSettings {
+    /// Quiet RGB settings of `width`×`height` at `spp` with `seed` on `threads` (0 = all
+    /// cores), the default sampler, no time limit, no adaptive sampling: what tests and
+    /// benchmarks render with.
+    pub fn quiet_rgb((width, height): (u32, u32), spp: u32, seed: u64, threads: usize) -> Self {
+        RenderSettings {
+            width,
+            height,
+            spp,
+            seed,
+            threads,
+            quiet: true,
+            spectral: false,
+            time_limit: None,
+            sampler: Default::default(),
+            adaptive: None,
+            cancel: Default::default(),
+        }
+    }
+}
+
 /// Per-thread state an integrator carries along one camera sample (or photon).
 pub struct Context {
     /// Random numbers for this pixel sample: the scheduled low-discrepancy decisions and

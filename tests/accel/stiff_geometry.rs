@@ -120,19 +120,7 @@ fn render_image(
     spp: u32,
     max_depth: u32,
 ) -> (Vec<Vec3>, iris::render::RenderStats) {
-    let settings = RenderSettings {
-        width: size,
-        height: size,
-        spp,
-        seed: 5,
-        threads: 2,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
-    };
+    let settings = RenderSettings::quiet_rgb((size, size), spp, 5, 2);
     let integrator = Integrator::new(Method::Path, max_depth, &PhotonSettings::default())
         .expect("a resolved method");
     let (img, stats) = integrator

@@ -18,19 +18,7 @@ const W: u32 = 32;
 const H: u32 = 24;
 
 fn settings(spp: u32, seed: u64) -> RenderSettings {
-    RenderSettings {
-        width: W,
-        height: H,
-        spp,
-        seed,
-        threads: 2,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
-    }
+    RenderSettings::quiet_rgb((W, H), spp, seed, 2)
 }
 
 fn integrator(method: Method, passes: u32) -> Integrator {

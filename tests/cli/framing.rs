@@ -38,19 +38,7 @@ fn models(scale: f32) -> Vec<Model> {
 }
 
 fn settings(w: u32, h: u32) -> RenderSettings {
-    RenderSettings {
-        width: w,
-        height: h,
-        spp: 1,
-        seed: 1,
-        threads: 2,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
-    }
+    RenderSettings::quiet_rgb((w, h), 1, 1, 2)
 }
 
 /// Bounding box of the covered pixels as fractions of the image: (span x, span y, centre

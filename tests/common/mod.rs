@@ -323,19 +323,7 @@ pub fn render_settings(
     seed: u64,
     threads: usize,
 ) -> iris::render::RenderSettings {
-    iris::render::RenderSettings {
-        width,
-        height,
-        spp,
-        seed,
-        threads,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
-    }
+    iris::render::RenderSettings::quiet_rgb((width, height), spp, seed, threads)
 }
 
 /// A perspective camera's projection, for the plan of a scene built without a camera.

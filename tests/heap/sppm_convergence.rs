@@ -18,19 +18,7 @@ const W: u32 = 40;
 const H: u32 = 30;
 
 fn settings(seed: u64) -> RenderSettings {
-    RenderSettings {
-        width: W,
-        height: H,
-        spp: 1,
-        seed,
-        threads: 2,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
-    }
+    RenderSettings::quiet_rgb((W, H), 1, seed, 2)
 }
 
 fn sppm(passes: u32, photons: u64) -> Integrator {

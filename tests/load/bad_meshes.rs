@@ -162,19 +162,7 @@ fn furnace_camera() -> CameraDesc {
 }
 
 fn render_path(scene: &Scene, cam: &CameraDesc, size: u32, spp: u32) -> Vec<Vec3> {
-    let settings = RenderSettings {
-        width: size,
-        height: size,
-        spp,
-        seed: 3,
-        threads: 2,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
-    };
+    let settings = RenderSettings::quiet_rgb((size, size), spp, 3, 2);
     let integrator =
         Integrator::new(Method::Path, 64, &PhotonSettings::default()).expect("a resolved method");
     integrator

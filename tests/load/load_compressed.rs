@@ -177,19 +177,7 @@ fn render(file: &Path, seed: u64) -> Vec<Vec3> {
         Backend::Auto,
     )
     .expect("build");
-    let settings = RenderSettings {
-        width: W,
-        height: H,
-        spp: 16,
-        seed,
-        threads: 2,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
-    };
+    let settings = RenderSettings::quiet_rgb((W, H), 16, seed, 2);
     let integrator =
         Integrator::new(Method::Whitted, 64, &PhotonSettings::default()).expect("whitted");
     let (img, stats) = integrator

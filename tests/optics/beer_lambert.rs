@@ -55,19 +55,7 @@ fn transmitted(thickness: f32, distance: f32, color: Vec3, backend: Backend) -> 
         },
         world_from_camera: look_at(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::Y),
     };
-    let settings = RenderSettings {
-        width: 8,
-        height: 8,
-        spp: 1,
-        seed: 0,
-        threads: 1,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
-    };
+    let settings = RenderSettings::quiet_rgb((8, 8), 1, 0, 1);
     let integrator = Integrator::new(Method::Whitted, 16, &PhotonSettings::default())
         .expect("a resolved method");
     let (img, _) = integrator

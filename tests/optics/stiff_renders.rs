@@ -430,19 +430,7 @@ fn bubble_ring_starts_at_the_critical_impact_parameter() {
     let size = 96;
     let cam = Camera::new(&desc.cameras[0], size, size);
     let (centre, radius) = (Vec3::new(0.0, 1.0, 0.0), 0.4f32);
-    let settings = RenderSettings {
-        width: size,
-        height: size,
-        spp: 1,
-        seed: 3,
-        threads: 0,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
-    };
+    let settings = RenderSettings::quiet_rgb((size, size), 1, 3, 0);
     let whitted = Integrator::new(Method::Whitted, 16, &PhotonSettings::default())
         .expect("a resolved method");
     for backend in common::backends() {

@@ -82,19 +82,7 @@ fn scene(sheet: bool) -> (iris::scene::Scene, CameraDesc) {
 /// Mean of the channel means over the image's left third (the floor next to the sheet).
 fn left_mean(sheet: bool, seed: u64) -> f64 {
     let (scene, cam) = scene(sheet);
-    let settings = RenderSettings {
-        width: W,
-        height: H,
-        spp: 16,
-        seed,
-        threads: 2,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
-    };
+    let settings = RenderSettings::quiet_rgb((W, H), 16, seed, 2);
     let integrator = Integrator::new(
         Method::Photon,
         8,

@@ -20,19 +20,7 @@ const H: u32 = 36;
 
 fn run(method: Method, spp: u32, photon: PhotonSettings, seed: u64) -> ImageRgb {
     let (scene, cam) = common::caustic_sphere(Some(0.2));
-    let settings = RenderSettings {
-        width: W,
-        height: H,
-        spp,
-        seed,
-        threads: 2,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
-    };
+    let settings = RenderSettings::quiet_rgb((W, H), spp, seed, 2);
     let integrator = Integrator::new(method, 32, &photon).expect("a resolved method");
     integrator
         .render(&scene, &Camera::new(&cam, W, H), &settings)

@@ -60,19 +60,7 @@ fn mean_radiance(scene: &Scene, method: Method, photon: PhotonSettings, spp: u32
             Vec3::Y,
         ),
     };
-    let settings = RenderSettings {
-        width: w,
-        height: h,
-        spp,
-        seed: 3,
-        threads: 2,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
-    };
+    let settings = RenderSettings::quiet_rgb((w, h), spp, 3, 2);
     let integrator = Integrator::new(method, 64, &photon).expect("a resolved method");
     let (img, _) = integrator
         .render(scene, &Camera::new(&cam, w, h), &settings)

@@ -304,19 +304,7 @@ fn lambertian_sphere_in_uniform_environment_has_albedo_radiance() {
     let integrator =
         iris::integrator::Integrator::new(Method::Whitted, 8, &PhotonSettings::default())
             .expect("a resolved method");
-    let settings = iris::render::RenderSettings {
-        width: 32,
-        height: 32,
-        spp: 256,
-        seed: 3,
-        threads: 2,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
-    };
+    let settings = iris::render::RenderSettings::quiet_rgb((32, 32), 256, 3, 2);
     let (img, _) = integrator.render(&scene, &cam, &settings).unwrap();
     // The sphere (radius 1 at distance 5, yfov 0.6) spans ~ ±0.2 rad: pixels within 6 of the
     // centre are on it; corners are background.

@@ -445,19 +445,7 @@ fn library_rejects_absurd_threads_depth_and_photons() {
             .to_string();
         assert!(e.contains(needle), "{e}");
     }
-    let settings = iris::render::RenderSettings {
-        width: 8,
-        height: 8,
-        spp: 1,
-        seed: 0,
-        threads: 100_000,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
-    };
+    let settings = iris::render::RenderSettings::quiet_rgb((8, 8), 1, 0, 100_000);
     let e = iris::render::thread_pool(&settings).expect_err("100000 threads");
     assert!(e.to_string().contains("--threads 100000"), "{e}");
     assert!(entries(&dir).is_empty());

@@ -86,19 +86,7 @@ fn camera() -> Camera {
 }
 
 fn settings(spp: u32, seed: u64) -> RenderSettings {
-    RenderSettings {
-        width: W,
-        height: H,
-        spp,
-        seed,
-        threads: 2,
-        quiet: true,
-        spectral: false,
-        time_limit: None,
-        sampler: Default::default(),
-        adaptive: None,
-        cancel: Default::default(),
-    }
+    RenderSettings::quiet_rgb((W, H), spp, seed, 2)
 }
 
 /// The kernel's image at `width` lanes and its two halves (even and odd samples).
