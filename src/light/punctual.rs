@@ -72,11 +72,27 @@ pub struct Incidence {
 }
 
 /// KHR_lights_punctual recommended range window: clamp(1 − (d/range)⁴, 0, 1).
+#[inline]
 pub(crate) fn range_window(d: f32, range: Option<f32>) -> f32 {
     match range {
         Some(r) if r > 0.0 => (1.0 - (d / r).powi(4)).clamp(0.0, 1.0),
         _ => 1.0,
     }
+}
+
+/// A spot light's attenuation at `cd`, the cosine between its axis and the direction to
+/// the point (KHR_lights_punctual's recommendation): the linear ramp between the cone
+/// cosines, squared; a hard edge when the cones coincide.
+#[inline]
+pub(crate) fn cone_falloff(cd: f32, cos_inner: f32, cos_outer: f32) -> f32 {
+    let t = if cos_inner > cos_outer {
+        ((cd - cos_outer) / (cos_inner - cos_outer)).clamp(0.0, 1.0)
+    } else if cd >= cos_outer {
+        1.0
+    } else {
+        0.0
+    };
+    t * t
 }
 
 /// Unit direction, distance and squared distance from `p` to a light at `position`;
@@ -119,15 +135,7 @@ impl Light {
             } => {
                 let (wi, d, d2) = toward(position, p)?;
                 let cd = (-wi).dot(direction);
-                // Spec: smooth attenuation between the cone cosines, squared.
-                let t = if cos_inner > cos_outer {
-                    ((cd - cos_outer) / (cos_inner - cos_outer)).clamp(0.0, 1.0)
-                } else if cd >= cos_outer {
-                    1.0
-                } else {
-                    0.0
-                };
-                let w = t * t * range_window(d, range);
+                let w = cone_falloff(cd, cos_inner, cos_outer) * range_window(d, range);
                 if w <= 0.0 {
                     return None;
                 }

@@ -52,11 +52,12 @@ pub struct Punctual {
     pub directional: bool,
     /// The unit direction a spot points to.
     pub axis: [f32; 3],
-    /// cos of the inner and outer cone angles (inner > outer).
+    /// cos of the inner and outer cone angles (as the light gives them; a point light
+    /// holds −2 and −3, so its falloff is 1).
     pub cos_inner: f32,
     /// As `cos_inner`.
     pub cos_outer: f32,
-    /// KHR range (`f32::INFINITY` for none).
+    /// KHR range (`f32::INFINITY` for none: its window is then 1).
     pub range: f32,
 }
 
@@ -208,7 +209,7 @@ fn punctual(light: &Light) -> Punctual {
             range,
         } => Punctual {
             axis: direction.to_array(),
-            cos_inner: cos_inner.max(cos_outer + 1e-6),
+            cos_inner,
             cos_outer,
             ..point(position, intensity, range)
         },

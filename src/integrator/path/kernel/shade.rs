@@ -21,6 +21,7 @@
 use super::features::Punctual;
 use super::hits::{dot, Hits, V3};
 use crate::interaction::{offset_point, SHADOW_EPSILON};
+use crate::light::punctual::{cone_falloff, range_window};
 use crate::shading::MAX_DELTA_BOUNCES;
 use std::f32::consts::{FRAC_1_PI, TAU};
 
@@ -147,10 +148,8 @@ fn incidence<const N: usize>(
     let d2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
     let d = d2.sqrt();
     let wi = v.map(|x| x / d);
-    let window = (1.0 - (d / l.range).powi(4)).clamp(0.0, 1.0);
     let cd = -(wi[0] * l.axis[0] + wi[1] * l.axis[1] + wi[2] * l.axis[2]);
-    let t = ((cd - l.cos_outer) / (l.cos_inner - l.cos_outer)).clamp(0.0, 1.0);
-    let w = t * t * window;
+    let w = cone_falloff(cd, l.cos_inner, l.cos_outer) * range_window(d, Some(l.range));
     let e = l.intensity.map(|x| x * (w / d2));
     (wi, e, d2 > 0.0 && w > 0.0, l.at)
 }
