@@ -31,6 +31,7 @@
 
 mod features;
 mod hits;
+mod numbers;
 mod paths;
 mod rng;
 mod shade;

@@ -8,11 +8,13 @@
 //! writes its radiance to its job's slot and takes the batch's next job (refill).
 //!
 //! A path that escapes ends (the kernel's scenes have no environment). Each lane draws
-//! four numbers per turn from its own stream ([`super::rng`]), so a job's numbers, and
-//! its estimate, do not depend on its lane, its neighbours or the packet width.
+//! one vertex's decisions per turn ([`Draws`]) from its own stream ([`super::rng`]), so a
+//! job's numbers, and its estimate, do not depend on its lane, its neighbours or the
+//! packet width.
 
 use super::features::Tables;
 use super::hits::{Hits, V3};
+use super::numbers::Draws;
 use super::rng;
 use super::shade::{glass, lambert, light, Rays, Throughput};
 use crate::accel::packet::{lanes, Coherence, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
@@ -145,9 +147,10 @@ where
         rays += u64::from(p.alive.count_ones());
         let hit = raw.hit & p.alive;
         let h = Hits::new(scene, &tables.shades, &packet, &raw, hit);
-        let u = [(); 4].map(|_| rng::draw(&mut p.counter, &p.salt));
-        let k: [u32; N] =
-            std::array::from_fn(|i| ((u[0][i] * n_lights as f32) as u32).min(n_lights.max(1) - 1));
+        let u = Draws::draw(&mut p.counter, &p.salt);
+        let k: [u32; N] = std::array::from_fn(|i| {
+            ((u.light_choice[i] * n_lights as f32) as u32).min(n_lights.max(1) - 1)
+        });
         let mut value: V3<N> = [[0.0; N]; 3];
         let mut shadow = Rays::<N>::new();
         let mut traced = [false; N];
@@ -165,12 +168,12 @@ where
         let ends_l = lambert(
             &h.lambert,
             &h,
-            (&u[1], &u[2], &u[3]),
+            (&u.direction[0], &u.direction[1], &u.roulette),
             max_depth,
             &mut p.st,
             &mut p.next,
         );
-        let ends_g = glass(&h.glass, &h, &u[1], &mut p.st, &mut p.next);
+        let ends_g = glass(&h.glass, &h, &u.lobe, &mut p.st, &mut p.next);
         let traced = mask(&traced);
         if traced != 0 {
             let mut sp = RayPacket::<N>::new();
