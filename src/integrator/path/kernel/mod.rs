@@ -30,6 +30,8 @@
 //! (the same image whatever the threads, rounds or packet width), and equal to the scalar
 //! path tracer's image in expectation, not bit for bit.
 
+#[cfg(test)]
+mod asset_tests;
 mod features;
 mod handoff;
 mod hits;

@@ -16,8 +16,8 @@ use crate::scene::desc::{CameraDesc, MeshDesc, Projection, SceneDesc};
 use glam::Vec3;
 use std::sync::Arc;
 
-const W: u32 = 32;
-const H: u32 = 24;
+pub(super) const W: u32 = 32;
+pub(super) const H: u32 = 24;
 const MAX_DEPTH: u32 = 64;
 
 /// A floor quad of half-size 3 at y = 0 facing up.
@@ -86,13 +86,25 @@ fn camera() -> Camera {
     Camera::new(&desc, W, H)
 }
 
-fn settings(spp: u32, seed: u64) -> RenderSettings {
+pub(super) fn settings(spp: u32, seed: u64) -> RenderSettings {
     RenderSettings::quiet_rgb((W, H), spp, seed, 2)
 }
 
-/// The kernel's image at `width` lanes and its two halves (even and odd samples).
-fn kernel_image(scene: &Scene, s: &RenderSettings, width: usize) -> (ImageRgb, ImageRgb, ImageRgb) {
-    let cam = camera();
+/// An image and its two halves (even and odd samples).
+pub(super) type Halves = (ImageRgb, ImageRgb, ImageRgb);
+
+/// The kernel's image at `width` lanes and its halves, through the test camera.
+fn kernel_image(scene: &Scene, s: &RenderSettings, width: usize) -> Halves {
+    kernel_image_through(scene, &camera(), s, width)
+}
+
+/// The kernel's image through `cam` at `width` lanes and its halves.
+pub(super) fn kernel_image_through(
+    scene: &Scene,
+    cam: &Camera,
+    s: &RenderSettings,
+    width: usize,
+) -> Halves {
     let tables = qualify(scene, cam.is_perspective(), false).expect("the scene qualifies");
     let estimate = |starts: &Starts, jobs: &[Job], out: &mut [Vec3]| {
         estimate_at(
@@ -105,13 +117,18 @@ fn kernel_image(scene: &Scene, s: &RenderSettings, width: usize) -> (ImageRgb, I
         )
     };
     let (film, _) =
-        render_batches(&cam, s, None, Prepass::now(), None, estimate).expect("kernel render");
+        render_batches(cam, s, None, Prepass::now(), None, estimate).expect("kernel render");
     let (a, b) = film.halves();
     (film.mean(), a, b)
 }
 
-/// The scalar path tracer's image and halves.
-fn scalar_image(scene: &Scene, s: &RenderSettings) -> (ImageRgb, ImageRgb, ImageRgb) {
+/// The scalar path tracer's image and halves through the test camera.
+fn scalar_image(scene: &Scene, s: &RenderSettings) -> Halves {
+    scalar_image_through(scene, &camera(), s)
+}
+
+/// The scalar path tracer's image through `cam` and its halves.
+pub(super) fn scalar_image_through(scene: &Scene, cam: &Camera, s: &RenderSettings) -> Halves {
     // `render_units` takes the kernel when IRIS_KERNEL=soa: the reference would be the
     // kernel itself, so the test refuses to run that way rather than pass.
     assert_ne!(
@@ -121,7 +138,7 @@ fn scalar_image(scene: &Scene, s: &RenderSettings) -> (ImageRgb, ImageRgb, Image
     );
     let path = Integrator::new(Method::Path, MAX_DEPTH, &PhotonSettings::default()).unwrap();
     let (film, _) = path
-        .render_units(scene, &camera(), s, None, None)
+        .render_units(scene, cam, s, None, None)
         .expect("scalar render");
     let (a, b) = film.halves();
     (film.mean(), a, b)
@@ -129,7 +146,7 @@ fn scalar_image(scene: &Scene, s: &RenderSettings) -> (ImageRgb, ImageRgb, Image
 
 /// Per block of `b`×`b` pixels and channel: the mean and the variance of that mean,
 /// estimated from the two halves (each pixel's (h₁ − h₂)²/4, summed, over the pixels²).
-fn blocks((img, h1, h2): &(ImageRgb, ImageRgb, ImageRgb), b: u32) -> Vec<(f64, f64)> {
+fn blocks((img, h1, h2): &Halves, b: u32) -> Vec<(f64, f64)> {
     let mut out = Vec::new();
     for by in 0..H / b {
         for bx in 0..W / b {
@@ -153,11 +170,7 @@ fn blocks((img, h1, h2): &(ImageRgb, ImageRgb, ImageRgb), b: u32) -> Vec<(f64, f
 
 /// The largest |difference| / σ over the blocks of `b`×`b` pixels, and the image means'
 /// difference in standard errors.
-fn z_scores(
-    k: &(ImageRgb, ImageRgb, ImageRgb),
-    s: &(ImageRgb, ImageRgb, ImageRgb),
-    b: u32,
-) -> (f64, f64) {
+pub(super) fn z_scores(k: &Halves, s: &Halves, b: u32) -> (f64, f64) {
     let (bk, bs) = (blocks(k, b), blocks(s, b));
     let mut worst = 0.0f64;
     let (mut mk, mut ms, mut vk, mut vs) = (0.0, 0.0, 0.0, 0.0);
@@ -165,7 +178,7 @@ fn z_scores(
         worst = worst.max((a - c).abs() / (va + vc).sqrt().max(1e-12));
         (mk, ms, vk, vs) = (mk + a, ms + c, vk + va, vs + vc);
     }
-    (worst, (mk - ms).abs() / (vk + vs).sqrt())
+    (worst, (mk - ms).abs() / (vk + vs).sqrt().max(1e-12))
 }
 
 /// The kernel's image agrees with the scalar path tracer's: over 4×4-pixel blocks and
