@@ -266,13 +266,14 @@ impl Integrator {
         if let Integrator::Path {
             max_depth,
             polarization: None,
+            dispersion,
             ..
         } = *self
         {
             if let Some(tables) =
                 path::kernel::choose(scene, camera, (settings.spectral, settings.quiet))
             {
-                let rules = (settings.seed, max_depth);
+                let rules = (settings.seed, max_depth, dispersion);
                 return pool.install(|| {
                     render_batches(
                         camera,

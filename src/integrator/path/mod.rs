@@ -145,18 +145,33 @@ pub fn camera_path<C: Carrier, S: Strategy<C>>(
     };
     let mut walk = Walk::new(*ray, lambda);
     let mut visible = None;
+    walk_on(scene, &rules, &mut walk, ctx, &mut visible);
+    (walk.radiance(), visible)
+}
+
+/// Follows `walk` under `rules` until it ends ([`camera_path`]'s loop, also where the
+/// structure-of-arrays kernel hands a lane over, [`kernel`]): one vertex
+/// ([`vertex::vertex`]) after the other, each shadow ray traced at once; the visible point
+/// where the strategy stops the path into `visible`.
+fn walk_on<C: Carrier, S: Strategy<C>>(
+    scene: &Scene,
+    rules: &Rules<'_, S>,
+    walk: &mut Walk<C>,
+    ctx: &mut Context,
+    visible: &mut Option<VisiblePoint<C>>,
+) {
     loop {
         let (media, lambda) = (&walk.st.media, &walk.lambda);
         let arrival = match walk.st.meet {
             Some(h) => shading::arrival::<C>(scene, &walk.ray, Some(h), media, lambda),
             None => shading::arrive::<C>(scene, &walk.ray, media, lambda, &mut ctx.rays),
         };
-        let (nee, next) = vertex::vertex(scene, &rules, &mut walk, arrival, ctx, &mut visible);
+        let (nee, next) = vertex::vertex(scene, rules, walk, arrival, ctx, visible);
         if let Some(nee) = nee {
             nee.resolve_traced(scene, &walk.lambda, &mut ctx.rays, &mut walk.l);
         }
         if next == Next::End && !walk.next_branch() {
-            return (walk.radiance(), visible);
+            return;
         }
     }
 }

@@ -1,21 +1,23 @@
 //! Which scenes the SoA kernel renders ([`qualify`]), and what it reads of them: a table of
 //! the materials on triangles ([`Shade`]) and of the punctual lights ([`Punctual`]).
 //!
-//! The kernel's scene class is a clear-glass scene under point lights: RGB transport, a
-//! perspective camera, punctual lights only (point, spot, directional), and every material
-//! on a triangle either
+//! The kernel's scene class: RGB transport, a perspective camera, punctual lights only
+//! (point, spot, directional), no emissive surface, environment, medium or fog, alpha
+//! mask or touching faces. Anything else is refused with the reason (one line), and the
+//! scalar path tracer renders the scene instead.
+//!
+//! In such a scene the kernel shades two lobes across the lanes:
 //! - a **pure Lambert lobe**: opaque, untextured, metallic 0, `specular` 0
 //!   (`make_variant.py --spec0`; the glTF BRDF with F0 = F90 = 0 is albedo/π, sampled by
-//!   cosine alone, [`crate::bsdf::gltf_brdf`]), no layers, film, anisotropy, metal or
-//!   emission; or
+//!   cosine alone, [`crate::bsdf::gltf_brdf`]), no layers, film, anisotropy or metal;
 //! - a **smooth clear dielectric volume**: transmission 1, roughness 0, thickness > 0, a
 //!   finite index, no absorption (infinite attenuation distance), untextured, at most one
 //!   such material (so volumes never nest and η is the material's index against air).
 //!
-//! Nothing else may be in the scene: no emissive surface, environment, medium or fog,
-//! alpha mask or blend, touching faces, thin sheets, crystals or polarizers. Anything
-//! outside the class is refused with the reason (one line), and the scalar path tracer
-//! renders the scene instead.
+//! Every other material ([`Shade::Scalar`]: textured, layered, specular or metal, rough,
+//! thin or absorbing glass, crystals, polarizers, alpha blending) is the scalar path
+//! vertex's: a lane meeting it hands its path over ([`super::handoff`]), and the plan
+//! names each such material with the reason.
 
 use crate::light::sampler::Rule;
 use crate::light::Light;
@@ -37,6 +39,9 @@ pub enum Shade {
         /// The base colour, which multiplies transmission.
         tint: [f32; 3],
     },
+    /// Shaded by the scalar path vertex: a lane meeting it hands its path over
+    /// ([`super::handoff`]).
+    Scalar,
 }
 
 /// A punctual light in the form the kernel evaluates without branches: a directional light
@@ -69,6 +74,9 @@ pub struct Tables {
     /// The punctual lights, chosen uniformly for next-event estimation as the scene's
     /// light sampler chooses them ([`crate::light::sampler::Rule::Uniform`]).
     pub lights: Vec<Punctual>,
+    /// The materials on triangles the kernel leaves to the scalar vertex, each named with
+    /// the reason (for the plan).
+    pub scalar: Vec<String>,
 }
 
 /// The tables of `scene` seen through a perspective camera (`perspective`) in RGB
@@ -99,9 +107,18 @@ pub fn qualify(scene: &Scene, perspective: bool, spectral: bool) -> Result<Table
     for t in scene.triangles() {
         used[t.material() as usize] = true;
     }
-    let mut shades = Vec::with_capacity(used.len());
+    let (mut shades, mut scalar) = (Vec::with_capacity(used.len()), Vec::new());
     for (m, used) in scene.materials().iter().zip(used) {
-        shades.push(if used { shade(m)? } else { Shade::Unused });
+        if !used {
+            shades.push(Shade::Unused);
+        } else if m.emission() != glam::Vec3::ZERO {
+            return Err(format!("{} emits light", element(m)));
+        } else {
+            shades.push(shade(m).unwrap_or_else(|why| {
+                scalar.push(why);
+                Shade::Scalar
+            }));
+        }
     }
     let glasses = shades
         .iter()
@@ -113,23 +130,30 @@ pub fn qualify(scene: &Scene, perspective: bool, spectral: bool) -> Result<Table
         ));
     }
     let lights = scene.lights().iter().map(|l| punctual(&l.light)).collect();
-    Ok(Tables { shades, lights })
+    Ok(Tables {
+        shades,
+        lights,
+        scalar,
+    })
 }
 
-/// How the kernel shades `m`, or why it cannot.
+/// `m` named as an element of its file (loaded materials are named so already:
+/// `material 0 "Floor"`).
+fn element(m: &Material) -> String {
+    if m.desc.name.starts_with("material ") {
+        m.desc.name.clone()
+    } else {
+        format!("material \"{}\"", m.desc.name)
+    }
+}
+
+/// How the kernel shades `m`, or why its lanes go to the scalar vertex.
 fn shade(m: &Material) -> Result<Shade, String> {
     let d = &m.desc;
-    // Loaded materials are named as elements already (`material 0 "Floor"`).
-    let name = if d.name.starts_with("material ") {
-        d.name.clone()
-    } else {
-        format!("material \"{}\"", d.name)
-    };
+    let name = element(m);
     let l = &d.layers;
     let why = if d.textures().iter().any(|(_, t)| t.is_some()) {
         Some("is textured")
-    } else if m.emission() != glam::Vec3::ZERO {
-        Some("emits light")
     } else if !matches!(d.alpha_mode, AlphaMode::Opaque) {
         Some("is alpha-blended")
     } else if l.clearcoat != 0.0 || l.sheen_color != glam::Vec3::ZERO {

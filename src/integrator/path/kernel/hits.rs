@@ -28,7 +28,8 @@ pub fn dot<const N: usize>(a: &V3<N>, b: &V3<N>, i: usize) -> f32 {
     a[0][i] * b[0][i] + a[1][i] * b[1][i] + a[2][i] * b[2][i]
 }
 
-/// The hits of one packet, lane `i` meaningful where `lambert[i]` or `glass[i]` is set.
+/// The hits of one packet, lane `i` meaningful where `lambert[i]`, `glass[i]` or
+/// `scalar[i]` is set.
 pub struct Hits<const N: usize> {
     /// Position.
     pub p: V3<N>,
@@ -44,10 +45,14 @@ pub struct Hits<const N: usize> {
     pub lambert: [bool; N],
     /// The lane met the dielectric.
     pub glass: [bool; N],
+    /// The lane met a material the scalar vertex shades ([`Shade::Scalar`]).
+    pub scalar: [bool; N],
     /// Lambert albedo or dielectric tint.
     pub rgb: V3<N>,
     /// The dielectric's η (1 elsewhere).
     pub eta: [f32; N],
+    /// The material met (as [`crate::scene::Triangle::material`]).
+    pub material: [u32; N],
 }
 
 /// What is gathered per lane: the triangle's vertices and vertex normals (zero without
@@ -80,8 +85,10 @@ where
             offset: [0.0; N],
             lambert: [false; N],
             glass: [false; N],
+            scalar: [false; N],
             rgb: zero3(),
             eta: [1.0; N],
+            material: [0; N],
         };
         let g = h.gather(scene, shades, raw, hit);
         h.geometry(&g, rays);
@@ -119,6 +126,7 @@ where
                     g.n[k][2][i] = q.z;
                 }
             }
+            self.material[i] = tri.material();
             match shades[tri.material() as usize] {
                 Shade::Lambert(albedo) => {
                     self.lambert[i] = true;
@@ -129,6 +137,7 @@ where
                     self.eta[i] = eta;
                     (0..3).for_each(|c| self.rgb[c][i] = tint[c]);
                 }
+                Shade::Scalar => self.scalar[i] = true,
                 Shade::Unused => {}
             }
         }

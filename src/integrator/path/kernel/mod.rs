@@ -1,8 +1,9 @@
-//! A structure-of-arrays path kernel for the simplest scene class (issue 51, first slice):
-//! `--method path` in RGB on a clear-glass scene under punctual lights
-//! ([`features`] decides, and says why not), opt-in with the environment variable
-//! `IRIS_KERNEL=soa`. Anything else, or a scene outside the class (a `note:` line on
-//! stderr says why), renders with the scalar path tracer, unchanged.
+//! A structure-of-arrays path kernel (issue 51): `--method path` in RGB on scenes under
+//! punctual lights ([`features`] decides, and says why not), opt-in with the environment
+//! variable `IRIS_KERNEL=soa`. Anything else, or a scene outside the class (a `note:` line
+//! on stderr says why), renders with the scalar path tracer, unchanged. A lane that meets
+//! a material the kernel does not shade hands its path to the scalar vertex
+//! ([`handoff`]).
 //!
 //! Design: 16 camera paths (8 with `IRIS_LANES=8`) run through one bounce loop
 //! ([`paths::run`]) with their whole state in structure-of-arrays form, lane `i` at index
@@ -29,7 +30,10 @@
 //! (the same image whatever the threads, rounds or packet width), and equal to the scalar
 //! path tracer's image in expectation, not bit for bit.
 
+#[cfg(test)]
+mod asset_tests;
 mod features;
+mod handoff;
 mod hits;
 mod numbers;
 mod paths;
@@ -40,6 +44,7 @@ mod tests;
 
 pub use features::{qualify, Tables};
 
+use super::Dispersion;
 use crate::accel::packet::{Lanes, PacketWidth};
 use crate::camera::Camera;
 use crate::render::{Job, Starts};
@@ -73,12 +78,22 @@ pub fn requested() -> bool {
 /// kernel renders the path tracer's camera paths, and why (`Ok`: the kernel, with its
 /// width; `Err`: the reason it does not take the scene).
 pub fn plan_text(scene: &Scene, perspective: bool, spectral: bool) -> Result<String, String> {
-    qualify(scene, perspective, spectral).map(|_| {
+    qualify(scene, perspective, spectral).map(|tables| {
+        let handed = if tables.scalar.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "; a lane meeting a material the kernel does not shade hands its path to the \
+                 scalar vertex ({})",
+                tables.scalar.join("; ")
+            )
+        };
         format!(
             "structure-of-arrays kernel (IRIS_KERNEL=soa): {} camera paths with their whole \
              state in arrays, hit records and shading across the lanes (AVX-512, AVX2 or \
              scalar code chosen at run time), each camera sample with its own random \
-             stream: the image equals the single-ray image in expectation, not bit for bit",
+             stream: the image equals the single-ray image in expectation, not bit for \
+             bit{handed}",
             width()
         )
     })
@@ -100,7 +115,7 @@ pub fn estimate(
     tables: &Tables,
     scene: &Scene,
     (starts, jobs): (&Starts, &[Job]),
-    (seed, max_depth): (u64, u32),
+    (seed, max_depth, dispersion): (u64, u32, Dispersion),
     out: &mut [Vec3],
 ) -> u64 {
     estimate_at(
@@ -108,7 +123,7 @@ pub fn estimate(
         tables,
         scene,
         (starts, jobs),
-        (seed, max_depth),
+        (seed, max_depth, dispersion),
         out,
     )
 }
@@ -119,7 +134,7 @@ fn estimate_at(
     tables: &Tables,
     scene: &Scene,
     run: (&Starts, &[Job]),
-    rules: (u64, u32),
+    rules: (u64, u32, Dispersion),
     out: &mut [Vec3],
 ) -> u64 {
     let arch = pulp::Arch::new();
@@ -151,7 +166,7 @@ struct Run<'a, const N: usize> {
     tables: &'a Tables,
     scene: &'a Scene,
     run: (&'a Starts<'a>, &'a [Job]),
-    rules: (u64, u32),
+    rules: (u64, u32, Dispersion),
     out: &'a mut [Vec3],
 }
 

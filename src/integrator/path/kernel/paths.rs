@@ -12,13 +12,16 @@
 //! job's numbers, and its estimate, do not depend on its lane, its neighbours or the
 //! packet width.
 
+use super::super::Dispersion;
 use super::features::Tables;
+use super::handoff::{self, Handed};
 use super::hits::{Hits, V3};
 use super::numbers::Draws;
 use super::rng;
 use super::shade::{glass, lambert, light, Rays, Throughput};
 use crate::accel::packet::{lanes, Coherence, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
-use crate::render::{Job, Starts};
+use crate::math::Ray;
+use crate::render::{Context, Job, Starts};
 use crate::scene::Scene;
 use glam::{Vec2, Vec3};
 
@@ -35,9 +38,18 @@ struct Paths<const N: usize> {
     /// Each lane's random stream.
     counter: [u32; N],
     salt: [u32; N],
+    /// The volumetric material each lane is inside ([`AIR`]: none).
+    inside: [u32; N],
+    /// Delta bounces since the last non-delta one ([`NONE_YET`] before the first).
+    since: [u32; N],
     /// The lanes with a path in flight.
     alive: LaneMask,
 }
+
+/// [`Paths::inside`] of a lane in air.
+const AIR: u32 = u32::MAX;
+/// [`Paths::since`] of a lane before its first non-delta bounce.
+const NONE_YET: u32 = u32::MAX;
 
 impl<const N: usize> Paths<N> {
     fn new() -> Self {
@@ -53,6 +65,8 @@ impl<const N: usize> Paths<N> {
             job: [0; N],
             counter: [0; N],
             salt: [0; N],
+            inside: [AIR; N],
+            since: [NONE_YET; N],
             alive: 0,
         }
     }
@@ -77,8 +91,67 @@ impl<const N: usize> Paths<N> {
         self.st.depth[i] = 0;
         self.st.deltas[i] = 0;
         self.job[i] = j as u32;
+        self.inside[i] = AIR;
+        self.since[i] = NONE_YET;
         (self.counter[i], self.salt[i]) = (counter, salt);
         self.alive |= 1 << i;
+    }
+
+    /// Hands lane `i`, whose ray in `packet` met `raw`'s hit on a material the kernel does
+    /// not shade, to the scalar path tracer ([`handoff::finish`]) for `job` (begun by
+    /// `starts`) under `rules`: adds the rest of its path's radiance to its own, with the
+    /// job's numbers in `ctx`. Returns the rays traced.
+    fn hand_over(
+        &mut self,
+        i: usize,
+        scene: &Scene,
+        (packet, raw): (&RayPacket<N>, &HitPacket<N>),
+        (starts, job, rules): (&Starts, Job, (u32, &Dispersion)),
+        ctx: &mut Context,
+    ) -> u64
+    where
+        Lanes<N>: PacketWidth,
+    {
+        let Some(r) = raw.get(i) else { return 0 };
+        starts.start(job, ctx);
+        let handed = Handed {
+            beta: Vec3::new(self.st.beta[0][i], self.st.beta[1][i], self.st.beta[2][i]),
+            eta_scale: self.st.eta_scale[i],
+            depth: self.st.depth[i],
+            deltas: self.st.deltas[i],
+            since_diffuse: (self.since[i] != NONE_YET).then_some(self.since[i]),
+            inside: (self.inside[i] != AIR).then_some(self.inside[i]),
+        };
+        let ray = Ray::new(packet.origin(i), packet.dir(i));
+        let e = handoff::finish(scene, rules, &handed, (ray, r), ctx);
+        (0..3).for_each(|c| self.l[c][i] += e[c]);
+        ctx.rays
+    }
+
+    /// After the shading of hits `h`: a Lambert bounce is non-delta (no delta bounces
+    /// since); the dielectric counts one more delta bounce and leaves the lane inside its
+    /// volume when the next ray goes to the back of its outward normal (enter and exit by
+    /// the sign of dot(ray, normal), as the intersection layer's rule).
+    #[inline(always)]
+    fn track(&mut self, h: &Hits<N>) {
+        for i in 0..N {
+            let since = if self.since[i] == NONE_YET {
+                NONE_YET
+            } else {
+                self.since[i] + 1
+            };
+            let d = [self.next.d[0][i], self.next.d[1][i], self.next.d[2][i]];
+            let back = d[0] * h.ng[0][i] + d[1] * h.ng[1][i] + d[2] * h.ng[2][i] < 0.0;
+            let inside = if back { h.material[i] } else { AIR };
+            self.since[i] = if h.lambert[i] {
+                0
+            } else if h.glass[i] {
+                since
+            } else {
+                self.since[i]
+            };
+            self.inside[i] = if h.glass[i] { inside } else { self.inside[i] };
+        }
     }
 
     /// The next rays of the alive lanes as a packet.
@@ -121,13 +194,14 @@ pub fn run<const N: usize>(
     tables: &Tables,
     scene: &Scene,
     (starts, jobs): (&Starts, &[Job]),
-    (seed, max_depth): (u64, u32),
+    (seed, max_depth, dispersion): (u64, u32, Dispersion),
     out: &mut [Vec3],
 ) -> u64
 where
     Lanes<N>: PacketWidth,
 {
     let mut p = Paths::<N>::new();
+    let mut ctx = starts.context();
     let (mut next_job, mut rays) = (0usize, 0u64);
     let mut packet = RayPacket::<N>::new();
     let mut raw = HitPacket::<N>::default();
@@ -147,6 +221,11 @@ where
         rays += u64::from(p.alive.count_ones());
         let hit = raw.hit & p.alive;
         let h = Hits::new(scene, &tables.shades, &packet, &raw, hit);
+        for i in lanes(hit & mask(&h.scalar)) {
+            let job = jobs[p.job[i] as usize];
+            let rules = (max_depth, &dispersion);
+            rays += p.hand_over(i, scene, (&packet, &raw), (starts, job, rules), &mut ctx);
+        }
         let u = Draws::draw(&mut p.counter, &p.salt);
         let k: [u32; N] = std::array::from_fn(|i| {
             ((u.light_choice[i] * n_lights as f32) as u32).min(n_lights.max(1) - 1)
@@ -174,6 +253,7 @@ where
             &mut p.next,
         );
         let ends_g = glass(&h.glass, &h, &u.lobe, &mut p.st, &mut p.next);
+        p.track(&h);
         let traced = mask(&traced);
         if traced != 0 {
             let mut sp = RayPacket::<N>::new();
