@@ -272,7 +272,7 @@ impl Integrator {
             if let Some(tables) =
                 path::kernel::choose(scene, camera, (settings.spectral, settings.quiet))
             {
-                let rules = (settings.seed, max_depth);
+                let rules = max_depth;
                 return pool.install(|| {
                     render_batches(
                         camera,

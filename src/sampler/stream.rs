@@ -279,6 +279,22 @@ impl Bounce<'_> {
         self.one(BounceDim::Roulette)
     }
 
+    /// The number [`Bounce::roulette`] would return, without drawing it: the independent
+    /// sampler's stream stays where it is. For a caller that needs the number before it
+    /// knows whether the roulette is played (the SoA kernel's lanes); once it does, it
+    /// passes over the number with [`Bounce::skip_roulette`] where the roulette was played.
+    pub fn peek_roulette(&mut self) -> f32 {
+        match self.stream.sobol {
+            Some(_) => self.roulette(),
+            None => self.stream.rng.clone().next_f32(),
+        }
+    }
+
+    /// Passes over the roulette number (read before by [`Bounce::peek_roulette`]).
+    pub fn skip_roulette(&mut self) {
+        self.skip(1);
+    }
+
     /// BLEND coverage: outside the schedule, from the independent stream.
     pub fn alpha(&mut self) -> f32 {
         self.stream.rng.next_f32()
@@ -340,6 +356,19 @@ mod tests {
             bd.skip_bsdf_direction();
             assert_eq!(bc.roulette(), bd.roulette());
             assert_eq!(a.rng.next_u32(), b.rng.next_u32());
+        }
+    }
+
+    #[test]
+    fn a_peeked_roulette_is_the_drawn_one() {
+        for kind in SamplerKind::ALL {
+            let p = PixelSampler::new(kind, 16, (8, 8), 3);
+            let (mut a, mut b) = (p.start(2, 5, 7), p.start(2, 5, 7));
+            let mut bb = b.bounce(3);
+            let peeked = bb.peek_roulette();
+            bb.skip_roulette();
+            assert_eq!(a.bounce(3).roulette(), peeked, "{kind:?}");
+            assert_eq!(a.bounce(4).bsdf_lobe(), b.bounce(4).bsdf_lobe(), "{kind:?}");
         }
     }
 

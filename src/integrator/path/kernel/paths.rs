@@ -1,5 +1,5 @@
 //! The kernel's bounce loop ([`run`]): `N` camera paths in structure-of-arrays form
-//! ([`Paths`]: the next rays, throughput, radiance, η scale, bounce counts, job, random
+//! ([`Paths`]: the next rays, throughput, radiance, η scale, bounce counts, job, sample
 //! stream, alive mask) go through one loop. Each turn traces the alive lanes' rays as one
 //! packet ([`Scene::intersect_packet`]), builds their hits over the lanes ([`Hits`]),
 //! shades the Lambert lanes (next-event estimation, then the bounce) and the dielectric
@@ -7,20 +7,20 @@
 //! ([`Scene::occluded_packet`]) and adds what they let through; a lane whose path ended
 //! writes its radiance to its job's slot and takes the batch's next job (refill).
 //!
-//! A path that escapes ends (the kernel's scenes have no environment). Each lane draws
-//! one vertex's decisions per turn ([`Draws`]) from its own stream ([`super::rng`]), so a
-//! job's numbers, and its estimate, do not depend on its lane, its neighbours or the
-//! packet width.
+//! A path that escapes ends (the kernel's scenes have no environment). Each lane holds its
+//! job's sample stream, restarted by the render's sampler ([`Starts::start`], which also
+//! makes the camera ray), and draws its vertex's decisions from the scalar path tracer's
+//! schedule ([`Draws`]), so a job's numbers, and its estimate, do not depend on its lane,
+//! its neighbours or the packet width.
 
 use super::features::Tables;
 use super::hits::{Hits, V3};
-use super::numbers::Draws;
-use super::rng;
+use super::numbers::{Draws, Vertices};
 use super::shade::{glass, lambert, light, Rays, Throughput};
 use crate::accel::packet::{lanes, Coherence, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
-use crate::render::{Job, Starts};
+use crate::render::{Context, Job, Starts};
 use crate::scene::Scene;
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 /// The state of `N` camera paths.
 struct Paths<const N: usize> {
@@ -32,15 +32,14 @@ struct Paths<const N: usize> {
     l: V3<N>,
     /// The job (index into the batch) each lane estimates.
     job: [u32; N],
-    /// Each lane's random stream.
-    counter: [u32; N],
-    salt: [u32; N],
+    /// Each lane's sample stream.
+    ctx: [Context; N],
     /// The lanes with a path in flight.
     alive: LaneMask,
 }
 
 impl<const N: usize> Paths<N> {
-    fn new() -> Self {
+    fn new(starts: &Starts) -> Self {
         Paths {
             next: Rays::new(),
             st: Throughput {
@@ -51,21 +50,15 @@ impl<const N: usize> Paths<N> {
             },
             l: [[0.0; N]; 3],
             job: [0; N],
-            counter: [0; N],
-            salt: [0; N],
+            ctx: std::array::from_fn(|_| starts.context()),
             alive: 0,
         }
     }
 
-    /// Starts job `j` (`job`) on lane `i`: its stream, its camera ray (jittered with its
-    /// first two numbers), unit throughput, no radiance.
-    fn start(&mut self, i: usize, (j, job): (usize, Job), starts: &Starts, seed: u64) {
-        let (mut counter, salt) = rng::key(seed, job.x, job.y, job.k);
-        let jitter = Vec2::new(
-            rng::draw_one(&mut counter, salt),
-            rng::draw_one(&mut counter, salt),
-        );
-        let ray = starts.camera_ray(job, jitter);
+    /// Starts job `j` (`job`) on lane `i`: its sample stream and camera ray
+    /// ([`Starts::start`]), unit throughput, no radiance.
+    fn start(&mut self, i: usize, (j, job): (usize, Job), starts: &Starts) {
+        let (ray, _) = starts.start(job, &mut self.ctx[i]);
         for c in 0..3 {
             self.next.o[c][i] = ray.origin[c];
             self.next.d[c][i] = ray.dir[c];
@@ -77,7 +70,6 @@ impl<const N: usize> Paths<N> {
         self.st.depth[i] = 0;
         self.st.deltas[i] = 0;
         self.job[i] = j as u32;
-        (self.counter[i], self.salt[i]) = (counter, salt);
         self.alive |= 1 << i;
     }
 
@@ -113,7 +105,7 @@ fn mask<const N: usize>(flags: &[bool; N]) -> LaneMask {
     (0..N).fold(0, |m, i| m | (u32::from(flags[i]) << i))
 }
 
-/// Estimates `jobs` (begun by `starts`, numbers keyed by `seed`) on `N` lanes with at most
+/// Estimates `jobs` (begun by `starts`) on `N` lanes with at most
 /// `max_depth` non-delta bounces a path, writing job `i`'s linear RGB radiance to `out[i]`.
 /// Returns the rays traced.
 #[inline(always)]
@@ -121,13 +113,13 @@ pub fn run<const N: usize>(
     tables: &Tables,
     scene: &Scene,
     (starts, jobs): (&Starts, &[Job]),
-    (seed, max_depth): (u64, u32),
+    max_depth: u32,
     out: &mut [Vec3],
 ) -> u64
 where
     Lanes<N>: PacketWidth,
 {
-    let mut p = Paths::<N>::new();
+    let mut p = Paths::<N>::new(starts);
     let (mut next_job, mut rays) = (0usize, 0u64);
     let mut packet = RayPacket::<N>::new();
     let mut raw = HitPacket::<N>::default();
@@ -135,7 +127,7 @@ where
     loop {
         for i in 0..N {
             if p.alive & (1 << i) == 0 && next_job < jobs.len() {
-                p.start(i, (next_job, jobs[next_job]), starts, seed);
+                p.start(i, (next_job, jobs[next_job]), starts);
                 next_job += 1;
             }
         }
@@ -147,7 +139,15 @@ where
         rays += u64::from(p.alive.count_ones());
         let hit = raw.hit & p.alive;
         let h = Hits::new(scene, &tables.shades, &packet, &raw, hit);
-        let u = Draws::draw(&mut p.counter, &p.salt);
+        let at = Vertices {
+            index: std::array::from_fn(|i| p.st.depth[i] + p.st.deltas[i]),
+            lambert: &h.lambert,
+            glass: &h.glass,
+            roulette: std::array::from_fn(|i| p.st.depth[i] + 1 >= 3),
+            lights: tables.lights.len(),
+            area: false,
+        };
+        let u = Draws::draw(&mut p.ctx, &at);
         let k: [u32; N] = std::array::from_fn(|i| {
             ((u.light_choice[i] * n_lights as f32) as u32).min(n_lights.max(1) - 1)
         });
@@ -165,7 +165,7 @@ where
             &mut shadow,
             &mut traced,
         );
-        let ends_l = lambert(
+        let (ends_l, played) = lambert(
             &h.lambert,
             &h,
             (&u.direction[0], &u.direction[1], &u.roulette),
@@ -173,6 +173,7 @@ where
             &mut p.st,
             &mut p.next,
         );
+        Draws::played(&mut p.ctx, &at, mask(&played));
         let ends_g = glass(&h.glass, &h, &u.lobe, &mut p.st, &mut p.next);
         let traced = mask(&traced);
         if traced != 0 {
