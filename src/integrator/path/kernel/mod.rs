@@ -16,8 +16,10 @@
 //! chooses it, the cosine-sampled bounce and Russian roulette; the smooth dielectric's
 //! Fresnel-weighted reflection or refraction. Shadow rays go out as one packet. A lane whose
 //! path ends writes its job's radiance and takes the next job (refill), so glass paths do
-//! not leave the packet empty. The film receives the estimates in job order, as the
-//! scalar path's ([`crate::render::render_batches`]).
+//! not leave the packet empty. A lane takes its job with the first hit known: the batch's
+//! camera rays are traced `N` at a time in job order as coherent packets of their own
+//! ([`camera`]), so the bounce packets carry bounce rays only. The film receives the
+//! estimates in job order, as the scalar path's ([`crate::render::render_batches`]).
 //!
 //! SIMD: the per-lane arithmetic is plain loops over fixed-size arrays that LLVM
 //! vectorises; the whole loop is compiled for AVX-512, AVX2 and scalar x86-64 and chosen at
@@ -35,6 +37,7 @@
 //! choice, an edge between triangles) on a few samples, so the images agree pixel by pixel
 //! on most pixels and in expectation everywhere.
 
+mod camera;
 mod features;
 mod hits;
 mod numbers;

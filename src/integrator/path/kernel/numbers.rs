@@ -10,7 +10,8 @@
 //! from `bounce_dimension(b, …)`, in the order the scalar path tracer reads them at such a
 //! vertex ([`crate::integrator::path::vertex`]): at a Lambert vertex the layer (skipped:
 //! one layer), the light choice (skipped with one light), the light position and member
-//! (skipped where no light reads them), the lobe, the direction and the roulette; at a
+//! (skipped where no light reads them), the lobe (skipped: the glTF BRDF with F0 = 0
+//! samples its diffuse lobe whatever the number), the direction and the roulette; at a
 //! smooth dielectric the layer (skipped), the lobe and the direction (skipped). With the
 //! Z-order Sobol' sampler a number depends on its dimension only; with `--sampler
 //! independent` every number, skipped or not, advances the sample's stream in that order,
@@ -95,7 +96,7 @@ impl<const N: usize> Draws<N> {
                 u.skip_light_position();
                 u.skip_light_member();
             }
-            d.lobe[i] = u.bsdf_lobe();
+            u.skip_bsdf_lobe();
             let w = u.bsdf_direction();
             (d.direction[0][i], d.direction[1][i]) = (w.x, w.y);
             if at.roulette[i] {

@@ -1,7 +1,10 @@
 //! The kernel's bounce loop ([`run`]): `N` camera paths in structure-of-arrays form
 //! ([`Paths`]: the next rays, throughput, radiance, η scale, bounce counts, job, sample
-//! stream, alive mask) go through one loop. Each turn traces the alive lanes' rays as one
-//! packet ([`Scene::intersect_packet`]), builds their hits over the lanes ([`Hits`]),
+//! stream, alive mask) go through one loop. A lane takes its job with the camera ray's
+//! first hit already known ([`CameraRays`]: the batch's camera rays traced as coherent
+//! packets of their own). Each turn traces the bounce rays of the other alive lanes as one
+//! packet ([`Scene::intersect_packet`]), merges in the first hits of the lanes just
+//! started, builds the hits over the lanes ([`Hits`]),
 //! shades the Lambert lanes (next-event estimation, then the bounce) and the dielectric
 //! lanes ([`super::shade`]), traces the shadow rays as one packet
 //! ([`Scene::occluded_packet`]) and adds what they let through; a lane whose path ended
@@ -13,6 +16,7 @@
 //! schedule ([`Draws`]), so a job's numbers, and its estimate, do not depend on its lane,
 //! its neighbours or the packet width.
 
+use super::camera::{ray_into, CameraRays, Started};
 use super::features::Tables;
 use super::hits::{Hits, V3};
 use super::numbers::{Draws, Vertices};
@@ -55,32 +59,30 @@ impl<const N: usize> Paths<N> {
         }
     }
 
-    /// Starts job `j` (`job`) on lane `i`: its sample stream and camera ray
-    /// ([`Starts::start`]), unit throughput, no radiance.
-    fn start(&mut self, i: usize, (j, job): (usize, Job), starts: &Starts) {
-        let (ray, _) = starts.start(job, &mut self.ctx[i]);
+    /// Starts the job `s` on lane `i` (its sample stream already swapped into the lane's
+    /// context): its camera ray, unit throughput, no radiance.
+    fn start(&mut self, i: usize, s: &Started) {
+        ray_into(&mut self.next, i, s);
         for c in 0..3 {
-            self.next.o[c][i] = ray.origin[c];
-            self.next.d[c][i] = ray.dir[c];
             self.st.beta[c][i] = 1.0;
             self.l[c][i] = 0.0;
         }
-        self.next.t_max[i] = ray.t_max;
         self.st.eta_scale[i] = 1.0;
         self.st.depth[i] = 0;
         self.st.deltas[i] = 0;
-        self.job[i] = j as u32;
+        self.job[i] = s.job as u32;
         self.alive |= 1 << i;
     }
 
-    /// The next rays of the alive lanes as a packet.
+    /// The next rays of the lanes `trace` as a packet (the other lanes' rays are there too,
+    /// inactive: the hit records read every lane's direction).
     #[inline(always)]
-    fn packet(&self, packet: &mut RayPacket<N>)
+    fn packet(&self, packet: &mut RayPacket<N>, trace: LaneMask)
     where
         Lanes<N>: PacketWidth,
     {
         rays_into(&self.next, packet);
-        packet.set_active(self.alive);
+        packet.set_active(trace);
     }
 }
 
@@ -120,23 +122,37 @@ where
     Lanes<N>: PacketWidth,
 {
     let mut p = Paths::<N>::new(starts);
-    let (mut next_job, mut rays) = (0usize, 0u64);
+    let mut cameras = CameraRays::<N>::new(starts);
+    let mut rays = 0u64;
     let mut packet = RayPacket::<N>::new();
     let mut raw = HitPacket::<N>::default();
+    let mut first = HitPacket::<N>::default();
     let n_lights = tables.lights.len() as u32;
     loop {
+        let mut fresh: LaneMask = 0;
         for i in 0..N {
-            if p.alive & (1 << i) == 0 && next_job < jobs.len() {
-                p.start(i, (next_job, jobs[next_job]), starts);
-                next_job += 1;
+            if p.alive & (1 << i) == 0 {
+                let batch = (starts, jobs);
+                let Some(s) = cameras.take(scene, batch, &mut p.ctx[i], &mut rays) else {
+                    break;
+                };
+                p.start(i, &s);
+                first.set(i, s.hit);
+                fresh |= 1 << i;
             }
         }
         if p.alive == 0 {
             return rays;
         }
-        p.packet(&mut packet);
-        scene.intersect_packet(&packet, Coherence::Incoherent, &mut raw);
-        rays += u64::from(p.alive.count_ones());
+        let trace = p.alive & !fresh;
+        p.packet(&mut packet, trace);
+        if trace != 0 {
+            scene.intersect_packet(&packet, Coherence::Incoherent, &mut raw);
+            rays += u64::from(trace.count_ones());
+        }
+        for i in lanes(fresh) {
+            raw.set(i, first.get(i));
+        }
         let hit = raw.hit & p.alive;
         let h = Hits::new(scene, &tables.shades, &packet, &raw, hit);
         let at = Vertices {
