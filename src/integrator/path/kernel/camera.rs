@@ -23,8 +23,9 @@ use crate::scene::Scene;
 /// The batch's jobs waiting for a lane: up to `N` of them, their sample streams, camera
 /// rays and first hits, lane `l` holding job `first + l`.
 pub struct CameraRays<const N: usize> {
-    /// The pending jobs' sample streams (lane `l`'s until it is taken).
-    ctx: [Context; N],
+    /// The pending jobs' sample streams (lane `l`'s until it is taken; boxed, so that
+    /// handing one to a lane swaps pointers, not the sampler's state).
+    ctx: [Box<Context>; N],
     /// Their camera rays.
     rays: RayPacket<N>,
     /// Their first hits.
@@ -54,7 +55,7 @@ where
     /// No job pending (streams made by `starts`, restarted for each job).
     pub fn new(starts: &Starts) -> Self {
         CameraRays {
-            ctx: std::array::from_fn(|_| starts.context()),
+            ctx: std::array::from_fn(|_| Box::new(starts.context())),
             rays: RayPacket::new(),
             hits: HitPacket::default(),
             first: 0,
@@ -71,7 +72,7 @@ where
         &mut self,
         scene: &Scene,
         (starts, jobs): (&Starts, &[Job]),
-        ctx: &mut Context,
+        ctx: &mut Box<Context>,
         traced: &mut u64,
     ) -> Option<Started> {
         if self.taken == self.len {

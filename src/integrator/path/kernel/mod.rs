@@ -30,7 +30,9 @@
 //! sampler (Z-order Sobol' by default) restarted for the job ([`crate::render::Starts`]),
 //! the camera ray made from it as the scalar path makes it, and each vertex's decisions
 //! read from the scalar path's dimension schedule in its order ([`numbers`]). Deterministic
-//! for a seed (the same image whatever the threads, rounds or packet width); a sample's
+//! for a scene, seed, backend and packet width: a job's estimate depends on the job alone,
+//! so the image is the same whatever the threads, rounds or shards (another width or
+//! backend may differ where a ray meets two triangles exactly on their shared edge); a sample's
 //! estimate equals the scalar path tracer's up to float rounding (the kernel's arithmetic
 //! is its own: the sine and cosine of the bounce direction, the hit record, the order of
 //! products), which can flip a decision taken on a threshold (a roulette, a Fresnel

@@ -61,7 +61,7 @@ pub struct Vertices<'a, const N: usize> {
 impl<const N: usize> Draws<N> {
     /// The decisions at `at` of every lane's sample in `ctx` (module docs).
     #[inline(always)]
-    pub fn draw(ctx: &mut [Context; N], at: &Vertices<N>) -> Self {
+    pub fn draw(ctx: &mut [Box<Context>; N], at: &Vertices<N>) -> Self {
         let mut d = Draws {
             light_choice: [0.0; N],
             light_member: [0.0; N],
@@ -109,7 +109,7 @@ impl<const N: usize> Draws<N> {
     /// Passes over the roulette number of the lanes `played` (those whose roulette was
     /// played at `at`), as the scalar path draws it.
     #[inline(always)]
-    pub fn played(ctx: &mut [Context; N], at: &Vertices<N>, played: LaneMask) {
+    pub fn played(ctx: &mut [Box<Context>; N], at: &Vertices<N>, played: LaneMask) {
         for i in lanes(played) {
             ctx[i].sample.bounce(at.index[i]).skip_roulette();
         }

@@ -36,8 +36,9 @@ struct Paths<const N: usize> {
     l: V3<N>,
     /// The job (index into the batch) each lane estimates.
     job: [u32; N],
-    /// Each lane's sample stream.
-    ctx: [Context; N],
+    /// Each lane's sample stream (boxed: taking a job swaps pointers, not the sampler's
+    /// state).
+    ctx: [Box<Context>; N],
     /// The lanes with a path in flight.
     alive: LaneMask,
 }
@@ -54,7 +55,7 @@ impl<const N: usize> Paths<N> {
             },
             l: [[0.0; N]; 3],
             job: [0; N],
-            ctx: std::array::from_fn(|_| starts.context()),
+            ctx: std::array::from_fn(|_| Box::new(starts.context())),
             alive: 0,
         }
     }
