@@ -273,7 +273,7 @@ impl Integrator {
             if let Some(tables) =
                 path::kernel::choose(scene, camera, (settings.spectral, settings.quiet))
             {
-                let rules = (settings.seed, max_depth, dispersion);
+                let rules = (max_depth, dispersion);
                 return pool.install(|| {
                     render_batches(
                         camera,

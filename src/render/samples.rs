@@ -83,25 +83,13 @@ impl<'a> Starts<'a> {
     }
 
     /// A context for [`Starts::start`] to restart (its numbers are those of sample 0 of
-    /// pixel (0, 0) until then).
+    /// pixel (0, 0) until then): one per sample in flight (a lane of the SoA path kernel
+    /// holds one).
     pub fn context(&self) -> Context {
         Context {
             sample: self.sampler.start(0, 0, 0),
             rays: 0,
         }
-    }
-
-    /// The camera ray of `job` jittered by `jitter` ∈ [0, 1)² within its pixel (the pixel
-    /// centre for a render of one sample per pixel, as [`primary_ray`]): for estimators
-    /// that draw their own numbers (the SoA path kernel).
-    pub fn camera_ray(&self, job: Job, jitter: Vec2) -> Ray {
-        let jitter = if self.centre {
-            Vec2::splat(0.5)
-        } else {
-            jitter
-        };
-        let px = Vec2::new(job.x as f32, job.y as f32) + jitter;
-        self.camera.generate_ray(px)
     }
 
     /// Starts `job` in `ctx` (its ray count reset): the camera ray and the hero variate.

@@ -228,6 +228,11 @@ impl Bounce<'_> {
         self.skip(1);
     }
 
+    /// [`Bounce::bsdf_lobe`] not needed (a BSDF with one lobe).
+    pub fn skip_bsdf_lobe(&mut self) {
+        self.skip(1);
+    }
+
     /// [`Bounce::bsdf_direction`] not needed (a smooth dielectric's choice is the lobe's).
     pub fn skip_bsdf_direction(&mut self) {
         self.skip(2);
@@ -277,6 +282,22 @@ impl Bounce<'_> {
     /// Russian roulette.
     pub fn roulette(&mut self) -> f32 {
         self.one(BounceDim::Roulette)
+    }
+
+    /// The number [`Bounce::roulette`] would return, without drawing it: the independent
+    /// sampler's stream stays where it is. For a caller that needs the number before it
+    /// knows whether the roulette is played (the SoA kernel's lanes); once it does, it
+    /// passes over the number with [`Bounce::skip_roulette`] where the roulette was played.
+    pub fn peek_roulette(&mut self) -> f32 {
+        match self.stream.sobol {
+            Some(_) => self.roulette(),
+            None => self.stream.rng.clone().next_f32(),
+        }
+    }
+
+    /// Passes over the roulette number (read before by [`Bounce::peek_roulette`]).
+    pub fn skip_roulette(&mut self) {
+        self.skip(1);
     }
 
     /// BLEND coverage: outside the schedule, from the independent stream.
@@ -336,9 +357,16 @@ mod tests {
             assert_eq!((bb.bsdf_lobe(), bb.bsdf_direction(), bb.roulette()), want);
             let (mut c, mut d) = (p.start(1, 1, 2), p.start(1, 1, 2));
             let (mut bc, mut bd) = (c.bounce(0), d.bounce(0));
+            let _ = bc.bsdf_lobe();
             let _ = bc.bsdf_direction();
+            bd.skip_bsdf_lobe();
             bd.skip_bsdf_direction();
-            assert_eq!(bc.roulette(), bd.roulette());
+            // A peeked roulette number is the drawn one, and passing over it afterwards
+            // leaves the stream where drawing it does.
+            let peeked = bd.peek_roulette();
+            assert_eq!(bc.roulette(), peeked);
+            bd.skip_roulette();
+            assert_eq!(c.bounce(1).bsdf_lobe(), d.bounce(1).bsdf_lobe());
             assert_eq!(a.rng.next_u32(), b.rng.next_u32());
         }
     }

@@ -8,7 +8,7 @@
 //! Design: 16 camera paths (8 with `IRIS_LANES=8`) run through one bounce loop
 //! ([`paths::run`]) with their whole state in structure-of-arrays form, lane `i` at index
 //! `i` of each array: the next rays, throughput, radiance, η scale, bounce counts, job,
-//! random stream and alive mask. Rays go to the backend as one
+//! sample stream and alive mask. Rays go to the backend as one
 //! [`crate::accel::packet::RayPacket`] and the hits come back as one
 //! [`crate::accel::packet::HitPacket`]; the hit records are built over the lanes
 //! ([`hits`]), with only the triangle's vertices, vertex normals and material gathered per
@@ -17,27 +17,37 @@
 //! chooses it, the cosine-sampled bounce and Russian roulette; the smooth dielectric's
 //! Fresnel-weighted reflection or refraction. Shadow rays go out as one packet. A lane whose
 //! path ends writes its job's radiance and takes the next job (refill), so glass paths do
-//! not leave the packet empty. The film receives the estimates in job order, as the
-//! scalar path's ([`crate::render::render_batches`]).
+//! not leave the packet empty. A lane takes its job with the first hit known: the batch's
+//! camera rays are traced `N` at a time in job order as coherent packets of their own
+//! ([`camera`]), so the bounce packets carry bounce rays only. The film receives the
+//! estimates in job order, as the scalar path's ([`crate::render::render_batches`]).
 //!
 //! SIMD: the per-lane arithmetic is plain loops over fixed-size arrays that LLVM
 //! vectorises; the whole loop is compiled for AVX-512, AVX2 and scalar x86-64 and chosen at
 //! run time by `pulp` ([`estimate`]), which holds the only `unsafe` (its
 //! `#[target_feature]` calls). On the pure-Rust BVH the packets are answered lane by lane.
 //!
-//! Random numbers: an independent stream per camera sample keyed by (seed, pixel, sample
-//! index) ([`rng`]), not the scalar path's Z-order Sobol' points: deterministic for a seed
-//! (the same image whatever the threads, rounds or packet width), and equal to the scalar
-//! path tracer's image in expectation, not bit for bit.
+//! Random numbers: each camera sample's own stream, the scalar path tracer's: the render's
+//! sampler (Z-order Sobol' by default) restarted for the job ([`crate::render::Starts`]),
+//! the camera ray made from it as the scalar path makes it, and each vertex's decisions
+//! read from the scalar path's dimension schedule in its order ([`numbers`]). Deterministic
+//! for a scene, seed, backend and packet width: a job's estimate depends on the job alone,
+//! so the image is the same whatever the threads, rounds or shards (another width or
+//! backend may differ where a ray meets two triangles exactly on their shared edge); a sample's
+//! estimate equals the scalar path tracer's up to float rounding (the kernel's arithmetic
+//! is its own: the sine and cosine of the bounce direction, the hit record, the order of
+//! products), which can flip a decision taken on a threshold (a roulette, a Fresnel
+//! choice, an edge between triangles) on a few samples, so the images agree pixel by pixel
+//! on most pixels and in expectation everywhere.
 
 #[cfg(test)]
 mod asset_tests;
+mod camera;
 mod features;
 mod handoff;
 mod hits;
 mod numbers;
 mod paths;
-mod rng;
 mod shade;
 #[cfg(test)]
 mod tests;
@@ -92,8 +102,8 @@ pub fn plan_text(scene: &Scene, perspective: bool, spectral: bool) -> Result<Str
             "structure-of-arrays kernel (IRIS_KERNEL=soa): {} camera paths with their whole \
              state in arrays, hit records and shading across the lanes (AVX-512, AVX2 or \
              scalar code chosen at run time), each camera sample with its own random \
-             stream: the image equals the single-ray image in expectation, not bit for \
-             bit{handed}",
+             stream (the single-ray path's numbers): the image equals the single-ray \
+             image up to float rounding on most pixels and in expectation everywhere{handed}",
             width()
         )
     })
@@ -107,25 +117,19 @@ fn width() -> usize {
     }
 }
 
-/// The kernel's estimate of `jobs` (begun by `starts`, numbers keyed by `seed`, at most
-/// `max_depth` non-delta bounces): job `i`'s linear RGB radiance into `out[i]`. Returns
+/// The kernel's estimate of `jobs` (begun by `starts`, at most `max_depth` non-delta
+/// bounces): job `i`'s linear RGB radiance into `out[i]`. Returns
 /// the rays traced. The loop runs compiled for the widest vector instructions this CPU has
 /// (`pulp`'s run-time dispatch).
 pub fn estimate(
     tables: &Tables,
     scene: &Scene,
     (starts, jobs): (&Starts, &[Job]),
-    (seed, max_depth, dispersion): (u64, u32, Dispersion),
+    (max_depth, dispersion): (u32, Dispersion),
     out: &mut [Vec3],
 ) -> u64 {
-    estimate_at(
-        width(),
-        tables,
-        scene,
-        (starts, jobs),
-        (seed, max_depth, dispersion),
-        out,
-    )
+    let rules = (max_depth, dispersion);
+    estimate_at(width(), tables, scene, (starts, jobs), rules, out)
 }
 
 /// [`estimate`] on `width` lanes (8, or 16 for any other value).
@@ -134,7 +138,7 @@ fn estimate_at(
     tables: &Tables,
     scene: &Scene,
     run: (&Starts, &[Job]),
-    rules: (u64, u32, Dispersion),
+    rules: (u32, Dispersion),
     out: &mut [Vec3],
 ) -> u64 {
     let arch = pulp::Arch::new();
@@ -166,7 +170,7 @@ struct Run<'a, const N: usize> {
     tables: &'a Tables,
     scene: &'a Scene,
     run: (&'a Starts<'a>, &'a [Job]),
-    rules: (u64, u32, Dispersion),
+    rules: (u32, Dispersion),
     out: &'a mut [Vec3],
 }
 

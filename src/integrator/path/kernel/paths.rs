@@ -1,29 +1,33 @@
 //! The kernel's bounce loop ([`run`]): `N` camera paths in structure-of-arrays form
-//! ([`Paths`]: the next rays, throughput, radiance, η scale, bounce counts, job, random
-//! stream, alive mask) go through one loop. Each turn traces the alive lanes' rays as one
-//! packet ([`Scene::intersect_packet`]), builds their hits over the lanes ([`Hits`]),
+//! ([`Paths`]: the next rays, throughput, radiance, η scale, bounce counts, job, sample
+//! stream, alive mask) go through one loop. A lane takes its job with the camera ray's
+//! first hit already known ([`CameraRays`]: the batch's camera rays traced as coherent
+//! packets of their own). Each turn traces the bounce rays of the other alive lanes as one
+//! packet ([`Scene::intersect_packet`]), merges in the first hits of the lanes just
+//! started, builds the hits over the lanes ([`Hits`]),
 //! shades the Lambert lanes (next-event estimation, then the bounce) and the dielectric
 //! lanes ([`super::shade`]), traces the shadow rays as one packet
 //! ([`Scene::occluded_packet`]) and adds what they let through; a lane whose path ended
 //! writes its radiance to its job's slot and takes the batch's next job (refill).
 //!
-//! A path that escapes ends (the kernel's scenes have no environment). Each lane draws
-//! one vertex's decisions per turn ([`Draws`]) from its own stream ([`super::rng`]), so a
-//! job's numbers, and its estimate, do not depend on its lane, its neighbours or the
-//! packet width.
+//! A path that escapes ends (the kernel's scenes have no environment). Each lane holds its
+//! job's sample stream, restarted by the render's sampler ([`Starts::start`], which also
+//! makes the camera ray), and draws its vertex's decisions from the scalar path tracer's
+//! schedule ([`Draws`]), so a job's numbers, and its estimate, do not depend on its lane,
+//! its neighbours or the packet width.
 
 use super::super::Dispersion;
+use super::camera::{ray_into, CameraRays, Started};
 use super::features::Tables;
 use super::handoff::{self, Handed};
 use super::hits::{Hits, V3};
-use super::numbers::Draws;
-use super::rng;
+use super::numbers::{Draws, Vertices};
 use super::shade::{glass, lambert, light, Rays, Throughput};
 use crate::accel::packet::{lanes, Coherence, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
 use crate::math::Ray;
 use crate::render::{Context, Job, Starts};
 use crate::scene::Scene;
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 /// The state of `N` camera paths.
 struct Paths<const N: usize> {
@@ -35,9 +39,9 @@ struct Paths<const N: usize> {
     l: V3<N>,
     /// The job (index into the batch) each lane estimates.
     job: [u32; N],
-    /// Each lane's random stream.
-    counter: [u32; N],
-    salt: [u32; N],
+    /// Each lane's sample stream (boxed: taking a job swaps pointers, not the sampler's
+    /// state).
+    ctx: [Box<Context>; N],
     /// The volumetric material each lane is inside ([`AIR`]: none).
     inside: [u32; N],
     /// Delta bounces since the last non-delta one ([`NONE_YET`] before the first).
@@ -52,7 +56,7 @@ const AIR: u32 = u32::MAX;
 const NONE_YET: u32 = u32::MAX;
 
 impl<const N: usize> Paths<N> {
-    fn new() -> Self {
+    fn new(starts: &Starts) -> Self {
         Paths {
             next: Rays::new(),
             st: Throughput {
@@ -63,57 +67,45 @@ impl<const N: usize> Paths<N> {
             },
             l: [[0.0; N]; 3],
             job: [0; N],
-            counter: [0; N],
-            salt: [0; N],
+            ctx: std::array::from_fn(|_| Box::new(starts.context())),
             inside: [AIR; N],
             since: [NONE_YET; N],
             alive: 0,
         }
     }
 
-    /// Starts job `j` (`job`) on lane `i`: its stream, its camera ray (jittered with its
-    /// first two numbers), unit throughput, no radiance.
-    fn start(&mut self, i: usize, (j, job): (usize, Job), starts: &Starts, seed: u64) {
-        let (mut counter, salt) = rng::key(seed, job.x, job.y, job.k);
-        let jitter = Vec2::new(
-            rng::draw_one(&mut counter, salt),
-            rng::draw_one(&mut counter, salt),
-        );
-        let ray = starts.camera_ray(job, jitter);
+    /// Starts the job `s` on lane `i` (its sample stream already swapped into the lane's
+    /// context): its camera ray, unit throughput, no radiance.
+    fn start(&mut self, i: usize, s: &Started) {
+        ray_into(&mut self.next, i, s);
         for c in 0..3 {
-            self.next.o[c][i] = ray.origin[c];
-            self.next.d[c][i] = ray.dir[c];
             self.st.beta[c][i] = 1.0;
             self.l[c][i] = 0.0;
         }
-        self.next.t_max[i] = ray.t_max;
         self.st.eta_scale[i] = 1.0;
         self.st.depth[i] = 0;
         self.st.deltas[i] = 0;
-        self.job[i] = j as u32;
+        self.job[i] = s.job as u32;
         self.inside[i] = AIR;
         self.since[i] = NONE_YET;
-        (self.counter[i], self.salt[i]) = (counter, salt);
         self.alive |= 1 << i;
     }
 
     /// Hands lane `i`, whose ray in `packet` met `raw`'s hit on a material the kernel does
-    /// not shade, to the scalar path tracer ([`handoff::finish`]) for `job` (begun by
-    /// `starts`) under `rules`: adds the rest of its path's radiance to its own, with the
-    /// job's numbers in `ctx`. Returns the rays traced.
+    /// not shade, to the scalar path tracer ([`handoff::finish`]) under `rules`, with the
+    /// lane's own sample stream: adds the rest of its path's radiance to its own. Returns
+    /// the rays traced.
     fn hand_over(
         &mut self,
         i: usize,
         scene: &Scene,
         (packet, raw): (&RayPacket<N>, &HitPacket<N>),
-        (starts, job, rules): (&Starts, Job, (u32, &Dispersion)),
-        ctx: &mut Context,
+        rules: (u32, &Dispersion),
     ) -> u64
     where
         Lanes<N>: PacketWidth,
     {
         let Some(r) = raw.get(i) else { return 0 };
-        starts.start(job, ctx);
         let handed = Handed {
             beta: Vec3::new(self.st.beta[0][i], self.st.beta[1][i], self.st.beta[2][i]),
             eta_scale: self.st.eta_scale[i],
@@ -123,9 +115,11 @@ impl<const N: usize> Paths<N> {
             inside: (self.inside[i] != AIR).then_some(self.inside[i]),
         };
         let ray = Ray::new(packet.origin(i), packet.dir(i));
+        let ctx = &mut self.ctx[i];
+        let before = ctx.rays;
         let e = handoff::finish(scene, rules, &handed, (ray, r), ctx);
         (0..3).for_each(|c| self.l[c][i] += e[c]);
-        ctx.rays
+        ctx.rays - before
     }
 
     /// After the shading of hits `h`: a Lambert bounce is non-delta (no delta bounces
@@ -154,14 +148,15 @@ impl<const N: usize> Paths<N> {
         }
     }
 
-    /// The next rays of the alive lanes as a packet.
+    /// The next rays of the lanes `trace` as a packet (the other lanes' rays are there too,
+    /// inactive: the hit records read every lane's direction).
     #[inline(always)]
-    fn packet(&self, packet: &mut RayPacket<N>)
+    fn packet(&self, packet: &mut RayPacket<N>, trace: LaneMask)
     where
         Lanes<N>: PacketWidth,
     {
         rays_into(&self.next, packet);
-        packet.set_active(self.alive);
+        packet.set_active(trace);
     }
 }
 
@@ -186,7 +181,7 @@ fn mask<const N: usize>(flags: &[bool; N]) -> LaneMask {
     (0..N).fold(0, |m, i| m | (u32::from(flags[i]) << i))
 }
 
-/// Estimates `jobs` (begun by `starts`, numbers keyed by `seed`) on `N` lanes with at most
+/// Estimates `jobs` (begun by `starts`) on `N` lanes with at most
 /// `max_depth` non-delta bounces a path, writing job `i`'s linear RGB radiance to `out[i]`.
 /// Returns the rays traced.
 #[inline(always)]
@@ -194,39 +189,58 @@ pub fn run<const N: usize>(
     tables: &Tables,
     scene: &Scene,
     (starts, jobs): (&Starts, &[Job]),
-    (seed, max_depth, dispersion): (u64, u32, Dispersion),
+    (max_depth, dispersion): (u32, Dispersion),
     out: &mut [Vec3],
 ) -> u64
 where
     Lanes<N>: PacketWidth,
 {
-    let mut p = Paths::<N>::new();
-    let mut ctx = starts.context();
-    let (mut next_job, mut rays) = (0usize, 0u64);
+    let mut p = Paths::<N>::new(starts);
+    let mut cameras = CameraRays::<N>::new(starts);
+    let mut rays = 0u64;
     let mut packet = RayPacket::<N>::new();
     let mut raw = HitPacket::<N>::default();
+    let mut first = HitPacket::<N>::default();
     let n_lights = tables.lights.len() as u32;
     loop {
+        let mut fresh: LaneMask = 0;
         for i in 0..N {
-            if p.alive & (1 << i) == 0 && next_job < jobs.len() {
-                p.start(i, (next_job, jobs[next_job]), starts, seed);
-                next_job += 1;
+            if p.alive & (1 << i) == 0 {
+                let batch = (starts, jobs);
+                let Some(s) = cameras.take(scene, batch, &mut p.ctx[i], &mut rays) else {
+                    break;
+                };
+                p.start(i, &s);
+                first.set(i, s.hit);
+                fresh |= 1 << i;
             }
         }
         if p.alive == 0 {
             return rays;
         }
-        p.packet(&mut packet);
-        scene.intersect_packet(&packet, Coherence::Incoherent, &mut raw);
-        rays += u64::from(p.alive.count_ones());
+        let trace = p.alive & !fresh;
+        p.packet(&mut packet, trace);
+        if trace != 0 {
+            scene.intersect_packet(&packet, Coherence::Incoherent, &mut raw);
+            rays += u64::from(trace.count_ones());
+        }
+        for i in lanes(fresh) {
+            raw.set(i, first.get(i));
+        }
         let hit = raw.hit & p.alive;
         let h = Hits::new(scene, &tables.shades, &packet, &raw, hit);
         for i in lanes(hit & mask(&h.scalar)) {
-            let job = jobs[p.job[i] as usize];
-            let rules = (max_depth, &dispersion);
-            rays += p.hand_over(i, scene, (&packet, &raw), (starts, job, rules), &mut ctx);
+            rays += p.hand_over(i, scene, (&packet, &raw), (max_depth, &dispersion));
         }
-        let u = Draws::draw(&mut p.counter, &p.salt);
+        let at = Vertices {
+            index: std::array::from_fn(|i| p.st.depth[i] + p.st.deltas[i]),
+            lambert: &h.lambert,
+            glass: &h.glass,
+            roulette: std::array::from_fn(|i| p.st.depth[i] + 1 >= 3),
+            lights: tables.lights.len(),
+            area: false,
+        };
+        let u = Draws::draw(&mut p.ctx, &at);
         let k: [u32; N] = std::array::from_fn(|i| {
             ((u.light_choice[i] * n_lights as f32) as u32).min(n_lights.max(1) - 1)
         });
@@ -244,7 +258,7 @@ where
             &mut shadow,
             &mut traced,
         );
-        let ends_l = lambert(
+        let (ends_l, played) = lambert(
             &h.lambert,
             &h,
             (&u.direction[0], &u.direction[1], &u.roulette),
@@ -252,6 +266,7 @@ where
             &mut p.st,
             &mut p.next,
         );
+        Draws::played(&mut p.ctx, &at, mask(&played));
         let ends_g = glass(&h.glass, &h, &u.lobe, &mut p.st, &mut p.next);
         p.track(&h);
         let traced = mask(&traced);

@@ -175,7 +175,8 @@ fn sincos_tau(t: f32) -> (f32, f32) {
 /// `u_rr` (roulette): the cosine-sampled direction on `wo`'s side in the frame of `ns`
 /// (Duff et al. 2017, as [`crate::math::Frame::from_normal`]), β times the albedo, one
 /// more non-delta bounce, Russian roulette; the next ray into `next`. Returns the lanes
-/// whose path ends here.
+/// whose path ends here, and those that played the roulette (read `u_rr`: survival below
+/// 1 after three non-delta bounces, the bounce limit not reached).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub fn lambert<const N: usize>(
@@ -185,8 +186,8 @@ pub fn lambert<const N: usize>(
     max_depth: u32,
     st: &mut Throughput<N>,
     next: &mut Rays<N>,
-) -> [bool; N] {
-    let mut ends = [false; N];
+) -> ([bool; N], [bool; N]) {
+    let (mut ends, mut played) = ([false; N], [false; N]);
     for i in 0..N {
         let n = [h.ns[0][i], h.ns[1][i], h.ns[2][i]];
         let sign = 1f32.copysign(n[2]);
@@ -212,15 +213,16 @@ pub fn lambert<const N: usize>(
         // with probability q (NaN never), and the survivor is divided by min(q, 1).
         let rr = depth >= 3;
         let survives = !rr || q >= 1.0 || u_rr[i] < q;
-        let scale = if rr && q < 1.0 { 1.0 / q } else { 1.0 };
+        let divisor = if rr && q < 1.0 { q } else { 1.0 };
         for c in 0..3 {
-            let b = st.beta[c][i] * scale;
+            let b = st.beta[c][i] / divisor;
             st.beta[c][i] = if on[i] { b } else { st.beta[c][i] };
         }
         ends[i] = on[i] && (cos_o == 0.0 || z == 0.0 || depth >= max_depth || !survives);
+        played[i] = on[i] && rr && q < 1.0 && depth < max_depth;
         spawn(on[i], h, i, wi, next);
     }
-    ends
+    (ends, played)
 }
 
 /// The smooth dielectric at the lanes `on` with the number `u`: reflection with
