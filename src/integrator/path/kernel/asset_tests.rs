@@ -29,8 +29,7 @@ fn scenes(dir: &Path) -> Vec<PathBuf> {
 /// within 4 standard errors, at 128 samples per pixel each; and at the same seed the
 /// kernel's image is the scalar one up to float rounding (at most 7 of 768 pixels more than
 /// 1e-4 apart, [`super::tests`]' bound), handed-over paths included. At least ten assets
-/// qualify
-/// (lanes meeting their layered, textured, rough or dispersive materials hand over to the
+/// qualify (lanes meeting their layered, textured, rough or dispersive materials hand over to the
 /// scalar vertex), so a change that refuses them, or breaks what they need, fails here.
 #[test]
 fn every_asset_the_kernel_takes_agrees_with_the_scalar_path_tracer() {
