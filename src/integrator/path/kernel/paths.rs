@@ -17,7 +17,7 @@ use super::hits::{Hits, V3};
 use super::numbers::Draws;
 use super::rng;
 use super::shade::{glass, lambert, light, Rays, Throughput};
-use crate::accel::packet::{lanes, Coherence, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
+use crate::accel::packet::{lanes, Coherence, LaneMask, Lanes, PacketWidth, RayPacket};
 use crate::render::{Job, Starts};
 use crate::scene::Scene;
 use glam::{Vec2, Vec3};
@@ -130,7 +130,6 @@ where
     let mut p = Paths::<N>::new();
     let (mut next_job, mut rays) = (0usize, 0u64);
     let mut packet = RayPacket::<N>::new();
-    let mut raw = HitPacket::<N>::default();
     let n_lights = tables.lights.len() as u32;
     loop {
         for i in 0..N {
@@ -143,10 +142,11 @@ where
             return rays;
         }
         p.packet(&mut packet);
-        scene.intersect_packet(&packet, Coherence::Incoherent, &mut raw);
+        scene.intersect_packet(&mut packet, Coherence::Incoherent);
+        let raw = &packet.hits;
         rays += u64::from(p.alive.count_ones());
         let hit = raw.hit & p.alive;
-        let h = Hits::new(scene, &tables.shades, &packet, &raw, hit);
+        let h = Hits::new(scene, &tables.shades, &packet, raw, hit);
         let u = Draws::draw(&mut p.counter, &p.salt);
         let k: [u32; N] = std::array::from_fn(|i| {
             ((u.light_choice[i] * n_lights as f32) as u32).min(n_lights.max(1) - 1)
@@ -179,7 +179,7 @@ where
             let mut sp = RayPacket::<N>::new();
             rays_into(&shadow, &mut sp);
             sp.set_active(traced);
-            let blocked = scene.occluded_packet(&sp);
+            let blocked = scene.occluded_packet(&mut sp);
             rays += u64::from(traced.count_ones());
             for i in lanes(traced & !blocked) {
                 (0..3).for_each(|c| p.l[c][i] += value[c][i]);
