@@ -146,6 +146,7 @@ impl<const N: usize> Default for RayPacket<N>
 where
     Lanes<N>: PacketWidth,
 {
+    #[inline]
     fn default() -> Self {
         RayPacket {
             org_x: [0.0; N],
@@ -174,6 +175,7 @@ where
     pub const FULL: LaneMask = ((1u64 << N) - 1) as LaneMask;
 
     /// A packet with no active lane.
+    #[inline]
     pub fn new() -> Self {
         Self::default()
     }
@@ -234,28 +236,32 @@ where
     /// at once.
     #[inline]
     pub fn traceable(&self) -> LaneMask {
-        self.active & mask_where::<N>(|i| self.has_line(i) & (self.t_max[i] > 0.0))
+        let line = self.lines();
+        self.active & mask_where::<N>(|i| (line[i] != 0) & (self.t_max[i] > 0.0))
     }
 
     /// The active lanes with a non-finite origin or direction, a zero direction or a NaN
     /// `t_max` (the rays [`crate::math::Ray::is_valid`] refuses).
     #[inline]
     pub fn untraceable(&self) -> LaneMask {
-        self.active & mask_where::<N>(|i| !self.has_line(i) | self.t_max[i].is_nan())
+        let line = self.lines();
+        self.active & mask_where::<N>(|i| (line[i] == 0) | self.t_max[i].is_nan())
     }
 
-    /// Whether lane `i` has a finite origin and a finite non-zero direction (no
-    /// short-circuit, so the lane loops stay branch-free).
+    /// Per lane, 1 where the origin and the direction are finite and the direction is not
+    /// zero, else 0. Tested on the IEEE 754 binary32 bit patterns without the sign: a value
+    /// is finite when they are below `0x7F80_0000` (∞'s), ±0 when they are 0; so the loop
+    /// has no branch (and no NaN-dropping `max`).
     #[inline(always)]
-    fn has_line(&self, i: usize) -> bool {
-        let (dx, dy, dz) = (self.dir_x[i], self.dir_y[i], self.dir_z[i]);
-        self.org_x[i].is_finite()
-            & self.org_y[i].is_finite()
-            & self.org_z[i].is_finite()
-            & dx.is_finite()
-            & dy.is_finite()
-            & dz.is_finite()
-            & ((dx != 0.0) | (dy != 0.0) | (dz != 0.0))
+    fn lines(&self) -> [u32; N] {
+        let m = |x: f32| x.to_bits() & 0x7FFF_FFFF;
+        let mut line = [0; N];
+        for (i, l) in line.iter_mut().enumerate() {
+            let d = m(self.dir_x[i]).max(m(self.dir_y[i])).max(m(self.dir_z[i]));
+            let o = m(self.org_x[i]).max(m(self.org_y[i])).max(m(self.org_z[i]));
+            *l = u32::from((o.max(d) < 0x7F80_0000) & (d != 0));
+        }
+        line
     }
 }
 

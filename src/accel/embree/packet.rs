@@ -165,11 +165,14 @@ fn valid_lanes<const N: usize>(rays: &mut RayPacket<N>, live: LaneMask) -> Valid
 where
     Lanes<N>: PacketWidth,
 {
-    let on: [bool; N] = std::array::from_fn(|i| live & (1 << i) != 0);
+    let mut valid = ValidN([0; N]);
+    for (i, v) in valid.0.iter_mut().enumerate() {
+        *v = -(((live >> i) & 1) as i32);
+    }
     if live != RayPacket::<N>::FULL {
         let keep = |x: &mut [f32; N], off: f32| {
-            for i in 0..N {
-                x[i] = if on[i] { x[i] } else { off };
+            for (x, &v) in x.iter_mut().zip(&valid.0) {
+                *x = if v != 0 { *x } else { off };
             }
         };
         keep(&mut rays.org_x, 0.0);
@@ -180,5 +183,5 @@ where
         keep(&mut rays.dir_z, 1.0);
         keep(&mut rays.t_max, 0.0);
     }
-    ValidN(std::array::from_fn(|i| -i32::from(on[i])))
+    valid
 }
