@@ -35,7 +35,7 @@ use common::splitmix::Rng;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::{Vec2, Vec3};
-use iris::accel::packet::{Coherence, HitPacket, Lanes, PacketWidth, RayPacket};
+use iris::accel::packet::{Coherence, Lanes, PacketWidth, RayPacket};
 use iris::accel::{Accel, Backend};
 use iris::scene::Scene;
 use std::hint::black_box;
@@ -176,16 +176,18 @@ where
         .collect()
 }
 
+/// The queries write into the packet (Embree traces it in place), so each traces a copy,
+/// as a caller fills a packet before each query.
 fn closest_n<const N: usize>(accel: &Accel, packets: &[RayPacket<N>], c: Coherence) -> u32
 where
     Lanes<N>: PacketWidth,
 {
-    let mut hits = HitPacket::default();
     packets
         .iter()
         .map(|p| {
-            accel.closest_packet(p, c, black_box(&mut hits));
-            hits.hit.count_ones()
+            let mut q = *p;
+            accel.closest_packet(black_box(&mut q), c);
+            q.hits.hit.count_ones()
         })
         .sum()
 }
@@ -196,7 +198,10 @@ where
 {
     packets
         .iter()
-        .map(|p| accel.occluded_packet(p, c).count_ones())
+        .map(|p| {
+            let mut q = *p;
+            accel.occluded_packet(black_box(&mut q), c).count_ones()
+        })
         .sum()
 }
 

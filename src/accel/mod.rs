@@ -18,7 +18,7 @@ pub mod triangle;
 use crate::error::Error;
 use crate::error::Result;
 use glam::Vec3;
-use packet::{Coherence, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
+use packet::{Coherence, LaneMask, Lanes, PacketWidth, RayPacket};
 
 /// A raw hit: ray parameter, triangle index, barycentrics.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -164,33 +164,31 @@ impl Accel {
     }
 
     /// The closest hit in `[0, t_max)` of every traceable lane of `rays`
-    /// ([`RayPacket::traceable`]), exactly as [`Accel::closest`] finds it lane by lane;
-    /// other lanes get no hit. Embree traces the packet in one `rtcIntersect8/16` call
+    /// ([`RayPacket::traceable`]), exactly as [`Accel::closest`] finds it lane by lane,
+    /// written into the packet ([`RayPacket::hits`], the `t` into `t_max`); other lanes get
+    /// no hit. Embree traces the packet in place in one `rtcIntersect8/16` call
     /// (`coherence` picks its traversal), the BVH lane by lane.
     #[inline]
-    pub fn closest_packet<const N: usize>(
-        &self,
-        rays: &RayPacket<N>,
-        coherence: Coherence,
-        out: &mut HitPacket<N>,
-    ) where
+    pub fn closest_packet<const N: usize>(&self, rays: &mut RayPacket<N>, coherence: Coherence)
+    where
         Lanes<N>: PacketWidth,
     {
         #[cfg(not(feature = "embree"))]
         let _ = coherence;
         match self {
-            Accel::Bvh(b) => packet::closest_lanes(rays, out, |o, d, t| b.closest(o, d, t)),
+            Accel::Bvh(b) => packet::closest_lanes(rays, |o, d, t| b.closest(o, d, t)),
             #[cfg(feature = "embree")]
-            Accel::Embree(e) => e.closest_packet(rays, coherence, out),
+            Accel::Embree(e) => e.closest_packet(rays, coherence),
         }
     }
 
     /// The traceable lanes of `rays` with anything in `[0, t_max)`, as [`Accel::occluded`]
-    /// answers lane by lane (Embree: one `rtcOccluded8/16` call).
+    /// answers lane by lane (Embree: one `rtcOccluded8/16` call on the packet); their
+    /// `t_max` becomes `-∞`.
     #[inline]
     pub fn occluded_packet<const N: usize>(
         &self,
-        rays: &RayPacket<N>,
+        rays: &mut RayPacket<N>,
         coherence: Coherence,
     ) -> LaneMask
     where

@@ -40,7 +40,7 @@ mod band;
 use band::skipped;
 pub use band::{BandPoint, Leave};
 
-use crate::accel::packet::{lanes, Coherence, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
+use crate::accel::packet::{lanes, Coherence, LaneMask, Lanes, PacketWidth, RayPacket};
 use crate::accel::RawHit;
 use crate::material::TexCoords;
 use crate::math::Ray;
@@ -372,22 +372,18 @@ impl Scene {
 }
 
 impl Scene {
-    /// The backend's closest hits of the packet `rays`; lane `i`'s [`Scene::intersect`] is
-    /// then [`Scene::lane_hit`] of its ray and `raw.get(i)`. Invalid lanes
-    /// ([`RayPacket::untraceable`]) get none. With [`Coherence::Incoherent`] each lane's hit
-    /// is the single-ray hit exactly; Embree's coherent (frustum) traversal visits nodes in
-    /// another order and may break an exact tie between coplanar overlapping triangles
-    /// the other way.
+    /// The backend's closest hits of the packet `rays`, written into it; lane `i`'s
+    /// [`Scene::intersect`] is then [`Scene::lane_hit`] of its ray and `rays.hit(i)`.
+    /// Invalid lanes ([`RayPacket::untraceable`]) get none. With [`Coherence::Incoherent`]
+    /// each lane's hit is the single-ray hit exactly; Embree's coherent (frustum) traversal
+    /// visits nodes in another order and may break an exact tie between coplanar
+    /// overlapping triangles the other way.
     #[inline]
-    pub fn intersect_packet<const N: usize>(
-        &self,
-        rays: &RayPacket<N>,
-        coherence: Coherence,
-        raw: &mut HitPacket<N>,
-    ) where
+    pub fn intersect_packet<const N: usize>(&self, rays: &mut RayPacket<N>, coherence: Coherence)
+    where
         Lanes<N>: PacketWidth,
     {
-        self.accel().closest_packet(rays, coherence, raw);
+        self.accel().closest_packet(rays, coherence);
     }
 
     /// [`Scene::intersect`] of `ray` given the backend's closest hit `raw` along it (a lane
@@ -406,8 +402,9 @@ impl Scene {
 
     /// [`Scene::occluded`] of every active lane of `rays` in one packet query: bit `i` set
     /// when lane `i` is blocked (an invalid ray is blocked; an inactive lane is not). With
-    /// alpha cut-outs in the scene, lane by lane.
-    pub fn occluded_packet<const N: usize>(&self, rays: &RayPacket<N>) -> LaneMask
+    /// alpha cut-outs in the scene, lane by lane. The query may write into `rays` (see
+    /// [`crate::accel::packet`]).
+    pub fn occluded_packet<const N: usize>(&self, rays: &mut RayPacket<N>) -> LaneMask
     where
         Lanes<N>: PacketWidth,
     {
@@ -427,6 +424,7 @@ impl Scene {
             return blocked;
         }
         // The backends leave untraceable lanes unoccluded; the single-ray query blocks them.
-        rays.untraceable() | self.accel().occluded_packet(rays, Coherence::Incoherent)
+        let invalid = rays.untraceable();
+        invalid | self.accel().occluded_packet(rays, Coherence::Incoherent)
     }
 }

@@ -11,7 +11,7 @@ use crate::common;
 use common::splitmix::Rng;
 
 use glam::Vec3;
-use iris::accel::packet::{Coherence, HitPacket, Lanes, PacketWidth, RayPacket};
+use iris::accel::packet::{Coherence, Lanes, PacketWidth, RayPacket};
 use iris::accel::{Accel, RawHit};
 use std::path::Path;
 
@@ -159,13 +159,11 @@ where
             p.set(lane, o, d, t);
         }
     }
-    // Stale results must be cleared.
-    let mut hits = HitPacket::<N> {
-        hit: RayPacket::<N>::FULL,
-        ..Default::default()
-    };
-    accel.closest_packet(&p, coherence, &mut hits);
-    let occluded = accel.occluded_packet(&p, coherence);
+    // Stale results must be cleared. The queries write into the packet: each traces a copy.
+    p.hits.hit = RayPacket::<N>::FULL;
+    let mut hits = p;
+    accel.closest_packet(&mut hits, coherence);
+    let occluded = accel.occluded_packet(&mut p.clone(), coherence);
     let mut compared = 0;
     for (lane, r) in rays.iter().enumerate() {
         let ctx = || {
@@ -177,12 +175,12 @@ where
         let bit = 1u32 << lane;
         match *r {
             None => {
-                assert!(hits.get(lane).is_none(), "{}: inactive lane hit", ctx());
+                assert!(hits.hit(lane).is_none(), "{}: inactive lane hit", ctx());
                 assert_eq!(occluded & bit, 0, "{}: inactive lane occluded", ctx());
                 assert_eq!(p.untraceable() & bit, 0, "{}", ctx());
             }
             Some(ray) if !traceable(ray) => {
-                assert!(hits.get(lane).is_none(), "{}: untraceable lane hit", ctx());
+                assert!(hits.hit(lane).is_none(), "{}: untraceable lane hit", ctx());
                 assert_eq!(occluded & bit, 0, "{}: untraceable lane occluded", ctx());
                 let invalid = !iris::math::Ray {
                     origin: ray.0,
@@ -199,7 +197,7 @@ where
             }
             Some((o, d, t)) => {
                 let single = accel.closest(o, d, t);
-                let packet = hits.get(lane);
+                let packet = hits.hit(lane);
                 assert!(
                     same(single, packet),
                     "{}: single {single:?}, packet {packet:?}",
@@ -329,20 +327,20 @@ fn empty_scene_and_empty_packet_find_nothing() {
         for lane in 0..16 {
             p.set(lane, Vec3::ZERO, Vec3::X, f32::INFINITY);
         }
-        let mut hits = HitPacket::default();
-        accel.closest_packet(&p, Coherence::Coherent, &mut hits);
-        assert_eq!(hits.hit, 0, "{backend:?}");
-        assert_eq!(accel.occluded_packet(&p, Coherence::Incoherent), 0);
+        p.hits.hit = RayPacket::<16>::FULL;
+        accel.closest_packet(&mut p, Coherence::Coherent);
+        assert_eq!(p.hits.hit, 0, "{backend:?}");
+        assert_eq!(accel.occluded_packet(&mut p, Coherence::Incoherent), 0);
         // A packet with no active lane on a real triangle.
         let tri = Accel::build(backend, &[Vec3::ZERO, Vec3::X, Vec3::Y], &[[0, 1, 2]]).unwrap();
         let mut p = RayPacket::<8>::new();
         p.set(0, Vec3::new(0.2, 0.2, 1.0), Vec3::NEG_Z, f32::INFINITY);
-        let mut hits = HitPacket::default();
-        tri.closest_packet(&p, Coherence::Incoherent, &mut hits);
-        assert_eq!(hits.hit, 1, "{backend:?}");
+        tri.closest_packet(&mut p, Coherence::Incoherent);
+        assert_eq!(p.hits.hit, 1, "{backend:?}");
+        assert_eq!(p.t_max[0], 1.0, "{backend:?}: the hit's t");
         p.set_active(0);
-        tri.closest_packet(&p, Coherence::Incoherent, &mut hits);
-        assert_eq!(hits.hit, 0, "{backend:?}");
-        assert_eq!(tri.occluded_packet(&p, Coherence::Incoherent), 0);
+        tri.closest_packet(&mut p, Coherence::Incoherent);
+        assert_eq!(p.hits.hit, 0, "{backend:?}");
+        assert_eq!(tri.occluded_packet(&mut p, Coherence::Incoherent), 0);
     }
 }

@@ -1,7 +1,8 @@
-//! The Embree 4.4 ABI as Iris uses it: `RTCRay`, `RTCHit`, `RTCRayHit`, their 8- and
-//! 16-lane packet forms and the query argument structs declared with the library's layout
-//! (see the ABI note in [`super`]), the `all_hits` argument filter, and the device error
-//! callback with integer error codes.
+//! The Embree 4.4 ABI as Iris uses it: `RTCRay`, `RTCHit`, `RTCRayHit`, the packets'
+//! `valid` argument and the query argument structs declared with the library's layout (see
+//! the ABI note in [`super`]; the 8- and 16-lane `RTCRayHitN` is
+//! [`crate::accel::packet::RayPacket`] itself, its layout asserted in `packet`), the
+//! `all_hits` argument filter, and the device error callback with integer error codes.
 //! Units: `t` along the unnormalised ray direction; barycentrics as Embree's.
 
 use super::super::{HitList, RawHit};
@@ -48,52 +49,6 @@ pub(super) struct Hit {
 pub(super) struct RayHit {
     pub(super) ray: Ray,
     pub(super) hit: Hit,
-}
-
-/// `RTCRay8` / `RTCRay16` for `N` = 8 / 16: `RTCRay`'s fields in the same order, each an
-/// array of `N` lanes (structure of arrays; 384 / 768 bytes). Embree asks for 32-byte
-/// alignment at `N` = 8 and 64 at 16; 64 serves both, and since `48·N` bytes is a multiple
-/// of 64 for both widths the hit part of [`RayHitN`] still starts at byte `48·N`.
-#[repr(C, align(64))]
-#[derive(Clone, Copy)]
-pub(super) struct RayN<const N: usize> {
-    pub(super) org_x: [f32; N],
-    pub(super) org_y: [f32; N],
-    pub(super) org_z: [f32; N],
-    pub(super) tnear: [f32; N],
-    pub(super) dir_x: [f32; N],
-    pub(super) dir_y: [f32; N],
-    pub(super) dir_z: [f32; N],
-    pub(super) time: [f32; N],
-    pub(super) tfar: [f32; N],
-    pub(super) mask: [u32; N],
-    pub(super) id: [u32; N],
-    pub(super) flags: [u32; N],
-}
-
-/// `RTCHit8` / `RTCHit16` as in Embree 4.4 (`RTC_MAX_INSTANCE_LEVEL_COUNT = 1` with
-/// instance arrays, so `inst[0]` is `instID[0][N]` and `inst[1]` `instPrimID[0][N]`; a level
-/// count of 2 without instance arrays fits too): 9·4·`N` bytes written by Embree, followed
-/// here by padding up to the 64-byte alignment that Embree never touches.
-#[repr(C, align(64))]
-#[derive(Clone, Copy)]
-pub(super) struct HitN<const N: usize> {
-    pub(super) ng_x: [f32; N],
-    pub(super) ng_y: [f32; N],
-    pub(super) ng_z: [f32; N],
-    pub(super) u: [f32; N],
-    pub(super) v: [f32; N],
-    pub(super) prim_id: [u32; N],
-    pub(super) geom_id: [u32; N],
-    pub(super) inst: [[u32; N]; 2],
-}
-
-/// `RTCRayHit8` / `RTCRayHit16`: the ray packet, then the hit packet at byte `48·N`.
-#[repr(C, align(64))]
-#[derive(Clone, Copy)]
-pub(super) struct RayHitN<const N: usize> {
-    pub(super) ray: RayN<N>,
-    pub(super) hit: HitN<N>,
 }
 
 /// The `valid` argument of `rtcIntersect8/16` and `rtcOccluded8/16`: one `int` per lane,

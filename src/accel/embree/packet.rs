@@ -2,18 +2,47 @@
 //! of a [`RayPacket`] of 8 or 16 rays through `rtcIntersect8/16` and `rtcOccluded8/16`, and
 //! the widest packet the library's kernels trace natively on this CPU.
 //!
-//! Each traceable lane (see [`crate::accel::packet`]) becomes an Embree ray with
-//! `tnear = 0`, `tfar = t_max`, time 0, mask `0xFFFF_FFFF` and id = its lane, as the
-//! single-ray queries make it; every other lane is invalid (`valid = 0`) and holds a
-//! harmless finite ray, so NaN or infinite input never reaches Embree's vector code.
+//! The packet's memory is Embree's `RTCRayHit8/16` (checked below, at compile time), so
+//! Embree reads the caller's rays and writes the hits in place: `tnear = 0`, time 0, mask
+//! `0xFFFF_FFFF` and id = lane as the single-ray queries make a ray, `tfar = t_max`. The
+//! traceable lanes are valid (`-1`); every other lane is invalid (`0`) and, when there is
+//! one, the query overwrites its ray with a harmless finite one (origin 0, direction
+//! (1, 1, 1), `tfar = 0`), so NaN or infinite input never reaches Embree's vector code.
 
-use super::ffi::{HitN, QueryArgs, RayHitN, RayN, ValidN, INVALID_ID};
+use super::ffi::{QueryArgs, ValidN};
 use super::EmbreeAccel;
 use crate::accel::packet::{
-    closest_lanes, lanes, occluded_lanes, Coherence, HitPacket, LaneMask, Lanes, PacketWidth,
-    RayPacket,
+    closest_lanes, mask_where, occluded_lanes, Coherence, HitPacket, LaneMask, Lanes, PacketWidth,
+    RayPacket, NO_GEOMETRY,
 };
 use embree4_sys as sys;
+use std::mem::{align_of, offset_of, size_of};
+
+/// `RayPacket<N>` is `RTCRayHitN` (the 4.2 bindings agree with 4.4 on everything before the
+/// instance fields): the ray fields where `RTCRayN` has them, the hit packet at byte `48·N`
+/// with `RTCHitN`'s fields, 9·4·`N` bytes of which Embree 4.4 writes, and Embree's
+/// alignment (32 bytes at `N` = 8, 64 at 16).
+const _: () = {
+    assert!(offset_of!(RayPacket<8>, org_x) == offset_of!(sys::RTCRay8, org_x));
+    assert!(offset_of!(RayPacket<8>, dir_x) == offset_of!(sys::RTCRay8, dir_x));
+    assert!(offset_of!(RayPacket<8>, t_max) == offset_of!(sys::RTCRay8, tfar));
+    assert!(offset_of!(RayPacket<8>, hits) == offset_of!(sys::RTCRayHit8, hit));
+    assert!(offset_of!(RayPacket<16>, org_x) == offset_of!(sys::RTCRay16, org_x));
+    assert!(offset_of!(RayPacket<16>, dir_x) == offset_of!(sys::RTCRay16, dir_x));
+    assert!(offset_of!(RayPacket<16>, t_max) == offset_of!(sys::RTCRay16, tfar));
+    assert!(offset_of!(RayPacket<16>, hits) == offset_of!(sys::RTCRayHit16, hit));
+    assert!(offset_of!(HitPacket<8>, u) == offset_of!(sys::RTCHit8, u));
+    assert!(offset_of!(HitPacket<8>, prim) == offset_of!(sys::RTCHit8, primID));
+    assert!(offset_of!(HitPacket<8>, geom) == offset_of!(sys::RTCHit8, geomID));
+    assert!(offset_of!(HitPacket<16>, u) == offset_of!(sys::RTCHit16, u));
+    assert!(offset_of!(HitPacket<16>, v) == offset_of!(sys::RTCHit16, v));
+    assert!(offset_of!(HitPacket<16>, prim) == offset_of!(sys::RTCHit16, primID));
+    assert!(offset_of!(HitPacket<16>, geom) == offset_of!(sys::RTCHit16, geomID));
+    assert!(offset_of!(HitPacket<8>, hit) >= 9 * 4 * 8);
+    assert!(offset_of!(HitPacket<16>, hit) >= 9 * 4 * 16);
+    assert!(align_of::<RayPacket<8>>() >= 32 && align_of::<RayPacket<16>>() >= 64);
+    assert!(size_of::<ValidN<16>>() == 4 * 16 && align_of::<ValidN<16>>() >= 64);
+};
 
 impl EmbreeAccel {
     /// The widest packet Embree's kernels trace natively here: 16 when it reports
@@ -35,66 +64,52 @@ impl EmbreeAccel {
     }
 
     /// The closest hit in `[0, t_max)` of every traceable lane of `rays` (one
-    /// `rtcIntersect8/16` call); other lanes get no hit.
-    pub fn closest_packet<const N: usize>(
-        &self,
-        rays: &RayPacket<N>,
-        coherence: Coherence,
-        out: &mut HitPacket<N>,
-    ) where
+    /// `rtcIntersect8/16` call on the packet itself): `rays.hits` and the hit lanes'
+    /// `t_max` hold them afterwards; other lanes get no hit.
+    pub fn closest_packet<const N: usize>(&self, rays: &mut RayPacket<N>, coherence: Coherence)
+    where
         Lanes<N>: PacketWidth,
     {
         let live = rays.traceable();
-        out.hit = 0;
+        rays.hits.hit = 0;
         if live == 0 {
             return;
         }
-        let (valid, ray) = embree_rays(rays, live);
-        let mut rh = RayHitN {
-            ray,
-            hit: HitN {
-                ng_x: [0.0; N],
-                ng_y: [0.0; N],
-                ng_z: [0.0; N],
-                u: [0.0; N],
-                v: [0.0; N],
-                prim_id: [INVALID_ID; N],
-                geom_id: [INVALID_ID; N],
-                inst: [[INVALID_ID; N]; 2],
-            },
-        };
+        if N != 8 && N != 16 {
+            // `PacketWidth` admits only 8 and 16.
+            return closest_lanes(rays, |o, d, t| self.closest(o, d, t));
+        }
+        let valid = valid_lanes(rays, live);
+        rays.hits.geom = [NO_GEOMETRY; N];
         let mut args = query_args(coherence);
-        let v = valid.0.as_ptr();
-        let rh_ptr = &mut rh as *mut RayHitN<N>;
+        let rh_ptr = rays as *mut RayPacket<N>;
         let args_ptr = &mut args as *mut QueryArgs;
-        // SAFETY: the scene is committed; `rh` has the library's `RTCRayHit8/16` layout for
-        // this `N` and `valid` one `int` per lane, both 64-byte aligned (Embree asks for 32
-        // at N = 8, 64 at 16); `args` has the `RTCIntersectArguments` layout. All three
-        // outlive the call.
+        // SAFETY: the scene is committed; `*rays` has the library's `RTCRayHit8/16` layout
+        // for this `N` and Embree's alignment (the assertions above), `valid` one `int` per
+        // lane, 64-byte aligned, `args` the `RTCIntersectArguments` layout. The pointer comes
+        // from the exclusive borrow `rays`, unused until the call returns; all three outlive
+        // the call. Embree writes only `tfar` and the hit fields.
         unsafe {
             match N {
-                8 => sys::rtcIntersect8(v, self.scene, rh_ptr.cast(), args_ptr.cast()),
-                16 => sys::rtcIntersect16(v, self.scene, rh_ptr.cast(), args_ptr.cast()),
-                // `PacketWidth` admits only 8 and 16.
-                _ => return closest_lanes(rays, out, |o, d, t| self.closest(o, d, t)),
+                8 => {
+                    sys::rtcIntersect8(valid.0.as_ptr(), self.scene, rh_ptr.cast(), args_ptr.cast())
+                }
+                _ => sys::rtcIntersect16(
+                    valid.0.as_ptr(),
+                    self.scene,
+                    rh_ptr.cast(),
+                    args_ptr.cast(),
+                ),
             }
         }
-        for lane in lanes(live) {
-            if rh.hit.geom_id[lane] != INVALID_ID {
-                out.t[lane] = rh.ray.tfar[lane];
-                out.prim[lane] = rh.hit.prim_id[lane];
-                out.u[lane] = rh.hit.u[lane];
-                out.v[lane] = rh.hit.v[lane];
-                out.hit |= 1 << lane;
-            }
-        }
+        rays.hits.hit = mask_where::<N>(|i| rays.hits.geom[i] != NO_GEOMETRY);
     }
 
-    /// The traceable lanes of `rays` with anything in `[0, t_max)` (one
-    /// `rtcOccluded8/16` call).
+    /// The traceable lanes of `rays` with anything in `[0, t_max)` (one `rtcOccluded8/16`
+    /// call on the packet itself, which sets an occluded lane's `t_max` to `-∞`).
     pub fn occluded_packet<const N: usize>(
         &self,
-        rays: &RayPacket<N>,
+        rays: &mut RayPacket<N>,
         coherence: Coherence,
     ) -> LaneMask
     where
@@ -104,24 +119,33 @@ impl EmbreeAccel {
         if live == 0 {
             return 0;
         }
-        let (valid, mut ray) = embree_rays(rays, live);
+        if N != 8 && N != 16 {
+            // `PacketWidth` admits only 8 and 16.
+            return occluded_lanes(rays, |o, d, t| self.occluded(o, d, t));
+        }
+        let valid = valid_lanes(rays, live);
         let mut args = query_args(coherence);
-        let v = valid.0.as_ptr();
-        let ray_ptr = &mut ray as *mut RayN<N>;
+        let ray_ptr = rays as *mut RayPacket<N>;
         let args_ptr = &mut args as *mut QueryArgs;
-        // SAFETY: as in `closest_packet`, with the `RTCRay8/16` and `RTCOccludedArguments`
-        // layouts.
+        // SAFETY: as in `closest_packet`: `*rays` begins with the `RTCRay8/16` layout, and
+        // `args` has the `RTCOccludedArguments` layout. Embree writes only `tfar`.
         unsafe {
             match N {
-                8 => sys::rtcOccluded8(v, self.scene, ray_ptr.cast(), args_ptr.cast()),
-                16 => sys::rtcOccluded16(v, self.scene, ray_ptr.cast(), args_ptr.cast()),
-                // `PacketWidth` admits only 8 and 16.
-                _ => return occluded_lanes(rays, |o, d, t| self.occluded(o, d, t)),
+                8 => sys::rtcOccluded8(
+                    valid.0.as_ptr(),
+                    self.scene,
+                    ray_ptr.cast(),
+                    args_ptr.cast(),
+                ),
+                _ => sys::rtcOccluded16(
+                    valid.0.as_ptr(),
+                    self.scene,
+                    ray_ptr.cast(),
+                    args_ptr.cast(),
+                ),
             }
         }
-        lanes(live)
-            .filter(|&lane| ray.tfar[lane] == f32::NEG_INFINITY)
-            .fold(0, |m, lane| m | 1 << lane)
+        live & mask_where::<N>(|i| rays.t_max[i] == f32::NEG_INFINITY)
     }
 }
 
@@ -133,37 +157,31 @@ fn query_args(coherence: Coherence) -> QueryArgs {
     })
 }
 
-/// Embree's valid mask and ray packet for the `live` lanes of `rays`; the other lanes get
-/// `valid = 0` and the finite ray from the origin along (1, 1, 1) with `tfar = 0`.
+/// Embree's valid mask for the `live` lanes of `rays`, as loops over all lanes; when some
+/// lane is not live, its ray becomes the finite ray from the origin along (1, 1, 1) with
+/// `tfar = 0`.
 #[inline]
-fn embree_rays<const N: usize>(rays: &RayPacket<N>, live: LaneMask) -> (ValidN<N>, RayN<N>)
+fn valid_lanes<const N: usize>(rays: &mut RayPacket<N>, live: LaneMask) -> ValidN<N>
 where
     Lanes<N>: PacketWidth,
 {
     let mut valid = ValidN([0; N]);
-    let mut ray = RayN {
-        org_x: [0.0; N],
-        org_y: [0.0; N],
-        org_z: [0.0; N],
-        tnear: [0.0; N],
-        dir_x: [1.0; N],
-        dir_y: [1.0; N],
-        dir_z: [1.0; N],
-        time: [0.0; N],
-        tfar: [0.0; N],
-        mask: [u32::MAX; N],
-        id: std::array::from_fn(|lane| lane as u32),
-        flags: [0; N],
-    };
-    for lane in lanes(live) {
-        valid.0[lane] = -1;
-        ray.org_x[lane] = rays.org_x[lane];
-        ray.org_y[lane] = rays.org_y[lane];
-        ray.org_z[lane] = rays.org_z[lane];
-        ray.dir_x[lane] = rays.dir_x[lane];
-        ray.dir_y[lane] = rays.dir_y[lane];
-        ray.dir_z[lane] = rays.dir_z[lane];
-        ray.tfar[lane] = rays.t_max[lane];
+    for (i, v) in valid.0.iter_mut().enumerate() {
+        *v = -(((live >> i) & 1) as i32);
     }
-    (valid, ray)
+    if live != RayPacket::<N>::FULL {
+        let keep = |x: &mut [f32; N], off: f32| {
+            for (x, &v) in x.iter_mut().zip(&valid.0) {
+                *x = if v != 0 { *x } else { off };
+            }
+        };
+        keep(&mut rays.org_x, 0.0);
+        keep(&mut rays.org_y, 0.0);
+        keep(&mut rays.org_z, 0.0);
+        keep(&mut rays.dir_x, 1.0);
+        keep(&mut rays.dir_y, 1.0);
+        keep(&mut rays.dir_z, 1.0);
+        keep(&mut rays.t_max, 0.0);
+    }
+    valid
 }

@@ -27,7 +27,7 @@ use super::strategy::Strategy;
 use super::vertex;
 use super::walk::{Next, Pending, Rules, Walk};
 use super::Dispersion;
-use crate::accel::packet::{lanes, Coherence, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
+use crate::accel::packet::{lanes, Coherence, LaneMask, Lanes, PacketWidth, RayPacket};
 use crate::accel::Accel;
 use crate::error::{Error, Result};
 use crate::render::{Context, Job, Starts};
@@ -172,7 +172,6 @@ where
     let mut active: LaneMask = 0;
     let (mut next_job, mut rays) = (0, 0);
     let mut packet = RayPacket::<N>::new();
-    let mut raw = HitPacket::<N>::default();
     loop {
         for (i, lane) in lanes_.iter_mut().enumerate() {
             if active & (1 << i) == 0 && next_job < jobs.len() {
@@ -193,14 +192,14 @@ where
         // Always Embree's incoherent traversal: its coherent (frustum) traversal visits
         // the nodes in another order and so breaks exact ties between coplanar overlapping
         // triangles differently from the single-ray query.
-        scene.intersect_packet(&packet, Coherence::Incoherent, &mut raw);
+        scene.intersect_packet(&mut packet, Coherence::Incoherent);
         let mut ended: LaneMask = 0;
         let mut shadows = RayPacket::<N>::new();
         for i in lanes(active) {
             let lane = &mut lanes_[i];
             lane.ctx.rays += 1;
             let w = &lane.walk;
-            let hit = w.st.meet.or_else(|| scene.lane_hit(&w.ray, raw.get(i)));
+            let hit = w.st.meet.or_else(|| scene.lane_hit(&w.ray, packet.hit(i)));
             let arrival = shading::arrival(scene, &w.ray, hit, &w.st.media, &w.lambda);
             let (nee, next) = vertex::vertex(
                 scene,
@@ -224,7 +223,7 @@ where
             }
         }
         let blocked = if shadows.active() != 0 {
-            scene.occluded_packet(&shadows)
+            scene.occluded_packet(&mut shadows)
         } else {
             0
         };

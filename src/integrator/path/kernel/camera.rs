@@ -15,7 +15,7 @@
 //! shared edge or plane meets).
 
 use super::shade::Rays;
-use crate::accel::packet::{Coherence, HitPacket, Lanes, PacketWidth, RayPacket};
+use crate::accel::packet::{Coherence, Lanes, PacketWidth, RayPacket};
 use crate::accel::RawHit;
 use crate::render::{Context, Job, Starts};
 use crate::scene::Scene;
@@ -28,8 +28,6 @@ pub struct CameraRays<const N: usize> {
     ctx: [Box<Context>; N],
     /// Their camera rays.
     rays: RayPacket<N>,
-    /// Their first hits.
-    hits: HitPacket<N>,
     /// The batch index of the chunk's first job.
     first: usize,
     /// Jobs in the chunk, and jobs of it taken so far.
@@ -57,7 +55,6 @@ where
         CameraRays {
             ctx: std::array::from_fn(|_| Box::new(starts.context())),
             rays: RayPacket::new(),
-            hits: HitPacket::default(),
             first: 0,
             len: 0,
             taken: 0,
@@ -90,7 +87,7 @@ where
                 [r.dir_x[l], r.dir_y[l], r.dir_z[l]],
                 r.t_max[l],
             ),
-            hit: self.hits.get(l),
+            hit: self.rays.hit(l),
         })
     }
 
@@ -112,7 +109,7 @@ where
             self.rays.set(l, ray.origin, ray.dir, ray.t_max);
         }
         self.rays.set_active(((1u64 << len) - 1) as u32);
-        scene.intersect_packet(&self.rays, Coherence::Coherent, &mut self.hits);
+        scene.intersect_packet(&mut self.rays, Coherence::Coherent);
         (self.first, self.len, self.taken) = (first, len, 0);
         Some(())
     }

@@ -23,7 +23,8 @@ use super::handoff::{self, Handed};
 use super::hits::{Hits, V3};
 use super::numbers::{Draws, Vertices};
 use super::shade::{glass, lambert, light, Rays, Throughput};
-use crate::accel::packet::{lanes, Coherence, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
+use crate::accel::packet::{lanes, Coherence, LaneMask, Lanes, PacketWidth, RayPacket};
+use crate::accel::RawHit;
 use crate::math::Ray;
 use crate::render::{Context, Job, Starts};
 use crate::scene::Scene;
@@ -91,7 +92,7 @@ impl<const N: usize> Paths<N> {
         self.alive |= 1 << i;
     }
 
-    /// Hands lane `i`, whose ray in `packet` met `raw`'s hit on a material the kernel does
+    /// Hands lane `i`, whose ray in `packet` met its hit on a material the kernel does
     /// not shade, to the scalar path tracer ([`handoff::finish`]) under `rules`, with the
     /// lane's own sample stream: adds the rest of its path's radiance to its own. Returns
     /// the rays traced.
@@ -99,13 +100,13 @@ impl<const N: usize> Paths<N> {
         &mut self,
         i: usize,
         scene: &Scene,
-        (packet, raw): (&RayPacket<N>, &HitPacket<N>),
+        packet: &RayPacket<N>,
         rules: (u32, &Dispersion),
     ) -> u64
     where
         Lanes<N>: PacketWidth,
     {
-        let Some(r) = raw.get(i) else { return 0 };
+        let Some(r) = packet.hit(i) else { return 0 };
         let handed = Handed {
             beta: Vec3::new(self.st.beta[0][i], self.st.beta[1][i], self.st.beta[2][i]),
             eta_scale: self.st.eta_scale[i],
@@ -199,8 +200,7 @@ where
     let mut cameras = CameraRays::<N>::new(starts);
     let mut rays = 0u64;
     let mut packet = RayPacket::<N>::new();
-    let mut raw = HitPacket::<N>::default();
-    let mut first = HitPacket::<N>::default();
+    let mut first: [Option<RawHit>; N] = [None; N];
     let n_lights = tables.lights.len() as u32;
     loop {
         let mut fresh: LaneMask = 0;
@@ -211,7 +211,7 @@ where
                     break;
                 };
                 p.start(i, &s);
-                first.set(i, s.hit);
+                first[i] = s.hit;
                 fresh |= 1 << i;
             }
         }
@@ -221,16 +221,20 @@ where
         let trace = p.alive & !fresh;
         p.packet(&mut packet, trace);
         if trace != 0 {
-            scene.intersect_packet(&packet, Coherence::Incoherent, &mut raw);
+            scene.intersect_packet(&mut packet, Coherence::Incoherent);
             rays += u64::from(trace.count_ones());
         }
+        // The query may overwrite the untraced lanes' rays: the hit records read them.
         for i in lanes(fresh) {
-            raw.set(i, first.get(i));
+            let (o, d) = (&p.next.o, &p.next.d);
+            let dir = Vec3::new(d[0][i], d[1][i], d[2][i]);
+            packet.set(i, Vec3::new(o[0][i], o[1][i], o[2][i]), dir, f32::INFINITY);
+            packet.set_hit(i, first[i]);
         }
-        let hit = raw.hit & p.alive;
-        let h = Hits::new(scene, &tables.shades, &packet, &raw, hit);
+        let hit = packet.hits.hit & p.alive;
+        let h = Hits::new(scene, &tables.shades, &packet, &packet.hits, hit);
         for i in lanes(hit & mask(&h.scalar)) {
-            rays += p.hand_over(i, scene, (&packet, &raw), (max_depth, &dispersion));
+            rays += p.hand_over(i, scene, &packet, (max_depth, &dispersion));
         }
         let at = Vertices {
             index: std::array::from_fn(|i| p.st.depth[i] + p.st.deltas[i]),
@@ -274,7 +278,7 @@ where
             let mut sp = RayPacket::<N>::new();
             rays_into(&shadow, &mut sp);
             sp.set_active(traced);
-            let blocked = scene.occluded_packet(&sp);
+            let blocked = scene.occluded_packet(&mut sp);
             rays += u64::from(traced.count_ones());
             for i in lanes(traced & !blocked) {
                 (0..3).for_each(|c| p.l[c][i] += value[c][i]);
