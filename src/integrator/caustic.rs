@@ -58,14 +58,20 @@ use crate::photon::aim::DEFAULT_AIM;
 use crate::photon::emit::{Aim, EmittedPhoton, PhotonEmitter, PhotonNumbers};
 use crate::photon::grid::HashGrid;
 use crate::photon::store::Photon;
-use crate::photon::trace::{self, MediumVertex, Roulette, TraceSettings};
-use crate::polar::stokes::{angle_between, rotate, Analyzer, Light};
+use crate::photon::trace::{self, Roulette, TraceSettings};
+use crate::polar::stokes::{angle_between, rotate, Analyzer};
 use crate::scene::Scene;
 use crate::shading::polarized::s_basis;
 use crate::shading::Surface;
 use crate::spectrum::Carrier;
 use rayon::prelude::*;
-use std::cell::Cell;
+
+mod chunk;
+#[cfg(test)]
+mod tests;
+
+use chunk::Chunk;
+pub use chunk::Walk;
 
 /// Photons traced per parallel work item (a fixed split: deterministic).
 const CHUNK: u64 = 4096;
@@ -107,113 +113,6 @@ pub fn photons_per_pass(photons: u64, pixels: u64) -> u64 {
     }
 }
 
-/// What one fixed chunk of a pass's photons leaves: surface photons, light tracing's
-/// splats, rays traced and volume photons, in photon order.
-#[derive(Default)]
-struct Chunk {
-    surface: Vec<Photon>,
-    splats: Vec<Splat>,
-    rays: u64,
-    volume: Vec<Photon>,
-    /// Polarized photons: each surface photon's normalized (s₁, s₂, s₃) ([`CausticMap::stokes`]).
-    stokes: Vec<[f32; 3]>,
-}
-
-impl Chunk {
-    /// Traces the photon `ph` and keeps its caustic-origin vertices. The tracer calls back
-    /// at every non-delta event, surface or (in media) scattering; the first decides the
-    /// photon's origin: after ≥ 1 bounce (L S+ D or L S+ M) it is stored at every non-delta
-    /// surface vertex before its first scattering event in a medium (the surface map) and,
-    /// if its first event scattered in a medium, there alone (the volume map: L S+ M only,
-    /// [`super::volume_map`] gives the split); any other photon is not stored. Without media
-    /// this is the caustic map of the module docs. The first surface vertex is flagged
-    /// CAUSTIC, the later ones not ([`CausticMap::density`] can leave it to light tracing);
-    /// with a `splatter`, kept surface vertices are also connected to the camera.
-    fn trace_one<C: Carrier>(
-        &mut self,
-        (scene, settings, splatter): (&Scene, &TraceSettings, Option<&Splatter>),
-        ph: &EmittedPhoton<'_>,
-        lambda: C::Lambda,
-        inv_n: f32,
-        rng: &mut Rng,
-    ) {
-        let origin: Cell<Option<bool>> = Cell::new(None);
-        let decide = |bounces: u32| decide_origin(&origin, bounces);
-        let hero = hero_flag::<C>;
-        let mut camera_rays = 0;
-        let (surface, splats, volume) = (&mut self.surface, &mut self.splats, &mut self.volume);
-        let scattered = Cell::new(false);
-        let keep_volume = |v: &MediumVertex, power: C, l: &C::Lambda| {
-            scattered.set(true);
-            let (first, caustic_origin) = decide(v.bounces);
-            if first && caustic_origin && power != C::ZERO {
-                volume.push(Photon::new(v.p, v.wi, (power * inv_n).to_lanes(), hero(l)));
-            }
-        };
-        let keep_surface = |v: &trace::PhotonVertex<C>, l: &C::Lambda| {
-            let (first, caustic_origin) = decide(v.bounces);
-            if caustic_origin && !scattered.get() && v.power != C::ZERO {
-                let power = v.power * inv_n;
-                if let Some(sp) = splatter.filter(|sp| first || sp.every_vertex()) {
-                    splats.extend(sp.connect(v, power, l, &mut camera_rays));
-                }
-                let caustic = if first { Photon::CAUSTIC } else { 0 };
-                surface.push(Photon::new(v.p, v.wi, power.to_lanes(), hero(l) | caustic));
-            }
-        };
-        self.rays +=
-            trace::trace_in_media::<C>(scene, ph, lambda, settings, rng, keep_surface, keep_volume);
-        self.rays += camera_rays;
-    }
-
-    /// [`Self::trace_one`] for the polarized hybrid: the photon traced with its Stokes
-    /// vector ([`crate::photon::polarized`]; no media, no light tracing: the plan and
-    /// [`super::hybrid`] refuse them), each kept surface photon with its polarization in the
-    /// basis [`photon_basis`] of its stored direction.
-    fn trace_polarized<C: Carrier>(
-        &mut self,
-        (scene, max_depth): (&Scene, u32),
-        ph: &EmittedPhoton<'_>,
-        lambda: C::Lambda,
-        inv_n: f32,
-        rng: &mut Rng,
-    ) {
-        let origin = Cell::new(None);
-        let (surface, stokes) = (&mut self.surface, &mut self.stokes);
-        let keep = |v: &trace::PhotonVertex<C>, light: &Light, l: &C::Lambda| {
-            let (first, caustic_origin) = decide_origin(&origin, v.bounces);
-            if !caustic_origin || v.power == C::ZERO {
-                return;
-            }
-            let flags = hero_flag::<C>(l) | if first { Photon::CAUSTIC } else { 0 };
-            let p = Photon::new(v.p, v.wi, (v.power * inv_n).to_lanes(), flags);
-            let s = light.in_basis(photon_basis(&p));
-            surface.push(p);
-            stokes.push([s[1], s[2], s[3]]);
-        };
-        self.rays += crate::photon::polarized::trace::<C>(scene, ph, lambda, max_depth, rng, keep);
-    }
-}
-
-/// At a photon's non-delta event after `bounces` bounces: whether it is the first (which
-/// decides the photon's origin, kept in `origin`) and whether the photon is caustic-origin
-/// (its first non-delta event came after ≥ 1 bounce).
-fn decide_origin(origin: &Cell<Option<bool>>, bounces: u32) -> (bool, bool) {
-    let first = origin.get().is_none();
-    let o = origin.get().unwrap_or(bounces > 0);
-    origin.set(Some(o));
-    (first, o)
-}
-
-/// [`Photon::HERO_ONLY`] for a photon that kept its hero wavelength alone, else 0.
-fn hero_flag<C: Carrier>(l: &C::Lambda) -> u32 {
-    if C::is_hero_only(l) {
-        Photon::HERO_ONLY
-    } else {
-        0
-    }
-}
-
 /// The basis x of a polarized photon's Stokes vector: any unit vector ⊥ its stored
 /// direction of travel −wi, a function of that direction alone (the gather rebuilds it).
 fn photon_basis(p: &Photon) -> glam::Vec3 {
@@ -235,6 +134,8 @@ pub struct CausticMap {
     /// With polarization: each photon's Stokes vector over s₀ (s₁, s₂, s₃) in the basis
     /// [`photon_basis`], by photon index.
     stokes: Vec<[f32; 3]>,
+    /// How far its photons are followed ([`Walk`]; polarized photons walk in full).
+    walk: Walk,
 }
 
 impl CausticMap {
@@ -251,6 +152,14 @@ impl CausticMap {
     pub fn polarized(self) -> CausticMap {
         CausticMap {
             polarized: true,
+            ..self
+        }
+    }
+
+    /// The same map with its photons walked in full ([`Walk::Full`]: the pilot's maps).
+    pub fn full_walks(self) -> CausticMap {
+        CausticMap {
+            walk: Walk::Full,
             ..self
         }
     }
@@ -280,7 +189,7 @@ impl CausticMap {
         let budget = StoreBudget::default();
         let inv_n = 1.0 / n.max(1) as f32;
         let numbers = PhotonNumbers::new(seed ^ KEY);
-        let polarized = self.polarized;
+        let (polarized, walk) = (self.polarized, self.walk);
         let per_chunk: Vec<Chunk> = (0..n.div_ceil(CHUNK))
             .into_par_iter()
             .map(|c| {
@@ -296,7 +205,7 @@ impl CausticMap {
                         let run = (scene, max_depth);
                         chunk.trace_polarized::<C>(run, &ph, lambda, inv_n, &mut rng);
                     } else {
-                        let run = (scene, &settings, splatter);
+                        let run = (scene, &settings, splatter, walk);
                         chunk.trace_one::<C>(run, &ph, lambda, inv_n, &mut rng);
                     }
                     if !budget.add(chunk.surface.len() - before) {

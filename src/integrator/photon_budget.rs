@@ -17,7 +17,9 @@
 //! each summed over the pilot's pixels and channels with the relative MSE's weight
 //! 1/(m² + ε) ([`REL_EPS`], m the pilot's pixel mean), and R_P, R_C the rays per camera path
 //! and per photon. Work is counted in rays, not seconds, so the choice is a pure function of
-//! the scene, seed and size: every shard of a render makes the same one.
+//! the scene, seed and size: every shard of a render makes the same one. R_C counts a
+//! photon's full walk ([`super::caustic::Walk::Full`]), though the render's passes end a
+//! photon once nothing more of it can be stored.
 //!
 //! The map's variance grows as its radius shrinks (as 1/r² for a kernel estimate), so the
 //! optimum grows with the pass: pass i traces `n*(r₀)·r₀/rᵢ` photons ([`PhotonBudget::per_pass`]),
@@ -153,8 +155,8 @@ pub fn choose<C: Carrier>(
     let half = (pixels.clamp(1, MAX_PHOTONS) / 2).max(1);
     let lambda = pass_lambda::<C>(0, settings.seed);
     let (mut a, mut b) = (
-        CausticMap::new(radius, alpha),
-        CausticMap::new(radius, alpha),
+        CausticMap::new(radius, alpha).full_walks(),
+        CausticMap::new(radius, alpha).full_walks(),
     );
     let mut rays = 0;
     for (pass, map) in [(0, &mut a), (1, &mut b)] {

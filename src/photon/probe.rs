@@ -17,6 +17,7 @@ use crate::math::Rng;
 use crate::photon::aim::Aim;
 use crate::scene::Scene;
 use glam::Vec3;
+use std::ops::ControlFlow;
 
 /// Whether, among `n` photons from the lights (fixed seed, RGB, emitted as the renderers
 /// emit them: Halton numbers, aimed at the caustic makers with [`DEFAULT_AIM`]), at least
@@ -109,7 +110,7 @@ pub fn volume_caustic_share(scene: &Scene, emitter: &PhotonEmitter, n: u32) -> f
             (),
             &settings,
             &mut rng,
-            |_, _| {},
+            |_, _| ControlFlow::Continue(()),
             |v, power, _| {
                 if std::mem::take(&mut first) {
                     let y = f64::from(crate::light::env::luminance(power));
@@ -120,6 +121,7 @@ pub fn volume_caustic_share(scene: &Scene, emitter: &PhotonEmitter, n: u32) -> f
                         }
                     }
                 }
+                ControlFlow::Continue(())
             },
         );
     }

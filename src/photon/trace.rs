@@ -33,6 +33,7 @@ use crate::shading::{self, media, Arrival, Event, Surface};
 use crate::spectrum::Carrier;
 use crate::volume::coarse::Scale;
 use glam::{Vec2, Vec3};
+use std::ops::ControlFlow;
 
 /// How photon paths are terminated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -116,8 +117,8 @@ enum Flight {
 /// Free flight of a photon (`beta`, `lambda` along `ray` between its `ends`): a chromatic
 /// medium keeps the hero only, then [`media::fly`] (at the fine scale: photon walks count
 /// every event against `max_depth`). At a scattering event `store(vertex, power, lambda)` is
-/// called (the vertex's `bounces` and `caustic` are the caller's to fill), the photon is
-/// rouletted on the flight's weight (survivors keep their power), the light's range window
+/// called (the vertex's `bounces` and `caustic` are the caller's to fill; `Break` ends the
+/// photon there, [`Flight::Absorbed`]), the photon is rouletted on the flight's weight (survivors keep their power), the light's range window
 /// `range` applied on its first flight, and the photon leaves along a phase-sampled
 /// direction as the event lets it ([`media::Scattered::leave`]): `ray` and `next` set.
 /// `next` says where `ray` left from (a free point of a medium: `media` are checked first,
@@ -127,7 +128,7 @@ fn scatter_in_medium<C: Carrier>(
     (beta, lambda, ray): (&mut C, &mut C::Lambda, &mut crate::math::Ray),
     (range, next): (Option<f32>, &mut Leaving),
     rng: &mut Rng,
-    store: impl FnOnce(MediumVertex, C, &C::Lambda),
+    store: impl FnOnce(MediumVertex, C, &C::Lambda) -> ControlFlow<()>,
 ) -> Flight {
     if let Leaving::Point = next {
         *media = media::starting(scene, *media, at.map(|a| (&a.hit, &a.coincident)));
@@ -162,7 +163,9 @@ fn scatter_in_medium<C: Carrier>(
         bounces: 0,
         caustic: false,
     };
-    store(v, *beta, lambda);
+    if store(v, *beta, lambda).is_break() {
+        return Flight::Absorbed;
+    }
     let Some(survive) = roulette(survive, Draw::UnlessDead, || rng.next_f32()) else {
         return Flight::Absorbed;
     };
@@ -270,9 +273,15 @@ pub fn trace<C: Carrier>(
     lambda: C::Lambda,
     settings: &TraceSettings,
     rng: &mut Rng,
-    store: impl FnMut(&PhotonVertex<C>, &C::Lambda),
+    mut store: impl FnMut(&PhotonVertex<C>, &C::Lambda),
 ) -> u64 {
-    trace_in_media(scene, photon, lambda, settings, rng, store, |_, _, _| {})
+    let store = |v: &PhotonVertex<C>, l: &C::Lambda| {
+        store(v, l);
+        ControlFlow::Continue(())
+    };
+    trace_in_media(scene, photon, lambda, settings, rng, store, |_, _, _| {
+        ControlFlow::Continue(())
+    })
 }
 
 /// [`trace`], also reporting the photon's scattering events in media:
@@ -285,14 +294,19 @@ pub fn trace<C: Carrier>(
 /// function exactly (value / density = 1; phase functions are symmetric, so importance and
 /// radiance transport agree) and is rouletted on the flight's weight. A medium event
 /// counts as a non-delta bounce.
+///
+/// Either callback returning `Break` ends the photon at that event (no BSDF or phase
+/// sample, no further ray): a caller that can store nothing more from this photon (the
+/// caustic map, once the photon's first non-delta event says it is not caustic-origin)
+/// saves the rest of its walk. The vertices reported before are those of the full walk.
 pub fn trace_in_media<C: Carrier>(
     scene: &Scene,
     photon: &EmittedPhoton,
     mut lambda: C::Lambda,
     settings: &TraceSettings,
     rng: &mut Rng,
-    mut store: impl FnMut(&PhotonVertex<C>, &C::Lambda),
-    mut store_medium: impl FnMut(&MediumVertex, C, &C::Lambda),
+    mut store: impl FnMut(&PhotonVertex<C>, &C::Lambda) -> ControlFlow<()>,
+    mut store_medium: impl FnMut(&MediumVertex, C, &C::Lambda) -> ControlFlow<()>,
 ) -> u64 {
     let mut beta = C::emitted(photon.power, photon.shape, &lambda);
     let mut ray = photon.ray;
@@ -373,7 +387,9 @@ pub fn trace_in_media<C: Carrier>(
                 caustic: bounces > 0 && all_specular,
                 surface: s,
             };
-            store(&v, &lambda);
+            if store(&v, &lambda).is_break() {
+                break;
+            }
         }
         let Some((wi, transmission, delta)) = next_direction(s, settings.roulette, &mut beta, rng)
         else {
