@@ -48,6 +48,10 @@ pub struct Hits<const N: usize> {
     pub rgb: V3<N>,
     /// The dielectric's η (1 elsewhere).
     pub eta: [f32; N],
+    /// The triangle's material index.
+    pub material: [u32; N],
+    /// The triangle's index.
+    pub prim: [u32; N],
 }
 
 /// What is gathered per lane: the triangle's vertices and vertex normals (zero without
@@ -82,6 +86,8 @@ where
             glass: [false; N],
             rgb: zero3(),
             eta: [1.0; N],
+            material: [0; N],
+            prim: raw.prim,
         };
         let g = h.gather(scene, shades, raw, hit);
         h.geometry(&g, rays);
@@ -119,6 +125,7 @@ where
                     g.n[k][2][i] = q.z;
                 }
             }
+            self.material[i] = tri.material();
             match shades[tri.material() as usize] {
                 Shade::Lambert(albedo) => {
                     self.lambert[i] = true;

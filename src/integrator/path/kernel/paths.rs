@@ -7,16 +7,20 @@
 //! ([`Scene::occluded_packet`]) and adds what they let through; a lane whose path ended
 //! writes its radiance to its job's slot and takes the batch's next job (refill).
 //!
-//! A path that escapes ends (the kernel's scenes have no environment). Each lane draws
+//! Light a path meets (an emitter's emission, the environment on escape) and Beer–Lambert
+//! absorption are [`super::emitters`] and [`super::volumes`]; a path that escapes ends
+//! there. Each lane draws
 //! one vertex's decisions per turn ([`Draws`]) from its own stream ([`super::rng`]), so a
 //! job's numbers, and its estimate, do not depend on its lane, its neighbours or the
 //! packet width.
 
+use super::emitters::{arrive, next_event};
 use super::features::Tables;
 use super::hits::{Hits, V3};
 use super::numbers::Draws;
 use super::rng;
-use super::shade::{glass, lambert, light, Rays, Throughput};
+use super::shade::{glass, lambert, Rays, Throughput};
+use super::volumes::absorb;
 use crate::accel::packet::{lanes, Coherence, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
 use crate::render::{Job, Starts};
 use crate::scene::Scene;
@@ -43,12 +47,7 @@ impl<const N: usize> Paths<N> {
     fn new() -> Self {
         Paths {
             next: Rays::new(),
-            st: Throughput {
-                beta: [[0.0; N]; 3],
-                eta_scale: [1.0; N],
-                depth: [0; N],
-                deltas: [0; N],
-            },
+            st: Throughput::new(),
             l: [[0.0; N]; 3],
             job: [0; N],
             counter: [0; N],
@@ -76,6 +75,7 @@ impl<const N: usize> Paths<N> {
         self.st.eta_scale[i] = 1.0;
         self.st.depth[i] = 0;
         self.st.deltas[i] = 0;
+        self.st.restart(i);
         self.job[i] = j as u32;
         (self.counter[i], self.salt[i]) = (counter, salt);
         self.alive |= 1 << i;
@@ -131,7 +131,6 @@ where
     let (mut next_job, mut rays) = (0usize, 0u64);
     let mut packet = RayPacket::<N>::new();
     let mut raw = HitPacket::<N>::default();
-    let n_lights = tables.lights.len() as u32;
     loop {
         for i in 0..N {
             if p.alive & (1 << i) == 0 && next_job < jobs.len() {
@@ -147,24 +146,22 @@ where
         rays += u64::from(p.alive.count_ones());
         let hit = raw.hit & p.alive;
         let h = Hits::new(scene, &tables.shades, &packet, &raw, hit);
+        absorb(tables, (&packet, &raw), (&h, hit), &mut p.st);
+        arrive(
+            (tables, scene),
+            &packet,
+            &h,
+            (hit, p.alive),
+            &p.st,
+            &mut p.l,
+        );
         let u = Draws::draw(&mut p.counter, &p.salt);
-        let k: [u32; N] = std::array::from_fn(|i| {
-            ((u.light_choice[i] * n_lights as f32) as u32).min(n_lights.max(1) - 1)
-        });
         let mut value: V3<N> = [[0.0; N]; 3];
         let mut shadow = Rays::<N>::new();
         let mut traced = [false; N];
         let beta = p.st.beta;
-        light(
-            &tables.lights,
-            &k,
-            &h.lambert,
-            &h,
-            &beta,
-            &mut value,
-            &mut shadow,
-            &mut traced,
-        );
+        let out_nee = (&mut value, &mut shadow, &mut traced);
+        next_event((tables, scene), &u, (&h.lambert, &h, &beta), out_nee);
         let ends_l = lambert(
             &h.lambert,
             &h,
