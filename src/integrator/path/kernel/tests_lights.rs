@@ -51,8 +51,8 @@ fn lamp_scene(environment: Option<Environment>) -> Scene {
 /// [`super::tests`]'s agreement test: every 4×4 block within 5 σ, the image mean within 4
 /// standard errors), and the image is lit.
 fn agrees(scene: &Scene) {
-    let k = kernel_image(scene, &settings(512, 21), 16);
-    let s = scalar_image(scene, &settings(512, 22));
+    let k = kernel_image(scene, &settings(256, 21), 16);
+    let s = scalar_image(scene, &settings(256, 22));
     let (worst, mean) = z_scores(&k, &s, 4);
     assert!(worst < 5.0, "a block differs by {worst:.2} σ");
     assert!(
