@@ -16,16 +16,14 @@ use crate::material::MaterialDesc;
 use crate::scene::desc::{MeshDesc, SceneDesc};
 use glam::Vec3;
 
-/// A quad of half-size `h` centred at `c`, facing down (−y).
+/// A quad of half-size `h` centred at `c`, facing down (−y): the test floor (half-size 3,
+/// facing up) scaled, moved and turned over.
 fn lamp_quad(c: Vec3, h: f32, material: usize) -> MeshDesc {
-    let p = [(-h, -h), (h, -h), (h, h), (-h, h)].map(|(x, z)| c + Vec3::new(x, 0.0, z));
-    MeshDesc {
-        name: "lamp".into(),
-        positions: p.to_vec(),
-        indices: vec![[0, 1, 2], [0, 2, 3]],
-        material: Some(material),
-        ..Default::default()
-    }
+    let mut q = floor(material);
+    q.name = "lamp".into();
+    q.positions.iter_mut().for_each(|p| *p = c + *p * (h / 3.0));
+    q.indices.iter_mut().for_each(|t| t.swap(1, 2));
+    q
 }
 
 /// The floor, the glass sphere and a single-sided black Lambert quad emitting (6, 5, 4)

@@ -40,17 +40,19 @@ pub fn absorb<const N: usize>(
     if !any {
         return;
     }
-    for i in 0..N {
+    let x: [f32; N] = std::array::from_fn(|i| {
         let d = [rays.dir_x[i], rays.dir_y[i], rays.dir_z[i]];
-        let x = raw.t[i] * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-        for c in 0..3 {
+        raw.t[i] * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
+    });
+    for (beta, sigma) in st.beta.iter_mut().zip(&sigma) {
+        for ((b, s), x) in beta.iter_mut().zip(sigma).zip(&x) {
             // σ = ∞ (a black channel) at x = 0 would be NaN: c^0 = 1.
-            let t = if sigma[c][i] > 0.0 && x > 0.0 {
-                (-sigma[c][i] * x).exp()
+            let t = if *s > 0.0 && *x > 0.0 {
+                (-s * x).exp()
             } else {
                 1.0
             };
-            st.beta[c][i] *= t;
+            *b *= t;
         }
     }
 }
