@@ -1,26 +1,35 @@
 //! Which scenes the SoA kernel renders ([`qualify`]), and what it reads of them: a table of
-//! the materials on triangles ([`Shade`]) and of the punctual lights ([`Punctual`]).
+//! the materials on triangles ([`Shade`]), their emission and absorption, the punctual
+//! lights ([`Punctual`]) and the lights next-event estimation chooses among.
 //!
-//! The kernel's scene class: RGB transport, a perspective camera, punctual lights only
-//! (point, spot, directional), no emissive surface, environment, medium or fog, alpha
-//! mask or touching faces. Anything else is refused with the reason (one line), and the
-//! scalar path tracer renders the scene instead.
+//! The kernel's scene class: RGB transport, a perspective camera, lights of any kind the
+//! scalar path tracer samples (punctual lights, emissive triangles, an environment: uniform,
+//! a map or a sky) chosen uniformly, no medium or fog, alpha mask or touching faces, and no
+//! glass volume that may lie inside another. Anything else is refused with the reason (one
+//! line), and the scalar path tracer renders the scene instead.
 //!
 //! In such a scene the kernel shades two lobes across the lanes:
 //! - a **pure Lambert lobe**: opaque, untextured, metallic 0, `specular` 0
 //!   (`make_variant.py --spec0`; the glTF BRDF with F0 = F90 = 0 is albedo/π, sampled by
-//!   cosine alone, [`crate::bsdf::gltf_brdf`]), no layers, film, anisotropy or metal;
-//! - a **smooth clear dielectric volume**: transmission 1, roughness 0, thickness > 0, a
-//!   finite index, no absorption (infinite attenuation distance), untextured, at most one
-//!   such material (so volumes never nest and η is the material's index against air).
+//!   cosine alone, [`crate::bsdf::gltf_brdf`]), no layers, film, anisotropy or metal; it
+//!   may emit (a black one, as the usual area light, scatters nothing);
+//! - a **smooth dielectric volume**: transmission 1, roughness 0, thickness > 0, a finite
+//!   index, untextured, absorbing or not (Beer–Lambert, [`Material::absorbs`]).
 //!
-//! Every other material ([`Shade::Scalar`]: textured, layered, specular or metal, rough,
-//! thin or absorbing glass, crystals, polarizers, alpha blending) is the scalar path
+//! Several dielectric materials are taken when no glass volume can lie inside another: the
+//! bounding boxes of the meshes carrying a kernel dielectric are pairwise disjoint (a
+//! closed volume lies inside its mesh's box, so a volume inside another would put one box
+//! inside the other) and no faces touch ([`Scene::touching_triangles`]); the η at a hit is
+//! then the material's index against air.
+//!
+//! Every other material ([`Shade::Scalar`]: textured, layered, specular or metal, rough or
+//! thin glass, crystals, polarizers, alpha blending; emitting or not) is the scalar path
 //! vertex's: a lane meeting it hands its path over ([`super::handoff`]), and the plan
 //! names each such material with the reason.
 
 use crate::light::sampler::Rule;
 use crate::light::Light;
+use crate::light::LightId;
 use crate::material::{AlphaMode, Material};
 use crate::scene::Scene;
 
@@ -71,12 +80,20 @@ pub struct Punctual {
 pub struct Tables {
     /// Per material index (as [`crate::scene::Triangle::material`]).
     pub shades: Vec<Shade>,
-    /// The punctual lights, chosen uniformly for next-event estimation as the scene's
-    /// light sampler chooses them ([`crate::light::sampler::Rule::Uniform`]).
+    /// The punctual lights, in the scene's order.
     pub lights: Vec<Punctual>,
     /// The materials on triangles the kernel leaves to the scalar vertex, each named with
     /// the reason (for the plan).
     pub scalar: Vec<String>,
+    /// The lights next-event estimation chooses among, each with probability 1/n, in the
+    /// order of the scene's light sampler ([`crate::light::sampler::Rule::Uniform`]).
+    pub sampled: Vec<LightId>,
+    /// Per material index: the emitted radiance (linear RGB; zero for none) and whether it
+    /// leaves both sides.
+    pub emission: Vec<([f32; 3], bool)>,
+    /// Per material index: the Beer–Lambert absorption coefficient σ per channel (per unit
+    /// length, `transmittance_at(x)` = e^(−σx) = c^(x/d)); zero where nothing absorbs.
+    pub absorption: Vec<[f32; 3]>,
 }
 
 /// The tables of `scene` seen through a perspective camera (`perspective`) in RGB
@@ -90,9 +107,6 @@ pub fn qualify(scene: &Scene, perspective: bool, spectral: bool) -> Result<Table
     }
     if scene.has_media() {
         return Err("a scattering medium or fog".into());
-    }
-    if scene.environment().is_some() {
-        return Err("an environment light".into());
     }
     if scene.has_cutouts() {
         return Err("alpha-masked materials".into());
@@ -111,8 +125,6 @@ pub fn qualify(scene: &Scene, perspective: bool, spectral: bool) -> Result<Table
     for (m, used) in scene.materials().iter().zip(used) {
         if !used {
             shades.push(Shade::Unused);
-        } else if m.emission() != glam::Vec3::ZERO {
-            return Err(format!("{} emits light", element(m)));
         } else {
             shades.push(shade(m).unwrap_or_else(|why| {
                 scalar.push(why);
@@ -120,21 +132,68 @@ pub fn qualify(scene: &Scene, perspective: bool, spectral: bool) -> Result<Table
             }));
         }
     }
-    let glasses = shades
-        .iter()
-        .filter(|s| matches!(s, Shade::Glass { .. }))
-        .count();
-    if glasses > 1 {
+    if let Some((a, b)) = overlapping_glass(scene, &shades) {
         return Err(format!(
-            "{glasses} dielectric materials (the kernel takes one, so volumes never nest)"
+            "the glass meshes {a} and {b} have overlapping bounding boxes (one volume might \
+             lie inside the other)"
         ));
     }
     let lights = scene.lights().iter().map(|l| punctual(&l.light)).collect();
+    let emission = scene
+        .materials()
+        .iter()
+        .map(|m| (m.emission().to_array(), m.desc.double_sided))
+        .collect();
+    let absorption = scene.materials().iter().map(absorption).collect();
     Ok(Tables {
         shades,
         lights,
         scalar,
+        sampled: scene.light_sampler().lights().to_vec(),
+        emission,
+        absorption,
     })
+}
+
+/// σ = −ln(c)/d per channel of `m`'s attenuation colour c and distance d where it bounds a
+/// volume that absorbs ([`Material::is_volume`], [`Material::absorbs`]), else zero.
+fn absorption(m: &Material) -> [f32; 3] {
+    if !(m.is_volume() && m.absorbs()) {
+        return [0.0; 3];
+    }
+    let d = m.desc.attenuation_distance;
+    m.desc.attenuation_color.to_array().map(|c| -c.ln() / d)
+}
+
+/// Two meshes carrying a dielectric whose bounding boxes overlap, by name; `None` when the
+/// boxes are pairwise disjoint (so no glass volume lies inside another).
+fn overlapping_glass(scene: &Scene, shades: &[Shade]) -> Option<(String, String)> {
+    let empty = (glam::Vec3::INFINITY, glam::Vec3::NEG_INFINITY);
+    let mut boxes = vec![None::<(glam::Vec3, glam::Vec3)>; scene.meshes().len()];
+    for t in scene.triangles() {
+        if matches!(shades[t.material() as usize], Shade::Glass { .. }) {
+            let b = &mut boxes[t.mesh as usize];
+            let (lo, hi) = b.unwrap_or(empty);
+            *b = Some(
+                t.p.iter()
+                    .fold((lo, hi), |(l, h), q| (l.min(*q), h.max(*q))),
+            );
+        }
+    }
+    let glass: Vec<(usize, glam::Vec3, glam::Vec3)> = boxes
+        .iter()
+        .enumerate()
+        .filter_map(|(k, b)| b.map(|(lo, hi)| (k, lo, hi)))
+        .collect();
+    let name = |k: usize| scene.meshes()[k].name.clone();
+    for (i, &(a, alo, ahi)) in glass.iter().enumerate() {
+        for &(b, blo, bhi) in &glass[i + 1..] {
+            if alo.cmple(bhi).all() && blo.cmple(ahi).all() {
+                return Some((name(a), name(b)));
+            }
+        }
+    }
+    None
 }
 
 /// `m` named as an element of its file (loaded materials are named so already:
@@ -191,8 +250,6 @@ fn shade(m: &Material) -> Result<Shade, String> {
         Some("is a thin sheet")
     } else if d.roughness != 0.0 {
         Some("is rough glass")
-    } else if d.attenuation_distance.is_finite() {
-        Some("absorbs (finite attenuation distance)")
     } else if !(eta.is_finite() && eta > 0.0) {
         Some("has an infinite index (ior 0)")
     } else {

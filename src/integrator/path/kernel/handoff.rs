@@ -8,10 +8,9 @@
 //! What carries over: the radiance so far (the caller keeps it and adds the rest),
 //! throughput, η scale, the non-delta and delta bounce counts (so the depth limit, the
 //! delta cap and Russian roulette continue where they were), the vertex count, delta
-//! bounces since the last non-delta one, and the medium the lane is in (the kernel's one
-//! glass, or air). The previous bounce's MIS record is set to a delta bounce: it is read
-//! only when the path meets emission, and the kernel's scenes emit from punctual lights
-//! alone ([`super::features`]).
+//! bounces since the last non-delta one, the glass volume the lane is in (or air) and the
+//! previous bounce's MIS record. The hand-over happens before the kernel counts anything
+//! at the hit: the scalar vertex takes the segment's absorption and the hit's emission.
 //!
 //! [`Shade::Scalar`]: super::features::Shade::Scalar
 
@@ -39,6 +38,8 @@ pub struct Handed {
     pub since_diffuse: Option<u32>,
     /// The volumetric material the lane is inside (`None`: air).
     pub inside: Option<u32>,
+    /// The previous bounce, for MIS of emission the path meets next.
+    pub prev: Prev,
 }
 
 /// The rest of the path whose ray `ray` met `raw` with the state `handed`: the radiance
@@ -64,11 +65,7 @@ pub fn finish(
     st.vertex = handed.depth + handed.deltas;
     st.since_diffuse = handed.since_diffuse;
     st.direct = st.vertex == 0;
-    st.prev = Prev {
-        delta: true,
-        pdf: 0.0,
-        p: ray.origin,
-    };
+    st.prev = handed.prev;
     if let Some(m) = handed.inside {
         let priority = scene.materials()[m as usize].desc.priority;
         st.media = MediumStack::new().entered(m, priority);

@@ -51,8 +51,10 @@ pub struct Hits<const N: usize> {
     pub rgb: V3<N>,
     /// The dielectric's η (1 elsewhere).
     pub eta: [f32; N],
-    /// The material met (as [`crate::scene::Triangle::material`]).
+    /// The triangle's material index.
     pub material: [u32; N],
+    /// The triangle's index.
+    pub prim: [u32; N],
 }
 
 /// What is gathered per lane: the triangle's vertices and vertex normals (zero without
@@ -89,6 +91,7 @@ where
             rgb: zero3(),
             eta: [1.0; N],
             material: [0; N],
+            prim: raw.prim,
         };
         let g = h.gather(scene, shades, raw, hit);
         h.geometry(&g, rays);

@@ -1,9 +1,9 @@
-//! A structure-of-arrays path kernel (issue 51): `--method path` in RGB on scenes under
-//! punctual lights ([`features`] decides, and says why not), opt-in with the environment
-//! variable `IRIS_KERNEL=soa`. Anything else, or a scene outside the class (a `note:` line
-//! on stderr says why), renders with the scalar path tracer, unchanged. A lane that meets
-//! a material the kernel does not shade hands its path to the scalar vertex
-//! ([`handoff`]).
+//! A structure-of-arrays path kernel (issue 51): `--method path` in RGB on scenes lit by
+//! punctual lights, emissive triangles and an environment ([`features`] decides, and says
+//! why not), opt-in with the environment variable `IRIS_KERNEL=soa`. Anything else, or a
+//! scene outside the class (a `note:` line on stderr says why), renders with the scalar
+//! path tracer, unchanged. A lane that meets a material the kernel does not shade hands
+//! its path to the scalar vertex ([`handoff`]).
 //!
 //! Design: 16 camera paths (8 with `IRIS_LANES=8`) run through one bounce loop
 //! ([`paths::run`]) with their whole state in structure-of-arrays form, lane `i` at index
@@ -12,9 +12,11 @@
 //! [`crate::accel::packet::RayPacket`] and the hits come back as one
 //! [`crate::accel::packet::HitPacket`]; the hit records are built over the lanes
 //! ([`hits`]), with only the triangle's vertices, vertex normals and material gathered per
-//! lane. Shading runs over all lanes with masks per material group ([`shade`]): next-event
-//! estimation at Lambert lanes toward one punctual light chosen as the scalar path tracer
-//! chooses it, the cosine-sampled bounce and Russian roulette; the smooth dielectric's
+//! lane. Beer–Lambert absorption inside glass ([`volumes`]) and the light a path meets
+//! (emission, the environment on escape, MIS-weighted: [`emitters`]) come first; shading
+//! runs over all lanes with masks per material group ([`shade`]): next-event estimation at
+//! Lambert lanes toward one light chosen as the scalar path tracer chooses it ([`emitters`]),
+//! the cosine-sampled bounce and Russian roulette; the smooth dielectric's
 //! Fresnel-weighted reflection or refraction. Shadow rays go out as one packet. A lane whose
 //! path ends writes its job's radiance and takes the next job (refill), so glass paths do
 //! not leave the packet empty. A lane takes its job with the first hit known: the batch's
@@ -43,6 +45,7 @@
 #[cfg(test)]
 mod asset_tests;
 mod camera;
+mod emitters;
 mod features;
 mod handoff;
 mod hits;
@@ -51,6 +54,9 @@ mod paths;
 mod shade;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_lights;
+mod volumes;
 
 pub use features::{qualify, Tables};
 

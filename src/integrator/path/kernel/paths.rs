@@ -10,21 +10,28 @@
 //! ([`Scene::occluded_packet`]) and adds what they let through; a lane whose path ended
 //! writes its radiance to its job's slot and takes the batch's next job (refill).
 //!
-//! A path that escapes ends (the kernel's scenes have no environment). Each lane holds its
-//! job's sample stream, restarted by the render's sampler ([`Starts::start`], which also
-//! makes the camera ray), and draws its vertex's decisions from the scalar path tracer's
-//! schedule ([`Draws`]), so a job's numbers, and its estimate, do not depend on its lane,
-//! its neighbours or the packet width.
+//! Light a path meets (an emitter's emission, the environment on escape) and Beer–Lambert
+//! absorption are [`super::emitters`] and [`super::volumes`]; a path that escapes ends
+//! there. Each lane holds its job's sample stream, restarted by the render's sampler
+//! ([`Starts::start`], which also makes the camera ray), and draws its vertex's decisions
+//! from the scalar path tracer's schedule ([`Draws`]), so a job's numbers, and its
+//! estimate, do not depend on its lane, its neighbours or the packet width. A lane that
+//! meets a material the kernel does not shade hands its path to the scalar vertex
+//! ([`super::handoff`]) before the kernel counts anything at that hit.
 
+use super::super::state::Prev;
 use super::super::Dispersion;
 use super::camera::{ray_into, CameraRays, Started};
+use super::emitters::{arrive, next_event};
 use super::features::Tables;
 use super::handoff::{self, Handed};
 use super::hits::{Hits, V3};
 use super::numbers::{Draws, Vertices};
-use super::shade::{glass, lambert, light, Rays, Throughput};
+use super::shade::{glass, lambert, Rays, Throughput};
+use super::volumes::absorb;
 use crate::accel::packet::{lanes, Coherence, LaneMask, Lanes, PacketWidth, RayPacket};
 use crate::accel::RawHit;
+use crate::light::LightId;
 use crate::math::Ray;
 use crate::render::{Context, Job, Starts};
 use crate::scene::Scene;
@@ -43,16 +50,12 @@ struct Paths<const N: usize> {
     /// Each lane's sample stream (boxed: taking a job swaps pointers, not the sampler's
     /// state).
     ctx: [Box<Context>; N],
-    /// The volumetric material each lane is inside ([`AIR`]: none).
-    inside: [u32; N],
     /// Delta bounces since the last non-delta one ([`NONE_YET`] before the first).
     since: [u32; N],
     /// The lanes with a path in flight.
     alive: LaneMask,
 }
 
-/// [`Paths::inside`] of a lane in air.
-const AIR: u32 = u32::MAX;
 /// [`Paths::since`] of a lane before its first non-delta bounce.
 const NONE_YET: u32 = u32::MAX;
 
@@ -60,16 +63,10 @@ impl<const N: usize> Paths<N> {
     fn new(starts: &Starts) -> Self {
         Paths {
             next: Rays::new(),
-            st: Throughput {
-                beta: [[0.0; N]; 3],
-                eta_scale: [1.0; N],
-                depth: [0; N],
-                deltas: [0; N],
-            },
+            st: Throughput::new(),
             l: [[0.0; N]; 3],
             job: [0; N],
             ctx: std::array::from_fn(|_| Box::new(starts.context())),
-            inside: [AIR; N],
             since: [NONE_YET; N],
             alive: 0,
         }
@@ -86,8 +83,8 @@ impl<const N: usize> Paths<N> {
         self.st.eta_scale[i] = 1.0;
         self.st.depth[i] = 0;
         self.st.deltas[i] = 0;
+        self.st.restart(i);
         self.job[i] = s.job as u32;
-        self.inside[i] = AIR;
         self.since[i] = NONE_YET;
         self.alive |= 1 << i;
     }
@@ -107,13 +104,19 @@ impl<const N: usize> Paths<N> {
         Lanes<N>: PacketWidth,
     {
         let Some(r) = packet.hit(i) else { return 0 };
+        let st = &self.st;
         let handed = Handed {
-            beta: Vec3::new(self.st.beta[0][i], self.st.beta[1][i], self.st.beta[2][i]),
-            eta_scale: self.st.eta_scale[i],
-            depth: self.st.depth[i],
-            deltas: self.st.deltas[i],
+            beta: Vec3::new(st.beta[0][i], st.beta[1][i], st.beta[2][i]),
+            eta_scale: st.eta_scale[i],
+            depth: st.depth[i],
+            deltas: st.deltas[i],
             since_diffuse: (self.since[i] != NONE_YET).then_some(self.since[i]),
-            inside: (self.inside[i] != AIR).then_some(self.inside[i]),
+            inside: st.medium[i].checked_sub(1),
+            prev: Prev {
+                delta: st.prev_delta[i],
+                pdf: st.prev_pdf[i],
+                p: Vec3::new(st.prev_p[0][i], st.prev_p[1][i], st.prev_p[2][i]),
+            },
         };
         let ray = Ray::new(packet.origin(i), packet.dir(i));
         let ctx = &mut self.ctx[i];
@@ -124,9 +127,7 @@ impl<const N: usize> Paths<N> {
     }
 
     /// After the shading of hits `h`: a Lambert bounce is non-delta (no delta bounces
-    /// since); the dielectric counts one more delta bounce and leaves the lane inside its
-    /// volume when the next ray goes to the back of its outward normal (enter and exit by
-    /// the sign of dot(ray, normal), as the intersection layer's rule).
+    /// since); the dielectric counts one more delta bounce.
     #[inline(always)]
     fn track(&mut self, h: &Hits<N>) {
         for i in 0..N {
@@ -135,9 +136,6 @@ impl<const N: usize> Paths<N> {
             } else {
                 self.since[i] + 1
             };
-            let d = [self.next.d[0][i], self.next.d[1][i], self.next.d[2][i]];
-            let back = d[0] * h.ng[0][i] + d[1] * h.ng[1][i] + d[2] * h.ng[2][i] < 0.0;
-            let inside = if back { h.material[i] } else { AIR };
             self.since[i] = if h.lambert[i] {
                 0
             } else if h.glass[i] {
@@ -145,7 +143,6 @@ impl<const N: usize> Paths<N> {
             } else {
                 self.since[i]
             };
-            self.inside[i] = if h.glass[i] { inside } else { self.inside[i] };
         }
     }
 
@@ -201,7 +198,10 @@ where
     let mut rays = 0u64;
     let mut packet = RayPacket::<N>::new();
     let mut first: [Option<RawHit>; N] = [None; N];
-    let n_lights = tables.lights.len() as u32;
+    let area = tables
+        .sampled
+        .iter()
+        .any(|l| !matches!(l, LightId::Punctual(_)));
     loop {
         let mut fresh: LaneMask = 0;
         for i in 0..N {
@@ -233,35 +233,29 @@ where
         }
         let hit = packet.hits.hit & p.alive;
         let h = Hits::new(scene, &tables.shades, &packet, &packet.hits, hit);
-        for i in lanes(hit & mask(&h.scalar)) {
+        let handed = hit & mask(&h.scalar);
+        for i in lanes(handed) {
             rays += p.hand_over(i, scene, &packet, (max_depth, &dispersion));
         }
+        let kept = hit & !handed;
+        absorb(tables, &packet, (&h, kept), &mut p.st);
+        let seen = (kept, p.alive & !handed);
+        arrive((tables, scene), &packet, &h, seen, &p.st, &mut p.l);
         let at = Vertices {
             index: std::array::from_fn(|i| p.st.depth[i] + p.st.deltas[i]),
             lambert: &h.lambert,
             glass: &h.glass,
             roulette: std::array::from_fn(|i| p.st.depth[i] + 1 >= 3),
-            lights: tables.lights.len(),
-            area: false,
+            lights: tables.sampled.len(),
+            area,
         };
         let u = Draws::draw(&mut p.ctx, &at);
-        let k: [u32; N] = std::array::from_fn(|i| {
-            ((u.light_choice[i] * n_lights as f32) as u32).min(n_lights.max(1) - 1)
-        });
         let mut value: V3<N> = [[0.0; N]; 3];
         let mut shadow = Rays::<N>::new();
         let mut traced = [false; N];
         let beta = p.st.beta;
-        light(
-            &tables.lights,
-            &k,
-            &h.lambert,
-            &h,
-            &beta,
-            &mut value,
-            &mut shadow,
-            &mut traced,
-        );
+        let out_nee = (&mut value, &mut shadow, &mut traced);
+        next_event((tables, scene), &u, (&h.lambert, &h, &beta), out_nee);
         let (ends_l, played) = lambert(
             &h.lambert,
             &h,

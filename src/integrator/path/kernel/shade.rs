@@ -25,7 +25,9 @@ use crate::light::punctual::{cone_falloff, range_window};
 use crate::shading::MAX_DELTA_BOUNCES;
 use std::f32::consts::{FRAC_1_PI, TAU};
 
-/// The per-lane state the bounces update: throughput, η scale and bounce counts.
+/// The per-lane state the bounces update: throughput, η scale, bounce counts, the
+/// previous bounce (for the MIS weight of emission the path meets next, as the scalar
+/// path's `Prev`) and the glass volume the path is in.
 pub struct Throughput<const N: usize> {
     /// Throughput β.
     pub beta: V3<N>,
@@ -35,6 +37,48 @@ pub struct Throughput<const N: usize> {
     pub depth: [u32; N],
     /// Delta bounces.
     pub deltas: [u32; N],
+    /// The previous bounce was delta (or the ray is the camera's): no MIS.
+    pub prev_delta: [bool; N],
+    /// The previous bounce's BSDF pdf (solid angle).
+    pub prev_pdf: [f32; N],
+    /// The previous bounce's position.
+    pub prev_p: V3<N>,
+    /// The glass volume the path is in: its material index + 1, or 0 in air.
+    pub medium: [u32; N],
+}
+
+impl<const N: usize> Throughput<N> {
+    /// No paths yet.
+    pub fn new() -> Self {
+        Throughput {
+            beta: [[0.0; N]; 3],
+            eta_scale: [1.0; N],
+            depth: [0; N],
+            deltas: [0; N],
+            prev_delta: [true; N],
+            prev_pdf: [0.0; N],
+            prev_p: [[0.0; N]; 3],
+            medium: [0; N],
+        }
+    }
+
+    /// Lane `i` starts a camera path: no previous bounce to weigh against, in air.
+    pub fn restart(&mut self, i: usize) {
+        self.prev_delta[i] = true;
+        self.prev_pdf[i] = 0.0;
+        self.medium[i] = 0;
+    }
+
+    /// Where `on`, lane `i` records its bounce at `h`'s lane `i` with BSDF pdf `pdf`
+    /// (`delta`: a delta bounce).
+    #[inline(always)]
+    fn bounced(&mut self, on: bool, h: &Hits<N>, i: usize, (pdf, delta): (f32, bool)) {
+        self.prev_delta[i] = if on { delta } else { self.prev_delta[i] };
+        self.prev_pdf[i] = if on { pdf } else { self.prev_pdf[i] };
+        for c in 0..3 {
+            self.prev_p[c][i] = if on { h.p[c][i] } else { self.prev_p[c][i] };
+        }
+    }
 }
 
 /// Rays in SoA form: origin, direction, `t_max`.
@@ -79,14 +123,44 @@ pub fn spawn<const N: usize>(on: bool, h: &Hits<N>, i: usize, dir: [f32; 3], out
     out.t_max[i] = if on { f32::INFINITY } else { out.t_max[i] };
 }
 
-/// Next-event estimation at the lanes `on` toward the light of index `k[i]` among
-/// `lights` (pmf 1/n): adds to `value` the unweighted-by-shadow contribution β · f · E⊥ · n
-/// · |cos θ| of each lane whose sample counts, sets its shadow ray in `shadow` and its
-/// flag in `traced`.
+/// Where `on`, sets lane `i` of `shadow` to the shadow ray from hit lane `i` toward the
+/// point `target`, or along the unit direction `target` when `distant`: the intersection
+/// layer's `spawn_ray_to` (up to 1 − [`SHADOW_EPSILON`] of the way) and `spawn_ray`.
+#[inline(always)]
+pub fn aim<const N: usize>(
+    on: bool,
+    h: &Hits<N>,
+    i: usize,
+    (target, distant): ([f32; 3], bool),
+    shadow: &mut Rays<N>,
+) {
+    let toward = if distant {
+        target
+    } else {
+        [0, 1, 2].map(|c| target[c] - h.p[c][i])
+    };
+    let o = origin(h, i, toward);
+    for c in 0..3 {
+        let d = if distant { target[c] } else { target[c] - o[c] };
+        shadow.o[c][i] = if on { o[c] } else { shadow.o[c][i] };
+        shadow.d[c][i] = if on { d } else { shadow.d[c][i] };
+    }
+    let t_max = if distant {
+        f32::INFINITY
+    } else {
+        1.0 - SHADOW_EPSILON
+    };
+    shadow.t_max[i] = if on { t_max } else { shadow.t_max[i] };
+}
+
+/// Next-event estimation at the lanes `on` toward the punctual light of index `k[i]` among
+/// `lights`, chosen with probability 1/`inv_pmf`: adds to `value` the unweighted-by-shadow
+/// contribution β · f · E⊥ · `inv_pmf` · |cos θ| of each lane whose sample counts, sets its
+/// shadow ray in `shadow` and its flag in `traced`.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub fn light<const N: usize>(
-    lights: &[Punctual],
+    (lights, inv_pmf): (&[Punctual], f32),
     k: &[u32; N],
     on: &[bool; N],
     h: &Hits<N>,
@@ -95,7 +169,7 @@ pub fn light<const N: usize>(
     shadow: &mut Rays<N>,
     traced: &mut [bool; N],
 ) {
-    let n = lights.len() as f32;
+    let n = inv_pmf;
     for (j, l) in lights.iter().enumerate() {
         for i in 0..N {
             let mine = on[i] && k[i] == j as u32;
@@ -105,29 +179,12 @@ pub fn light<const N: usize>(
             let f_nonzero = h.rgb[0][i] > 0.0 || h.rgb[1][i] > 0.0 || h.rgb[2][i] > 0.0;
             let counts = mine && ok && cos_o * cos_i > 0.0 && f_nonzero;
             let w = cos_i.abs() * n * FRAC_1_PI;
-            let toward = if l.directional {
-                wi
-            } else {
-                [0, 1, 2].map(|c| target[c] - h.p[c][i])
-            };
-            let o = origin(h, i, toward);
             for c in 0..3 {
                 let v = beta[c][i] * h.rgb[c][i] * e[c] * w;
                 value[c][i] = if counts { v } else { value[c][i] };
-                let d = if l.directional {
-                    wi[c]
-                } else {
-                    target[c] - o[c]
-                };
-                shadow.o[c][i] = if counts { o[c] } else { shadow.o[c][i] };
-                shadow.d[c][i] = if counts { d } else { shadow.d[c][i] };
             }
-            let t_max = if l.directional {
-                f32::INFINITY
-            } else {
-                1.0 - SHADOW_EPSILON
-            };
-            shadow.t_max[i] = if counts { t_max } else { shadow.t_max[i] };
+            let target = if l.directional { wi } else { target };
+            aim(counts, h, i, (target, l.directional), shadow);
             traced[i] |= counts;
         }
     }
@@ -218,8 +275,11 @@ pub fn lambert<const N: usize>(
             let b = st.beta[c][i] / divisor;
             st.beta[c][i] = if on[i] { b } else { st.beta[c][i] };
         }
-        ends[i] = on[i] && (cos_o == 0.0 || z == 0.0 || depth >= max_depth || !survives);
+        // A black albedo (an emitter's) leaves nothing to carry: the path ends.
+        let dark = q == 0.0;
+        ends[i] = on[i] && (cos_o == 0.0 || z == 0.0 || depth >= max_depth || !survives || dark);
         played[i] = on[i] && rr && q < 1.0 && depth < max_depth;
+        st.bounced(on[i], h, i, (z.abs() * FRAC_1_PI, false));
         spawn(on[i], h, i, wi, next);
     }
     (ends, played)
@@ -273,6 +333,14 @@ pub fn glass<const N: usize>(
         let deltas = st.deltas[i] + 1;
         st.deltas[i] = if on[i] { deltas } else { st.deltas[i] };
         ends[i] = on[i] && (c == 0.0 || deltas > MAX_DELTA_BOUNCES);
+        // A refraction enters the glass from outside (c > 0) or leaves it.
+        let entered = if c > 0.0 { h.material[i] + 1 } else { 0 };
+        st.medium[i] = if on[i] && !reflect {
+            entered
+        } else {
+            st.medium[i]
+        };
+        st.bounced(on[i], h, i, (0.0, true));
         spawn(on[i], h, i, wi, next);
     }
     ends
