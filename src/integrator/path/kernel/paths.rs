@@ -204,14 +204,14 @@ where
         .any(|l| !matches!(l, LightId::Punctual(_)));
     loop {
         let mut fresh: LaneMask = 0;
-        for i in 0..N {
+        for (i, first) in first.iter_mut().enumerate() {
             if p.alive & (1 << i) == 0 {
                 let batch = (starts, jobs);
                 let Some(s) = cameras.take(scene, batch, &mut p.ctx[i], &mut rays) else {
                     break;
                 };
                 p.start(i, &s);
-                first[i] = s.hit;
+                *first = s.hit;
                 fresh |= 1 << i;
             }
         }
