@@ -177,7 +177,7 @@ fn blocks((img, h1, h2): &Halves, b: u32) -> Vec<(f64, f64)> {
 
 /// The largest |difference| / σ over the blocks of `b`×`b` pixels, and the image means'
 /// difference in standard errors.
-pub(super) fn z_scores(k: &Halves, s: &Halves, b: u32) -> (f64, f64) {
+fn z_scores(k: &Halves, s: &Halves, b: u32) -> (f64, f64) {
     let (bk, bs) = (blocks(k, b), blocks(s, b));
     let mut worst = 0.0f64;
     let (mut mk, mut ms, mut vk, mut vs) = (0.0, 0.0, 0.0, 0.0);
@@ -186,6 +186,31 @@ pub(super) fn z_scores(k: &Halves, s: &Halves, b: u32) -> (f64, f64) {
         (mk, ms, vk, vs) = (mk + a, ms + c, vk + va, vs + vc);
     }
     (worst, (mk - ms).abs() / (vk + vs).sqrt().max(1e-12))
+}
+
+/// Asserts that the kernel's image `k` agrees with the scalar path tracer's `s` (another
+/// seed) over `b`×`b`-pixel blocks — every block and channel within 5 σ ([`z_scores`]), the
+/// image means within 4 standard errors — and, given the scalar image at `k`'s own seed
+/// (`same`), that the two are equal up to float rounding (at most 7 pixels further apart
+/// than [`differing_pixels`] allows). `what` names the case in the failure.
+pub(super) fn assert_agrees(
+    what: &str,
+    (k, s, b): (&Halves, &Halves, u32),
+    same: Option<&ImageRgb>,
+) {
+    let (worst, mean) = z_scores(k, s, b);
+    assert!(worst < 5.0, "{what}: a block differs by {worst:.2} σ");
+    assert!(
+        mean < 4.0,
+        "{what}: the means differ by {mean:.2} standard errors"
+    );
+    if let Some(same) = same {
+        let n = differing_pixels(&k.0, same);
+        assert!(
+            n <= 7,
+            "{what}: {n} pixels differ from the scalar image at the same seed"
+        );
+    }
 }
 
 /// The kernel's image agrees with the scalar path tracer's: over 4×4-pixel blocks and
@@ -201,12 +226,7 @@ fn the_kernel_agrees_with_the_scalar_path_tracer() {
     let scene = build(desc(lambert_floor()), Backend::Auto);
     let k = kernel_image(&scene, &settings(512, 11), 16);
     let s = scalar_image(&scene, &settings(512, 12));
-    let (worst, mean) = z_scores(&k, &s, 4);
-    assert!(worst < 5.0, "a block differs by {worst:.2} σ");
-    assert!(
-        mean < 4.0,
-        "the image means differ by {mean:.2} standard errors"
-    );
+    assert_agrees("glass sphere", (&k, &s, 4), None);
     let lit =
         k.0.data
             .iter()
@@ -345,18 +365,8 @@ fn lanes_handed_to_the_scalar_vertex_agree_with_it() {
         );
         let k = kernel_image(&scene, &settings(512, 21), 16);
         let s = scalar_image(&scene, &settings(512, 22));
-        let (worst, mean) = z_scores(&k, &s, 4);
-        assert!(worst < 5.0, "{what}: a block differs by {worst:.2} σ");
-        assert!(
-            mean < 4.0,
-            "{what}: the means differ by {mean:.2} standard errors"
-        );
         let same_seed = scalar_image(&scene, &settings(512, 21)).0;
-        let n = differing_pixels(&k.0, &same_seed);
-        assert!(
-            n <= 7,
-            "{what}: {n} pixels differ from the scalar image at the same seed"
-        );
+        assert_agrees(what, (&k, &s, 4), Some(&same_seed));
     }
 }
 
