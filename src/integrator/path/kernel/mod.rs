@@ -45,6 +45,7 @@
 #[cfg(test)]
 mod asset_tests;
 mod camera;
+mod class;
 mod emitters;
 mod features;
 mod handoff;
@@ -65,7 +66,9 @@ use crate::accel::packet::{Lanes, PacketWidth};
 use crate::camera::Camera;
 use crate::render::{Job, Starts};
 use crate::scene::Scene;
+use class::{Class, Full, Plain};
 use glam::Vec3;
+use std::marker::PhantomData;
 
 /// The kernel's tables for `scene` when `IRIS_KERNEL=soa` asks for it and the scene
 /// qualifies ([`qualify`]); otherwise `None`, and when it was asked for by a render that
@@ -104,12 +107,19 @@ pub fn plan_text(scene: &Scene, perspective: bool, spectral: bool) -> Result<Str
                 tables.scalar.join("; ")
             )
         };
+        let class = if tables.plain() {
+            "the loop for Lambert surfaces and clear glass under punctual lights (no \
+             emitter, environment, absorption or hand-over code)"
+        } else {
+            "the full loop (emitters and environments with MIS, absorbing glass, hand-over)"
+        };
         format!(
             "structure-of-arrays kernel (IRIS_KERNEL=soa): {} camera paths with their whole \
              state in arrays, hit records and shading across the lanes (AVX-512, AVX2 or \
-             scalar code chosen at run time), each camera sample with its own random \
-             stream (the single-ray path's numbers): the image equals the single-ray \
-             image up to float rounding on most pixels and in expectation everywhere{handed}",
+             scalar code chosen at run time), {class}, each camera sample with its own \
+             random stream (the single-ray path's numbers): the image equals the \
+             single-ray image up to float rounding on most pixels and in expectation \
+             everywhere{handed}",
             width()
         )
     })
@@ -138,7 +148,8 @@ pub fn estimate(
     estimate_at(width(), tables, scene, (starts, jobs), rules, out)
 }
 
-/// [`estimate`] on `width` lanes (8, or 16 for any other value).
+/// [`estimate`] on `width` lanes (8, or 16 for any other value), with the loop
+/// specialised to the scene's class ([`class`]).
 fn estimate_at(
     width: usize,
     tables: &Tables,
@@ -147,32 +158,23 @@ fn estimate_at(
     rules: (u32, Dispersion),
     out: &mut [Vec3],
 ) -> u64 {
-    let arch = pulp::Arch::new();
-    if width == 8 {
-        arch.dispatch(Run::<8> {
-            tables,
-            scene,
-            run,
-            rules,
-            out,
-        })
-    } else {
-        arch.dispatch(Run::<16> {
-            tables,
-            scene,
-            run,
-            rules,
-            out,
-        })
+    let op = Run {
+        tables,
+        scene,
+        run,
+        rules,
+        out,
+    };
+    match (width == 8, tables.plain()) {
+        (true, true) => op.dispatch::<8, Plain>(),
+        (true, false) => op.dispatch::<8, Full>(),
+        (false, true) => op.dispatch::<16, Plain>(),
+        (false, false) => op.dispatch::<16, Full>(),
     }
 }
 
-/// The bounce loop on `N` lanes as `pulp`'s operation: [`pulp::WithSimd::with_simd`] is
-/// instantiated per instruction set and inlined, with [`paths::run`] and the lane loops
-/// under it (all `#[inline(always)]`), into `pulp`'s `#[target_feature]` function for that
-/// set, so LLVM vectorises them for AVX-512 or AVX2. (A closure is not inlined there: its
-/// body would be compiled once, for the crate's baseline.)
-struct Run<'a, const N: usize> {
+/// The bounce loop's inputs.
+struct Run<'a> {
     tables: &'a Tables,
     scene: &'a Scene,
     run: (&'a Starts<'a>, &'a [Job]),
@@ -180,7 +182,32 @@ struct Run<'a, const N: usize> {
     out: &'a mut [Vec3],
 }
 
-impl<const N: usize> pulp::WithSimd for Run<'_, N>
+impl Run<'_> {
+    /// The loop on `N` lanes for the class `K`, compiled for the widest vector
+    /// instructions this CPU has.
+    fn dispatch<const N: usize, K: Class>(self) -> u64
+    where
+        Lanes<N>: PacketWidth,
+    {
+        pulp::Arch::new().dispatch(Loop::<N, K> {
+            run: self,
+            class: PhantomData,
+        })
+    }
+}
+
+/// The bounce loop on `N` lanes for the class `K` as `pulp`'s operation:
+/// [`pulp::WithSimd::with_simd`] is instantiated per instruction set and inlined, with
+/// [`paths::run`] and the lane loops under it (all `#[inline(always)]`), into `pulp`'s
+/// `#[target_feature]` function for that set, so LLVM vectorises them for AVX-512 or AVX2.
+/// (A closure is not inlined there: its body would be compiled once, for the crate's
+/// baseline.)
+struct Loop<'a, const N: usize, K> {
+    run: Run<'a>,
+    class: PhantomData<K>,
+}
+
+impl<const N: usize, K: Class> pulp::WithSimd for Loop<'_, N, K>
 where
     Lanes<N>: PacketWidth,
 {
@@ -188,6 +215,7 @@ where
 
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) -> u64 {
-        paths::run::<N>(self.tables, self.scene, self.run, self.rules, self.out)
+        let r = self.run;
+        paths::run::<N, K>(r.tables, r.scene, r.run, r.rules, r.out)
     }
 }

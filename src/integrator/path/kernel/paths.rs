@@ -22,6 +22,7 @@
 use super::super::state::Prev;
 use super::super::Dispersion;
 use super::camera::{ray_into, CameraRays, Started};
+use super::class::Class;
 use super::emitters::{arrive, next_event};
 use super::features::Tables;
 use super::handoff::{self, Handed};
@@ -183,7 +184,7 @@ fn mask<const N: usize>(flags: &[bool; N]) -> LaneMask {
 /// `max_depth` non-delta bounces a path, writing job `i`'s linear RGB radiance to `out[i]`.
 /// Returns the rays traced.
 #[inline(always)]
-pub fn run<const N: usize>(
+pub fn run<const N: usize, K: Class>(
     tables: &Tables,
     scene: &Scene,
     (starts, jobs): (&Starts, &[Job]),
@@ -233,14 +234,22 @@ where
         }
         let hit = packet.hits.hit & p.alive;
         let h = Hits::new(scene, &tables.shades, &packet, &packet.hits, hit);
-        let handed = hit & mask(&h.scalar);
+        let handed = if K::HANDS_OVER {
+            hit & mask(&h.scalar)
+        } else {
+            0
+        };
         for i in lanes(handed) {
             rays += p.hand_over(i, scene, &packet, (max_depth, &dispersion));
         }
         let kept = hit & !handed;
-        absorb(tables, &packet, (&h, kept), &mut p.st);
-        let seen = (kept, p.alive & !handed);
-        arrive((tables, scene), &packet, &h, seen, &p.st, &mut p.l);
+        if K::ABSORBS {
+            absorb(tables, &packet, (&h, kept), &mut p.st);
+        }
+        if K::LIT_BY_AREA {
+            let seen = (kept, p.alive & !handed);
+            arrive((tables, scene), &packet, &h, seen, &p.st, &mut p.l);
+        }
         let at = Vertices {
             index: std::array::from_fn(|i| p.st.depth[i] + p.st.deltas[i]),
             lambert: &h.lambert,

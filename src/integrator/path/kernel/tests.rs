@@ -376,6 +376,16 @@ fn the_plan_names_the_kernel_or_the_reason() {
     let scene = build(desc(lambert_floor()), Backend::Bvh);
     let ran = super::plan_text(&scene, true, false).expect("the test scene qualifies");
     assert!(ran.contains("structure-of-arrays kernel") && ran.contains("in expectation"));
+    assert!(
+        ran.contains("no emitter, environment, absorption or hand-over code"),
+        "{ran}"
+    );
+    let rough = super::plan_text(&build(rough_sphere(), Backend::Bvh), true, false);
+    let rough = rough.expect("a rough sphere qualifies");
+    assert!(
+        rough.contains("the full loop") && rough.contains("is rough glass"),
+        "{rough}"
+    );
     let orthographic = super::plan_text(&scene, false, false).unwrap_err();
     assert!(orthographic.contains("orthographic"), "{orthographic}");
     let spectral = super::plan_text(&scene, true, true).unwrap_err();
@@ -439,4 +449,50 @@ fn shards_of_a_kernel_render_merge_into_the_whole() {
         assert_eq!(merged, whole.exact(), "{width} lanes");
         assert_eq!(merged.mean(), whole.mean());
     }
+}
+
+/// The scene's class picks the loop ([`super::class`]): the glass sphere under a point light
+/// is `Plain`, a rough sphere (handed over), an absorbing one or an environment are not; and
+/// the `Plain` loop's image is the `Full` loop's bit for bit on a plain scene (the features
+/// it leaves out would add nothing there), so the specialisation only removes work.
+#[test]
+fn the_scene_class_picks_the_loop_and_changes_nothing() {
+    let plain = build(desc(lambert_floor()), Backend::Auto);
+    let cam = camera();
+    let tables = |s: &Scene| qualify(s, true, false).expect("qualifies");
+    assert!(tables(&plain).plain());
+    assert!(!tables(&build(rough_sphere(), Backend::Bvh)).plain());
+    let mut absorbing = desc(lambert_floor());
+    absorbing.materials[1].attenuation_distance = 1.0;
+    absorbing.materials[1].attenuation_color = Vec3::new(0.5, 0.8, 0.9);
+    assert!(!tables(&build(absorbing, Backend::Bvh)).plain());
+    let lit = SceneDesc {
+        environment_light: Some(Environment::Uniform {
+            radiance: Vec3::ONE,
+        }),
+        ..desc(lambert_floor())
+    };
+    assert!(!tables(&build(lit, Backend::Bvh)).plain());
+    let t = tables(&plain);
+    let s = settings(8, 4);
+    let image = |full: bool| {
+        let estimate = |starts: &Starts, jobs: &[Job], out: &mut [Vec3]| {
+            let op = Run {
+                tables: &t,
+                scene: &plain,
+                run: (starts, jobs),
+                rules: (MAX_DEPTH, Dispersion::ALL),
+                out,
+            };
+            if full {
+                op.dispatch::<16, class::Full>()
+            } else {
+                op.dispatch::<16, class::Plain>()
+            }
+        };
+        let (film, _) =
+            render_batches(&cam, &s, None, Prepass::now(), None, estimate).expect("kernel render");
+        film.exact()
+    };
+    assert_eq!(image(true), image(false));
 }
