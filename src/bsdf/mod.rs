@@ -262,6 +262,30 @@ macro_rules! with_lobe {
 }
 
 impl<C: Carrier> Bsdf<C> {
+    /// The same lobe in its simplest form: a glTF BRDF with no specular part at all
+    /// (metallic 0, `specular` 0, so F0 = F90 = 0; no layer, no film) is the Lambert lobe
+    /// it then equals, f = base/π, which skips the GGX terms weighed by zero; any other
+    /// lobe is itself.
+    pub fn reduced(self) -> Self {
+        match self {
+            Bsdf::GltfPbr {
+                base,
+                metallic,
+                specular,
+                ref layers,
+                ref extensions,
+                ..
+            } if metallic == 0.0
+                && specular == 0.0
+                && extensions.iridescence.is_none()
+                && layers.is_none() =>
+            {
+                Bsdf::Lambert { albedo: base }
+            }
+            other => other,
+        }
+    }
+
     /// Whether every lobe is a delta (eval and pdf are then always 0).
     pub fn is_delta(&self) -> bool {
         with_lobe!(self, |l| l.is_delta())

@@ -327,10 +327,8 @@ impl Material {
     /// The BSDF of an opaque (non-transmitting) point with parameters `sp`: a measured
     /// metal's complex-index conductor ([`Material::conductor_index`], GGX α = roughness²),
     /// else glTF metallic-roughness (Appendix B of the glTF 2.0 spec) with
-    /// KHR_materials_specular, the layers, iridescence and anisotropy — or, where that
-    /// BRDF has no specular part at all (metallic 0, `specular` 0, so F0 = F90 = 0; no
-    /// layer, no film), the Lambert lobe it then equals, f = base/π, which skips the GGX
-    /// terms weighed by zero.
+    /// KHR_materials_specular, the layers, iridescence and anisotropy, in its simplest form
+    /// ([`Bsdf::reduced`]: without a specular part, the Lambert lobe it equals).
     pub fn opaque_bsdf<C: Carrier>(&self, sp: &ShadingPoint, l: &C::Lambda) -> Bsdf<C> {
         if let Some((eta, k)) = self.conductor_index::<C>(l) {
             return Bsdf::ComplexConductor {
@@ -340,26 +338,17 @@ impl Material {
                 extensions: sp.lobe::<C>(l),
             };
         }
-        let base = C::reflectance(sp.base_color, l);
-        let extensions = sp.lobe::<C>(l);
-        let layers = sp.layers.lobes::<C>(l);
-        if sp.metallic == 0.0
-            && sp.specular == 0.0
-            && extensions.iridescence.is_none()
-            && layers.is_none()
-        {
-            return Bsdf::Lambert { albedo: base };
-        }
         Bsdf::GltfPbr {
-            base,
+            base: C::reflectance(sp.base_color, l),
             metallic: sp.metallic,
             alpha: sp.roughness * sp.roughness,
             ior: self.ior(),
             specular: sp.specular,
             specular_color: C::reflectance(sp.specular_color, l),
-            extensions,
-            layers,
+            extensions: sp.lobe::<C>(l),
+            layers: sp.layers.lobes::<C>(l),
         }
+        .reduced()
     }
 
     /// The BSDF of a transmitting point with parameters `sp`, tinted by its base colour: a

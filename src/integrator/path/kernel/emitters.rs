@@ -112,10 +112,11 @@ pub fn next_event<const N: usize>(
     if n == 0 {
         return;
     }
+    let chosen: [usize; N] =
+        std::array::from_fn(|i| ((u.light_choice[i] * n as f32) as usize).min(n - 1));
     let mut punctual = [u32::MAX; N];
     let mut spread: LaneMask = 0;
-    for i in 0..N {
-        let k = ((u.light_choice[i] * n as f32) as usize).min(n - 1);
+    for (i, &k) in chosen.iter().enumerate() {
         match tables.sampled[k] {
             LightId::Punctual(j) => punctual[i] = j,
             _ => spread |= u32::from(on[i]) << i,
@@ -128,7 +129,7 @@ pub fn next_event<const N: usize>(
     if spread == 0 {
         return;
     }
-    let s = sample((tables, scene), u, h, spread);
+    let s = sample((tables, scene), (u, &chosen), h, spread);
     for i in 0..N {
         let cos_o = dot(&h.ns, &h.wo, i);
         let cos_i = h.ns[0][i] * s.wi[0][i] + h.ns[1][i] * s.wi[1][i] + h.ns[2][i] * s.wi[2][i];
@@ -147,11 +148,11 @@ pub fn next_event<const N: usize>(
 }
 
 /// The samples of the emissive triangles or the environment at the lanes `spread` (those
-/// that chose one of them), from the scalar light code lane by lane.
+/// whose `chosen` light is one of them), from the scalar light code lane by lane.
 #[inline(always)]
 fn sample<const N: usize>(
     (tables, scene): (&Tables, &Scene),
-    u: &Draws<N>,
+    (u, chosen): (&Draws<N>, &[usize; N]),
     h: &Hits<N>,
     spread: LaneMask,
 ) -> Sampled<N> {
@@ -163,9 +164,8 @@ fn sample<const N: usize>(
         distant: [false; N],
         ok: [false; N],
     };
-    let n = tables.sampled.len();
     for i in lanes(spread) {
-        let k = ((u.light_choice[i] * n as f32) as usize).min(n - 1);
+        let k = chosen[i];
         let up = Vec2::new(u.light_position[0][i], u.light_position[1][i]);
         let p = Vec3::new(h.p[0][i], h.p[1][i], h.p[2][i]);
         let got = match tables.sampled[k] {

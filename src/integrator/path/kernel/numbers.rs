@@ -25,7 +25,6 @@ use crate::accel::packet::{lanes, LaneMask};
 use crate::render::Context;
 
 /// The decisions of one vertex per lane, each in [0, 1) (0 where the lane reads none).
-#[allow(dead_code)] // the light member and position: lights with an area
 pub struct Draws<const N: usize> {
     /// Which light (group) next-event estimation samples.
     pub light_choice: [f32; N],
