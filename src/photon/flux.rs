@@ -7,6 +7,7 @@
 //! environment); world space, metres; directions are unit vectors.
 
 use crate::light::env::{luminance, Environment};
+use crate::light::punctual::cone_falloff;
 use crate::light::Light;
 use crate::math::Frame;
 use crate::scene::Scene;
@@ -37,17 +38,10 @@ pub(super) fn sample_spot_cos(cos_i: f32, cos_o: f32, u: f32) -> f32 {
 /// The density (per steradian) of the spot sampling at cos θ = `c`: t(c)²/(2πK) inside the
 /// outer cone, 0 outside (t as in [`crate::light`]; a hard cone when `cos_i ≤ cos_o`).
 pub(super) fn spot_pdf(cos_i: f32, cos_o: f32, c: f32) -> f32 {
-    let ci = cos_i.max(cos_o);
-    let t = if ci > cos_o {
-        ((c - cos_o) / (ci - cos_o)).clamp(0.0, 1.0)
-    } else if c >= cos_o {
-        1.0
-    } else {
-        0.0
-    };
+    let falloff = cone_falloff(c, cos_i.max(cos_o), cos_o);
     let k = spot_integral(cos_i, cos_o);
     if k > 0.0 {
-        t * t / (2.0 * PI * k)
+        falloff / (2.0 * PI * k)
     } else {
         0.0
     }
