@@ -1,12 +1,13 @@
 //! The kernel against the scalar path tracer on every scene in the repository's assets/
-//! that it takes (in RGB, as each file is authored: its camera, its lights, no drop-in
-//! studio or environment), with the bounds of [`super::tests`]' agreement test over
-//! 8×8-pixel blocks.
+//! that it takes (in RGB and in spectral transport, as each file is authored: its camera,
+//! its lights, no drop-in studio or environment), with the bounds of [`super::tests`]'
+//! agreement test over 8×8-pixel blocks.
 
-use super::tests::{assert_agrees, kernel_image_through, scalar_image_through};
+use super::tests::{assert_agrees, differing_pixels, kernel_image_through, scalar_image_through};
 use super::tests::{settings, H, W};
 use super::*;
 use crate::accel::Backend;
+use crate::render::RenderSettings;
 use std::path::{Path, PathBuf};
 
 /// The .glb files under `dir`, sorted.
@@ -42,7 +43,10 @@ fn every_asset_the_kernel_takes_agrees_with_the_scalar_path_tracer() {
             crate::prepare::camera_choice::choose_camera(&scene, None, aspect).expect("a camera");
         let cam = Camera::new(&desc, W, H);
         // A file without lights is lit by the drop-in studio, which this test leaves out.
-        if scene.lights().is_empty() || qualify(&scene, cam.is_perspective(), false).is_err() {
+        let lit = !(scene.lights().is_empty()
+            && scene.area_lights().is_empty()
+            && scene.environment().is_none());
+        if !lit || qualify(&scene, cam.is_perspective(), false).is_err() {
             continue;
         }
         let name = path
@@ -50,10 +54,26 @@ fn every_asset_the_kernel_takes_agrees_with_the_scalar_path_tracer() {
             .unwrap_or(&path)
             .display()
             .to_string();
-        let k = kernel_image_through(&scene, &cam, &settings(128, 31), 16);
-        let s = scalar_image_through(&scene, &cam, &settings(128, 32));
-        let same_seed = scalar_image_through(&scene, &cam, &settings(128, 31)).0;
-        assert_agrees(&name, (&k, &s, 8), Some(&same_seed));
+        for spectral in [false, true] {
+            let at = |seed| RenderSettings {
+                spectral,
+                ..settings(128, seed)
+            };
+            let k = kernel_image_through(&scene, &cam, &at(31), 16);
+            let s = scalar_image_through(&scene, &cam, &at(32));
+            let same_seed = scalar_image_through(&scene, &cam, &at(31)).0;
+            let what = format!("{name}, {}", if spectral { "spectral" } else { "RGB" });
+            assert_agrees(&what, (&k, &s, 8), None);
+            // A split sample is up to 4 sub-paths, each passing as many thresholds as an
+            // RGB sample: 4 × the RGB bound of 7 pixels whose estimate a flipped
+            // decision may move.
+            let bound = if spectral { 28 } else { 7 };
+            let n = differing_pixels(&k.0, &same_seed);
+            assert!(
+                n <= bound,
+                "{what}: {n} pixels differ from the scalar image at the same seed"
+            );
+        }
         taken.push(name);
     }
     assert!(taken.len() >= 10, "the kernel takes only {taken:?}");

@@ -14,7 +14,7 @@
 //! traverses, not the closest hit, up to which of two triangles a ray exactly on their
 //! shared edge or plane meets).
 
-use super::shade::Rays;
+use super::state::Rays;
 use crate::accel::packet::{Coherence, Lanes, PacketWidth, RayPacket};
 use crate::accel::RawHit;
 use crate::render::{Context, Job, Starts};
@@ -28,6 +28,8 @@ pub struct CameraRays<const N: usize> {
     ctx: [Box<Context>; N],
     /// Their camera rays.
     rays: RayPacket<N>,
+    /// Their wavelength numbers (0 in RGB).
+    u_lambda: [f32; N],
     /// The batch index of the chunk's first job.
     first: usize,
     /// Jobs in the chunk, and jobs of it taken so far.
@@ -36,10 +38,12 @@ pub struct CameraRays<const N: usize> {
 }
 
 /// A job leaving [`CameraRays`] for a lane: its batch index, camera ray (origin,
-/// direction, `t_max`) and first hit (`None`: the ray escaped).
+/// direction, `t_max`), wavelength number and first hit (`None`: the ray escaped).
 pub struct Started {
     /// Index into the batch.
     pub job: usize,
+    /// The number the sample's wavelengths are drawn from ([`Starts::start`]; 0 in RGB).
+    pub u_lambda: f32,
     /// Origin, direction, `t_max` of the camera ray.
     pub ray: ([f32; 3], [f32; 3], f32),
     /// The closest hit along it.
@@ -55,6 +59,7 @@ where
         CameraRays {
             ctx: std::array::from_fn(|_| Box::new(starts.context())),
             rays: RayPacket::new(),
+            u_lambda: [0.0; N],
             first: 0,
             len: 0,
             taken: 0,
@@ -82,6 +87,7 @@ where
         let r = &self.rays;
         Some(Started {
             job: self.first + l,
+            u_lambda: self.u_lambda[l],
             ray: (
                 [r.org_x[l], r.org_y[l], r.org_z[l]],
                 [r.dir_x[l], r.dir_y[l], r.dir_z[l]],
@@ -105,8 +111,9 @@ where
             return None;
         }
         for l in 0..len {
-            let (ray, _) = starts.start(jobs[first + l], &mut self.ctx[l]);
+            let (ray, u_lambda) = starts.start(jobs[first + l], &mut self.ctx[l]);
             self.rays.set(l, ray.origin, ray.dir, ray.t_max);
+            self.u_lambda[l] = u_lambda;
         }
         self.rays.set_active(((1u64 << len) - 1) as u32);
         scene.intersect_packet(&mut self.rays, Coherence::Coherent);

@@ -19,43 +19,57 @@
 //! lane into the scalar code, over the lanes that need them; the weights and values are
 //! plain loops over all lanes with selects.
 //!
-//! Units: radiance linear RGB; pdfs per steradian; world space.
+//! Emission is the scene's RGB value turned into the lane's channels at the point it is
+//! weighed ([`super::colour`]): the surface's by [`super::colour::emitted`] (with the
+//! exact shape it names), the environment's by [`super::colour::illuminant`] on escape and
+//! [`super::colour::emitted`] for next-event estimation, as the scalar path does.
+//!
+//! Units: radiance in `M` channels; pdfs per steradian; world space.
 
 use super::super::light_sample::mis;
+use super::colour::{emitted, illuminant, set_lane, Channels};
 use super::features::Tables;
 use super::hits::{dot, Hits, V3};
 use super::numbers::Draws;
-use super::shade::{aim, light, Rays, Throughput};
+use super::shade::{aim, incident, light};
+use super::state::{Rays, Throughput};
 use crate::accel::packet::{lanes, LaneMask, Lanes, PacketWidth, RayPacket};
 use crate::light::LightId;
 use crate::scene::Scene;
 use crate::shading::lights;
+use crate::spectrum::Lambdas;
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
 /// Adds to `l` the light the lanes meet: at the lanes `hit` of `h` the emission of the
 /// surface toward the path, at the `alive` lanes that missed the environment along their
-/// ray in `rays`, each times β of `st` and weighted against next-event estimation.
+/// ray in `rays`, each times β of `st` and weighted against next-event estimation, at the
+/// lanes' wavelengths `lam`.
 #[inline(always)]
-pub fn arrive<const N: usize>(
+pub fn arrive<const N: usize, const M: usize>(
     (tables, scene): (&Tables, &Scene),
     rays: &RayPacket<N>,
-    h: &Hits<N>,
+    (h, lam): (&Hits<N, M>, &[Lambdas; N]),
     (hit, alive): (LaneMask, LaneMask),
-    st: &Throughput<N>,
-    l: &mut V3<N>,
+    st: &Throughput<N, M>,
+    l: &mut Channels<N, M>,
 ) where
     Lanes<N>: PacketWidth,
 {
-    let mut le: V3<N> = [[0.0; N]; 3];
+    let mut le: Channels<N, M> = [[0.0; N]; M];
     let mut pdf = [0.0f32; N];
     let mut shows = [false; N];
     for i in lanes(hit) {
-        let (rgb, two_sided) = tables.emission[h.material[i] as usize];
+        let m = h.material[i] as usize;
+        let (rgb, two_sided) = tables.emission[m];
         let front = dot(&h.wo, &h.ng, i) > 0.0;
         shows[i] = (front || two_sided) && rgb != [0.0; 3];
-        (0..3).for_each(|c| le[c][i] = rgb[c]);
-        if shows[i] && !st.prev_delta[i] {
+        if !shows[i] {
+            continue;
+        }
+        let e = emitted::<M>(rgb, tables.emitter_shapes[m].as_ref(), &lam[i]);
+        set_lane(&mut le, i, e);
+        if !st.prev_delta[i] {
             let from = Vec3::new(st.prev_p[0][i], st.prev_p[1][i], st.prev_p[2][i]);
             let at = Vec3::new(h.p[0][i], h.p[1][i], h.p[2][i]);
             pdf[i] = lights::area_pdf(scene, h.prim[i], from, at);
@@ -65,9 +79,9 @@ pub fn arrive<const N: usize>(
     if let (Some(env), true) = (scene.environment(), missed != 0) {
         for i in lanes(missed) {
             let d = Vec3::new(rays.dir_x[i], rays.dir_y[i], rays.dir_z[i]).normalize();
-            let e = env.eval(d);
+            let e = illuminant::<M>(env.eval(d).to_array(), &lam[i]);
             shows[i] = true;
-            (0..3).for_each(|c| le[c][i] = e[c]);
+            set_lane(&mut le, i, e);
             if !st.prev_delta[i] {
                 pdf[i] = lights::environment_pdf(scene, d);
             }
@@ -79,7 +93,7 @@ pub fn arrive<const N: usize>(
         } else {
             mis(st.prev_pdf[i], pdf[i])
         };
-        for c in 0..3 {
+        for c in 0..M {
             let v = l[c][i] + st.beta[c][i] * le[c][i] * w;
             l[c][i] = if shows[i] { v } else { l[c][i] };
         }
@@ -87,11 +101,13 @@ pub fn arrive<const N: usize>(
 }
 
 /// A light sample with an area or at infinity seen from a lane: the unit direction toward
-/// it, radiance over its solid-angle pdf, that pdf, and where the shadow ray aims (a point,
-/// or a direction when `distant`).
+/// it, radiance (RGB) over its solid-angle pdf and the emitting material (for its spectral
+/// shape; `u32::MAX` for the environment), that pdf, and where the shadow ray aims (a
+/// point, or a direction when `distant`).
 struct Sampled<const N: usize> {
     wi: V3<N>,
     incident: V3<N>,
+    material: [u32; N],
     pdf: [f32; N],
     target: V3<N>,
     distant: [bool; N],
@@ -100,13 +116,14 @@ struct Sampled<const N: usize> {
 
 /// Next-event estimation at the lanes `on` of `h` with the numbers `u`: the light chosen
 /// among `tables.sampled` (pmf 1/n), its contribution β · f · incident · n · |cos θ| · w
-/// (unblocked) into `value`, its shadow ray into `shadow` and its flag into `traced`.
+/// (unblocked, at the lanes' wavelengths `lam`) into `value`, its shadow ray into `shadow`
+/// and its flag into `traced`.
 #[inline(always)]
-pub fn next_event<const N: usize>(
-    (tables, scene): (&Tables, &Scene),
+pub fn next_event<const N: usize, const M: usize>(
+    (tables, scene, lam): (&Tables, &Scene, &[Lambdas; N]),
     u: &Draws<N>,
-    (on, h, beta): (&[bool; N], &Hits<N>, &V3<N>),
-    (value, shadow, traced): (&mut V3<N>, &mut Rays<N>, &mut [bool; N]),
+    (on, h, beta): (&[bool; N], &Hits<N, M>, &Channels<N, M>),
+    (value, shadow, traced): (&mut Channels<N, M>, &mut Rays<N>, &mut [bool; N]),
 ) {
     let n = tables.sampled.len();
     if n == 0 {
@@ -124,41 +141,56 @@ pub fn next_event<const N: usize>(
     }
     let inv_pmf = n as f32;
     let pointed = std::array::from_fn(|i| on[i] && punctual[i] != u32::MAX);
-    let lit = (&tables.lights[..], inv_pmf);
-    light(lit, &punctual, &pointed, h, beta, value, shadow, traced);
+    let lit = (tables, inv_pmf, lam);
+    light(
+        lit,
+        (&punctual, &pointed),
+        (h, beta),
+        (value, shadow, traced),
+    );
     if spread == 0 {
         return;
     }
     let s = sample((tables, scene), (u, &chosen), h, spread);
+    let mut counts = [false; N];
+    let mut scale = [0.0f32; N];
     for i in 0..N {
         let cos_o = dot(&h.ns, &h.wo, i);
         let cos_i = h.ns[0][i] * s.wi[0][i] + h.ns[1][i] * s.wi[1][i] + h.ns[2][i] * s.wi[2][i];
-        let f_nonzero = h.rgb[0][i] > 0.0 || h.rgb[1][i] > 0.0 || h.rgb[2][i] > 0.0;
-        let counts = s.ok[i] && cos_o * cos_i > 0.0 && f_nonzero;
+        let f_nonzero = (0..M).any(|c| h.col[c][i] > 0.0);
+        counts[i] = s.ok[i] && cos_o * cos_i > 0.0 && f_nonzero;
         let w = mis(s.pdf[i] / inv_pmf, cos_i.abs() * FRAC_1_PI);
-        let scale = cos_i.abs() * inv_pmf * FRAC_1_PI * w;
-        for c in 0..3 {
-            let v = beta[c][i] * h.rgb[c][i] * s.incident[c][i] * scale;
-            value[c][i] = if counts { v } else { value[c][i] };
-        }
+        scale[i] = cos_i.abs() * inv_pmf * FRAC_1_PI * w;
         let target = [s.target[0][i], s.target[1][i], s.target[2][i]];
-        aim(counts, h, i, (target, s.distant[i]), shadow);
-        traced[i] |= counts;
+        aim(counts[i], h, i, (target, s.distant[i]), shadow);
+        traced[i] |= counts[i];
+    }
+    let shape = |i: usize| {
+        let m = s.material[i] as usize;
+        tables.emitter_shapes.get(m).and_then(Option::as_ref)
+    };
+    let e = incident::<N, M>((&s.incident, &counts), shape, lam);
+    for i in 0..N {
+        for c in 0..M {
+            let v = beta[c][i] * h.col[c][i] * e[c][i] * scale[i];
+            value[c][i] = if counts[i] { v } else { value[c][i] };
+        }
     }
 }
 
 /// The samples of the emissive triangles or the environment at the lanes `spread` (those
 /// whose `chosen` light is one of them), from the scalar light code lane by lane.
 #[inline(always)]
-fn sample<const N: usize>(
+fn sample<const N: usize, const M: usize>(
     (tables, scene): (&Tables, &Scene),
     (u, chosen): (&Draws<N>, &[usize; N]),
-    h: &Hits<N>,
+    h: &Hits<N, M>,
     spread: LaneMask,
 ) -> Sampled<N> {
     let mut s = Sampled {
         wi: [[0.0; N]; 3],
         incident: [[0.0; N]; 3],
+        material: [u32::MAX; N],
         pdf: [1.0; N],
         target: [[0.0; N]; 3],
         distant: [false; N],
@@ -172,11 +204,13 @@ fn sample<const N: usize>(
             LightId::Area => area(tables, scene, p, u.light_member[i], up),
             LightId::Environment => scene.environment().and_then(|env| {
                 let e = env.sample(up)?;
-                Some((e.wi, e.radiance / e.pdf, e.pdf, e.wi, true))
+                Some((e.wi, e.radiance / e.pdf, e.pdf, e.wi, u32::MAX))
             }),
             LightId::Punctual(_) => None,
         };
-        if let Some((wi, incident, pdf, target, distant)) = got {
+        if let Some((wi, incident, pdf, target, material)) = got {
+            let distant = material == u32::MAX;
+            s.material[i] = material;
             for c in 0..3 {
                 s.wi[c][i] = wi[c];
                 s.incident[c][i] = incident[c];
@@ -189,8 +223,8 @@ fn sample<const N: usize>(
 }
 
 /// A point on the emissive triangles for the receiver at `p` ([`lights::area`] without
-/// the hit record): direction, radiance over pdf, solid-angle pdf, the point; `None` when
-/// the density is degenerate or a single-sided emitter faces away.
+/// the hit record): direction, radiance over pdf, solid-angle pdf, the point, the emitting
+/// material; `None` when the density is degenerate or a single-sided emitter faces away.
 #[inline(always)]
 fn area(
     tables: &Tables,
@@ -198,14 +232,21 @@ fn area(
     p: Vec3,
     uc: f32,
     up: Vec2,
-) -> Option<(Vec3, Vec3, f32, Vec3, bool)> {
+) -> Option<(Vec3, Vec3, f32, Vec3, u32)> {
     let s = scene.area_lights().sample(p, uc, up)?;
     if s.pdf.is_nan() || s.pdf <= 0.0 {
         return None;
     }
-    let (rgb, two_sided) = tables.emission[scene.triangle(s.prim).material() as usize];
+    let material = scene.triangle(s.prim).material();
+    let (rgb, two_sided) = tables.emission[material as usize];
     if !two_sided && s.normal.dot(s.wi) >= 0.0 {
         return None;
     }
-    Some((s.wi, Vec3::from_array(rgb) / s.pdf, s.pdf, s.point, false))
+    Some((
+        s.wi,
+        Vec3::from_array(rgb) / s.pdf,
+        s.pdf,
+        s.point,
+        material,
+    ))
 }

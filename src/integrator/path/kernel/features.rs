@@ -2,7 +2,7 @@
 //! the materials on triangles ([`Shade`]), their emission and absorption, the punctual
 //! lights ([`Punctual`]) and the lights next-event estimation chooses among.
 //!
-//! The kernel's scene class: RGB transport, a perspective camera, lights of any kind the
+//! The kernel's scene class: RGB or spectral transport, a perspective camera, lights of any kind the
 //! scalar path tracer samples (punctual lights, emissive triangles, an environment: uniform,
 //! a map or a sky) chosen uniformly, no medium or fog, alpha mask or touching faces, and no
 //! glass volume that may lie inside another. Anything else is refused with the reason (one
@@ -14,7 +14,9 @@
 //!   cosine alone, [`crate::bsdf::gltf_brdf`]), no layers, film, anisotropy or metal; it
 //!   may emit (a black one, as the usual area light, scatters nothing);
 //! - a **smooth dielectric volume**: transmission 1, roughness 0, thickness > 0, a finite
-//!   index, untextured, absorbing or not (Beer–Lambert, [`Material::absorbs`]).
+//!   index, untextured, absorbing or not (Beer–Lambert, [`Material::absorbs`]), dispersive
+//!   or not (in spectral transport a path splits into its wavelengths at the first
+//!   dispersive one, [`super::branches`]).
 //!
 //! Several dielectric materials are taken when no glass volume can lie inside another: the
 //! bounding boxes of the meshes carrying a kernel dielectric are pairwise disjoint (a
@@ -32,6 +34,7 @@ use crate::light::Light;
 use crate::light::LightId;
 use crate::material::{AlphaMode, Material};
 use crate::scene::Scene;
+use crate::spectrum::EmitterShape;
 
 /// How the kernel shades a material.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -43,10 +46,13 @@ pub enum Shade {
     /// A smooth dielectric of index ratio `eta` (inside over outside), transmission tinted
     /// by `tint`.
     Glass {
-        /// n_inside / n_outside.
+        /// n_inside / n_outside (at the d line for a dispersive glass).
         eta: f32,
         /// The base colour, which multiplies transmission.
         tint: [f32; 3],
+        /// Its index depends on the wavelength ([`Material::is_dispersive`]): in spectral
+        /// transport a path keeps only its hero wavelength there, or splits.
+        dispersive: bool,
     },
     /// Shaded by the scalar path vertex: a lane meeting it hands its path over
     /// ([`super::handoff`]).
@@ -94,14 +100,17 @@ pub struct Tables {
     /// Per material index: the Beer–Lambert absorption coefficient σ per channel (per unit
     /// length, `transmittance_at(x)` = e^(−σx) = c^(x/d)); zero where nothing absorbs.
     pub absorption: Vec<[f32; 3]>,
+    /// Per material index: the exact spectral shape its emission names, if any.
+    pub emitter_shapes: Vec<Option<EmitterShape>>,
+    /// Per punctual light: the exact spectral shape it names, if any.
+    pub light_shapes: Vec<Option<EmitterShape>>,
+    /// Spectral transport (4 wavelengths a lane) rather than RGB.
+    pub spectral: bool,
 }
 
-/// The tables of `scene` seen through a perspective camera (`perspective`) in RGB
-/// (`spectral` false), or why the kernel does not render it.
+/// The tables of `scene` seen through a perspective camera (`perspective`) in spectral
+/// transport or RGB (`spectral`), or why the kernel does not render it.
 pub fn qualify(scene: &Scene, perspective: bool, spectral: bool) -> Result<Tables, String> {
-    if spectral {
-        return Err("spectral transport (the kernel carries RGB: --spectral off)".into());
-    }
     if !perspective {
         return Err("an orthographic camera".into());
     }
@@ -145,6 +154,12 @@ pub fn qualify(scene: &Scene, perspective: bool, spectral: bool) -> Result<Table
         .map(|m| (m.emission().to_array(), m.desc.double_sided))
         .collect();
     let absorption = scene.materials().iter().map(absorption).collect();
+    let emitter_shapes = scene
+        .materials()
+        .iter()
+        .map(|m| m.emitter_shape().copied())
+        .collect();
+    let light_shapes = scene.lights().iter().map(|l| l.shape).collect();
     Ok(Tables {
         shades,
         lights,
@@ -152,6 +167,9 @@ pub fn qualify(scene: &Scene, perspective: bool, spectral: bool) -> Result<Table
         sampled: scene.light_sampler().lights().to_vec(),
         emission,
         absorption,
+        emitter_shapes,
+        light_shapes,
+        spectral,
     })
 }
 
@@ -260,6 +278,7 @@ fn shade(m: &Material) -> Result<Shade, String> {
         None => Ok(Shade::Glass {
             eta,
             tint: base.to_array(),
+            dispersive: m.is_dispersive(),
         }),
     }
 }

@@ -6,7 +6,7 @@
 //! path's vertex count gives ([`crate::sampler::schedule`]).
 //!
 //! What carries over: the radiance so far (the caller keeps it and adds the rest),
-//! throughput, η scale, the non-delta and delta bounce counts (so the depth limit, the
+//! throughput and wavelengths (in spectral transport), η scale, the non-delta and delta bounce counts (so the depth limit, the
 //! delta cap and Russian roulette continue where they were), the vertex count, delta
 //! bounces since the last non-delta one, the glass volume the lane is in (or air) and the
 //! previous bounce's MIS record. The hand-over happens before the kernel counts anything
@@ -22,12 +22,11 @@ use crate::math::Ray;
 use crate::medium_stack::MediumStack;
 use crate::render::Context;
 use crate::scene::Scene;
-use glam::Vec3;
+use crate::spectrum::Carrier;
 
-/// What a lane's path carries into the scalar vertex.
+/// What a lane's path carries into the scalar vertex besides its throughput and
+/// wavelengths.
 pub struct Handed {
-    /// Throughput.
-    pub beta: Vec3,
     /// Product of η'² over the refractions so far.
     pub eta_scale: f32,
     /// Non-delta bounces so far.
@@ -42,23 +41,25 @@ pub struct Handed {
     pub prev: Prev,
 }
 
-/// The rest of the path whose ray `ray` met `raw` with the state `handed`: the radiance
-/// it gathers from there on, under the path tracer's `max_depth` and `dispersion`, with
-/// `ctx`'s numbers (restarted for the lane's camera sample by the caller; its ray count
-/// grows by the rays traced).
-pub fn finish(
+/// The rest of the path whose ray `ray` met `raw` with the state `handed`, throughput
+/// `beta` and wavelengths `lambda` (a split sample's sub-path keeps its own: it does not
+/// split again): the radiance it gathers from there on, in the lane order of `lambda`,
+/// under the path tracer's `max_depth` and `dispersion`, with `ctx`'s numbers (restarted
+/// for the lane's camera sample by the caller; its ray count grows by the rays traced).
+pub fn finish<C: Carrier>(
     scene: &Scene,
     (max_depth, dispersion): (u32, &Dispersion),
     handed: &Handed,
+    (beta, lambda): (C, C::Lambda),
     (ray, raw): (Ray, RawHit),
     ctx: &mut Context,
-) -> Vec3 {
+) -> C {
     let Some(hit) = scene.lane_hit(&ray, Some(raw)) else {
-        return Vec3::ZERO;
+        return C::ZERO;
     };
-    let mut walk = Walk::<Vec3>::new(ray, ());
+    let mut walk = Walk::<C>::new(ray, lambda);
     let st = &mut walk.st;
-    st.beta = handed.beta;
+    st.beta = beta;
     st.eta_scale = handed.eta_scale;
     st.depth = handed.depth;
     st.delta_depth = handed.deltas;

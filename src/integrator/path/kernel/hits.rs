@@ -9,10 +9,12 @@
 //!
 //! Units: world space (metres); normals and `wo` unit length.
 
+use super::colour::{reflectance, set_lane, spectral, Channels};
 use super::features::Shade;
 use crate::accel::packet::{lanes, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
 use crate::scene::triangle::OFFSET_SCALE;
 use crate::scene::{Scene, Triangle};
+use crate::spectrum::Lambdas;
 
 /// Three coordinates (x, y, z) or colour channels (r, g, b), each over the lanes.
 pub type V3<const N: usize> = [[f32; N]; 3];
@@ -29,8 +31,8 @@ pub fn dot<const N: usize>(a: &V3<N>, b: &V3<N>, i: usize) -> f32 {
 }
 
 /// The hits of one packet, lane `i` meaningful where `lambert[i]`, `glass[i]` or
-/// `scalar[i]` is set.
-pub struct Hits<const N: usize> {
+/// `scalar[i]` is set; colours in `M` channels ([`super::colour`]).
+pub struct Hits<const N: usize, const M: usize> {
     /// Position.
     pub p: V3<N>,
     /// Unit geometric normal, outward.
@@ -47,10 +49,14 @@ pub struct Hits<const N: usize> {
     pub glass: [bool; N],
     /// The lane met a material the scalar vertex shades ([`Shade::Scalar`]).
     pub scalar: [bool; N],
-    /// Lambert albedo or dielectric tint.
-    pub rgb: V3<N>,
-    /// The dielectric's η (1 elsewhere).
+    /// Lambert albedo or dielectric tint at the lane's wavelengths.
+    pub col: Channels<N, M>,
+    /// The dielectric's η (1 elsewhere); at a dispersive one in spectral transport, η at
+    /// the lane's hero wavelength.
     pub eta: [f32; N],
+    /// The lane met a dispersive dielectric in spectral transport: its path keeps only
+    /// the hero wavelength or splits there ([`super::branches`]).
+    pub disperses: [bool; N],
     /// The triangle's material index.
     pub material: [u32; N],
     /// The triangle's index.
@@ -66,19 +72,20 @@ struct Gathered<const N: usize> {
     v: [f32; N],
 }
 
-impl<const N: usize> Hits<N>
+impl<const N: usize, const M: usize> Hits<N, M>
 where
     Lanes<N>: PacketWidth,
 {
-    /// The hits of the lanes `hit` of `raw`, traced along `rays`, shaded as `shades` says.
+    /// The hits of the lanes `hit` of `raw`, traced along `rays`, shaded as `shades` says,
+    /// their colours at the lanes' wavelengths `lam`.
     #[inline(always)]
     pub fn new(
-        scene: &Scene,
-        shades: &[Shade],
+        (scene, shades): (&Scene, &[Shade]),
         rays: &RayPacket<N>,
         raw: &HitPacket<N>,
         hit: LaneMask,
-    ) -> Hits<N> {
+        lam: &[Lambdas; N],
+    ) -> Hits<N, M> {
         let mut h = Hits {
             p: zero3(),
             ng: zero3(),
@@ -88,24 +95,26 @@ where
             lambert: [false; N],
             glass: [false; N],
             scalar: [false; N],
-            rgb: zero3(),
+            col: [[0.0; N]; M],
             eta: [1.0; N],
+            disperses: [false; N],
             material: [0; N],
             prim: raw.prim,
         };
-        let g = h.gather(scene, shades, raw, hit);
+        let g = h.gather((scene, shades), raw, hit, lam);
         h.geometry(&g, rays);
         h
     }
 
-    /// The per-lane reads: triangle vertices, vertex normals, material.
+    /// The per-lane reads: triangle vertices, vertex normals, material (its colour at the
+    /// lane's wavelengths `lam`).
     #[inline(always)]
     fn gather(
         &mut self,
-        scene: &Scene,
-        shades: &[Shade],
+        (scene, shades): (&Scene, &[Shade]),
         raw: &HitPacket<N>,
         hit: LaneMask,
+        lam: &[Lambdas; N],
     ) -> Gathered<N> {
         let mut g = Gathered {
             p: [zero3(); 3],
@@ -133,12 +142,23 @@ where
             match shades[tri.material() as usize] {
                 Shade::Lambert(albedo) => {
                     self.lambert[i] = true;
-                    (0..3).for_each(|c| self.rgb[c][i] = albedo[c]);
+                    set_lane(&mut self.col, i, reflectance::<M>(albedo, &lam[i]));
                 }
-                Shade::Glass { eta, tint } => {
+                Shade::Glass {
+                    eta,
+                    tint,
+                    dispersive,
+                } => {
                     self.glass[i] = true;
-                    self.eta[i] = eta;
-                    (0..3).for_each(|c| self.rgb[c][i] = tint[c]);
+                    let disperses = spectral::<M>() && dispersive;
+                    self.eta[i] = if disperses {
+                        let m = &scene.materials()[tri.material() as usize];
+                        m.ior_at(Some(lam[i].wl.hero()), true)
+                    } else {
+                        eta
+                    };
+                    self.disperses[i] = disperses;
+                    set_lane(&mut self.col, i, reflectance::<M>(tint, &lam[i]));
                 }
                 Shade::Scalar => self.scalar[i] = true,
                 Shade::Unused => {}

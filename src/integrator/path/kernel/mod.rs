@@ -1,14 +1,16 @@
-//! A structure-of-arrays path kernel (issue 51): `--method path` in RGB on scenes lit by
-//! punctual lights, emissive triangles and an environment ([`features`] decides, and says
-//! why not), opt-in with the environment variable `IRIS_KERNEL=soa`. Anything else, or a
+//! A structure-of-arrays path kernel (issue 51): `--method path` in RGB or spectral
+//! transport on scenes lit by punctual lights, emissive triangles and an environment
+//! ([`features`] decides, and says why not), opt-in with the environment variable
+//! `IRIS_KERNEL=soa`. Anything else, or a
 //! scene outside the class (a `note:` line on stderr says why), renders with the scalar
 //! path tracer, unchanged. A lane that meets a material the kernel does not shade hands
 //! its path to the scalar vertex ([`handoff`]).
 //!
 //! Design: 16 camera paths (8 with `IRIS_LANES=8`) run through one bounce loop
 //! ([`paths::run`]) with their whole state in structure-of-arrays form, lane `i` at index
-//! `i` of each array: the next rays, throughput, radiance, η scale, bounce counts, job,
-//! sample stream and alive mask. Rays go to the backend as one
+//! `i` of each array: the next rays, throughput and radiance in `M` channels (3 RGB, or
+//! 4 wavelengths with the hero in channel 0: [`colour`]), η scale, bounce counts, job,
+//! sample stream, wavelengths and alive mask. Rays go to the backend as one
 //! [`crate::accel::packet::RayPacket`] and the hits come back as one
 //! [`crate::accel::packet::HitPacket`]; the hit records are built over the lanes
 //! ([`hits`]), with only the triangle's vertices, vertex normals and material gathered per
@@ -19,7 +21,10 @@
 //! the cosine-sampled bounce and Russian roulette; the smooth dielectric's
 //! Fresnel-weighted reflection or refraction. Shadow rays go out as one packet. A lane whose
 //! path ends writes its job's radiance and takes the next job (refill), so glass paths do
-//! not leave the packet empty. A lane takes its job with the first hit known: the batch's
+//! not leave the packet empty. In spectral transport a sample meeting a dispersive glass
+//! splits there into its 4 wavelengths as the scalar path tracer splits it, the waiting
+//! sub-paths taking the lane in turn before the next job ([`branches`]). A lane takes its
+//! job with the first hit known: the batch's
 //! camera rays are traced `N` at a time in job order as coherent packets of their own
 //! ([`camera`]), so the bounce packets carry bounce rays only. The film receives the
 //! estimates in job order, as the scalar path's ([`crate::render::render_batches`]).
@@ -44,8 +49,10 @@
 
 #[cfg(test)]
 mod asset_tests;
+mod branches;
 mod camera;
 mod class;
+mod colour;
 mod emitters;
 mod features;
 mod handoff;
@@ -53,10 +60,13 @@ mod hits;
 mod numbers;
 mod paths;
 mod shade;
+mod state;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
 mod tests_lights;
+#[cfg(test)]
+mod tests_spectral;
 mod volumes;
 
 pub use features::{qualify, Tables};
@@ -113,10 +123,16 @@ pub fn plan_text(scene: &Scene, perspective: bool, spectral: bool) -> Result<Str
         } else {
             "the full loop (emitters and environments with MIS, absorbing glass, hand-over)"
         };
+        let carrier = if tables.spectral {
+            "4 wavelengths a lane (a sample splits into its wavelengths at its first \
+             dispersive glass, the sub-paths taking the lane in turn)"
+        } else {
+            "linear RGB"
+        };
         format!(
             "structure-of-arrays kernel (IRIS_KERNEL=soa): {} camera paths with their whole \
-             state in arrays, hit records and shading across the lanes (AVX-512, AVX2 or \
-             scalar code chosen at run time), {class}, each camera sample with its own \
+             state in arrays, carrying {carrier}, hit records and shading across the lanes \
+             (AVX-512, AVX2 or scalar code chosen at run time), {class}, each camera sample with its own \
              random stream (the single-ray path's numbers): the image equals the \
              single-ray image up to float rounding on most pixels and in expectation \
              everywhere{handed}",
@@ -165,11 +181,15 @@ fn estimate_at(
         rules,
         out,
     };
-    match (width == 8, tables.plain()) {
-        (true, true) => op.dispatch::<8, Plain>(),
-        (true, false) => op.dispatch::<8, Full>(),
-        (false, true) => op.dispatch::<16, Plain>(),
-        (false, false) => op.dispatch::<16, Full>(),
+    match (width == 8, tables.spectral, tables.plain()) {
+        (true, false, true) => op.dispatch::<8, 3, Plain>(),
+        (true, false, false) => op.dispatch::<8, 3, Full>(),
+        (true, true, true) => op.dispatch::<8, 4, Plain>(),
+        (true, true, false) => op.dispatch::<8, 4, Full>(),
+        (false, false, true) => op.dispatch::<16, 3, Plain>(),
+        (false, false, false) => op.dispatch::<16, 3, Full>(),
+        (false, true, true) => op.dispatch::<16, 4, Plain>(),
+        (false, true, false) => op.dispatch::<16, 4, Full>(),
     }
 }
 
@@ -183,13 +203,13 @@ struct Run<'a> {
 }
 
 impl Run<'_> {
-    /// The loop on `N` lanes for the class `K`, compiled for the widest vector
-    /// instructions this CPU has.
-    fn dispatch<const N: usize, K: Class>(self) -> u64
+    /// The loop on `N` lanes carrying `M` channels for the class `K`, compiled for the
+    /// widest vector instructions this CPU has.
+    fn dispatch<const N: usize, const M: usize, K: Class>(self) -> u64
     where
         Lanes<N>: PacketWidth,
     {
-        pulp::Arch::new().dispatch(Loop::<N, K> {
+        pulp::Arch::new().dispatch(Loop::<N, M, K> {
             run: self,
             class: PhantomData,
         })
@@ -202,12 +222,12 @@ impl Run<'_> {
 /// `#[target_feature]` function for that set, so LLVM vectorises them for AVX-512 or AVX2.
 /// (A closure is not inlined there: its body would be compiled once, for the crate's
 /// baseline.)
-struct Loop<'a, const N: usize, K> {
+struct Loop<'a, const N: usize, const M: usize, K> {
     run: Run<'a>,
     class: PhantomData<K>,
 }
 
-impl<const N: usize, K: Class> pulp::WithSimd for Loop<'_, N, K>
+impl<const N: usize, const M: usize, K: Class> pulp::WithSimd for Loop<'_, N, M, K>
 where
     Lanes<N>: PacketWidth,
 {
@@ -216,6 +236,6 @@ where
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) -> u64 {
         let r = self.run;
-        paths::run::<N, K>(r.tables, r.scene, r.run, r.rules, r.out)
+        paths::run::<N, M, K>(r.tables, r.scene, r.run, r.rules, r.out)
     }
 }

@@ -1,6 +1,6 @@
 //! The kernel's bounce loop ([`run`]): `N` camera paths in structure-of-arrays form
-//! ([`Paths`]: the next rays, throughput, radiance, η scale, bounce counts, job, sample
-//! stream, alive mask) go through one loop. A lane takes its job with the camera ray's
+//! ([`Paths`]: the next rays, throughput, radiance in `M` channels, η scale, bounce
+//! counts, job, sample stream, wavelengths, alive mask) go through one loop. A lane takes its job with the camera ray's
 //! first hit already known ([`CameraRays`]: the batch's camera rays traced as coherent
 //! packets of their own). Each turn traces the bounce rays of the other alive lanes as one
 //! packet ([`Scene::intersect_packet`]), merges in the first hits of the lanes just
@@ -17,18 +17,23 @@
 //! from the scalar path tracer's schedule ([`Draws`]), so a job's numbers, and its
 //! estimate, do not depend on its lane, its neighbours or the packet width. A lane that
 //! meets a material the kernel does not shade hands its path to the scalar vertex
-//! ([`super::handoff`]) before the kernel counts anything at that hit.
+//! ([`super::handoff`]) before the kernel counts anything at that hit. In spectral
+//! transport a lane meeting a dispersive glass with its sample whole splits it there
+//! ([`super::branches`]): its waiting sub-paths are its refill before the next job.
 
 use super::super::state::Prev;
 use super::super::Dispersion;
+use super::branches::{keep_hero, Branches, Resumed};
 use super::camera::{ray_into, CameraRays, Started};
 use super::class::Class;
+use super::colour::{lane, spectral, take, to_rgb, unset, Channels};
 use super::emitters::{arrive, next_event};
 use super::features::Tables;
 use super::handoff::{self, Handed};
-use super::hits::{Hits, V3};
+use super::hits::Hits;
 use super::numbers::{Draws, Vertices};
-use super::shade::{glass, lambert, Rays, Throughput};
+use super::shade::{glass, lambert};
+use super::state::{Rays, Throughput, NONE_YET};
 use super::volumes::absorb;
 use crate::accel::packet::{lanes, Coherence, LaneMask, Lanes, PacketWidth, RayPacket};
 use crate::accel::RawHit;
@@ -36,58 +41,103 @@ use crate::light::LightId;
 use crate::math::Ray;
 use crate::render::{Context, Job, Starts};
 use crate::scene::Scene;
+use crate::spectrum::{Carrier, Lambdas, SampledSpectrum};
 use glam::Vec3;
 
-/// The state of `N` camera paths.
-struct Paths<const N: usize> {
+/// The state of `N` camera paths carrying `M` channels.
+struct Paths<const N: usize, const M: usize> {
     /// The rays to trace next.
     next: Rays<N>,
     /// Throughput, η scale, bounce counts.
-    st: Throughput<N>,
+    st: Throughput<N, M>,
     /// Radiance so far.
-    l: V3<N>,
+    l: Channels<N, M>,
+    /// Each lane's wavelengths (spectral transport; a sub-path's rotated to its lane).
+    lam: [Lambdas; N],
+    /// Split samples and their waiting sub-paths (spectral transport).
+    branches: Branches<N, M>,
     /// The job (index into the batch) each lane estimates.
     job: [u32; N],
     /// Each lane's sample stream (boxed: taking a job swaps pointers, not the sampler's
     /// state).
     ctx: [Box<Context>; N],
-    /// Delta bounces since the last non-delta one ([`NONE_YET`] before the first).
-    since: [u32; N],
     /// The lanes with a path in flight.
     alive: LaneMask,
 }
 
-/// [`Paths::since`] of a lane before its first non-delta bounce.
-const NONE_YET: u32 = u32::MAX;
-
-impl<const N: usize> Paths<N> {
+impl<const N: usize, const M: usize> Paths<N, M> {
     fn new(starts: &Starts) -> Self {
         Paths {
             next: Rays::new(),
             st: Throughput::new(),
-            l: [[0.0; N]; 3],
+            l: [[0.0; N]; M],
+            lam: std::array::from_fn(|_| unset()),
+            branches: Branches::new(),
             job: [0; N],
             ctx: std::array::from_fn(|_| Box::new(starts.context())),
-            since: [NONE_YET; N],
             alive: 0,
         }
     }
 
     /// Starts the job `s` on lane `i` (its sample stream already swapped into the lane's
-    /// context): its camera ray, unit throughput, no radiance.
+    /// context): its camera ray, wavelengths, unit throughput, no radiance.
     fn start(&mut self, i: usize, s: &Started) {
         ray_into(&mut self.next, i, s);
-        for c in 0..3 {
+        for c in 0..M {
             self.st.beta[c][i] = 1.0;
             self.l[c][i] = 0.0;
+        }
+        if spectral::<M>() {
+            self.lam[i] = SampledSpectrum::sample_lambda(s.u_lambda);
+            self.branches.start(i, self.lam[i]);
         }
         self.st.eta_scale[i] = 1.0;
         self.st.depth[i] = 0;
         self.st.deltas[i] = 0;
         self.st.restart(i);
         self.job[i] = s.job as u32;
-        self.since[i] = NONE_YET;
         self.alive |= 1 << i;
+    }
+
+    /// Lane `i`'s path ended: in spectral transport, takes its sample's next waiting
+    /// sub-path if there is one (returning the ray to the split vertex, whose hit is
+    /// known); otherwise writes its job's linear RGB radiance to `out` and returns `None`.
+    fn end(&mut self, i: usize, out: &mut [Vec3]) -> Option<Resumed> {
+        let rgb = if spectral::<M>() {
+            let at = (&mut self.st, &mut self.l, &mut self.lam);
+            if let Some(r) = self.branches.next(i, at) {
+                return Some(r);
+            }
+            let v = self.branches.radiance(i, &self.l);
+            to_rgb::<M>(v, &self.branches.sample[i])
+        } else {
+            to_rgb::<M>(lane(&self.l, i), &self.lam[i])
+        };
+        out[self.job[i] as usize] = rgb;
+        None
+    }
+
+    /// At the lanes `on` (kept lanes at a dispersive glass, spectral transport), a whole
+    /// sample splits into its wavelengths (or keeps its hero only without the split,
+    /// `split` false); `packet` holds the rays that reached the vertices. The hits' η and
+    /// tint are the hero's already, which is the sub-path 0's.
+    fn disperse(&mut self, on: LaneMask, packet: &RayPacket<N>, split: bool)
+    where
+        Lanes<N>: PacketWidth,
+    {
+        for i in lanes(on) {
+            if self.lam[i].hero_only {
+                continue;
+            }
+            if split {
+                let ray = (packet.origin(i).to_array(), packet.dir(i).to_array());
+                let at = (ray, packet.hit(i));
+                let state = (&mut self.st, &mut self.l, &mut self.lam);
+                self.branches.split(i, at, state);
+            } else {
+                keep_hero(i, &mut self.st, &mut self.lam);
+            }
+        }
     }
 
     /// Hands lane `i`, whose ray in `packet` met its hit on a material the kernel does
@@ -107,11 +157,10 @@ impl<const N: usize> Paths<N> {
         let Some(r) = packet.hit(i) else { return 0 };
         let st = &self.st;
         let handed = Handed {
-            beta: Vec3::new(st.beta[0][i], st.beta[1][i], st.beta[2][i]),
             eta_scale: st.eta_scale[i],
             depth: st.depth[i],
             deltas: st.deltas[i],
-            since_diffuse: (self.since[i] != NONE_YET).then_some(self.since[i]),
+            since_diffuse: (st.since[i] != NONE_YET).then_some(st.since[i]),
             inside: st.medium[i].checked_sub(1),
             prev: Prev {
                 delta: st.prev_delta[i],
@@ -122,27 +171,98 @@ impl<const N: usize> Paths<N> {
         let ray = Ray::new(packet.origin(i), packet.dir(i));
         let ctx = &mut self.ctx[i];
         let before = ctx.rays;
-        let e = handoff::finish(scene, rules, &handed, (ray, r), ctx);
-        (0..3).for_each(|c| self.l[c][i] += e[c]);
+        let beta = lane(&self.st.beta, i);
+        let e: [f32; M] = if spectral::<M>() {
+            let carried = (SampledSpectrum::from_lanes(take(beta)), self.lam[i]);
+            take(handoff::finish(scene, rules, &handed, carried, (ray, r), ctx).to_lanes())
+        } else {
+            let carried = (Vec3::from_array(take(beta)), ());
+            take(handoff::finish(scene, rules, &handed, carried, (ray, r), ctx).to_array())
+        };
+        (0..M).for_each(|c| self.l[c][i] += e[c]);
         ctx.rays - before
+    }
+
+    /// Lane `i` takes the waiting sub-path `r` of its split sample: its next ray is the
+    /// one that reached the split vertex.
+    fn resume(&mut self, i: usize, r: &Resumed) {
+        let (o, d) = r.ray;
+        for c in 0..3 {
+            self.next.o[c][i] = o[c];
+            self.next.d[c][i] = d[c];
+        }
+        self.next.t_max[i] = f32::INFINITY;
+    }
+
+    /// Shades the hits `h` (in `scene`; `area`: some light has an area or is at
+    /// infinity): next-event estimation at the Lambert lanes with their shadow rays traced
+    /// as one packet (counted in `rays`), the Lambert bounce and roulette, the dielectric's
+    /// choice; the next rays into [`Self::next`]. Returns the lanes whose path ends at
+    /// their vertex.
+    #[inline(always)]
+    fn shade(
+        &mut self,
+        tables: &Tables,
+        (scene, h, area): (&Scene, &Hits<N, M>, bool),
+        max_depth: u32,
+        rays: &mut u64,
+    ) -> LaneMask
+    where
+        Lanes<N>: PacketWidth,
+    {
+        let at = Vertices {
+            index: std::array::from_fn(|i| self.st.depth[i] + self.st.deltas[i]),
+            lambert: &h.lambert,
+            glass: &h.glass,
+            roulette: std::array::from_fn(|i| self.st.depth[i] + 1 >= 3),
+            lights: tables.sampled.len(),
+            area,
+        };
+        let u = Draws::draw(&mut self.ctx, &at);
+        let mut value: Channels<N, M> = [[0.0; N]; M];
+        let mut shadow = Rays::<N>::new();
+        let mut traced = [false; N];
+        let beta = self.st.beta;
+        let out_nee = (&mut value, &mut shadow, &mut traced);
+        let light = (tables, scene, &self.lam);
+        next_event(light, &u, (&h.lambert, h, &beta), out_nee);
+        let (ends_l, played) = lambert(
+            &h.lambert,
+            h,
+            (&u.direction[0], &u.direction[1], &u.roulette),
+            max_depth,
+            &mut self.st,
+            &mut self.next,
+        );
+        Draws::played(&mut self.ctx, &at, mask(&played));
+        let ends_g = glass(&h.glass, h, &u.lobe, &mut self.st, &mut self.next);
+        self.track(h);
+        let traced = mask(&traced);
+        if traced != 0 {
+            let mut sp = RayPacket::<N>::new();
+            rays_into(&shadow, &mut sp);
+            sp.set_active(traced);
+            let blocked = scene.occluded_packet(&mut sp);
+            *rays += u64::from(traced.count_ones());
+            for i in lanes(traced & !blocked) {
+                (0..M).for_each(|c| self.l[c][i] += value[c][i]);
+            }
+        }
+        mask(&ends_l) | mask(&ends_g)
     }
 
     /// After the shading of hits `h`: a Lambert bounce is non-delta (no delta bounces
     /// since); the dielectric counts one more delta bounce.
     #[inline(always)]
-    fn track(&mut self, h: &Hits<N>) {
-        for i in 0..N {
-            let since = if self.since[i] == NONE_YET {
-                NONE_YET
-            } else {
-                self.since[i] + 1
-            };
-            self.since[i] = if h.lambert[i] {
+    fn track(&mut self, h: &Hits<N, M>) {
+        for (i, was) in self.st.since.iter_mut().enumerate() {
+            let since = if *was == NONE_YET { NONE_YET } else { *was + 1 };
+            *was = if h.lambert[i] {
                 0
             } else if h.glass[i] {
                 since
             } else {
-                self.since[i]
+                *was
             };
         }
     }
@@ -180,11 +300,11 @@ fn mask<const N: usize>(flags: &[bool; N]) -> LaneMask {
     (0..N).fold(0, |m, i| m | (u32::from(flags[i]) << i))
 }
 
-/// Estimates `jobs` (begun by `starts`) on `N` lanes with at most
+/// Estimates `jobs` (begun by `starts`) on `N` lanes carrying `M` channels with at most
 /// `max_depth` non-delta bounces a path, writing job `i`'s linear RGB radiance to `out[i]`.
 /// Returns the rays traced.
 #[inline(always)]
-pub fn run<const N: usize, K: Class>(
+pub fn run<const N: usize, const M: usize, K: Class>(
     tables: &Tables,
     scene: &Scene,
     (starts, jobs): (&Starts, &[Job]),
@@ -194,17 +314,19 @@ pub fn run<const N: usize, K: Class>(
 where
     Lanes<N>: PacketWidth,
 {
-    let mut p = Paths::<N>::new(starts);
+    let mut p = Paths::<N, M>::new(starts);
     let mut cameras = CameraRays::<N>::new(starts);
     let mut rays = 0u64;
     let mut packet = RayPacket::<N>::new();
     let mut first: [Option<RawHit>; N] = [None; N];
+    // Lanes whose next vertex is a split vertex again, its hit known.
+    let mut resumed: LaneMask = 0;
     let area = tables
         .sampled
         .iter()
         .any(|l| !matches!(l, LightId::Punctual(_)));
     loop {
-        let mut fresh: LaneMask = 0;
+        let mut fresh: LaneMask = resumed;
         for (i, first) in first.iter_mut().enumerate() {
             if p.alive & (1 << i) == 0 {
                 let batch = (starts, jobs);
@@ -233,7 +355,7 @@ where
             packet.set_hit(i, first[i]);
         }
         let hit = packet.hits.hit & p.alive;
-        let h = Hits::new(scene, &tables.shades, &packet, &packet.hits, hit);
+        let h = Hits::<N, M>::new((scene, &tables.shades), &packet, &packet.hits, hit, &p.lam);
         let handed = if K::HANDS_OVER {
             hit & mask(&h.scalar)
         } else {
@@ -243,55 +365,33 @@ where
             rays += p.hand_over(i, scene, &packet, (max_depth, &dispersion));
         }
         let kept = hit & !handed;
+        // What arrived at a resumed lane's vertex was counted before its split.
+        let arrived = kept & !resumed;
         if K::ABSORBS {
-            absorb(tables, &packet, (&h, kept), &mut p.st);
+            let at = (tables, scene, &p.lam);
+            absorb(at, &packet, (&h, arrived), &mut p.st);
         }
         if K::LIT_BY_AREA {
-            let seen = (kept, p.alive & !handed);
-            arrive((tables, scene), &packet, &h, seen, &p.st, &mut p.l);
+            let seen = (arrived, p.alive & !handed & !resumed);
+            let at = (tables, scene);
+            arrive(at, &packet, (&h, &p.lam), seen, &p.st, &mut p.l);
         }
-        let at = Vertices {
-            index: std::array::from_fn(|i| p.st.depth[i] + p.st.deltas[i]),
-            lambert: &h.lambert,
-            glass: &h.glass,
-            roulette: std::array::from_fn(|i| p.st.depth[i] + 1 >= 3),
-            lights: tables.sampled.len(),
-            area,
-        };
-        let u = Draws::draw(&mut p.ctx, &at);
-        let mut value: V3<N> = [[0.0; N]; 3];
-        let mut shadow = Rays::<N>::new();
-        let mut traced = [false; N];
-        let beta = p.st.beta;
-        let out_nee = (&mut value, &mut shadow, &mut traced);
-        next_event((tables, scene), &u, (&h.lambert, &h, &beta), out_nee);
-        let (ends_l, played) = lambert(
-            &h.lambert,
-            &h,
-            (&u.direction[0], &u.direction[1], &u.roulette),
-            max_depth,
-            &mut p.st,
-            &mut p.next,
-        );
-        Draws::played(&mut p.ctx, &at, mask(&played));
-        let ends_g = glass(&h.glass, &h, &u.lobe, &mut p.st, &mut p.next);
-        p.track(&h);
-        let traced = mask(&traced);
-        if traced != 0 {
-            let mut sp = RayPacket::<N>::new();
-            rays_into(&shadow, &mut sp);
-            sp.set_active(traced);
-            let blocked = scene.occluded_packet(&mut sp);
-            rays += u64::from(traced.count_ones());
-            for i in lanes(traced & !blocked) {
-                (0..3).for_each(|c| p.l[c][i] += value[c][i]);
+        if spectral::<M>() {
+            p.disperse(kept & mask(&h.disperses), &packet, dispersion.split);
+        }
+        let ends = p.shade(tables, (scene, &h, area), max_depth, &mut rays);
+        let shaded = mask(&h.lambert) | mask(&h.glass);
+        let ended = (p.alive & !(hit & shaded)) | ends;
+        resumed = 0;
+        for i in lanes(ended & p.alive) {
+            match p.end(i, out) {
+                Some(r) => {
+                    p.resume(i, &r);
+                    first[i] = r.hit;
+                    resumed |= 1 << i;
+                }
+                None => p.alive &= !(1 << i),
             }
         }
-        let shaded = mask(&h.lambert) | mask(&h.glass);
-        let ended = (p.alive & !(hit & shaded)) | mask(&ends_l) | mask(&ends_g);
-        for i in lanes(ended & p.alive) {
-            out[p.job[i] as usize] = Vec3::new(p.l[0][i], p.l[1][i], p.l[2][i]);
-        }
-        p.alive &= !ended;
     }
 }

@@ -16,96 +16,22 @@
 //! [`MAX_DELTA_BOUNCES`]. Rays leave by the intersection layer's one offset rule
 //! ([`crate::interaction`]: along `ng`, to the side the ray leaves to).
 //!
-//! Units: radiance linear RGB; world space.
+//! Units: radiance in `M` channels ([`super::colour`]); world space.
 
-use super::features::Punctual;
+use super::colour::{emitted, spectral, Channels};
+use super::features::{Punctual, Tables};
 use super::hits::{dot, Hits, V3};
+use super::state::{Rays, Throughput};
 use crate::interaction::{offset_point, SHADOW_EPSILON};
 use crate::light::punctual::{cone_falloff, range_window};
 use crate::shading::MAX_DELTA_BOUNCES;
+use crate::spectrum::{EmitterShape, Lambdas};
 use std::f32::consts::{FRAC_1_PI, TAU};
-
-/// The per-lane state the bounces update: throughput, η scale, bounce counts, the
-/// previous bounce (for the MIS weight of emission the path meets next, as the scalar
-/// path's `Prev`) and the glass volume the path is in.
-pub struct Throughput<const N: usize> {
-    /// Throughput β.
-    pub beta: V3<N>,
-    /// Product of η'² over the refractions (Russian roulette reads β · η scale).
-    pub eta_scale: [f32; N],
-    /// Non-delta bounces.
-    pub depth: [u32; N],
-    /// Delta bounces.
-    pub deltas: [u32; N],
-    /// The previous bounce was delta (or the ray is the camera's): no MIS.
-    pub prev_delta: [bool; N],
-    /// The previous bounce's BSDF pdf (solid angle).
-    pub prev_pdf: [f32; N],
-    /// The previous bounce's position.
-    pub prev_p: V3<N>,
-    /// The glass volume the path is in: its material index + 1, or 0 in air.
-    pub medium: [u32; N],
-}
-
-impl<const N: usize> Throughput<N> {
-    /// No paths yet.
-    pub fn new() -> Self {
-        Throughput {
-            beta: [[0.0; N]; 3],
-            eta_scale: [1.0; N],
-            depth: [0; N],
-            deltas: [0; N],
-            prev_delta: [true; N],
-            prev_pdf: [0.0; N],
-            prev_p: [[0.0; N]; 3],
-            medium: [0; N],
-        }
-    }
-
-    /// Lane `i` starts a camera path: no previous bounce to weigh against, in air.
-    pub fn restart(&mut self, i: usize) {
-        self.prev_delta[i] = true;
-        self.prev_pdf[i] = 0.0;
-        self.medium[i] = 0;
-    }
-
-    /// Where `on`, lane `i` records its bounce at `h`'s lane `i` with BSDF pdf `pdf`
-    /// (`delta`: a delta bounce).
-    #[inline(always)]
-    fn bounced(&mut self, on: bool, h: &Hits<N>, i: usize, (pdf, delta): (f32, bool)) {
-        self.prev_delta[i] = if on { delta } else { self.prev_delta[i] };
-        self.prev_pdf[i] = if on { pdf } else { self.prev_pdf[i] };
-        for c in 0..3 {
-            self.prev_p[c][i] = if on { h.p[c][i] } else { self.prev_p[c][i] };
-        }
-    }
-}
-
-/// Rays in SoA form: origin, direction, `t_max`.
-pub struct Rays<const N: usize> {
-    /// Origin.
-    pub o: V3<N>,
-    /// Direction.
-    pub d: V3<N>,
-    /// Upper bound of t.
-    pub t_max: [f32; N],
-}
-
-impl<const N: usize> Rays<N> {
-    /// No rays yet.
-    pub fn new() -> Self {
-        Rays {
-            o: [[0.0; N]; 3],
-            d: [[0.0; N]; 3],
-            t_max: [0.0; N],
-        }
-    }
-}
 
 /// The origin of a ray leaving hit lane `i` toward `dir`: the intersection layer's offset
 /// rule ([`offset_point`]).
 #[inline(always)]
-fn origin<const N: usize>(h: &Hits<N>, i: usize, dir: [f32; 3]) -> [f32; 3] {
+fn origin<const N: usize, const M: usize>(h: &Hits<N, M>, i: usize, dir: [f32; 3]) -> [f32; 3] {
     let p = [h.p[0][i], h.p[1][i], h.p[2][i]];
     let ng = [h.ng[0][i], h.ng[1][i], h.ng[2][i]];
     offset_point(p, ng, h.offset[i], dir)
@@ -114,7 +40,13 @@ fn origin<const N: usize>(h: &Hits<N>, i: usize, dir: [f32; 3]) -> [f32; 3] {
 /// Where `on`, sets lane `i` of `out` to the ray leaving hit lane `i` along the unit `dir`
 /// (a select, not a branch, so the lane loop stays one vector loop).
 #[inline(always)]
-pub fn spawn<const N: usize>(on: bool, h: &Hits<N>, i: usize, dir: [f32; 3], out: &mut Rays<N>) {
+pub fn spawn<const N: usize, const M: usize>(
+    on: bool,
+    h: &Hits<N, M>,
+    i: usize,
+    dir: [f32; 3],
+    out: &mut Rays<N>,
+) {
     let o = origin(h, i, dir);
     for c in 0..3 {
         out.o[c][i] = if on { o[c] } else { out.o[c][i] };
@@ -127,9 +59,9 @@ pub fn spawn<const N: usize>(on: bool, h: &Hits<N>, i: usize, dir: [f32; 3], out
 /// point `target`, or along the unit direction `target` when `distant`: the intersection
 /// layer's `spawn_ray_to` (up to 1 − [`SHADOW_EPSILON`] of the way) and `spawn_ray`.
 #[inline(always)]
-pub fn aim<const N: usize>(
+pub fn aim<const N: usize, const M: usize>(
     on: bool,
-    h: &Hits<N>,
+    h: &Hits<N, M>,
     i: usize,
     (target, distant): ([f32; 3], bool),
     shadow: &mut Rays<N>,
@@ -154,48 +86,82 @@ pub fn aim<const N: usize>(
 }
 
 /// Next-event estimation at the lanes `on` toward the punctual light of index `k[i]` among
-/// `lights`, chosen with probability 1/`inv_pmf`: adds to `value` the unweighted-by-shadow
-/// contribution β · f · E⊥ · `inv_pmf` · |cos θ| of each lane whose sample counts, sets its
-/// shadow ray in `shadow` and its flag in `traced`.
+/// the table's lights, chosen with probability 1/`inv_pmf`: adds to `value` the
+/// unweighted-by-shadow contribution β · f · E⊥ · `inv_pmf` · |cos θ| of each lane whose
+/// sample counts (E⊥ at the lane's wavelengths `lam`), sets its shadow ray in `shadow` and
+/// its flag in `traced`.
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
-pub fn light<const N: usize>(
-    (lights, inv_pmf): (&[Punctual], f32),
-    k: &[u32; N],
-    on: &[bool; N],
-    h: &Hits<N>,
-    beta: &V3<N>,
-    value: &mut V3<N>,
-    shadow: &mut Rays<N>,
-    traced: &mut [bool; N],
+pub fn light<const N: usize, const M: usize>(
+    (tables, inv_pmf, lam): (&Tables, f32, &[Lambdas; N]),
+    (k, on): (&[u32; N], &[bool; N]),
+    (h, beta): (&Hits<N, M>, &Channels<N, M>),
+    (value, shadow, traced): (&mut Channels<N, M>, &mut Rays<N>, &mut [bool; N]),
 ) {
     let n = inv_pmf;
-    for (j, l) in lights.iter().enumerate() {
+    let mut e_rgb: V3<N> = [[0.0; N]; 3];
+    let mut w = [0.0f32; N];
+    let mut counts = [false; N];
+    for (j, l) in tables.lights.iter().enumerate() {
         for i in 0..N {
             let mine = on[i] && k[i] == j as u32;
             let (wi, e, ok, target) = incidence(l, h, i);
             let cos_o = dot(&h.ns, &h.wo, i);
             let cos_i = h.ns[0][i] * wi[0] + h.ns[1][i] * wi[1] + h.ns[2][i] * wi[2];
-            let f_nonzero = h.rgb[0][i] > 0.0 || h.rgb[1][i] > 0.0 || h.rgb[2][i] > 0.0;
-            let counts = mine && ok && cos_o * cos_i > 0.0 && f_nonzero;
-            let w = cos_i.abs() * n * FRAC_1_PI;
+            let f_nonzero = (0..M).any(|c| h.col[c][i] > 0.0);
+            let counted = mine && ok && cos_o * cos_i > 0.0 && f_nonzero;
             for c in 0..3 {
-                let v = beta[c][i] * h.rgb[c][i] * e[c] * w;
-                value[c][i] = if counts { v } else { value[c][i] };
+                e_rgb[c][i] = if counted { e[c] } else { e_rgb[c][i] };
             }
+            w[i] = if counted {
+                cos_i.abs() * n * FRAC_1_PI
+            } else {
+                w[i]
+            };
+            counts[i] |= counted;
             let target = if l.directional { wi } else { target };
-            aim(counts, h, i, (target, l.directional), shadow);
-            traced[i] |= counts;
+            aim(counted, h, i, (target, l.directional), shadow);
+            traced[i] |= counted;
         }
     }
+    let e = incident::<N, M>(
+        (&e_rgb, &counts),
+        |i| tables.light_shapes[k[i] as usize].as_ref(),
+        lam,
+    );
+    for i in 0..N {
+        for c in 0..M {
+            let v = beta[c][i] * h.col[c][i] * e[c][i] * w[i];
+            value[c][i] = if counts[i] { v } else { value[c][i] };
+        }
+    }
+}
+
+/// The light's RGB value `rgb` at the lanes `on` in `M` channels at each lane's
+/// wavelengths `lam` (the shape of lane `i`'s light `shape(i)`): a copy in RGB.
+#[inline(always)]
+pub fn incident<'a, const N: usize, const M: usize>(
+    (rgb, on): (&V3<N>, &[bool; N]),
+    shape: impl Fn(usize) -> Option<&'a EmitterShape>,
+    lam: &[Lambdas; N],
+) -> Channels<N, M> {
+    let mut e = [[0.0; N]; M];
+    if spectral::<M>() {
+        for i in (0..N).filter(|&i| on[i]) {
+            let v = emitted::<M>([rgb[0][i], rgb[1][i], rgb[2][i]], shape(i), &lam[i]);
+            (0..M).for_each(|c| e[c][i] = v[c]);
+        }
+    } else {
+        (0..M).for_each(|c| e[c] = rgb[c]);
+    }
+    e
 }
 
 /// The light `l` at hit lane `i`: unit direction toward it, E⊥ (lux), whether it reaches
 /// the point (inside its cone and range, not at it), and its position.
 #[inline(always)]
-fn incidence<const N: usize>(
+fn incidence<const N: usize, const M: usize>(
     l: &Punctual,
-    h: &Hits<N>,
+    h: &Hits<N, M>,
     i: usize,
 ) -> ([f32; 3], [f32; 3], bool, [f32; 3]) {
     if l.directional {
@@ -236,12 +202,12 @@ fn sincos_tau(t: f32) -> (f32, f32) {
 /// 1 after three non-delta bounces, the bounce limit not reached).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub fn lambert<const N: usize>(
+pub fn lambert<const N: usize, const M: usize>(
     on: &[bool; N],
-    h: &Hits<N>,
+    h: &Hits<N, M>,
     (u1, u2, u_rr): (&[f32; N], &[f32; N], &[f32; N]),
     max_depth: u32,
-    st: &mut Throughput<N>,
+    st: &mut Throughput<N, M>,
     next: &mut Rays<N>,
 ) -> ([bool; N], [bool; N]) {
     let (mut ends, mut played) = ([false; N], [false; N]);
@@ -259,8 +225,8 @@ pub fn lambert<const N: usize>(
         let z = if cos_o < 0.0 { -z } else { z };
         let wi = [0, 1, 2].map(|c| s[c] * (r * cs) + t[c] * (r * sn) + n[c] * z);
         let mut q = 0.0f32;
-        for c in 0..3 {
-            let b = st.beta[c][i] * h.rgb[c][i];
+        for c in 0..M {
+            let b = st.beta[c][i] * h.col[c][i];
             st.beta[c][i] = if on[i] { b } else { st.beta[c][i] };
             q = q.max(st.beta[c][i] * st.eta_scale[i]);
         }
@@ -271,7 +237,7 @@ pub fn lambert<const N: usize>(
         let rr = depth >= 3;
         let survives = !rr || q >= 1.0 || u_rr[i] < q;
         let divisor = if rr && q < 1.0 { q } else { 1.0 };
-        for c in 0..3 {
+        for c in 0..M {
             let b = st.beta[c][i] / divisor;
             st.beta[c][i] = if on[i] { b } else { st.beta[c][i] };
         }
@@ -290,11 +256,11 @@ pub fn lambert<const N: usize>(
 /// tint over η'², η scale times η'²); one more delta bounce. The next ray into `next`;
 /// returns the lanes whose path ends here.
 #[inline(always)]
-pub fn glass<const N: usize>(
+pub fn glass<const N: usize, const M: usize>(
     on: &[bool; N],
-    h: &Hits<N>,
+    h: &Hits<N, M>,
     u: &[f32; N],
-    st: &mut Throughput<N>,
+    st: &mut Throughput<N, M>,
     next: &mut Rays<N>,
 ) -> [bool; N] {
     let mut ends = [false; N];
@@ -323,8 +289,8 @@ pub fn glass<const N: usize>(
         let rlen = 1.0 / (wt[0] * wt[0] + wt[1] * wt[1] + wt[2] * wt[2]).sqrt();
         let wi = [0, 1, 2].map(|k| if reflect { wr[k] } else { wt[k] * rlen });
         let weight = if reflect { 1.0 } else { 1.0 / (etap * etap) };
-        for k in 0..3 {
-            let t = if reflect { 1.0 } else { h.rgb[k][i] };
+        for k in 0..M {
+            let t = if reflect { 1.0 } else { h.col[k][i] };
             let b = st.beta[k][i] * t * weight;
             st.beta[k][i] = if on[i] { b } else { st.beta[k][i] };
         }

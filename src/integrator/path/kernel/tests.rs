@@ -102,7 +102,7 @@ fn kernel_film(
     (s, width): (&RenderSettings, usize),
     range: Option<Range<u64>>,
 ) -> Film {
-    let tables = qualify(scene, cam.is_perspective(), false).expect("the scene qualifies");
+    let tables = qualify(scene, cam.is_perspective(), s.spectral).expect("the scene qualifies");
     let estimate = |starts: &Starts, jobs: &[Job], out: &mut [Vec3]| {
         let rules = (MAX_DEPTH, Dispersion::ALL);
         estimate_at(width, &tables, scene, (starts, jobs), rules, out)
@@ -313,10 +313,10 @@ fn scenes_outside_the_class_are_refused_with_the_reason() {
     assert!(matches!(t.shades[0], Shade::Lambert(_)) && t.shades[1] == Shade::Scalar);
     assert!(t.scalar[0].contains("rough glass"), "{:?}", t.scalar);
     let scene = build(desc(lambert_floor()), Backend::Bvh);
-    assert!(qualify(&scene, cam.is_perspective(), true)
-        .unwrap_err()
-        .contains("spectral"));
-    assert!(qualify(&scene, cam.is_perspective(), false).is_ok_and(|t| t.scalar.is_empty()));
+    for spectral in [false, true] {
+        let t = qualify(&scene, cam.is_perspective(), spectral);
+        assert!(t.is_ok_and(|t| t.scalar.is_empty() && t.spectral == spectral));
+    }
 }
 
 /// The test scene with a rough glass sphere (roughness 0.2): the scalar vertex's.
@@ -388,8 +388,9 @@ fn the_plan_names_the_kernel_or_the_reason() {
     );
     let orthographic = super::plan_text(&scene, false, false).unwrap_err();
     assert!(orthographic.contains("orthographic"), "{orthographic}");
-    let spectral = super::plan_text(&scene, true, true).unwrap_err();
-    assert!(spectral.contains("spectral"), "{spectral}");
+    let spectral = super::plan_text(&scene, true, true).expect("qualifies in spectral");
+    assert!(spectral.contains("4 wavelengths a lane"), "{spectral}");
+    assert!(ran.contains("linear RGB"), "{ran}");
 }
 
 /// The pixels of `a` whose relative difference from `b` exceeds 1e-4 in some channel
@@ -485,9 +486,9 @@ fn the_scene_class_picks_the_loop_and_changes_nothing() {
                 out,
             };
             if full {
-                op.dispatch::<16, class::Full>()
+                op.dispatch::<16, 3, class::Full>()
             } else {
-                op.dispatch::<16, class::Plain>()
+                op.dispatch::<16, 3, class::Plain>()
             }
         };
         let (film, _) =

@@ -13,6 +13,7 @@ use crate::authoring::scene::placed;
 use crate::authoring::shapes::icosphere;
 use crate::light::env::Environment;
 use crate::material::MaterialDesc;
+use crate::render::RenderSettings;
 use crate::scene::desc::{MeshDesc, SceneDesc};
 use glam::Vec3;
 
@@ -48,14 +49,26 @@ fn lamp_scene(environment: Option<Environment>) -> Scene {
 /// The kernel's image of `scene` and the scalar path tracer's agree (as
 /// [`super::tests`]'s agreement test: every 4×4 block within 5 σ, the image mean within 4
 /// standard errors), the image is lit, and at the same seed it is the scalar image up to
-/// float rounding (the bound of `the_kernel_equals_the_scalar_path_tracer_at_the_same_seed`).
+/// float rounding (the bound of `the_kernel_equals_the_scalar_path_tracer_at_the_same_seed`),
+/// in RGB and in spectral transport.
 fn agrees(scene: &Scene) {
-    let k = kernel_image(scene, &settings(256, 21), 16);
-    let s = scalar_image(scene, &settings(256, 22));
-    let same_seed = scalar_image(scene, &settings(256, 21)).0;
-    assert_agrees("lights", (&k, &s, 4), Some(&same_seed));
-    let lit = k.0.data.iter().map(|p| p.max_element()).fold(0.0, f32::max);
-    assert!(lit > 0.05, "the image is dark: {lit}");
+    for spectral in [false, true] {
+        let at = |seed| RenderSettings {
+            spectral,
+            ..settings(256, seed)
+        };
+        let k = kernel_image(scene, &at(21), 16);
+        let s = scalar_image(scene, &at(22));
+        let same_seed = scalar_image(scene, &at(21)).0;
+        let what = if spectral {
+            "lights, spectral"
+        } else {
+            "lights"
+        };
+        assert_agrees(what, (&k, &s, 4), Some(&same_seed));
+        let lit = k.0.data.iter().map(|p| p.max_element()).fold(0.0, f32::max);
+        assert!(lit > 0.05, "the image is dark: {lit}");
+    }
 }
 
 /// An emissive quad over the glass sphere and the floor: the kernel samples the quad for
