@@ -150,9 +150,8 @@ pub fn camera_path<C: Carrier, S: Strategy<C>>(
 }
 
 /// Follows `walk` under `rules` until it ends ([`camera_path`]'s loop, also where the
-/// structure-of-arrays kernel hands a lane over, [`kernel`]): one vertex
-/// ([`vertex::vertex`]) after the other, each shadow ray traced at once; the visible point
-/// where the strategy stops the path into `visible`.
+/// structure-of-arrays kernel hands a lane over, [`kernel`]): one vertex ([`step`]) after
+/// the other; the visible point where the strategy stops the path into `visible`.
 fn walk_on<C: Carrier, S: Strategy<C>>(
     scene: &Scene,
     rules: &Rules<'_, S>,
@@ -161,17 +160,29 @@ fn walk_on<C: Carrier, S: Strategy<C>>(
     visible: &mut Option<VisiblePoint<C>>,
 ) {
     loop {
-        let (media, lambda) = (&walk.st.media, &walk.lambda);
-        let arrival = match walk.st.meet {
-            Some(h) => shading::arrival::<C>(scene, &walk.ray, Some(h), media, lambda),
-            None => shading::arrive::<C>(scene, &walk.ray, media, lambda, &mut ctx.rays),
-        };
-        let (nee, next) = vertex::vertex(scene, rules, walk, arrival, ctx, visible);
-        if let Some(nee) = nee {
-            nee.resolve_traced(scene, &walk.lambda, &mut ctx.rays, &mut walk.l);
-        }
-        if next == Next::End && !walk.next_branch() {
+        if step(scene, rules, walk, ctx, visible) == Next::End && !walk.next_branch() {
             return;
         }
     }
+}
+
+/// One vertex of `walk` under `rules` ([`vertex::vertex`], its hit traced unless the walk
+/// met it already), its shadow ray traced at once; what follows it.
+fn step<C: Carrier, S: Strategy<C>>(
+    scene: &Scene,
+    rules: &Rules<'_, S>,
+    walk: &mut Walk<C>,
+    ctx: &mut Context,
+    visible: &mut Option<VisiblePoint<C>>,
+) -> Next {
+    let (media, lambda) = (&walk.st.media, &walk.lambda);
+    let arrival = match walk.st.meet {
+        Some(h) => shading::arrival::<C>(scene, &walk.ray, Some(h), media, lambda),
+        None => shading::arrive::<C>(scene, &walk.ray, media, lambda, &mut ctx.rays),
+    };
+    let (nee, next) = vertex::vertex(scene, rules, walk, arrival, ctx, visible);
+    if let Some(nee) = nee {
+        nee.resolve_traced(scene, &walk.lambda, &mut ctx.rays, &mut walk.l);
+    }
+    next
 }

@@ -156,6 +156,11 @@ impl<C: Carrier> Branches<C> {
         true
     }
 
+    /// Whether the sample was split.
+    pub fn is_split(&self) -> bool {
+        self.split
+    }
+
     /// The sample's radiance once [`Self::next`] returned false: `l` without a split.
     pub fn radiance(&self, l: C) -> C {
         if self.split {

@@ -1,22 +1,28 @@
 //! A lane whose path meets a material the kernel does not shade ([`Shade::Scalar`]:
-//! layers, textures, specular or metal lobes, rough or thin glass, …) hands its path over
-//! to the scalar path tracer ([`finish`]): its state becomes the scalar path's
-//! ([`PathState`]) at the hit it just found, and [`super::super::walk_on`] follows it to
-//! its end on single rays with the sample's own numbers, read from the dimension the
-//! path's vertex count gives ([`crate::sampler::schedule`]).
+//! layers, textures, specular or metal lobes, rough or thin glass, …) has that vertex
+//! shaded by the scalar path tracer ([`vertex`]): its state becomes the scalar path's
+//! ([`PathState`]) at the hit it just found, the scalar vertex runs once with the sample's
+//! own numbers (read from the dimension the path's vertex count gives,
+//! [`crate::sampler::schedule`]), its shadow ray traced at once, and the path comes back to
+//! the kernel with the state the vertex left ([`Back::Goes`]); or it ends there
+//! ([`Back::Ended`]). Where the kernel could not carry the state on — the sample split at
+//! that vertex, the path inside two volumes at once, or seen through a cut-out — the
+//! scalar path tracer follows it to its end ([`super::super::walk_on`]) and it ends.
 //!
-//! What carries over: the radiance so far (the caller keeps it and adds the rest),
-//! throughput and wavelengths (in spectral transport), η scale, the non-delta and delta bounce counts (so the depth limit, the
+//! What carries over both ways ([`Handed`]): throughput and wavelengths (in spectral
+//! transport), η scale, the non-delta and delta bounce counts (so the depth limit, the
 //! delta cap and Russian roulette continue where they were), the vertex count, delta
 //! bounces since the last non-delta one, the glass volume the lane is in (or air) and the
-//! previous bounce's MIS record. The hand-over happens before the kernel counts anything
-//! at the hit: the scalar vertex takes the segment's absorption and the hit's emission.
+//! previous bounce's MIS record; the radiance gathered at the vertex goes back to the
+//! lane's own. The hand-over happens before the kernel counts anything at the hit: the
+//! scalar vertex takes the segment's absorption and the hit's emission.
 //!
 //! [`Shade::Scalar`]: super::features::Shade::Scalar
 
+use super::super::own_hero::HeroOf;
 use super::super::state::Prev;
-use super::super::walk::{Rules, Walk};
-use super::super::{walk_on, Dispersion};
+use super::super::walk::{Next, Rules, Walk};
+use super::super::{step, walk_on, Dispersion};
 use crate::accel::RawHit;
 use crate::math::Ray;
 use crate::medium_stack::MediumStack;
@@ -24,8 +30,8 @@ use crate::render::Context;
 use crate::scene::Scene;
 use crate::spectrum::Carrier;
 
-/// What a lane's path carries into the scalar vertex besides its throughput and
-/// wavelengths.
+/// What a lane's path carries into the scalar vertex, and back, besides its throughput
+/// and wavelengths.
 pub struct Handed {
     /// Product of η'² over the refractions so far.
     pub eta_scale: f32,
@@ -41,25 +47,43 @@ pub struct Handed {
     pub prev: Prev,
 }
 
-/// The rest of the path whose ray `ray` met `raw` with the state `handed`, throughput
-/// `beta` and wavelengths `lambda` (a split sample's sub-path keeps its own: it does not
-/// split again): the radiance it gathers from there on, in the lane order of `lambda`,
-/// under the path tracer's `max_depth` and `dispersion`, with `ctx`'s numbers (restarted
-/// for the lane's camera sample by the caller; its ray count grows by the rays traced).
-pub fn finish<C: Carrier>(
+/// A path after its vertex on the scalar vertex.
+pub enum Back<C: Carrier> {
+    /// It ended (there, or followed to its end on the scalar path): the radiance gathered
+    /// from the hit on, in the lane order of the wavelengths handed over.
+    Ended(C),
+    /// It goes on in the kernel.
+    Goes {
+        /// The radiance gathered at the vertex.
+        l: C,
+        /// Throughput and wavelengths after it.
+        carried: (C, C::Lambda),
+        /// The next ray.
+        ray: Ray,
+        /// The rest of the state.
+        state: Handed,
+    },
+}
+
+/// The vertex at the hit `raw` of the path whose ray `ray` met it with the state
+/// `handed`, throughput and wavelengths `carried` (a split sample's sub-path keeps its
+/// own: it does not split again), on the scalar vertex under the path tracer's `max_depth`
+/// and `dispersion`, with `ctx`'s numbers (restarted for the lane's camera sample by the
+/// caller; its ray count grows by the rays traced): what follows ([`Back`]).
+pub fn vertex<C: Carrier>(
     scene: &Scene,
     (max_depth, dispersion): (u32, &Dispersion),
     handed: &Handed,
-    (beta, lambda): (C, C::Lambda),
+    carried: (C, C::Lambda),
     (ray, raw): (Ray, RawHit),
     ctx: &mut Context,
-) -> C {
+) -> Back<C> {
     let Some(hit) = scene.lane_hit(&ray, Some(raw)) else {
-        return C::ZERO;
+        return Back::Ended(C::ZERO);
     };
-    let mut walk = Walk::<C>::new(ray, lambda);
+    let mut walk = Walk::<C>::new(ray, carried.1);
     let st = &mut walk.st;
-    st.beta = beta;
+    st.beta = carried.0;
     st.eta_scale = handed.eta_scale;
     st.depth = handed.depth;
     st.delta_depth = handed.deltas;
@@ -76,6 +100,38 @@ pub fn finish<C: Carrier>(
         max_depth,
         strategy: dispersion,
     };
-    walk_on(scene, &rules, &mut walk, ctx, &mut None);
-    walk.radiance()
+    let next = step(scene, &rules, &mut walk, ctx, &mut None);
+    if next == Next::Trace && returns(&walk) {
+        let st = &walk.st;
+        return Back::Goes {
+            l: walk.l,
+            carried: (st.beta, walk.lambda),
+            ray: walk.ray,
+            state: Handed {
+                eta_scale: st.eta_scale,
+                depth: st.depth,
+                deltas: st.delta_depth,
+                since_diffuse: st.since_diffuse,
+                inside: st.media.iter().next(),
+                prev: st.prev,
+            },
+        };
+    }
+    if next == Next::Trace || walk.next_branch() {
+        walk_on(scene, &rules, &mut walk, ctx, &mut None);
+    }
+    Back::Ended(walk.radiance())
+}
+
+/// Whether the kernel can carry `walk` on after its vertex: the sample whole (not split
+/// there), its lanes in the sample's order, at most one volume around it, its vertex
+/// count the bounces' sum and seen directly only before the first vertex (no cut-out
+/// passed through).
+fn returns<C: Carrier>(walk: &Walk<C>) -> bool {
+    let st = &walk.st;
+    !walk.branches.is_split()
+        && walk.hero == HeroOf::Sample
+        && st.media.iter().nth(1).is_none()
+        && st.vertex == st.depth + st.delta_depth
+        && st.direct == (st.vertex == 0)
 }

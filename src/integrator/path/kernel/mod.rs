@@ -55,6 +55,7 @@ mod class;
 mod colour;
 mod emitters;
 mod features;
+mod handing;
 mod handoff;
 mod hits;
 mod numbers;
@@ -63,6 +64,8 @@ mod shade;
 mod state;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_handoff;
 #[cfg(test)]
 mod tests_lights;
 #[cfg(test)]

@@ -21,15 +21,13 @@
 //! transport a lane meeting a dispersive glass with its sample whole splits it there
 //! ([`super::branches`]): its waiting sub-paths are its refill before the next job.
 
-use super::super::state::Prev;
 use super::super::Dispersion;
 use super::branches::{keep_hero, Branches, Resumed};
 use super::camera::{ray_into, CameraRays, Started};
 use super::class::Class;
-use super::colour::{lane, spectral, take, to_rgb, unset, Channels};
+use super::colour::{lane, spectral, to_rgb, unset, Channels};
 use super::emitters::{arrive, next_event};
 use super::features::Tables;
-use super::handoff::{self, Handed};
 use super::hits::Hits;
 use super::numbers::{Draws, Vertices};
 use super::shade::{glass, lambert};
@@ -38,31 +36,30 @@ use super::volumes::absorb;
 use crate::accel::packet::{lanes, Coherence, LaneMask, Lanes, PacketWidth, RayPacket};
 use crate::accel::RawHit;
 use crate::light::LightId;
-use crate::math::Ray;
 use crate::render::{Context, Job, Starts};
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, Lambdas, SampledSpectrum};
 use glam::Vec3;
 
 /// The state of `N` camera paths carrying `M` channels.
-struct Paths<const N: usize, const M: usize> {
+pub(super) struct Paths<const N: usize, const M: usize> {
     /// The rays to trace next.
-    next: Rays<N>,
+    pub(super) next: Rays<N>,
     /// Throughput, η scale, bounce counts.
-    st: Throughput<N, M>,
+    pub(super) st: Throughput<N, M>,
     /// Radiance so far.
-    l: Channels<N, M>,
+    pub(super) l: Channels<N, M>,
     /// Each lane's wavelengths (spectral transport; a sub-path's rotated to its lane).
-    lam: [Lambdas; N],
+    pub(super) lam: [Lambdas; N],
     /// Split samples and their waiting sub-paths (spectral transport).
-    branches: Branches<N, M>,
+    pub(super) branches: Branches<N, M>,
     /// The job (index into the batch) each lane estimates.
-    job: [u32; N],
+    pub(super) job: [u32; N],
     /// Each lane's sample stream (boxed: taking a job swaps pointers, not the sampler's
     /// state).
-    ctx: [Box<Context>; N],
+    pub(super) ctx: [Box<Context>; N],
     /// The lanes with a path in flight.
-    alive: LaneMask,
+    pub(super) alive: LaneMask,
 }
 
 impl<const N: usize, const M: usize> Paths<N, M> {
@@ -138,49 +135,6 @@ impl<const N: usize, const M: usize> Paths<N, M> {
                 keep_hero(i, &mut self.st, &mut self.lam);
             }
         }
-    }
-
-    /// Hands lane `i`, whose ray in `packet` met its hit on a material the kernel does
-    /// not shade, to the scalar path tracer ([`handoff::finish`]) under `rules`, with the
-    /// lane's own sample stream: adds the rest of its path's radiance to its own. Returns
-    /// the rays traced.
-    fn hand_over(
-        &mut self,
-        i: usize,
-        scene: &Scene,
-        packet: &RayPacket<N>,
-        rules: (u32, &Dispersion),
-    ) -> u64
-    where
-        Lanes<N>: PacketWidth,
-    {
-        let Some(r) = packet.hit(i) else { return 0 };
-        let st = &self.st;
-        let handed = Handed {
-            eta_scale: st.eta_scale[i],
-            depth: st.depth[i],
-            deltas: st.deltas[i],
-            since_diffuse: (st.since[i] != NONE_YET).then_some(st.since[i]),
-            inside: st.medium[i].checked_sub(1),
-            prev: Prev {
-                delta: st.prev_delta[i],
-                pdf: st.prev_pdf[i],
-                p: Vec3::new(st.prev_p[0][i], st.prev_p[1][i], st.prev_p[2][i]),
-            },
-        };
-        let ray = Ray::new(packet.origin(i), packet.dir(i));
-        let ctx = &mut self.ctx[i];
-        let before = ctx.rays;
-        let beta = lane(&self.st.beta, i);
-        let e: [f32; M] = if spectral::<M>() {
-            let carried = (SampledSpectrum::from_lanes(take(beta)), self.lam[i]);
-            take(handoff::finish(scene, rules, &handed, carried, (ray, r), ctx).to_lanes())
-        } else {
-            let carried = (Vec3::from_array(take(beta)), ());
-            take(handoff::finish(scene, rules, &handed, carried, (ray, r), ctx).to_array())
-        };
-        (0..M).for_each(|c| self.l[c][i] += e[c]);
-        ctx.rays - before
     }
 
     /// Lane `i` takes the waiting sub-path `r` of its split sample: its next ray is the
@@ -361,8 +315,11 @@ where
         } else {
             0
         };
+        let mut goes_on: LaneMask = 0;
         for i in lanes(handed) {
-            rays += p.hand_over(i, scene, &packet, (max_depth, &dispersion));
+            let (traced, goes) = p.hand_over(i, scene, &packet, (max_depth, &dispersion));
+            rays += traced;
+            goes_on |= u32::from(goes) << i;
         }
         let kept = hit & !handed;
         // What arrived at a resumed lane's vertex was counted before its split.
@@ -381,7 +338,7 @@ where
         }
         let ends = p.shade(tables, (scene, &h, area), max_depth, &mut rays);
         let shaded = mask(&h.lambert) | mask(&h.glass);
-        let ended = (p.alive & !(hit & shaded)) | ends;
+        let ended = (p.alive & !(hit & shaded) & !goes_on) | ends;
         resumed = 0;
         for i in lanes(ended & p.alive) {
             match p.end(i, out) {
