@@ -67,6 +67,7 @@ fn render(path: &Path, (hybrid, split): (bool, bool), seed: u64) -> (ImageRgb, f
         sampler: Default::default(),
         adaptive: None,
         cancel: Default::default(),
+        kernel: Default::default(),
     };
     let (img, stats) = integrator
         .render(&scene, &Camera::new(&camera, SIZE.0, SIZE.1), &settings)

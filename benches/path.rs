@@ -133,6 +133,7 @@ fn spectral_overhead(c: &mut Criterion) {
                 sampler: Default::default(),
                 adaptive: None,
                 cancel: Default::default(),
+                kernel: Default::default(),
             };
             let id = if spectral {
                 "spectral_on"

@@ -70,6 +70,7 @@ fn settings(spp: u32, seed: u64, time_limit: Option<Duration>) -> RenderSettings
         sampler: Default::default(),
         adaptive: None,
         cancel: Default::default(),
+        kernel: Default::default(),
     }
 }
 

@@ -339,6 +339,7 @@ impl<'a> RenderJob<'a> {
             time_limit: opts.time_limit,
             adaptive: self.adaptive.adaptive,
             cancel: Default::default(),
+            kernel: Default::default(),
         }
     }
 

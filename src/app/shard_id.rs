@@ -190,13 +190,19 @@ fn render_entries(settings: &RenderSettings) -> Vec<(&'static str, String)> {
         sampler,
         adaptive,
         cancel: _,
+        kernel,
     } = settings;
+    // The kernel as the environment resolves it (an error there stops the render first).
+    let kernel = kernel
+        .resolve()
+        .map_or("invalid".to_string(), |k| format!("{k:?}"));
     vec![
         ("seed", seed.to_string()),
         ("size", format!("{width}x{height}")),
         ("sampler", format!("{sampler:?}")),
         ("spectral", spectral.to_string()),
         ("adaptive", format!("{adaptive:?}")),
+        ("kernel", kernel),
     ]
 }
 

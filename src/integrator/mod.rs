@@ -270,9 +270,7 @@ impl Integrator {
             ..
         } = *self
         {
-            if let Some(tables) =
-                path::kernel::choose(scene, camera, (settings.spectral, settings.quiet))
-            {
+            if let Some(tables) = path::kernel::choose(scene, camera, settings)? {
                 let rules = (max_depth, dispersion);
                 return pool.install(|| {
                     render_batches(

@@ -67,6 +67,7 @@ impl Plan {
                 time_limit: None,
                 adaptive: None,
                 cancel: Default::default(),
+                kernel: Default::default(),
             };
             let start = Instant::now();
             integrator.render(scene, camera, &settings)?;

@@ -19,8 +19,9 @@
 //!   a node are loaded).
 //! - **lanes**: whether the path tracer and the hybrid trace their camera paths in packets
 //!   of 8 or 16 ([`crate::integrator::path::LaneWidth`]); other methods and the BVH trace
-//!   single rays. With `IRIS_KERNEL=soa`, which kernel renders the path tracer's camera
-//!   paths and why ([`crate::integrator::path::kernel`]).
+//!   single rays; for the path tracer, whether the structure-of-arrays kernel renders its
+//!   camera paths and why not (`IRIS_KERNEL=scalar`: never;
+//!   [`crate::integrator::path::kernel`]).
 //! - **environment**: none, uniform (uniform sphere sampling) or a map (importance-sampled).
 //! - **nested media**: contact probes at hits on triangles marked
 //!   [`crate::scene::Triangle::TOUCHES`] by `scene/contact.rs` (and `scene/thin.rs`).

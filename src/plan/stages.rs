@@ -294,13 +294,17 @@ pub(super) fn lanes(scene: &Scene, method: Method, (perspective, spectral): (boo
             ..plain
         },
         Err(why) => Stage {
-            reason: format!("{}; IRIS_KERNEL=soa not used: {why}", plain.reason),
+            reason: format!(
+                "{}; not the structure-of-arrays kernel: {why}",
+                plain.reason
+            ),
             ..plain
         },
     }
 }
 
-/// The lanes stage of the scalar vertex (what renders without `IRIS_KERNEL=soa`).
+/// The lanes stage of the scalar vertex (what renders outside the kernel's class, or with
+/// `IRIS_KERNEL=scalar`).
 fn plain_lanes(scene: &Scene, method: Method) -> Stage {
     let width = LaneWidth::choose(scene);
     let caps = method.caps();

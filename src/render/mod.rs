@@ -73,6 +73,46 @@ pub struct RenderSettings {
     pub adaptive: Option<Adaptive>,
     /// This render's own stop request ([`guard::Cancel`]; the default is never set).
     pub cancel: guard::Cancel,
+    /// Which code renders the path tracer's camera paths ([`Kernel`]).
+    pub kernel: Kernel,
+}
+
+/// Which code renders the path tracer's camera paths: the structure-of-arrays kernel
+/// where the scene is in its class ([`crate::integrator::path::kernel`]), else the scalar
+/// path vertex; or the scalar vertex always. The two give the same image up to float
+/// rounding, each deterministic on its own; a render's shards all use one (it is part of
+/// their identity).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Kernel {
+    /// As the environment variable `IRIS_KERNEL` says: `soa` (or unset) or `scalar`
+    /// ([`Kernel::resolve`]).
+    #[default]
+    FromEnv,
+    /// The structure-of-arrays kernel where the scene qualifies.
+    Soa,
+    /// The scalar path vertex.
+    Scalar,
+}
+
+impl Kernel {
+    /// [`Kernel::Soa`] or [`Kernel::Scalar`]: `FromEnv` read from `IRIS_KERNEL` (`soa`,
+    /// the default when unset or empty, or `scalar`; anything else is an error naming it).
+    pub fn resolve(self) -> crate::error::Result<Kernel> {
+        if self != Kernel::FromEnv {
+            return Ok(self);
+        }
+        match std::env::var("IRIS_KERNEL")
+            .ok()
+            .filter(|v| !v.is_empty())
+            .as_deref()
+        {
+            None | Some("soa") => Ok(Kernel::Soa),
+            Some("scalar") => Ok(Kernel::Scalar),
+            Some(v) => Err(crate::error::Error::Usage(format!(
+                "environment variable IRIS_KERNEL={v}: expected soa or scalar"
+            ))),
+        }
+    }
 }
 
 impl RenderSettings {
@@ -92,6 +132,7 @@ impl RenderSettings {
             sampler: Default::default(),
             adaptive: None,
             cancel: Default::default(),
+            kernel: Kernel::FromEnv,
         }
     }
 }

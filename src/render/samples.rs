@@ -320,6 +320,7 @@ mod tests {
             sampler,
             adaptive: None,
             cancel: crate::render::guard::Cancel::new(),
+            kernel: Default::default(),
         };
         let taken = std::sync::atomic::AtomicU64::new(0);
         let desc = CameraDesc {

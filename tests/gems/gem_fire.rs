@@ -106,6 +106,7 @@ fn settings(spp: u64) -> RenderSettings {
         sampler: Default::default(),
         adaptive: None,
         cancel: Default::default(),
+        kernel: Default::default(),
     }
 }
 

@@ -67,6 +67,7 @@ fn furnace_render(
         sampler: Default::default(),
         adaptive: None,
         cancel: Default::default(),
+        kernel: Default::default(),
     };
     let integrator =
         Integrator::new(Method::Path, 64, &PhotonSettings::default()).expect("a resolved method");

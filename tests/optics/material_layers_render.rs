@@ -137,6 +137,7 @@ fn render(desc: SceneDesc, camera: CameraDesc, spectral: bool) -> Shot {
         sampler: Default::default(),
         adaptive: None,
         cancel: Default::default(),
+        kernel: Default::default(),
     };
     let integrator =
         Integrator::new(Method::Path, 32, &PhotonSettings::default()).expect("path tracer");

@@ -98,6 +98,7 @@ fn furnace(material: MaterialDesc, spp: u32, spectral: bool) -> Vec<Vec3> {
         sampler: Default::default(),
         adaptive: None,
         cancel: Default::default(),
+        kernel: Default::default(),
     };
     let integrator = Integrator::new(Method::Path, 8, &PhotonSettings::default()).expect("path");
     integrator

@@ -95,6 +95,7 @@ fn shoot(scene: &Scene, cam: &CameraDesc, method: Method, spp: u32, spectral: bo
         sampler: Default::default(),
         adaptive: None,
         cancel: Default::default(),
+        kernel: Default::default(),
     };
     let integrator =
         Integrator::new(method, 64, &PhotonSettings::default()).expect("a resolved method");
@@ -536,6 +537,7 @@ fn whitted_at_the_largest_depth_in_a_closed_mirror_box_keeps_its_stack() {
                 sampler: Default::default(),
                 adaptive: None,
                 cancel: Default::default(),
+                kernel: Default::default(),
             };
             let integrator = Integrator::new(Method::Whitted, depth, &PhotonSettings::default())
                 .expect("a resolved method");

@@ -84,6 +84,7 @@ fn render_spectral(scene: &Scene, cam: &CameraDesc, size: u32, spp: u32, split: 
         sampler: Default::default(),
         adaptive: None,
         cancel: Default::default(),
+        kernel: Default::default(),
     };
     let integrator = Integrator::Path {
         max_depth: 16,

@@ -23,6 +23,7 @@ fn image(method: Method, threads: usize, seed: u64, spectral: bool) -> Vec<glam:
         sampler: Default::default(),
         adaptive: None,
         cancel: Default::default(),
+        kernel: Default::default(),
     };
     let integrator = Integrator::new(
         method,

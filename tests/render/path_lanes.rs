@@ -19,8 +19,10 @@ use std::process::Command;
 /// whose camera paths run in lanes too) at `lanes` (`off`, `8`, `16`) on `accel` and returns the EXR's bytes,
 /// checking that the plan names that loop.
 fn render_with(scene: &Path, method: &[&str], lanes: &str, accel: &str, out: &Path) -> Vec<u8> {
+    // The scalar vertex's lanes: the structure-of-arrays kernel has its own tests.
     let o = Command::new(env!("CARGO_BIN_EXE_iris"))
         .env("IRIS_LANES", lanes)
+        .env("IRIS_KERNEL", "scalar")
         .arg("render")
         .arg(scene)
         .arg("--method")
@@ -152,4 +154,59 @@ fn a_bad_lane_width_is_refused_with_nothing_written() {
         "{err}"
     );
     assert!(!out.exists(), "{} written", out.display());
+}
+
+/// An `IRIS_KERNEL` other than `soa` or `scalar` is refused naming it, nothing written;
+/// unset, the path tracer's plan names the structure-of-arrays kernel for a scene in its
+/// class, and `IRIS_KERNEL=scalar` the scalar vertex's lanes, each image a valid render.
+#[test]
+fn the_kernel_is_the_default_and_the_environment_picks_the_scalar_vertex() {
+    let dir = common::scratch_dir("kernel_choice");
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/gem_caustics.glb");
+    let run = |kernel: Option<&str>, out: &Path| {
+        let mut c = Command::new(env!("CARGO_BIN_EXE_iris"));
+        if let Some(k) = kernel {
+            c.env("IRIS_KERNEL", k);
+        } else {
+            c.env_remove("IRIS_KERNEL");
+        }
+        c.arg("render")
+            .arg(&scene)
+            .args([
+                "--method",
+                "path",
+                "--size",
+                "16x12",
+                "--spp",
+                "2",
+                "--explain",
+            ])
+            .args(["--denoise", "off", "-o"])
+            .arg(out)
+            .output()
+            .expect("run iris")
+    };
+    let bad = dir.join("bad.exr");
+    let o = run(Some("simd"), &bad);
+    let err = common::stderr(&o);
+    assert!(
+        !o.status.success() && err.contains("IRIS_KERNEL=simd"),
+        "{err}"
+    );
+    assert!(!bad.exists(), "{} written", bad.display());
+    for (kernel, want) in [
+        (None, "structure-of-arrays kernel"),
+        (Some("scalar"), "camera paths per packet"),
+    ] {
+        let out = dir.join(format!("{kernel:?}.exr"));
+        let o = run(kernel, &out);
+        let err = common::stderr(&o);
+        assert!(o.status.success(), "{kernel:?}: {err}");
+        let lanes = err
+            .lines()
+            .find(|l| l.trim_start().starts_with("lanes "))
+            .unwrap_or_else(|| panic!("no lanes stage:\n{err}"));
+        assert!(lanes.contains(want), "{kernel:?}: {lanes}");
+        assert!(out.exists());
+    }
 }

@@ -75,6 +75,7 @@ fn mean(scene: &Scene, cam: &CameraDesc, method: Method, spectral: bool, seed: u
         sampler: Default::default(),
         adaptive: None,
         cancel: Default::default(),
+        kernel: Default::default(),
     };
     let (img, _) = integrator
         .render_progressive(scene, &Camera::new(cam, w, h), &settings, None)

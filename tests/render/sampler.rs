@@ -149,6 +149,7 @@ fn settings(w: u32, h: u32, spp: u32, seed: u64, sampler: SamplerKind) -> Render
         sampler,
         adaptive: None,
         cancel: Default::default(),
+        kernel: Default::default(),
     }
 }
 

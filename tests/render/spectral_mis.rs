@@ -57,6 +57,7 @@ fn renders(scene: &Scene, size: u32, spp: u32, k: u64, spectral_mis: bool) -> Ve
                 sampler: Default::default(),
                 adaptive: None,
                 cancel: Default::default(),
+                kernel: Default::default(),
             };
             integrator
                 .render(scene, &Camera::new(&camera(), size, size), &settings)

@@ -279,6 +279,7 @@ fn smooth_dispersive_sphere_vanishes_in_a_white_furnace() {
                 sampler: Default::default(),
                 adaptive: None,
                 cancel: Default::default(),
+                kernel: Default::default(),
             };
             let img = integrator
                 .render(&scene, &Camera::new(&camera, size, size), &settings)

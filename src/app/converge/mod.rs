@@ -393,6 +393,7 @@ impl<'a> Job<'a> {
                 sampler: opts.sampler,
                 adaptive: None,
                 cancel: Default::default(),
+                kernel: Default::default(),
             },
         }
     }

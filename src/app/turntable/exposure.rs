@@ -75,6 +75,7 @@ pub fn locked(opts: &TurntableOptions, method: Method) -> Result<(Exposure, Opti
             time_limit: None,
             adaptive: None,
             cancel: Default::default(),
+            kernel: Default::default(),
         };
         let camera = Camera::new(&p.camera, pw, ph);
         let integrator = Integrator::new(method, r.max_depth, &photon)?;

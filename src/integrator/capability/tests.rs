@@ -48,6 +48,7 @@ fn tiny(spectral: bool) -> (RenderSettings, PhotonSettings) {
         sampler: Default::default(),
         adaptive: None,
         cancel: Default::default(),
+        kernel: Default::default(),
     };
     let photon = PhotonSettings {
         photons: 500,

@@ -41,6 +41,7 @@ fn render(desc: SceneDesc, size: u32, spp: u32, spectral: bool) -> Vec<Vec3> {
         sampler: Default::default(),
         adaptive: None,
         cancel: Default::default(),
+        kernel: Default::default(),
     };
     let integrator = Integrator::new(Method::Path, 6, &PhotonSettings::default()).expect("path");
     let img = integrator

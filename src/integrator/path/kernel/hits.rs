@@ -12,9 +12,10 @@
 use super::colour::{reflectance, set_lane, spectral, Channels};
 use super::features::Shade;
 use crate::accel::packet::{lanes, HitPacket, LaneMask, Lanes, PacketWidth, RayPacket};
-use crate::scene::triangle::OFFSET_SCALE;
+use crate::scene::triangle::{geometric_normal, OFFSET_SCALE};
 use crate::scene::{Scene, Triangle};
 use crate::spectrum::Lambdas;
+use glam::Vec3;
 
 /// Three coordinates (x, y, z) or colour channels (r, g, b), each over the lanes.
 pub type V3<const N: usize> = [[f32; N]; 3];
@@ -194,12 +195,15 @@ where
             let cy = e1[2] * e2[0] - e1[0] * e2[2];
             let cz = e1[0] * e2[1] - e1[1] * e2[0];
             let rcp = 1.0 / (cx * cx + cy * cy + cz * cz).sqrt();
-            // A degenerate triangle (never returned by the backends) gets +z.
+            // A cross product whose square over- or underflows (a huge or tiny triangle)
+            // takes the scalar rule's rescaling below; a degenerate triangle (never
+            // returned by the backends) gets +z there.
             let ok = rcp.is_finite() && rcp > 0.0;
             let ng = if ok {
                 [cx * rcp, cy * rcp, cz * rcp]
             } else {
-                [0.0, 0.0, 1.0]
+                let p = [p0, p1, p2].map(|q| Vec3::new(q[0][i], q[1][i], q[2][i]));
+                geometric_normal(p).unwrap_or(Vec3::Z).to_array()
             };
             let nrcp = 1.0 / (ns[0] * ns[0] + ns[1] * ns[1] + ns[2] * ns[2]).sqrt();
             let has = nrcp.is_finite() && nrcp > 0.0;

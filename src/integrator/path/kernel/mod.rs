@@ -1,10 +1,10 @@
 //! A structure-of-arrays path kernel (issue 51): `--method path` in RGB or spectral
 //! transport on scenes lit by punctual lights, emissive triangles and an environment
-//! ([`features`] decides, and says why not), opt-in with the environment variable
-//! `IRIS_KERNEL=soa`. Anything else, or a
-//! scene outside the class (a `note:` line on stderr says why), renders with the scalar
-//! path tracer, unchanged. A lane that meets a material the kernel does not shade hands
-//! its path to the scalar vertex ([`handoff`]).
+//! ([`features`] decides; the plan's `lanes` stage says why not), the default
+//! ([`Kernel::Soa`]; `IRIS_KERNEL=scalar` or [`Kernel::Scalar`] picks the scalar path
+//! vertex). Any other method, or a scene outside the class, renders with the scalar path
+//! tracer, unchanged. A lane that meets a material the kernel does not shade has that
+//! vertex shaded by the scalar vertex and comes back ([`handoff`]).
 //!
 //! Design: 16 camera paths (8 with `IRIS_LANES=8`) run through one bounce loop
 //! ([`paths::run`]) with their whole state in structure-of-arrays form, lane `i` at index
@@ -77,33 +77,29 @@ pub use features::{qualify, Tables};
 use super::Dispersion;
 use crate::accel::packet::{Lanes, PacketWidth};
 use crate::camera::Camera;
-use crate::render::{Job, Starts};
+use crate::render::{Job, Kernel, RenderSettings, Starts};
 use crate::scene::Scene;
 use class::{Class, Full, Plain};
 use glam::Vec3;
 use std::marker::PhantomData;
 
-/// The kernel's tables for `scene` when `IRIS_KERNEL=soa` asks for it and the scene
-/// qualifies ([`qualify`]); otherwise `None`, and when it was asked for by a render that
-/// is not `quiet`, a `note:` line on stderr with the reason.
-pub fn choose(scene: &Scene, camera: &Camera, (spectral, quiet): (bool, bool)) -> Option<Tables> {
-    if !requested() {
-        return None;
+/// The kernel's tables for `scene` seen by `camera` when `settings` ask for the kernel
+/// ([`Kernel::Soa`], the default) and the scene qualifies ([`qualify`]); otherwise `None`
+/// (the scalar path vertex renders). An invalid `IRIS_KERNEL` is an error.
+pub fn choose(
+    scene: &Scene,
+    camera: &Camera,
+    settings: &RenderSettings,
+) -> crate::error::Result<Option<Tables>> {
+    if settings.kernel.resolve()? != Kernel::Soa {
+        return Ok(None);
     }
-    match qualify(scene, camera.is_perspective(), spectral) {
-        Ok(tables) => Some(tables),
-        Err(why) => {
-            if !quiet {
-                eprintln!("note: IRIS_KERNEL=soa not used ({why}): the scalar path tracer renders");
-            }
-            None
-        }
-    }
+    Ok(qualify(scene, camera.is_perspective(), settings.spectral).ok())
 }
 
-/// Whether `IRIS_KERNEL=soa` asks for the kernel.
+/// Whether the environment asks for the kernel (`IRIS_KERNEL` unset, empty or `soa`).
 pub fn requested() -> bool {
-    std::env::var("IRIS_KERNEL").ok().as_deref() == Some("soa")
+    Kernel::FromEnv.resolve().ok() == Some(Kernel::Soa)
 }
 
 /// What the render plan says of the kernel for `scene` when it is asked for: which
@@ -115,8 +111,8 @@ pub fn plan_text(scene: &Scene, perspective: bool, spectral: bool) -> Result<Str
             String::new()
         } else {
             format!(
-                "; a lane meeting a material the kernel does not shade hands its path to the \
-                 scalar vertex ({})",
+                "; a lane meeting a material the kernel does not shade has that vertex \
+                 shaded by the scalar vertex ({})",
                 tables.scalar.join("; ")
             )
         };
@@ -133,7 +129,7 @@ pub fn plan_text(scene: &Scene, perspective: bool, spectral: bool) -> Result<Str
             "linear RGB"
         };
         format!(
-            "structure-of-arrays kernel (IRIS_KERNEL=soa): {} camera paths with their whole \
+            "structure-of-arrays kernel: {} camera paths with their whole \
              state in arrays, carrying {carrier}, hit records and shading across the lanes \
              (AVX-512, AVX2 or scalar code chosen at run time), {class}, each camera sample with its own \
              random stream (the single-ray path's numbers): the image equals the \

@@ -12,7 +12,7 @@ use crate::integrator::{Integrator, Method, PhotonSettings};
 use crate::light::env::Environment;
 use crate::light::Light;
 use crate::material::{ImageDesc, MaterialDesc, TextureRef};
-use crate::render::{render_batches, Film, Prepass, RenderSettings};
+use crate::render::{render_batches, Film, Kernel, Prepass, RenderSettings};
 use crate::scene::desc::{CameraDesc, MeshDesc, Projection, SceneDesc};
 use glam::Vec3;
 use std::ops::Range;
@@ -136,13 +136,10 @@ pub(super) fn scalar_image(scene: &Scene, s: &RenderSettings) -> Halves {
 
 /// The scalar path tracer's image through `cam` and its halves.
 pub(super) fn scalar_image_through(scene: &Scene, cam: &Camera, s: &RenderSettings) -> Halves {
-    // `render_units` takes the kernel when IRIS_KERNEL=soa: the reference would be the
-    // kernel itself, so the test refuses to run that way rather than pass.
-    assert_ne!(
-        std::env::var("IRIS_KERNEL").ok().as_deref(),
-        Some("soa"),
-        "unset IRIS_KERNEL: the scalar reference would be the kernel"
-    );
+    let s = &RenderSettings {
+        kernel: Kernel::Scalar,
+        ..s.clone()
+    };
     let path = Integrator::new(Method::Path, MAX_DEPTH, &PhotonSettings::default()).unwrap();
     let (film, _) = path
         .render_units(scene, cam, s, None, None)

@@ -13,7 +13,7 @@ use super::{estimate_at, qualify};
 use crate::accel::Backend;
 use crate::image::{ExactImage, ImageRgb};
 use crate::integrator::Integrator;
-use crate::render::{render_batches, Film, Job, Prepass, RenderSettings, Starts};
+use crate::render::{render_batches, Film, Job, Kernel, Prepass, RenderSettings, Starts};
 use crate::scene::desc::SceneDesc;
 use crate::scene::Scene;
 use glam::Vec3;
@@ -87,6 +87,10 @@ fn scalar(scene: &Scene, s: &RenderSettings, dispersion: Dispersion) -> ImageRgb
         max_depth: 64,
         dispersion,
         polarization: None,
+    };
+    let s = &RenderSettings {
+        kernel: Kernel::Scalar,
+        ..s.clone()
     };
     let (film, _) = path
         .render_units(scene, &camera(), s, None, None)
