@@ -36,14 +36,21 @@ pub fn take<const M: usize, const K: usize>(v: [f32; K]) -> [f32; M] {
     std::array::from_fn(|c| v[c])
 }
 
-/// The reflectance of the colour `rgb` (in [0, 1]) at the wavelengths `l`.
+/// `rgb` in `M` channels: itself in RGB, `spectrum(rgb)` at the wavelengths in spectral
+/// transport.
 #[inline(always)]
-pub fn reflectance<const M: usize>(rgb: [f32; 3], l: &Lambdas) -> [f32; M] {
+fn convert<const M: usize>(rgb: [f32; 3], spectrum: impl Fn(Vec3) -> SampledSpectrum) -> [f32; M] {
     if spectral::<M>() {
-        take(SampledSpectrum::reflectance(Vec3::from_array(rgb), l).to_lanes())
+        take(spectrum(Vec3::from_array(rgb)).to_lanes())
     } else {
         take(rgb)
     }
+}
+
+/// The reflectance of the colour `rgb` (in [0, 1]) at the wavelengths `l`.
+#[inline(always)]
+pub fn reflectance<const M: usize>(rgb: [f32; 3], l: &Lambdas) -> [f32; M] {
+    convert(rgb, |c| SampledSpectrum::reflectance(c, l))
 }
 
 /// The radiance of an emitter whose RGB transport value is `rgb` (with the exact spectral
@@ -54,21 +61,13 @@ pub fn emitted<const M: usize>(
     shape: Option<&EmitterShape>,
     l: &Lambdas,
 ) -> [f32; M] {
-    if spectral::<M>() {
-        take(SampledSpectrum::emitted(Vec3::from_array(rgb), shape, l).to_lanes())
-    } else {
-        take(rgb)
-    }
+    convert(rgb, |c| SampledSpectrum::emitted(c, shape, l))
 }
 
 /// The environment's radiance `rgb` at the wavelengths `l`.
 #[inline(always)]
 pub fn illuminant<const M: usize>(rgb: [f32; 3], l: &Lambdas) -> [f32; M] {
-    if spectral::<M>() {
-        take(SampledSpectrum::illuminant(Vec3::from_array(rgb), l).to_lanes())
-    } else {
-        take(rgb)
-    }
+    convert(rgb, |c| SampledSpectrum::illuminant(c, l))
 }
 
 /// The transmittance of `m`'s volume over a length `x` at the wavelengths `l`
