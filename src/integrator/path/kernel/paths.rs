@@ -80,17 +80,11 @@ impl<const N: usize, const M: usize> Paths<N, M> {
     /// context): its camera ray, wavelengths, unit throughput, no radiance.
     fn start(&mut self, i: usize, s: &Started) {
         ray_into(&mut self.next, i, s);
-        for c in 0..M {
-            self.st.beta[c][i] = 1.0;
-            self.l[c][i] = 0.0;
-        }
+        (0..M).for_each(|c| self.l[c][i] = 0.0);
         if spectral::<M>() {
             self.lam[i] = SampledSpectrum::sample_lambda(s.u_lambda);
             self.branches.start(i, self.lam[i]);
         }
-        self.st.eta_scale[i] = 1.0;
-        self.st.depth[i] = 0;
-        self.st.deltas[i] = 0;
         self.st.restart(i);
         self.job[i] = s.job as u32;
         self.alive |= 1 << i;

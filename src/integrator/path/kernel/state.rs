@@ -64,8 +64,13 @@ impl<const N: usize, const M: usize> Throughput<N, M> {
         }
     }
 
-    /// Lane `i` starts a camera path: no previous bounce to weigh against, in air.
+    /// Lane `i` starts a camera path: unit throughput, no bounce yet (none to weigh
+    /// against), in air.
     pub fn restart(&mut self, i: usize) {
+        (0..M).for_each(|c| self.beta[c][i] = 1.0);
+        self.eta_scale[i] = 1.0;
+        self.depth[i] = 0;
+        self.deltas[i] = 0;
         self.prev_delta[i] = true;
         self.prev_pdf[i] = 0.0;
         self.medium[i] = 0;

@@ -346,6 +346,12 @@ fn the_plan_names_the_kernel_or_the_reason() {
     assert!(ran.contains("linear RGB"), "{ran}");
 }
 
+/// The pixels of the kernel's image of `scene` (16 lanes) that differ from the scalar path
+/// tracer's at the same settings `s` ([`differing_pixels`]).
+pub(super) fn same_seed_difference(scene: &Scene, s: &RenderSettings) -> usize {
+    differing_pixels(&kernel_image(scene, s, 16).0, &scalar_image(scene, s).0)
+}
+
 /// The pixels of `a` whose relative difference from `b` exceeds 1e-4 in some channel
 /// (relative to `b`'s largest channel, at least 1e-3).
 pub(super) fn differing_pixels(a: &ImageRgb, b: &ImageRgb) -> usize {
@@ -380,9 +386,7 @@ fn the_kernel_equals_the_scalar_path_tracer_at_the_same_seed() {
                 sampler,
                 ..settings(spp, 11)
             };
-            let k = kernel_image(&scene, &s, 16).0;
-            let r = scalar_image(&scene, &s).0;
-            counts.push((sampler, spp, differing_pixels(&k, &r)));
+            counts.push((sampler, spp, same_seed_difference(&scene, &s)));
         }
     }
     assert!(

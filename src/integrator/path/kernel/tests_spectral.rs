@@ -7,7 +7,7 @@
 use super::super::Dispersion;
 use super::tests::{
     assert_agrees, build, camera, desc, differing_pixels, kernel_image, lambert_floor,
-    scalar_image, settings, H, W,
+    same_seed_difference, scalar_image, settings, H, W,
 };
 use super::{estimate_at, qualify};
 use crate::accel::Backend;
@@ -53,9 +53,7 @@ fn the_spectral_kernel_equals_the_scalar_path_tracer_at_the_same_seed() {
                 sampler,
                 ..spectral(16, 11)
             };
-            let k = kernel_image(&scene, &s, 16).0;
-            let r = scalar_image(&scene, &s).0;
-            counts.push((name, sampler, differing_pixels(&k, &r)));
+            counts.push((name, sampler, same_seed_difference(&scene, &s)));
         }
     }
     assert!(
