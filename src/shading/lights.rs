@@ -15,6 +15,7 @@
 //! `crate::scene`).
 
 use crate::interaction::SurfaceHit;
+use crate::light::area::AreaSample;
 use crate::light::LightId;
 use crate::math::Ray;
 use crate::scene::Scene;
@@ -107,7 +108,27 @@ pub fn punctual<'a>(scene: &'a Scene, hit: &SurfaceHit, k: usize) -> Option<Ligh
 /// emission textured there; `None` when the emitter faces away (single-sided) or the
 /// density is degenerate.
 pub fn area<'a>(scene: &'a Scene, hit: &SurfaceHit, uc: f32, u: Vec2) -> Option<LightSample<'a>> {
-    let s = scene.area_lights().sample(hit.p, uc, u)?;
+    let (s, incident, shape) = area_at(scene, hit.p, uc, u)?;
+    Some(LightSample {
+        wi: s.wi,
+        shadow: hit.spawn_ray_to(s.point),
+        incident,
+        shape,
+        pdf: Some(s.pdf),
+        position: Some(s.point),
+        prim: Some(s.prim),
+    })
+}
+
+/// [`area`] for a receiver at the point `p`: the sample, its textured emission over its
+/// solid-angle pdf (RGB) and the emitter's exact spectral shape, if it names one.
+pub fn area_at(
+    scene: &Scene,
+    p: Vec3,
+    uc: f32,
+    u: Vec2,
+) -> Option<(AreaSample, Vec3, Option<&EmitterShape>)> {
+    let s = scene.area_lights().sample(p, uc, u)?;
     if s.pdf.is_nan() || s.pdf <= 0.0 {
         return None;
     }
@@ -116,15 +137,8 @@ pub fn area<'a>(scene: &'a Scene, hit: &SurfaceHit, uc: f32, u: Vec2) -> Option<
     if !mat.desc.double_sided && s.normal.dot(s.wi) >= 0.0 {
         return None;
     }
-    Some(LightSample {
-        wi: s.wi,
-        shadow: hit.spawn_ray_to(s.point),
-        incident: scene.emission_at(s.prim, s.bary) / s.pdf,
-        shape: mat.emitter_shape(),
-        pdf: Some(s.pdf),
-        position: Some(s.point),
-        prim: Some(s.prim),
-    })
+    let incident = scene.emission_at(s.prim, s.bary) / s.pdf;
+    Some((s, incident, mat.emitter_shape()))
 }
 
 /// An importance-sampled direction of the environment.

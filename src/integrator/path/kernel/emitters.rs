@@ -201,7 +201,7 @@ fn sample<const N: usize, const M: usize>(
         let up = Vec2::new(u.light_position[0][i], u.light_position[1][i]);
         let p = Vec3::new(h.p[0][i], h.p[1][i], h.p[2][i]);
         let got = match tables.sampled[k] {
-            LightId::Area => area(tables, scene, p, u.light_member[i], up),
+            LightId::Area => area(scene, p, u.light_member[i], up),
             LightId::Environment => scene.environment().and_then(|env| {
                 let e = env.sample(up)?;
                 Some((e.wi, e.radiance / e.pdf, e.pdf, e.wi, u32::MAX))
@@ -222,31 +222,13 @@ fn sample<const N: usize, const M: usize>(
     s
 }
 
-/// A point on the emissive triangles for the receiver at `p` ([`lights::area`] without
-/// the hit record): direction, radiance over pdf, solid-angle pdf, the point, the emitting
-/// material; `None` when the density is degenerate or a single-sided emitter faces away.
+/// A point on the emissive triangles for the receiver at `p` ([`lights::area_at`], the
+/// scalar path's sample with its textured emission): direction, radiance over pdf,
+/// solid-angle pdf, the point, the emitting material; `None` when the density is
+/// degenerate or a single-sided emitter faces away.
 #[inline(always)]
-fn area(
-    tables: &Tables,
-    scene: &Scene,
-    p: Vec3,
-    uc: f32,
-    up: Vec2,
-) -> Option<(Vec3, Vec3, f32, Vec3, u32)> {
-    let s = scene.area_lights().sample(p, uc, up)?;
-    if s.pdf.is_nan() || s.pdf <= 0.0 {
-        return None;
-    }
+fn area(scene: &Scene, p: Vec3, uc: f32, up: Vec2) -> Option<(Vec3, Vec3, f32, Vec3, u32)> {
+    let (s, incident, _) = lights::area_at(scene, p, uc, up)?;
     let material = scene.triangle(s.prim).material();
-    let (rgb, two_sided) = tables.emission[material as usize];
-    if !two_sided && s.normal.dot(s.wi) >= 0.0 {
-        return None;
-    }
-    Some((
-        s.wi,
-        Vec3::from_array(rgb) / s.pdf,
-        s.pdf,
-        s.point,
-        material,
-    ))
+    Some((s.wi, incident, s.pdf, s.point, material))
 }

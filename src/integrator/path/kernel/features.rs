@@ -141,18 +141,6 @@ pub fn qualify(scene: &Scene, perspective: bool, spectral: bool) -> Result<Table
             }));
         }
     }
-    let textured_lamp = scene.materials().iter().zip(&shades).find(|(m, sh)| {
-        **sh != Shade::Unused
-            && m.emission() != glam::Vec3::ZERO
-            && m.desc.emissive_texture.is_some()
-    });
-    if let Some((m, _)) = textured_lamp {
-        return Err(format!(
-            "{} emits through a texture (next-event estimation reads the emission at the \
-             sampled point)",
-            element(m)
-        ));
-    }
     if let Some((a, b)) = overlapping_glass(scene, &shades) {
         return Err(format!(
             "the glass meshes {a} and {b} have overlapping bounding boxes (one volume might \
