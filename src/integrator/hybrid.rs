@@ -23,7 +23,9 @@
 //!    gathers, is the split proved there), the splats applied in the photon chunks' order
 //!    to the pass's splat image;
 //! 3. traces one camera sample per pixel (`primary_ray`, sample `pass` of the pixel from
-//!    the render's sampler, Sobol' blocks of `--spp`) through the split path tracer, adds
+//!    the render's sampler, Sobol' blocks of `--spp`) through the split path tracer (in
+//!    map mode, unpolarized, through the structure-of-arrays kernel where the scene is in
+//!    its class: [`super::path::kernel`], the same estimates up to float rounding), adds
 //!    the pixel's splats (the splat image is a per-pixel estimate of one pass, so the
 //!    film's average over passes stays the mean) and adds it to the film's half
 //!    `pass mod 2`.
@@ -42,6 +44,7 @@ use super::capability::{Capabilities, Photons, Support, Units};
 use super::caustic::{self, CausticMap};
 use super::light_trace::{self, Splatter};
 use super::pass_paths::PassPaths;
+use super::path::kernel::{self, Carried, OnScalar, Tables};
 use super::path::polarized::{Polarization, PolarizedGather};
 use super::path::{Dispersion, LaneWidth};
 use super::photon_budget;
@@ -117,7 +120,7 @@ fn initial_radius(
     )
 }
 
-fn run<C: Carrier>(
+fn run<C: Carried>(
     scene: &Scene,
     camera: &Camera,
     (max_depth, polarization): (u32, Option<Polarization>),
@@ -127,6 +130,12 @@ fn run<C: Carrier>(
     observer: Option<Observer>,
 ) -> Result<(Film, RenderStats)> {
     let lanes = LaneWidth::choose(scene)?;
+    // The kernel takes the camera paths of the map's split (not light tracing's, not
+    // polarized ones) where the scene is in its class.
+    let tables = match (cs.mode, polarization) {
+        (CausticMode::Map, None) => kernel::choose(scene, camera, settings)?,
+        _ => None,
+    };
     let pixels = u64::from(settings.width) * u64::from(settings.height);
     let emitter = caustic::emitter(scene);
     let schedule =
@@ -204,7 +213,7 @@ fn run<C: Carrier>(
                 scene,
                 camera,
                 (max_depth, cs.dispersion(), polarization),
-                (settings, lanes),
+                (settings, lanes, tables.as_ref()),
                 lambda,
                 (&map, image.as_deref(), cs.mode),
                 film,
@@ -296,12 +305,13 @@ fn caustic_budget<C: Carrier>(
 /// One camera sample per pixel of the active tiles (each tile's next unit,
 /// [`PassPaths::trace`]) at the pass's wavelengths `lambda`, split with the pass's caustic
 /// map, plus the pass's light-traced splats (`Some` in mixed mode: the map is then gathered
-/// only through delta bounces). Returns the rays and bad samples.
-fn camera_pass<C: Carrier>(
+/// only through delta bounces); through the kernel with its `tables` when given and the
+/// split is the map's alone. Returns the rays and bad samples.
+fn camera_pass<C: Carried>(
     scene: &Scene,
     camera: &Camera,
     (max_depth, dispersion, polarization): (u32, Dispersion, Option<Polarization>),
-    (settings, lanes): (&RenderSettings, LaneWidth),
+    (settings, lanes, tables): (&RenderSettings, LaneWidth, Option<&Tables>),
     lambda: C::Lambda,
     (map, splats, mode): (&CausticMap, Option<&[Vec3]>, CausticMode),
     film: &mut Film,
@@ -329,16 +339,25 @@ fn camera_pass<C: Carrier>(
             direct: Some(&later),
         },
     };
+    let strategy = CausticPaths { split, dispersion };
+    let vertex = OnScalar {
+        max_depth,
+        strategy,
+    };
+    let kernel = tables
+        .filter(|_| matches!(split, CausticSplit::Map(_)) && polarization.is_none())
+        .map(|t| (t, C::rules(&vertex, Some(lambda))));
     let paths = PassPaths {
         scene,
         camera,
         sampler: pixel_sampler(settings, u64::from(settings.spp.max(1))),
         max_depth,
         lambda,
-        strategy: CausticPaths { split, dispersion },
+        strategy,
         lanes,
         polarized: polarization.map(|p| (p, &polarized as PolarizedGather<C>)),
         cancel: &settings.cancel,
+        kernel,
     };
     let width = settings.width as usize;
     let mut nothing = vec![(); film.slots()];

@@ -271,7 +271,15 @@ impl Integrator {
         } = *self
         {
             if let Some(tables) = path::kernel::choose(scene, camera, settings)? {
-                let rules = (max_depth, dispersion);
+                let vertex = path::kernel::OnScalar {
+                    max_depth,
+                    strategy: dispersion,
+                };
+                let rules = if settings.spectral {
+                    path::kernel::Rules::Spectral(&vertex, None)
+                } else {
+                    path::kernel::Rules::Rgb(&vertex)
+                };
                 return pool.install(|| {
                     render_batches(
                         camera,
@@ -279,7 +287,7 @@ impl Integrator {
                         range,
                         Prepass::now(),
                         observer,
-                        |s, j, o| path::kernel::estimate(&tables, scene, (s, j), rules, o),
+                        |s, j, o| path::kernel::estimate(&tables, scene, (s, j), &rules, o),
                     )
                 });
             }

@@ -4,8 +4,10 @@
 //! passes of the hybrid; SPPM never rests tiles), at the pass's wavelengths, added to the
 //! film's half `k mod 2`. Tiles run in parallel. Within a tile the paths run one after the other,
 //! or for the hybrid in lanes ([`path::estimate_lanes`]), which give the same estimates bit
-//! for bit. SPPM's paths stop at a visible point, which the lanes do not return, so SPPM
-//! stays on single rays.
+//! for bit, or through the structure-of-arrays kernel ([`path::kernel`]) where the method
+//! gives its rules and the scene is in the kernel's class (its estimates equal the scalar
+//! vertex's up to float rounding). SPPM's paths stop at a visible point, which neither
+//! returns, so SPPM stays on single rays.
 //!
 //! Units: linear RGB radiance on the film; the carrier `C` along the paths.
 
@@ -40,6 +42,10 @@ pub(super) struct PassPaths<'a, C: Carrier, S: Strategy<C>> {
     /// The render's cancellation ([`crate::render::guard::Cancel`]): once set, the tiles
     /// not yet started are skipped (the pass is then incomplete, to be thrown away).
     pub cancel: &'a crate::render::guard::Cancel,
+    /// The kernel's tables and the method's rules for it: the paths run there, and each
+    /// pixel's linear RGB estimate goes to the film as it is (for a method whose `keep`
+    /// is the carrier's conversion to RGB and nothing else).
+    pub kernel: Option<(&'a path::kernel::Tables, path::kernel::Rules<'a>)>,
 }
 
 impl<C: Carrier, S: Strategy<C>> PassPaths<'_, C, S> {
@@ -62,7 +68,9 @@ impl<C: Carrier, S: Strategy<C>> PassPaths<'_, C, S> {
                 if !tile.active() || self.cancel.is_cancelled() {
                     return (0, 0);
                 }
-                let (rays, bad) = if lanes {
+                let (rays, bad) = if let Some(kernel) = &self.kernel {
+                    self.tile_kernel(&mut tile, kernel)
+                } else if lanes {
                     self.tile_lanes(&mut tile, tile_slots, &keep)
                 } else {
                     self.tile_scalar(&mut tile, tile_slots, &keep)
@@ -121,15 +129,40 @@ impl<C: Carrier, S: Strategy<C>> PassPaths<'_, C, S> {
         (rays, bad)
     }
 
+    /// The jobs of `tile`'s `n` pixels for its next unit `k`, each with its pixel's index.
+    fn jobs(tile: &FilmTile, n: usize, k: u64) -> (Vec<(usize, Job)>, Vec<Job>) {
+        let pixels: Vec<(usize, Job)> = (0..n)
+            .filter_map(|i| tile.pixel(i).map(|(x, y)| (i, Job { x, y, k })))
+            .collect();
+        let jobs = pixels.iter().map(|&(_, j)| j).collect();
+        (pixels, jobs)
+    }
+
+    /// One tile's paths through the kernel ([`path::kernel::estimate`] with the method's
+    /// `rules`); returns the rays and bad samples.
+    fn tile_kernel(
+        &self,
+        tile: &mut FilmTile,
+        (tables, rules): &(&path::kernel::Tables, path::kernel::Rules),
+    ) -> (u64, u64) {
+        let k = tile.next_unit();
+        let starts = Starts::new(self.camera, &self.sampler, false, false);
+        let (pixels, jobs) = Self::jobs(tile, tile.slots(), k);
+        let mut out = vec![Vec3::ZERO; jobs.len()];
+        let rays = path::kernel::estimate(tables, self.scene, (&starts, &jobs), rules, &mut out);
+        let mut bad = 0;
+        for (&(i, _), rgb) in pixels.iter().zip(out) {
+            tile.add(i, k, rgb.as_dvec3(), &mut bad);
+        }
+        (rays, bad)
+    }
+
     /// One tile's paths in lanes ([`path::estimate_lanes`] with the pass's wavelengths, as
     /// [`path::camera_path`]); returns the rays and bad samples.
     fn tile_lanes<T>(&self, tile: &mut FilmTile, slots: &mut [T], keep: Keep<C, T>) -> (u64, u64) {
         let k = tile.next_unit();
         let starts = Starts::new(self.camera, &self.sampler, false, false);
-        let pixels: Vec<(usize, Job)> = (0..slots.len())
-            .filter_map(|i| tile.pixel(i).map(|(x, y)| (i, Job { x, y, k })))
-            .collect();
-        let jobs: Vec<Job> = pixels.iter().map(|&(_, j)| j).collect();
+        let (pixels, jobs) = Self::jobs(tile, slots.len(), k);
         let mut out = vec![C::ZERO; jobs.len()];
         let rules = (self.max_depth, &self.strategy);
         let estimate = |i: usize, l: C, _: &C::Lambda| out[i] = l;

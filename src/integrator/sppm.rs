@@ -249,6 +249,7 @@ fn camera_pass<C: Carrier>(
         lanes: LaneWidth::Scalar,
         polarized: None,
         cancel: &settings.cancel,
+        kernel: None,
     };
     paths.trace(film, vps, false, |_, l, vp, slot| {
         *slot = vp;

@@ -284,10 +284,21 @@ pub(super) fn acceleration(scene: &Scene) -> Stage {
 /// [`crate::integrator::capability::Capabilities::lanes`]) and why not otherwise.
 pub(super) fn lanes(scene: &Scene, method: Method, (perspective, spectral): (bool, bool)) -> Stage {
     let plain = plain_lanes(scene, method);
-    if method != Method::Path || !crate::integrator::path::kernel::requested() {
+    let hybrid = method == Method::Hybrid;
+    if !(method == Method::Path || hybrid) || !crate::integrator::path::kernel::requested() {
         return plain;
     }
-    match crate::integrator::path::kernel::plan_text(scene, perspective, spectral) {
+    match crate::integrator::path::kernel::plan_text(scene, (perspective, spectral), hybrid) {
+        Ok(reason) if hybrid => Stage {
+            used: true,
+            reason: format!(
+                "camera paths (with --caustics map, unpolarized): {reason}; the caustic map \
+                 gathered on the scalar vertex at each path's first diffuse vertex, light \
+                 closing a D S+ L chain left to the map. Otherwise: {}",
+                plain.reason
+            ),
+            ..plain
+        },
         Ok(reason) => Stage {
             used: true,
             reason,

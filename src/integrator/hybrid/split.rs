@@ -94,6 +94,10 @@ impl<C: Carrier> Strategy<C> for CausticPaths<'_, C> {
         h.closes_caustic()
     }
 
+    fn gathers(&self) -> bool {
+        true
+    }
+
     fn gather(&self, s: &Surface<C>, lambda: &C::Lambda, h: &History) -> Option<C> {
         self.gather_at(h).map(|g| g(s, lambda))
     }

@@ -28,7 +28,7 @@ use glam::Vec3;
 /// The previous bounce, for MIS of emission found by BSDF sampling: whether it was delta
 /// (no MIS), its BSDF pdf and where it left from.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Prev {
+pub struct Prev {
     pub delta: bool,
     pub pdf: f32,
     pub p: Vec3,

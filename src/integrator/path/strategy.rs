@@ -88,6 +88,12 @@ pub trait Strategy<C: Carrier>: Sync {
         false
     }
 
+    /// Whether [`Strategy::gather`] may add something (another estimator shares the light
+    /// at non-delta vertices).
+    fn gathers(&self) -> bool {
+        false
+    }
+
     /// What another estimator adds at the non-delta vertex `s` after the bounces `h`, per
     /// unit throughput.
     fn gather(&self, _s: &Surface<C>, _lambda: &C::Lambda, _h: &History) -> Option<C> {

@@ -6,10 +6,10 @@
 //! Units: as [`super::paths`].
 
 use super::super::state::Prev;
-use super::super::Dispersion;
-use super::colour::{lane, set_lane, spectral, take};
-use super::handoff::{self, Back, Handed};
+use super::colour::{lane, set_lane, take};
+use super::handoff::{Back, Handed};
 use super::paths::Paths;
+use super::rules::Rules;
 use super::state::NONE_YET;
 use crate::accel::packet::{Lanes, PacketWidth, RayPacket};
 use crate::math::Ray;
@@ -75,15 +75,16 @@ impl<const N: usize, const M: usize> Paths<N, M> {
     }
 
     /// Shades lane `i`'s vertex, whose ray in `packet` met a material the kernel does not
-    /// shade, on the scalar vertex ([`handoff::vertex`]) under `rules` with the lane's own
-    /// sample stream: adds what it gathers to the lane's radiance and, when the path goes
-    /// on, takes its state back. Returns the rays traced and whether the path goes on.
+    /// shade (or where the strategy gathers), on the scalar vertex of `rules`
+    /// ([`handoff::Vertex`]) with the lane's own sample stream: adds what it gathers to the
+    /// lane's radiance and, when the path goes on, takes its state back. Returns the rays
+    /// traced and whether the path goes on.
     pub(super) fn hand_over(
         &mut self,
         i: usize,
         scene: &Scene,
         packet: &RayPacket<N>,
-        rules: (u32, &Dispersion),
+        rules: &Rules,
     ) -> (u64, bool)
     where
         Lanes<N>: PacketWidth,
@@ -96,14 +97,17 @@ impl<const N: usize, const M: usize> Paths<N, M> {
         let ctx = &mut self.ctx[i];
         let before = ctx.rays;
         let beta = lane(&self.st.beta, i);
-        let back = if spectral::<M>() {
-            let carried = (SampledSpectrum::from_lanes(take(beta)), self.lam[i]);
-            let back = handoff::vertex(scene, rules, &handed, carried, (ray, r), ctx);
-            channels(back, |v| take(v.to_lanes()), Some)
-        } else {
-            let carried = (Vec3::from_array(take(beta)), ());
-            let back = handoff::vertex(scene, rules, &handed, carried, (ray, r), ctx);
-            channels(back, |v| take(v.to_array()), |_| None)
+        let back = match rules {
+            Rules::Spectral(v, _) => {
+                let carried = (SampledSpectrum::from_lanes(take(beta)), self.lam[i]);
+                let back = v.vertex(scene, &handed, carried, (ray, r), ctx);
+                channels(back, |v| take(v.to_lanes()), Some)
+            }
+            Rules::Rgb(v) => {
+                let carried = (Vec3::from_array(take(beta)), ());
+                let back = v.vertex(scene, &handed, carried, (ray, r), ctx);
+                channels(back, |v| take(v.to_array()), |_| None)
+            }
         };
         let rays = ctx.rays - before;
         match back {

@@ -1,6 +1,8 @@
 //! A lane whose path meets a material the kernel does not shade ([`Shade::Scalar`]:
-//! layers, textures, specular or metal lobes, rough or thin glass, …) has that vertex
-//! shaded by the scalar path tracer ([`vertex`]): its state becomes the scalar path's
+//! layers, textures, specular or metal lobes, rough or thin glass, …), or a vertex where
+//! the method's strategy gathers another estimator, has that vertex shaded by the scalar
+//! path tracer under the method's strategy ([`Vertex`], [`OnScalar`]: the path tracer's
+//! or the hybrid's camera paths): its state becomes the scalar path's
 //! ([`PathState`]) at the hit it just found, the scalar vertex runs once with the sample's
 //! own numbers (read from the dimension the path's vertex count gives,
 //! [`crate::sampler::schedule`]), its shadow ray traced at once, and the path comes back to
@@ -21,8 +23,9 @@
 
 use super::super::own_hero::HeroOf;
 use super::super::state::Prev;
+use super::super::strategy::{History, Strategy};
 use super::super::walk::{Next, Rules, Walk};
-use super::super::{step, walk_on, Dispersion};
+use super::super::{step, walk_on};
 use crate::accel::RawHit;
 use crate::math::Ray;
 use crate::medium_stack::MediumStack;
@@ -65,14 +68,83 @@ pub enum Back<C: Carrier> {
     },
 }
 
+/// The scalar vertex under a method's strategy, as the kernel calls it for a lane (one
+/// object per carrier `C`, so the kernel's loop is not instantiated per method).
+pub trait Vertex<C: Carrier>: Sync {
+    /// The vertex at the hit `raw` of the path whose ray `ray` met it, with the state
+    /// `handed` and throughput and wavelengths `carried` ([`vertex`]).
+    fn vertex(
+        &self,
+        scene: &Scene,
+        handed: &Handed,
+        carried: (C, C::Lambda),
+        at: (Ray, RawHit),
+        ctx: &mut Context,
+    ) -> Back<C>;
+
+    /// The bounce limit: non-delta bounces a path takes.
+    fn max_depth(&self) -> u32;
+
+    /// Whether a sample splits into its wavelengths at its first smooth dispersive glass
+    /// ([`Strategy::splits`]).
+    fn splits(&self) -> bool;
+
+    /// Whether another estimator is gathered at non-delta vertices ([`Strategy::gathers`]):
+    /// the kernel then hands such a vertex to [`Vertex::vertex`].
+    fn gathers(&self) -> bool;
+
+    /// Whether light a path finds after the bounces `h` is another estimator's
+    /// ([`Strategy::leaves_light`]).
+    fn leaves_light(&self, h: &History) -> bool;
+}
+
+/// The scalar vertex under `strategy` with the bounce limit `max_depth`: the path
+/// tracer's ([`super::super::Dispersion`]) or a photon method's camera strategy.
+pub struct OnScalar<S> {
+    /// Non-delta bounces a path takes.
+    pub max_depth: u32,
+    /// What the method asks of its camera paths.
+    pub strategy: S,
+}
+
+impl<C: Carrier, S: Strategy<C>> Vertex<C> for OnScalar<S> {
+    fn vertex(
+        &self,
+        scene: &Scene,
+        handed: &Handed,
+        carried: (C, C::Lambda),
+        at: (Ray, RawHit),
+        ctx: &mut Context,
+    ) -> Back<C> {
+        let rules = (self.max_depth, &self.strategy);
+        vertex(scene, rules, handed, carried, at, ctx)
+    }
+
+    fn max_depth(&self) -> u32 {
+        self.max_depth
+    }
+
+    fn splits(&self) -> bool {
+        self.strategy.splits()
+    }
+
+    fn gathers(&self) -> bool {
+        self.strategy.gathers()
+    }
+
+    fn leaves_light(&self, h: &History) -> bool {
+        self.strategy.leaves_light(h)
+    }
+}
+
 /// The vertex at the hit `raw` of the path whose ray `ray` met it with the state
 /// `handed`, throughput and wavelengths `carried` (a split sample's sub-path keeps its
-/// own: it does not split again), on the scalar vertex under the path tracer's `max_depth`
-/// and `dispersion`, with `ctx`'s numbers (restarted for the lane's camera sample by the
+/// own: it does not split again), on the scalar vertex under `strategy` with the bounce
+/// limit `max_depth`, with `ctx`'s numbers (restarted for the lane's camera sample by the
 /// caller; its ray count grows by the rays traced): what follows ([`Back`]).
-pub fn vertex<C: Carrier>(
+fn vertex<C: Carrier, S: Strategy<C>>(
     scene: &Scene,
-    (max_depth, dispersion): (u32, &Dispersion),
+    (max_depth, strategy): (u32, &S),
     handed: &Handed,
     carried: (C, C::Lambda),
     (ray, raw): (Ray, RawHit),
@@ -98,7 +170,7 @@ pub fn vertex<C: Carrier>(
     st.meet = Some(hit);
     let rules = Rules {
         max_depth,
-        strategy: dispersion,
+        strategy,
     };
     let next = step(scene, &rules, &mut walk, ctx, &mut None);
     if next == Next::Trace && returns(&walk) {

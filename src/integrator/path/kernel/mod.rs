@@ -1,10 +1,12 @@
-//! A structure-of-arrays path kernel (issue 51): `--method path` in RGB or spectral
-//! transport on scenes lit by punctual lights, emissive triangles and an environment
-//! ([`features`] decides; the plan's `lanes` stage says why not), the default
-//! ([`Kernel::Soa`]; `IRIS_KERNEL=scalar` or [`Kernel::Scalar`] picks the scalar path
-//! vertex). Any other method, or a scene outside the class, renders with the scalar path
-//! tracer, unchanged. A lane that meets a material the kernel does not shade has that
-//! vertex shaded by the scalar vertex and comes back ([`handoff`]).
+//! A structure-of-arrays path kernel (issue 51): the camera paths of `--method path`, and
+//! of `--method hybrid` with `--caustics map` unpolarized ([`rules`]: what the method asks
+//! of them), in RGB or spectral transport on scenes lit by punctual lights, emissive
+//! triangles and an environment ([`features`] decides; the plan's `lanes` stage says why
+//! not), the default ([`Kernel::Soa`]; `IRIS_KERNEL=scalar` or [`Kernel::Scalar`] picks
+//! the scalar path vertex). Any other method, or a scene outside the class, renders with
+//! the scalar vertex, unchanged. A lane that meets a material the kernel does not shade
+//! (or a vertex where the hybrid gathers its caustic map) has that vertex shaded by the
+//! scalar vertex and comes back ([`handoff`]).
 //!
 //! Design: 16 camera paths (8 with `IRIS_LANES=8`) run through one bounce loop
 //! ([`paths::run`]) with their whole state in structure-of-arrays form, lane `i` at index
@@ -60,6 +62,7 @@ mod handoff;
 mod hits;
 mod numbers;
 mod paths;
+mod rules;
 mod shade;
 mod state;
 #[cfg(test)]
@@ -67,14 +70,17 @@ mod tests;
 #[cfg(test)]
 mod tests_handoff;
 #[cfg(test)]
+mod tests_hybrid;
+#[cfg(test)]
 mod tests_lights;
 #[cfg(test)]
 mod tests_spectral;
 mod volumes;
 
 pub use features::{qualify, Tables};
+pub use handoff::{OnScalar, Vertex};
+pub use rules::{Carried, Rules};
 
-use super::Dispersion;
 use crate::accel::packet::{Lanes, PacketWidth};
 use crate::camera::Camera;
 use crate::render::{Job, Kernel, RenderSettings, Starts};
@@ -103,9 +109,14 @@ pub fn requested() -> bool {
 }
 
 /// What the render plan says of the kernel for `scene` when it is asked for: which
-/// kernel renders the path tracer's camera paths, and why (`Ok`: the kernel, with its
-/// width; `Err`: the reason it does not take the scene).
-pub fn plan_text(scene: &Scene, perspective: bool, spectral: bool) -> Result<String, String> {
+/// kernel renders the camera paths, and why (`Ok`: the kernel, with its width; `Err`: the
+/// reason it does not take the scene); `gathers`: the method gathers another estimator
+/// along them (the hybrid), which takes the full loop.
+pub fn plan_text(
+    scene: &Scene,
+    (perspective, spectral): (bool, bool),
+    gathers: bool,
+) -> Result<String, String> {
     qualify(scene, perspective, spectral).map(|tables| {
         let handed = if tables.scalar.is_empty() {
             String::new()
@@ -116,7 +127,7 @@ pub fn plan_text(scene: &Scene, perspective: bool, spectral: bool) -> Result<Str
                 tables.scalar.join("; ")
             )
         };
-        let class = if tables.plain() {
+        let class = if tables.plain() && !gathers {
             "the loop for Lambert surfaces and clear glass under punctual lights (no \
              emitter, environment, absorption or hand-over code)"
         } else {
@@ -148,29 +159,28 @@ fn width() -> usize {
     }
 }
 
-/// The kernel's estimate of `jobs` (begun by `starts`, at most `max_depth` non-delta
-/// bounces): job `i`'s linear RGB radiance into `out[i]`. Returns
-/// the rays traced. The loop runs compiled for the widest vector instructions this CPU has
-/// (`pulp`'s run-time dispatch).
+/// The kernel's estimate of `jobs` (begun by `starts`) under the method's `rules`: job
+/// `i`'s linear RGB radiance into `out[i]`. Returns the rays traced. The loop runs
+/// compiled for the widest vector instructions this CPU has (`pulp`'s run-time dispatch).
 pub fn estimate(
     tables: &Tables,
     scene: &Scene,
     (starts, jobs): (&Starts, &[Job]),
-    (max_depth, dispersion): (u32, Dispersion),
+    rules: &Rules,
     out: &mut [Vec3],
 ) -> u64 {
-    let rules = (max_depth, dispersion);
     estimate_at(width(), tables, scene, (starts, jobs), rules, out)
 }
 
-/// [`estimate`] on `width` lanes (8, or 16 for any other value), with the loop
-/// specialised to the scene's class ([`class`]).
+/// [`estimate`] on `width` lanes (8, or 16 for any other value), carrying what `rules`
+/// carry, with the loop specialised to the scene's class ([`class`]; a strategy that
+/// gathers another estimator takes the full loop, which hands vertices over).
 fn estimate_at(
     width: usize,
     tables: &Tables,
     scene: &Scene,
     run: (&Starts, &[Job]),
-    rules: (u32, Dispersion),
+    rules: &Rules,
     out: &mut [Vec3],
 ) -> u64 {
     let op = Run {
@@ -180,7 +190,8 @@ fn estimate_at(
         rules,
         out,
     };
-    match (width == 8, tables.spectral, tables.plain()) {
+    let plain = tables.plain() && !rules.gathers();
+    match (width == 8, rules.spectral(), plain) {
         (true, false, true) => op.dispatch::<8, 3, Plain>(),
         (true, false, false) => op.dispatch::<8, 3, Full>(),
         (true, true, true) => op.dispatch::<8, 4, Plain>(),
@@ -197,7 +208,7 @@ struct Run<'a> {
     tables: &'a Tables,
     scene: &'a Scene,
     run: (&'a Starts<'a>, &'a [Job]),
-    rules: (u32, Dispersion),
+    rules: &'a Rules<'a>,
     out: &'a mut [Vec3],
 }
 

@@ -21,7 +21,6 @@
 //! transport a lane meeting a dispersive glass with its sample whole splits it there
 //! ([`super::branches`]): its waiting sub-paths are its refill before the next job.
 
-use super::super::Dispersion;
 use super::branches::{keep_hero, Branches, Resumed};
 use super::camera::{ray_into, CameraRays, Started};
 use super::class::Class;
@@ -30,6 +29,7 @@ use super::emitters::{arrive, next_event};
 use super::features::Tables;
 use super::hits::Hits;
 use super::numbers::{Draws, Vertices};
+use super::rules::Rules;
 use super::shade::{glass, lambert};
 use super::state::{Rays, Throughput, NONE_YET};
 use super::volumes::absorb;
@@ -77,12 +77,13 @@ impl<const N: usize, const M: usize> Paths<N, M> {
     }
 
     /// Starts the job `s` on lane `i` (its sample stream already swapped into the lane's
-    /// context): its camera ray, wavelengths, unit throughput, no radiance.
-    fn start(&mut self, i: usize, s: &Started) {
+    /// context): its camera ray, wavelengths (`fixed`, or drawn from its sample), unit
+    /// throughput, no radiance.
+    fn start(&mut self, i: usize, s: &Started, fixed: Option<Lambdas>) {
         ray_into(&mut self.next, i, s);
         (0..M).for_each(|c| self.l[c][i] = 0.0);
         if spectral::<M>() {
-            self.lam[i] = SampledSpectrum::sample_lambda(s.u_lambda);
+            self.lam[i] = fixed.unwrap_or_else(|| SampledSpectrum::sample_lambda(s.u_lambda));
             self.branches.start(i, self.lam[i]);
         }
         self.st.restart(i);
@@ -248,20 +249,21 @@ fn mask<const N: usize>(flags: &[bool; N]) -> LaneMask {
     (0..N).fold(0, |m, i| m | (u32::from(flags[i]) << i))
 }
 
-/// Estimates `jobs` (begun by `starts`) on `N` lanes carrying `M` channels with at most
-/// `max_depth` non-delta bounces a path, writing job `i`'s linear RGB radiance to `out[i]`.
-/// Returns the rays traced.
+/// Estimates `jobs` (begun by `starts`) on `N` lanes carrying `M` channels (as `rules`
+/// carry them) under the method's `rules`, writing job `i`'s linear RGB radiance to
+/// `out[i]`. Returns the rays traced.
 #[inline(always)]
 pub fn run<const N: usize, const M: usize, K: Class>(
     tables: &Tables,
     scene: &Scene,
     (starts, jobs): (&Starts, &[Job]),
-    (max_depth, dispersion): (u32, Dispersion),
+    rules: &Rules,
     out: &mut [Vec3],
 ) -> u64
 where
     Lanes<N>: PacketWidth,
 {
+    let (max_depth, fixed) = (rules.max_depth(), rules.fixed());
     let mut p = Paths::<N, M>::new(starts);
     let mut cameras = CameraRays::<N>::new(starts);
     let mut rays = 0u64;
@@ -281,7 +283,7 @@ where
                 let Some(s) = cameras.take(scene, batch, &mut p.ctx[i], &mut rays) else {
                     break;
                 };
-                p.start(i, &s);
+                p.start(i, &s, fixed);
                 *first = s.hit;
                 fresh |= 1 << i;
             }
@@ -303,15 +305,20 @@ where
             packet.set_hit(i, first[i]);
         }
         let hit = packet.hits.hit & p.alive;
-        let h = Hits::<N, M>::new((scene, &tables.shades), &packet, &packet.hits, hit, &p.lam);
+        let mut h = Hits::<N, M>::new((scene, &tables.shades), &packet, &packet.hits, hit, &p.lam);
         let handed = if K::HANDS_OVER {
-            hit & mask(&h.scalar)
+            let gathered = rules.gathered(hit & mask(&h.lambert), &p.st);
+            // A Lambert vertex where the strategy gathers is the scalar vertex's alone.
+            for i in lanes(gathered) {
+                h.lambert[i] = false;
+            }
+            hit & (mask(&h.scalar) | gathered)
         } else {
             0
         };
         let mut goes_on: LaneMask = 0;
         for i in lanes(handed) {
-            let (traced, goes) = p.hand_over(i, scene, &packet, (max_depth, &dispersion));
+            let (traced, goes) = p.hand_over(i, scene, &packet, rules);
             rays += traced;
             goes_on |= u32::from(goes) << i;
         }
@@ -323,12 +330,13 @@ where
             absorb(at, &packet, (&h, arrived), &mut p.st);
         }
         if K::LIT_BY_AREA {
-            let seen = (arrived, p.alive & !handed & !resumed);
+            let leaves = rules.leaving(p.alive, &p.st);
+            let seen = (arrived & !leaves, p.alive & !handed & !resumed & !leaves);
             let at = (tables, scene);
             arrive(at, &packet, (&h, &p.lam), seen, &p.st, &mut p.l);
         }
         if spectral::<M>() {
-            p.disperse(kept & mask(&h.disperses), &packet, dispersion.split);
+            p.disperse(kept & mask(&h.disperses), &packet, rules.splits());
         }
         let ends = p.shade(tables, (scene, &h, area), max_depth, &mut rays);
         let shaded = mask(&h.lambert) | mask(&h.glass);

@@ -1,6 +1,7 @@
 //! The SoA kernel against the scalar path tracer on a glass sphere over a Lambert floor
 //! under a point light (agreement), its refusals (qualification) and its determinism.
 
+use super::super::Dispersion;
 use super::features::Shade;
 use super::*;
 use crate::accel::Backend;
@@ -88,6 +89,23 @@ pub(super) fn camera() -> Camera {
     Camera::new(&desc, W, H)
 }
 
+/// The path tracer's scalar vertex with `max_depth` and `dispersion`.
+pub(super) fn path_vertex(max_depth: u32, dispersion: Dispersion) -> OnScalar<Dispersion> {
+    OnScalar {
+        max_depth,
+        strategy: dispersion,
+    }
+}
+
+/// The path tracer's rules over `vertex`, in spectral transport or RGB.
+pub(super) fn path_rules(vertex: &OnScalar<Dispersion>, spectral: bool) -> Rules<'_> {
+    if spectral {
+        Rules::Spectral(vertex, None)
+    } else {
+        Rules::Rgb(vertex)
+    }
+}
+
 pub(super) fn settings(spp: u32, seed: u64) -> RenderSettings {
     RenderSettings::quiet_rgb((W, H), spp, seed, 2)
 }
@@ -103,9 +121,10 @@ fn kernel_film(
     range: Option<Range<u64>>,
 ) -> Film {
     let tables = qualify(scene, cam.is_perspective(), s.spectral).expect("the scene qualifies");
+    let path = path_vertex(MAX_DEPTH, Dispersion::ALL);
+    let rules = path_rules(&path, s.spectral);
     let estimate = |starts: &Starts, jobs: &[Job], out: &mut [Vec3]| {
-        let rules = (MAX_DEPTH, Dispersion::ALL);
-        estimate_at(width, &tables, scene, (starts, jobs), rules, out)
+        estimate_at(width, &tables, scene, (starts, jobs), &rules, out)
     };
     let (film, _) =
         render_batches(cam, s, range, Prepass::now(), None, estimate).expect("kernel render");
@@ -327,23 +346,25 @@ pub(super) fn rough_sphere() -> SceneDesc {
 #[test]
 fn the_plan_names_the_kernel_or_the_reason() {
     let scene = build(desc(lambert_floor()), Backend::Bvh);
-    let ran = super::plan_text(&scene, true, false).expect("the test scene qualifies");
+    let ran = super::plan_text(&scene, (true, false), false).expect("the test scene qualifies");
     assert!(ran.contains("structure-of-arrays kernel") && ran.contains("in expectation"));
     assert!(
         ran.contains("no emitter, environment, absorption or hand-over code"),
         "{ran}"
     );
-    let rough = super::plan_text(&build(rough_sphere(), Backend::Bvh), true, false);
+    let rough = super::plan_text(&build(rough_sphere(), Backend::Bvh), (true, false), false);
     let rough = rough.expect("a rough sphere qualifies");
     assert!(
         rough.contains("the full loop") && rough.contains("is rough glass"),
         "{rough}"
     );
-    let orthographic = super::plan_text(&scene, false, false).unwrap_err();
+    let orthographic = super::plan_text(&scene, (false, false), false).unwrap_err();
     assert!(orthographic.contains("orthographic"), "{orthographic}");
-    let spectral = super::plan_text(&scene, true, true).expect("qualifies in spectral");
+    let spectral = super::plan_text(&scene, (true, true), false).expect("qualifies in spectral");
     assert!(spectral.contains("4 wavelengths a lane"), "{spectral}");
     assert!(ran.contains("linear RGB"), "{ran}");
+    let hybrid = super::plan_text(&scene, (true, false), true).expect("qualifies");
+    assert!(hybrid.contains("the full loop"), "{hybrid}");
 }
 
 /// The pixels of the kernel's image of `scene` (16 lanes) that differ from the scalar path
@@ -439,13 +460,15 @@ fn the_scene_class_picks_the_loop_and_changes_nothing() {
     assert!(!tables(&build(lit, Backend::Bvh)).plain());
     let t = tables(&plain);
     let s = settings(8, 4);
+    let path = path_vertex(MAX_DEPTH, Dispersion::ALL);
+    let rules = path_rules(&path, false);
     let image = |full: bool| {
         let estimate = |starts: &Starts, jobs: &[Job], out: &mut [Vec3]| {
             let op = Run {
                 tables: &t,
                 scene: &plain,
                 run: (starts, jobs),
-                rules: (MAX_DEPTH, Dispersion::ALL),
+                rules: &rules,
                 out,
             };
             if full {

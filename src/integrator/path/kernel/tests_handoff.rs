@@ -4,7 +4,7 @@
 
 use super::super::state::Prev;
 use super::super::Dispersion;
-use super::handoff::{self, Back, Handed};
+use super::handoff::{Back, Handed};
 use super::tests::{
     assert_agrees, build, desc, kernel_image, lambert_floor, rough_sphere, scalar_image, settings,
 };
@@ -100,10 +100,13 @@ fn handed_vertices(scene: &Scene, rays: &[Ray], inside: Option<u32>) -> Vec<Back
             rays: 0,
         };
         let carried = (Vec3::ONE, ());
-        let rules = (64, &Dispersion::ALL);
-        out.push(handoff::vertex(
+        let path = OnScalar {
+            max_depth: 64,
+            strategy: Dispersion::ALL,
+        };
+        out.push(Vertex::<Vec3>::vertex(
+            &path,
             scene,
-            rules,
             &handed,
             carried,
             (ray, raw),

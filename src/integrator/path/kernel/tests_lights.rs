@@ -29,7 +29,7 @@ fn lamp_quad(c: Vec3, h: f32, material: usize) -> MeshDesc {
 
 /// The floor, the glass sphere and a single-sided black Lambert quad emitting (6, 5, 4)
 /// down onto them from the upper left, lit by nothing else.
-fn lamp_scene(environment: Option<Environment>) -> Scene {
+pub(super) fn lamp_scene(environment: Option<Environment>) -> Scene {
     let mut d = desc(lambert_floor());
     let lamp = MaterialDesc {
         specular: 0.0,

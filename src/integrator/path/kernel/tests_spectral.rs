@@ -6,8 +6,8 @@
 
 use super::super::Dispersion;
 use super::tests::{
-    assert_agrees, build, camera, desc, differing_pixels, kernel_image, lambert_floor,
-    same_seed_difference, scalar_image, settings, H, W,
+    assert_agrees, build, camera, desc, differing_pixels, kernel_image, lambert_floor, path_rules,
+    path_vertex, same_seed_difference, scalar_image, settings, H, W,
 };
 use super::{estimate_at, qualify};
 use crate::accel::Backend;
@@ -71,8 +71,10 @@ fn film(
     range: Option<Range<u64>>,
 ) -> Film {
     let tables = qualify(scene, true, s.spectral).expect("qualifies");
+    let path = path_vertex(64, dispersion);
+    let rules = path_rules(&path, s.spectral);
     let estimate = |starts: &Starts, jobs: &[Job], out: &mut [Vec3]| {
-        estimate_at(16, &tables, scene, (starts, jobs), (64, dispersion), out)
+        estimate_at(16, &tables, scene, (starts, jobs), &rules, out)
     };
     let (film, _) =
         render_batches(&camera(), s, range, Prepass::now(), None, estimate).expect("kernel render");
