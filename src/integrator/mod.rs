@@ -271,24 +271,10 @@ impl Integrator {
         } = *self
         {
             if let Some(tables) = path::kernel::choose(scene, camera, settings)? {
-                let vertex = path::kernel::OnScalar {
-                    max_depth,
-                    strategy: dispersion,
-                };
-                let rules = if settings.spectral {
-                    path::kernel::Rules::Spectral(&vertex, None)
-                } else {
-                    path::kernel::Rules::Rgb(&vertex)
-                };
+                let run = (range, observer);
+                let rules = (max_depth, dispersion);
                 return pool.install(|| {
-                    render_batches(
-                        camera,
-                        settings,
-                        range,
-                        Prepass::now(),
-                        observer,
-                        |s, j, o| path::kernel::estimate(&tables, scene, (s, j), &rules, o),
-                    )
+                    path::kernel::render(&tables, scene, camera, settings, run, rules)
                 });
             }
         }

@@ -7,7 +7,7 @@
 
 use super::super::state::Prev;
 use super::colour::{lane, set_lane, take};
-use super::handoff::{Back, Handed};
+use super::handoff::{Back, Handed, Handing};
 use super::paths::Paths;
 use super::rules::Rules;
 use super::state::NONE_YET;
@@ -100,12 +100,22 @@ impl<const N: usize, const M: usize> Paths<N, M> {
         let back = match rules {
             Rules::Spectral(v, _) => {
                 let carried = (SampledSpectrum::from_lanes(take(beta)), self.lam[i]);
-                let back = v.vertex(scene, &handed, carried, (ray, r), ctx);
+                let lane = Handing {
+                    handed,
+                    carried,
+                    at: (ray, r),
+                };
+                let back = v.vertex(scene, lane, ctx);
                 channels(back, |v| take(v.to_lanes()), Some)
             }
             Rules::Rgb(v) => {
                 let carried = (Vec3::from_array(take(beta)), ());
-                let back = v.vertex(scene, &handed, carried, (ray, r), ctx);
+                let lane = Handing {
+                    handed,
+                    carried,
+                    at: (ray, r),
+                };
+                let back = v.vertex(scene, lane, ctx);
                 channels(back, |v| take(v.to_array()), |_| None)
             }
         };

@@ -35,6 +35,7 @@ use crate::spectrum::Carrier;
 
 /// What a lane's path carries into the scalar vertex, and back, besides its throughput
 /// and wavelengths.
+#[derive(Clone, Copy)]
 pub struct Handed {
     /// Product of η'² over the refractions so far.
     pub eta_scale: f32,
@@ -68,19 +69,22 @@ pub enum Back<C: Carrier> {
     },
 }
 
+/// A lane's path at the hit the kernel hands to the scalar vertex.
+pub struct Handing<C: Carrier> {
+    /// Its state but throughput and wavelengths.
+    pub handed: Handed,
+    /// Its throughput and wavelengths (a split sample's sub-path keeps its own: it does
+    /// not split again).
+    pub carried: (C, C::Lambda),
+    /// The ray that met the hit, and the hit.
+    pub at: (Ray, RawHit),
+}
+
 /// The scalar vertex under a method's strategy, as the kernel calls it for a lane (one
 /// object per carrier `C`, so the kernel's loop is not instantiated per method).
 pub trait Vertex<C: Carrier>: Sync {
-    /// The vertex at the hit `raw` of the path whose ray `ray` met it, with the state
-    /// `handed` and throughput and wavelengths `carried` ([`vertex`]).
-    fn vertex(
-        &self,
-        scene: &Scene,
-        handed: &Handed,
-        carried: (C, C::Lambda),
-        at: (Ray, RawHit),
-        ctx: &mut Context,
-    ) -> Back<C>;
+    /// The vertex of `lane`'s path at its hit ([`vertex`]).
+    fn vertex(&self, scene: &Scene, lane: Handing<C>, ctx: &mut Context) -> Back<C>;
 
     /// The bounce limit: non-delta bounces a path takes.
     fn max_depth(&self) -> u32;
@@ -108,16 +112,8 @@ pub struct OnScalar<S> {
 }
 
 impl<C: Carrier, S: Strategy<C>> Vertex<C> for OnScalar<S> {
-    fn vertex(
-        &self,
-        scene: &Scene,
-        handed: &Handed,
-        carried: (C, C::Lambda),
-        at: (Ray, RawHit),
-        ctx: &mut Context,
-    ) -> Back<C> {
-        let rules = (self.max_depth, &self.strategy);
-        vertex(scene, rules, handed, carried, at, ctx)
+    fn vertex(&self, scene: &Scene, lane: Handing<C>, ctx: &mut Context) -> Back<C> {
+        vertex(scene, (self.max_depth, &self.strategy), lane, ctx)
     }
 
     fn max_depth(&self) -> u32 {
@@ -137,19 +133,20 @@ impl<C: Carrier, S: Strategy<C>> Vertex<C> for OnScalar<S> {
     }
 }
 
-/// The vertex at the hit `raw` of the path whose ray `ray` met it with the state
-/// `handed`, throughput and wavelengths `carried` (a split sample's sub-path keeps its
-/// own: it does not split again), on the scalar vertex under `strategy` with the bounce
-/// limit `max_depth`, with `ctx`'s numbers (restarted for the lane's camera sample by the
-/// caller; its ray count grows by the rays traced): what follows ([`Back`]).
+/// The vertex of `lane`'s path at its hit, on the scalar vertex under `strategy` with the
+/// bounce limit `max_depth`, with `ctx`'s numbers (restarted for the lane's camera sample
+/// by the caller; its ray count grows by the rays traced): what follows ([`Back`]).
 fn vertex<C: Carrier, S: Strategy<C>>(
     scene: &Scene,
     (max_depth, strategy): (u32, &S),
-    handed: &Handed,
-    carried: (C, C::Lambda),
-    (ray, raw): (Ray, RawHit),
+    lane: Handing<C>,
     ctx: &mut Context,
 ) -> Back<C> {
+    let Handing {
+        handed,
+        carried,
+        at: (ray, raw),
+    } = lane;
     let Some(hit) = scene.lane_hit(&ray, Some(raw)) else {
         return Back::Ended(C::ZERO);
     };

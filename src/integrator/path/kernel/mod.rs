@@ -81,9 +81,11 @@ pub use features::{qualify, Tables};
 pub use handoff::{OnScalar, Vertex};
 pub use rules::{Carried, Rules};
 
+use super::Dispersion;
 use crate::accel::packet::{Lanes, PacketWidth};
 use crate::camera::Camera;
-use crate::render::{Job, Kernel, RenderSettings, Starts};
+use crate::render::{render_batches, Film, Job, Kernel, Observer, Prepass, RenderSettings};
+use crate::render::{RenderStats, Starts};
 use crate::scene::Scene;
 use class::{Class, Full, Plain};
 use glam::Vec3;
@@ -157,6 +159,31 @@ fn width() -> usize {
         Some("8") => 8,
         _ => 16,
     }
+}
+
+/// The path tracer's render (`max_depth` non-delta bounces, `dispersion`) through the
+/// kernel with `tables`, of the units `range` (all: `None`), as
+/// [`crate::integrator::Integrator::render_units`] renders it on the scalar vertex.
+pub fn render(
+    tables: &Tables,
+    scene: &Scene,
+    camera: &Camera,
+    settings: &RenderSettings,
+    (range, observer): (Option<std::ops::Range<u64>>, Option<Observer>),
+    (max_depth, dispersion): (u32, Dispersion),
+) -> crate::error::Result<(Film, RenderStats)> {
+    let vertex = OnScalar {
+        max_depth,
+        strategy: dispersion,
+    };
+    let rules = if settings.spectral {
+        Rules::Spectral(&vertex, None)
+    } else {
+        Rules::Rgb(&vertex)
+    };
+    let estimate =
+        |s: &Starts, j: &[Job], o: &mut [Vec3]| estimate(tables, scene, (s, j), &rules, o);
+    render_batches(camera, settings, range, Prepass::now(), observer, estimate)
 }
 
 /// The kernel's estimate of `jobs` (begun by `starts`) under the method's `rules`: job

@@ -306,8 +306,9 @@ where
         }
         let hit = packet.hits.hit & p.alive;
         let mut h = Hits::<N, M>::new((scene, &tables.shades), &packet, &packet.hits, hit, &p.lam);
+        // Where the strategy shares the light (before a hand-over changes the records).
+        let (gathered, leaves) = rules.shared((hit & mask(&h.lambert), p.alive), &p.st);
         let handed = if K::HANDS_OVER {
-            let gathered = rules.gathered(hit & mask(&h.lambert), &p.st);
             // A Lambert vertex where the strategy gathers is the scalar vertex's alone.
             for i in lanes(gathered) {
                 h.lambert[i] = false;
@@ -330,7 +331,6 @@ where
             absorb(at, &packet, (&h, arrived), &mut p.st);
         }
         if K::LIT_BY_AREA {
-            let leaves = rules.leaving(p.alive, &p.st);
             let seen = (arrived & !leaves, p.alive & !handed & !resumed & !leaves);
             let at = (tables, scene);
             arrive(at, &packet, (&h, &p.lam), seen, &p.st, &mut p.l);

@@ -67,47 +67,37 @@ impl Rules<'_> {
         }
     }
 
-    /// Of the lanes `on` (with the bounce records `st`), those whose light found now is
-    /// another estimator's: none unless the strategy gathers one.
-    pub fn leaving<const N: usize, const M: usize>(
+    /// Where the method shares the light with another estimator, of the `alive` lanes
+    /// (with the bounce records `st`) and the Lambert lanes `lambert` among them: those at
+    /// their first non-delta vertex where the strategy gathers (the scalar vertex's), and
+    /// those whose light found now is the other estimator's. None unless it gathers.
+    pub fn shared<const N: usize, const M: usize>(
         &self,
-        on: LaneMask,
+        (lambert, alive): (LaneMask, LaneMask),
         st: &Throughput<N, M>,
-    ) -> LaneMask {
+    ) -> (LaneMask, LaneMask) {
+        let (mut gathered, mut leaving) = (0, 0);
         if !self.gathers() {
-            return 0;
+            return (0, 0);
         }
-        let mut leaves = 0;
-        for i in crate::accel::packet::lanes(on) {
+        for i in crate::accel::packet::lanes(alive) {
+            let since_diffuse = (st.since[i] != NONE_YET).then_some(st.since[i]);
+            let first = since_diffuse.is_none() && lambert & (1 << i) != 0;
+            gathered |= u32::from(first) << i;
             let h = History {
-                since_diffuse: (st.since[i] != NONE_YET).then_some(st.since[i]),
+                since_diffuse,
                 last_in_medium: false,
                 clear: true,
                 direct: st.depth[i] + st.deltas[i] == 0,
                 continues: st.depth[i] + 1 < self.max_depth(),
             };
-            let leaves_light = match self {
+            let leaves = match self {
                 Rules::Rgb(v) => v.leaves_light(&h),
                 Rules::Spectral(v, _) => v.leaves_light(&h),
             };
-            leaves |= u32::from(leaves_light) << i;
+            leaving |= u32::from(leaves) << i;
         }
-        leaves
-    }
-
-    /// Of the lanes `on`, those at their first non-delta vertex where the strategy gathers:
-    /// the scalar vertex's.
-    pub fn gathered<const N: usize, const M: usize>(
-        &self,
-        on: LaneMask,
-        st: &Throughput<N, M>,
-    ) -> LaneMask {
-        if !self.gathers() {
-            return 0;
-        }
-        crate::accel::packet::lanes(on)
-            .filter(|&i| st.since[i] == NONE_YET)
-            .fold(0, |m, i| m | (1 << i))
+        (gathered, leaving)
     }
 }
 

@@ -4,7 +4,7 @@
 
 use super::super::state::Prev;
 use super::super::Dispersion;
-use super::handoff::{Back, Handed};
+use super::handoff::{Back, Handed, Handing};
 use super::tests::{
     assert_agrees, build, desc, kernel_image, lambert_floor, rough_sphere, scalar_image, settings,
 };
@@ -104,14 +104,12 @@ fn handed_vertices(scene: &Scene, rays: &[Ray], inside: Option<u32>) -> Vec<Back
             max_depth: 64,
             strategy: Dispersion::ALL,
         };
-        out.push(Vertex::<Vec3>::vertex(
-            &path,
-            scene,
-            &handed,
+        let lane = Handing {
+            handed,
             carried,
-            (ray, raw),
-            &mut ctx,
-        ));
+            at: (ray, raw),
+        };
+        out.push(Vertex::<Vec3>::vertex(&path, scene, lane, &mut ctx));
     }
     out
 }
