@@ -11,7 +11,7 @@ use super::handoff::{Back, Handed, Handing};
 use super::paths::Paths;
 use super::rules::Rules;
 use super::state::NONE_YET;
-use crate::accel::packet::{Lanes, PacketWidth, RayPacket};
+use crate::accel::packet::{lanes, LaneMask, Lanes, PacketWidth, RayPacket};
 use crate::math::Ray;
 use crate::scene::Scene;
 use crate::spectrum::{Carrier, Lambdas, SampledSpectrum};
@@ -138,6 +138,39 @@ impl<const N: usize, const M: usize> Paths<N, M> {
                 self.next.t_max[i] = next.t_max;
                 self.take_back(i, &state);
                 (rays, true)
+            }
+        }
+    }
+
+    /// Adds to the lanes `on` (at a Lambert vertex where the strategy of `rules` gathers,
+    /// their rays and hits in `packet`) what it gathers there ([`super::handoff::Vertex::gather`]),
+    /// times the lane's throughput.
+    pub(super) fn gather(
+        &mut self,
+        on: LaneMask,
+        scene: &Scene,
+        packet: &RayPacket<N>,
+        rules: &Rules,
+    ) where
+        Lanes<N>: PacketWidth,
+    {
+        for i in lanes(on) {
+            let Some(r) = packet.hit(i) else {
+                continue;
+            };
+            let at = (Ray::new(packet.origin(i), packet.dir(i)), r);
+            let h = rules.history(&self.st, i);
+            let inside = self.st.medium[i].checked_sub(1);
+            let g: Option<[f32; M]> = match rules {
+                Rules::Spectral(v, _) => v
+                    .gather(scene, at, (self.lam[i], inside), &h)
+                    .map(|g| take(g.to_lanes())),
+                Rules::Rgb(v) => v
+                    .gather(scene, at, ((), inside), &h)
+                    .map(|g| take(g.to_array())),
+            };
+            for (c, g) in g.iter().flatten().enumerate() {
+                self.l[c][i] += self.st.beta[c][i] * g;
             }
         }
     }

@@ -31,6 +31,8 @@ use crate::math::Ray;
 use crate::medium_stack::MediumStack;
 use crate::render::Context;
 use crate::scene::Scene;
+use crate::shading::step::StepNumbers;
+use crate::shading::{arrival, Event};
 use crate::spectrum::Carrier;
 
 /// What a lane's path carries into the scalar vertex, and back, besides its throughput
@@ -86,6 +88,17 @@ pub trait Vertex<C: Carrier>: Sync {
     /// The vertex of `lane`'s path at its hit ([`vertex`]).
     fn vertex(&self, scene: &Scene, lane: Handing<C>, ctx: &mut Context) -> Back<C>;
 
+    /// What the strategy gathers per unit throughput at a lane's Lambert vertex (one the
+    /// kernel shades) at the hit of `at`, with the lane's wavelengths and the volume it is
+    /// in (`None`: air), after the bounces `h` ([`Strategy::gather`]).
+    fn gather(
+        &self,
+        scene: &Scene,
+        at: (Ray, RawHit),
+        lane: (C::Lambda, Option<u32>),
+        h: &History,
+    ) -> Option<C>;
+
     /// The bounce limit: non-delta bounces a path takes.
     fn max_depth(&self) -> u32;
 
@@ -114,6 +127,28 @@ pub struct OnScalar<S> {
 impl<C: Carrier, S: Strategy<C>> Vertex<C> for OnScalar<S> {
     fn vertex(&self, scene: &Scene, lane: Handing<C>, ctx: &mut Context) -> Back<C> {
         vertex(scene, (self.max_depth, &self.strategy), lane, ctx)
+    }
+
+    fn gather(
+        &self,
+        scene: &Scene,
+        (ray, raw): (Ray, RawHit),
+        (lambda, inside): (C::Lambda, Option<u32>),
+        h: &History,
+    ) -> Option<C> {
+        let media = media(scene, inside);
+        let at = arrival::<C>(
+            scene,
+            &ray,
+            scene.lane_hit(&ray, Some(raw)),
+            &media,
+            &lambda,
+        )?;
+        let (mut beta, mut lam) = (C::ONE, lambda);
+        match at.event(scene, media, &mut beta, &mut lam, &mut Drawn) {
+            Event::Scatter(s) => self.strategy.gather(&s, &lambda, h),
+            Event::PassThrough(_) => None,
+        }
     }
 
     fn max_depth(&self) -> u32 {
@@ -160,10 +195,7 @@ fn vertex<C: Carrier, S: Strategy<C>>(
     st.since_diffuse = handed.since_diffuse;
     st.direct = st.vertex == 0;
     st.prev = handed.prev;
-    if let Some(m) = handed.inside {
-        let priority = scene.materials()[m as usize].desc.priority;
-        st.media = MediumStack::new().entered(m, priority);
-    }
+    st.media = media(scene, handed.inside);
     st.meet = Some(hit);
     let rules = Rules {
         max_depth,
@@ -203,4 +235,27 @@ fn returns<C: Carrier>(walk: &Walk<C>) -> bool {
         && st.media.iter().nth(1).is_none()
         && st.vertex == st.depth + st.delta_depth
         && st.direct == (st.vertex == 0)
+}
+
+/// The media around a lane inside the volumetric material `inside` (`None`: air).
+fn media(scene: &Scene, inside: Option<u32>) -> MediumStack {
+    match inside {
+        Some(m) => MediumStack::new().entered(m, scene.materials()[m as usize].desc.priority),
+        None => MediumStack::new(),
+    }
+}
+
+/// The step's numbers at a Lambert vertex the kernel shades, which reads none: it is
+/// opaque, has one layer and is not BLEND ([`super::features::Shade::Lambert`]); the
+/// lane's own draws passed over its layer number already ([`super::numbers`]).
+struct Drawn;
+
+impl StepNumbers for Drawn {
+    fn alpha(&mut self) -> f32 {
+        0.0
+    }
+    fn layer(&mut self) -> f32 {
+        0.0
+    }
+    fn skip_layer(&mut self) {}
 }

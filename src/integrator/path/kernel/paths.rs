@@ -305,15 +305,11 @@ where
             packet.set_hit(i, first[i]);
         }
         let hit = packet.hits.hit & p.alive;
-        let mut h = Hits::<N, M>::new((scene, &tables.shades), &packet, &packet.hits, hit, &p.lam);
+        let h = Hits::<N, M>::new((scene, &tables.shades), &packet, &packet.hits, hit, &p.lam);
         // Where the strategy shares the light (before a hand-over changes the records).
         let (gathered, leaves) = rules.shared((hit & mask(&h.lambert), p.alive), &p.st);
         let handed = if K::HANDS_OVER {
-            // A Lambert vertex where the strategy gathers is the scalar vertex's alone.
-            for i in lanes(gathered) {
-                h.lambert[i] = false;
-            }
-            hit & (mask(&h.scalar) | gathered)
+            hit & mask(&h.scalar)
         } else {
             0
         };
@@ -337,6 +333,9 @@ where
         }
         if spectral::<M>() {
             p.disperse(kept & mask(&h.disperses), &packet, rules.splits());
+        }
+        if K::HANDS_OVER {
+            p.gather(gathered & !resumed, scene, &packet, rules);
         }
         let ends = p.shade(tables, (scene, &h, area), max_depth, &mut rays);
         let shaded = mask(&h.lambert) | mask(&h.glass);

@@ -7,10 +7,12 @@
 //! where it does.
 //!
 //! A strategy that gathers another estimator at non-delta vertices (the hybrid's caustic
-//! map at the first one, D₁) has such a vertex shaded by the scalar vertex, which gathers,
-//! and the lane comes back; the light a lane then finds closing a chain the map owns (D S+
-//! L: ≥ 1 delta bounce since the last non-delta vertex) is not counted, as the scalar
-//! vertex does not count it ([`crate::integrator::path::History::closes_caustic`]).
+//! map at the first one, D₁) gathers it there through the scalar vertex's surface
+//! ([`Vertex::gather`]; at a Lambert vertex, which the kernel then shades on) or, at a
+//! material the kernel hands over, in the scalar vertex; the light a lane finds closing a
+//! chain the map owns (D S+ L: ≥ 1 delta bounce since the last non-delta vertex) is not
+//! counted, as the scalar vertex does not count it
+//! ([`crate::integrator::path::History::closes_caustic`]).
 
 use super::handoff::Vertex;
 use super::state::{Throughput, NONE_YET};
@@ -69,8 +71,8 @@ impl Rules<'_> {
 
     /// Where the method shares the light with another estimator, of the `alive` lanes
     /// (with the bounce records `st`) and the Lambert lanes `lambert` among them: those at
-    /// their first non-delta vertex where the strategy gathers (the scalar vertex's), and
-    /// those whose light found now is the other estimator's. None unless it gathers.
+    /// their first non-delta vertex, where the strategy gathers, and those whose light
+    /// found now is the other estimator's. None unless it gathers.
     pub fn shared<const N: usize, const M: usize>(
         &self,
         (lambert, alive): (LaneMask, LaneMask),
@@ -81,16 +83,9 @@ impl Rules<'_> {
             return (0, 0);
         }
         for i in crate::accel::packet::lanes(alive) {
-            let since_diffuse = (st.since[i] != NONE_YET).then_some(st.since[i]);
-            let first = since_diffuse.is_none() && lambert & (1 << i) != 0;
+            let h = self.history(st, i);
+            let first = h.since_diffuse.is_none() && lambert & (1 << i) != 0;
             gathered |= u32::from(first) << i;
-            let h = History {
-                since_diffuse,
-                last_in_medium: false,
-                clear: true,
-                direct: st.depth[i] + st.deltas[i] == 0,
-                continues: st.depth[i] + 1 < self.max_depth(),
-            };
             let leaves = match self {
                 Rules::Rgb(v) => v.leaves_light(&h),
                 Rules::Spectral(v, _) => v.leaves_light(&h),
@@ -98,6 +93,22 @@ impl Rules<'_> {
             leaving |= u32::from(leaves) << i;
         }
         (gathered, leaving)
+    }
+
+    /// Lane `i`'s bounces as the strategy reads them, from its records `st` (the kernel's
+    /// paths never scatter in a medium).
+    pub fn history<const N: usize, const M: usize>(
+        &self,
+        st: &Throughput<N, M>,
+        i: usize,
+    ) -> History {
+        History {
+            since_diffuse: (st.since[i] != NONE_YET).then_some(st.since[i]),
+            last_in_medium: false,
+            clear: true,
+            direct: st.depth[i] + st.deltas[i] == 0,
+            continues: st.depth[i] + 1 < self.max_depth(),
+        }
     }
 }
 
