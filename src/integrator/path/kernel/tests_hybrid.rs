@@ -59,6 +59,7 @@ fn the_hybrid_through_the_kernel_equals_its_scalar_vertex_at_the_same_seed() {
         }
     }
     let n = (W * H) as usize;
+    eprintln!("(scene, spectral, beyond 1e-2, beyond 1e-4, differ): {counts:?}");
     assert!(
         counts
             .iter()
