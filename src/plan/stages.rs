@@ -293,8 +293,8 @@ pub(super) fn lanes(scene: &Scene, method: Method, (perspective, spectral): (boo
             used: true,
             reason: format!(
                 "camera paths (with --caustics map, unpolarized): {reason}; the caustic map \
-                 gathered on the scalar vertex at each path's first diffuse vertex, light \
-                 closing a D S+ L chain left to the map. Otherwise: {}",
+                 gathered at each path's first diffuse vertex (on the scalar vertex's \
+                 surface), light closing a D S+ L chain left to the map. Otherwise: {}",
                 plain.reason
             ),
             ..plain
