@@ -305,8 +305,9 @@ fn caustic_budget<C: Carrier>(
 /// One camera sample per pixel of the active tiles (each tile's next unit,
 /// [`PassPaths::trace`]) at the pass's wavelengths `lambda`, split with the pass's caustic
 /// map, plus the pass's light-traced splats (`Some` in mixed mode: the map is then gathered
-/// only through delta bounces); through the kernel with its `tables` when given and the
-/// split is the map's alone. Returns the rays and bad samples.
+/// only through delta bounces); through the kernel with its `tables` when given (map mode,
+/// unpolarized, a scene without media: the split is the map's alone). Returns the rays
+/// and bad samples.
 fn camera_pass<C: Carried>(
     scene: &Scene,
     camera: &Camera,
@@ -344,9 +345,7 @@ fn camera_pass<C: Carried>(
         max_depth,
         strategy,
     };
-    let kernel = tables
-        .filter(|_| matches!(split, CausticSplit::Map(_)) && polarization.is_none())
-        .map(|t| (t, C::rules(&vertex, Some(lambda))));
+    let kernel = tables.map(|t| (t, C::rules(&vertex, Some(lambda))));
     let paths = PassPaths {
         scene,
         camera,

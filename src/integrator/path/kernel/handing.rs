@@ -9,7 +9,7 @@ use super::super::state::Prev;
 use super::colour::{lane, set_lane, take};
 use super::handoff::{Back, Handed, Handing};
 use super::paths::Paths;
-use super::rules::Rules;
+use super::rules::{history, Rules};
 use super::state::NONE_YET;
 use crate::accel::packet::{lanes, LaneMask, Lanes, PacketWidth, RayPacket};
 use crate::math::Ray;
@@ -93,29 +93,19 @@ impl<const N: usize, const M: usize> Paths<N, M> {
             return (0, false);
         };
         let handed = self.handed(i);
-        let ray = Ray::new(packet.origin(i), packet.dir(i));
+        let at = (Ray::new(packet.origin(i), packet.dir(i)), r);
         let ctx = &mut self.ctx[i];
         let before = ctx.rays;
         let beta = lane(&self.st.beta, i);
         let back = match rules {
             Rules::Spectral(v, _) => {
                 let carried = (SampledSpectrum::from_lanes(take(beta)), self.lam[i]);
-                let lane = Handing {
-                    handed,
-                    carried,
-                    at: (ray, r),
-                };
-                let back = v.vertex(scene, lane, ctx);
+                let back = v.vertex(scene, Handing::new(handed, carried, at), ctx);
                 channels(back, |v| take(v.to_lanes()), Some)
             }
             Rules::Rgb(v) => {
                 let carried = (Vec3::from_array(take(beta)), ());
-                let lane = Handing {
-                    handed,
-                    carried,
-                    at: (ray, r),
-                };
-                let back = v.vertex(scene, lane, ctx);
+                let back = v.vertex(scene, Handing::new(handed, carried, at), ctx);
                 channels(back, |v| take(v.to_array()), |_| None)
             }
         };
@@ -154,12 +144,13 @@ impl<const N: usize, const M: usize> Paths<N, M> {
     ) where
         Lanes<N>: PacketWidth,
     {
+        let max_depth = rules.max_depth();
         for i in lanes(on) {
             let Some(r) = packet.hit(i) else {
                 continue;
             };
             let at = (Ray::new(packet.origin(i), packet.dir(i)), r);
-            let h = rules.history(&self.st, i);
+            let h = history(&self.st, i, max_depth);
             let inside = self.st.medium[i].checked_sub(1);
             let g: Option<[f32; M]> = match rules {
                 Rules::Spectral(v, _) => v

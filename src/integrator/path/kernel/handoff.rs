@@ -82,6 +82,18 @@ pub struct Handing<C: Carrier> {
     pub at: (Ray, RawHit),
 }
 
+impl<C: Carrier> Handing<C> {
+    /// The lane's path with the state `handed`, throughput and wavelengths `carried`, at
+    /// the hit `at`.
+    pub fn new(handed: Handed, carried: (C, C::Lambda), at: (Ray, RawHit)) -> Self {
+        Handing {
+            handed,
+            carried,
+            at,
+        }
+    }
+}
+
 /// The scalar vertex under a method's strategy, as the kernel calls it for a lane (one
 /// object per carrier `C`, so the kernel's loop is not instantiated per method).
 pub trait Vertex<C: Carrier>: Sync {
@@ -107,7 +119,8 @@ pub trait Vertex<C: Carrier>: Sync {
     fn splits(&self) -> bool;
 
     /// Whether another estimator is gathered at non-delta vertices ([`Strategy::gathers`]):
-    /// the kernel then hands such a vertex to [`Vertex::vertex`].
+    /// the kernel then asks [`Vertex::gather`] at its Lambert vertices (the scalar vertex
+    /// gathers at those it hands over).
     fn gathers(&self) -> bool;
 
     /// Whether light a path finds after the bounces `h` is another estimator's

@@ -263,7 +263,9 @@ pub fn run<const N: usize, const M: usize, K: Class>(
 where
     Lanes<N>: PacketWidth,
 {
-    let (max_depth, fixed) = (rules.max_depth(), rules.fixed());
+    let (max_depth, fixed, splits) = (rules.max_depth(), rules.fixed(), rules.splits());
+    // Whether the method shares the light with another estimator (the full loop only).
+    let shares = K::HANDS_OVER && rules.gathers();
     let mut p = Paths::<N, M>::new(starts);
     let mut cameras = CameraRays::<N>::new(starts);
     let mut rays = 0u64;
@@ -307,7 +309,11 @@ where
         let hit = packet.hits.hit & p.alive;
         let h = Hits::<N, M>::new((scene, &tables.shades), &packet, &packet.hits, hit, &p.lam);
         // Where the strategy shares the light (before a hand-over changes the records).
-        let (gathered, leaves) = rules.shared((hit & mask(&h.lambert), p.alive), &p.st);
+        let (gathered, leaves) = if shares {
+            rules.shared((hit & mask(&h.lambert), p.alive), &p.st)
+        } else {
+            (0, 0)
+        };
         let handed = if K::HANDS_OVER {
             hit & mask(&h.scalar)
         } else {
@@ -332,10 +338,10 @@ where
             arrive(at, &packet, (&h, &p.lam), seen, &p.st, &mut p.l);
         }
         if spectral::<M>() {
-            p.disperse(kept & mask(&h.disperses), &packet, rules.splits());
+            p.disperse(kept & mask(&h.disperses), &packet, splits);
         }
-        if K::HANDS_OVER {
-            p.gather(gathered & !resumed, scene, &packet, rules);
+        if shares {
+            p.gather(gathered, scene, &packet, rules);
         }
         let ends = p.shade(tables, (scene, &h, area), max_depth, &mut rays);
         let shaded = mask(&h.lambert) | mask(&h.glass);

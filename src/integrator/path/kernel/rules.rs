@@ -69,21 +69,19 @@ impl Rules<'_> {
         }
     }
 
-    /// Where the method shares the light with another estimator, of the `alive` lanes
-    /// (with the bounce records `st`) and the Lambert lanes `lambert` among them: those at
-    /// their first non-delta vertex, where the strategy gathers, and those whose light
-    /// found now is the other estimator's. None unless it gathers.
+    /// Where the method shares the light with another estimator (a strategy that
+    /// [`Rules::gathers`]), of the `alive` lanes (with the bounce records `st`) and the
+    /// Lambert lanes `lambert` among them: those at their first non-delta vertex, where
+    /// the strategy gathers, and those whose light found now is the other estimator's.
     pub fn shared<const N: usize, const M: usize>(
         &self,
         (lambert, alive): (LaneMask, LaneMask),
         st: &Throughput<N, M>,
     ) -> (LaneMask, LaneMask) {
         let (mut gathered, mut leaving) = (0, 0);
-        if !self.gathers() {
-            return (0, 0);
-        }
+        let max_depth = self.max_depth();
         for i in crate::accel::packet::lanes(alive) {
-            let h = self.history(st, i);
+            let h = history(st, i, max_depth);
             let first = h.since_diffuse.is_none() && lambert & (1 << i) != 0;
             gathered |= u32::from(first) << i;
             let leaves = match self {
@@ -94,21 +92,21 @@ impl Rules<'_> {
         }
         (gathered, leaving)
     }
+}
 
-    /// Lane `i`'s bounces as the strategy reads them, from its records `st` (the kernel's
-    /// paths never scatter in a medium).
-    pub fn history<const N: usize, const M: usize>(
-        &self,
-        st: &Throughput<N, M>,
-        i: usize,
-    ) -> History {
-        History {
-            since_diffuse: (st.since[i] != NONE_YET).then_some(st.since[i]),
-            last_in_medium: false,
-            clear: true,
-            direct: st.depth[i] + st.deltas[i] == 0,
-            continues: st.depth[i] + 1 < self.max_depth(),
-        }
+/// Lane `i`'s bounces as a strategy reads them, from its records `st` under the bounce
+/// limit `max_depth` (the kernel's paths never scatter in a medium).
+pub fn history<const N: usize, const M: usize>(
+    st: &Throughput<N, M>,
+    i: usize,
+    max_depth: u32,
+) -> History {
+    History {
+        since_diffuse: (st.since[i] != NONE_YET).then_some(st.since[i]),
+        last_in_medium: false,
+        clear: true,
+        direct: st.depth[i] + st.deltas[i] == 0,
+        continues: st.depth[i] + 1 < max_depth,
     }
 }
 

@@ -104,11 +104,7 @@ fn handed_vertices(scene: &Scene, rays: &[Ray], inside: Option<u32>) -> Vec<Back
             max_depth: 64,
             strategy: Dispersion::ALL,
         };
-        let lane = Handing {
-            handed,
-            carried,
-            at: (ray, raw),
-        };
+        let lane = Handing::new(handed, carried, (ray, raw));
         out.push(Vertex::<Vec3>::vertex(&path, scene, lane, &mut ctx));
     }
     out
