@@ -174,6 +174,12 @@ impl Material {
                 .truncate()
     }
 
+    /// The material's parameters at every point of an untextured material (`None` when
+    /// a texture makes them vary).
+    pub fn untextured(&self) -> Option<&ShadingPoint> {
+        self.constant.as_ref()
+    }
+
     /// The material's parameters where textures are evaluated by `tex`.
     pub fn shade(&self, tex: &TextureContext) -> ShadingPoint {
         if let Some(sp) = self.constant {

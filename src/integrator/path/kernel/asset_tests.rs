@@ -3,7 +3,9 @@
 //! its lights, no drop-in studio or environment), with the bounds of [`super::tests`]'
 //! agreement test over 8×8-pixel blocks.
 
-use super::tests::{assert_agrees, far_pixels, kernel_image_through, scalar_image_through};
+use super::tests::{
+    assert_agrees, assert_near_same_seed, kernel_image_through, scalar_image_through,
+};
 use super::tests::{settings, H, W};
 use super::*;
 use crate::accel::Backend;
@@ -64,23 +66,7 @@ fn every_asset_the_kernel_takes_agrees_with_the_scalar_path_tracer() {
             let same_seed = scalar_image_through(&scene, &cam, &at(31)).0;
             let what = format!("{name}, {}", if spectral { "spectral" } else { "RGB" });
             assert_agrees(&what, (&k, &s, 8), None);
-            // Rounding apart, a flipped decision (a roulette, a Fresnel choice, an edge)
-            // moves a pixel by a sample's share, over 1e-2 at 128 samples: at most 7 such
-            // pixels, 4 × 7 in spectral transport (a split sample is up to 4 sub-paths,
-            // each passing as many thresholds as an RGB sample). Rounding alone stays
-            // below 1e-4 except where a glossy lobe (the assets' GGX floors, shaded on the
-            // scalar vertex between kernel vertices) magnifies a direction's last bits into
-            // its narrow peak (gem_caustics.glb: 2–6 % of its pixels beyond 1e-4, none beyond
-            // 1e-2, on either backend): at most 10 % beyond 1e-4, which a bias of that size
-            // in every pixel would exceed.
-            let bound = if spectral { 28 } else { 7 };
-            let flips = far_pixels(&k.0, &same_seed, 1e-2);
-            let fine = far_pixels(&k.0, &same_seed, 1e-4);
-            assert!(
-                flips <= bound && fine <= (W * H) as usize / 10,
-                "{what}: {flips} pixels beyond 1e-2 and {fine} beyond 1e-4 from the scalar \
-                 image at the same seed"
-            );
+            assert_near_same_seed(&what, (&k.0, &same_seed), spectral);
         }
         taken.push(name);
     }

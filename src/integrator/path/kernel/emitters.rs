@@ -6,14 +6,14 @@
 //!   of the previous bounce's BSDF pdf and the light's solid-angle pdf (the light
 //!   sampler's pmf times [`lights::area_pdf`] or [`lights::environment_pdf`]), weight 1 for
 //!   camera rays and after delta bounces;
-//! - next-event estimation at Lambert lanes ([`next_event`]): one light chosen uniformly
+//! - next-event estimation at Lambert and glossy lanes ([`next_event`]): one light chosen uniformly
 //!   among the scene's light sampler's (its [`LightId`] order, pmf 1/n), a punctual one by
 //!   [`super::shade::light`], an emissive triangle by the scene's area lights (the triangle
 //!   by power with the member number, the point uniform by area with the position numbers,
 //!   [`crate::light::area::AreaLights::sample`]; single-sided emitters seen from behind
 //!   give nothing) or a direction of the environment ([`crate::light::env::Environment::sample`]
-//!   with the position numbers), weighted by the power heuristic against the Lambert pdf
-//!   |cos θ|/π.
+//!   with the position numbers), weighted by the power heuristic against the density of
+//!   the lane's own BSDF sampling ([`super::shade::Toward`]: |cos θ|/π at a Lambert lane).
 //!
 //! The light tables' reads (the emitting triangle's corners, a map's texels) are calls per
 //! lane into the scalar code, over the lanes that need them; the weights and values are
@@ -31,7 +31,7 @@ use super::colour::{emitted, illuminant, set_lane, Channels};
 use super::features::Tables;
 use super::hits::{dot, Hits, V3};
 use super::numbers::Draws;
-use super::shade::{aim, incident, light};
+use super::shade::{aim, incident, light, Toward};
 use super::state::{Rays, Throughput};
 use crate::accel::packet::{lanes, LaneMask, Lanes, PacketWidth, RayPacket};
 use crate::light::LightId;
@@ -39,7 +39,6 @@ use crate::scene::Scene;
 use crate::shading::lights;
 use crate::spectrum::Lambdas;
 use glam::{Vec2, Vec3};
-use std::f32::consts::FRAC_1_PI;
 
 /// Adds to `l` the light the lanes meet: at the lanes `hit` of `h` the emission of the
 /// surface toward the path, at the `alive` lanes that missed the environment along their
@@ -145,22 +144,21 @@ pub fn next_event<const N: usize, const M: usize>(
     light(
         lit,
         (&punctual, &pointed),
-        (h, beta),
+        (scene, h, beta),
         (value, shadow, traced),
     );
     if spread == 0 {
         return;
     }
     let s = sample((tables, scene), (u, &chosen), h, spread);
+    let spreads: [bool; N] = std::array::from_fn(|i| spread & (1 << i) != 0);
+    let by = Toward::new((scene, lam), h, &spreads, &s.wi);
     let mut counts = [false; N];
     let mut scale = [0.0f32; N];
     for i in 0..N {
-        let cos_o = dot(&h.ns, &h.wo, i);
-        let cos_i = h.ns[0][i] * s.wi[0][i] + h.ns[1][i] * s.wi[1][i] + h.ns[2][i] * s.wi[2][i];
-        let f_nonzero = (0..M).any(|c| h.col[c][i] > 0.0);
-        counts[i] = s.ok[i] && cos_o * cos_i > 0.0 && f_nonzero;
-        let w = mis(s.pdf[i] / inv_pmf, cos_i.abs() * FRAC_1_PI);
-        scale[i] = cos_i.abs() * inv_pmf * FRAC_1_PI * w;
+        counts[i] = s.ok[i] && by.counts[i];
+        let w = mis(s.pdf[i] / inv_pmf, by.pdf[i]);
+        scale[i] = by.cos[i] * inv_pmf * by.scale[i] * w;
         let target = [s.target[0][i], s.target[1][i], s.target[2][i]];
         aim(counts[i], h, i, (target, s.distant[i]), shadow);
         traced[i] |= counts[i];
@@ -172,7 +170,7 @@ pub fn next_event<const N: usize, const M: usize>(
     let e = incident::<N, M>((&s.incident, &counts), shape, lam);
     for i in 0..N {
         for c in 0..M {
-            let v = beta[c][i] * h.col[c][i] * e[c][i] * scale[i];
+            let v = beta[c][i] * by.g[c][i] * e[c][i] * scale[i];
             value[c][i] = if counts[i] { v } else { value[c][i] };
         }
     }

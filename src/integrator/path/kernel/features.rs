@@ -8,24 +8,31 @@
 //! glass volume that may lie inside another. Anything else is refused with the reason (one
 //! line), and the scalar path tracer renders the scene instead.
 //!
-//! In such a scene the kernel shades two lobes across the lanes:
+//! In such a scene the kernel shades four lobes across the lanes:
 //! - a **pure Lambert lobe**: opaque, untextured, metallic 0, `specular` 0
 //!   (`make_variant.py --spec0`; the glTF BRDF with F0 = F90 = 0 is albedo/π, sampled by
 //!   cosine alone, [`crate::bsdf::gltf_brdf`]), no layers, film, anisotropy or metal; it
 //!   may emit (a black one, as the usual area light, scatters nothing);
+//! - the **glTF BRDF with its specular or metal part** (Lambert + GGX, KHR_materials_specular,
+//!   metallic): opaque, untextured, isotropic, no layer or film, emitting or not
+//!   ([`super::glossy`]: the scalar BSDF's own eval, pdf and sample, per lane);
+//! - a **rough dielectric volume** (not dispersive): the scalar BSDF per lane, as the glossy
+//!   lobe ([`super::glossy`]), entering and leaving the volume as the smooth one does;
 //! - a **smooth dielectric volume**: transmission 1, roughness 0, thickness > 0, a finite
 //!   index, untextured, absorbing or not (Beer–Lambert, [`Material::absorbs`]), dispersive
 //!   or not (in spectral transport a path splits into its wavelengths at the first
 //!   dispersive one, [`super::branches`]).
 //!
+//! Rough glass whose mesh's box overlaps another glass mesh's goes to the scalar vertex
+//! (which tracks nested volumes).
 //! Several dielectric materials are taken when no glass volume can lie inside another: the
 //! bounding boxes of the meshes carrying a kernel dielectric are pairwise disjoint (a
 //! closed volume lies inside its mesh's box, so a volume inside another would put one box
 //! inside the other) and no faces touch ([`Scene::touching_triangles`]); the η at a hit is
 //! then the material's index against air.
 //!
-//! Every other material ([`Shade::Scalar`]: textured, layered, specular or metal, rough or
-//! thin glass, crystals, polarizers, alpha blending; emitting or not) is the scalar path
+//! Every other material ([`Shade::Scalar`]: textured, layered, filmed, anisotropic, measured
+//! metals, rough dispersive or thin glass, crystals, polarizers, alpha blending; emitting or not) is the scalar path
 //! vertex's: a lane meeting it hands its path over ([`super::handoff`]), and the plan
 //! names each such material with the reason.
 
@@ -43,6 +50,15 @@ pub enum Shade {
     Unused,
     /// f = albedo/π, cosine-sampled.
     Lambert([f32; 3]),
+    /// The glTF BRDF with a specular or metal part (untextured, isotropic, no layer or
+    /// film): the scalar BSDF's own eval, pdf and sample per lane ([`super::glossy`]).
+    Glossy,
+    /// A rough dielectric volume of index ratio `eta` (inside over outside; not dispersive,
+    /// GGX α = roughness² above the smooth limit): shaded per lane as [`Shade::Glossy`].
+    RoughGlass {
+        /// n_inside / n_outside.
+        eta: f32,
+    },
     /// A smooth dielectric of index ratio `eta` (inside over outside), transmission tinted
     /// by `tint`.
     Glass {
@@ -141,6 +157,16 @@ pub fn qualify(scene: &Scene, perspective: bool, spectral: bool) -> Result<Table
             }));
         }
     }
+    let rough = |s: &Shade| matches!(s, Shade::RoughGlass { .. });
+    if overlapping_glass(scene, &shades).is_some() && shades.iter().any(rough) {
+        for (s, m) in shades.iter_mut().zip(scene.materials()) {
+            if rough(s) {
+                *s = Shade::Scalar;
+                let why = "is rough glass whose volume may lie inside another's";
+                scalar.push(format!("{} {why}", element(m)));
+            }
+        }
+    }
     if let Some((a, b)) = overlapping_glass(scene, &shades) {
         return Err(format!(
             "the glass meshes {a} and {b} have overlapping bounding boxes (one volume might \
@@ -189,7 +215,10 @@ fn overlapping_glass(scene: &Scene, shades: &[Shade]) -> Option<(String, String)
     let empty = (glam::Vec3::INFINITY, glam::Vec3::NEG_INFINITY);
     let mut boxes = vec![None::<(glam::Vec3, glam::Vec3)>; scene.meshes().len()];
     for t in scene.triangles() {
-        if matches!(shades[t.material() as usize], Shade::Glass { .. }) {
+        if matches!(
+            shades[t.material() as usize],
+            Shade::Glass { .. } | Shade::RoughGlass { .. }
+        ) {
             let b = &mut boxes[t.mesh as usize];
             let (lo, hi) = b.unwrap_or(empty);
             *b = Some(
@@ -254,10 +283,7 @@ fn shade(m: &Material) -> Result<Shade, String> {
     let transmission = d.transmission.clamp(0.0, 1.0) * (1.0 - d.metallic.clamp(0.0, 1.0));
     if transmission == 0.0 {
         if d.metallic != 0.0 || d.specular != 0.0 {
-            return Err(format!(
-                "{name} has a specular or metal lobe (the kernel shades a pure \
-                 Lambert lobe: metallic 0, specular 0)"
-            ));
+            return Ok(Shade::Glossy);
         }
         return Ok(Shade::Lambert(base.to_array()));
     }
@@ -266,21 +292,38 @@ fn shade(m: &Material) -> Result<Shade, String> {
         Some("mixes transmission with reflection")
     } else if !m.is_volume() {
         Some("is a thin sheet")
-    } else if d.roughness != 0.0 {
-        Some("is rough glass")
     } else if !(eta.is_finite() && eta > 0.0) {
         Some("has an infinite index (ior 0)")
     } else {
         None
     };
-    match why {
-        Some(why) => Err(format!("{name} {why}")),
-        None => Ok(Shade::Glass {
-            eta,
-            tint: base.to_array(),
-            dispersive: m.is_dispersive(),
-        }),
+    if let Some(why) = why {
+        return Err(format!("{name} {why}"));
     }
+    if rough(m, eta) && m.is_dispersive() {
+        return Err(format!(
+            "{name} is rough dispersive glass (spectral MIS over its wavelengths)"
+        ));
+    }
+    if rough(m, eta) {
+        return Ok(Shade::RoughGlass { eta });
+    }
+    Ok(Shade::Glass {
+        eta,
+        tint: base.to_array(),
+        dispersive: m.is_dispersive(),
+    })
+}
+
+/// Whether the volume boundary of `m` (index ratio `eta` against air) is a rough
+/// dielectric: its BSDF is not a delta (GGX α = roughness² at or above the smooth limit,
+/// [`crate::bsdf::Bsdf::is_delta`]); below that limit the scalar path shades it as
+/// smooth glass, and so does the kernel.
+fn rough(m: &Material, eta: f32) -> bool {
+    m.untextured().is_some_and(|sp| {
+        !m.transmission_bsdf::<glam::Vec3>(sp, Some(eta), &())
+            .is_delta()
+    })
 }
 
 /// `light` in the kernel's form ([`Punctual`]).

@@ -1,5 +1,5 @@
 //! A lane whose path meets a material the kernel does not shade ([`Shade::Scalar`]:
-//! layers, textures, specular or metal lobes, rough or thin glass, …), or a vertex where
+//! layers, textures, films, anisotropy, rough or thin glass, …), or a vertex where
 //! the method's strategy gathers another estimator, has that vertex shaded by the scalar
 //! path tracer under the method's strategy ([`Vertex`], [`OnScalar`]: the path tracer's
 //! or the hybrid's camera paths): its state becomes the scalar path's

@@ -31,8 +31,8 @@ pub fn dot<const N: usize>(a: &V3<N>, b: &V3<N>, i: usize) -> f32 {
     a[0][i] * b[0][i] + a[1][i] * b[1][i] + a[2][i] * b[2][i]
 }
 
-/// The hits of one packet, lane `i` meaningful where `lambert[i]`, `glass[i]` or
-/// `scalar[i]` is set; colours in `M` channels ([`super::colour`]).
+/// The hits of one packet, lane `i` meaningful where `lambert[i]`, `glossy[i]`, `glass[i]`
+/// or `scalar[i]` is set; colours in `M` channels ([`super::colour`]).
 pub struct Hits<const N: usize, const M: usize> {
     /// Position.
     pub p: V3<N>,
@@ -46,13 +46,16 @@ pub struct Hits<const N: usize, const M: usize> {
     pub offset: [f32; N],
     /// The lane met a Lambert surface.
     pub lambert: [bool; N],
+    /// The lane met a lobe the scalar BSDF shades per lane ([`super::glossy`]): a glTF
+    /// BRDF with a specular or metal part, or rough glass.
+    pub glossy: [bool; N],
     /// The lane met the dielectric.
     pub glass: [bool; N],
     /// The lane met a material the scalar vertex shades ([`Shade::Scalar`]).
     pub scalar: [bool; N],
     /// Lambert albedo or dielectric tint at the lane's wavelengths.
     pub col: Channels<N, M>,
-    /// The dielectric's η (1 elsewhere); at a dispersive one in spectral transport, η at
+    /// The dielectric's η, smooth or rough (1 elsewhere); at a dispersive one in spectral transport, η at
     /// the lane's hero wavelength.
     pub eta: [f32; N],
     /// The lane met a dispersive dielectric in spectral transport: its path keeps only
@@ -94,6 +97,7 @@ where
             wo: zero3(),
             offset: [0.0; N],
             lambert: [false; N],
+            glossy: [false; N],
             glass: [false; N],
             scalar: [false; N],
             col: [[0.0; N]; M],
@@ -160,6 +164,11 @@ where
                     };
                     self.disperses[i] = disperses;
                     set_lane(&mut self.col, i, reflectance::<M>(tint, &lam[i]));
+                }
+                Shade::Glossy => self.glossy[i] = true,
+                Shade::RoughGlass { eta } => {
+                    self.glossy[i] = true;
+                    self.eta[i] = eta;
                 }
                 Shade::Scalar => self.scalar[i] = true,
                 Shade::Unused => {}

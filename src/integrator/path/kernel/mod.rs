@@ -19,8 +19,9 @@
 //! lane. Beer–Lambert absorption inside glass ([`volumes`]) and the light a path meets
 //! (emission, the environment on escape, MIS-weighted: [`emitters`]) come first; shading
 //! runs over all lanes with masks per material group ([`shade`]): next-event estimation at
-//! Lambert lanes toward one light chosen as the scalar path tracer chooses it ([`emitters`]),
-//! the cosine-sampled bounce and Russian roulette; the smooth dielectric's
+//! Lambert and glossy lanes toward one light chosen as the scalar path tracer chooses it
+//! ([`emitters`]), the cosine-sampled bounce and Russian roulette, the glossy lanes'
+//! glTF BRDF sampled and evaluated per lane by the scalar BSDF ([`glossy`]); the smooth dielectric's
 //! Fresnel-weighted reflection or refraction. Shadow rays go out as one packet. A lane whose
 //! path ends writes its job's radiance and takes the next job (refill), so glass paths do
 //! not leave the packet empty. In spectral transport a sample meeting a dispersive glass
@@ -57,6 +58,7 @@ mod class;
 mod colour;
 mod emitters;
 mod features;
+mod glossy;
 mod handing;
 mod handoff;
 mod hits;
@@ -67,6 +69,8 @@ mod shade;
 mod state;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_glossy;
 #[cfg(test)]
 mod tests_handoff;
 #[cfg(test)]
@@ -131,9 +135,10 @@ pub fn plan_text(
         };
         let class = if tables.plain() && !gathers {
             "the loop for Lambert surfaces and clear glass under punctual lights (no \
-             emitter, environment, absorption or hand-over code)"
+             emitter, environment, absorption, glossy or hand-over code)"
         } else {
-            "the full loop (emitters and environments with MIS, absorbing glass, hand-over)"
+            "the full loop (emitters and environments with MIS, absorbing glass, glossy \
+             lobes and rough glass by the scalar BSDF per lane, hand-over)"
         };
         let carrier = if tables.spectral {
             "4 wavelengths a lane (a sample splits into its wavelengths at its first \

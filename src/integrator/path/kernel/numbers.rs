@@ -8,10 +8,11 @@
 //! [`Context`], restarted by [`crate::render::Starts::start`]), and the decisions of the
 //! path's vertex `b` (every scattering vertex before it counted, delta ones too) come
 //! from `bounce_dimension(b, …)`, in the order the scalar path tracer reads them at such a
-//! vertex ([`crate::integrator::path::vertex`]): at a Lambert vertex the layer (skipped:
-//! one layer), the light choice (skipped with one light), the light position and member
-//! (skipped where no light reads them), the lobe (skipped: the glTF BRDF with F0 = 0
-//! samples its diffuse lobe whatever the number), the direction and the roulette; at a
+//! vertex ([`crate::integrator::path::vertex`]): at a Lambert or glossy vertex the layer
+//! (skipped: one layer), the light choice (skipped with one light), the light position and
+//! member (skipped where no light reads them), the lobe (read at a glossy vertex; skipped at
+//! a Lambert one: the glTF BRDF with F0 = 0 samples its diffuse lobe whatever the number),
+//! the direction and the roulette; at a
 //! smooth dielectric the layer (skipped), the lobe and the direction (skipped). With the
 //! Z-order Sobol' sampler a number depends on its dimension only; with `--sampler
 //! independent` every number, skipped or not, advances the sample's stream in that order,
@@ -46,6 +47,8 @@ pub struct Vertices<'a, const N: usize> {
     pub index: [u32; N],
     /// The lanes at a Lambert vertex.
     pub lambert: &'a [bool; N],
+    /// The lanes at a glossy vertex ([`super::glossy`]).
+    pub glossy: &'a [bool; N],
     /// The lanes at a smooth dielectric.
     pub glass: &'a [bool; N],
     /// The lanes that may play Russian roulette at this vertex (their third non-delta
@@ -70,8 +73,8 @@ impl<const N: usize> Draws<N> {
             roulette: [0.0; N],
         };
         for (i, c) in ctx.iter_mut().enumerate() {
-            let (lambert, glass) = (at.lambert[i], at.glass[i]);
-            if !(lambert || glass) {
+            let (glossy, glass) = (at.glossy[i], at.glass[i]);
+            if !(at.lambert[i] || glossy || glass) {
                 continue;
             }
             let mut u = c.sample.bounce(at.index[i]);
@@ -95,7 +98,11 @@ impl<const N: usize> Draws<N> {
                 u.skip_light_position();
                 u.skip_light_member();
             }
-            u.skip_bsdf_lobe();
+            if glossy {
+                d.lobe[i] = u.bsdf_lobe();
+            } else {
+                u.skip_bsdf_lobe();
+            }
             let w = u.bsdf_direction();
             (d.direction[0][i], d.direction[1][i]) = (w.x, w.y);
             if at.roulette[i] {

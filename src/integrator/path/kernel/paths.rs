@@ -5,8 +5,8 @@
 //! packets of their own). Each turn traces the bounce rays of the other alive lanes as one
 //! packet ([`Scene::intersect_packet`]), merges in the first hits of the lanes just
 //! started, builds the hits over the lanes ([`Hits`]),
-//! shades the Lambert lanes (next-event estimation, then the bounce) and the dielectric
-//! lanes ([`super::shade`]), traces the shadow rays as one packet
+//! shades the Lambert and glossy lanes (next-event estimation, then the bounce:
+//! [`super::shade`], [`super::glossy`]) and the dielectric lanes, traces the shadow rays as one packet
 //! ([`Scene::occluded_packet`]) and adds what they let through; a lane whose path ended
 //! writes its radiance to its job's slot and takes the batch's next job (refill).
 //!
@@ -27,6 +27,7 @@ use super::class::Class;
 use super::colour::{lane, spectral, to_rgb, unset, Channels};
 use super::emitters::{arrive, next_event};
 use super::features::Tables;
+use super::glossy;
 use super::hits::Hits;
 use super::numbers::{Draws, Vertices};
 use super::rules::Rules;
@@ -144,12 +145,12 @@ impl<const N: usize, const M: usize> Paths<N, M> {
     }
 
     /// Shades the hits `h` (in `scene`; `area`: some light has an area or is at
-    /// infinity): next-event estimation at the Lambert lanes with their shadow rays traced
-    /// as one packet (counted in `rays`), the Lambert bounce and roulette, the dielectric's
-    /// choice; the next rays into [`Self::next`]. Returns the lanes whose path ends at
+    /// infinity): next-event estimation at the Lambert and glossy lanes with their shadow
+    /// rays traced as one packet (counted in `rays`), their bounces and roulette (the
+    /// glossy lanes' only in a scene of class `K` that has them), the dielectric's choice; the next rays into [`Self::next`]. Returns the lanes whose path ends at
     /// their vertex.
     #[inline(always)]
-    fn shade(
+    fn shade<K: Class>(
         &mut self,
         tables: &Tables,
         (scene, h, area): (&Scene, &Hits<N, M>, bool),
@@ -162,6 +163,7 @@ impl<const N: usize, const M: usize> Paths<N, M> {
         let at = Vertices {
             index: std::array::from_fn(|i| self.st.depth[i] + self.st.deltas[i]),
             lambert: &h.lambert,
+            glossy: &h.glossy,
             glass: &h.glass,
             roulette: std::array::from_fn(|i| self.st.depth[i] + 1 >= 3),
             lights: tables.sampled.len(),
@@ -174,7 +176,8 @@ impl<const N: usize, const M: usize> Paths<N, M> {
         let beta = self.st.beta;
         let out_nee = (&mut value, &mut shadow, &mut traced);
         let light = (tables, scene, &self.lam);
-        next_event(light, &u, (&h.lambert, h, &beta), out_nee);
+        let rough: [bool; N] = std::array::from_fn(|i| h.lambert[i] || h.glossy[i]);
+        next_event(light, &u, (&rough, h, &beta), out_nee);
         let (ends_l, played) = lambert(
             &h.lambert,
             h,
@@ -183,7 +186,14 @@ impl<const N: usize, const M: usize> Paths<N, M> {
             &mut self.st,
             &mut self.next,
         );
-        Draws::played(&mut self.ctx, &at, mask(&played));
+        let (ends_s, played_s) = match mask(&h.glossy) {
+            on if K::GLOSSY && on != 0 => {
+                let at = (scene, h, &self.lam);
+                glossy::bounce(at, on, &u, max_depth, (&mut self.st, &mut self.next))
+            }
+            _ => (0, 0),
+        };
+        Draws::played(&mut self.ctx, &at, mask(&played) | played_s);
         let ends_g = glass(&h.glass, h, &u.lobe, &mut self.st, &mut self.next);
         self.track(h);
         let traced = mask(&traced);
@@ -197,16 +207,16 @@ impl<const N: usize, const M: usize> Paths<N, M> {
                 (0..M).for_each(|c| self.l[c][i] += value[c][i]);
             }
         }
-        mask(&ends_l) | mask(&ends_g)
+        mask(&ends_l) | ends_s | mask(&ends_g)
     }
 
-    /// After the shading of hits `h`: a Lambert bounce is non-delta (no delta bounces
-    /// since); the dielectric counts one more delta bounce.
+    /// After the shading of hits `h`: a Lambert or glossy bounce is non-delta (no delta
+    /// bounces since); the dielectric counts one more delta bounce.
     #[inline(always)]
     fn track(&mut self, h: &Hits<N, M>) {
         for (i, was) in self.st.since.iter_mut().enumerate() {
             let since = if *was == NONE_YET { NONE_YET } else { *was + 1 };
-            *was = if h.lambert[i] {
+            *was = if h.lambert[i] || h.glossy[i] {
                 0
             } else if h.glass[i] {
                 since
@@ -310,7 +320,8 @@ where
         let h = Hits::<N, M>::new((scene, &tables.shades), &packet, &packet.hits, hit, &p.lam);
         // Where the strategy shares the light (before a hand-over changes the records).
         let (gathered, leaves) = if shares {
-            rules.shared((hit & mask(&h.lambert), p.alive), &p.st)
+            let rough = mask(&h.lambert) | mask(&h.glossy);
+            rules.shared((hit & rough, p.alive), &p.st)
         } else {
             (0, 0)
         };
@@ -343,8 +354,11 @@ where
         if shares {
             p.gather(gathered, scene, &packet, rules);
         }
-        let ends = p.shade(tables, (scene, &h, area), max_depth, &mut rays);
-        let shaded = mask(&h.lambert) | mask(&h.glass);
+        let ends = p.shade::<K>(tables, (scene, &h, area), max_depth, &mut rays);
+        // A class without glossy lanes never meets one ([`Tables::plain`]); were it to, the
+        // lane would end here rather than trace its ray again.
+        let glossy = if K::GLOSSY { mask(&h.glossy) } else { 0 };
+        let shaded = mask(&h.lambert) | glossy | mask(&h.glass);
         let ended = (p.alive & !(hit & shaded) & !goes_on) | ends;
         resumed = 0;
         for i in lanes(ended & p.alive) {

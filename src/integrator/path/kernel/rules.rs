@@ -71,18 +71,18 @@ impl Rules<'_> {
 
     /// Where the method shares the light with another estimator (a strategy that
     /// [`Rules::gathers`]), of the `alive` lanes (with the bounce records `st`) and the
-    /// Lambert lanes `lambert` among them: those at their first non-delta vertex, where
+    /// Lambert and glossy lanes `rough` among them: those at their first non-delta vertex, where
     /// the strategy gathers, and those whose light found now is the other estimator's.
     pub fn shared<const N: usize, const M: usize>(
         &self,
-        (lambert, alive): (LaneMask, LaneMask),
+        (rough, alive): (LaneMask, LaneMask),
         st: &Throughput<N, M>,
     ) -> (LaneMask, LaneMask) {
         let (mut gathered, mut leaving) = (0, 0);
         let max_depth = self.max_depth();
         for i in crate::accel::packet::lanes(alive) {
             let h = history(st, i, max_depth);
-            let first = h.since_diffuse.is_none() && lambert & (1 << i) != 0;
+            let first = h.since_diffuse.is_none() && rough & (1 << i) != 0;
             gathered |= u32::from(first) << i;
             let leaves = match self {
                 Rules::Rgb(v) => v.leaves_light(&h),

@@ -1,7 +1,7 @@
 //! The kernel's shading over the lanes, each a plain loop over fixed-size arrays that LLVM
 //! vectorises (compiled for the CPU's widest vectors by the caller's dispatch,
-//! [`super::estimate`]): next-event estimation at Lambert lanes toward one punctual light
-//! ([`light`]), the cosine-sampled Lambert bounce with the bounce limit and Russian
+//! [`super::estimate`]): next-event estimation at Lambert and glossy lanes toward one
+//! punctual light ([`light`], the lanes' BSDFs toward it: [`Toward`]), the cosine-sampled Lambert bounce with the bounce limit and Russian
 //! roulette ([`lambert`]), the smooth dielectric's Fresnel-weighted reflection or refraction
 //! ([`glass`]), and the spawned rays ([`spawn`]).
 //!
@@ -18,12 +18,15 @@
 //!
 //! Units: radiance in `M` channels ([`super::colour`]); world space.
 
-use super::colour::{emitted, spectral, Channels};
+use super::colour::{emitted, set_lane, spectral, Channels};
 use super::features::{Punctual, Tables};
+use super::glossy;
 use super::hits::{dot, Hits, V3};
 use super::state::{Rays, Throughput};
+use crate::accel::packet::{lanes, LaneMask};
 use crate::interaction::{offset_point, SHADOW_EPSILON};
 use crate::light::punctual::{cone_falloff, range_window};
+use crate::scene::Scene;
 use crate::shading::MAX_DELTA_BOUNCES;
 use crate::spectrum::{EmitterShape, Lambdas};
 use std::f32::consts::{FRAC_1_PI, TAU};
@@ -85,43 +88,108 @@ pub fn aim<const N: usize, const M: usize>(
     shadow.t_max[i] = if on { t_max } else { shadow.t_max[i] };
 }
 
+/// The lanes' BSDFs toward one direction each (next-event estimation): `g` and `scale`
+/// give f = g · scale (Lambert lanes: the albedo and 1/π, kept apart so their products
+/// round as the Lambert estimate always has; glossy lanes: f from [`super::glossy::eval`]
+/// and 1), `pdf` the density with which the vertex's own sampling picks the direction,
+/// `cos` = |cos θi| at the shading normal, and `counts` where the BSDF scatters toward it
+/// (f ≠ 0: a Lambert lane's on the side of `wo`; a glossy lane's where its lobe says,
+/// through the surface too for rough glass).
+pub struct Toward<const N: usize, const M: usize> {
+    pub g: Channels<N, M>,
+    pub scale: [f32; N],
+    pub pdf: [f32; N],
+    pub cos: [f32; N],
+    pub counts: [bool; N],
+}
+
+impl<const N: usize, const M: usize> Toward<N, M> {
+    /// The BSDFs of the lanes `on` of `h` (in `scene`, at the lanes' wavelengths `lam`)
+    /// toward the unit directions `wi`.
+    #[inline(always)]
+    pub fn new(
+        (scene, lam): (&Scene, &[Lambdas; N]),
+        h: &Hits<N, M>,
+        on: &[bool; N],
+        wi: &V3<N>,
+    ) -> Self {
+        let mut t = Toward {
+            g: h.col,
+            scale: [FRAC_1_PI; N],
+            pdf: [0.0; N],
+            cos: [0.0; N],
+            counts: [false; N],
+        };
+        let mut glossy: LaneMask = 0;
+        for (i, &on) in on.iter().enumerate() {
+            let cos_o = dot(&h.ns, &h.wo, i);
+            let cos_i = dot(&h.ns, wi, i);
+            let f_nonzero = (0..M).any(|c| h.col[c][i] > 0.0);
+            t.cos[i] = cos_i.abs();
+            t.pdf[i] = cos_i.abs() * FRAC_1_PI;
+            t.counts[i] = on && cos_o * cos_i > 0.0 && f_nonzero;
+            glossy |= u32::from(on && h.glossy[i]) << i;
+        }
+        for i in lanes(glossy) {
+            let w = [wi[0][i], wi[1][i], wi[2][i]];
+            let (f, pdf) = glossy::eval(scene, h, (i, &lam[i]), w);
+            set_lane(&mut t.g, i, f);
+            (t.scale[i], t.pdf[i]) = (1.0, pdf);
+            t.counts[i] = f.iter().any(|v| *v > 0.0);
+        }
+        t
+    }
+}
+
 /// Next-event estimation at the lanes `on` toward the punctual light of index `k[i]` among
 /// the table's lights, chosen with probability 1/`inv_pmf`: adds to `value` the
 /// unweighted-by-shadow contribution β · f · E⊥ · `inv_pmf` · |cos θ| of each lane whose
-/// sample counts (E⊥ at the lane's wavelengths `lam`), sets its shadow ray in `shadow` and
-/// its flag in `traced`.
+/// sample counts (E⊥ at the lane's wavelengths `lam`, f the lane's BSDF: [`Toward`]), sets
+/// its shadow ray in `shadow` and its flag in `traced`.
 #[inline(always)]
 pub fn light<const N: usize, const M: usize>(
     (tables, inv_pmf, lam): (&Tables, f32, &[Lambdas; N]),
     (k, on): (&[u32; N], &[bool; N]),
-    (h, beta): (&Hits<N, M>, &Channels<N, M>),
+    (scene, h, beta): (&Scene, &Hits<N, M>, &Channels<N, M>),
     (value, shadow, traced): (&mut Channels<N, M>, &mut Rays<N>, &mut [bool; N]),
 ) {
+    if !on.contains(&true) {
+        return;
+    }
     let n = inv_pmf;
     let mut e_rgb: V3<N> = [[0.0; N]; 3];
-    let mut w = [0.0f32; N];
-    let mut counts = [false; N];
+    let mut wi: V3<N> = [[0.0; N]; 3];
+    let mut target: V3<N> = [[0.0; N]; 3];
+    let mut distant = [false; N];
+    let mut reaches = [false; N];
     for (j, l) in tables.lights.iter().enumerate() {
         for i in 0..N {
             let mine = on[i] && k[i] == j as u32;
-            let (wi, e, ok, target) = incidence(l, h, i);
-            let cos_o = dot(&h.ns, &h.wo, i);
-            let cos_i = h.ns[0][i] * wi[0] + h.ns[1][i] * wi[1] + h.ns[2][i] * wi[2];
-            let f_nonzero = (0..M).any(|c| h.col[c][i] > 0.0);
-            let counted = mine && ok && cos_o * cos_i > 0.0 && f_nonzero;
+            let (w, e, ok, at) = incidence(l, h, i);
+            let at = if l.directional { w } else { at };
             for c in 0..3 {
-                e_rgb[c][i] = if counted { e[c] } else { e_rgb[c][i] };
+                e_rgb[c][i] = if mine { e[c] } else { e_rgb[c][i] };
+                wi[c][i] = if mine { w[c] } else { wi[c][i] };
+                target[c][i] = if mine { at[c] } else { target[c][i] };
             }
-            w[i] = if counted {
-                cos_i.abs() * n * FRAC_1_PI
-            } else {
-                w[i]
-            };
-            counts[i] |= counted;
-            let target = if l.directional { wi } else { target };
-            aim(counted, h, i, (target, l.directional), shadow);
-            traced[i] |= counted;
+            distant[i] = if mine { l.directional } else { distant[i] };
+            reaches[i] |= mine && ok;
         }
+    }
+    let by = Toward::new((scene, lam), h, on, &wi);
+    let mut w = [0.0f32; N];
+    let mut counts = [false; N];
+    for i in 0..N {
+        let counted = reaches[i] && by.counts[i];
+        w[i] = if counted {
+            by.cos[i] * n * by.scale[i]
+        } else {
+            0.0
+        };
+        counts[i] = counted;
+        let to = [target[0][i], target[1][i], target[2][i]];
+        aim(counted, h, i, (to, distant[i]), shadow);
+        traced[i] |= counted;
     }
     let e = incident::<N, M>(
         (&e_rgb, &counts),
@@ -130,7 +198,7 @@ pub fn light<const N: usize, const M: usize>(
     );
     for i in 0..N {
         for c in 0..M {
-            let v = beta[c][i] * h.col[c][i] * e[c][i] * w[i];
+            let v = beta[c][i] * by.g[c][i] * e[c][i] * w[i];
             value[c][i] = if counts[i] { v } else { value[c][i] };
         }
     }
@@ -224,31 +292,46 @@ pub fn lambert<const N: usize, const M: usize>(
         let z = (1.0 - u1[i]).max(0.0).sqrt();
         let z = if cos_o < 0.0 { -z } else { z };
         let wi = [0, 1, 2].map(|c| s[c] * (r * cs) + t[c] * (r * sn) + n[c] * z);
-        let mut q = 0.0f32;
         for c in 0..M {
             let b = st.beta[c][i] * h.col[c][i];
             st.beta[c][i] = if on[i] { b } else { st.beta[c][i] };
-            q = q.max(st.beta[c][i] * st.eta_scale[i]);
         }
-        let depth = st.depth[i] + 1;
-        st.depth[i] = if on[i] { depth } else { st.depth[i] };
-        // Russian roulette after three non-delta bounces: q ≥ 1 always survives, q < 1
-        // with probability q (NaN never), and the survivor is divided by min(q, 1).
-        let rr = depth >= 3;
-        let survives = !rr || q >= 1.0 || u_rr[i] < q;
-        let divisor = if rr && q < 1.0 { q } else { 1.0 };
-        for c in 0..M {
-            let b = st.beta[c][i] / divisor;
-            st.beta[c][i] = if on[i] { b } else { st.beta[c][i] };
-        }
-        // A black albedo (an emitter's) leaves nothing to carry: the path ends.
-        let dark = q == 0.0;
-        ends[i] = on[i] && (cos_o == 0.0 || z == 0.0 || depth >= max_depth || !survives || dark);
-        played[i] = on[i] && rr && q < 1.0 && depth < max_depth;
+        let (end, play) = survive(on[i], i, u_rr[i], max_depth, st);
+        ends[i] = on[i] && (cos_o == 0.0 || z == 0.0 || end);
+        played[i] = play;
         st.bounced(on[i], h, i, (z.abs() * FRAC_1_PI, false));
         spawn(on[i], h, i, wi, next);
     }
     (ends, played)
+}
+
+/// One more non-delta bounce of lane `i` where `on`, its throughput already times the
+/// bounce's weight: the bounce limit, then Russian roulette on `u_rr` after three
+/// non-delta bounces — q = max(β · η scale) ≥ 1 always survives, q < 1 with probability q
+/// (NaN never), the survivor divided by min(q, 1). Returns whether the path ends here (a
+/// black throughput, an emitter's black albedo, ends it too: nothing is left to carry) and
+/// whether it played the roulette (read `u_rr`).
+#[inline(always)]
+pub fn survive<const N: usize, const M: usize>(
+    on: bool,
+    i: usize,
+    u_rr: f32,
+    max_depth: u32,
+    st: &mut Throughput<N, M>,
+) -> (bool, bool) {
+    let q = (0..M).fold(0.0f32, |q, c| q.max(st.beta[c][i] * st.eta_scale[i]));
+    let depth = st.depth[i] + 1;
+    st.depth[i] = if on { depth } else { st.depth[i] };
+    let rr = depth >= 3;
+    let survives = !rr || q >= 1.0 || u_rr < q;
+    let divisor = if rr && q < 1.0 { q } else { 1.0 };
+    for c in 0..M {
+        let b = st.beta[c][i] / divisor;
+        st.beta[c][i] = if on { b } else { st.beta[c][i] };
+    }
+    let dark = q == 0.0;
+    let ends = on && (depth >= max_depth || !survives || dark);
+    (ends, on && rr && q < 1.0 && depth < max_depth)
 }
 
 /// The smooth dielectric at the lanes `on` with the number `u`: reflection with

@@ -6,7 +6,8 @@ use super::super::state::Prev;
 use super::super::Dispersion;
 use super::handoff::{Back, Handed, Handing};
 use super::tests::{
-    assert_agrees, build, desc, kernel_image, lambert_floor, rough_sphere, scalar_image, settings,
+    assert_agrees, build, desc, kernel_image, lambert_floor, rough_dispersive_sphere, scalar_image,
+    settings,
 };
 use super::*;
 use crate::accel::packet::{Coherence, RayPacket};
@@ -23,20 +24,17 @@ use glam::Vec3;
 
 /// The kernel agrees with the scalar path tracer (as
 /// `the_kernel_agrees_with_the_scalar_path_tracer`, same bounds) where lanes hand their
-/// paths to the scalar vertex: (a) at a glTF BRDF floor with its specular lobe, met
+/// paths to the scalar vertex: (a) at a clear-coated floor ([`coated_floor`]), met
 /// directly and through the glass (the delta bounces, η scale and throughput carried
-/// over), (b) at a rough glass sphere, (c) at a rough ball of index 2.4 inside the smooth
+/// over), (b) at a rough dispersive glass sphere, (c) at a rough ball of index 2.4 inside the smooth
 /// glass sphere (the lane carries the glass it is in, so the ball refracts with 2.4/1.5,
 /// not 2.4/1). Handing over without the throughput, or without the glass the lane is in,
 /// moves blocks by many σ.
 #[test]
 fn lanes_handed_to_the_scalar_vertex_agree_with_it() {
     let cases = [
-        (
-            "specular floor",
-            desc(MaterialDesc::diffuse("floor", Vec3::new(0.8, 0.6, 0.4))),
-        ),
-        ("rough sphere", rough_sphere()),
+        ("coated floor", desc(coated_floor())),
+        ("rough dispersive sphere", rough_dispersive_sphere()),
         ("ball in the glass", ball_in_glass()),
     ];
     for (what, d) in cases {
@@ -53,9 +51,18 @@ fn lanes_handed_to_the_scalar_vertex_agree_with_it() {
     }
 }
 
+/// The test floor's colour under a clearcoat (KHR_materials_clearcoat, factor 1,
+/// roughness 0.3): a layer the kernel leaves to the scalar vertex.
+pub(super) fn coated_floor() -> MaterialDesc {
+    let mut m = MaterialDesc::diffuse("floor", Vec3::new(0.8, 0.6, 0.4));
+    m.layers.clearcoat = 1.0;
+    m.layers.clearcoat_roughness = 0.3;
+    m
+}
+
 /// The test scene of `lanes_handed_to_the_scalar_vertex_agree_with_it`'s case (c): a
 /// rough ball of index 2.4 and radius 0.3 inside the smooth glass sphere.
-fn ball_in_glass() -> SceneDesc {
+pub(super) fn ball_in_glass() -> SceneDesc {
     let mut inner = desc(lambert_floor());
     let ball = MaterialDesc {
         roughness: 0.2,
@@ -111,15 +118,14 @@ fn handed_vertices(scene: &Scene, rays: &[Ray], inside: Option<u32>) -> Vec<Back
 }
 
 /// A lane comes back to the kernel after its vertex on the scalar vertex: camera rays
-/// straight down onto the specular floor come back (one non-delta bounce counted, the next
+/// straight down onto the coated floor come back (one non-delta bounce counted, the next
 /// ray leaving the floor upward), except those the vertex ends. Inside the glass sphere, at
 /// the rough ball inside it, a path reflected stays in the sphere and comes back with it;
 /// one refracted into the ball is inside two volumes, which the kernel does not carry: the
 /// scalar path follows it to its end.
 #[test]
 fn a_lane_comes_back_after_the_scalar_vertex() {
-    let floor = desc(MaterialDesc::diffuse("floor", Vec3::new(0.8, 0.6, 0.4)));
-    let scene = build(floor, Backend::Bvh);
+    let scene = build(desc(coated_floor()), Backend::Bvh);
     let down: Vec<Ray> = (0..16)
         .map(|k| Ray::new(Vec3::new(-2.0 + 0.25 * k as f32, 1.0, 1.5), -Vec3::Y))
         .collect();

@@ -30,11 +30,19 @@ fn lamp_quad(c: Vec3, h: f32, material: usize) -> MeshDesc {
 /// The floor, the glass sphere and a single-sided black Lambert quad emitting (6, 5, 4)
 /// down onto them from the upper left, lit by nothing else.
 pub(super) fn lamp_scene(environment: Option<Environment>) -> Scene {
-    let mut d = desc(lambert_floor());
     let lamp = MaterialDesc {
         specular: 0.0,
         ..MaterialDesc::emitter("lamp", Vec3::new(6.0, 5.0, 4.0))
     };
+    lamp_scene_with((desc(lambert_floor()), lamp), environment)
+}
+
+/// [`lamp_scene`] over the scene `d` (the floor and the sphere in their materials) with the
+/// lamp's material `lamp`.
+pub(super) fn lamp_scene_with(
+    (mut d, lamp): (SceneDesc, MaterialDesc),
+    environment: Option<Environment>,
+) -> Scene {
     d.meshes.push(lamp_quad(
         Vec3::new(-0.7, 1.0, -0.3),
         0.35,
