@@ -34,6 +34,9 @@ use crate::shading::sample_bsdf;
 use crate::spectrum::{Carrier, Lambdas, SampledSpectrum};
 use glam::{Vec2, Vec3};
 
+/// Lane `i` of the hits `h` in `scene`.
+type Lane<'a, const N: usize, const M: usize> = (&'a Scene, &'a Hits<N, M>, usize);
+
 /// Lane `i`'s BSDF at the hit of `h` for a path carrying `lambda`, its frame and the local
 /// direction back along the ray: the opaque glTF BRDF, or the rough dielectric of the
 /// lane's η where the material transmits ([`crate::shading::bsdf_at`]: η from the volume
@@ -41,9 +44,7 @@ use glam::{Vec2, Vec3};
 /// ([`super::features`]).
 #[inline]
 fn lobe<C: Carrier, const N: usize, const M: usize>(
-    scene: &Scene,
-    h: &Hits<N, M>,
-    i: usize,
+    (scene, h, i): Lane<N, M>,
     lambda: &C::Lambda,
 ) -> (Bsdf<C>, Frame, Vec3) {
     let m: &Material = &scene.materials()[h.material[i] as usize];
@@ -58,20 +59,18 @@ fn lobe<C: Carrier, const N: usize, const M: usize>(
     (bsdf, frame, wo)
 }
 
-/// f toward the unit world direction `wi` and the density with which the lobe's sampling
-/// picks it, at lane `i`.
+/// f (in `M` channels) toward the unit world direction `wi` and the density with which
+/// the lobe's sampling picks it, at lane `at`.
 #[inline]
 fn eval_in<C: Carrier, const N: usize, const M: usize>(
-    scene: &Scene,
-    h: &Hits<N, M>,
-    i: usize,
+    at: Lane<N, M>,
     lambda: &C::Lambda,
     wi: Vec3,
-) -> (C, f32) {
-    let (b, frame, wo) = lobe::<C, N, M>(scene, h, i, lambda);
+) -> ([f32; M], f32) {
+    let (b, frame, wo) = lobe::<C, N, M>(at, lambda);
     let wi = frame.to_local(wi);
     let mode = TransportMode::Radiance;
-    (b.eval(wo, wi, mode), b.pdf(wo, wi, mode))
+    (take(b.eval(wo, wi, mode).to_lanes()), b.pdf(wo, wi, mode))
 }
 
 /// f (in `M` channels at the lane's wavelengths `lam`) toward the unit world direction
@@ -85,11 +84,9 @@ pub fn eval<const N: usize, const M: usize>(
 ) -> ([f32; M], f32) {
     let wi = Vec3::from_array(wi);
     if spectral::<M>() {
-        let (f, pdf) = eval_in::<SampledSpectrum, N, M>(scene, h, i, lam, wi);
-        (take(f.to_lanes()), pdf)
+        eval_in::<SampledSpectrum, N, M>((scene, h, i), lam, wi)
     } else {
-        let (f, pdf) = eval_in::<Vec3, N, M>(scene, h, i, &(), wi);
-        (take(f.to_array()), pdf)
+        eval_in::<Vec3, N, M>((scene, h, i), &(), wi)
     }
 }
 
@@ -97,7 +94,7 @@ pub fn eval<const N: usize, const M: usize>(
 struct Sampled<X> {
     /// The direction.
     wi: [f32; 3],
-    /// f·|cos θi|/pdf.
+    /// f·|cos θi|/pdf in the lane's channels.
     weight: X,
     /// The sample's density.
     pdf: f32,
@@ -110,23 +107,21 @@ struct Sampled<X> {
 /// `None` when the lobe gives none the path can use ([`sample_bsdf`]).
 #[inline]
 fn sample_in<C: Carrier, const N: usize, const M: usize>(
-    scene: &Scene,
-    h: &Hits<N, M>,
-    i: usize,
+    at: Lane<N, M>,
     lambda: &C::Lambda,
     (uc, u): (f32, Vec2),
-) -> Option<Sampled<C>> {
-    let (b, frame, wo) = lobe::<C, N, M>(scene, h, i, lambda);
+) -> Option<Sampled<[f32; M]>> {
+    let (b, frame, wo) = lobe::<C, N, M>(at, lambda);
     let bs = sample_bsdf(&b, wo, uc, u, TransportMode::Radiance)?;
     Some(Sampled {
         wi: frame.to_world(bs.wi).to_array(),
-        weight: bs.f * (bs.wi.z.abs() / bs.pdf),
+        weight: take((bs.f * (bs.wi.z.abs() / bs.pdf)).to_lanes()),
         pdf: bs.pdf,
         crossed: bs.transmission.then_some(wo.z > 0.0),
     })
 }
 
-/// [`sample_in`] in `M` channels at the lane's wavelengths `lam`.
+/// [`sample_in`] at the lane's wavelengths `lam`.
 #[inline]
 fn sample<const N: usize, const M: usize>(
     scene: &Scene,
@@ -135,20 +130,9 @@ fn sample<const N: usize, const M: usize>(
     u: (f32, Vec2),
 ) -> Option<Sampled<[f32; M]>> {
     if spectral::<M>() {
-        sample_in::<SampledSpectrum, N, M>(scene, h, i, lam, u).map(in_channels)
+        sample_in::<SampledSpectrum, N, M>((scene, h, i), lam, u)
     } else {
-        sample_in::<Vec3, N, M>(scene, h, i, &(), u).map(in_channels)
-    }
-}
-
-/// A sample's weight in `M` channels.
-#[inline]
-fn in_channels<C: Carrier, const M: usize>(s: Sampled<C>) -> Sampled<[f32; M]> {
-    Sampled {
-        wi: s.wi,
-        weight: take(s.weight.to_lanes()),
-        pdf: s.pdf,
-        crossed: s.crossed,
+        sample_in::<Vec3, N, M>((scene, h, i), &(), u)
     }
 }
 

@@ -5,15 +5,11 @@
 //! rough glass spheres, clear and absorbing, under both.
 
 use super::features::Shade;
-use super::tests::{
-    assert_agrees, assert_near_same_seed, build, desc, kernel_image, rough_sphere, scalar_image,
-    settings,
-};
-use super::tests_lights::lamp_scene_with;
+use super::tests::{assert_agrees, assert_near_same_seed, build, desc, rough_sphere};
+use super::tests_lights::{lamp_scene_with, three_images};
 use crate::accel::Backend;
 use crate::light::env::Environment;
 use crate::material::MaterialDesc;
-use crate::render::RenderSettings;
 use crate::scene::Scene;
 use glam::Vec3;
 
@@ -67,13 +63,7 @@ fn agrees_as(what: &str, scene: &Scene, (m, shade): (usize, Shade)) {
     assert_eq!(tables.shades[m], shade, "{what}");
     assert!(tables.scalar.is_empty(), "{what}: {:?}", tables.scalar);
     for spectral in [false, true] {
-        let at = |seed| RenderSettings {
-            spectral,
-            ..settings(256, seed)
-        };
-        let k = kernel_image(scene, &at(31), 16);
-        let s = scalar_image(scene, &at(32));
-        let same_seed = scalar_image(scene, &at(31)).0;
+        let (k, s, same_seed) = three_images(scene, spectral, 31);
         let what = format!("{what}{}", if spectral { ", spectral" } else { "" });
         if shade == Shade::Glossy {
             assert_agrees(&what, (&k, &s, 4), Some(&same_seed));

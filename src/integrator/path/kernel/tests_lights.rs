@@ -6,11 +6,13 @@
 
 use super::tests::{
     assert_agrees, build, camera, desc, floor, kernel_image, lambert_floor, scalar_image, settings,
+    Halves,
 };
 use super::*;
 use crate::accel::Backend;
 use crate::authoring::scene::placed;
 use crate::authoring::shapes::icosphere;
+use crate::image::ImageRgb;
 use crate::light::env::Environment;
 use crate::material::MaterialDesc;
 use crate::render::RenderSettings;
@@ -61,13 +63,7 @@ pub(super) fn lamp_scene_with(
 /// in RGB and in spectral transport.
 fn agrees(scene: &Scene) {
     for spectral in [false, true] {
-        let at = |seed| RenderSettings {
-            spectral,
-            ..settings(256, seed)
-        };
-        let k = kernel_image(scene, &at(21), 16);
-        let s = scalar_image(scene, &at(22));
-        let same_seed = scalar_image(scene, &at(21)).0;
+        let (k, s, same_seed) = three_images(scene, spectral, 21);
         let what = if spectral {
             "lights, spectral"
         } else {
@@ -77,6 +73,18 @@ fn agrees(scene: &Scene) {
         let lit = k.0.data.iter().map(|p| p.max_element()).fold(0.0, f32::max);
         assert!(lit > 0.05, "the image is dark: {lit}");
     }
+}
+
+/// The kernel's image of `scene` at 256 samples per pixel and seed `seed`, in spectral
+/// transport or RGB, the scalar path tracer's at seed + 1 and the scalar image at `seed`.
+pub(super) fn three_images(scene: &Scene, spectral: bool, seed: u64) -> (Halves, Halves, ImageRgb) {
+    let at = |seed| RenderSettings {
+        spectral,
+        ..settings(256, seed)
+    };
+    let k = kernel_image(scene, &at(seed), 16);
+    let s = scalar_image(scene, &at(seed + 1));
+    (k, s, scalar_image(scene, &at(seed)).0)
 }
 
 /// An emissive quad over the glass sphere and the floor: the kernel samples the quad for
