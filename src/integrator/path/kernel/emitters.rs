@@ -29,6 +29,7 @@
 use super::super::light_sample::mis;
 use super::colour::{emitted, illuminant, set_lane, Channels};
 use super::features::Tables;
+use super::glossy::Lobes;
 use super::hits::{dot, Hits, V3};
 use super::numbers::Draws;
 use super::shade::{aim, incident, light, Toward};
@@ -113,15 +114,16 @@ struct Sampled<const N: usize> {
     ok: [bool; N],
 }
 
-/// Next-event estimation at the lanes `on` of `h` with the numbers `u`: the light chosen
-/// among `tables.sampled` (pmf 1/n), its contribution β · f · incident · n · |cos θ| · w
+/// Next-event estimation at the lanes `on` of `h` (the glossy lanes' BSDFs in `lobes`) with
+/// the numbers `u`: the light chosen among `tables.sampled` (pmf 1/n), its contribution
+/// β · f · incident · n · |cos θ| · w
 /// (unblocked, at the lanes' wavelengths `lam`) into `value`, its shadow ray into `shadow`
 /// and its flag into `traced`.
 #[inline(always)]
 pub fn next_event<const N: usize, const M: usize>(
     (tables, scene, lam): (&Tables, &Scene, &[Lambdas; N]),
     u: &Draws<N>,
-    (on, h, beta): (&[bool; N], &Hits<N, M>, &Channels<N, M>),
+    (on, h, beta, lobes): (&[bool; N], &Hits<N, M>, &Channels<N, M>, &Lobes<N>),
     (value, shadow, traced): (&mut Channels<N, M>, &mut Rays<N>, &mut [bool; N]),
 ) {
     let n = tables.sampled.len();
@@ -144,7 +146,7 @@ pub fn next_event<const N: usize, const M: usize>(
     light(
         lit,
         (&punctual, &pointed),
-        (scene, h, beta),
+        (lobes, h, beta),
         (value, shadow, traced),
     );
     if spread == 0 {
@@ -152,7 +154,7 @@ pub fn next_event<const N: usize, const M: usize>(
     }
     let s = sample((tables, scene), (u, &chosen), h, spread);
     let spreads: [bool; N] = std::array::from_fn(|i| spread & (1 << i) != 0);
-    let by = Toward::new((scene, lam), h, &spreads, &s.wi);
+    let by = Toward::new(lobes, h, &spreads, &s.wi);
     let mut counts = [false; N];
     let mut scale = [0.0f32; N];
     for i in 0..N {

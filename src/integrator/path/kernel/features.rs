@@ -31,10 +31,10 @@
 //! inside the other) and no faces touch ([`Scene::touching_triangles`]); the η at a hit is
 //! then the material's index against air.
 //!
-//! Every other material ([`Shade::Scalar`]: textured, layered, filmed, anisotropic, measured
-//! metals, rough dispersive or thin glass, crystals, polarizers, alpha blending; emitting or not) is the scalar path
-//! vertex's: a lane meeting it hands its path over ([`super::handoff`]), and the plan
-//! names each such material with the reason.
+//! Every other material ([`Shade::Scalar`]: textured, layered, filmed, anisotropic,
+//! measured metals, rough dispersive or thin glass, crystals, polarizers, alpha blending;
+//! emitting or not) is the scalar path vertex's: a lane meeting it hands its path over
+//! ([`super::handoff`]), and the plan names each such material with the reason.
 
 use crate::light::sampler::Rule;
 use crate::light::Light;
@@ -158,7 +158,7 @@ pub fn qualify(scene: &Scene, perspective: bool, spectral: bool) -> Result<Table
         }
     }
     let rough = |s: &Shade| matches!(s, Shade::RoughGlass { .. });
-    if overlapping_glass(scene, &shades).is_some() && shades.iter().any(rough) {
+    if shades.iter().any(rough) && overlapping_glass(scene, &shades).is_some() {
         for (s, m) in shades.iter_mut().zip(scene.materials()) {
             if rough(s) {
                 *s = Shade::Scalar;
@@ -300,12 +300,12 @@ fn shade(m: &Material) -> Result<Shade, String> {
     if let Some(why) = why {
         return Err(format!("{name} {why}"));
     }
-    if rough(m, eta) && m.is_dispersive() {
-        return Err(format!(
-            "{name} is rough dispersive glass (spectral MIS over its wavelengths)"
-        ));
-    }
     if rough(m, eta) {
+        if m.is_dispersive() {
+            return Err(format!(
+                "{name} is rough dispersive glass (spectral MIS over its wavelengths)"
+            ));
+        }
         return Ok(Shade::RoughGlass { eta });
     }
     Ok(Shade::Glass {

@@ -1,9 +1,10 @@
 //! The glTF BRDF with its specular or metal part at the kernel's lanes
 //! ([`super::features::Shade::Glossy`]:
 //! Lambert + GGX, KHR_materials_specular, metallic; untextured, isotropic, no layer or
-//! film): the scalar BSDF itself per lane — [`Material::opaque_bsdf`] at the material's
-//! one shading point ([`Material::untextured`]) and the lane's wavelengths, its eval, pdf
-//! and sample ([`crate::bsdf::Bsdf`], glTF 2.0 Appendix B) in the frame
+//! film), and rough glass: the scalar BSDF itself per lane ([`Lobes`], built once a
+//! vertex) — [`Material::opaque_bsdf`] or [`Material::transmission_bsdf`] at the
+//! material's one shading point ([`Material::untextured`]) and the lane's wavelengths, its
+//! eval, pdf and sample ([`crate::bsdf::Bsdf`], glTF 2.0 Appendix B) in the frame
 //! [`Frame::from_normal`] of the hit's shading normal, which is the scalar vertex's frame
 //! for an isotropic material ([`crate::shading::frame::shading_frame`]) — so a glossy
 //! lane's values are the scalar path's.
@@ -27,67 +28,113 @@ use super::shade::{spawn, survive};
 use super::state::{Rays, Throughput};
 use crate::accel::packet::{lanes, LaneMask};
 use crate::bsdf::{Bsdf, TransportMode};
-use crate::material::Material;
+use crate::material::{Material, ShadingPoint};
 use crate::math::Frame;
 use crate::scene::Scene;
 use crate::shading::sample_bsdf;
 use crate::spectrum::{Carrier, Lambdas, SampledSpectrum};
 use glam::{Vec2, Vec3};
 
-/// Lane `i` of the hits `h` in `scene`.
-type Lane<'a, const N: usize, const M: usize> = (&'a Scene, &'a Hits<N, M>, usize);
-
-/// Lane `i`'s BSDF at the hit of `h` for a path carrying `lambda`, its frame and the local
-/// direction back along the ray: the opaque glTF BRDF, or the rough dielectric of the
-/// lane's η where the material transmits ([`crate::shading::bsdf_at`]: η from the volume
-/// against air, the kernel's volumes being disjoint). A glossy material is untextured
-/// ([`super::features`]).
-#[inline]
-fn lobe<C: Carrier, const N: usize, const M: usize>(
-    (scene, h, i): Lane<N, M>,
-    lambda: &C::Lambda,
-) -> (Bsdf<C>, Frame, Vec3) {
-    let m: &Material = &scene.materials()[h.material[i] as usize];
-    let sp = m.untextured().expect("a glossy material is untextured");
-    let frame = Frame::from_normal(Vec3::new(h.ns[0][i], h.ns[1][i], h.ns[2][i]));
-    let wo = frame.to_local(Vec3::new(h.wo[0][i], h.wo[1][i], h.wo[2][i]));
-    let bsdf = if sp.transmission > 0.0 {
-        m.transmission_bsdf::<C>(sp, Some(h.eta[i]), lambda)
-    } else {
-        m.opaque_bsdf::<C>(sp, lambda)
-    };
-    (bsdf, frame, wo)
+/// A lane's lobe in the carrier of its transport.
+#[derive(Clone, Copy)]
+enum Carried {
+    Rgb(Bsdf<Vec3>),
+    Spectral(Bsdf<SampledSpectrum>),
 }
 
-/// f (in `M` channels) toward the unit world direction `wi` and the density with which
-/// the lobe's sampling picks it, at lane `at`.
+/// A glossy lane's BSDF at its hit, its frame and the local direction back along the ray.
+#[derive(Clone, Copy)]
+struct Lobe {
+    bsdf: Carried,
+    frame: Frame,
+    wo: Vec3,
+}
+
+/// The BSDFs of one vertex's glossy lanes (`None` at the other lanes), built once for
+/// next-event estimation ([`super::shade::Toward`]) and the bounce ([`bounce`]).
+pub struct Lobes<const N: usize>([Option<Lobe>; N]);
+
+impl<const N: usize> Lobes<N> {
+    /// No glossy lane.
+    pub fn none() -> Self {
+        Lobes([None; N])
+    }
+
+    /// The BSDFs at the lanes `on` of `h` (in `scene`) for paths at the lanes' wavelengths
+    /// `lam`: the opaque glTF BRDF, or the rough dielectric of the lane's η where the
+    /// material transmits ([`crate::shading::bsdf_at`]: η from the volume against air, the
+    /// kernel's volumes being disjoint), at the material's one shading point (a glossy
+    /// material is untextured: [`super::features`]).
+    #[inline]
+    pub fn new<const M: usize>(
+        scene: &Scene,
+        h: &Hits<N, M>,
+        lam: &[Lambdas; N],
+        on: LaneMask,
+    ) -> Self {
+        let mut lobes = Lobes::none();
+        for i in lanes(on) {
+            let m: &Material = &scene.materials()[h.material[i] as usize];
+            let sp = m.untextured().expect("a glossy material is untextured");
+            let frame = Frame::from_normal(Vec3::new(h.ns[0][i], h.ns[1][i], h.ns[2][i]));
+            let wo = frame.to_local(Vec3::new(h.wo[0][i], h.wo[1][i], h.wo[2][i]));
+            let eta = (sp.transmission > 0.0).then_some(h.eta[i]);
+            let bsdf = if spectral::<M>() {
+                Carried::Spectral(at(m, sp, eta, &lam[i]))
+            } else {
+                Carried::Rgb(at(m, sp, eta, &()))
+            };
+            lobes.0[i] = Some(Lobe { bsdf, frame, wo });
+        }
+        lobes
+    }
+
+    /// f (in `M` channels) toward the unit world direction `wi` and the density with which
+    /// the lobe's sampling picks it, at glossy lane `i` (`None` at another lane).
+    #[inline]
+    pub fn eval<const M: usize>(&self, i: usize, wi: [f32; 3]) -> Option<([f32; M], f32)> {
+        let l = self.0[i].as_ref()?;
+        let wi = l.frame.to_local(Vec3::from_array(wi));
+        Some(match &l.bsdf {
+            Carried::Rgb(b) => eval_in(b, l.wo, wi),
+            Carried::Spectral(b) => eval_in(b, l.wo, wi),
+        })
+    }
+
+    /// A sample of the lobe at glossy lane `i` with the numbers `u` (lobe, direction);
+    /// `None` at another lane or when the lobe gives none the path can use
+    /// ([`sample_bsdf`]).
+    #[inline]
+    fn sample<const M: usize>(&self, i: usize, u: (f32, Vec2)) -> Option<Sampled<[f32; M]>> {
+        let l = self.0[i].as_ref()?;
+        match &l.bsdf {
+            Carried::Rgb(b) => sample_in(b, (&l.frame, l.wo), u),
+            Carried::Spectral(b) => sample_in(b, (&l.frame, l.wo), u),
+        }
+    }
+}
+
+/// The BSDF of `m` at its point `sp` for a path carrying `lambda`: the rough dielectric of
+/// η `eta` where given, else the opaque glTF BRDF.
 #[inline]
-fn eval_in<C: Carrier, const N: usize, const M: usize>(
-    at: Lane<N, M>,
+fn at<C: Carrier>(
+    m: &Material,
+    sp: &ShadingPoint,
+    eta: Option<f32>,
     lambda: &C::Lambda,
-    wi: Vec3,
-) -> ([f32; M], f32) {
-    let (b, frame, wo) = lobe::<C, N, M>(at, lambda);
-    let wi = frame.to_local(wi);
+) -> Bsdf<C> {
+    match eta {
+        Some(eta) => m.transmission_bsdf::<C>(sp, Some(eta), lambda),
+        None => m.opaque_bsdf::<C>(sp, lambda),
+    }
+}
+
+/// f of `b` (in `M` channels) from the local `wo` toward the local `wi`, and its density of
+/// sampling `wi`.
+#[inline]
+fn eval_in<C: Carrier, const M: usize>(b: &Bsdf<C>, wo: Vec3, wi: Vec3) -> ([f32; M], f32) {
     let mode = TransportMode::Radiance;
     (take(b.eval(wo, wi, mode).to_lanes()), b.pdf(wo, wi, mode))
-}
-
-/// f (in `M` channels at the lane's wavelengths `lam`) toward the unit world direction
-/// `wi` and the lobe's density of sampling it, at glossy lane `i` of `h`.
-#[inline]
-pub fn eval<const N: usize, const M: usize>(
-    scene: &Scene,
-    h: &Hits<N, M>,
-    (i, lam): (usize, &Lambdas),
-    wi: [f32; 3],
-) -> ([f32; M], f32) {
-    let wi = Vec3::from_array(wi);
-    if spectral::<M>() {
-        eval_in::<SampledSpectrum, N, M>((scene, h, i), lam, wi)
-    } else {
-        eval_in::<Vec3, N, M>((scene, h, i), &(), wi)
-    }
 }
 
 /// A sample of the lobe taken at a lane (world space).
@@ -103,16 +150,15 @@ struct Sampled<X> {
     crossed: Option<bool>,
 }
 
-/// A sample of the lobe at lane `i` with the numbers `uc` (lobe) and `u` (direction);
-/// `None` when the lobe gives none the path can use ([`sample_bsdf`]).
+/// A sample of `b` in the frame `frame` from the local `wo` with the numbers `uc` (lobe)
+/// and `u` (direction).
 #[inline]
-fn sample_in<C: Carrier, const N: usize, const M: usize>(
-    at: Lane<N, M>,
-    lambda: &C::Lambda,
+fn sample_in<C: Carrier, const M: usize>(
+    b: &Bsdf<C>,
+    (frame, wo): (&Frame, Vec3),
     (uc, u): (f32, Vec2),
 ) -> Option<Sampled<[f32; M]>> {
-    let (b, frame, wo) = lobe::<C, N, M>(at, lambda);
-    let bs = sample_bsdf(&b, wo, uc, u, TransportMode::Radiance)?;
+    let bs = sample_bsdf(b, wo, uc, u, TransportMode::Radiance)?;
     Some(Sampled {
         wi: frame.to_world(bs.wi).to_array(),
         weight: take((bs.f * (bs.wi.z.abs() / bs.pdf)).to_lanes()),
@@ -121,28 +167,13 @@ fn sample_in<C: Carrier, const N: usize, const M: usize>(
     })
 }
 
-/// [`sample_in`] at the lane's wavelengths `lam`.
-#[inline]
-fn sample<const N: usize, const M: usize>(
-    scene: &Scene,
-    h: &Hits<N, M>,
-    (i, lam): (usize, &Lambdas),
-    u: (f32, Vec2),
-) -> Option<Sampled<[f32; M]>> {
-    if spectral::<M>() {
-        sample_in::<SampledSpectrum, N, M>((scene, h, i), lam, u)
-    } else {
-        sample_in::<Vec3, N, M>((scene, h, i), &(), u)
-    }
-}
-
-/// The glossy bounce at the lanes `on` of `h` (in `scene`, at the lanes' wavelengths
-/// `lam`) with the numbers `u` (lobe, direction, roulette): β times the sample's weight,
-/// the bounce limit and roulette, the MIS record; the next ray into `next`. Returns the
-/// lanes whose path ends here and those that played the roulette.
+/// The glossy bounce at the lanes `on` of `h` with their BSDFs `lobes` and the numbers `u`
+/// (lobe, direction, roulette): β times the sample's weight, the bounce limit and roulette,
+/// the MIS record; the next ray into `next`. Returns the lanes whose path ends here and
+/// those that played the roulette.
 #[inline(always)]
 pub fn bounce<const N: usize, const M: usize>(
-    (scene, h, lam): (&Scene, &Hits<N, M>, &[Lambdas; N]),
+    (lobes, h): (&Lobes<N>, &Hits<N, M>),
     on: LaneMask,
     u: &Draws<N>,
     max_depth: u32,
@@ -151,7 +182,7 @@ pub fn bounce<const N: usize, const M: usize>(
     let (mut ends, mut played): (LaneMask, LaneMask) = (0, 0);
     for i in lanes(on) {
         let ud = Vec2::new(u.direction[0][i], u.direction[1][i]);
-        let Some(s) = sample::<N, M>(scene, h, (i, &lam[i]), (u.lobe[i], ud)) else {
+        let Some(s) = lobes.sample::<M>(i, (u.lobe[i], ud)) else {
             ends |= 1 << i;
             continue;
         };

@@ -132,9 +132,9 @@ impl<const N: usize, const M: usize> Paths<N, M> {
         }
     }
 
-    /// Adds to the lanes `on` (at a Lambert vertex where the strategy of `rules` gathers,
-    /// their rays and hits in `packet`) what it gathers there ([`super::handoff::Vertex::gather`]),
-    /// times the lane's throughput.
+    /// Adds to the lanes `on` (at a Lambert or glossy vertex where the strategy of `rules`
+    /// gathers, their rays and hits in `packet`) what it gathers there
+    /// ([`super::handoff::Vertex::gather`]), times the lane's throughput.
     pub(super) fn gather(
         &mut self,
         on: LaneMask,

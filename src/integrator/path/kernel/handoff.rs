@@ -100,8 +100,8 @@ pub trait Vertex<C: Carrier>: Sync {
     /// The vertex of `lane`'s path at its hit ([`vertex`]).
     fn vertex(&self, scene: &Scene, lane: Handing<C>, ctx: &mut Context) -> Back<C>;
 
-    /// What the strategy gathers per unit throughput at a lane's Lambert vertex (one the
-    /// kernel shades) at the hit of `at`, with the lane's wavelengths and the volume it is
+    /// What the strategy gathers per unit throughput at a lane's Lambert or glossy vertex
+    /// (one the kernel shades) at the hit of `at`, with the lane's wavelengths and the volume it is
     /// in (`None`: air), after the bounces `h` ([`Strategy::gather`]).
     fn gather(
         &self,
@@ -119,8 +119,8 @@ pub trait Vertex<C: Carrier>: Sync {
     fn splits(&self) -> bool;
 
     /// Whether another estimator is gathered at non-delta vertices ([`Strategy::gathers`]):
-    /// the kernel then asks [`Vertex::gather`] at its Lambert vertices (the scalar vertex
-    /// gathers at those it hands over).
+    /// the kernel then asks [`Vertex::gather`] at its Lambert and glossy vertices (the scalar
+    /// vertex gathers at those it hands over).
     fn gathers(&self) -> bool;
 
     /// Whether light a path finds after the bounces `h` is another estimator's
@@ -258,9 +258,10 @@ fn media(scene: &Scene, inside: Option<u32>) -> MediumStack {
     }
 }
 
-/// The step's numbers at a Lambert vertex the kernel shades, which reads none: it is
-/// opaque, has one layer and is not BLEND ([`super::features::Shade::Lambert`]); the
-/// lane's own draws passed over its layer number already ([`super::numbers`]).
+/// The step's numbers at a Lambert or glossy vertex the kernel shades, which reads none
+/// that matters: it is not BLEND and has one layer ([`super::features::Shade`]), which
+/// rough glass (transmission 1) takes whatever its layer number; the lane's own draws
+/// passed over that number already ([`super::numbers`]).
 struct Drawn;
 
 impl StepNumbers for Drawn {

@@ -55,8 +55,8 @@ pub struct Hits<const N: usize, const M: usize> {
     pub scalar: [bool; N],
     /// Lambert albedo or dielectric tint at the lane's wavelengths.
     pub col: Channels<N, M>,
-    /// The dielectric's η, smooth or rough (1 elsewhere); at a dispersive one in spectral transport, η at
-    /// the lane's hero wavelength.
+    /// The dielectric's η, smooth or rough (1 elsewhere); at a dispersive one in spectral
+    /// transport, η at the lane's hero wavelength.
     pub eta: [f32; N],
     /// The lane met a dispersive dielectric in spectral transport: its path keeps only
     /// the hero wavelength or splits there ([`super::branches`]).

@@ -21,8 +21,8 @@
 //! runs over all lanes with masks per material group ([`shade`]): next-event estimation at
 //! Lambert and glossy lanes toward one light chosen as the scalar path tracer chooses it
 //! ([`emitters`]), the cosine-sampled bounce and Russian roulette, the glossy lanes'
-//! glTF BRDF sampled and evaluated per lane by the scalar BSDF ([`glossy`]); the smooth dielectric's
-//! Fresnel-weighted reflection or refraction. Shadow rays go out as one packet. A lane whose
+//! glTF BRDF or rough glass sampled and evaluated per lane by the scalar BSDF
+//! ([`glossy`]); the smooth dielectric's Fresnel-weighted reflection or refraction. Shadow rays go out as one packet. A lane whose
 //! path ends writes its job's radiance and takes the next job (refill), so glass paths do
 //! not leave the packet empty. In spectral transport a sample meeting a dispersive glass
 //! splits there into its 4 wavelengths as the scalar path tracer splits it, the waiting

@@ -6,8 +6,8 @@
 //! packet ([`Scene::intersect_packet`]), merges in the first hits of the lanes just
 //! started, builds the hits over the lanes ([`Hits`]),
 //! shades the Lambert and glossy lanes (next-event estimation, then the bounce:
-//! [`super::shade`], [`super::glossy`]) and the dielectric lanes, traces the shadow rays as one packet
-//! ([`Scene::occluded_packet`]) and adds what they let through; a lane whose path ended
+//! [`super::shade`], [`super::glossy`]) and the dielectric lanes, traces the shadow rays
+//! as one packet ([`Scene::occluded_packet`]) and adds what they let through; a lane whose path ended
 //! writes its radiance to its job's slot and takes the batch's next job (refill).
 //!
 //! Light a path meets (an emitter's emission, the environment on escape) and Beer–Lambert
@@ -27,7 +27,7 @@ use super::class::Class;
 use super::colour::{lane, spectral, to_rgb, unset, Channels};
 use super::emitters::{arrive, next_event};
 use super::features::Tables;
-use super::glossy;
+use super::glossy::{self, Lobes};
 use super::hits::Hits;
 use super::numbers::{Draws, Vertices};
 use super::rules::Rules;
@@ -147,8 +147,9 @@ impl<const N: usize, const M: usize> Paths<N, M> {
     /// Shades the hits `h` (in `scene`; `area`: some light has an area or is at
     /// infinity): next-event estimation at the Lambert and glossy lanes with their shadow
     /// rays traced as one packet (counted in `rays`), their bounces and roulette (the
-    /// glossy lanes' only in a scene of class `K` that has them), the dielectric's choice; the next rays into [`Self::next`]. Returns the lanes whose path ends at
-    /// their vertex.
+    /// glossy lanes' only in a scene of class `K` that has them, their BSDFs built once),
+    /// the dielectric's choice; the next rays into [`Self::next`]. Returns the lanes whose
+    /// path ends at their vertex.
     #[inline(always)]
     fn shade<K: Class>(
         &mut self,
@@ -177,7 +178,12 @@ impl<const N: usize, const M: usize> Paths<N, M> {
         let out_nee = (&mut value, &mut shadow, &mut traced);
         let light = (tables, scene, &self.lam);
         let rough: [bool; N] = std::array::from_fn(|i| h.lambert[i] || h.glossy[i]);
-        next_event(light, &u, (&rough, h, &beta), out_nee);
+        let glossy = if K::GLOSSY { mask(&h.glossy) } else { 0 };
+        let lobes = match glossy {
+            0 => Lobes::none(),
+            on => Lobes::new(scene, h, &self.lam, on),
+        };
+        next_event(light, &u, (&rough, h, &beta, &lobes), out_nee);
         let (ends_l, played) = lambert(
             &h.lambert,
             h,
@@ -186,12 +192,15 @@ impl<const N: usize, const M: usize> Paths<N, M> {
             &mut self.st,
             &mut self.next,
         );
-        let (ends_s, played_s) = match mask(&h.glossy) {
-            on if K::GLOSSY && on != 0 => {
-                let at = (scene, h, &self.lam);
-                glossy::bounce(at, on, &u, max_depth, (&mut self.st, &mut self.next))
-            }
-            _ => (0, 0),
+        let (ends_s, played_s) = match glossy {
+            0 => (0, 0),
+            on => glossy::bounce(
+                (&lobes, h),
+                on,
+                &u,
+                max_depth,
+                (&mut self.st, &mut self.next),
+            ),
         };
         Draws::played(&mut self.ctx, &at, mask(&played) | played_s);
         let ends_g = glass(&h.glass, h, &u.lobe, &mut self.st, &mut self.next);

@@ -8,8 +8,8 @@
 //!
 //! A strategy that gathers another estimator at non-delta vertices (the hybrid's caustic
 //! map at the first one, D₁) gathers it there through the scalar vertex's surface
-//! ([`Vertex::gather`]; at a Lambert vertex, which the kernel then shades on) or, at a
-//! material the kernel hands over, in the scalar vertex; the light a lane finds closing a
+//! ([`Vertex::gather`]; at a Lambert or glossy vertex, which the kernel then shades on)
+//! or, at a material the kernel hands over, in the scalar vertex; the light a lane finds closing a
 //! chain the map owns (D S+ L: ≥ 1 delta bounce since the last non-delta vertex) is not
 //! counted, as the scalar vertex does not count it
 //! ([`crate::integrator::path::History::closes_caustic`]).
@@ -71,8 +71,9 @@ impl Rules<'_> {
 
     /// Where the method shares the light with another estimator (a strategy that
     /// [`Rules::gathers`]), of the `alive` lanes (with the bounce records `st`) and the
-    /// Lambert and glossy lanes `rough` among them: those at their first non-delta vertex, where
-    /// the strategy gathers, and those whose light found now is the other estimator's.
+    /// Lambert and glossy lanes `rough` among them: those at their first non-delta vertex,
+    /// where the strategy gathers, and those whose light found now is the other
+    /// estimator's.
     pub fn shared<const N: usize, const M: usize>(
         &self,
         (rough, alive): (LaneMask, LaneMask),

@@ -1,9 +1,10 @@
 //! The kernel's shading over the lanes, each a plain loop over fixed-size arrays that LLVM
 //! vectorises (compiled for the CPU's widest vectors by the caller's dispatch,
 //! [`super::estimate`]): next-event estimation at Lambert and glossy lanes toward one
-//! punctual light ([`light`], the lanes' BSDFs toward it: [`Toward`]), the cosine-sampled Lambert bounce with the bounce limit and Russian
-//! roulette ([`lambert`]), the smooth dielectric's Fresnel-weighted reflection or refraction
-//! ([`glass`]), and the spawned rays ([`spawn`]).
+//! punctual light ([`light`], the lanes' BSDFs toward it: [`Toward`]), the cosine-sampled
+//! Lambert bounce with the bounce limit and Russian roulette ([`lambert`], the roulette
+//! shared with the glossy lanes: [`survive`]), the smooth dielectric's Fresnel-weighted
+//! reflection or refraction ([`glass`]), and the spawned rays ([`spawn`]).
 //!
 //! Each does what the scalar path tracer does at such a vertex
 //! ([`crate::integrator::path`]): the light chosen uniformly with pmf 1/n
@@ -20,13 +21,12 @@
 
 use super::colour::{emitted, set_lane, spectral, Channels};
 use super::features::{Punctual, Tables};
-use super::glossy;
+use super::glossy::Lobes;
 use super::hits::{dot, Hits, V3};
 use super::state::{Rays, Throughput};
 use crate::accel::packet::{lanes, LaneMask};
 use crate::interaction::{offset_point, SHADOW_EPSILON};
 use crate::light::punctual::{cone_falloff, range_window};
-use crate::scene::Scene;
 use crate::shading::MAX_DELTA_BOUNCES;
 use crate::spectrum::{EmitterShape, Lambdas};
 use std::f32::consts::{FRAC_1_PI, TAU};
@@ -90,7 +90,7 @@ pub fn aim<const N: usize, const M: usize>(
 
 /// The lanes' BSDFs toward one direction each (next-event estimation): `g` and `scale`
 /// give f = g · scale (Lambert lanes: the albedo and 1/π, kept apart so their products
-/// round as the Lambert estimate always has; glossy lanes: f from [`super::glossy::eval`]
+/// round as the Lambert estimate always has; glossy lanes: f from [`Lobes::eval`]
 /// and 1), `pdf` the density with which the vertex's own sampling picks the direction,
 /// `cos` = |cos θi| at the shading normal, and `counts` where the BSDF scatters toward it
 /// (f ≠ 0: a Lambert lane's on the side of `wo`; a glossy lane's where its lobe says,
@@ -104,15 +104,10 @@ pub struct Toward<const N: usize, const M: usize> {
 }
 
 impl<const N: usize, const M: usize> Toward<N, M> {
-    /// The BSDFs of the lanes `on` of `h` (in `scene`, at the lanes' wavelengths `lam`)
-    /// toward the unit directions `wi`.
+    /// The BSDFs of the lanes `on` of `h` (the glossy lanes' in `lobes`) toward the unit
+    /// directions `wi`.
     #[inline(always)]
-    pub fn new(
-        (scene, lam): (&Scene, &[Lambdas; N]),
-        h: &Hits<N, M>,
-        on: &[bool; N],
-        wi: &V3<N>,
-    ) -> Self {
+    pub fn new(lobes: &Lobes<N>, h: &Hits<N, M>, on: &[bool; N], wi: &V3<N>) -> Self {
         let mut t = Toward {
             g: h.col,
             scale: [FRAC_1_PI; N],
@@ -132,7 +127,9 @@ impl<const N: usize, const M: usize> Toward<N, M> {
         }
         for i in lanes(glossy) {
             let w = [wi[0][i], wi[1][i], wi[2][i]];
-            let (f, pdf) = glossy::eval(scene, h, (i, &lam[i]), w);
+            let Some((f, pdf)) = lobes.eval::<M>(i, w) else {
+                continue;
+            };
             set_lane(&mut t.g, i, f);
             (t.scale[i], t.pdf[i]) = (1.0, pdf);
             t.counts[i] = f.iter().any(|v| *v > 0.0);
@@ -150,7 +147,7 @@ impl<const N: usize, const M: usize> Toward<N, M> {
 pub fn light<const N: usize, const M: usize>(
     (tables, inv_pmf, lam): (&Tables, f32, &[Lambdas; N]),
     (k, on): (&[u32; N], &[bool; N]),
-    (scene, h, beta): (&Scene, &Hits<N, M>, &Channels<N, M>),
+    (lobes, h, beta): (&Lobes<N>, &Hits<N, M>, &Channels<N, M>),
     (value, shadow, traced): (&mut Channels<N, M>, &mut Rays<N>, &mut [bool; N]),
 ) {
     if !on.contains(&true) {
@@ -176,7 +173,7 @@ pub fn light<const N: usize, const M: usize>(
             reaches[i] |= mine && ok;
         }
     }
-    let by = Toward::new((scene, lam), h, on, &wi);
+    let by = Toward::new(lobes, h, on, &wi);
     let mut w = [0.0f32; N];
     let mut counts = [false; N];
     for i in 0..N {

@@ -26,8 +26,8 @@ use glam::Vec3;
 /// `the_kernel_agrees_with_the_scalar_path_tracer`, same bounds) where lanes hand their
 /// paths to the scalar vertex: (a) at a clear-coated floor ([`coated_floor`]), met
 /// directly and through the glass (the delta bounces, η scale and throughput carried
-/// over), (b) at a rough dispersive glass sphere, (c) at a rough ball of index 2.4 inside the smooth
-/// glass sphere (the lane carries the glass it is in, so the ball refracts with 2.4/1.5,
+/// over), (b) at a rough dispersive glass sphere, (c) at a rough ball of index 2.4 inside
+/// the smooth glass sphere (the lane carries the glass it is in, so the ball refracts with 2.4/1.5,
 /// not 2.4/1). Handing over without the throughput, or without the glass the lane is in,
 /// moves blocks by many σ.
 #[test]
