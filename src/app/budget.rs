@@ -10,7 +10,7 @@
 //! | `--time T` alone | open | T | none |
 //! | `--target-error E` alone | open | [`DEFAULT_TIME_LIMIT`] | E |
 //! | `--time T --target-error E` | open | T | E |
-//! | none of them | open | [`DEFAULT_TIME_LIMIT`] | [`DEFAULT_TARGET`] |
+//! | none of them | open | [`DEFAULT_TIME_LIMIT`] | [`DEFAULT_DISPLAY_TARGET`] (PNG), [`DEFAULT_TARGET`] (EXR) |
 //!
 //! "Open" is [`OPEN_UNITS`] (2²⁰) samples per pixel and passes: more than `--spp` accepts,
 //! so the time limit or the target ends the render. Without `--method` the method is
@@ -21,15 +21,22 @@
 //!
 //! ## The stop test
 //! The target is compared with [`stop_error`] at each checkpoint from [`MIN_STOP_UNITS`]
-//! on: the half-buffer estimate of the relative RMSE of the image as written
-//! ([`StopImage`]):
-//! - a raw image (an EXR, `--denoise off`, a build without the denoiser): the estimate
-//!   from the two half images ([`crate::image::metrics::half_buffer_estimate`]), the
-//!   number `--target-error` always used;
-//! - a denoised image (the PNG preview under `--denoise auto|on`): the same estimate from
-//!   the two half images each denoised with the render's auxiliary images
-//!   ([`crate::denoise::denoised_estimate`], from [`crate::denoise::denoised_halves`], which adaptive sampling then also measures the tiles on), so the render stops when the picture it
-//!   writes is clean, far sooner than the raw image would be.
+//! on: the half-buffer estimate of the error of the image as written ([`StopImage`]) in the
+//! output's measure ([`Measure`]):
+//! - the image: the raw one (an EXR, `--denoise off`, a build without the denoiser), or the
+//!   denoised one (the PNG preview under `--denoise auto|on`): the two half images each
+//!   denoised with the render's auxiliary images ([`crate::denoise::denoised_halves`]), so
+//!   the render stops when the picture it writes is clean, far sooner than the raw image
+//!   would be;
+//! - the measure: for a PNG the display error of the picture a viewer sees
+//!   ([`crate::output::display`]: after exposure, tone map, clipping and the eye's blur at
+//!   FLIP's viewing distance; its noise and the bias noise puts into it), so a sparkle that
+//!   clips to white counts for nothing and grain on a grey floor in full; for an EXR the
+//!   relative RMSE of the linear values ([`crate::image::metrics::half_buffer_estimate`]),
+//!   scene-referred numbers for tools.
+//!
+//! Adaptive sampling measures its tiles on the same halves ([`Judged`]), and the progress
+//! line shows the estimate, the target and the time to it ([`crate::render::judged_note`]).
 //!
 //! Checkpoints double; once an estimate is above the target the stop asks for the next
 //! check where the error, falling as 1/√n (Monte Carlo's rate), would meet it, at least
@@ -44,17 +51,15 @@
 //! minimum count and the time limit as a safety net.
 //!
 //! ## The defaults
-//! [`DEFAULT_TARGET`] and [`DEFAULT_TIME_LIMIT`] are documented in `docs/error-and-time.md`
+//! [`DEFAULT_TARGET`] (an EXR), [`DEFAULT_DISPLAY_TARGET`] (a PNG) and [`DEFAULT_TIME_LIMIT`] are documented in `docs/error-and-time.md`
 //! ("How long a render takes"); the measurements behind them are beside the constants. Units:
-//! wall-clock seconds; errors are relative RMSE, `sqrt(rel_mse)` ([`crate::measure`]).
+//! wall-clock seconds; errors are relative RMSE, `sqrt(rel_mse)` ([`crate::measure`]), or
+//! display RMSE in [0, 1] ([`crate::output::display`]).
 
-use crate::denoise::{denoised_halves, AuxImages};
+pub use super::judge::{stop_error, Measure, StopImage};
 use crate::error::Result;
-use crate::image::metrics::half_buffer_estimate;
 use crate::integrator::Method;
-use crate::measure::relative_rmse;
-use crate::render::Control;
-use crate::render::Progress;
+use crate::render::{Control, Progress};
 use std::time::{Duration, Instant};
 
 /// The samples per pixel (and SPPM passes) of an open budget: effectively unbounded
@@ -83,6 +88,15 @@ pub const FIXED_PASSES: u32 = 64;
 /// own estimate ([`StopImage::Denoised`]), which reaches the target sooner (BENCHMARKS.md,
 /// "The default stop on the denoised image").
 pub const DEFAULT_TARGET: f64 = 0.03;
+
+/// The error target of a render given no budget flag that writes a display-referred image
+/// (a PNG): an estimated display RMSE ([`crate::output::display`]) of 0.01, 2.55 levels of
+/// 255, of the picture as written (denoised, tone mapped, clipped).
+///
+/// Chosen from the gallery (BENCHMARKS.md, "Judging the picture written"): the display
+/// estimate at each checkpoint against a long reference's picture and against a second
+/// seed's picture.
+pub const DEFAULT_DISPLAY_TARGET: f64 = 0.01;
 
 /// The time limit of a render given no `--spp`, `--passes` or `--time`: 120 s.
 ///
@@ -135,6 +149,9 @@ pub struct Budget {
     pub time_limit: Option<Duration>,
     /// Stop once [`stop_error`] is at or below this.
     pub target_error: Option<f64>,
+    /// `target_error` is the default target, not given: the render replaces it by its
+    /// output's measure's default ([`DEFAULT_TARGET`] or [`DEFAULT_DISPLAY_TARGET`]).
+    pub default_target: bool,
     /// No count was given: the time limit or the target ends the render, and the output is
     /// rewritten at checkpoints ([`super::checkpoint_writes::CheckpointWrites`]).
     pub open: bool,
@@ -151,6 +168,7 @@ impl BudgetFlags {
                 passes: self.passes.unwrap_or(FIXED_PASSES),
                 time_limit: self.time,
                 target_error: self.target_error,
+                default_target: false,
                 open: false,
             };
         }
@@ -165,6 +183,7 @@ impl BudgetFlags {
             passes: OPEN_UNITS,
             time_limit: Some(time_limit),
             target_error,
+            default_target: self.time.is_none() && self.target_error.is_none(),
             open: true,
         }
     }
@@ -178,42 +197,6 @@ impl Default for Budget {
     }
 }
 
-/// Which image the stop test estimates: the one the output file shows.
-#[derive(Debug, Clone, Copy)]
-pub enum StopImage<'a> {
-    /// The raw image (an EXR, `--denoise off`).
-    Raw,
-    /// The denoised image, filtered with these auxiliary images (the PNG preview).
-    Denoised(Option<&'a AuxImages>),
-}
-
-/// The error a render's target is compared with, at a checkpoint: the estimated relative
-/// RMSE of `what` (the module docs' stop test). `None` when there is nothing to compare
-/// yet (fewer than [`MIN_STOP_UNITS`] units, or halves of different sizes).
-pub fn stop_error(p: &Progress, what: StopImage) -> Result<Option<f64>> {
-    stop_error_from(p, what, MIN_STOP_UNITS)
-}
-
-/// [`stop_error`] with the stop test starting at `min_units` units.
-fn stop_error_from(p: &Progress, what: StopImage, min_units: u64) -> Result<Option<f64>> {
-    if p.samples < min_units.max(MIN_STOP_UNITS) {
-        return Ok(None);
-    }
-    match what {
-        StopImage::Raw => {
-            let estimate = half_buffer_estimate(p.halves.0, p.halves.1)?;
-            Ok(Some(relative_rmse(&estimate)))
-        }
-        StopImage::Denoised(aux) => {
-            let (a, b) = denoised_halves(p.halves, aux)?;
-            let e = crate::render::relative_error_estimate(&a, &b);
-            // Adaptive sampling measures the tiles on what the stop sees.
-            let _ = p.judged.set((a, b));
-            Ok(e)
-        }
-    }
-}
-
 /// The error-target stop of one render: compares [`stop_error`] with the target at each
 /// checkpoint and remembers the last value.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -222,6 +205,8 @@ pub struct TargetStop {
     pub target: Option<f64>,
     /// The last [`stop_error`] computed.
     pub last: Option<f64>,
+    /// What `last` measures ([`Measure::name`]).
+    pub name: &'static str,
     /// Whether `last` is the estimate of a denoised image.
     pub denoised: bool,
     /// Units before the first check (at least [`MIN_STOP_UNITS`]).
@@ -237,6 +222,7 @@ impl TargetStop {
         TargetStop {
             target,
             last: None,
+            name: "",
             denoised: false,
             min_units: MIN_STOP_UNITS,
             checks: (0, Duration::ZERO),
@@ -255,23 +241,42 @@ impl TargetStop {
         stop
     }
 
-    /// [`Control::Stop`] once the checkpoint's [`stop_error`] of `what` is at or below the
-    /// target.
-    pub fn check(&mut self, p: &Progress, what: StopImage) -> Result<Control> {
+    /// [`Control::Stop`] once the checkpoint's [`stop_error`] of `what` in `measure` is at
+    /// or below the target. The estimate and the target are left in [`Progress::judged`]
+    /// for the progress line and adaptive sampling.
+    pub fn check(&mut self, p: &Progress, what: StopImage, measure: Measure) -> Result<Control> {
         let Some(target) = self.target else {
             return Ok(Control::Continue);
         };
         let start = Instant::now();
-        let Some(e) = stop_error_from(p, what, self.min_units)? else {
+        let Some(mut judged) = super::judge::judge(p, (what, measure), self.min_units)? else {
             return Ok(Control::Continue);
         };
+        let e = judged.estimate;
+        judged.target = Some(target);
+        let _ = p.judged.set(judged);
         self.checks = (self.checks.0 + 1, self.checks.1 + start.elapsed());
         self.last = Some(e);
+        self.name = measure.name(what);
         self.denoised = matches!(what, StopImage::Denoised(_));
         Ok(if e <= target {
             Control::Stop
         } else {
             Control::ContinueTo(next_check(p.samples, e, target))
+        })
+    }
+}
+
+impl TargetStop {
+    /// The note on the stop test's own cost when it denoised the halves at its checks.
+    pub fn note(&self) -> Option<String> {
+        self.denoised.then(|| {
+            format!(
+                "error target checked on the denoised image at {} checkpoints (both halves \
+                 denoised each time: {:.2} s)",
+                self.checks.0,
+                self.checks.1.as_secs_f64()
+            )
         })
     }
 }
@@ -394,20 +399,29 @@ mod tests {
         let (m, a, b) = (img(1.0), img(0.9), img(1.1));
         let mut stop = TargetStop::new(Some(0.1));
         let few = progress(&m, &a, &b, MIN_STOP_UNITS - 1, false);
-        assert_eq!(stop.check(&few, StopImage::Raw).unwrap(), Control::Continue);
+        assert_eq!(
+            stop.check(&few, StopImage::Raw, Measure::Linear).unwrap(),
+            Control::Continue
+        );
         assert_eq!(stop.last, None);
         let enough = progress(&m, &a, &b, MIN_STOP_UNITS, false);
-        assert_eq!(stop.check(&enough, StopImage::Raw).unwrap(), Control::Stop);
+        assert_eq!(
+            stop.check(&enough, StopImage::Raw, Measure::Linear)
+                .unwrap(),
+            Control::Stop
+        );
         assert!((stop.last.unwrap() - (0.01f64 / 1.01).sqrt()).abs() < 1e-6);
         // Above the target: look again at 8·(0.0995/0.09)² ≈ 9.8 units, at least 8·1.25.
         let mut strict = TargetStop::new(Some(0.09));
         assert_eq!(
-            strict.check(&enough, StopImage::Raw).unwrap(),
+            strict
+                .check(&enough, StopImage::Raw, Measure::Linear)
+                .unwrap(),
             Control::ContinueTo(10)
         );
         assert_eq!(
             TargetStop::new(None)
-                .check(&enough, StopImage::Raw)
+                .check(&enough, StopImage::Raw, Measure::Linear)
                 .unwrap(),
             Control::Continue
         );

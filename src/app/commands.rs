@@ -49,7 +49,10 @@ pub fn render(opts: &RenderOptions) -> Result<()> {
     // One sample (pass) makes both half images that sample: no estimate then.
     let estimated = s.rows.last().is_some_and(|r| r.samples >= 2);
     let said = s.target_estimate.is_some();
-    if let Some(e) = s.final_estimate().filter(|_| estimated && !said) {
+    let display = s.rows.last().and_then(|r| r.display_estimate);
+    if let Some(e) = display.filter(|_| !said) {
+        line.push_str(&format!("; estimated display error {e:.4}"));
+    } else if let Some(e) = s.final_estimate().filter(|_| estimated && !said) {
         line.push_str(&format!(
             "; estimated relative error {:.4}",
             relative_rmse(&e)

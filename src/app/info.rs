@@ -387,7 +387,9 @@ fn info_plan(path: &Path, flags: &[LookFlag]) -> Result<String> {
         super::adaptive::AdaptiveFlags {
             mode: Default::default(),
             open: budget.open,
-            target: budget.target_error,
+            target: budget
+                .target_error
+                .map(|_| super::budget::DEFAULT_DISPLAY_TARGET),
             shard: false,
             media: scene.has_media(),
         },

@@ -15,23 +15,26 @@
 //!   image then incomplete and not shown), when the callback answers `false`, or at the
 //!   options' unit count.
 //!
-//! - **Estimates.** Every frame from 2 units on carries the half-buffer relative error of
-//!   the raw image; a resting denoised frame also carries the error of the denoised picture,
-//!   measured as `iris render`'s stop test measures a denoised PNG
-//!   ([`super::budget::stop_error`] on the denoised halves), so the view can say when the
-//!   picture is clean by the command's standard ([`super::budget::DEFAULT_TARGET`]).
+//! - **Estimates.** Every frame from 2 units on carries the estimated display error of the
+//!   raw picture (the view's display transform, [`crate::output::display`]); a resting
+//!   denoised frame also carries the display error of the denoised picture, measured as
+//!   `iris render`'s stop test measures a denoised PNG ([`super::budget::stop_error`] on the
+//!   denoised halves), so the view can say when the picture is clean by the command's
+//!   standard ([`super::budget::DEFAULT_DISPLAY_TARGET`]).
 //!
 //! Images are linear RGB; times wall-clock.
 
-use super::budget::stop_error;
+use super::budget::{stop_error, Measure};
 use super::render::RenderJob;
 use super::render_denoise::RenderDenoiser;
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::image::ImageRgb;
 use crate::integrator::Integrator;
+use crate::output::display::Picture;
+use crate::output::Background;
 use crate::render::guard::Cancel;
-use crate::render::{relative_error_estimate, Control, Progress, RenderStats};
+use crate::render::{Control, Progress, RenderStats};
 use std::time::Duration;
 
 /// What the live render shows after a unit.
@@ -44,9 +47,9 @@ pub struct LiveFrame<'a> {
     pub units: u64,
     /// Time since the render started.
     pub elapsed: Duration,
-    /// The half-buffer relative error estimate of the raw image (from 2 units on).
+    /// The estimated display error of the raw picture (from 2 units on).
     pub estimate: Option<f64>,
-    /// The estimated relative error of the denoised picture (resting denoised frames from
+    /// The estimated display error of the denoised picture (resting denoised frames from
     /// [`super::budget::MIN_STOP_UNITS`] units on), as the command's stop test measures it.
     pub denoised_estimate: Option<f64>,
 }
@@ -70,12 +73,14 @@ impl RenderJob<'_> {
         settings.adaptive = None;
         settings.cancel = cancel.clone();
         let mut denoiser: Option<RenderDenoiser> = None;
+        // The view shows the environment behind the model (`crate::view::encode`).
+        let picture = Picture::new(self.opts.display, Background::Environment, None);
         let mut observe = |p: &Progress| -> Result<Control> {
             if cancel.is_cancelled() {
                 return Ok(Control::Stop);
             }
             let estimate = (p.samples >= 2)
-                .then(|| relative_error_estimate(p.halves.0, p.halves.1))
+                .then(|| picture.estimate(p.halves.0, p.halves.1).ok())
                 .flatten();
             let resting = p.elapsed >= rest && self.denoise.runs();
             let frame = if !resting {
@@ -98,7 +103,7 @@ impl RenderJob<'_> {
                     )?);
                 }
                 let denoised_estimate = match (&denoiser, at_power) {
-                    (Some(d), true) => stop_error(p, d.denoised_stop())?,
+                    (Some(d), true) => stop_error(p, d.denoised_stop(), Measure::Display(picture))?,
                     _ => None,
                 };
                 let d = match (&mut denoiser, at_power) {

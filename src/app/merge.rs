@@ -286,6 +286,8 @@ pub fn merge_command(opts: &MergeOptions) -> Result<MergeSummary> {
             estimate,
             denoised: None,
             denoise_s: None,
+            display_estimate: None,
+            display_error: None,
         };
         write_csv(path, &[row])?;
     }

@@ -10,19 +10,19 @@
 //! `--denoise on` gets it as an extra layer. With `--reference` every checkpoint is
 //! denoised so its report row has the denoised error too.
 
-use super::budget::TargetStop;
+use super::budget::{stop_error, Measure, TargetStop};
 use super::checkpoint_writes::CheckpointWrites;
 use super::render_denoise::RenderDenoiser;
 pub use super::render_hooks::RunHooks;
 use super::render_options::{unit_name, RenderOptions};
 pub use super::summary::RenderSummary;
 use crate::camera::Camera;
-use crate::denoise::{DenoiseChoice, DenoiseMode, Denoised};
+use crate::denoise::DenoiseChoice;
 use crate::error::Result;
-use crate::image::{Coverage, ImageRgb};
+use crate::image::ImageRgb;
 use crate::integrator::Integrator;
 use crate::measure::Recorder;
-use crate::output::{self, Background};
+use crate::output;
 use crate::plan::SpectralMode;
 use crate::prepare::input::check_size;
 use crate::render::{Control, Film, Progress, RenderSettings, RenderStats};
@@ -149,7 +149,7 @@ impl<'a> RenderJob<'a> {
             super::adaptive::AdaptiveFlags {
                 mode: opts.adaptive,
                 open: opts.watch,
-                target: measure.target_error,
+                target: opts.target_error(&output),
                 shard: opts.shard.is_some(),
                 media: prepared.scene.has_media(),
             },
@@ -244,8 +244,11 @@ impl<'a> RenderJob<'a> {
         );
         let mut recorder = Recorder::new(run, self.reference.as_ref());
         recorder.verbose = !opts.quiet && measure.any();
-        let mut stop = TargetStop::for_render(measure.target_error, scene, method);
+        let target = opts.target_error(&self.output);
+        let mut stop = TargetStop::for_render(target, scene, method);
         let coverage = self.coverage(&camera, &settings)?;
+        recorder.picture = self.picture(coverage.as_ref());
+        let judge_in = recorder.picture.map_or(Measure::Linear, Measure::Display);
         // `--denoise`: the auxiliary pass, once, before rendering.
         let mut denoiser = RenderDenoiser::new(&self.denoise, scene, &camera, &settings)?;
         // `--checkpoint K` (K more units: samples, or SPPM passes, which the driver counts
@@ -267,13 +270,19 @@ impl<'a> RenderJob<'a> {
                 self.write_image(&self.output, main, layer, coverage.as_ref())?;
                 writes.wrote(p, start.elapsed(), Instant::now());
             }
+            let control = stop.check(p, denoiser.stop_image(), judge_in)?;
+            // Without a target, `--report` and the last line still get the estimate in the
+            // output's measure.
+            if target.is_none() && (measure.report.is_some() || p.done) {
+                stop_error(p, denoiser.stop_image(), judge_in)?;
+            }
             recorder.record_denoised(p, denoised.as_ref().map(|(img, t)| (img, *t)))?;
             if let Some(go_on) = progress.as_mut() {
                 if !go_on(p) {
                     return Ok(crate::render::Control::Stop);
                 }
             }
-            stop.check(p, denoiser.stop_image())
+            Ok(control)
         };
         let range = shard.as_ref().map(|s| s.range.clone());
         let (film, stats) =
@@ -283,9 +292,8 @@ impl<'a> RenderJob<'a> {
         let shard_note = match shard {
             Some(part) => Some(self.write_partial(part, &film, &stats, total)?),
             None if write_image => {
-                let (main, layer) = denoiser.layout(&image, denoised.as_ref().map(|d| &d.image));
-                self.write_image(&self.output, main, layer, coverage.as_ref())?;
-                self.write_exr_copy(&image, denoised.as_ref(), coverage.as_ref())?;
+                let d = denoised.as_ref();
+                self.write_final(&image, d, &denoiser, coverage.as_ref())?;
                 None
             }
             None => None,
@@ -295,14 +303,7 @@ impl<'a> RenderJob<'a> {
         let mut notes = self.scene_notes(settings.spectral);
         notes.extend(measure_notes);
         notes.extend(denoised.as_ref().and_then(|d| denoiser.note(d)));
-        if stop.denoised {
-            notes.push(format!(
-                "error target checked on the denoised image at {} checkpoints (both halves \
-                 denoised each time: {:.2} s)",
-                stop.checks.0,
-                stop.checks.1.as_secs_f64()
-            ));
-        }
+        notes.extend(stop.note());
         notes.extend(shard_note);
         Ok(RenderSummary {
             image,
@@ -313,15 +314,20 @@ impl<'a> RenderJob<'a> {
             backend: scene.backend_name(),
             notes,
             rows,
-            target_error: measure.target_error,
+            target_error: target,
             target_estimate: stop.last,
-            target_denoised: stop.denoised,
+            target_measure: stop.name,
             time_limit: opts.time_limit,
             method,
             denoised: denoised.map(|d| d.image),
             output: self.output,
             plan: self.plan,
         })
+    }
+
+    /// The output file (`-o`, or the scene's name as PNG).
+    pub(super) fn output(&self) -> &Path {
+        &self.output
     }
 
     /// The render's settings: the flags' counts and seed, the plan's transport.
@@ -367,57 +373,6 @@ impl<'a> RenderJob<'a> {
             range,
             identity,
         }))
-    }
-
-    /// `--background`: the coverage of the camera samples (as many as the render will take
-    /// at most, up to the pass's cap), computed once before rendering; `None` for the
-    /// environment background.
-    fn coverage(&self, camera: &Camera, settings: &RenderSettings) -> Result<Option<Coverage>> {
-        if self.opts.preview.background == Background::Environment {
-            return Ok(None);
-        }
-        let units = u64::from(self.opts.units(self.plan.method));
-        let scene = &self.prepared.scene;
-        Ok(Some(crate::render::thread_pool(settings)?.install(|| {
-            crate::render::coverage::coverage(scene, camera, settings, units)
-        })))
-    }
-
-    /// Writes `img` (with the extra EXR `layer`, if any) to `path` with the render's
-    /// background and display options.
-    fn write_image(
-        &self,
-        path: &Path,
-        img: &ImageRgb,
-        layer: Option<(&str, &ImageRgb)>,
-        coverage: Option<&Coverage>,
-    ) -> Result<()> {
-        let opts = self.opts;
-        output::write_image_with_layer(
-            path,
-            img,
-            layer,
-            coverage,
-            opts.preview.background,
-            &opts.display,
-        )
-    }
-
-    /// `--exr-copy`: the final image again as EXR, with the denoised layer under
-    /// `--denoise on`.
-    fn write_exr_copy(
-        &self,
-        image: &ImageRgb,
-        denoised: Option<&Denoised>,
-        coverage: Option<&Coverage>,
-    ) -> Result<()> {
-        let Some(exr) = &self.opts.exr_copy else {
-            return Ok(());
-        };
-        let layer = denoised
-            .filter(|_| self.opts.denoise == DenoiseMode::On)
-            .map(|d| (crate::denoise::EXR_LAYER, &d.image));
-        self.write_image(exr, image, layer, coverage)
     }
 
     /// Writes a shard's partial image (its exact sums and header) to the output; returns

@@ -150,8 +150,23 @@ impl RenderOptions {
         self.photon.passes = budget.passes;
         self.time_limit = budget.time_limit;
         self.measure.target_error = budget.target_error;
+        self.measure.default_target = budget.default_target;
         self.watch = budget.open;
         self
+    }
+
+    /// The error target of a render writing `output`: `--target-error`, or for the default
+    /// budget the default of the output's measure (a PNG's display error, an EXR's
+    /// relative error: [`super::budget::DEFAULT_DISPLAY_TARGET`], [`super::budget::DEFAULT_TARGET`]).
+    pub fn target_error(&self, output: &std::path::Path) -> Option<f64> {
+        match (
+            self.measure.default_target,
+            crate::output::is_display_referred(output),
+        ) {
+            (true, true) => Some(super::budget::DEFAULT_DISPLAY_TARGET),
+            (true, false) => Some(super::budget::DEFAULT_TARGET),
+            (false, _) => self.measure.target_error,
+        }
     }
 
     /// The scene preparation these options (with their drop-in preview choices) ask for;

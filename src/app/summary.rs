@@ -37,9 +37,9 @@ pub struct RenderSummary {
     pub target_error: Option<f64>,
     /// The last error compared with the target ([`super::budget::stop_error`]), if any.
     pub target_estimate: Option<f64>,
-    /// Whether [`Self::target_estimate`] is the estimate of the denoised image (a denoised
-    /// PNG's stop test, [`super::budget::StopImage`]).
-    pub target_denoised: bool,
+    /// What [`Self::target_estimate`] measures ([`super::budget::Measure::name`]: a PNG's
+    /// display error, of the denoised picture when it is denoised; an EXR's relative error).
+    pub target_measure: &'static str,
     /// The time limit the render had (`--time`, or the default limit).
     pub time_limit: Option<Duration>,
     /// The method that rendered (`--method auto` resolved).
@@ -93,25 +93,26 @@ impl RenderSummary {
         self.stats.end
     }
 
-    /// What ended the render, in words: "stopped at the error target 0.03 (estimated
-    /// 0.0187)" (", for the denoised image" when the stop test judged the denoised PNG), "stopped at the time limit 120 s", "interrupted (Ctrl-C or SIGTERM): the
-    /// image so far", "64 spp done".
+    /// What ended the render, in words: "stopped at the error target 0.01 (estimated
+    /// display error of the denoised picture 0.0087)", "stopped at the time limit 120 s
+    /// (error target 0.01, estimated display error 0.0123)", "interrupted (Ctrl-C or
+    /// SIGTERM): the image so far", "64 spp done".
     pub fn end_text(&self) -> String {
-        let of = if self.target_denoised {
-            " for the denoised image"
+        let name = if self.target_measure.is_empty() {
+            "error"
         } else {
-            ""
+            self.target_measure
         };
         let target = |s: &mut String| {
             if let (Some(t), Some(e)) = (self.target_error, self.target_estimate) {
-                s.push_str(&format!(" (error target {t}, estimated {e:.4}{of})"));
+                s.push_str(&format!(" (error target {t}, estimated {name} {e:.4})"));
             } else if let Some(t) = self.target_error {
                 s.push_str(&format!(" (error target {t} not yet measurable)"));
             }
         };
         match self.stats.end {
             EndReason::Target => format!(
-                "stopped at the error target {} (estimated {:.4}{of})",
+                "stopped at the error target {} (estimated {name} {:.4})",
                 self.target_error.unwrap_or(f64::NAN),
                 self.target_estimate.unwrap_or(f64::NAN)
             ),

@@ -39,8 +39,9 @@ pub struct Cli {
 pub enum Command {
     /// Render a glTF (.gltf/.glb) or OBJ scene to PNG or EXR. With no --method, --spp,
     /// --passes, --time or --target-error: the method --method auto picks, rendered until
-    /// the estimated relative error is 0.03 or for 120 s, whichever comes first (or Ctrl-C),
-    /// the output rewritten as it improves; the last line says what ended it.
+    /// the estimated error of the picture written is 0.01 (an EXR: relative error 0.03) or
+    /// for 120 s, whichever comes first (or Ctrl-C), the output rewritten as it improves;
+    /// the last line says what ended it.
     Render(RenderArgs),
     /// Describe a scene: meshes, triangles, materials with their KHR values, lights, cameras.
     Info {

@@ -88,8 +88,9 @@ pub struct RenderArgs {
     pub size: Option<(u32, u32)>,
     /// Samples per pixel, 1 to 1000000: the render stops there (or earlier at --time or
     /// --target-error). Without --spp and --passes the render is open-ended: it stops at
-    /// --time / --target-error, by default at the estimated relative error 0.03 or after
-    /// 120 s, whichever comes first, and rewrites the output as it goes.
+    /// --time / --target-error, by default at the estimated error 0.01 of a PNG's picture
+    /// (0.03 relative for an EXR) or after 120 s, whichever comes first, and rewrites the
+    /// output as it goes.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     pub spp: Option<u32>,
     /// Rendering method: auto (the default: from probe photons, the path tracer when no light
@@ -236,10 +237,12 @@ pub struct RenderArgs {
     /// the half-buffer estimate.
     #[arg(long)]
     pub plot: Option<PathBuf>,
-    /// Stop once the estimated relative RMSE (half-buffer estimate, from 8 samples or
-    /// passes on) is at or below E, finite and > 0. Upper bound: --time, --spp or
-    /// --passes, whichever comes first; given alone, 120 s. Default without any budget
-    /// flag: 0.03.
+    /// Stop once the estimated error of the image as written (from two half images, from 8
+    /// samples or passes on) is at or below E, finite and > 0. For a PNG: the display RMSE
+    /// of the picture as a viewer sees it (after exposure, tone map and clipping, denoised
+    /// when the PNG is; values in [0, 1]); for an EXR: the relative RMSE of the linear
+    /// values. Upper bound: --time, --spp or --passes, whichever comes first; given alone,
+    /// 120 s. Default without any budget flag: 0.01 for a PNG, 0.03 for an EXR.
     #[arg(long, value_parser = parse_target, allow_hyphen_values = true)]
     pub target_error: Option<f64>,
     /// No progress bar.
@@ -338,6 +341,7 @@ impl RenderArgs {
                 report: a.report,
                 plot: a.plot,
                 target_error: budget.target_error,
+                default_target: budget.default_target,
             },
             preview: app::PreviewOptions {
                 studio: a.studio,

@@ -17,9 +17,12 @@ pub struct MeasureOptions {
     pub report: Option<PathBuf>,
     /// `--plot out.png|svg`: error against time, log-log.
     pub plot: Option<PathBuf>,
-    /// `--target-error E`: stop once the estimated relative RMSE is ≤ E
-    /// ([`crate::app::budget::TargetStop`]).
+    /// `--target-error E`: stop once the estimated error of the image as written is ≤ E
+    /// ([`crate::app::budget::TargetStop`]; a PNG's display error, an EXR's relative RMSE).
     pub target_error: Option<f64>,
+    /// The target is the default budget's, not given: its value is the output's measure's
+    /// default ([`crate::app::budget::DEFAULT_DISPLAY_TARGET`] for a PNG), resolved with the output.
+    pub default_target: bool,
 }
 
 impl MeasureOptions {
@@ -39,7 +42,7 @@ impl MeasureOptions {
         if let Some(e) = self.target_error {
             if e.is_nan() || e <= 0.0 || e.is_infinite() {
                 return Err(Error::Usage(format!(
-                    "--target-error {e}: expected a finite relative error > 0"
+                    "--target-error {e}: expected a finite error > 0 (a PNG's display RMSE, an EXR's relative RMSE)"
                 )));
             }
         }

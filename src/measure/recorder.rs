@@ -12,6 +12,7 @@ use super::report::ReportRow;
 use crate::error::{Error, Result};
 use crate::image::metrics::{compare, half_buffer_estimate, ErrorMetrics};
 use crate::image::ImageRgb;
+use crate::output::display::Picture;
 use crate::render::Progress;
 use std::path::Path;
 use std::time::Duration;
@@ -55,6 +56,9 @@ pub struct Recorder<'a> {
     pub run: String,
     /// The reference, if any.
     pub reference: Option<&'a ImageRgb>,
+    /// The output's display transform, when it is display-referred (a PNG): the rows then
+    /// carry the picture's estimated error, and with a reference its error.
+    pub picture: Option<Picture<'a>>,
     /// Print one line per checkpoint on stderr.
     pub verbose: bool,
     /// The rows so far ("render" stage only).
@@ -67,6 +71,7 @@ impl<'a> Recorder<'a> {
         Recorder {
             run: run.to_string(),
             reference,
+            picture: None,
             verbose: false,
             rows: Vec::new(),
         }
@@ -98,6 +103,12 @@ impl<'a> Recorder<'a> {
             (Some(r), Some((d, _))) => Some(compare(d, r)?),
             _ => None,
         };
+        // The picture written: the denoised image when there is one.
+        let display_error = match (self.reference, self.picture) {
+            (Some(r), Some(pic)) => Some(pic.error(denoised.map_or(p.image, |d| d.0), r)?),
+            _ => None,
+        };
+        let display_estimate = p.judged.get().filter(|j| j.absolute).map(|j| j.estimate);
         // A final call (`done`) at the same count as the last checkpoint replaces its row.
         if self
             .rows
@@ -118,11 +129,19 @@ impl<'a> Recorder<'a> {
             estimate,
             denoised: denoised_error,
             denoise_s: denoised.map(|(_, t)| t.as_secs_f64()),
+            display_estimate,
+            display_error,
         });
         if self.verbose && !p.done {
             let mut line = checkpoint_line(&self.run, p, estimate.as_ref(), error.as_ref());
             if let Some(e) = denoised_error {
                 line.push_str(&format!(" (denoised {:.4})", relative_rmse(&e)));
+            }
+            if let Some(e) = display_estimate {
+                line.push_str(&format!("; display error est. {e:.4}"));
+            }
+            if let Some(e) = display_error {
+                line.push_str(&format!(" (vs reference {e:.4})"));
             }
             eprintln!("{line}");
         }
@@ -265,6 +284,8 @@ mod tests {
             estimate,
             denoised: None,
             denoise_s: None,
+            display_estimate: None,
+            display_error: None,
         };
         // sqrt(0.25) = 0.5 (reference) wins over sqrt(0.04) = 0.2 (estimate).
         assert_eq!(

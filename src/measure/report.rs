@@ -14,6 +14,12 @@
 //!   reference (`--reference` with denoising active, [`crate::denoise`]); `denoise_s`: wall
 //!   seconds the denoiser took at that checkpoint (auxiliary pass not included; it runs
 //!   once, before rendering). Empty when the checkpoint was not denoised.
+//! - `display_est`: the estimated display RMSE of the picture as written (a PNG: after
+//!   exposure, tone map and clipping, denoised when the PNG is; [`crate::output::display`]),
+//!   the number a PNG's `--target-error` is compared with; empty where not measured (an EXR,
+//!   fewer than 8 units, a render with neither an error target nor `--report`).
+//!   `display_rmse`: that picture's display RMSE against the reference's picture
+//!   (`--reference` with a PNG output).
 //!
 //! Numbers are written with Rust's shortest round-trip formatting, so `str::parse::<f64>` /
 //! `parse::<u64>` read back the exact values (NaN and infinities as `NaN`, `inf`, `-inf`).
@@ -26,7 +32,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 /// The CSV header line (without the line end); the column order of every row.
-pub const CSV_HEADER: &str = "run,stage,wall_s,samples_per_pixel,passes,rays,photons,rmse,rel_mse,mae,est_rmse,est_rel_mse,est_mae,denoised_rmse,denoised_rel_mse,denoised_mae,denoise_s";
+pub const CSV_HEADER: &str = "run,stage,wall_s,samples_per_pixel,passes,rays,photons,rmse,rel_mse,mae,est_rmse,est_rel_mse,est_mae,denoised_rmse,denoised_rel_mse,denoised_mae,denoise_s,display_est,display_rmse";
 
 /// One line of the report: a checkpoint of a run, or a load/build stage.
 #[derive(Debug, Clone, PartialEq)]
@@ -53,6 +59,10 @@ pub struct ReportRow {
     pub denoised: Option<ErrorMetrics>,
     /// Wall seconds the denoiser took at this checkpoint, when it ran.
     pub denoise_s: Option<f64>,
+    /// The estimated display RMSE of the picture as written, when measured.
+    pub display_estimate: Option<f64>,
+    /// The picture's display RMSE against the reference's, when both exist.
+    pub display_error: Option<f64>,
 }
 
 impl ReportRow {
@@ -71,6 +81,8 @@ impl ReportRow {
             estimate: None,
             denoised: None,
             denoise_s: None,
+            display_estimate: None,
+            display_error: None,
         }
     }
 }
@@ -114,11 +126,13 @@ pub fn format_csv(rows: &[ReportRow]) -> String {
         push_metrics(&mut out, r.error.as_ref());
         push_metrics(&mut out, r.estimate.as_ref());
         push_metrics(&mut out, r.denoised.as_ref());
-        match r.denoise_s {
-            Some(t) => {
-                let _ = write!(out, ",{t}");
+        for cell in [r.denoise_s, r.display_estimate, r.display_error] {
+            match cell {
+                Some(v) => {
+                    let _ = write!(out, ",{v}");
+                }
+                None => out.push(','),
             }
-            None => out.push(','),
         }
         out.push('\n');
     }
@@ -155,12 +169,12 @@ mod tests {
         let csv = format_csv(&rows);
         assert_eq!(
             csv,
-            format!("{CSV_HEADER}\n\"path, \"\"bvh\"\"\",load,0.25,0,0,0,0,,,,,,,,,,\n")
+            format!("{CSV_HEADER}\n\"path, \"\"bvh\"\"\",load,0.25,0,0,0,0,,,,,,,,,,,,\n")
         );
     }
 
     #[test]
-    fn header_has_seventeen_columns() {
-        assert_eq!(CSV_HEADER.split(',').count(), 17);
+    fn header_has_nineteen_columns() {
+        assert_eq!(CSV_HEADER.split(',').count(), 19);
     }
 }

@@ -165,24 +165,20 @@ pub fn exposure_pixels(img: &ImageRgb, cov: Option<&Coverage>, bg: Background) -
     }
 }
 
-/// 8-bit display bytes: RGB8 for a colour background, RGBA8 (straight alpha) for
-/// transparent. Returns `(bytes, has_alpha)`.
-pub fn display_bytes(
+/// The straight colour `M/α` of every pixel (0 where α = 0) and the exposure a display
+/// output gives it: `exposure` itself, or for [`Exposure::Auto`] the key of the covered
+/// pixels alone (the module docs), resolved to an EV.
+pub fn straight_exposed(
     img: &ImageRgb,
     cov: &Coverage,
-    bg: Background,
-    opts: &DisplayOptions,
-) -> (Vec<u8>, bool) {
-    if bg == Background::Environment {
-        return (to_srgb8(img, opts.exposure, opts.tonemap), false);
-    }
-    // Straight colour of the covered part: M/α.
+    exposure: Exposure,
+) -> (ImageRgb, Exposure) {
     let straight: Vec<Vec3> = model_part(img, cov)
         .iter()
         .zip(&cov.alpha)
         .map(|(&m, &a)| if a > 0.0 { m / a } else { Vec3::ZERO })
         .collect();
-    let exposure = match opts.exposure {
+    let exposure = match exposure {
         Exposure::Ev(e) => Exposure::Ev(e),
         Exposure::Auto => {
             let covered = covered_straight(&straight, cov);
@@ -199,6 +195,21 @@ pub fn display_bytes(
         height: img.height,
         data: straight,
     };
+    (straight, exposure)
+}
+
+/// 8-bit display bytes: RGB8 for a colour background, RGBA8 (straight alpha) for
+/// transparent. Returns `(bytes, has_alpha)`.
+pub fn display_bytes(
+    img: &ImageRgb,
+    cov: &Coverage,
+    bg: Background,
+    opts: &DisplayOptions,
+) -> (Vec<u8>, bool) {
+    if bg == Background::Environment {
+        return (to_srgb8(img, opts.exposure, opts.tonemap), false);
+    }
+    let (straight, exposure) = straight_exposed(img, cov, opts.exposure);
     let rgb = to_srgb8(&straight, exposure, opts.tonemap);
     match bg {
         Background::Transparent => {

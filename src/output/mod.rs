@@ -16,6 +16,7 @@
 pub mod animation;
 pub mod atomic;
 pub mod background;
+pub mod display;
 pub mod exr_io;
 pub mod partial;
 pub mod tonemap;
@@ -89,6 +90,12 @@ fn format_of(path: &Path) -> Result<Format> {
             path.display()
         ))),
     }
+}
+
+/// Whether `path` is a display-referred output (a PNG: exposure, tone map and 8-bit
+/// sRGB, [`display`]) rather than a scene-referred one (an EXR's linear numbers).
+pub fn is_display_referred(path: &Path) -> bool {
+    format_of(path).is_ok_and(|f| f == Format::Png)
 }
 
 /// Checks that `path` has a supported image extension (`.png`, `.exr`), so a render can

@@ -64,15 +64,21 @@ pub const MAX_LAG: f64 = 4.0;
 
 /// Per tile, the relative MSE estimated from the halves `a` and `b` of `film`'s image
 /// (row-major, `film`'s size): the mean over the tile's pixels and channels.
-pub fn tile_errors(film: &Film, (a, b): (&ImageRgb, &ImageRgb)) -> Vec<f64> {
+pub fn tile_errors(film: &Film, (a, b): (&ImageRgb, &ImageRgb), absolute: bool) -> Vec<f64> {
+    let term = |x: f32, y: f32| {
+        let (v, rel, _) = half_pair_terms(f64::from(x), f64::from(y));
+        if absolute {
+            v
+        } else {
+            rel
+        }
+    };
     let tiles_x = a.width.div_ceil(TILE) as usize;
     let mut sums = vec![0.0f64; film.tiles()];
     for (i, (pa, pb)) in a.data.iter().zip(&b.data).enumerate() {
         let (x, y) = (i % a.width as usize, i / a.width as usize);
         let t = (y / TILE as usize) * tiles_x + x / TILE as usize;
-        sums[t] += (0..3)
-            .map(|c| half_pair_terms(f64::from(pa[c]), f64::from(pb[c])).1)
-            .sum::<f64>();
+        sums[t] += (0..3).map(|c| term(pa[c], pb[c])).sum::<f64>();
     }
     film.tile_states()
         .zip(sums)
@@ -85,10 +91,11 @@ pub fn tile_errors(film: &Film, (a, b): (&ImageRgb, &ImageRgb)) -> Vec<f64> {
 pub fn choose(
     film: &Film,
     halves: (&ImageRgb, &ImageRgb),
+    absolute: bool,
     done: u64,
     adaptive: &Adaptive,
 ) -> Vec<bool> {
-    let e2 = tile_errors(film, halves);
+    let e2 = tile_errors(film, halves, absolute);
     let states: Vec<_> = film.tile_states().collect();
     // Per tile: P, c and V.
     let terms: Vec<(f64, f64, f64)> = states
@@ -177,9 +184,12 @@ mod tests {
     #[test]
     fn tile_errors_are_the_half_buffer_terms_per_tile() {
         let (f, a, b) = film([32, 32], [0, 0], [0.9, 2.0], [1.1, 2.0]);
-        let e2 = tile_errors(&f, (&a, &b));
+        let e2 = tile_errors(&f, (&a, &b), false);
         // Tile 0: (0.2)²/4 / (1² + 0.01) = 0.01/1.01 (every pixel and channel); tile 1: 0.
         assert!((e2[0] - 0.01 / 1.01).abs() < 1e-6, "{e2:?}");
+        // Absolute (display values): (0.2)²/4 = 0.01.
+        let abs = tile_errors(&f, (&a, &b), true);
+        assert!((abs[0] - 0.01).abs() < 1e-6 && abs[1] == 0.0, "{abs:?}");
         assert_eq!(e2[1], 0.0);
         // Their pixel-weighted mean is the image's estimate.
         let whole = crate::image::metrics::half_buffer_estimate(&a, &b).unwrap();
@@ -194,13 +204,13 @@ mod tests {
         // the larger), below the lag bound ¼: 32 > 32·¼, it rests.
         let (f, a, b) = film([32, 32], [256 * 32, 256 * 32], [0.9, 0.99], [1.1, 1.01]);
         let none = Adaptive { target: None };
-        assert_eq!(choose(&f, (&a, &b), 32, &none), [true, false]);
+        assert_eq!(choose(&f, (&a, &b), false, 32, &none), [true, false]);
         // Below MIN_UNITS nothing rests, however clean.
         let (f, a, b) = film([32, 28], [256 * 32, 256 * 28], [0.9, 1.0], [1.1, 1.0]);
-        assert_eq!(choose(&f, (&a, &b), 32, &none), [true, true]);
+        assert_eq!(choose(&f, (&a, &b), false, 32, &none), [true, true]);
         // No tile lags by more than MAX_LAG: at 128 the clean tile's 32 is a quarter.
         let (f, a, b) = film([128, 32], [256 * 128, 256 * 32], [0.9, 0.99], [1.1, 1.01]);
-        assert_eq!(choose(&f, (&a, &b), 128, &none), [true, true]);
+        assert_eq!(choose(&f, (&a, &b), false, 128, &none), [true, true]);
     }
 
     #[test]
@@ -210,11 +220,11 @@ mod tests {
         let none = Adaptive { target: None };
         let (lo, hi) = ([0.9, 1.0 - 0.067], [1.1, 1.0 + 0.067]);
         let (f, a, b) = film([32, 64], [256 * 32, 256 * 64], lo, hi);
-        assert_eq!(choose(&f, (&a, &b), 64, &none), [true, false]);
+        assert_eq!(choose(&f, (&a, &b), false, 64, &none), [true, false]);
         // With tile 0 at 16 rays per pixel and unit, its share falls to √(1/16)/0.949 =
         // 0.26 of tile 1's: tile 1 works and tile 0 (32 > 64·0.26) rests.
         let (f, a, b) = film([32, 64], [16 * 256 * 32, 256 * 64], lo, hi);
-        assert_eq!(choose(&f, (&a, &b), 64, &none), [false, true]);
+        assert_eq!(choose(&f, (&a, &b), false, 64, &none), [false, true]);
     }
 
     #[test]
@@ -236,20 +246,20 @@ mod tests {
         // tile 1 (32 ≤ 128/4) works.
         let (f, a, b) = film([128, 32], [256 * 128, 256 * 32], [0.9, 0.975], [1.1, 1.025]);
         let none = Adaptive { target: None };
-        assert_eq!(choose(&f, (&a, &b), 128, &none), [true, true]);
+        assert_eq!(choose(&f, (&a, &b), false, 128, &none), [true, true]);
         // Target 0.06: tile 1 is below 0.03 and rests (it lags by exactly the bound, not
         // more); tile 0 is not.
         let t = Adaptive { target: Some(0.06) };
-        assert_eq!(choose(&f, (&a, &b), 128, &t), [true, false]);
+        assert_eq!(choose(&f, (&a, &b), false, 128, &t), [true, false]);
         let (f, a, b) = film([129, 32], [256 * 129, 256 * 32], [0.9, 0.975], [1.1, 1.025]);
         assert_eq!(
-            choose(&f, (&a, &b), 129, &t),
+            choose(&f, (&a, &b), false, 129, &t),
             [true, true],
             "beyond the bound it works"
         );
         // Equal tiles both below half the target: neither would work, so both do.
         let (f, a, b) = film([32, 32], [256 * 32, 256 * 32], [0.99, 0.99], [1.01, 1.01]);
         let t = Adaptive { target: Some(0.1) };
-        assert_eq!(choose(&f, (&a, &b), 32, &t), [true, true]);
+        assert_eq!(choose(&f, (&a, &b), false, 32, &t), [true, true]);
     }
 }

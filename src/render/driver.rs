@@ -32,11 +32,14 @@
 //! maps, counts).
 
 use super::film::Film;
-use super::progress::{estimate_note, progress_bar, relative_error_estimate};
+use super::progress::{
+    estimate_note, judged_note, progress_bar, relative_error_estimate, time_to_target, Judged,
+};
 use super::{Control, EndReason, Observer, Prepass, Progress, RenderSettings, RenderStats};
 use crate::error::Result;
+use crate::image::ImageRgb;
 use indicatif::ProgressBar;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// How a method's units are scheduled.
 #[derive(Debug, Clone, Copy)]
@@ -152,7 +155,7 @@ pub fn drive(
     let started = Instant::now();
     let (mut done, mut next_checkpoint) = (0u64, 1u64);
     let (mut rays, mut photons, mut bad) = (setup.rays, setup.photons, 0u64);
-    let mut estimate = None;
+    let mut shown = Shown::Raw(None);
     let mut interrupted;
     let mut observer_stopped = false;
     let mut out_of_time;
@@ -168,9 +171,7 @@ pub fn drive(
         let k0 = first + done;
         let expected = film.pixel_samples() + n * film.active_pixels();
         let round = step(&mut film, k0, k0 + n, &env)?;
-        rays += round.rays;
-        photons += round.photons;
-        bad += round.bad;
+        (rays, photons, bad) = (rays + round.rays, photons + round.photons, bad + round.bad);
         let note = round.note;
         // A stop request after the last unit is not an interruption: the image is whole.
         let stop_asked = env.skip(k0);
@@ -178,13 +179,13 @@ pub fn drive(
         done = if whole { done + n } else { film.done() };
         interrupted = stop_asked && (!whole || done < target);
         let resting = resting_note(&film);
-        let message = |e: Option<f64>| {
+        let message = |e: &Shown| {
             format!(
                 "{done} {unit}, {rays} rays{note}{resting}{}{limit_note}",
-                estimate_note(e)
+                e.note()
             )
         };
-        bar.set_message(message(estimate));
+        bar.set_message(message(&shown));
         out_of_time = settings
             .time_limit
             .is_some_and(|t| setup.start.elapsed() >= t);
@@ -199,10 +200,9 @@ pub fn drive(
             (observer.is_some() || !settings.quiet || adaptive.is_some()) && done >= 2;
         let halves = (observer.is_some() || want_halves).then(|| film.halves());
         if let (Some((a, b)), true) = (&halves, want_halves) {
-            estimate = relative_error_estimate(a, b);
-            bar.set_message(message(estimate));
+            shown = Shown::Raw(relative_error_estimate(a, b));
         }
-        let judged = std::cell::OnceCell::new();
+        let mut judged = None;
         if let (Some(obs), Some((a, b))) = (observer.as_mut(), &halves) {
             let image = film.mean();
             let progress = Progress {
@@ -220,15 +220,17 @@ pub fn drive(
                 observer_stopped = true;
                 break;
             }
-            if let Some(j) = progress.judged.into_inner() {
-                let _ = judged.set(j);
-            }
+            judged = progress.judged.into_inner();
         }
+        if let Some(j) = &judged {
+            shown = Shown::Judged(j.numbers(), started.elapsed(), Instant::now());
+        }
+        bar.set_message(message(&shown));
         // The tiles for the next rounds, measured on what the observer judged by, else
         // on the raw halves.
         if let (Some(a), Some((ha, hb)), false) = (&adaptive, &halves, finished) {
-            let (ja, jb) = judged.get().map_or((ha, hb), |(ja, jb)| (ja, jb));
-            film.set_active(super::adaptive::choose(&film, (ja, jb), done, a));
+            let (ja, jb, absolute) = measured_on(judged.as_ref(), (ha, hb));
+            film.set_active(super::adaptive::choose(&film, (ja, jb), absolute, done, a));
         }
         if finished {
             break;
@@ -240,6 +242,44 @@ pub fn drive(
     let passes = if schedule.passes { done as u32 } else { 1 };
     let stats = end_stats(&setup, &film, (rays, photons, bad), passes, end);
     Ok((film, stats))
+}
+
+/// The halves adaptive sampling measures the tiles on, and whether in an absolute measure:
+/// the observer's judged halves if it set them, else the raw `halves`, relative.
+fn measured_on<'a>(
+    judged: Option<&'a Judged>,
+    halves: (&'a ImageRgb, &'a ImageRgb),
+) -> (&'a ImageRgb, &'a ImageRgb, bool) {
+    match judged {
+        Some(Judged {
+            halves: Some((a, b)),
+            absolute,
+            ..
+        }) => (a, b, *absolute),
+        _ => (halves.0, halves.1, false),
+    }
+}
+
+/// The estimate the progress line shows: the raw image's relative error, or the
+/// observer's judgement (the stop test's measure and target) with the render time it was
+/// made at and when, for the expected time to the target.
+enum Shown {
+    Raw(Option<f64>),
+    Judged(Judged, Duration, Instant),
+}
+
+impl Shown {
+    /// The progress line's note.
+    fn note(&self) -> String {
+        match self {
+            Shown::Raw(e) => estimate_note(*e),
+            Shown::Judged(j, at, when) => {
+                let left = time_to_target(j.estimate, j.target, *at)
+                    .map(|d| d.saturating_sub(when.elapsed()));
+                judged_note(j, left)
+            }
+        }
+    }
 }
 
 /// Why a render ended: an interruption first, then the observer's stop (its error target),

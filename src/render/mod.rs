@@ -42,7 +42,8 @@ pub use adaptive::Adaptive;
 pub use driver::{drive, drive_passes, Round, RoundEnv, Schedule};
 pub use film::{Film, FilmTile, TileState, TILE, TILE_PIXELS};
 pub use progress::{
-    estimate_note, progress_bar, relative_error_estimate, Control, Observer, Prepass, Progress,
+    estimate_note, judged_note, progress_bar, relative_error_estimate, time_to_target, Control,
+    Judged, Observer, Prepass, Progress,
 };
 pub use samples::{pixel_sampler, primary_ray, render_batches, render_samples, Job, Starts};
 

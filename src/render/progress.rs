@@ -30,11 +30,28 @@ pub struct Progress<'a> {
     /// True on the last call of a render that ended by itself (sample, pass or time limit).
     /// After an observer returns [`Control::Stop`] it is not called again.
     pub done: bool,
-    /// The two half images the observer judged the render by, if not `halves` (the
-    /// error-target stop of a denoised image sets its denoised halves): adaptive sampling
-    /// ([`super::adaptive`]) then measures the tiles on them, so samples go where the
-    /// image the stop sees is noisy.
-    pub judged: std::cell::OnceCell<(ImageRgb, ImageRgb)>,
+    /// What the observer judged the render by at this checkpoint, if it measured it
+    /// (the error-target stop sets it): the progress line shows its estimate, and adaptive
+    /// sampling ([`super::adaptive`]) measures the tiles on its halves, so samples go where
+    /// the picture the stop sees is noisy.
+    pub judged: std::cell::OnceCell<Judged>,
+}
+
+/// An observer's judgement of a checkpoint ([`Progress::judged`]).
+#[derive(Debug, Clone)]
+pub struct Judged {
+    /// The two half images the estimate was measured on, when they are not
+    /// [`Progress::halves`] (denoised halves, or their display values).
+    pub halves: Option<(ImageRgb, ImageRgb)>,
+    /// Whether the measure is absolute (display values in [0, 1]) rather than relative to
+    /// the pixel's value: what adaptive sampling's tiles are then measured in.
+    pub absolute: bool,
+    /// The estimated error.
+    pub estimate: f64,
+    /// The error target it is compared with, if any.
+    pub target: Option<f64>,
+    /// What the estimate measures, for the progress line ("display error", …).
+    pub name: &'static str,
 }
 
 impl<'a> Progress<'a> {
@@ -117,6 +134,51 @@ pub fn estimate_note(e: Option<f64>) -> String {
     })
 }
 
+impl Judged {
+    /// The judgement without its halves: what the progress line keeps.
+    pub fn numbers(&self) -> Judged {
+        Judged {
+            halves: None,
+            ..*self
+        }
+    }
+}
+
+/// ", est. display error 0.0123 (target 0.0100, ≈ 40 s more)" for the progress bar: an
+/// observer's judgement after `done` units, `left` the expected time to its target
+/// ([`time_to_target`]).
+pub fn judged_note(j: &Judged, left: Option<Duration>) -> String {
+    let mut s = format!(", est. {} {:.4}", j.name, j.estimate);
+    if let Some(t) = j.target {
+        s.push_str(&format!(" (target {t}"));
+        match left {
+            Some(d) if j.estimate > t => s.push_str(&format!(", ≈ {} more)", short_duration(d))),
+            _ => s.push(')'),
+        }
+    }
+    s
+}
+
+/// The expected wall time until an estimate `e` after `done` units, which took `spent`,
+/// meets `target`, if the error falls as 1/√units (Monte Carlo's rate) and units keep
+/// their measured cost: `spent·((e/target)² − 1)`; zero at or below the target, `None`
+/// without a target or a finite answer.
+pub fn time_to_target(e: f64, target: Option<f64>, spent: Duration) -> Option<Duration> {
+    let t = target?;
+    let ratio = (e / t).powi(2) - 1.0;
+    Duration::try_from_secs_f64(spent.as_secs_f64() * ratio.max(0.0)).ok()
+}
+
+/// "40 s", "3 min 20 s", "2 h 05 min".
+fn short_duration(d: Duration) -> String {
+    let s = d.as_secs_f64().round() as u64;
+    match s {
+        0..=99 => format!("{s} s"),
+        100..=5999 => format!("{} min {:02} s", s / 60, s % 60),
+        _ => format!("{} h {:02} min", s / 3600, (s / 60) % 60),
+    }
+}
+
 /// A progress bar on stderr (hidden with `quiet`): elapsed time, the bar, and a message
 /// (samples or passes done, rays). With no length (an open-ended render, ended by time or
 /// error) a spinner with the elapsed time and the message, redrawn every 250 ms.
@@ -143,4 +205,56 @@ pub fn progress_bar(quiet: bool, len: Option<u64>, what: &str) -> ProgressBar {
         .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     b
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn judged(estimate: f64, target: Option<f64>) -> Judged {
+        Judged {
+            halves: None,
+            absolute: true,
+            estimate,
+            target,
+            name: "display error",
+        }
+    }
+
+    #[test]
+    fn the_time_to_the_target_follows_the_monte_carlo_rate() {
+        let spent = Duration::from_secs(10);
+        // Twice the target: four times the samples, three more times the time spent.
+        assert_eq!(
+            time_to_target(0.02, Some(0.01), spent),
+            Some(Duration::from_secs(30))
+        );
+        assert_eq!(
+            time_to_target(0.005, Some(0.01), spent),
+            Some(Duration::ZERO)
+        );
+        assert_eq!(time_to_target(0.02, None, spent), None);
+        assert_eq!(time_to_target(f64::INFINITY, Some(0.01), spent), None);
+    }
+
+    #[test]
+    fn the_progress_note_names_the_measure_the_target_and_the_time_left() {
+        let j = judged(0.0153, Some(0.01));
+        assert_eq!(
+            judged_note(&j, Some(Duration::from_secs(41))),
+            ", est. display error 0.0153 (target 0.01, ≈ 41 s more)"
+        );
+        assert_eq!(
+            judged_note(&j, Some(Duration::from_secs(200))),
+            ", est. display error 0.0153 (target 0.01, ≈ 3 min 20 s more)"
+        );
+        assert_eq!(
+            judged_note(&judged(0.008, Some(0.01)), Some(Duration::ZERO)),
+            ", est. display error 0.0080 (target 0.01)"
+        );
+        assert_eq!(
+            judged_note(&judged(0.02, None), None),
+            ", est. display error 0.0200"
+        );
+    }
 }

@@ -136,7 +136,7 @@ mod tests {
 
     #[test]
     fn softboxes_appear_where_placed() {
-        for preset in [Studio::Soft, Studio::Jeweller, Studio::Bright] {
+        for preset in [Studio::Soft, Studio::Jeweller, Studio::Bright, Studio::Tent] {
             let spec = preset.spec().unwrap();
             let cam_az = 0.7f32;
             let env = environment(&spec, cam_az);

@@ -26,10 +26,15 @@
 //! | `soft` (default; `jeweller` for gems, [`default_for`]) | 0.15 → 0.35 → 0.6 grey | large overhead behind the model 12 nits, camera-left 8, camera-right 6 | one spot, 20 lx, front-left above |
 //! | `jeweller` | 0.004 → 0.01 → 0.02 (near black) | four narrow strips at 300 nits round the model | two spots, 60 lx and 40 lx |
 //! | `bright` | 1.5 → 2.0 → 2.5 white | overhead 6 nits, front wrap 4 nits | one spot, 8 lx |
+//! | `tent` | 0.8 → 1.0 → 1.2 white | the lit top of the tent, 3 nits | none |
 //!
 //! `jeweller` is the classic dark-field gem setup: small, very bright sources on black make
 //! each facet flash on or off and split white light into colour (fire) in dispersive
-//! stones; `bright` is high-key product photography (white on white).
+//! stones; `bright` is high-key product photography (white on white); `tent` is a
+//! faceter's light tent, a translucent white dome lit from outside: even light from
+//! everywhere shows each facet's brightness (the pattern a cut is judged by) with little
+//! fire, and with no small source a sparkle needs fewer samples (BENCHMARKS.md, "Judging
+//! the picture written").
 
 pub mod env;
 pub mod ground;
@@ -60,6 +65,8 @@ pub enum Studio {
     Jeweller,
     /// White high-key gradient, broad softboxes, a gentle key.
     Bright,
+    /// A faceter's light tent: an even white surround with a brighter top, no key.
+    Tent,
     /// No studio: the directional key and fill lights of [`crate::light::default_lights`].
     None,
 }
@@ -103,6 +110,7 @@ const JEWELLER_BOXES: [env::Softbox; 4] = [
     env::Softbox::new(40.0, 60.0, 2.0, 7.0, 300.0),
     env::Softbox::new(40.0, -60.0, 2.0, 7.0, 300.0),
 ];
+const TENT_BOXES: [env::Softbox; 1] = [env::Softbox::new(80.0, 0.0, 40.0, 12.0, 3.0)];
 const BRIGHT_BOXES: [env::Softbox; 2] = [
     env::Softbox::new(70.0, 180.0, 40.0, 20.0, 6.0),
     env::Softbox::new(20.0, 0.0, 60.0, 15.0, 4.0),
@@ -110,7 +118,7 @@ const BRIGHT_BOXES: [env::Softbox; 2] = [
 
 impl Studio {
     /// All preset names, in the order the help lists them.
-    pub const NAMES: &'static str = "soft, jeweller, bright or none";
+    pub const NAMES: &'static str = "soft, jeweller, bright, tent or none";
 
     /// Parses `--studio NAME` (case-insensitive; `jeweler` is accepted too).
     pub fn parse(s: &str) -> Result<Studio> {
@@ -118,6 +126,7 @@ impl Studio {
             "soft" => Ok(Studio::Soft),
             "jeweller" | "jeweler" => Ok(Studio::Jeweller),
             "bright" => Ok(Studio::Bright),
+            "tent" => Ok(Studio::Tent),
             "none" => Ok(Studio::None),
             _ => Err(Error::Usage(format!(
                 "--studio {s:?}: unknown studio preset (expected {})",
@@ -132,6 +141,7 @@ impl Studio {
             Studio::Soft => "soft",
             Studio::Jeweller => "jeweller",
             Studio::Bright => "bright",
+            Studio::Tent => "tent",
             Studio::None => "none",
         }
     }
@@ -153,6 +163,11 @@ impl Studio {
                 gradient: [1.5, 2.0, 2.5],
                 softboxes: &BRIGHT_BOXES,
                 keys: &[(50.0, -30.0, 8.0)],
+            }),
+            Studio::Tent => Some(PresetSpec {
+                gradient: [0.8, 1.0, 1.2],
+                softboxes: &TENT_BOXES,
+                keys: &[],
             }),
             Studio::None => None,
         }

@@ -197,6 +197,7 @@ pub fn choices() -> Value {
         crate::studio::Studio::Soft,
         crate::studio::Studio::Jeweller,
         crate::studio::Studio::Bright,
+        crate::studio::Studio::Tent,
         crate::studio::Studio::None,
     ]
     .iter()

@@ -11,7 +11,7 @@
 //!   thread encodes one as PNG at most every [`FRAME_INTERVAL`] (always the first and every
 //!   denoised one), keeps the last [`KEPT_FRAMES`] by id and announces each on the event
 //!   channel, which every connected page reads: all pages get the same frames.
-//! - **Rest.** A render that reaches [`CONVERGED`] relative error or [`MAX_UNITS`] units
+//! - **Rest.** A render that reaches [`CONVERGED`] display error or [`MAX_UNITS`] units
 //!   stops and waits for the next change (the CPU idles).
 //! - **The final render** ([`Shared::final_render`]) cancels the preview, runs `iris render`
 //!   through [`crate::app::render_command`] with the arguments it reports (so the printed
@@ -32,13 +32,15 @@ use tokio::sync::broadcast;
 pub const FRAME_INTERVAL: Duration = Duration::from_millis(100);
 /// Frames kept for pages to fetch by id.
 pub const KEPT_FRAMES: usize = 8;
-/// The preview stops refining at this estimated relative error …
-pub const CONVERGED: f64 = 0.005;
+/// The preview stops refining at this estimated display error of the raw picture (half an
+/// 8-bit level, [`crate::output::display`]) …
+pub const CONVERGED: f64 = 0.5 / 255.0;
 /// … or after this many units.
 pub const MAX_UNITS: u64 = 1 << 16;
-/// The error at which the page calls the picture clean: `iris render`'s default target,
-/// compared with the estimate of the picture shown (the denoised one once resting).
-pub const CLEAN: f64 = crate::app::budget::DEFAULT_TARGET;
+/// The error at which the page calls the picture clean: `iris render`'s default target for
+/// a PNG, compared with the display error of the picture shown (the denoised one once
+/// resting).
+pub const CLEAN: f64 = crate::app::budget::DEFAULT_DISPLAY_TARGET;
 /// Seconds without a change after which frames are denoised.
 pub const REST: Duration = Duration::from_millis(1500);
 

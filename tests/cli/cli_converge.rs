@@ -22,7 +22,7 @@ fn text(b: &[u8]) -> String {
 }
 
 /// The documented CSV columns (`docs/error-and-time.md`, "Measuring the error").
-const COLUMNS: [&str; 17] = [
+const COLUMNS: [&str; 19] = [
     "run",
     "stage",
     "wall_s",
@@ -40,6 +40,8 @@ const COLUMNS: [&str; 17] = [
     "denoised_rel_mse",
     "denoised_mae",
     "denoise_s",
+    "display_est",
+    "display_rmse",
 ];
 
 /// Rows of a CSV as cells, header first.

@@ -234,7 +234,8 @@ fn a_denoised_png_stops_on_the_denoised_estimate() {
     let exr = render(&scene, &dir.join("d.exr"), flags);
     assert_eq!(png.end(), EndReason::Target, "{}", png.end_text());
     assert_eq!(exr.end(), EndReason::Target, "{}", exr.end_text());
-    assert!(png.target_denoised && !exr.target_denoised);
+    assert_eq!(png.target_measure, "display error of the denoised picture");
+    assert_eq!(exr.target_measure, "rel. error");
     assert!(png.denoised.is_some(), "the PNG is denoised");
     let (n_png, n_exr) = (spp(&png), spp(&exr));
     assert!(
@@ -242,13 +243,19 @@ fn a_denoised_png_stops_on_the_denoised_estimate() {
         "denoised stop at {n_png} spp, raw at {n_exr} spp"
     );
     assert!(n_png >= MIN_STOP_UNITS, "{n_png} spp");
-    // The PNG's estimate is the denoised one: below the target, and below the raw
-    // estimate of the same checkpoint (the report's `estimate` column stays raw).
+    // The PNG's estimate is the denoised picture's display error: below the target, and
+    // the report's `display_est` of the last checkpoint (its `estimate` column stays the
+    // raw relative one).
     let e = png.target_estimate.expect("an estimate");
-    let raw_last = relative_rmse(&png.rows.last().unwrap().estimate.unwrap());
-    assert!(e <= DEFAULT_TARGET && e < raw_last, "{e} vs raw {raw_last}");
+    let last = png.rows.last().unwrap();
+    let raw_last = relative_rmse(&last.estimate.unwrap());
+    assert!(e <= DEFAULT_TARGET, "{e}");
+    assert_eq!(last.display_estimate, Some(e));
     let text = png.end_text();
-    assert!(text.contains("for the denoised image"), "{text}");
+    assert!(
+        text.contains("display error of the denoised picture"),
+        "{text}"
+    );
     assert!(
         png.notes
             .iter()

@@ -39,6 +39,8 @@ fn row(run: &str, stage: &str, t: f64, spp: u64, err: Option<ErrorMetrics>) -> R
             ..m
         }),
         denoise_s: err.map(|_| 0.125),
+        display_estimate: err.map(|m| m.mae * 0.25),
+        display_error: err.map(|m| m.mae * 0.5),
     }
 }
 
@@ -62,12 +64,12 @@ fn csv_has_documented_columns_and_reads_back() {
     assert_eq!(lines[0], CSV_HEADER);
     assert_eq!(
         CSV_HEADER,
-        "run,stage,wall_s,samples_per_pixel,passes,rays,photons,rmse,rel_mse,mae,est_rmse,est_rel_mse,est_mae,denoised_rmse,denoised_rel_mse,denoised_mae,denoise_s"
+        "run,stage,wall_s,samples_per_pixel,passes,rays,photons,rmse,rel_mse,mae,est_rmse,est_rel_mse,est_mae,denoised_rmse,denoised_rel_mse,denoised_mae,denoise_s,display_est,display_rmse"
     );
     assert_eq!(lines.len(), 1 + rows.len(), "one line per row:\n{text}");
     for (line, r) in lines[1..].iter().zip(&rows) {
         let cells: Vec<&str> = line.split(',').collect();
-        assert_eq!(cells.len(), 17, "{line}");
+        assert_eq!(cells.len(), 19, "{line}");
         assert_eq!((cells[0], cells[1]), (r.run.as_str(), r.stage.as_str()));
         // Shortest round-trip formatting: the exact values come back.
         assert_eq!(cells[2].parse::<f64>().unwrap(), r.wall_s);
@@ -89,6 +91,8 @@ fn csv_has_documented_columns_and_reads_back() {
         assert_eq!(metrics(&cells[10..13]), r.estimate);
         assert_eq!(metrics(&cells[13..16]), r.denoised);
         assert_eq!(cells[16].parse::<f64>().ok(), r.denoise_s, "{line}");
+        assert_eq!(cells[17].parse::<f64>().ok(), r.display_estimate, "{line}");
+        assert_eq!(cells[18].parse::<f64>().ok(), r.display_error, "{line}");
     }
     // Rewriting replaces the file (atomic write, no leftovers).
     write_csv(&path, &rows[..1]).expect("rewrite");

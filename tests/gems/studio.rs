@@ -295,7 +295,7 @@ fn same_seed_same_image() {
 fn bad_names_are_clear_errors() {
     let e = Studio::parse("disco").unwrap_err().to_string();
     assert!(
-        e.contains("disco") && e.contains("soft, jeweller, bright or none"),
+        e.contains("disco") && e.contains("soft, jeweller, bright, tent or none"),
         "{e}"
     );
     let e = GroundMode::parse("maybe").unwrap_err().to_string();

@@ -66,7 +66,7 @@ fn adaptive_sampling_keeps_the_estimator_and_puts_samples_where_the_error_is() {
     // The clean tiles are the ones that rested: the uniform render's per-tile error is
     // higher in the tiles that kept sampling.
     let (ua, ub) = uniform.halves();
-    let e2 = iris::render::adaptive::tile_errors(&uniform, (&ua, &ub));
+    let e2 = iris::render::adaptive::tile_errors(&uniform, (&ua, &ub), false);
     let mean_e2 = |full: bool| {
         let v: Vec<f64> = states
             .iter()
@@ -257,7 +257,13 @@ fn tiles_are_measured_on_the_halves_the_observer_judged() {
                 b.data[y * W as usize + x] += glam::Vec3::ONE;
             }
         }
-        let _ = p.judged.set((p.halves.0.clone(), b));
+        let _ = p.judged.set(iris::render::Judged {
+            halves: Some((p.halves.0.clone(), b)),
+            absolute: false,
+            estimate: 1.0,
+            target: None,
+            name: "test",
+        });
         Ok(iris::render::Control::Continue)
     };
     let (film, _) = integrator
@@ -277,22 +283,26 @@ fn tiles_are_measured_on_the_halves_the_observer_judged() {
 #[cfg(feature = "denoise")]
 #[test]
 fn the_denoised_stop_hands_its_halves_to_adaptive_sampling() {
-    use iris::app::budget::{stop_error, StopImage};
+    use iris::app::budget::{stop_error, Measure, StopImage};
     let (film, _) = render(&settings(16, 7, 0, false));
     let (a, b) = film.halves();
     let image = film.mean();
     let progress = || iris::render::Progress::at(&image, (&a, &b), 16, false);
     let raw = progress();
-    let e_raw = stop_error(&raw, StopImage::Raw).unwrap().unwrap();
+    let e_raw = stop_error(&raw, StopImage::Raw, Measure::Linear)
+        .unwrap()
+        .unwrap();
     assert!(
-        raw.judged.get().is_none(),
+        raw.judged.get().unwrap().halves.is_none(),
         "the raw stop judges by the raw halves"
     );
     let den = progress();
-    let e_den = stop_error(&den, StopImage::Denoised(None))
+    let e_den = stop_error(&den, StopImage::Denoised(None), Measure::Linear)
         .unwrap()
         .unwrap();
-    let (ja, jb) = den.judged.get().expect("the denoised halves");
+    let judged = den.judged.get().expect("the denoised halves");
+    let (ja, jb) = judged.halves.as_ref().expect("the denoised halves");
+    assert!(!judged.absolute);
     let again = iris::render::relative_error_estimate(ja, jb).unwrap();
     assert_eq!(again, e_den, "the stop's estimate is the judged halves'");
     assert!(e_den < e_raw, "denoised {e_den} vs raw {e_raw}");

@@ -8,6 +8,7 @@ mod common;
 mod adaptive;
 mod denoise;
 mod dispersion;
+mod display_error;
 mod light_choice;
 mod path_lanes;
 mod plan;

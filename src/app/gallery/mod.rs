@@ -8,8 +8,8 @@
 //! when the gallery is given one): the same app-level function
 //! ([`crate::app::render_command`], called only from [`render_entry`]) and the CLI's
 //! defaults for every other flag: the default budget ([`crate::app::budget`]: `--method
-//! auto`, rendered until the estimated error of the written image, the denoised PNG, is
-//! 0.03, or 120 s), one photon per pixel and pass, ACES tone map, automatic exposure, the
+//! auto`, rendered until the estimated display error of the written picture, the
+//! denoised PNG, is 0.01, or 120 s), one photon per pixel and pass, ACES tone map, automatic exposure, the
 //! file's camera, lights and environment, else the drop-in preview's framing, studio
 //! (jeweller for gems) and floor. So the plan, the `--method auto` choice and the stop
 //! shown are what a user gets with no flags.
@@ -267,8 +267,8 @@ fn page_text(
         match opts.time {
             Some(_) => "the time limit ends each render",
             None =>
-                "`--method auto`, rendered until the estimated relative error of the \
-                     written (denoised) image is 0.03 or for 120 s",
+                "`--method auto`, rendered until the estimated display error of the \
+                     written (denoised) picture is 0.01 or for 120 s",
         }
     );
     if let Some(msg) = shared_missing {

@@ -327,13 +327,13 @@ function showFrame(f) {
   img.src = withToken("/frame/" + f.id);
   const unit = window.iris.status?.unit === "passes" ? "passes" : "spp";
   $("units").textContent = f.units == null ? "–" : `${f.units} ${unit}`;
-  $("estimate").textContent = f.estimate == null ? "" : `error ≈ ${(100 * f.estimate).toFixed(1)} %`;
+  $("estimate").textContent = f.estimate == null ? "" : `display error ≈ ${(100 * f.estimate).toFixed(2)} %`;
   const clean = f.clean_in_ms == null ? "" : f.clean_in_ms === 0 ? "clean"
     : `clean in ≈ ${duration(f.clean_in_ms)}`;
   $("clean").textContent = clean;
   $("clean-summary").textContent = f.clean_in_ms == null ? ""
-    : f.clean_in_ms === 0 ? `Clean: the preview reached ${(100 * f.target).toFixed(1)} % error.`
-    : `Time to clean (${(100 * f.target).toFixed(1)} % error): ≈ ${duration(f.clean_in_ms)} more at this size.`;
+    : f.clean_in_ms === 0 ? `Clean: the preview reached ${(100 * f.target).toFixed(1)} % display error.`
+    : `Time to clean (${(100 * f.target).toFixed(1)} % display error): ≈ ${duration(f.clean_in_ms)} more at this size.`;
   $("overlay").textContent = f.denoised ? "denoised" : "";
 }
 
