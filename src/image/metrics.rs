@@ -274,15 +274,7 @@ mod tests {
             out
         };
         let (a, b) = (noisy(&truth), noisy(&truth));
-        let full = ImageRgb {
-            data: a
-                .data
-                .iter()
-                .zip(&b.data)
-                .map(|(x, y)| 0.5 * (*x + *y))
-                .collect(),
-            ..truth.clone()
-        };
+        let full = a.mean_with(&b);
         let actual = compare(&full, &truth).unwrap();
         let est = half_buffer_estimate(&a, &b).unwrap();
         // 12288 channel values: the estimate's relative standard deviation is ~1–2 % (the

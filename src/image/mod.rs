@@ -34,6 +34,18 @@ pub struct ImageRgb {
 }
 
 impl ImageRgb {
+    /// The pixel-wise mean of this image and `other` (this image's size; `other` holds at
+    /// least as many pixels): the full image of two half images.
+    pub fn mean_with(&self, other: &ImageRgb) -> ImageRgb {
+        ImageRgb {
+            width: self.width,
+            height: self.height,
+            data: (self.data.iter().zip(&other.data))
+                .map(|(x, y)| 0.5 * (*x + *y))
+                .collect(),
+        }
+    }
+
     /// A black image of the given size.
     pub fn new(width: u32, height: u32) -> Self {
         ImageRgb {

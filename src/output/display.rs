@@ -135,7 +135,7 @@ impl<'a> Picture<'a> {
     /// The seen display values of two half images through the transform of their mean
     /// (one exposure for both).
     pub fn halves(&self, a: &ImageRgb, b: &ImageRgb) -> (ImageRgb, ImageRgb) {
-        let mean = mean_of(a, b);
+        let mean = a.mean_with(b);
         let seen = |h: &ImageRgb| blur(&self.values_exposed(h, &mean), SEEN_SIGMA);
         (seen(a), seen(b))
     }
@@ -158,9 +158,9 @@ impl<'a> Picture<'a> {
     /// The RMS over pixels and channels of the seen bias `½(s_a + s_b) − s_m` (module
     /// docs), each of the three pictures with its own automatic exposure.
     fn noise_bias(&self, a: &ImageRgb, b: &ImageRgb) -> Result<f64> {
-        let mean = mean_of(a, b);
+        let mean = a.mean_with(b);
         let (sa, sb) = (self.seen(a), self.seen(b));
-        let half_mean = mean_of(&sa, &sb);
+        let half_mean = sa.mean_with(&sb);
         Ok(compare(&half_mean, &self.seen(&mean))?.rmse)
     }
 
@@ -168,20 +168,6 @@ impl<'a> Picture<'a> {
     /// Errors when the sizes differ.
     pub fn error(&self, img: &ImageRgb, reference: &ImageRgb) -> Result<f64> {
         Ok(compare(&self.seen(img), &self.seen(reference))?.rmse)
-    }
-}
-
-/// The pixel-wise mean of two images of one size (`a`'s size).
-fn mean_of(a: &ImageRgb, b: &ImageRgb) -> ImageRgb {
-    ImageRgb {
-        width: a.width,
-        height: a.height,
-        data: a
-            .data
-            .iter()
-            .zip(&b.data)
-            .map(|(x, y)| 0.5 * (*x + *y))
-            .collect(),
     }
 }
 
