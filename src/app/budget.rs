@@ -98,6 +98,16 @@ pub const DEFAULT_TARGET: f64 = 0.03;
 /// seed's picture.
 pub const DEFAULT_DISPLAY_TARGET: f64 = 0.01;
 
+/// The default budget's error target for an output: [`DEFAULT_DISPLAY_TARGET`] for a
+/// display-referred one (a PNG), [`DEFAULT_TARGET`] for an EXR.
+pub fn default_target(display_referred: bool) -> f64 {
+    if display_referred {
+        DEFAULT_DISPLAY_TARGET
+    } else {
+        DEFAULT_TARGET
+    }
+}
+
 /// The time limit of a render given no `--spp`, `--passes` or `--time`: 120 s.
 ///
 /// The safety net for scenes that do not reach [`DEFAULT_TARGET`] soon: long enough for the

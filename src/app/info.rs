@@ -389,7 +389,7 @@ fn info_plan(path: &Path, flags: &[LookFlag]) -> Result<String> {
             open: budget.open,
             target: budget
                 .target_error
-                .map(|_| super::budget::DEFAULT_DISPLAY_TARGET),
+                .map(|_| super::budget::default_target(true)),
             shard: false,
             media: scene.has_media(),
         },

@@ -159,13 +159,11 @@ impl RenderOptions {
     /// budget the default of the output's measure (a PNG's display error, an EXR's
     /// relative error: [`super::budget::DEFAULT_DISPLAY_TARGET`], [`super::budget::DEFAULT_TARGET`]).
     pub fn target_error(&self, output: &std::path::Path) -> Option<f64> {
-        match (
-            self.measure.default_target,
-            crate::output::is_display_referred(output),
-        ) {
-            (true, true) => Some(super::budget::DEFAULT_DISPLAY_TARGET),
-            (true, false) => Some(super::budget::DEFAULT_TARGET),
-            (false, _) => self.measure.target_error,
+        if self.measure.default_target {
+            let display = crate::output::is_display_referred(output);
+            Some(super::budget::default_target(display))
+        } else {
+            self.measure.target_error
         }
     }
 

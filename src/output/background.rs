@@ -155,12 +155,7 @@ pub fn exposure_pixels(img: &ImageRgb, cov: Option<&Coverage>, bg: Background) -
     match (bg, cov) {
         (Background::Environment, _) | (_, None) => img.data.clone(),
         (_, Some(cov)) => {
-            let straight: Vec<Vec3> = model_part(img, cov)
-                .iter()
-                .zip(&cov.alpha)
-                .map(|(&m, &a)| if a > 0.0 { m / a } else { Vec3::ZERO })
-                .collect();
-            covered_straight(&straight, cov)
+            covered_straight(&straight_exposed(img, cov, Exposure::Ev(0.0)).0.data, cov)
         }
     }
 }

@@ -89,21 +89,27 @@ impl<'a> Picture<'a> {
         })
     }
 
-    /// The display values of `img` (module docs), its exposure resolved on `exposed_on`.
-    fn values_exposed(&self, img: &ImageRgb, exposed_on: &ImageRgb) -> ImageRgb {
+    /// The exposure scale the output gives `img` (automatic exposure resolved on it, over
+    /// the covered pixels when the background is composited).
+    fn scale_for(&self, img: &ImageRgb) -> f32 {
+        let exposure = match self.composited(img) {
+            None => self.display.exposure,
+            Some(cov) => straight_exposed(img, cov, self.display.exposure).1,
+        };
+        exposure_scale(img, exposure)
+    }
+
+    /// The display values of `img` at exposure scale `scale` (module docs).
+    fn values_at(&self, img: &ImageRgb, scale: f32) -> ImageRgb {
         let tonemap = self.display.tonemap;
         let data = match self.composited(img) {
-            None => {
-                let scale = exposure_scale(exposed_on, self.display.exposure);
-                img.data
-                    .iter()
-                    .map(|&c| encode(c, scale, tonemap))
-                    .collect()
-            }
+            None => img
+                .data
+                .iter()
+                .map(|&c| encode(c, scale, tonemap))
+                .collect(),
             Some(cov) => {
-                let (_, exposure) = straight_exposed(exposed_on, cov, self.display.exposure);
                 let (straight, _) = straight_exposed(img, cov, Exposure::Ev(0.0));
-                let scale = exposure_scale(&straight, exposure);
                 let shown = |(&c, &a): (&Vec3, &f32)| {
                     let v = a * encode(c, scale, tonemap);
                     match self.background {
@@ -123,7 +129,7 @@ impl<'a> Picture<'a> {
 
     /// The display values of `img` as its output shows it (module docs).
     pub fn values(&self, img: &ImageRgb) -> ImageRgb {
-        self.values_exposed(img, img)
+        self.values_at(img, self.scale_for(img))
     }
 
     /// The display values of `img` as a viewer sees them: [`Picture::values`] blurred by
@@ -132,12 +138,16 @@ impl<'a> Picture<'a> {
         blur(&self.values(img), SEEN_SIGMA)
     }
 
+    /// `img` seen at exposure scale `scale`.
+    fn seen_at(&self, img: &ImageRgb, scale: f32) -> ImageRgb {
+        blur(&self.values_at(img, scale), SEEN_SIGMA)
+    }
+
     /// The seen display values of two half images through the transform of their mean
     /// (one exposure for both).
     pub fn halves(&self, a: &ImageRgb, b: &ImageRgb) -> (ImageRgb, ImageRgb) {
-        let mean = a.mean_with(b);
-        let seen = |h: &ImageRgb| blur(&self.values_exposed(h, &mean), SEEN_SIGMA);
-        (seen(a), seen(b))
+        let scale = self.scale_for(&a.mean_with(b));
+        (self.seen_at(a, scale), self.seen_at(b, scale))
     }
 
     /// The estimated display RMSE of the seen picture of `(a + b)/2` from its halves
@@ -148,20 +158,25 @@ impl<'a> Picture<'a> {
     }
 
     /// [`Picture::estimate`] and the seen halves its noise term compares ([`Picture::halves`]).
+    ///
+    /// The bias term `½(s_a + s_b) − s_m` takes each picture at its own exposure; where a
+    /// half's exposure is the mean's (a fixed EV), its seen values are the noise term's.
     pub fn judge(&self, a: &ImageRgb, b: &ImageRgb) -> Result<(f64, (ImageRgb, ImageRgb))> {
-        let (sa, sb) = self.halves(a, b);
-        let noise = half_buffer_estimate(&sa, &sb)?.rmse;
-        let bias = self.noise_bias(a, b)?;
-        Ok((noise.hypot(bias), (sa, sb)))
-    }
-
-    /// The RMS over pixels and channels of the seen bias `½(s_a + s_b) − s_m` (module
-    /// docs), each of the three pictures with its own automatic exposure.
-    fn noise_bias(&self, a: &ImageRgb, b: &ImageRgb) -> Result<f64> {
         let mean = a.mean_with(b);
-        let (sa, sb) = (self.seen(a), self.seen(b));
-        let half_mean = sa.mean_with(&sb);
-        Ok(compare(&half_mean, &self.seen(&mean))?.rmse)
+        let scale = self.scale_for(&mean);
+        let (sa, sb) = (self.seen_at(a, scale), self.seen_at(b, scale));
+        let noise = half_buffer_estimate(&sa, &sb)?.rmse;
+        let own = |h: &ImageRgb, shared: &ImageRgb| {
+            let s = self.scale_for(h);
+            if s == scale {
+                shared.clone()
+            } else {
+                self.seen_at(h, s)
+            }
+        };
+        let half_mean = own(a, &sa).mean_with(&own(b, &sb));
+        let bias = compare(&half_mean, &self.seen_at(&mean, scale))?.rmse;
+        Ok((noise.hypot(bias), (sa, sb)))
     }
 
     /// The display RMSE of `img`'s seen picture against `reference`'s (module docs).
