@@ -182,7 +182,7 @@ pub fn drive(
         let message = |e: &Shown| {
             format!(
                 "{done} {unit}, {rays} rays{note}{resting}{}{limit_note}",
-                e.note()
+                e.note(settings.time_limit, setup.start)
             )
         };
         bar.set_message(message(&shown));
@@ -270,13 +270,16 @@ enum Shown {
 
 impl Shown {
     /// The progress line's note.
-    fn note(&self) -> String {
+    /// The render's time limit, if any, counts from `start`.
+    fn note(&self, limit: Option<Duration>, start: Instant) -> String {
+        let limit_left = limit.map(|t| t.saturating_sub(start.elapsed()));
         match self {
             Shown::Raw(e) => estimate_note(*e),
             Shown::Judged(j, at, when) => {
                 let left = time_to_target(j.estimate, j.target, *at)
                     .map(|d| d.saturating_sub(when.elapsed()));
-                judged_note(j, left)
+                let past = matches!((left, limit_left), (Some(l), Some(m)) if l > m);
+                judged_note(j, left, past)
             }
         }
     }

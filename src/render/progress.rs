@@ -146,13 +146,21 @@ impl Judged {
 
 /// ", est. display error 0.0123 (target 0.0100, ≈ 40 s more)" for the progress bar: an
 /// observer's judgement after `done` units, `left` the expected time to its target
-/// ([`time_to_target`]).
-pub fn judged_note(j: &Judged, left: Option<Duration>) -> String {
+/// ([`time_to_target`]); `past_limit` when that is beyond the render's time limit, which
+/// will end it first.
+pub fn judged_note(j: &Judged, left: Option<Duration>, past_limit: bool) -> String {
     let mut s = format!(", est. {} {:.4}", j.name, j.estimate);
     if let Some(t) = j.target {
         s.push_str(&format!(" (target {t}"));
         match left {
-            Some(d) if j.estimate > t => s.push_str(&format!(", ≈ {} more)", short_duration(d))),
+            Some(d) if j.estimate > t => {
+                let after = if past_limit {
+                    ", after the time limit"
+                } else {
+                    ""
+                };
+                s.push_str(&format!(", ≈ {} more{after})", short_duration(d)));
+            }
             _ => s.push(')'),
         }
     }
@@ -241,19 +249,23 @@ mod tests {
     fn the_progress_note_names_the_measure_the_target_and_the_time_left() {
         let j = judged(0.0153, Some(0.01));
         assert_eq!(
-            judged_note(&j, Some(Duration::from_secs(41))),
+            judged_note(&j, Some(Duration::from_secs(41)), false),
             ", est. display error 0.0153 (target 0.01, ≈ 41 s more)"
         );
         assert_eq!(
-            judged_note(&j, Some(Duration::from_secs(200))),
+            judged_note(&j, Some(Duration::from_secs(200)), false),
             ", est. display error 0.0153 (target 0.01, ≈ 3 min 20 s more)"
         );
         assert_eq!(
-            judged_note(&judged(0.008, Some(0.01)), Some(Duration::ZERO)),
+            judged_note(&j, Some(Duration::from_secs(549)), true),
+            ", est. display error 0.0153 (target 0.01, ≈ 9 min 09 s more, after the time limit)"
+        );
+        assert_eq!(
+            judged_note(&judged(0.008, Some(0.01)), Some(Duration::ZERO), false),
             ", est. display error 0.0080 (target 0.01)"
         );
         assert_eq!(
-            judged_note(&judged(0.02, None), None),
+            judged_note(&judged(0.02, None), None, false),
             ", est. display error 0.0200"
         );
     }
